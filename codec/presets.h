@@ -1,0 +1,21 @@
+// Preset scenes (assets/scenes/*.json), embedded in the binary at build time.
+#pragma once
+
+#include <span>
+#include <string_view>
+
+namespace spinfold {
+
+struct PresetSource {
+  std::string_view name;  // file name without .json
+  std::string_view json;  // the scene, in the same format as the CLI and the API accept
+};
+
+std::span<const PresetSource> preset_sources();
+// nullptr if there is no preset of that name.
+const PresetSource* find_preset(std::string_view name);
+
+// The scene `spinfold simulate` and the server run when none is given.
+inline constexpr std::string_view kDefaultPreset = "spinning_rigid_sphere";
+
+}  // namespace spinfold

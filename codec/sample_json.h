@@ -1,0 +1,17 @@
+// One sample of a run as a JSON object: the CLI's JSON Lines record and the API's state.
+#pragma once
+
+#include <span>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/simulation.h"
+
+namespace spinfold {
+
+// Paper coordinates, rates, momenta, X, L, det L, invariants, status and provenance.
+// Undefined values are null and listed under "undefined" with the reason; `new_events` are the
+// det L = 0 crossings since the previous sample.
+nlohmann::ordered_json sample_to_json(const Run& run, std::span<const DegenerateEvent> new_events);
+
+}  // namespace spinfold

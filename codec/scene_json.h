@@ -1,0 +1,34 @@
+// The scene format (JSON) shared by the CLI, the API and assets/scenes: parse, check, write.
+#pragma once
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/scene.h"
+#include "engine/validation.h"
+
+namespace spinfold {
+
+struct SceneParse {
+  std::optional<Scene> scene;      // set only when errors is empty
+  std::vector<FieldError> errors;  // structure errors (unknown key, wrong type) and validate_scene's
+};
+
+// Deepest nesting accepted in any JSON input (deeper input is rejected before it is built).
+inline constexpr int kMaxJsonDepth = 32;
+
+// Parses JSON text; malformed JSON is one error with field "" naming the position.
+SceneParse parse_scene_text(std::string_view text);
+// Reads a parsed document: unknown keys and kinds are rejected, omitted fields get the defaults
+// of engine/scene.h, and the result passes validate_scene.
+SceneParse parse_scene(const nlohmann::json& document);
+
+nlohmann::json scene_to_json(const Scene& scene);
+
+// "field: reason (value)" lines, one per error.
+std::string describe_errors(const std::vector<FieldError>& errors);
+
+}  // namespace spinfold

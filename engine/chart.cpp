@@ -1,0 +1,162 @@
+#include "engine/chart.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "engine/dynamics.h"
+
+namespace spinfold {
+
+Mat2 rotation2(double psi) {
+  Mat2 U;
+  U << std::cos(psi), -std::sin(psi), std::sin(psi), std::cos(psi);
+  return U;
+}
+
+Mat3 inverse_linear(const Surface& surface, const Mat3& A) {
+  if (surface.kind != SurfaceKind::pseudosphere) return A.transpose();
+  const Eigen::DiagonalMatrix<double, 3> eta(1.0, 1.0, -1.0);
+  return eta * A.transpose() * eta;
+}
+
+BodyKinematics chart_kinematics(const Scene& scene, const Coords& y) {
+  const Surface& surface = scene.surface;
+  const double m = scene.body.mass, r = y[coord::r];
+  const double S = polar_S(surface, r), C = polar_C(surface, r);
+  const ChartPoint p = chart_point(surface, r, y[coord::phi]);
+  const InternalState in = internal_state(scene, y);
+  const double s = spin_of(scene, y);
+  const double S_phi_dot = (y[coord::p_phi] - C * s) / (m * S);  // S φ̇ = Π/(mS)
+  return {p.X, (y[coord::p_r] / m) * p.E1 + S_phi_dot * p.E2, p.E1, in.L, in.M, s};
+}
+
+Coords chart_coords(const Scene& scene, const BodyKinematics& body) {
+  const Surface& surface = scene.surface;
+  const double m = scene.body.mass, J = scene.body.inertia;
+  const PolarCoordinates pc = polar_coordinates(surface, body.X);
+  const ChartPoint p = chart_point(surface, pc.r, pc.phi);
+  // F₁ = cos ψ E₁ + sin ψ E₂ ⇒ components in (E₁, E₂) are U(ψ) times those in (F₁, F₂).
+  const double psi = std::atan2(dot(surface, body.F1, p.E2), dot(surface, body.F1, p.E1));
+  const Mat2 U = rotation2(psi);
+  const Mat2 L = U * body.L, M = U * body.M;
+  const double S = polar_S(surface, pc.r), C = polar_C(surface, pc.r);
+
+  Coords y;
+  if (scene.body.model == BodyModel::rigid) {
+    y.resize(coord::rigid_size);
+    y[coord::theta] = std::atan2(L(1, 0), L(0, 0));
+    y[coord::spin] = body.spin;
+  } else {
+    y.resize(coord::affine_size);
+    const Mat2 P = J * M;
+    y.segment<4>(coord::L) << L(0, 0), L(0, 1), L(1, 0), L(1, 1);
+    y.segment<4>(coord::P) << P(0, 0), P(0, 1), P(1, 0), P(1, 1);
+  }
+  y[coord::r] = pc.r;
+  y[coord::phi] = pc.phi;
+  y[coord::p_r] = m * dot(surface, body.V, p.E1);
+  y[coord::p_phi] = m * S * dot(surface, body.V, p.E2) + C * spin_of(scene, y);
+  return y;
+}
+
+BodyKinematics initial_kinematics(const Scene& scene) {
+  const Surface& surface = scene.surface;
+  const InitialState& q = scene.initial;
+  const ChartPoint p = chart_point(surface, q.r, q.phi);
+  const double S = polar_S(surface, q.r), C = polar_C(surface, q.r);
+  const Mat2 Ua = rotation2(q.alpha), Ub = rotation2(q.beta), eps = epsilon();
+  const Mat2 L = Ua * Eigen::Vector2d(q.lambda, q.mu).asDiagonal() * Ub.transpose();
+  // L̇ = α̇εL − β̇Lε + U(α) diag(λ̇, μ̇) U(β)ᵀ; M = L̇ + Cφ̇εL (physics.md §3).
+  const Mat2 L_dot = q.alpha_dot * eps * L - q.beta_dot * L * eps +
+                     Ua * Eigen::Vector2d(q.lambda_dot, q.mu_dot).asDiagonal() * Ub.transpose();
+  const Mat2 M = L_dot + C * q.phi_dot * eps * L;
+  const double spin = scene.body.inertia * (eps * L).cwiseProduct(M).sum();
+  return {p.X, q.r_dot * p.E1 + S * q.phi_dot * p.E2, p.E1, L, M, spin};
+}
+
+bool chart_well_conditioned(const Surface& surface, double r) {
+  const double x = r / surface.radius;
+  if (surface.kind == SurfaceKind::sphere)
+    return x >= 0.25 * std::numbers::pi && x <= 0.75 * std::numbers::pi;
+  return x >= 0.5 && x <= 3.0;
+}
+
+namespace {
+
+// Distance of the body from a new chart's pole: the middle of the well-conditioned band.
+double recentre_distance(const Surface& surface) {
+  return surface.kind == SurfaceKind::sphere ? 0.5 * std::numbers::pi * surface.radius
+                                             : surface.radius;
+}
+
+}  // namespace
+
+void recentre(const Scene& scene, const BodyKinematics& body, Chart& chart, Coords& y) {
+  const Surface& surface = scene.surface;
+  const double K = curvature(surface);
+  const Vec3& X = body.X;
+  // The new pole lies at distance d₀ from the body along −u, u ⟂ velocity, on the convex side of
+  // the spin–curvature bending (κ_g ∝ Ks, physics.md §8.5) so the body stays far from it.
+  const double speed = std::sqrt(std::max(0.0, dot(surface, body.V, body.V)));
+  Vec3 u = body.F1;
+  if (speed > 0.0) u = rotate_quarter(surface, X, body.V) * ((K * body.spin >= 0.0 ? 1.0 : -1.0) / speed);
+
+  const double d0 = recentre_distance(surface);
+  const double Sd = polar_S(surface, d0), Cd = polar_C(surface, d0);
+  Vec3 pole, a1, b_rel = Vec3::Zero();
+  if (surface.kind == SurfaceKind::plane) {
+    pole = X - d0 * u;
+    a1 = u;
+    b_rel = pole;
+  } else {
+    pole = Cd * X - Sd * u;     // exp_X(−d₀u)
+    a1 = K * Sd * X + Cd * u;   // unit tangent at the pole, pointing at the body
+  }
+  Mat3 A_rel;
+  A_rel.col(0) = a1;
+  A_rel.col(1) = rotate_quarter(surface, pole, a1);
+  A_rel.col(2) = unit_normal(surface, pole);
+  const Mat3 A_inv = inverse_linear(surface, A_rel);
+
+  const BodyKinematics moved{A_inv * (X - b_rel), A_inv * body.V, A_inv * body.F1,
+                             body.L, body.M, body.spin};
+  y = chart_coords(scene, moved);
+  chart.b = chart.A * b_rel + chart.b;
+  chart.A = chart.A * A_rel;
+  chart.global = false;
+}
+
+void recentre(const Scene& scene, State& state) {
+  recentre(scene, chart_kinematics(scene, state.y), state.chart, state.y);
+}
+
+State initial_state(const Scene& scene) {
+  State state;
+  const BodyKinematics body = initial_kinematics(scene);
+  const InitialState& q = scene.initial;
+  if (!chart_well_conditioned(scene.surface, q.r)) {
+    recentre(scene, body, state.chart, state.y);
+    return state;
+  }
+  // The scene's own chart: canonical values straight from the initial ones (physics.md §3).
+  const double m = scene.body.mass, J = scene.body.inertia;
+  const double S = polar_S(scene.surface, q.r), C = polar_C(scene.surface, q.r);
+  Coords& y = state.y;
+  if (scene.body.model == BodyModel::rigid) {
+    y.resize(coord::rigid_size);
+    y[coord::theta] = q.alpha - q.beta;
+    y[coord::spin] = body.spin;
+  } else {
+    y.resize(coord::affine_size);
+    const Mat2 P = J * body.M;
+    y.segment<4>(coord::L) << body.L(0, 0), body.L(0, 1), body.L(1, 0), body.L(1, 1);
+    y.segment<4>(coord::P) << P(0, 0), P(0, 1), P(1, 0), P(1, 1);
+  }
+  y[coord::r] = q.r;
+  y[coord::phi] = q.phi;
+  y[coord::p_r] = m * q.r_dot;
+  y[coord::p_phi] = m * S * S * q.phi_dot + C * spin_of(scene, y);
+  return state;
+}
+
+}  // namespace spinfold

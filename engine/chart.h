@@ -1,0 +1,48 @@
+// Charts and the embedding: building a state, re-centring its chart, reading it back in any
+// coordinates (physics.md §7, "Conversions").
+#pragma once
+
+#include "engine/scene.h"
+#include "engine/state.h"
+
+namespace spinfold {
+
+// A body described by vectors in one coordinate system (a chart's embedding or the global one).
+struct BodyKinematics {
+  Vec3 X;        // position [length]
+  Vec3 V;        // velocity dX/dt [length/time]
+  Vec3 F1;       // unit tangent vector that, with F₂ = jF₁, is the frame L and M refer to
+  Mat2 L;        // internal matrix: e_A = F_B L_BA
+  Mat2 M;        // covariant rate: De_A/Dt = F_B M_BA [1/time]
+  double spin;   // s [angular momentum]; frame-independent
+};
+
+// The body in the coordinates of its own chart (the chart must not be at its pole).
+BodyKinematics chart_kinematics(const Scene& scene, const Coords& y);
+
+// Canonical coordinates of a body given in a chart's embedding coordinates (the body must not be
+// at that chart's pole).
+Coords chart_coords(const Scene& scene, const BodyKinematics& body);
+
+// The body in the scene's coordinates, from the initial values of physics.md §2 (valid at a pole).
+BodyKinematics initial_kinematics(const Scene& scene);
+
+// The state at t = 0, in a chart where the body is far from the chart's pole.
+State initial_state(const Scene& scene);
+
+// True while the chart coordinate r keeps the polar chart accurate: away from its pole(s) and,
+// on H², not so far out that φ loses precision.
+bool chart_well_conditioned(const Surface& surface, double r);
+
+// Moves the chart so that the body sits at a well-conditioned distance from the new pole, with
+// the new pole placed off the body's path. The physical state is unchanged.
+void recentre(const Scene& scene, const BodyKinematics& body_in_chart, Chart& chart, Coords& y);
+void recentre(const Scene& scene, State& state);
+
+// Inverse of the chart isometry's linear part: ηAᵀη (Lorentz or rotation).
+Mat3 inverse_linear(const Surface& surface, const Mat3& A);
+
+// U(ψ) = [[cos ψ, −sin ψ], [sin ψ, cos ψ]].
+Mat2 rotation2(double psi);
+
+}  // namespace spinfold

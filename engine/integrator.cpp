@@ -1,0 +1,21 @@
+#include "engine/integrator.h"
+
+#include <array>
+
+namespace spinfold {
+
+std::span<const CatalogEntry> integrator_catalog() {
+  static const std::array<CatalogEntry, 2> catalog{{
+      {dop853_info, &make_dop853},
+      {rk4_info, &make_rk4},
+  }};
+  return catalog;
+}
+
+const CatalogEntry* find_integrator(std::string_view name) {
+  for (const CatalogEntry& entry : integrator_catalog())
+    if (entry.info.name == name) return &entry;
+  return nullptr;
+}
+
+}  // namespace spinfold

@@ -1,0 +1,56 @@
+// The integrator interface and the catalog (one entry per integrator_<name>.cpp).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <span>
+#include <string_view>
+
+#include "engine/state.h"
+
+namespace spinfold {
+
+// dy/dt = f(y): the vector field of the current chart (autonomous).
+using VectorField = std::function<void(const Coords& y, Coords& dydt)>;
+
+struct IntegratorInfo {
+  std::string_view name;
+  int order = 0;            // global order of accuracy
+  bool symplectic = false;  // preserves the canonical symplectic form of the (L, P) chart
+  bool adaptive = false;    // chooses its own step from the tolerance
+  bool exact = false;       // closed-form solution, no stepping error
+  std::string_view summary;
+};
+
+struct StepResult {
+  bool accepted = false;  // false: y_next is meaningless and the caller retries with h_next
+  double h_next = 0.0;    // proposed next step [time]
+};
+
+// Contract: try_step never modifies y; on acceptance y_next holds the state after time h.
+// A non-finite y_next must be rejected by the caller (the integrator may not notice it).
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  virtual const IntegratorInfo& info() const = 0;
+  // One attempt at a step of size h [time] with the per-step error tolerance (adaptive methods).
+  virtual StepResult try_step(const VectorField& f, const Coords& y, double h, double tolerance,
+                              Coords& y_next) = 0;
+};
+
+struct CatalogEntry {
+  IntegratorInfo info;
+  std::unique_ptr<Integrator> (*make)();
+};
+
+std::span<const CatalogEntry> integrator_catalog();
+// nullptr if the name is not in the catalog.
+const CatalogEntry* find_integrator(std::string_view name);
+
+// Factories, one per integrator file.
+std::unique_ptr<Integrator> make_rk4();
+std::unique_ptr<Integrator> make_dop853();
+extern const IntegratorInfo rk4_info;
+extern const IntegratorInfo dop853_info;
+
+}  // namespace spinfold

@@ -1,0 +1,116 @@
+#include "engine/invariants.h"
+
+#include <cmath>
+
+#include "engine/chart.h"
+#include "engine/dynamics.h"
+#include "engine/potentials.h"
+
+namespace spinfold {
+
+GlobalBody global_body(const Scene& scene, const State& state) {
+  const Surface& surface = scene.surface;
+  const Chart& chart = state.chart;
+  const BodyKinematics body = chart_kinematics(scene, state.y);
+  GlobalBody g;
+  g.X = chart.A * body.X + chart.b;
+  g.V = chart.A * body.V;
+  g.spin = body.spin;
+  const PolarCoordinates pc = polar_coordinates(surface, g.X);
+  g.r = pc.r;
+  g.phi = pc.phi;
+  g.S = pc.rho;
+  g.C = surface.kind == SurfaceKind::plane ? 1.0 : g.X.z() / surface.radius;
+  g.at_pole = pc.rho <= 1e-12 * surface.radius;
+  g.L = body.L;
+  g.M = body.M;
+  if (g.at_pole) return g;
+
+  // The paper's E₁ at the body, in chart coordinates: away from the global pole O. Pulling O back
+  // (one row of A⁻¹, no cancellation) and projecting keeps full precision far out on H².
+  Vec3 E1 = body.F1;
+  if (!chart.global) {
+    const Mat3 A_inv = inverse_linear(surface, chart.A);
+    const Vec3 O_global = surface.kind == SurfaceKind::plane ? Vec3::Zero()
+                                                              : Vec3(0.0, 0.0, surface.radius);
+    const Vec3 towards = tangential(surface, body.X, A_inv * (O_global - chart.b) - body.X);
+    E1 = -towards / std::sqrt(dot(surface, towards, towards));
+  }
+  const Vec3 E2 = rotate_quarter(surface, body.X, E1);
+  const Mat2 U = rotation2(std::atan2(dot(surface, body.F1, E2), dot(surface, body.F1, E1)));
+  g.L = U * body.L;
+  g.M = U * body.M;
+  g.r_dot = dot(surface, body.V, E1);
+  g.phi_dot = dot(surface, body.V, E2) / g.S;
+  return g;
+}
+
+double energy(const Scene& scene, const State& state) {
+  return hamiltonian(scene, state.chart, state.y);
+}
+
+double orbital_energy(const Scene& scene, const State& state) {
+  const double m = scene.body.mass, r = state.y[coord::r];
+  const double S = polar_S(scene.surface, r), C = polar_C(scene.surface, r);
+  const double Pi = state.y[coord::p_phi] - C * spin_of(scene, state.y);
+  const double p_r = state.y[coord::p_r];
+  return p_r * p_r / (2.0 * m) + Pi * Pi / (2.0 * m * S * S) +
+         radial_terms(scene, state.chart, r, state.y[coord::phi]).value;
+}
+
+double deformation_energy(const Scene& scene, const State& state) {
+  const double J = scene.body.inertia;
+  const InternalState in = internal_state(scene, state.y);
+  double E = 0.5 * J * in.M.squaredNorm();
+  if (scene.body.model == BodyModel::affine) {
+    const DeformationInvariants inv = deformation_invariants(in.L);
+    E += deformation_potential(scene.potential.deformation, inv.a, inv.b).value;
+  }
+  return E;
+}
+
+double spin(const Scene& scene, const State& state) { return spin_of(scene, state.y); }
+
+double vorticity(const Scene& scene, const State& state) {
+  const InternalState in = internal_state(scene, state.y);
+  const Mat2 L_eps = in.L * epsilon();
+  return -scene.body.inertia * L_eps.cwiseProduct(in.M).sum();
+}
+
+double angular_momentum(const Scene& scene, const State& state) {
+  if (state.chart.global) return state.y[coord::p_phi];
+  const GlobalBody g = global_body(scene, state);
+  const double orbital = scene.body.mass * (g.X.x() * g.V.y() - g.X.y() * g.V.x());
+  return orbital + g.C * g.spin;  // M₃ = mS²φ̇ + Cs
+}
+
+std::optional<SeparatedEnergies> separated_energies(const Scene& scene, const State& state) {
+  if (scene.body.model != BodyModel::affine) return std::nullopt;
+  AbcPotential abc;
+  if (const auto* p = std::get_if<AbcPotential>(&scene.potential.deformation)) abc = *p;
+  else if (has_deformation_potential(scene.potential)) return std::nullopt;
+  const double J = scene.body.inertia;
+  const InternalState in = internal_state(scene, state.y);
+  const DeformationInvariants inv = deformation_invariants(in.L);
+  const DeformationInvariants rate = deformation_invariants(in.M);  // 2(u_M² + v_M²), 2(p_M² + q_M²)
+  SeparatedEnergies e{0.5 * J * rate.a, 0.5 * J * rate.b};
+  if (abc.A != 0.0) e.C_x += abc.A / inv.a;
+  if (abc.B != 0.0) e.C_y += abc.B / inv.b;
+  e.C_x += abc.C * inv.a;
+  e.C_y += abc.C * inv.b;
+  return e;
+}
+
+std::optional<Vec3> momentum_map(const Scene& scene, const State& state) {
+  if (scene.potential.radial) return std::nullopt;
+  const Surface& surface = scene.surface;
+  const GlobalBody g = global_body(scene, state);
+  const double m = scene.body.mass;
+  if (surface.kind == SurfaceKind::plane)
+    return Vec3(m * g.V.x(), m * g.V.y(), m * (g.X.x() * g.V.y() - g.X.y() * g.V.x()) + g.spin);
+  return Vec3(m * g.X.cross(g.V) + curvature(surface) * surface.radius * g.spin * raise(surface, g.X));
+}
+
+double casimir(const Surface& surface, const Vec3& M) { return dot(surface, M, M); }
+
+}  // namespace spinfold

@@ -1,0 +1,105 @@
+#include "engine/paper_coordinates.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "engine/invariants.h"
+
+namespace spinfold {
+
+namespace {
+
+// Polar pair of one plane of L's decomposition (physics.md §2): magnitude √2·hypot, angle, rates.
+struct PolarPart {
+  double magnitude, angle, magnitude_dot, angle_dot;
+  bool angle_defined;
+};
+
+PolarPart polar_part(double c, double s, double c_dot, double s_dot, double scale) {
+  const double h = std::hypot(c, s);
+  PolarPart p{};
+  p.magnitude = std::numbers::sqrt2 * h;
+  p.angle_defined = h > 1e-12 * scale;
+  if (p.angle_defined) {
+    p.angle = std::atan2(s, c);
+    p.magnitude_dot = std::numbers::sqrt2 * (c * c_dot + s * s_dot) / h;
+    p.angle_dot = (c * s_dot - s * c_dot) / (h * h);
+  } else {
+    // At magnitude 0 the one-sided rate of the (non-negative) magnitude is √2·|rate|.
+    p.magnitude_dot = std::numbers::sqrt2 * std::hypot(c_dot, s_dot);
+  }
+  return p;
+}
+
+double wrap(double angle) { return std::remainder(angle, 2.0 * std::numbers::pi); }
+
+}  // namespace
+
+PaperCoordinates paper_coordinates(const Scene& scene, const State& state) {
+  const GlobalBody g = global_body(scene, state);
+  const double J = scene.body.inertia, m = scene.body.mass;
+  PaperCoordinates out;
+  out.r = g.r;
+  out.X = g.X;
+  out.det_L = g.L.determinant();
+  out.p_alpha = g.spin;
+  out.p_beta = vorticity(scene, state);
+  out.p_phi = angular_momentum(scene, state);
+
+  const Mat2& L = g.L;
+  // L̇ = M − Cφ̇εL in the paper's frame; at a pole only frame-independent parts are used.
+  Mat2 L_dot = g.M;
+  if (!g.at_pole) {
+    Mat2 eps_L;
+    eps_L << -L(1, 0), -L(1, 1), L(0, 0), L(0, 1);
+    L_dot -= g.C * g.phi_dot * eps_L;
+  }
+  const double scale = std::sqrt(L.squaredNorm());
+  const PolarPart x = polar_part(0.5 * (L(0, 0) - L(1, 1)), 0.5 * (L(0, 1) + L(1, 0)),
+                                 0.5 * (L_dot(0, 0) - L_dot(1, 1)), 0.5 * (L_dot(0, 1) + L_dot(1, 0)),
+                                 scale);
+  const PolarPart y = polar_part(0.5 * (L(0, 0) + L(1, 1)), 0.5 * (L(1, 0) - L(0, 1)),
+                                 0.5 * (L_dot(0, 0) + L_dot(1, 1)), 0.5 * (L_dot(1, 0) - L_dot(0, 1)),
+                                 scale);
+  out.lambda = (x.magnitude + y.magnitude) / std::numbers::sqrt2;
+  out.mu = (y.magnitude - x.magnitude) / std::numbers::sqrt2;
+  out.lambda_dot = (x.magnitude_dot + y.magnitude_dot) / std::numbers::sqrt2;
+  out.mu_dot = (y.magnitude_dot - x.magnitude_dot) / std::numbers::sqrt2;
+  out.p_lambda = J * out.lambda_dot;
+  out.p_mu = J * out.mu_dot;
+
+  if (g.at_pole) {
+    const std::string why = "the body is at a pole of the scene's chart, where phi and E1 are undefined";
+    for (const char* f : {"phi", "phi_dot", "r_dot", "p_r", "alpha", "beta", "theta", "alpha_dot",
+                          "beta_dot", "theta_dot", "L"})
+      out.undefined.push_back({f, why});
+    return out;
+  }
+  out.phi = g.phi;
+  out.phi_dot = g.phi_dot;
+  out.r_dot = g.r_dot;
+  out.p_r = m * g.r_dot;
+  out.L = L;
+  // γ = α + β lives in the anticonformal plane (x), δ = α − β in the conformal plane (y).
+  if (y.angle_defined) {
+    out.theta = y.angle;
+    out.theta_dot = y.angle_dot;
+  } else {
+    for (const char* f : {"theta", "theta_dot"})
+      out.undefined.push_back({f, "lambda = -mu (y = 0): only alpha + beta is defined"});
+  }
+  if (x.angle_defined && y.angle_defined) {
+    out.alpha = wrap(0.5 * (x.angle + y.angle));
+    out.beta = wrap(0.5 * (x.angle - y.angle));
+    out.alpha_dot = 0.5 * (x.angle_dot + y.angle_dot);
+    out.beta_dot = 0.5 * (x.angle_dot - y.angle_dot);
+  } else {
+    const std::string why = x.angle_defined
+                                ? "lambda = -mu (y = 0): alpha and beta are not separately defined"
+                                : "lambda = mu (isotropic frame): only theta = alpha - beta is defined";
+    for (const char* f : {"alpha", "beta", "alpha_dot", "beta_dot"}) out.undefined.push_back({f, why});
+  }
+  return out;
+}
+
+}  // namespace spinfold

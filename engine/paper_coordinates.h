@@ -1,0 +1,37 @@
+// The paper's coordinates (r, φ, α, β, λ, μ), their rates and momenta, computed from a state.
+// They are outputs only; the state never uses them (physics.md §2 lists where they are singular).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/scene.h"
+#include "engine/state.h"
+
+namespace spinfold {
+
+struct UndefinedValue {
+  std::string field;   // e.g. "alpha"
+  std::string reason;  // e.g. "lambda = mu: only theta = alpha - beta is defined"
+};
+
+// Empty optionals are undefined at this state; `undefined` names each with its reason.
+// Conventions: λ ≥ |μ|, μ < 0 after the frame passed through det L = 0; angles in (−π, π].
+struct PaperCoordinates {
+  double r = 0.0;
+  std::optional<double> phi, alpha, beta, theta;  // θ = α − β, the rotation part of L
+  double lambda = 0.0, mu = 0.0;
+  std::optional<double> r_dot, phi_dot, alpha_dot, beta_dot, theta_dot;
+  double lambda_dot = 0.0, mu_dot = 0.0;
+  std::optional<double> p_r;
+  double p_phi = 0.0, p_alpha = 0.0, p_beta = 0.0, p_lambda = 0.0, p_mu = 0.0;
+  Vec3 X;                  // global embedding position (physics.md §1)
+  std::optional<Mat2> L;   // rows as physics.md §2: L_BA = component of e_A along E_B
+  double det_L = 0.0;      // frame-independent
+  std::vector<UndefinedValue> undefined;
+};
+
+PaperCoordinates paper_coordinates(const Scene& scene, const State& state);
+
+}  // namespace spinfold

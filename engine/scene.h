@@ -1,0 +1,97 @@
+// The immutable description of a simulation: surface, body, potentials, initial state, integrator.
+// Every field has a default; units are "any consistent set", angles in radians.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <variant>
+
+#include "engine/surface.h"
+
+namespace spinfold {
+
+enum class BodyModel {
+  affine,  // the internal matrix L is free: 4 deformation degrees of freedom (physics.md §2)
+  rigid,   // gyroscope: L = λ₀ U(θ), only the angle θ is integrated (physics.md §8.8)
+};
+
+struct Body {
+  double mass = 1.0;     // m [mass]
+  double inertia = 0.1;  // J [mass·length²]: isotropic J^{AB} = J δ^{AB}
+  BodyModel model = BodyModel::affine;
+};
+
+// V_r = g/sin²(r/R) on S², g/(R² sinh²(r/R)) on H², g/r² on the plane (physics.md §5, paper's
+// normalisations kept). A barrier at the chart pole(s) for g > 0.
+struct RadialPotential {
+  double gamma = 0.0;  // g [energy] on S², [energy·length²] on H² and the plane
+};
+
+// V = A/x² + B/y² + C(x² + y²), x² = ‖L‖²/2 − det L, y² = ‖L‖²/2 + det L (physics.md §5).
+// A zero coefficient means the term is absent (x = 0 is then regular).
+struct AbcPotential {
+  double A = 0.0;  // [energy]
+  double B = 0.0;  // [energy]
+  double C = 0.0;  // [energy]
+};
+
+enum class PolarForm {
+  cot2,     // W = ĝ cot²(2ε): matches the paper's action variable (default)
+  literal,  // W = ĝ cot²(2ε)/sin²ε: the potential as printed
+};
+
+// V = g̃/ς + W(ε)/ς² with x = ς sin ε, y = ς cos ε (physics.md §5).
+struct PolarPotential {
+  double ghat = 0.0;    // ĝ [energy]
+  double gtilde = 0.0;  // g̃ [energy]
+  PolarForm form = PolarForm::cot2;
+};
+
+using DeformationPotential = std::variant<std::monostate, AbcPotential, PolarPotential>;
+
+struct Potentials {
+  std::optional<RadialPotential> radial;  // absent: no radial force
+  DeformationPotential deformation;       // monostate: no deformation force
+};
+
+// Initial state in the paper's coordinates: L = U(α) diag(λ, μ) U(β)ᵀ in the frame
+// E₁ = ∂/∂r, E₂ = (1/S)∂/∂φ (physics.md §2). For the rigid model λ is the scale λ₀, μ must equal
+// λ, and only α − β (the angle θ) and its rate matter.
+struct InitialState {
+  double r = 1.0;       // geodesic distance from the pole [length]
+  double phi = 0.0;     // [rad]
+  double alpha = 0.0;   // [rad]
+  double beta = 0.0;    // [rad]
+  double lambda = 1.0;  // [length·(body unit)⁻¹], > 0
+  double mu = 1.0;      // > 0
+  double r_dot = 0.0;   // [length/time]
+  double phi_dot = 0.0;     // [rad/time]
+  double alpha_dot = 0.0;   // [rad/time]
+  double beta_dot = 0.0;    // [rad/time]
+  double lambda_dot = 0.0;  // [1/time]
+  double mu_dot = 0.0;      // [1/time]
+};
+
+struct IntegratorSettings {
+  std::string name = "dop853";  // a catalog name (see integrator.h)
+  double dt = 0.01;             // [time]: the step of fixed-step methods, the first trial step otherwise
+  double tolerance = 1e-10;     // relative and absolute error per step of adaptive methods
+};
+
+enum class OnDegenerate {
+  report,  // follow the motion through det L = 0 and record the event (default)
+  stop,    // stop with status degenerate_frame and keep the last state with det L > 0
+};
+
+struct Scene {
+  std::string name;         // preset name, informational
+  std::string description;  // one line, informational
+  Surface surface;
+  Body body;
+  Potentials potential;
+  InitialState initial;
+  IntegratorSettings integrator;
+  OnDegenerate on_degenerate = OnDegenerate::report;
+};
+
+}  // namespace spinfold

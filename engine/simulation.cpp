@@ -1,0 +1,103 @@
+#include "engine/simulation.h"
+
+#include <cmath>
+
+#include "engine/chart.h"
+#include "engine/dynamics.h"
+#include "engine/invariants.h"
+
+namespace spinfold {
+
+double det_L(const Scene& scene, const State& state) {
+  return internal_state(scene, state.y).L.determinant();
+}
+
+Run start_run(const Scene& scene) {
+  Run run;
+  run.scene = scene;
+  run.state = initial_state(scene);
+  run.integrator = find_integrator(scene.integrator.name)->make();
+  run.h_next = scene.integrator.dt;
+  run.initial_energy = energy(scene, run.state);
+  return run;
+}
+
+namespace {
+
+bool all_finite(const Coords& y) { return y.allFinite(); }
+
+double det_of(const Coords& y) {
+  return y[coord::L] * y[coord::L + 3] - y[coord::L + 1] * y[coord::L + 2];
+}
+
+// Time in [0, h] where det L crosses zero along the step from y, by bisection on sub-steps.
+double locate_degenerate(Integrator& integrator, const VectorField& f, const Coords& y, double h,
+                         double tolerance) {
+  const double det0 = det_of(y);
+  double lo = 0.0, hi = h;
+  Coords trial;
+  for (int i = 0; i < 60 && hi - lo > 1e-14 * h; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    integrator.try_step(f, y, mid, tolerance, trial);
+    if ((det_of(trial) > 0.0) == (det0 > 0.0)) lo = mid;
+    else hi = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace
+
+void advance_to(Run& run, double t_end) {
+  State& state = run.state;
+  const Scene& scene = run.scene;
+  const bool adaptive = run.integrator->info().adaptive;
+  const bool affine = scene.body.model == BodyModel::affine;
+  const double tolerance = scene.integrator.tolerance;
+  const VectorField f = [&scene, &state](const Coords& y, Coords& dydt) {
+    vector_field(scene, state.chart, y, dydt);
+  };
+  Coords y_next;
+  while (state.status == Status::ok && state.t < t_end) {
+    const double remaining = t_end - state.t;
+    const double h_planned = adaptive ? run.h_next : scene.integrator.dt;
+    const bool last = h_planned >= remaining;
+    const double h = last ? remaining : h_planned;
+
+    StepResult result = run.integrator->try_step(f, state.y, h, tolerance, y_next);
+    const bool finite = all_finite(y_next);
+    if (!result.accepted || !finite) {
+      ++run.rejected;
+      if (!adaptive) {
+        state.status = finite ? Status::step_failed : Status::non_finite;
+        return;
+      }
+      const double h_min = 1e-14 * std::max(1.0, std::abs(state.t));
+      run.h_next = finite ? result.h_next : 0.25 * h;
+      if (!(run.h_next > h_min)) {
+        state.status = finite ? Status::step_failed : Status::non_finite;
+        return;
+      }
+      continue;
+    }
+
+    if (affine && (det_of(state.y) > 0.0) != (det_of(y_next) > 0.0)) {
+      const double t_cross = state.t + locate_degenerate(*run.integrator, f, state.y, h, tolerance);
+      run.events.push_back({t_cross});
+      if (scene.on_degenerate == OnDegenerate::stop) {
+        state.status = Status::degenerate_frame;
+        return;
+      }
+    }
+    state.y = y_next;
+    state.t = last ? t_end : state.t + h;
+    ++run.steps;
+    // A step shortened to land on t_end says nothing about the step the solution allows.
+    if (adaptive) run.h_next = (last && h < h_planned) ? h_planned : result.h_next;
+    if (!chart_well_conditioned(scene.surface, state.y[coord::r])) {
+      recentre(scene, state);
+      ++run.recentres;
+    }
+  }
+}
+
+}  // namespace spinfold

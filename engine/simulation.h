@@ -1,0 +1,41 @@
+// A run: a scene, its evolving state and the integrator that advances it.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "engine/integrator.h"
+#include "engine/scene.h"
+#include "engine/state.h"
+
+namespace spinfold {
+
+// det L crossed zero: the frame was squashed to a segment and came out mirrored (physics.md §2).
+struct DegenerateEvent {
+  double t = 0.0;  // time of the crossing [time], located to ~1e-12 of the step
+};
+
+struct Run {
+  Scene scene;
+  State state;
+  std::unique_ptr<Integrator> integrator;
+  double h_next = 0.0;  // next trial step [time]
+  double initial_energy = 0.0;
+  std::vector<DegenerateEvent> events;
+  std::uint64_t steps = 0;      // accepted steps
+  std::uint64_t rejected = 0;   // rejected step attempts
+  std::uint64_t recentres = 0;  // chart moves
+};
+
+// A run at t = 0. The scene must have passed validate_scene.
+Run start_run(const Scene& scene);
+
+// Advances the run to exactly t_end [time] unless its status stops it earlier. On numerical
+// trouble the state stays at the last good step and the status says why.
+void advance_to(Run& run, double t_end);
+
+// det L of the current state (frame-independent; λ₀² for the rigid model).
+double det_L(const Scene& scene, const State& state);
+
+}  // namespace spinfold

@@ -1,0 +1,15 @@
+#include "engine/state.h"
+
+namespace spinfold {
+
+std::string_view status_name(Status status) {
+  switch (status) {
+    case Status::ok: return "ok";
+    case Status::non_finite: return "non_finite";
+    case Status::step_failed: return "step_failed";
+    case Status::degenerate_frame: return "degenerate_frame";
+  }
+  return "unknown";
+}
+
+}  // namespace spinfold

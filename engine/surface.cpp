@@ -1,0 +1,98 @@
+#include "engine/surface.h"
+
+#include <cmath>
+
+namespace spinfold {
+
+double curvature_sign(const Surface& surface) {
+  switch (surface.kind) {
+    case SurfaceKind::sphere: return 1.0;
+    case SurfaceKind::pseudosphere: return -1.0;
+    case SurfaceKind::plane: return 0.0;
+  }
+  return 0.0;
+}
+
+double curvature(const Surface& surface) {
+  return curvature_sign(surface) / (surface.radius * surface.radius);
+}
+
+double polar_S(const Surface& surface, double r) {
+  const double R = surface.radius;
+  switch (surface.kind) {
+    case SurfaceKind::sphere: return R * std::sin(r / R);
+    case SurfaceKind::pseudosphere: return R * std::sinh(r / R);
+    case SurfaceKind::plane: return r;
+  }
+  return r;
+}
+
+double polar_C(const Surface& surface, double r) {
+  const double R = surface.radius;
+  switch (surface.kind) {
+    case SurfaceKind::sphere: return std::cos(r / R);
+    case SurfaceKind::pseudosphere: return std::cosh(r / R);
+    case SurfaceKind::plane: return 1.0;
+  }
+  return 1.0;
+}
+
+double dot(const Surface& surface, const Vec3& a, const Vec3& b) {
+  const double planar = a.x() * b.x() + a.y() * b.y();
+  return surface.kind == SurfaceKind::pseudosphere ? planar - a.z() * b.z() : planar + a.z() * b.z();
+}
+
+Vec3 unit_normal(const Surface& surface, const Vec3& X) {
+  if (surface.kind == SurfaceKind::plane) return Vec3::UnitZ();
+  return X / surface.radius;
+}
+
+Vec3 raise(const Surface& surface, const Vec3& w) {
+  if (surface.kind == SurfaceKind::pseudosphere) return {w.x(), w.y(), -w.z()};
+  return w;
+}
+
+Vec3 rotate_quarter(const Surface& surface, const Vec3& X, const Vec3& v) {
+  return raise(surface, unit_normal(surface, X).cross(v));
+}
+
+Vec3 tangential(const Surface& surface, const Vec3& X, const Vec3& w) {
+  if (surface.kind == SurfaceKind::plane) return {w.x(), w.y(), 0.0};
+  return w - (dot(surface, w, X) / dot(surface, X, X)) * X;
+}
+
+ChartPoint chart_point(const Surface& surface, double r, double phi) {
+  const double c = std::cos(phi), s = std::sin(phi);
+  const double S = polar_S(surface, r), C = polar_C(surface, r);
+  ChartPoint p;
+  p.E2 = {-s, c, 0.0};
+  switch (surface.kind) {
+    case SurfaceKind::sphere:
+      p.X = {S * c, S * s, surface.radius * C};
+      p.E1 = {C * c, C * s, -S / surface.radius};
+      break;
+    case SurfaceKind::pseudosphere:
+      p.X = {S * c, S * s, surface.radius * C};
+      p.E1 = {C * c, C * s, S / surface.radius};
+      break;
+    case SurfaceKind::plane:
+      p.X = {r * c, r * s, 0.0};
+      p.E1 = {c, s, 0.0};
+      break;
+  }
+  return p;
+}
+
+PolarCoordinates polar_coordinates(const Surface& surface, const Vec3& X) {
+  const double rho = std::hypot(X.x(), X.y());
+  const double phi = std::atan2(X.y(), X.x());
+  const double R = surface.radius;
+  switch (surface.kind) {
+    case SurfaceKind::sphere: return {R * std::atan2(rho, X.z()), phi, rho};
+    case SurfaceKind::pseudosphere: return {R * std::asinh(rho / R), phi, rho};
+    case SurfaceKind::plane: return {rho, phi, rho};
+  }
+  return {rho, phi, rho};
+}
+
+}  // namespace spinfold

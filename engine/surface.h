@@ -1,0 +1,59 @@
+// Surfaces of constant curvature and their polar chart (physics.md §1).
+#pragma once
+
+#include <Eigen/Dense>
+
+namespace spinfold {
+
+using Vec3 = Eigen::Vector3d;
+using Mat2 = Eigen::Matrix2d;
+using Mat3 = Eigen::Matrix3d;
+
+// The three surfaces form a closed set that differs only in the sign σ of the curvature, so one
+// struct with a kind serves every formula (K = σ/R²) without a visitor per function.
+enum class SurfaceKind { sphere, pseudosphere, plane };
+
+struct Surface {
+  SurfaceKind kind = SurfaceKind::sphere;
+  double radius = 1.0;  // R [length]; on the plane only the length scale for charts and display
+};
+
+// σ: +1 sphere, −1 pseudosphere, 0 plane.
+double curvature_sign(const Surface& surface);
+// K = σ/R² [1/length²].
+double curvature(const Surface& surface);
+// S(r): R sin(r/R), R sinh(r/R) or r [length]; the circumference of a geodesic circle is 2πS.
+double polar_S(const Surface& surface, double r);
+// C(r) = S′(r): cos(r/R), cosh(r/R) or 1.
+double polar_C(const Surface& surface, double r);
+
+// ⟨a, b⟩ = aᵀηb, η = diag(1, 1, −1) on the pseudosphere (Minkowski ℝ^{2,1}), I otherwise.
+double dot(const Surface& surface, const Vec3& a, const Vec3& b);
+// Unit normal n at an embedded point X: X/R on S² and H², ẑ on the plane.
+Vec3 unit_normal(const Surface& surface, const Vec3& X);
+// j v = η(n × v): the +90° rotation in the tangent plane at X (j E₁ = E₂).
+Vec3 rotate_quarter(const Surface& surface, const Vec3& X, const Vec3& v);
+// P(w) = w − k⟨w, X⟩X with k = 1/⟨X, X⟩: the tangential part of an ambient vector at X.
+Vec3 tangential(const Surface& surface, const Vec3& X, const Vec3& w);
+// η w: raises the index of an ambient covector (a gradient) into a vector.
+Vec3 raise(const Surface& surface, const Vec3& w);
+
+// Embedding of the chart point (r, φ) and the paper's frame E₁ = ∂/∂r, E₂ = (1/S)∂/∂φ there.
+// Valid for any real r (r < 0 is the point (|r|, φ + π)), including the pole r = 0.
+struct ChartPoint {
+  Vec3 X;   // position [length], embedding coordinates
+  Vec3 E1;  // unit radial vector
+  Vec3 E2;  // unit angular vector (= j E₁)
+};
+ChartPoint chart_point(const Surface& surface, double r, double phi);
+
+// Polar coordinates of an embedded point: r ≥ 0 (distance from the chart pole) and
+// ρ = √(X₁² + X₂²) (= |S(r)|); φ = atan2(X₂, X₁) is meaningful only when ρ > 0.
+struct PolarCoordinates {
+  double r;
+  double phi;
+  double rho;
+};
+PolarCoordinates polar_coordinates(const Surface& surface, const Vec3& X);
+
+}  // namespace spinfold

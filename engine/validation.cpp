@@ -1,0 +1,119 @@
+#include "engine/validation.h"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "engine/integrator.h"
+#include "engine/potentials.h"
+
+namespace spinfold {
+
+namespace {
+
+std::string number_text(double v) {
+  std::ostringstream out;
+  out.precision(17);
+  out << v;
+  return out.str();
+}
+
+class Checker {
+ public:
+  // Records a non-finite value; returns true when the value is finite.
+  bool finite(const std::string& field, double v) {
+    if (std::isfinite(v)) return true;
+    add(field, v, "must be a finite number");
+    return false;
+  }
+  void positive(const std::string& field, double v) {
+    if (finite(field, v) && !(v > 0.0)) add(field, v, "must be > 0");
+  }
+  void non_negative(const std::string& field, double v) {
+    if (finite(field, v) && v < 0.0) add(field, v, "must be >= 0");
+  }
+  void add(const std::string& field, double v, const std::string& reason) {
+    errors.push_back({field, number_text(v), reason});
+  }
+  void add_text(const std::string& field, const std::string& value, const std::string& reason) {
+    errors.push_back({field, value, reason});
+  }
+  std::vector<FieldError> errors;
+};
+
+void check_initial(const Scene& scene, Checker& c) {
+  const InitialState& q = scene.initial;
+  const Surface& surface = scene.surface;
+  for (const auto& [name, value] :
+       {std::pair{"phi", q.phi}, {"alpha", q.alpha}, {"beta", q.beta}, {"r_dot", q.r_dot},
+        {"phi_dot", q.phi_dot}, {"alpha_dot", q.alpha_dot}, {"beta_dot", q.beta_dot},
+        {"lambda_dot", q.lambda_dot}, {"mu_dot", q.mu_dot}})
+    c.finite(std::string("initial.") + name, value);
+  c.positive("initial.lambda", q.lambda);
+  c.positive("initial.mu", q.mu);
+  if (c.finite("initial.r", q.r)) {
+    if (q.r < 0.0) c.add("initial.r", q.r, "must be >= 0 (geodesic distance from the pole)");
+    if (surface.kind == SurfaceKind::sphere && std::isfinite(surface.radius) && surface.radius > 0.0 &&
+        q.r > std::numbers::pi * surface.radius)
+      c.add("initial.r", q.r, "must be <= pi * radius on the sphere (the south pole)");
+  }
+}
+
+void check_potentials(const Scene& scene, Checker& c) {
+  const Potentials& pot = scene.potential;
+  const InitialState& q = scene.initial;
+  const bool isotropic = q.lambda == q.mu;
+  if (pot.radial) {
+    if (c.finite("potential.radial.gamma", pot.radial->gamma) && pot.radial->gamma < 0.0)
+      c.add("potential.radial.gamma", pot.radial->gamma,
+            "must be >= 0 (a negative g lets the body fall into a pole, which is not supported)");
+    const bool at_pole = q.r == 0.0 || (scene.surface.kind == SurfaceKind::sphere &&
+                                        q.r == std::numbers::pi * scene.surface.radius);
+    if (pot.radial->gamma > 0.0 && at_pole)
+      c.add("initial.r", q.r, "the radial potential is infinite at a pole: start away from it");
+  }
+  if (const auto* abc = std::get_if<AbcPotential>(&pot.deformation)) {
+    c.non_negative("potential.deformation.A", abc->A);
+    c.non_negative("potential.deformation.B", abc->B);
+    c.finite("potential.deformation.C", abc->C);
+    if (abc->A > 0.0 && isotropic)
+      c.add("initial.mu", q.mu, "A/x^2 is infinite at lambda = mu: start with lambda != mu or set A = 0");
+  }
+  if (const auto* polar = std::get_if<PolarPotential>(&pot.deformation)) {
+    c.finite("potential.deformation.ghat", polar->ghat);
+    c.finite("potential.deformation.gtilde", polar->gtilde);
+    if (polar->ghat != 0.0 && isotropic)
+      c.add("initial.mu", q.mu,
+            "the polar potential's cot^2(2 epsilon) term is infinite at lambda = mu: start with lambda != mu");
+  }
+  if (scene.body.model == BodyModel::rigid && has_deformation_potential(pot))
+    c.add_text("potential.deformation", "present",
+               "a rigid body has no deformation degrees of freedom: remove the deformation potential");
+}
+
+}  // namespace
+
+
+std::vector<FieldError> validate_scene(const Scene& scene) {
+  Checker c;
+  c.positive("surface.radius", scene.surface.radius);
+  c.positive("body.mass", scene.body.mass);
+  c.positive("body.inertia", scene.body.inertia);
+  check_initial(scene, c);
+  if (scene.body.model == BodyModel::rigid) {
+    const InitialState& q = scene.initial;
+    if (q.mu != q.lambda) c.add("initial.mu", q.mu, "a rigid body needs mu = lambda (it cannot deform)");
+    if (q.lambda_dot != 0.0) c.add("initial.lambda_dot", q.lambda_dot, "a rigid body cannot deform: must be 0");
+    if (q.mu_dot != 0.0) c.add("initial.mu_dot", q.mu_dot, "a rigid body cannot deform: must be 0");
+  }
+  check_potentials(scene, c);
+
+  const IntegratorSettings& in = scene.integrator;
+  if (!find_integrator(in.name)) c.add_text("integrator.name", in.name, "is not in the integrator catalog");
+  c.positive("integrator.dt", in.dt);
+  if (c.finite("integrator.tolerance", in.tolerance) && !(in.tolerance >= 1e-15 && in.tolerance <= 1e-2))
+    c.add("integrator.tolerance", in.tolerance, "must be between 1e-15 and 1e-2");
+  return c.errors;
+}
+
+}  // namespace spinfold

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs every Debian package Spinfold needs, and nothing else. Idempotent and non-interactive:
+# packages already present are skipped, so a second run does no network work.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git ca-certificates
+  libeigen3-dev                                   # engine
+  libosmesa6-dev libglm-dev libimgui-dev libpng-dev  # renderer
+  libcpp-httplib-dev nlohmann-json3-dev           # server and JSON codec
+  libcli11-dev                                    # command line
+  libgtest-dev libgmock-dev libbenchmark-dev      # tests and benchmarks
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  sudo_cmd=()
+  [[ $(id -u) -ne 0 ]] && sudo_cmd=(sudo)
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -q
+  "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+else
+  echo "setup: all packages present"
+fi
