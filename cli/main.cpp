@@ -83,7 +83,7 @@ int simulate(const SimulateOptions& opt) {
   if (opt.t_end / opt.every > kMaxSamples) throw BadInput{"--every: more than 1e7 samples requested"};
   const Scene scene = load_scene(opt);
 
-  Run run = start_run(scene);
+  Simulation run = start_simulation(scene);
   std::size_t reported_events = 0;
   const auto emit = [&] {
     const std::span<const DegenerateEvent> fresh(run.events.data() + reported_events,
@@ -132,9 +132,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   SimulateOptions sim;
-  CLI::App* simulate_cmd = app.add_subcommand("simulate", "Run a scene and print JSON Lines samples");
+  CLI::App* simulate_cmd = app.add_subcommand("simulate", "Simulation a scene and print JSON Lines samples");
   simulate_cmd->add_option("scene_file", sim.scene_file, "Scene JSON file (default: the default preset)");
-  simulate_cmd->add_option("--scene", sim.preset, "Run an embedded preset by name (see `spinfold scenes`)");
+  simulate_cmd->add_option("--scene", sim.preset, "Simulation an embedded preset by name (see `spinfold scenes`)");
   simulate_cmd->add_option("--t-end", sim.t_end, "Simulated time to reach")->capture_default_str();
   simulate_cmd->add_option("--every", sim.every, "Sample interval")->capture_default_str();
   simulate_cmd->add_option("--integrator", sim.integrator, "Override the scene's integrator name");

@@ -17,7 +17,7 @@ json number(const std::optional<double>& v) { return v ? number(*v) : json(nullp
 
 }  // namespace
 
-json sample_to_json(const Run& run, std::span<const DegenerateEvent> new_events) {
+json sample_to_json(const Simulation& run, std::span<const DegenerateEvent> new_events) {
   const Scene& scene = run.scene;
   const State& state = run.state;
   const PaperCoordinates c = paper_coordinates(scene, state);

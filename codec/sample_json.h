@@ -12,6 +12,6 @@ namespace spinfold {
 // Paper coordinates, rates, momenta, X, L, det L, invariants, status and provenance.
 // Undefined values are null and listed under "undefined" with the reason; `new_events` are the
 // det L = 0 crossings since the previous sample.
-nlohmann::ordered_json sample_to_json(const Run& run, std::span<const DegenerateEvent> new_events);
+nlohmann::ordered_json sample_to_json(const Simulation& run, std::span<const DegenerateEvent> new_events);
 
 }  // namespace spinfold

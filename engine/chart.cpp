@@ -130,6 +130,20 @@ void recentre(const Scene& scene, State& state) {
   recentre(scene, chart_kinematics(scene, state.y), state.chart, state.y);
 }
 
+EmbeddedBody global_embedding(const Scene& scene, const State& state) {
+  const BodyKinematics body = chart_kinematics(scene, state.y);
+  const Mat3& A = state.chart.A;
+  const Vec3 F2 = rotate_quarter(scene.surface, body.X, body.F1);
+  EmbeddedBody out;
+  out.X = A * body.X + state.chart.b;
+  out.V = A * body.V;
+  for (int a = 0; a < 2; ++a) {
+    out.e[a] = A * (body.F1 * body.L(0, a) + F2 * body.L(1, a));
+    out.W[a] = A * (body.F1 * body.M(0, a) + F2 * body.M(1, a));
+  }
+  return out;
+}
+
 State initial_state(const Scene& scene) {
   State state;
   const BodyKinematics body = initial_kinematics(scene);

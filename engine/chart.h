@@ -39,6 +39,15 @@ bool chart_well_conditioned(const Surface& surface, double r);
 void recentre(const Scene& scene, const BodyKinematics& body_in_chart, Chart& chart, Coords& y);
 void recentre(const Scene& scene, State& state);
 
+// The body in the scene's embedding coordinates (physics.md §7 state (X, V, e_A, W_A)), valid
+// everywhere including the poles: what a renderer draws.
+struct EmbeddedBody {
+  Vec3 X, V;    // position [length], velocity [length/time]
+  Vec3 e[2];    // deformed frame e_A [length]
+  Vec3 W[2];    // covariant rates De_A/Dt [length/time]
+};
+EmbeddedBody global_embedding(const Scene& scene, const State& state);
+
 // Inverse of the chart isometry's linear part: ηAᵀη (Lorentz or rotation).
 Mat3 inverse_linear(const Surface& surface, const Mat3& A);
 

@@ -12,8 +12,8 @@ double det_L(const Scene& scene, const State& state) {
   return internal_state(scene, state.y).L.determinant();
 }
 
-Run start_run(const Scene& scene) {
-  Run run;
+Simulation start_simulation(const Scene& scene) {
+  Simulation run;
   run.scene = scene;
   run.state = initial_state(scene);
   run.integrator = find_integrator(scene.integrator.name)->make();
@@ -47,7 +47,7 @@ double locate_degenerate(Integrator& integrator, const VectorField& f, const Coo
 
 }  // namespace
 
-void advance_to(Run& run, double t_end) {
+void advance_to(Simulation& run, double t_end) {
   State& state = run.state;
   const Scene& scene = run.scene;
   const bool adaptive = run.integrator->info().adaptive;

@@ -16,7 +16,7 @@ struct DegenerateEvent {
   double t = 0.0;  // time of the crossing [time], located to ~1e-12 of the step
 };
 
-struct Run {
+struct Simulation {
   Scene scene;
   State state;
   std::unique_ptr<Integrator> integrator;
@@ -29,11 +29,11 @@ struct Run {
 };
 
 // A run at t = 0. The scene must have passed validate_scene.
-Run start_run(const Scene& scene);
+Simulation start_simulation(const Scene& scene);
 
 // Advances the run to exactly t_end [time] unless its status stops it earlier. On numerical
 // trouble the state stays at the last good step and the status says why.
-void advance_to(Run& run, double t_end);
+void advance_to(Simulation& run, double t_end);
 
 // det L of the current state (frame-independent; λ₀² for the rigid model).
 double det_L(const Scene& scene, const State& state);
