@@ -54,11 +54,11 @@ constexpr double b[kStages] = {5.42937341165687622380535766363e-2, 0, 0, 0, 0,
                                -5.8012039600105847814672114227e0, 3.1116436695781989440891606237e-1,
                                -1.52160949662516078556178806805e-1, 2.01365400804030348374776537501e-1,
                                4.47106157277725905176885569043e-2};
-// 5th-order error estimate: b − bhh, with bhh on stages 1, 9 and 12.
+// 3rd-order error estimate: b − bhh, with bhh on stages 1, 9 and 12.
 constexpr double bhh1 = 0.244094488188976377952755905512e+00;
 constexpr double bhh9 = 0.733846688281611857341361741547e+00;
 constexpr double bhh12 = 0.220588235294117647058823529412e-01;
-// 3rd-order error estimate.
+// 5th-order error estimate.
 constexpr double er[kStages] = {0.1312004499419488073250102996e-01, 0, 0, 0, 0,
                                 -0.1225156446376204440720569753e+01, -0.4957589496572501915214079952e+00,
                                 0.1664377182454986536961530415e+01, -0.3503288487499736816886487290e+00,
@@ -82,13 +82,13 @@ class Dop853 final : public Integrator {
         if (a[i][j] != 0.0) stage_ += (h * a[i][j]) * k_[j];
       f(stage_, k_[i]);
     }
-    Coords slope = Coords::Zero(n), err3 = Coords::Zero(n);
+    Coords slope = Coords::Zero(n), err5 = Coords::Zero(n);
     for (int i = 0; i < kStages; ++i) {
       if (b[i] != 0.0) slope += b[i] * k_[i];
-      if (er[i] != 0.0) err3 += er[i] * k_[i];
+      if (er[i] != 0.0) err5 += er[i] * k_[i];
     }
     y_next = y + h * slope;
-    const Coords err5 = slope - bhh1 * k_[0] - bhh9 * k_[8] - bhh12 * k_[11];
+    const Coords err3 = slope - bhh1 * k_[0] - bhh9 * k_[8] - bhh12 * k_[11];
 
     double sum5 = 0.0, sum3 = 0.0;
     for (Eigen::Index i = 0; i < n; ++i) {

@@ -15,7 +15,7 @@ inline Scene rigid_scene(SurfaceKind kind, double R, double m, double J, double 
   s.surface = {kind, R};
   s.body = {m, J, BodyModel::rigid};
   s.initial.lambda = s.initial.mu = lambda0;
-  s.integrator = {"dop853", 0.01, 1e-12};
+  s.integrator = {"dop853", 0.01, 1e-13};
   return s;
 }
 
