@@ -1,0 +1,243 @@
+// Runs as a whole: invariants along runs, det L = 0 crossings, failed steps, reproducibility.
+#include <cstring>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "engine/chart.h"
+#include "engine/dynamics.h"
+#include "engine/invariants.h"
+#include "engine/paper_coordinates.h"
+#include "test_support.h"
+
+namespace spinfold {
+namespace {
+
+struct ConservationCase {
+  const char* name;
+  Scene scene;
+};
+
+Scene deforming(SurfaceKind kind, double R) {
+  Scene s;
+  s.surface = {kind, R};
+  s.body = {1.3, 0.3, BodyModel::affine};
+  s.initial.r = 1.1;
+  s.initial.phi = 0.2;
+  s.initial.alpha = 0.3;
+  s.initial.beta = -0.4;
+  s.initial.lambda = 1.4;
+  s.initial.mu = 0.6;
+  s.initial.r_dot = 0.2;
+  s.initial.phi_dot = 0.5;
+  s.initial.alpha_dot = 0.6;
+  s.initial.beta_dot = -0.2;
+  s.initial.lambda_dot = 0.1;
+  s.initial.mu_dot = -0.05;
+  s.integrator = {"dop853", 0.01, 1e-12};
+  return s;
+}
+
+std::vector<ConservationCase> conservation_cases() {
+  std::vector<ConservationCase> cases;
+  Scene a = deforming(SurfaceKind::sphere, 1.0);
+  a.potential.radial = RadialPotential{0.05};
+  a.potential.deformation = AbcPotential{0.02, 0.1, 0.4};
+  cases.push_back({"sphere_radial_abc", a});
+  Scene b = deforming(SurfaceKind::pseudosphere, 1.5);
+  b.potential.radial = RadialPotential{0.1};
+  b.potential.deformation = AbcPotential{0.0, 0.05, 0.3};
+  cases.push_back({"pseudosphere_radial_abc", b});
+  Scene c = deforming(SurfaceKind::sphere, 2.0);
+  c.potential.deformation = PolarPotential{0.05, -1.0, PolarForm::cot2};
+  cases.push_back({"sphere_polar_cot2", c});
+  Scene d = deforming(SurfaceKind::pseudosphere, 1.0);
+  d.potential.deformation = PolarPotential{0.05, -1.0, PolarForm::literal};
+  cases.push_back({"pseudosphere_polar_literal", d});
+  Scene e = deforming(SurfaceKind::sphere, 1.0);  // free body, no potential
+  cases.push_back({"sphere_free", e});
+  Scene f = test::rigid_scene(SurfaceKind::sphere, 1.0, 1.0, 0.4, 1.2);
+  f.potential.radial = RadialPotential{0.08};
+  f.initial.r = 1.0;
+  test::set_rigid_motion(f, 0.7, 1.0, 0.8);
+  cases.push_back({"sphere_rigid_radial", f});
+  return cases;
+}
+
+// Energy, p_φ, s, p_β, E_orb, C_x, C_y and (without V_r) M stay at their initial values to the
+// accuracy DOP853 reaches at tolerance 1e-12 (global error ~1e-10 over t = 20).
+TEST(Conservation, InvariantsAlongRuns) {
+  for (const ConservationCase& c : conservation_cases()) {
+    SCOPED_TRACE(c.name);
+    const Scene& scene = c.scene;
+    Simulation run = start_simulation(scene);
+    const State s0 = run.state;
+    const auto sep0 = separated_energies(scene, s0);
+    const auto M0 = momentum_map(scene, s0);
+    for (int k = 1; k <= 20; ++k) {
+      advance_to(run, static_cast<double>(k));
+      ASSERT_EQ(run.state.status, Status::ok);
+      const State& s = run.state;
+      const double tol = 1e-9;
+      EXPECT_NEAR(energy(scene, s), energy(scene, s0), tol * std::abs(energy(scene, s0)));
+      EXPECT_NEAR(orbital_energy(scene, s), orbital_energy(scene, s0), tol);
+      EXPECT_NEAR(angular_momentum(scene, s), angular_momentum(scene, s0), tol);
+      EXPECT_NEAR(spin(scene, s), spin(scene, s0), tol);
+      EXPECT_NEAR(vorticity(scene, s), vorticity(scene, s0), tol);
+      if (sep0) {
+        const auto sep = separated_energies(scene, s);
+        EXPECT_NEAR(sep->C_x, sep0->C_x, tol);
+        EXPECT_NEAR(sep->C_y, sep0->C_y, tol);
+      }
+      if (M0) {
+        EXPECT_LT((*momentum_map(scene, s) - *M0).norm(), tol);
+      }
+    }
+  }
+}
+
+TEST(RigidModel, IntegratesNoDeformationDegreesOfFreedom) {
+  Scene scene = test::rigid_scene(SurfaceKind::sphere, 1.0, 1.0, 0.5, 1.0);
+  EXPECT_EQ(initial_state(scene).y.size(), coord::rigid_size);
+  scene.body.model = BodyModel::affine;
+  EXPECT_EQ(initial_state(scene).y.size(), coord::affine_size);
+}
+
+// physics.md §8.8: the rigid model coincides with the affine one started at λ = μ = λ₀ with
+// λ̇ = μ̇ = 0 under abc with A = B = 0 and C = Jw²/2 (the spin equilibrium).
+TEST(RigidModel, MatchesTheAffineBodyAtSpinEquilibrium) {
+  Scene rigid = test::rigid_scene(SurfaceKind::pseudosphere, 1.0, 1.0, 0.5, 1.0);
+  rigid.initial.r = 1.2;
+  test::set_rigid_motion(rigid, 0.6, 0.8, 0.9);
+  const double w = 0.9 / (2.0 * 0.5);  // s = 2Jλ₀² w
+  Scene affine = rigid;
+  affine.body.model = BodyModel::affine;
+  affine.potential.deformation = AbcPotential{0.0, 0.0, 0.5 * w * w / 2.0};  // C = Jw²/2, J = 0.5
+  const Simulation a = test::run_to(rigid, 10.0), b = test::run_to(affine, 10.0);
+  const EmbeddedBody ea = global_embedding(rigid, a.state), eb = global_embedding(affine, b.state);
+  EXPECT_LT((ea.X - eb.X).norm(), 1e-10);
+  EXPECT_LT((ea.e[0] - eb.e[0]).norm(), 1e-10);
+  EXPECT_LT((ea.e[1] - eb.e[1]).norm(), 1e-10);
+}
+
+TEST(DegenerateFrame, CrossingIsFollowedAndReported) {
+  Scene scene;
+  scene.surface = {SurfaceKind::sphere, 1.0};
+  scene.body = {1.0, 0.1, BodyModel::affine};
+  scene.initial.r = 1.2;
+  scene.initial.lambda = 1.0;
+  scene.initial.mu = 0.3;
+  scene.initial.phi_dot = 0.4;
+  scene.initial.mu_dot = -0.6;
+  scene.initial.alpha_dot = -std::cos(1.2) * 0.4;  // M = diag(0, −0.6): det L = 0.3 − 0.6t
+  scene.integrator = {"dop853", 0.01, 1e-12};
+  Simulation run = start_simulation(scene);
+  const double H0 = energy(scene, run.state);
+  advance_to(run, 1.0);
+  EXPECT_EQ(run.state.status, Status::ok);
+  ASSERT_EQ(run.events.size(), 1u);
+  EXPECT_NEAR(run.events[0].t, 0.5, 1e-10);
+  EXPECT_NEAR(det_L(scene, run.state), -0.3, 1e-10);  // det L = λ(0.3 − 0.6t) at t = 1
+  EXPECT_NEAR(energy(scene, run.state), H0, 1e-10);
+  const PaperCoordinates c = paper_coordinates(scene, run.state);
+  EXPECT_NEAR(c.mu, -0.3, 1e-10);  // mirrored: μ < 0 after the crossing
+}
+
+TEST(DegenerateFrame, StopKeepsTheLastGoodState) {
+  Scene scene;
+  scene.surface = {SurfaceKind::pseudosphere, 1.0};
+  scene.body = {1.0, 0.1, BodyModel::affine};
+  scene.initial.r = 1.0;
+  scene.initial.lambda = 1.0;
+  scene.initial.mu = 0.2;
+  scene.initial.mu_dot = -1.0;
+  scene.on_degenerate = OnDegenerate::stop;
+  Simulation run = start_simulation(scene);
+  advance_to(run, 1.0);
+  EXPECT_EQ(run.state.status, Status::degenerate_frame);
+  ASSERT_EQ(run.events.size(), 1u);
+  EXPECT_NEAR(run.events[0].t, 0.2, 1e-10);
+  EXPECT_LE(run.state.t, run.events[0].t);
+  EXPECT_GT(det_L(scene, run.state), 0.0);
+  const State stopped = run.state;
+  advance_to(run, 2.0);  // a stopped run stays where it stopped
+  EXPECT_EQ(run.state.t, stopped.t);
+  EXPECT_EQ(run.state.y, stopped.y);
+}
+
+// An integrator that returns garbage: the run must keep its last good state and say why.
+class PoisonIntegrator final : public Integrator {
+ public:
+  explicit PoisonIntegrator(bool adaptive) : info_{"poison", 1, false, adaptive, false, "test"} {}
+  const IntegratorInfo& info() const override { return info_; }
+  StepResult try_step(const VectorField&, const Coords& y, double h, double, Coords& y_next) override {
+    y_next = y;
+    y_next[0] = std::numeric_limits<double>::quiet_NaN();
+    return {true, h};
+  }
+ private:
+  IntegratorInfo info_;
+};
+
+TEST(FailedStep, NonFiniteStepLeavesTheStateUnchanged) {
+  for (bool adaptive : {false, true}) {
+    Scene scene = test::rigid_scene(SurfaceKind::sphere, 1.0, 1.0, 0.5, 1.0);
+    test::set_rigid_motion(scene, 0.5, 1.0, 0.2);
+    Simulation run = start_simulation(scene);
+    advance_to(run, 0.5);
+    const State before = run.state;
+    run.integrator = std::make_unique<PoisonIntegrator>(adaptive);
+    advance_to(run, 1.0);
+    EXPECT_EQ(run.state.status, Status::non_finite);
+    EXPECT_EQ(run.state.t, before.t);
+    EXPECT_EQ(run.state.y, before.y);
+    EXPECT_TRUE(std::isfinite(energy(scene, run.state)));
+  }
+}
+
+TEST(FailedStep, StepSizeUnderflowStopsWithStepFailed) {
+  class Rejecting final : public Integrator {
+   public:
+    const IntegratorInfo& info() const override { return dop853_info; }
+    StepResult try_step(const VectorField&, const Coords& y, double h, double, Coords& y_next) override {
+      y_next = y;
+      return {false, h / 10.0};
+    }
+  };
+  Scene scene = test::rigid_scene(SurfaceKind::sphere, 1.0, 1.0, 0.5, 1.0);
+  Simulation run = start_simulation(scene);
+  const State before = run.state;
+  run.integrator = std::make_unique<Rejecting>();
+  advance_to(run, 1.0);
+  EXPECT_EQ(run.state.status, Status::step_failed);
+  EXPECT_EQ(run.state.y, before.y);
+}
+
+TEST(Reproducibility, SameSceneSameBits) {
+  for (const ConservationCase& c : conservation_cases()) {
+    const Simulation a = test::run_to(c.scene, 7.0), b = test::run_to(c.scene, 7.0);
+    ASSERT_EQ(a.state.y.size(), b.state.y.size());
+    EXPECT_EQ(std::memcmp(a.state.y.data(), b.state.y.data(), sizeof(double) * a.state.y.size()), 0) << c.name;
+    EXPECT_EQ(a.steps, b.steps);
+  }
+}
+
+TEST(Rk4, FourthOrderOnTheSpinningCircle) {
+  Scene scene = test::rigid_scene(SurfaceKind::sphere, 1.0, 1.0, 0.5, 1.0);
+  scene.initial.r = 1.0;
+  test::set_rigid_motion(scene, 0.5, std::numbers::pi / 2, 1.0);
+  const Vec3 reference = global_embedding(scene, test::run_to(scene, 2.0).state).X;
+  scene.integrator.name = "rk4";
+  double previous = 0.0;
+  for (double dt : {0.04, 0.02, 0.01}) {
+    scene.integrator.dt = dt;
+    const double err = (global_embedding(scene, test::run_to(scene, 2.0).state).X - reference).norm();
+    if (previous > 0.0) {
+      EXPECT_NEAR(std::log2(previous / err), 4.0, 0.3);
+    }
+    previous = err;
+  }
+}
+
+}  // namespace
+}  // namespace spinfold
