@@ -161,8 +161,12 @@ SceneParse parse_scene(const json& document) {
   in.choice(document, "", "on_degenerate",
             {{"report", OnDegenerate::report}, {"stop", OnDegenerate::stop}}, scene.on_degenerate);
 
-  if (!result.errors.empty()) return result;
-  result.errors = validate_scene(scene);
+  // Report value errors too, except for fields whose structure was already wrong.
+  for (FieldError& e : validate_scene(scene)) {
+    const bool known = std::any_of(result.errors.begin(), result.errors.end(),
+                                   [&](const FieldError& s) { return s.field == e.field; });
+    if (!known) result.errors.push_back(std::move(e));
+  }
   if (result.errors.empty()) result.scene = scene;
   return result;
 }

@@ -1,0 +1,93 @@
+// Each preset's one-line claim, checked against the engine.
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "codec/presets.h"
+#include "codec/scene_json.h"
+#include "engine/chart.h"
+#include "engine/invariants.h"
+#include "engine/paper_coordinates.h"
+#include "engine/potentials.h"
+#include "engine/simulation.h"
+
+namespace spinfold {
+namespace {
+
+Scene preset(std::string_view name) {
+  const PresetSource* p = find_preset(name);
+  EXPECT_NE(p, nullptr) << name;
+  return *parse_scene_text(p->json).scene;
+}
+
+double angle_from_axis(const Vec3& X, const Vec3& M) { return std::acos(X.dot(M) / (X.norm() * M.norm())); }
+
+TEST(Presets, GeodesicBodyStaysOnAGreatCircleAndTheSpinningOneDoesNot) {
+  for (const auto& [name, expected] : {std::pair{"geodesic_rigid_sphere", std::numbers::pi / 2},
+                                       {"spinning_rigid_sphere", std::atan(0.5)}}) {
+    const Scene scene = preset(name);
+    Simulation run = start_simulation(scene);
+    const Vec3 M = *momentum_map(scene, run.state);
+    for (int k = 1; k <= 10; ++k) {
+      advance_to(run, 1.0 * k);
+      EXPECT_NEAR(angle_from_axis(global_embedding(scene, run.state).X, M), expected, 1e-8) << name;
+    }
+  }
+}
+
+TEST(Presets, PseudosphereSpinningBodyClosesACircleTurningAgainstItsSpin) {
+  const Scene scene = preset("spinning_rigid_pseudosphere");
+  Simulation run = start_simulation(scene);
+  const EmbeddedBody b0 = global_embedding(scene, run.state);
+  EXPECT_LT(casimir(scene.surface, *momentum_map(scene, run.state)), 0.0);  // a circle
+  EXPECT_GT(spin(scene, run.state), 0.0);
+  advance_to(run, 0.05);
+  const EmbeddedBody b1 = global_embedding(scene, run.state);
+  // Turning clockwise: the velocity rotates towards −j(v).
+  EXPECT_LT(dot(scene.surface, b1.V - b0.V, rotate_quarter(scene.surface, b0.X, b0.V)), 0.0);
+  advance_to(run, 7.255197456936871);
+  EXPECT_LT((global_embedding(scene, run.state).X - b0.X).norm(), 1e-8);
+}
+
+TEST(Presets, PoleCrossingPassesThroughThePole) {
+  const Scene scene = preset("pole_crossing_sphere");
+  Simulation run = start_simulation(scene);
+  advance_to(run, 2.0);  // r = 1 − 0.5t
+  EXPECT_LT(paper_coordinates(scene, run.state).r, 1e-8);
+  advance_to(run, 4.0);
+  EXPECT_NEAR(paper_coordinates(scene, run.state).r, 1.0, 1e-8);
+}
+
+TEST(Presets, BreathingEllipseHasTheIsotonicFrequency) {
+  const Scene scene = preset("breathing_ellipse_sphere");
+  const double C = std::get<AbcPotential>(scene.potential.deformation).C;
+  const double period = 2.0 * std::numbers::pi / std::sqrt(8.0 * C / scene.body.inertia);
+  Simulation run = start_simulation(scene);
+  const auto x2 = [&] { return deformation_invariants(paper_coordinates(scene, run.state).L.value()).a; };
+  const double x2_start = x2();
+  advance_to(run, 0.5 * period);
+  EXPECT_GT(std::abs(x2() - x2_start), 0.1);  // it does breathe
+  advance_to(run, period);
+  EXPECT_NEAR(x2(), x2_start, 1e-9);
+}
+
+TEST(Presets, SeparableSceneIsW5) {
+  const Scene scene = preset("separable_radial_abc");
+  Simulation run = start_simulation(scene);
+  advance_to(run, 2.0);
+  const PaperCoordinates c = paper_coordinates(scene, run.state);
+  EXPECT_NEAR(c.r, 1.650073264590784, 1e-8);
+  EXPECT_NEAR(*c.phi, 0.7053552271149849, 1e-8);
+}
+
+TEST(Presets, DegenerateCrossingHappensAtHalfTime) {
+  const Scene scene = preset("degenerate_crossing");
+  Simulation run = start_simulation(scene);
+  advance_to(run, 1.0);
+  ASSERT_EQ(run.events.size(), 1u);
+  EXPECT_NEAR(run.events[0].t, 0.5, 1e-9);
+}
+
+}  // namespace
+}  // namespace spinfold
