@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# The main job: install what is missing, build, and run the default scene.
+# Extra arguments replace the default run, e.g. scripts/run.sh simulate --scene pole_crossing_sphere
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/setup.sh
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null
+cmake --build build --target spinfold
+
+if (($#)); then
+  exec build/spinfold "$@"
+fi
+exec build/spinfold simulate --t-end 10 --every 0.5

@@ -1,0 +1,163 @@
+// The spinfold binary as a user runs it: JSON Lines out, exit code 2 and nothing on stdout for bad input.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "codec/presets.h"
+
+namespace {
+
+struct Result {
+  int exit_code;
+  std::string out;
+  std::string err;
+};
+
+Result spinfold(const std::string& args) {
+  // One stderr file per process and call: ctest runs test cases in parallel processes.
+  static int calls = 0;
+  const std::string err_file = std::filesystem::temp_directory_path() /
+                               ("spinfold_cli_stderr_" + std::to_string(getpid()) + "_" + std::to_string(++calls));
+  const std::string command = std::string(SPINFOLD_BINARY) + " " + args + " 2>" + err_file;
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string out;
+  char buffer[4096];
+  while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+  const int status = pclose(pipe);
+  std::ifstream err_in(err_file);
+  std::stringstream err;
+  err << err_in.rdbuf();
+  std::filesystem::remove(err_file);
+  return {WEXITSTATUS(status), out, err.str()};
+}
+
+std::vector<nlohmann::json> lines(const std::string& out) {
+  std::vector<nlohmann::json> rows;
+  std::istringstream in(out);
+  for (std::string line; std::getline(in, line);) rows.push_back(nlohmann::json::parse(line));
+  return rows;
+}
+
+TEST(Cli, SimulatePrintsOneSampleEveryDeltaUpToT) {
+  const Result r = spinfold("simulate --scene spinning_rigid_sphere --t-end 2 --every 0.5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 5u);
+  for (size_t k = 0; k < rows.size(); ++k) EXPECT_DOUBLE_EQ(rows[k]["t"].get<double>(), 0.5 * k);
+  for (const char* key : {"t", "r", "phi", "alpha", "beta", "lambda", "mu", "r_dot", "phi_dot", "alpha_dot",
+                          "beta_dot", "lambda_dot", "mu_dot", "p_r", "p_phi", "p_alpha", "p_beta", "X", "L",
+                          "det_L", "energy", "status", "integrator"})
+    EXPECT_TRUE(rows.back().contains(key)) << key;
+  EXPECT_EQ(rows.back()["status"], "ok");
+  EXPECT_EQ(rows.back()["X"].size(), 3u);
+  EXPECT_EQ(rows.back()["L"].size(), 2u);
+  // λ = μ: α and β are undefined, said so, and never NaN.
+  EXPECT_TRUE(rows.back()["alpha"].is_null());
+  EXPECT_TRUE(rows.back()["undefined"].contains("alpha"));
+  EXPECT_NEAR(rows.back()["energy_error"].get<double>(), 0.0, 1e-9);
+}
+
+TEST(Cli, LastSampleLandsOnTEvenWhenDeltaDoesNotDivideIt) {
+  const Result r = spinfold("simulate --scene geodesic_rigid_sphere --t-end 1 --every 0.3");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 5u);  // 0, 0.3, 0.6, 0.9, 1
+  EXPECT_DOUBLE_EQ(rows.back()["t"].get<double>(), 1.0);
+}
+
+TEST(Cli, DefaultSceneRunsWithoutArguments) {
+  const Result r = spinfold("simulate --t-end 1 --every 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(lines(r.out).size(), 2u);
+}
+
+TEST(Cli, SceneFileAndOverrides) {
+  const Result r = spinfold(std::string("simulate ") + SPINFOLD_SCENES_DIR +
+                            "/separable_radial_abc.json --t-end 2 --every 2 --integrator rk4 --dt 0.001");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = lines(r.out);
+  EXPECT_EQ(rows.back()["integrator"], "rk4");
+  EXPECT_NEAR(rows.back()["r"].get<double>(), 1.650073264590784, 1e-9);  // physics.md W5
+}
+
+TEST(Cli, DegenerateCrossingIsReportedInTheSample) {
+  const Result r = spinfold("simulate --scene degenerate_crossing --t-end 1 --every 0.25");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 5u);
+  EXPECT_TRUE(rows[2]["events"].empty());
+  ASSERT_EQ(rows[3]["events"].size(), 1u);  // reported with the first sample after t = 0.5
+  EXPECT_NEAR(rows[3]["events"][0]["t"].get<double>(), 0.5, 1e-9);
+  EXPECT_LT(rows[4]["det_L"].get<double>(), 0.0);
+}
+
+TEST(Cli, SameSceneSameBytes) {
+  const std::string args = "simulate --scene breathing_ellipse_sphere --t-end 5 --every 0.5";
+  EXPECT_EQ(spinfold(args).out, spinfold(args).out);
+}
+
+TEST(Cli, ScenesListsEveryPreset) {
+  const Result r = spinfold("scenes");
+  ASSERT_EQ(r.exit_code, 0);
+  for (const auto& entry : std::filesystem::directory_iterator(SPINFOLD_SCENES_DIR))
+    EXPECT_NE(r.out.find(entry.path().stem().string()), std::string::npos) << entry.path();
+}
+
+TEST(Cli, IntegratorsPrintsTheCatalog) {
+  const Result r = spinfold("integrators");
+  ASSERT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("dop853"), std::string::npos);
+  EXPECT_NE(r.out.find("rk4"), std::string::npos);
+}
+
+struct BadArgs {
+  const char* args;
+  const char* message;  // a fragment the stderr message must contain
+};
+
+void PrintTo(const BadArgs& b, std::ostream* os) { *os << "spinfold " << b.args; }
+
+class CliBadInput : public ::testing::TestWithParam<BadArgs> {};
+
+TEST_P(CliBadInput, ExitsTwoWithAMessageAndNoOutput) {
+  const Result r = spinfold(GetParam().args);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_NE(r.err.find(GetParam().message), std::string::npos) << r.err;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Table, CliBadInput,
+    ::testing::Values(BadArgs{"simulate --scene no_such_scene", "no preset named"},
+                      BadArgs{"simulate /nonexistent/scene.json", "cannot read"},
+                      BadArgs{"simulate --scene spinning_rigid_sphere --t-end -1", "--t-end"},
+                      BadArgs{"simulate --scene spinning_rigid_sphere --every 0", "--every"},
+                      BadArgs{"simulate --scene spinning_rigid_sphere --integrator euler", "integrator.name"},
+                      BadArgs{"simulate --scene spinning_rigid_sphere --dt -0.1", "integrator.dt"},
+                      BadArgs{"simulate --scene spinning_rigid_sphere --tolerance 5", "integrator.tolerance"},
+                      BadArgs{"simulate --scene spinning_rigid_sphere --t-end abc", "t-end"},
+                      BadArgs{"simulate --t-end 1e9 --every 1e-9", "samples"},
+                      BadArgs{"explode", ""},
+                      BadArgs{"", "subcommand"}));
+
+TEST(Cli, BadSceneFileNamesTheField) {
+  const std::string path = std::filesystem::temp_directory_path() /
+                           ("spinfold_bad_scene_" + std::to_string(getpid()) + ".json");
+  std::ofstream(path) << R"({"body": {"mass": -1}, "surface": {"kind": "torus"}})";
+  const Result r = spinfold("simulate " + path);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_NE(r.err.find("body.mass: must be > 0 (got -1)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("surface.kind"), std::string::npos) << r.err;
+}
+
+}  // namespace
