@@ -1,15 +1,14 @@
 // spinfold: the command line. `simulate` prints JSON Lines samples of a run; `scenes` lists the
 // presets; `integrators` prints the catalog. Bad input: a message on stderr and exit code 2.
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 #include <string>
-
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "codec/presets.h"
 #include "codec/sample_json.h"
@@ -98,7 +97,8 @@ int simulate(const SimulateOptions& opt) {
   }
   std::cout.flush();
   if (run.state.status != Status::ok) {
-    std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << status_name(run.state.status) << "\n";
+    std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << status_name(run.state.status)
+              << "\n";
     return kExitRunStopped;
   }
   return 0;
@@ -134,7 +134,8 @@ int main(int argc, char** argv) {
   SimulateOptions sim;
   CLI::App* simulate_cmd = app.add_subcommand("simulate", "Simulation a scene and print JSON Lines samples");
   simulate_cmd->add_option("scene_file", sim.scene_file, "Scene JSON file (default: the default preset)");
-  simulate_cmd->add_option("--scene", sim.preset, "Simulation an embedded preset by name (see `spinfold scenes`)");
+  simulate_cmd->add_option("--scene", sim.preset,
+                           "Simulation an embedded preset by name (see `spinfold scenes`)");
   simulate_cmd->add_option("--t-end", sim.t_end, "Simulated time to reach")->capture_default_str();
   simulate_cmd->add_option("--every", sim.every, "Sample interval")->capture_default_str();
   simulate_cmd->add_option("--integrator", sim.integrator, "Override the scene's integrator name");

@@ -12,8 +12,12 @@ using json = nlohmann::ordered_json;
 namespace {
 
 // Non-finite numbers never reach a client: they become null (and cannot occur in a good state).
-json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-json number(const std::optional<double>& v) { return v ? number(*v) : json(nullptr); }
+json number(double v) {
+  return std::isfinite(v) ? json(v) : json(nullptr);
+}
+json number(const std::optional<double>& v) {
+  return v ? number(*v) : json(nullptr);
+}
 
 }  // namespace
 
@@ -44,9 +48,9 @@ json sample_to_json(const Simulation& run, std::span<const DegenerateEvent> new_
   j["p_lambda"] = number(c.p_lambda);
   j["p_mu"] = number(c.p_mu);
   j["X"] = {number(c.X.x()), number(c.X.y()), number(c.X.z())};
-  j["L"] = c.L ? json{{number((*c.L)(0, 0)), number((*c.L)(0, 1))},
-                      {number((*c.L)(1, 0)), number((*c.L)(1, 1))}}
-               : json(nullptr);
+  j["L"] =
+      c.L ? json{{number((*c.L)(0, 0)), number((*c.L)(0, 1))}, {number((*c.L)(1, 0)), number((*c.L)(1, 1))}}
+          : json(nullptr);
   j["det_L"] = number(c.det_L);
 
   const double H = energy(scene, state);

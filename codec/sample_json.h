@@ -1,9 +1,8 @@
 // One sample of a run as a JSON object: the CLI's JSON Lines record and the API's state.
 #pragma once
 
-#include <span>
-
 #include <nlohmann/json.hpp>
+#include <span>
 
 #include "engine/simulation.h"
 

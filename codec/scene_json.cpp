@@ -31,15 +31,19 @@ class Reader {
   void number(const json& obj, const std::string& path, const char* key, double& out) {
     const auto it = obj.find(key);
     if (it == obj.end()) return;
-    if (it->is_number()) out = it->get<double>();
-    else error(join(path, key), *it, "must be a number");
+    if (it->is_number())
+      out = it->get<double>();
+    else
+      error(join(path, key), *it, "must be a number");
   }
 
   void text(const json& obj, const std::string& path, const char* key, std::string& out) {
     const auto it = obj.find(key);
     if (it == obj.end()) return;
-    if (it->is_string()) out = it->get<std::string>();
-    else error(join(path, key), *it, "must be a string");
+    if (it->is_string())
+      out = it->get<std::string>();
+    else
+      error(join(path, key), *it, "must be a string");
   }
 
   // A string that must be one of `names`; sets `out` to the index of the match.
@@ -100,8 +104,7 @@ void read_potential(Reader& in, const json& j, Potentials& pot) {
     if (in.object(*it, path, {"kind", "ghat", "gtilde", "form"})) {
       in.number(*it, path, "ghat", polar.ghat);
       in.number(*it, path, "gtilde", polar.gtilde);
-      in.choice(*it, path, "form", {{"cot2", PolarForm::cot2}, {"literal", PolarForm::literal}},
-                polar.form);
+      in.choice(*it, path, "form", {{"cot2", PolarForm::cot2}, {"literal", PolarForm::literal}}, polar.form);
     }
     pot.deformation = polar;
   } else {
@@ -111,14 +114,22 @@ void read_potential(Reader& in, const json& j, Potentials& pot) {
 
 void read_initial(Reader& in, const json& j, InitialState& q) {
   const std::string path = "initial";
-  if (!in.object(j, path, {"r", "phi", "alpha", "beta", "lambda", "mu", "r_dot", "phi_dot",
-                           "alpha_dot", "beta_dot", "lambda_dot", "mu_dot"}))
+  if (!in.object(j, path,
+                 {"r", "phi", "alpha", "beta", "lambda", "mu", "r_dot", "phi_dot", "alpha_dot", "beta_dot",
+                  "lambda_dot", "mu_dot"}))
     return;
-  for (const auto& [key, field] :
-       {std::pair{"r", &q.r}, {"phi", &q.phi}, {"alpha", &q.alpha}, {"beta", &q.beta},
-        {"lambda", &q.lambda}, {"mu", &q.mu}, {"r_dot", &q.r_dot}, {"phi_dot", &q.phi_dot},
-        {"alpha_dot", &q.alpha_dot}, {"beta_dot", &q.beta_dot}, {"lambda_dot", &q.lambda_dot},
-        {"mu_dot", &q.mu_dot}})
+  for (const auto& [key, field] : {std::pair{"r", &q.r},
+                                   {"phi", &q.phi},
+                                   {"alpha", &q.alpha},
+                                   {"beta", &q.beta},
+                                   {"lambda", &q.lambda},
+                                   {"mu", &q.mu},
+                                   {"r_dot", &q.r_dot},
+                                   {"phi_dot", &q.phi_dot},
+                                   {"alpha_dot", &q.alpha_dot},
+                                   {"beta_dot", &q.beta_dot},
+                                   {"lambda_dot", &q.lambda_dot},
+                                   {"mu_dot", &q.mu_dot}})
     in.number(j, path, key, *field);
 }
 
@@ -128,21 +139,23 @@ SceneParse parse_scene(const json& document) {
   SceneParse result;
   Reader in(result.errors);
   Scene scene;
-  if (!in.object(document, "", {"name", "description", "surface", "body", "potential", "initial",
-                                "integrator", "on_degenerate"}))
+  if (!in.object(
+          document, "",
+          {"name", "description", "surface", "body", "potential", "initial", "integrator", "on_degenerate"}))
     return result;
   in.text(document, "", "name", scene.name);
   in.text(document, "", "description", scene.description);
-  if (const auto it = document.find("surface"); it != document.end() &&
-                                                in.object(*it, "surface", {"kind", "radius"})) {
+  if (const auto it = document.find("surface");
+      it != document.end() && in.object(*it, "surface", {"kind", "radius"})) {
     in.choice(*it, "surface", "kind",
-              {{"sphere", SurfaceKind::sphere}, {"pseudosphere", SurfaceKind::pseudosphere},
+              {{"sphere", SurfaceKind::sphere},
+               {"pseudosphere", SurfaceKind::pseudosphere},
                {"plane", SurfaceKind::plane}},
               scene.surface.kind);
     in.number(*it, "surface", "radius", scene.surface.radius);
   }
-  if (const auto it = document.find("body"); it != document.end() &&
-                                             in.object(*it, "body", {"mass", "inertia", "model"})) {
+  if (const auto it = document.find("body");
+      it != document.end() && in.object(*it, "body", {"mass", "inertia", "model"})) {
     in.number(*it, "body", "mass", scene.body.mass);
     in.number(*it, "body", "inertia", scene.body.inertia);
     in.choice(*it, "body", "model", {{"affine", BodyModel::affine}, {"rigid", BodyModel::rigid}},
@@ -150,16 +163,15 @@ SceneParse parse_scene(const json& document) {
   }
   if (const auto it = document.find("potential"); it != document.end())
     read_potential(in, *it, scene.potential);
-  if (const auto it = document.find("initial"); it != document.end())
-    read_initial(in, *it, scene.initial);
-  if (const auto it = document.find("integrator"); it != document.end() &&
-      in.object(*it, "integrator", {"name", "dt", "tolerance"})) {
+  if (const auto it = document.find("initial"); it != document.end()) read_initial(in, *it, scene.initial);
+  if (const auto it = document.find("integrator");
+      it != document.end() && in.object(*it, "integrator", {"name", "dt", "tolerance"})) {
     in.text(*it, "integrator", "name", scene.integrator.name);
     in.number(*it, "integrator", "dt", scene.integrator.dt);
     in.number(*it, "integrator", "tolerance", scene.integrator.tolerance);
   }
-  in.choice(document, "", "on_degenerate",
-            {{"report", OnDegenerate::report}, {"stop", OnDegenerate::stop}}, scene.on_degenerate);
+  in.choice(document, "", "on_degenerate", {{"report", OnDegenerate::report}, {"stop", OnDegenerate::stop}},
+            scene.on_degenerate);
 
   // Report value errors too, except for fields whose structure was already wrong.
   for (FieldError& e : validate_scene(scene)) {
@@ -203,14 +215,24 @@ json scene_to_json(const Scene& scene) {
   if (const auto* abc = std::get_if<AbcPotential>(&scene.potential.deformation))
     pot["deformation"] = {{"kind", "abc"}, {"A", abc->A}, {"B", abc->B}, {"C", abc->C}};
   if (const auto* polar = std::get_if<PolarPotential>(&scene.potential.deformation))
-    pot["deformation"] = {{"kind", "polar"}, {"ghat", polar->ghat}, {"gtilde", polar->gtilde},
+    pot["deformation"] = {{"kind", "polar"},
+                          {"ghat", polar->ghat},
+                          {"gtilde", polar->gtilde},
                           {"form", polar->form == PolarForm::literal ? "literal" : "cot2"}};
   j["potential"] = pot;
   const InitialState& q = scene.initial;
-  j["initial"] = {{"r", q.r}, {"phi", q.phi}, {"alpha", q.alpha}, {"beta", q.beta},
-                  {"lambda", q.lambda}, {"mu", q.mu}, {"r_dot", q.r_dot}, {"phi_dot", q.phi_dot},
-                  {"alpha_dot", q.alpha_dot}, {"beta_dot", q.beta_dot},
-                  {"lambda_dot", q.lambda_dot}, {"mu_dot", q.mu_dot}};
+  j["initial"] = {{"r", q.r},
+                  {"phi", q.phi},
+                  {"alpha", q.alpha},
+                  {"beta", q.beta},
+                  {"lambda", q.lambda},
+                  {"mu", q.mu},
+                  {"r_dot", q.r_dot},
+                  {"phi_dot", q.phi_dot},
+                  {"alpha_dot", q.alpha_dot},
+                  {"beta_dot", q.beta_dot},
+                  {"lambda_dot", q.lambda_dot},
+                  {"mu_dot", q.mu_dot}};
   j["integrator"] = {{"name", scene.integrator.name},
                      {"dt", scene.integrator.dt},
                      {"tolerance", scene.integrator.tolerance}};

@@ -1,11 +1,10 @@
 // The scene format (JSON) shared by the CLI, the API and assets/scenes: parse, check, write.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string_view>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "engine/scene.h"
 #include "engine/validation.h"

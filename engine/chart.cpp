@@ -85,8 +85,7 @@ namespace {
 
 // Distance of the body from a new chart's pole: the middle of the well-conditioned band.
 double recentre_distance(const Surface& surface) {
-  return surface.kind == SurfaceKind::sphere ? 0.5 * std::numbers::pi * surface.radius
-                                             : surface.radius;
+  return surface.kind == SurfaceKind::sphere ? 0.5 * std::numbers::pi * surface.radius : surface.radius;
 }
 
 }  // namespace
@@ -109,8 +108,8 @@ void recentre(const Scene& scene, const BodyKinematics& body, Chart& chart, Coor
     a1 = u;
     b_rel = pole;
   } else {
-    pole = Cd * X - Sd * u;     // exp_X(−d₀u)
-    a1 = K * Sd * X + Cd * u;   // unit tangent at the pole, pointing at the body
+    pole = Cd * X - Sd * u;    // exp_X(−d₀u)
+    a1 = K * Sd * X + Cd * u;  // unit tangent at the pole, pointing at the body
   }
   Mat3 A_rel;
   A_rel.col(0) = a1;
@@ -118,8 +117,7 @@ void recentre(const Scene& scene, const BodyKinematics& body, Chart& chart, Coor
   A_rel.col(2) = unit_normal(surface, pole);
   const Mat3 A_inv = inverse_linear(surface, A_rel);
 
-  const BodyKinematics moved{A_inv * (X - b_rel), A_inv * body.V, A_inv * body.F1,
-                             body.L, body.M, body.spin};
+  const BodyKinematics moved{A_inv * (X - b_rel), A_inv * body.V, A_inv * body.F1, body.L, body.M, body.spin};
   y = chart_coords(scene, moved);
   chart.b = chart.A * b_rel + chart.b;
   chart.A = chart.A * A_rel;

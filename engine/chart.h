@@ -9,12 +9,12 @@ namespace spinfold {
 
 // A body described by vectors in one coordinate system (a chart's embedding or the global one).
 struct BodyKinematics {
-  Vec3 X;        // position [length]
-  Vec3 V;        // velocity dX/dt [length/time]
-  Vec3 F1;       // unit tangent vector that, with F₂ = jF₁, is the frame L and M refer to
-  Mat2 L;        // internal matrix: e_A = F_B L_BA
-  Mat2 M;        // covariant rate: De_A/Dt = F_B M_BA [1/time]
-  double spin;   // s [angular momentum]; frame-independent
+  Vec3 X;       // position [length]
+  Vec3 V;       // velocity dX/dt [length/time]
+  Vec3 F1;      // unit tangent vector that, with F₂ = jF₁, is the frame L and M refer to
+  Mat2 L;       // internal matrix: e_A = F_B L_BA
+  Mat2 M;       // covariant rate: De_A/Dt = F_B M_BA [1/time]
+  double spin;  // s [angular momentum]; frame-independent
 };
 
 // The body in the coordinates of its own chart (the chart must not be at its pole).
@@ -42,9 +42,9 @@ void recentre(const Scene& scene, State& state);
 // The body in the scene's embedding coordinates (physics.md §7 state (X, V, e_A, W_A)), valid
 // everywhere including the poles: what a renderer draws.
 struct EmbeddedBody {
-  Vec3 X, V;    // position [length], velocity [length/time]
-  Vec3 e[2];    // deformed frame e_A [length]
-  Vec3 W[2];    // covariant rates De_A/Dt [length/time]
+  Vec3 X, V;  // position [length], velocity [length/time]
+  Vec3 e[2];  // deformed frame e_A [length]
+  Vec3 W[2];  // covariant rates De_A/Dt [length/time]
 };
 EmbeddedBody global_embedding(const Scene& scene, const State& state);
 

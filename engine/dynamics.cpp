@@ -27,7 +27,9 @@ Mat2 eps_times(const Mat2& X) {
   return r;
 }
 
-double rigid_scale(const Scene& scene) { return scene.initial.lambda; }
+double rigid_scale(const Scene& scene) {
+  return scene.initial.lambda;
+}
 
 }  // namespace
 
@@ -65,7 +67,7 @@ RadialTerms radial_terms(const Scene& scene, const Chart& chart, double r, doubl
   const Vec3 X = chart.A * p.X + chart.b;
   const Vec3 grad = radial_potential_gradient(surface, radial, X);
   t.value = radial_potential(surface, radial, X);
-  t.d_dr = grad.dot(chart.A * p.E1);  // ∂X/∂r = E₁
+  t.d_dr = grad.dot(chart.A * p.E1);                          // ∂X/∂r = E₁
   t.d_dphi = grad.dot(chart.A * p.E2) * polar_S(surface, r);  // ∂X/∂φ = S E₂
   return t;
 }

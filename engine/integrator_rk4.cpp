@@ -3,8 +3,8 @@
 
 namespace spinfold {
 
-const IntegratorInfo rk4_info{"rk4", 4, false, false, false,
-                              "classical fixed-step Runge-Kutta, 4 evaluations per step"};
+const IntegratorInfo rk4_info{"rk4", 4,     false,
+                              false, false, "classical fixed-step Runge-Kutta, 4 evaluations per step"};
 
 namespace {
 
@@ -28,6 +28,8 @@ class Rk4 final : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_rk4() { return std::make_unique<Rk4>(); }
+std::unique_ptr<Integrator> make_rk4() {
+  return std::make_unique<Rk4>();
+}
 
 }  // namespace spinfold

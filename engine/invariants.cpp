@@ -31,8 +31,7 @@ GlobalBody global_body(const Scene& scene, const State& state) {
   Vec3 E1 = body.F1;
   if (!chart.global) {
     const Mat3 A_inv = inverse_linear(surface, chart.A);
-    const Vec3 O_global = surface.kind == SurfaceKind::plane ? Vec3::Zero()
-                                                              : Vec3(0.0, 0.0, surface.radius);
+    const Vec3 O_global = surface.kind == SurfaceKind::plane ? Vec3::Zero() : Vec3(0.0, 0.0, surface.radius);
     const Vec3 towards = tangential(surface, body.X, A_inv * (O_global - chart.b) - body.X);
     E1 = -towards / std::sqrt(dot(surface, towards, towards));
   }
@@ -69,7 +68,9 @@ double deformation_energy(const Scene& scene, const State& state) {
   return E;
 }
 
-double spin(const Scene& scene, const State& state) { return spin_of(scene, state.y); }
+double spin(const Scene& scene, const State& state) {
+  return spin_of(scene, state.y);
+}
 
 double vorticity(const Scene& scene, const State& state) {
   const InternalState in = internal_state(scene, state.y);
@@ -87,8 +88,10 @@ double angular_momentum(const Scene& scene, const State& state) {
 std::optional<SeparatedEnergies> separated_energies(const Scene& scene, const State& state) {
   if (scene.body.model != BodyModel::affine) return std::nullopt;
   AbcPotential abc;
-  if (const auto* p = std::get_if<AbcPotential>(&scene.potential.deformation)) abc = *p;
-  else if (has_deformation_potential(scene.potential)) return std::nullopt;
+  if (const auto* p = std::get_if<AbcPotential>(&scene.potential.deformation))
+    abc = *p;
+  else if (has_deformation_potential(scene.potential))
+    return std::nullopt;
   const double J = scene.body.inertia;
   const InternalState in = internal_state(scene, state.y);
   const DeformationInvariants inv = deformation_invariants(in.L);
@@ -111,6 +114,8 @@ std::optional<Vec3> momentum_map(const Scene& scene, const State& state) {
   return Vec3(m * g.X.cross(g.V) + curvature(surface) * surface.radius * g.spin * raise(surface, g.X));
 }
 
-double casimir(const Surface& surface, const Vec3& M) { return dot(surface, M, M); }
+double casimir(const Surface& surface, const Vec3& M) {
+  return dot(surface, M, M);
+}
 
 }  // namespace spinfold

@@ -11,18 +11,18 @@ namespace spinfold {
 // The body in the scene's (global) coordinates, read off its chart (physics.md §7 conversions).
 // Far out on H² the chart keeps every number moderate; only X and V carry the e^{r/R} growth.
 struct GlobalBody {
-  Vec3 X;               // embedding position [length]
-  Vec3 V;               // embedding velocity [length/time]
-  double r = 0.0;       // geodesic distance from the global pole [length]
-  double phi = 0.0;     // [rad], meaningful only when !at_pole
-  double S = 0.0;       // S(r) = √(X₁² + X₂²) [length]
-  double C = 1.0;       // C(r)
-  bool at_pole = false; // φ and the paper's frame (E₁, E₂) are undefined here
-  Mat2 L;               // internal matrix in (E₁, E₂) (any fixed frame at a pole)
-  Mat2 M;               // L̇ + Cφ̇εL in the same frame [1/time]
-  double r_dot = 0.0;   // [length/time]
-  double phi_dot = 0.0; // [rad/time]
-  double spin = 0.0;    // s
+  Vec3 X;                // embedding position [length]
+  Vec3 V;                // embedding velocity [length/time]
+  double r = 0.0;        // geodesic distance from the global pole [length]
+  double phi = 0.0;      // [rad], meaningful only when !at_pole
+  double S = 0.0;        // S(r) = √(X₁² + X₂²) [length]
+  double C = 1.0;        // C(r)
+  bool at_pole = false;  // φ and the paper's frame (E₁, E₂) are undefined here
+  Mat2 L;                // internal matrix in (E₁, E₂) (any fixed frame at a pole)
+  Mat2 M;                // L̇ + Cφ̇εL in the same frame [1/time]
+  double r_dot = 0.0;    // [length/time]
+  double phi_dot = 0.0;  // [rad/time]
+  double spin = 0.0;     // s
 };
 GlobalBody global_body(const Scene& scene, const State& state);
 

@@ -31,7 +31,9 @@ PolarPart polar_part(double c, double s, double c_dot, double s_dot, double scal
   return p;
 }
 
-double wrap(double angle) { return std::remainder(angle, 2.0 * std::numbers::pi); }
+double wrap(double angle) {
+  return std::remainder(angle, 2.0 * std::numbers::pi);
+}
 
 }  // namespace
 
@@ -56,11 +58,9 @@ PaperCoordinates paper_coordinates(const Scene& scene, const State& state) {
   }
   const double scale = std::sqrt(L.squaredNorm());
   const PolarPart x = polar_part(0.5 * (L(0, 0) - L(1, 1)), 0.5 * (L(0, 1) + L(1, 0)),
-                                 0.5 * (L_dot(0, 0) - L_dot(1, 1)), 0.5 * (L_dot(0, 1) + L_dot(1, 0)),
-                                 scale);
+                                 0.5 * (L_dot(0, 0) - L_dot(1, 1)), 0.5 * (L_dot(0, 1) + L_dot(1, 0)), scale);
   const PolarPart y = polar_part(0.5 * (L(0, 0) + L(1, 1)), 0.5 * (L(1, 0) - L(0, 1)),
-                                 0.5 * (L_dot(0, 0) + L_dot(1, 1)), 0.5 * (L_dot(1, 0) - L_dot(0, 1)),
-                                 scale);
+                                 0.5 * (L_dot(0, 0) + L_dot(1, 1)), 0.5 * (L_dot(1, 0) - L_dot(0, 1)), scale);
   out.lambda = (x.magnitude + y.magnitude) / std::numbers::sqrt2;
   out.mu = (y.magnitude - x.magnitude) / std::numbers::sqrt2;
   out.lambda_dot = (x.magnitude_dot + y.magnitude_dot) / std::numbers::sqrt2;
@@ -70,8 +70,8 @@ PaperCoordinates paper_coordinates(const Scene& scene, const State& state) {
 
   if (g.at_pole) {
     const std::string why = "the body is at a pole of the scene's chart, where phi and E1 are undefined";
-    for (const char* f : {"phi", "phi_dot", "r_dot", "p_r", "alpha", "beta", "theta", "alpha_dot",
-                          "beta_dot", "theta_dot", "L"})
+    for (const char* f : {"phi", "phi_dot", "r_dot", "p_r", "alpha", "beta", "theta", "alpha_dot", "beta_dot",
+                          "theta_dot", "L"})
       out.undefined.push_back({f, why});
     return out;
   }

@@ -26,9 +26,9 @@ struct PaperCoordinates {
   double lambda_dot = 0.0, mu_dot = 0.0;
   std::optional<double> p_r;
   double p_phi = 0.0, p_alpha = 0.0, p_beta = 0.0, p_lambda = 0.0, p_mu = 0.0;
-  Vec3 X;                  // global embedding position (physics.md §1)
-  std::optional<Mat2> L;   // rows as physics.md §2: L_BA = component of e_A along E_B
-  double det_L = 0.0;      // frame-independent
+  Vec3 X;                 // global embedding position (physics.md §1)
+  std::optional<Mat2> L;  // rows as physics.md §2: L_BA = component of e_A along E_B
+  double det_L = 0.0;     // frame-independent
   std::vector<UndefinedValue> undefined;
 };
 

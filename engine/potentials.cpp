@@ -14,8 +14,7 @@ double radial_potential(const Surface& surface, const RadialPotential& radial, c
   return radial_strength(surface, radial) / rho2;
 }
 
-Vec3 radial_potential_gradient(const Surface& surface, const RadialPotential& radial,
-                               const Vec3& X) {
+Vec3 radial_potential_gradient(const Surface& surface, const RadialPotential& radial, const Vec3& X) {
   const double rho2 = X.x() * X.x() + X.y() * X.y();
   const double factor = -2.0 * radial_strength(surface, radial) / (rho2 * rho2);
   return {factor * X.x(), factor * X.y(), 0.0};

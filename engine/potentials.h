@@ -12,8 +12,7 @@ double radial_strength(const Surface& surface, const RadialPotential& radial);
 // Written through ρ² so that it stays accurate near the poles, where 1 − cos² would cancel.
 double radial_potential(const Surface& surface, const RadialPotential& radial, const Vec3& X_global);
 // ∂V_r/∂X (an ambient covector) at the global point X: −2Γ/ρ⁴ (X₁, X₂, 0).
-Vec3 radial_potential_gradient(const Surface& surface, const RadialPotential& radial,
-                               const Vec3& X_global);
+Vec3 radial_potential_gradient(const Surface& surface, const RadialPotential& radial, const Vec3& X_global);
 
 // The deformation invariants a = x² and b = y² of L, without cancellation (physics.md §2):
 // with u = (L₁₁ − L₂₂)/2, v = (L₁₂ + L₂₁)/2, p = (L₁₁ + L₂₂)/2, q = (L₂₁ − L₁₂)/2,

@@ -58,13 +58,13 @@ struct Potentials {
 // E₁ = ∂/∂r, E₂ = (1/S)∂/∂φ (physics.md §2). For the rigid model λ is the scale λ₀, μ must equal
 // λ, and only α − β (the angle θ) and its rate matter.
 struct InitialState {
-  double r = 1.0;       // geodesic distance from the pole [length]
-  double phi = 0.0;     // [rad]
-  double alpha = 0.0;   // [rad]
-  double beta = 0.0;    // [rad]
-  double lambda = 1.0;  // [length·(body unit)⁻¹], > 0
-  double mu = 1.0;      // > 0
-  double r_dot = 0.0;   // [length/time]
+  double r = 1.0;           // geodesic distance from the pole [length]
+  double phi = 0.0;         // [rad]
+  double alpha = 0.0;       // [rad]
+  double beta = 0.0;        // [rad]
+  double lambda = 1.0;      // [length·(body unit)⁻¹], > 0
+  double mu = 1.0;          // > 0
+  double r_dot = 0.0;       // [length/time]
   double phi_dot = 0.0;     // [rad/time]
   double alpha_dot = 0.0;   // [rad/time]
   double beta_dot = 0.0;    // [rad/time]

@@ -24,7 +24,9 @@ Simulation start_simulation(const Scene& scene) {
 
 namespace {
 
-bool all_finite(const Coords& y) { return y.allFinite(); }
+bool all_finite(const Coords& y) {
+  return y.allFinite();
+}
 
 double det_of(const Coords& y) {
   return y[coord::L] * y[coord::L + 3] - y[coord::L + 1] * y[coord::L + 2];
@@ -39,8 +41,10 @@ double locate_degenerate(Integrator& integrator, const VectorField& f, const Coo
   for (int i = 0; i < 60 && hi - lo > 1e-14 * h; ++i) {
     const double mid = 0.5 * (lo + hi);
     integrator.try_step(f, y, mid, tolerance, trial);
-    if ((det_of(trial) > 0.0) == (det0 > 0.0)) lo = mid;
-    else hi = mid;
+    if ((det_of(trial) > 0.0) == (det0 > 0.0))
+      lo = mid;
+    else
+      hi = mid;
   }
   return 0.5 * (lo + hi);
 }

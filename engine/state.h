@@ -1,9 +1,8 @@
 // The mutable state of a run: time, the chart it is expressed in, canonical coordinates, status.
 #pragma once
 
-#include <string_view>
-
 #include <Eigen/Dense>
+#include <string_view>
 
 #include "engine/surface.h"
 
@@ -17,8 +16,8 @@ using Coords = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 12, 1>;
 
 namespace coord {
 inline constexpr int r = 0, phi = 1, p_r = 2, p_phi = 3;
-inline constexpr int L = 4, P = 8;           // affine: first index of L and P (row-major 2x2)
-inline constexpr int theta = 4, spin = 5;    // rigid
+inline constexpr int L = 4, P = 8;         // affine: first index of L and P (row-major 2x2)
+inline constexpr int theta = 4, spin = 5;  // rigid
 inline constexpr int affine_size = 12, rigid_size = 6;
 }  // namespace coord
 

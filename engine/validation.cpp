@@ -44,10 +44,15 @@ class Checker {
 void check_initial(const Scene& scene, Checker& c) {
   const InitialState& q = scene.initial;
   const Surface& surface = scene.surface;
-  for (const auto& [name, value] :
-       {std::pair{"phi", q.phi}, {"alpha", q.alpha}, {"beta", q.beta}, {"r_dot", q.r_dot},
-        {"phi_dot", q.phi_dot}, {"alpha_dot", q.alpha_dot}, {"beta_dot", q.beta_dot},
-        {"lambda_dot", q.lambda_dot}, {"mu_dot", q.mu_dot}})
+  for (const auto& [name, value] : {std::pair{"phi", q.phi},
+                                    {"alpha", q.alpha},
+                                    {"beta", q.beta},
+                                    {"r_dot", q.r_dot},
+                                    {"phi_dot", q.phi_dot},
+                                    {"alpha_dot", q.alpha_dot},
+                                    {"beta_dot", q.beta_dot},
+                                    {"lambda_dot", q.lambda_dot},
+                                    {"mu_dot", q.mu_dot}})
     c.finite(std::string("initial.") + name, value);
   c.positive("initial.lambda", q.lambda);
   c.positive("initial.mu", q.mu);
@@ -83,8 +88,9 @@ void check_potentials(const Scene& scene, Checker& c) {
     c.finite("potential.deformation.ghat", polar->ghat);
     c.finite("potential.deformation.gtilde", polar->gtilde);
     if (polar->ghat != 0.0 && isotropic)
-      c.add("initial.mu", q.mu,
-            "the polar potential's cot^2(2 epsilon) term is infinite at lambda = mu: start with lambda != mu");
+      c.add(
+          "initial.mu", q.mu,
+          "the polar potential's cot^2(2 epsilon) term is infinite at lambda = mu: start with lambda != mu");
   }
   if (scene.body.model == BodyModel::rigid && has_deformation_potential(pot))
     c.add_text("potential.deformation", "present",
@@ -92,7 +98,6 @@ void check_potentials(const Scene& scene, Checker& c) {
 }
 
 }  // namespace
-
 
 std::vector<FieldError> validate_scene(const Scene& scene) {
   Checker c;
@@ -103,7 +108,8 @@ std::vector<FieldError> validate_scene(const Scene& scene) {
   if (scene.body.model == BodyModel::rigid) {
     const InitialState& q = scene.initial;
     if (q.mu != q.lambda) c.add("initial.mu", q.mu, "a rigid body needs mu = lambda (it cannot deform)");
-    if (q.lambda_dot != 0.0) c.add("initial.lambda_dot", q.lambda_dot, "a rigid body cannot deform: must be 0");
+    if (q.lambda_dot != 0.0)
+      c.add("initial.lambda_dot", q.lambda_dot, "a rigid body cannot deform: must be 0");
     if (q.mu_dot != 0.0) c.add("initial.mu_dot", q.mu_dot, "a rigid body cannot deform: must be 0");
   }
   check_potentials(scene, c);

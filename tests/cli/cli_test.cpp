@@ -1,16 +1,15 @@
 // The spinfold binary as a user runs it: JSON Lines out, exit code 2 and nothing on stdout for bad input.
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include "codec/presets.h"
 
@@ -25,8 +24,9 @@ struct Result {
 Result spinfold(const std::string& args) {
   // One stderr file per process and call: ctest runs test cases in parallel processes.
   static int calls = 0;
-  const std::string err_file = std::filesystem::temp_directory_path() /
-                               ("spinfold_cli_stderr_" + std::to_string(getpid()) + "_" + std::to_string(++calls));
+  const std::string err_file =
+      std::filesystem::temp_directory_path() /
+      ("spinfold_cli_stderr_" + std::to_string(getpid()) + "_" + std::to_string(++calls));
   const std::string command = std::string(SPINFOLD_BINARY) + " " + args + " 2>" + err_file;
   FILE* pipe = popen(command.c_str(), "r");
   std::string out;
@@ -53,9 +53,10 @@ TEST(Cli, SimulatePrintsOneSampleEveryDeltaUpToT) {
   const auto rows = lines(r.out);
   ASSERT_EQ(rows.size(), 5u);
   for (size_t k = 0; k < rows.size(); ++k) EXPECT_DOUBLE_EQ(rows[k]["t"].get<double>(), 0.5 * k);
-  for (const char* key : {"t", "r", "phi", "alpha", "beta", "lambda", "mu", "r_dot", "phi_dot", "alpha_dot",
-                          "beta_dot", "lambda_dot", "mu_dot", "p_r", "p_phi", "p_alpha", "p_beta", "X", "L",
-                          "det_L", "energy", "status", "integrator"})
+  for (const char* key :
+       {"t",       "r",         "phi",      "alpha",      "beta",   "lambda", "mu",        "r_dot",
+        "phi_dot", "alpha_dot", "beta_dot", "lambda_dot", "mu_dot", "p_r",    "p_phi",     "p_alpha",
+        "p_beta",  "X",         "L",        "det_L",      "energy", "status", "integrator"})
     EXPECT_TRUE(rows.back().contains(key)) << key;
   EXPECT_EQ(rows.back()["status"], "ok");
   EXPECT_EQ(rows.back()["X"].size(), 3u);
@@ -124,7 +125,9 @@ struct BadArgs {
   const char* message;  // a fragment the stderr message must contain
 };
 
-void PrintTo(const BadArgs& b, std::ostream* os) { *os << "spinfold " << b.args; }
+void PrintTo(const BadArgs& b, std::ostream* os) {
+  *os << "spinfold " << b.args;
+}
 
 class CliBadInput : public ::testing::TestWithParam<BadArgs> {};
 
@@ -145,13 +148,12 @@ INSTANTIATE_TEST_SUITE_P(
                       BadArgs{"simulate --scene spinning_rigid_sphere --dt -0.1", "integrator.dt"},
                       BadArgs{"simulate --scene spinning_rigid_sphere --tolerance 5", "integrator.tolerance"},
                       BadArgs{"simulate --scene spinning_rigid_sphere --t-end abc", "t-end"},
-                      BadArgs{"simulate --t-end 1e9 --every 1e-9", "samples"},
-                      BadArgs{"explode", ""},
+                      BadArgs{"simulate --t-end 1e9 --every 1e-9", "samples"}, BadArgs{"explode", ""},
                       BadArgs{"", "subcommand"}));
 
 TEST(Cli, BadSceneFileNamesTheField) {
-  const std::string path = std::filesystem::temp_directory_path() /
-                           ("spinfold_bad_scene_" + std::to_string(getpid()) + ".json");
+  const std::string path =
+      std::filesystem::temp_directory_path() / ("spinfold_bad_scene_" + std::to_string(getpid()) + ".json");
   std::ofstream(path) << R"({"body": {"mass": -1}, "surface": {"kind": "torus"}})";
   const Result r = spinfold("simulate " + path);
   EXPECT_EQ(r.exit_code, 2);

@@ -1,10 +1,11 @@
 // Each preset's one-line claim, checked against the engine.
-#include <cmath>
-#include <numbers>
+#include "codec/presets.h"
 
 #include <gtest/gtest.h>
 
-#include "codec/presets.h"
+#include <cmath>
+#include <numbers>
+
 #include "codec/scene_json.h"
 #include "engine/chart.h"
 #include "engine/invariants.h"
@@ -21,7 +22,9 @@ Scene preset(std::string_view name) {
   return *parse_scene_text(p->json).scene;
 }
 
-double angle_from_axis(const Vec3& X, const Vec3& M) { return std::acos(X.dot(M) / (X.norm() * M.norm())); }
+double angle_from_axis(const Vec3& X, const Vec3& M) {
+  return std::acos(X.dot(M) / (X.norm() * M.norm()));
+}
 
 TEST(Presets, GeodesicBodyStaysOnAGreatCircleAndTheSpinningOneDoesNot) {
   for (const auto& [name, expected] : {std::pair{"geodesic_rigid_sphere", std::numbers::pi / 2},

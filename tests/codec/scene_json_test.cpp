@@ -1,8 +1,9 @@
 // The scene format: defaults, round trip, presets, and a table of bad scenes.
+#include "codec/scene_json.h"
+
 #include <gtest/gtest.h>
 
 #include "codec/presets.h"
-#include "codec/scene_json.h"
 
 namespace spinfold {
 namespace {
@@ -60,7 +61,9 @@ struct BadScene {
   const char* field;  // the field the first error must name
 };
 
-void PrintTo(const BadScene& b, std::ostream* os) { *os << b.json; }
+void PrintTo(const BadScene& b, std::ostream* os) {
+  *os << b.json;
+}
 
 class BadScenes : public ::testing::TestWithParam<BadScene> {};
 
@@ -105,8 +108,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{R"({"potential": {"deformation": {"A": 1}}})", "potential.deformation.kind"},
         BadScene{R"({"potential": {"deformation": {"kind": "abc", "A": -1, "initial": 1}}})",
                  "potential.deformation.A"},
-        BadScene{R"({"potential": {"deformation": {"kind": "abc", "A": 0.1}}, "initial": {"lambda": 1, "mu": 1}})",
-                 "initial.mu"},
+        BadScene{
+            R"({"potential": {"deformation": {"kind": "abc", "A": 0.1}}, "initial": {"lambda": 1, "mu": 1}})",
+            "initial.mu"},
         BadScene{R"({"potential": {"deformation": {"kind": "polar", "ghat": 0.1, "form": "fancy"}}})",
                  "potential.deformation.form"},
         BadScene{R"({"potential": {"deformation": {"kind": "polar", "ghat": 0.1}}})", "initial.mu"},
@@ -115,10 +119,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{R"({"integrator": {"tolerance": 1}})", "integrator.tolerance"},
         BadScene{R"({"integrator": {"tolerance": 1e-20}})", "integrator.tolerance"},
         BadScene{R"({"on_degenerate": "explode"})", "on_degenerate"},
-        BadScene{R"({"gravity": 9.81})", "gravity"},
-        BadScene{R"([1, 2, 3])", ""},
-        BadScene{R"({"surface": )", ""},
-        BadScene{R"({"initial": {"r": 1e400}})", ""}));
+        BadScene{R"({"gravity": 9.81})", "gravity"}, BadScene{R"([1, 2, 3])", ""},
+        BadScene{R"({"surface": )", ""}, BadScene{R"({"initial": {"r": 1e400}})", ""}));
 
 TEST(SceneJson, DeepNestingIsRejectedBeforeItIsBuilt) {
   std::string deep(10000, '[');

@@ -1,8 +1,8 @@
 // Runs as a whole: invariants along runs, det L = 0 crossings, failed steps, reproducibility.
+#include <gtest/gtest.h>
+
 #include <cstring>
 #include <numbers>
-
-#include <gtest/gtest.h>
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
@@ -175,6 +175,7 @@ class PoisonIntegrator final : public Integrator {
     y_next[0] = std::numeric_limits<double>::quiet_NaN();
     return {true, h};
   }
+
  private:
   IntegratorInfo info_;
 };
@@ -217,7 +218,8 @@ TEST(Reproducibility, SameSceneSameBits) {
   for (const ConservationCase& c : conservation_cases()) {
     const Simulation a = test::run_to(c.scene, 7.0), b = test::run_to(c.scene, 7.0);
     ASSERT_EQ(a.state.y.size(), b.state.y.size());
-    EXPECT_EQ(std::memcmp(a.state.y.data(), b.state.y.data(), sizeof(double) * a.state.y.size()), 0) << c.name;
+    EXPECT_EQ(std::memcmp(a.state.y.data(), b.state.y.data(), sizeof(double) * a.state.y.size()), 0)
+        << c.name;
     EXPECT_EQ(a.steps, b.steps);
   }
 }

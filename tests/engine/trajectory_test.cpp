@@ -1,8 +1,8 @@
 // Runs against closed forms: circles of spinning bodies (physics.md §8.5, W3, W4), pole
 // crossings, far out on H², bodies started at λ = μ, and the flat limit.
-#include <numbers>
-
 #include <gtest/gtest.h>
+
+#include <numbers>
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
@@ -63,7 +63,8 @@ TEST(SpinningCircle, GeodesicCurvatureIsKsOverMv) {
   const Vec3 a = (V1 - Vm1) / (2.0 * h);
   const Vec3 a_tangential = tangential(scene.surface, b0.X, a);
   const double v = b0.V.norm();
-  const double kappa = dot(scene.surface, a_tangential, rotate_quarter(scene.surface, b0.X, b0.V)) / (v * v * v);
+  const double kappa =
+      dot(scene.surface, a_tangential, rotate_quarter(scene.surface, b0.X, b0.V)) / (v * v * v);
   EXPECT_NEAR(kappa, 2.0, 1e-6);
 }
 
@@ -132,7 +133,7 @@ TEST(PoleCrossing, NonSpinningBodyThroughTheNorthPoleManyTimes) {
   Scene scene = rigid_scene(SurfaceKind::sphere, 1.0, 1.0, 0.5, 1.0);
   scene.initial.r = 1.0;
   scene.initial.phi = 0.5;
-  set_rigid_motion(scene, 0.5, kPi, 0.0);  // straight at the pole
+  set_rigid_motion(scene, 0.5, kPi, 0.0);            // straight at the pole
   expect_exact_rigid_motion(scene, 40.0, 40, 1e-9);  // ≈ 6 pole crossings (period 4π)
 }
 

@@ -1,7 +1,7 @@
 // physics.md §10: every worked number, from the JSON file beside physics.md.
-#include <fstream>
-
 #include <gtest/gtest.h>
+
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "engine/chart.h"
@@ -33,7 +33,7 @@ Scene scene_from(const json& params, const json& gen) {
   const json& p = params["potential"];
   s.potential.deformation = AbcPotential{p["A"].get<double>(), p["B"].get<double>(), p["C"].get<double>()};
   InitialState& q = s.initial;
-  double* fields[] = {&q.r, &q.phi, &q.alpha, &q.beta, &q.lambda, &q.mu,
+  double* fields[] = {&q.r,     &q.phi,     &q.alpha,     &q.beta,     &q.lambda,     &q.mu,
                       &q.r_dot, &q.phi_dot, &q.alpha_dot, &q.beta_dot, &q.lambda_dot, &q.mu_dot};
   for (int i = 0; i < 12; ++i) *fields[i] = gen[i].get<double>();
   s.integrator = {"dop853", 0.01, 1e-13};
@@ -131,7 +131,8 @@ TEST_P(WorkedState, InvariantsMomentaAndRightHandSides) {
 
     // Embedding state and its right-hand side (physics.md §7).
     const Eigen::Matrix<double, 18, 1> emb = embedding_vector(scene, state);
-    const auto emb_dot = flow_derivative(scene, state, [&](const State& s) { return embedding_vector(scene, s); });
+    const auto emb_dot =
+        flow_derivative(scene, state, [&](const State& s) { return embedding_vector(scene, s); });
     for (int i = 0; i < 18; ++i) {
       EXPECT_NEAR(emb[i], w["emb"][i].get<double>(), 1e-13) << "emb[" << i << "]";
       EXPECT_NEAR(emb_dot[i], w["rhs_emb"][i].get<double>(), 1e-8) << "rhs_emb[" << i << "]";
@@ -149,7 +150,7 @@ TEST(WorkedExamples, W5ClosedFormStateAtTwo) {
   ASSERT_EQ(run.state.status, Status::ok);
   const PaperCoordinates c = paper_coordinates(scene, run.state);
   const json& g = w["gen_t2"];
-  const double got[] = {c.r, *c.phi, *c.alpha, *c.beta, c.lambda, c.mu,
+  const double got[] = {c.r,      *c.phi,     *c.alpha,     *c.beta,     c.lambda,     c.mu,
                         *c.r_dot, *c.phi_dot, *c.alpha_dot, *c.beta_dot, c.lambda_dot, c.mu_dot};
   for (int i = 0; i < 12; ++i) EXPECT_NEAR(got[i], g[i].get<double>(), 1e-10) << "gen_t2[" << i << "]";
   for (int i = 0; i < 2; ++i)
