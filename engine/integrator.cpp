@@ -5,9 +5,12 @@
 namespace spinfold {
 
 std::span<const CatalogEntry> integrator_catalog() {
-  static const std::array<CatalogEntry, 2> catalog{{
+  static const std::array<CatalogEntry, 5> catalog{{
       {dop853_info, &make_dop853},
       {rk4_info, &make_rk4},
+      {implicit_midpoint_info, &make_implicit_midpoint},
+      {gauss4_info, &make_gauss4},
+      {gauss6_info, &make_gauss6},
   }};
   return catalog;
 }

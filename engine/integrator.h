@@ -50,7 +50,13 @@ const CatalogEntry* find_integrator(std::string_view name);
 // Factories, one per integrator file.
 std::unique_ptr<Integrator> make_rk4();
 std::unique_ptr<Integrator> make_dop853();
+std::unique_ptr<Integrator> make_implicit_midpoint();
+std::unique_ptr<Integrator> make_gauss4();
+std::unique_ptr<Integrator> make_gauss6();
 extern const IntegratorInfo rk4_info;
 extern const IntegratorInfo dop853_info;
+extern const IntegratorInfo implicit_midpoint_info;
+extern const IntegratorInfo gauss4_info;
+extern const IntegratorInfo gauss6_info;
 
 }  // namespace spinfold

@@ -1,0 +1,44 @@
+// Gauss–Legendre collocation (implicit Runge–Kutta with s stages, order 2s), shared by
+// integrator_implicit_midpoint.cpp, integrator_gauss4.cpp and integrator_gauss6.cpp.
+// Symplectic for any Hamiltonian system in canonical coordinates, hence for the (L, P) chart form
+// whose Hamiltonian is not separable (physics.md §4, §11).
+#pragma once
+
+#include <array>
+
+#include "engine/integrator.h"
+
+namespace spinfold {
+
+template <int Stages>
+struct GaussTableau {
+  std::array<std::array<double, Stages>, Stages> a;
+  std::array<double, Stages> b;
+};
+
+// Stage equations Z_i = h Σ_j a_ij f(y + Z_j) solved by fixed-point iteration to round-off.
+// Stopping rule: iterate while the max-norm of the change of Z keeps decreasing; stop when it is
+// zero, or when it no longer decreases after falling below 1e-12 of the state's scale. More than
+// kMaxIterations, or a change that grows while still large, is a failed step (not accepted).
+template <int Stages>
+class GaussCollocation final : public Integrator {
+ public:
+  static constexpr int kMaxIterations = 60;
+
+  GaussCollocation(const IntegratorInfo& info, const GaussTableau<Stages>& tableau)
+      : info_(info), tableau_(tableau) {}
+  const IntegratorInfo& info() const override { return info_; }
+  StepResult try_step(const VectorField& f, const Coords& y, double h, double tolerance,
+                      Coords& y_next) override;
+
+  int last_iterations() const { return iterations_; }
+
+ private:
+  const IntegratorInfo& info_;
+  GaussTableau<Stages> tableau_;
+  std::array<Coords, Stages> z_, z_new_, k_;
+  Coords stage_;
+  int iterations_ = 0;
+};
+
+}  // namespace spinfold
