@@ -114,10 +114,10 @@ int list_scenes() {
 }
 
 int list_integrators() {
-  std::printf("%-12s %5s %10s %8s %5s  %s\n", "name", "order", "symplectic", "adaptive", "exact", "summary");
+  std::printf("%-18s %5s %10s %8s %5s  %s\n", "name", "order", "symplectic", "adaptive", "exact", "summary");
   for (const CatalogEntry& e : integrator_catalog()) {
     const IntegratorInfo& i = e.info;
-    std::printf("%-12s %5d %10s %8s %5s  %s\n", std::string(i.name).c_str(), i.order,
+    std::printf("%-18s %5d %10s %8s %5s  %s\n", std::string(i.name).c_str(), i.order,
                 i.symplectic ? "yes" : "no", i.adaptive ? "yes" : "no", i.exact ? "yes" : "no",
                 std::string(i.summary).c_str());
   }

@@ -5,7 +5,8 @@
 namespace spinfold {
 
 std::span<const CatalogEntry> integrator_catalog() {
-  static const std::array<CatalogEntry, 5> catalog{{
+  static const std::array<CatalogEntry, 6> catalog{{
+      {exact_info, nullptr},
       {dop853_info, &make_dop853},
       {rk4_info, &make_rk4},
       {implicit_midpoint_info, &make_implicit_midpoint},

@@ -40,8 +40,11 @@ class Integrator {
 
 struct CatalogEntry {
   IntegratorInfo info;
-  std::unique_ptr<Integrator> (*make)();
+  std::unique_ptr<Integrator> (*make)();  // nullptr for the exact solver, which does not step
 };
+
+// The name that asks the engine to choose (see resolve_integrator in simulation.h).
+inline constexpr std::string_view kAutoIntegrator = "auto";
 
 std::span<const CatalogEntry> integrator_catalog();
 // nullptr if the name is not in the catalog.
@@ -58,5 +61,6 @@ extern const IntegratorInfo dop853_info;
 extern const IntegratorInfo implicit_midpoint_info;
 extern const IntegratorInfo gauss4_info;
 extern const IntegratorInfo gauss6_info;
+extern const IntegratorInfo exact_info;
 
 }  // namespace spinfold

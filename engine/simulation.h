@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "engine/exact_solution.h"
 #include "engine/integrator.h"
 #include "engine/scene.h"
 #include "engine/state.h"
@@ -19,7 +20,9 @@ struct DegenerateEvent {
 struct Simulation {
   Scene scene;
   State state;
-  std::unique_ptr<Integrator> integrator;
+  const IntegratorInfo* info = nullptr;    // the integrator that runs (auto resolved)
+  std::unique_ptr<Integrator> integrator;  // null when the exact solution runs
+  std::optional<ExactSolution> exact;
   double h_next = 0.0;  // next trial step [time]
   double initial_energy = 0.0;
   std::vector<DegenerateEvent> events;
@@ -27,6 +30,10 @@ struct Simulation {
   std::uint64_t rejected = 0;   // rejected step attempts
   std::uint64_t recentres = 0;  // chart moves
 };
+
+// The catalog name that runs for this scene: the scene's own, or for "auto" the exact solution
+// when the scene has one and otherwise the integrator that is cheapest at the scene's tolerance.
+std::string_view resolve_integrator(const Scene& scene);
 
 // A run at t = 0. The scene must have passed validate_scene.
 Simulation start_simulation(const Scene& scene);

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "engine/exact_solution.h"
 #include "engine/integrator.h"
 #include "engine/potentials.h"
 
@@ -115,7 +116,10 @@ std::vector<FieldError> validate_scene(const Scene& scene) {
   check_potentials(scene, c);
 
   const IntegratorSettings& in = scene.integrator;
-  if (!find_integrator(in.name)) c.add_text("integrator.name", in.name, "is not in the integrator catalog");
+  if (in.name != kAutoIntegrator && !find_integrator(in.name))
+    c.add_text("integrator.name", in.name, "is not in the integrator catalog (see `spinfold integrators`) nor \"auto\"");
+  if (in.name == exact_info.name)
+    if (const auto why = exact_unsupported_reason(scene)) c.add_text("integrator.name", in.name, *why);
   c.positive("integrator.dt", in.dt);
   if (c.finite("integrator.tolerance", in.tolerance) && !(in.tolerance >= 1e-15 && in.tolerance <= 1e-2))
     c.add("integrator.tolerance", in.tolerance, "must be between 1e-15 and 1e-2");

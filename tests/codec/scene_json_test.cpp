@@ -17,7 +17,7 @@ TEST(SceneJson, EmptyObjectGetsTheDocumentedDefaults) {
   EXPECT_EQ(s.body.model, BodyModel::affine);
   EXPECT_FALSE(s.potential.radial.has_value());
   EXPECT_TRUE(std::holds_alternative<std::monostate>(s.potential.deformation));
-  EXPECT_EQ(s.integrator.name, "dop853");
+  EXPECT_EQ(s.integrator.name, "auto");
   EXPECT_EQ(s.on_degenerate, OnDegenerate::report);
 }
 

@@ -1,0 +1,48 @@
+// Closed-form solution of the separable scenes (physics.md §8.6 with §8.3/§8.4): no stepping, the
+// state at any t costs the same. Covers V_r = 0 with no deformation potential or the abc one, for
+// rigid and affine bodies on S², H² and the plane.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "engine/scene.h"
+#include "engine/state.h"
+
+namespace spinfold {
+
+// Exact motion of w ∈ ℝ² under the Lagrangian J|ẇ|² − A/(2|w|²) − 2C|w|²: one plane of the
+// internal matrix ((u, v) with A, or (p, q) with B; physics.md §2, §8.3). |w|² is harmonic in time
+// and the angle follows from ∫dt/|w|² in the closed forms of §8.4.
+struct PlaneMotion {
+  double J = 1.0, A = 0.0, C = 0.0;
+  Eigen::Vector2d w0, w_dot0;
+  // Derived at construction.
+  double energy = 0.0;    // J|ẇ|² + A/(2s) + 2Cs
+  double ell = 0.0;       // 2J(w × ẇ): ψ̇ = ℓ/(2Js)
+  double s0 = 0.0, s_dot0 = 0.0, psi0 = 0.0;
+};
+PlaneMotion plane_motion(double J, double A, double C, const Eigen::Vector2d& w0, const Eigen::Vector2d& w_dot0);
+// w(t) and ẇ(t).
+std::pair<Eigen::Vector2d, Eigen::Vector2d> plane_motion_at(const PlaneMotion& motion, double t);
+
+struct ExactSolution {
+  Scene scene;
+  // Initial data in the scene's embedding coordinates.
+  Vec3 X0, V0, f1;  // position, velocity, a unit tangent frame vector at X0 (f₂ = jf₁)
+  Mat2 L0, M0;      // internal matrix and covariant rate in (f₁, f₂)
+  double spin = 0.0;
+  Vec3 momentum;    // M (physics.md §6); on the plane unused
+  PlaneMotion conformal, anticonformal;  // affine bodies: (p, q) and (u, v) planes
+};
+
+// The reason a scene has no closed form here, or nullopt when it has one.
+std::optional<std::string> exact_unsupported_reason(const Scene& scene);
+
+// Prepares the closed form from the scene's initial state (the scene must be supported).
+ExactSolution make_exact_solution(const Scene& scene);
+
+// The state at time t [time], in a well-conditioned chart.
+State exact_state(const ExactSolution& solution, double t);
+
+}  // namespace spinfold
