@@ -9,8 +9,8 @@
 
 namespace spinfold {
 
-const IntegratorInfo exact_info{"exact", 0, true, false, true,
-                                "closed form of the separable scenes (no radial potential; abc or none)"};
+const IntegratorInfo exact_info{
+    "exact", 0, true, false, true, "closed form of the separable scenes (no radial potential; abc or none)"};
 
 namespace {
 
@@ -45,8 +45,9 @@ double inverse_squared_radius_integral(const PlaneMotion& m, double t) {
     const double root = std::sqrt(q / (8.0 * C));  // √(c² − ρ²)
     const double s_max = c + rho, s_min = root * root / s_max;
     const auto F = [&](double th) {
-      return (2.0 / root) * (std::atan2(std::sqrt(s_min) * std::sin(0.5 * th), std::sqrt(s_max) * std::cos(0.5 * th)) +
-                             2.0 * kPi * std::round(th / (4.0 * kPi)));
+      return (2.0 / root) *
+             (std::atan2(std::sqrt(s_min) * std::sin(0.5 * th), std::sqrt(s_max) * std::cos(0.5 * th)) +
+              2.0 * kPi * std::round(th / (4.0 * kPi)));
     };
     return (F(w * t - theta0) - F(-theta0)) / w;
   }
@@ -56,7 +57,7 @@ double inverse_squared_radius_integral(const PlaneMotion& m, double t) {
     const double a = m.s0 - c, b = m.s_dot0 / w;
     const double rho = std::sqrt((a - b) * (a + b)), tau = std::atanh(b / a);
     const double root = std::sqrt(-q / (8.0 * C));  // √(ρ² − c²)
-    const double ratio = root / (rho + c);           // √((ρ − c)/(ρ + c))
+    const double ratio = root / (rho + c);          // √((ρ − c)/(ρ + c))
     const auto H = [&](double th) { return (2.0 / root) * std::atan(ratio * std::tanh(0.5 * th)); };
     return (H(w * t + tau) - H(tau)) / w;
   }
@@ -79,7 +80,8 @@ Mat3 orbital_isometry(const Surface& surface, const Vec3& M, double m, double t)
   }
   if (c < 0.0) {
     const double k = std::sqrt(-c);
-    return Mat3::Identity() + (std::sinh(k * t) / k) * A + (2.0 * std::pow(std::sinh(0.5 * k * t), 2) / -c) * A2;
+    return Mat3::Identity() + (std::sinh(k * t) / k) * A +
+           (2.0 * std::pow(std::sinh(0.5 * k * t), 2) / -c) * A2;
   }
   return Mat3::Identity() + t * A + (0.5 * t * t) * A2;
 }
@@ -123,7 +125,8 @@ std::pair<Vec2, Vec2> plane_motion_at(const PlaneMotion& m, double t) {
     return {m.w0 + m.w_dot0 * t, m.w_dot0};
   }
   const auto [s, s_dot] = squared_radius_at(m, t);
-  const double psi = m.psi0 + (m.ell != 0.0 ? (m.ell / (2.0 * m.J)) * inverse_squared_radius_integral(m, t) : 0.0);
+  const double psi =
+      m.psi0 + (m.ell != 0.0 ? (m.ell / (2.0 * m.J)) * inverse_squared_radius_integral(m, t) : 0.0);
   const double radius = std::sqrt(s);
   const Vec2 radial(std::cos(psi), std::sin(psi)), angular(-radial.y(), radial.x());
   return {radius * radial, (s_dot / (2.0 * radius)) * radial + (m.ell / (2.0 * m.J * radius)) * angular};
@@ -141,66 +144,61 @@ std::optional<std::string> exact_unsupported_reason(const Scene& scene) {
 ExactSolution make_exact_solution(const Scene& scene) {
   ExactSolution sol;
   sol.scene = scene;
-  const BodyKinematics body = initial_kinematics(scene);
-  sol.X0 = body.X;
-  sol.V0 = body.V;
-  sol.f1 = body.F1;
-  sol.L0 = body.L;
-  sol.M0 = body.M;
-  sol.spin = body.spin;
-  const Surface& surface = scene.surface;
-  if (surface.kind != SurfaceKind::plane)
-    sol.momentum = scene.body.mass * body.X.cross(body.V) +
-                   curvature(surface) * surface.radius * body.spin * raise(surface, body.X);
-  if (scene.body.model == BodyModel::affine) {
-    AbcPotential abc;
-    if (const auto* p = std::get_if<AbcPotential>(&scene.potential.deformation)) abc = *p;
-    const Mat2& L = body.L;
-    const Mat2& M = body.M;
-    const Vec2 uv(0.5 * (L(0, 0) - L(1, 1)), 0.5 * (L(0, 1) + L(1, 0)));
-    const Vec2 pq(0.5 * (L(0, 0) + L(1, 1)), 0.5 * (L(1, 0) - L(0, 1)));
-    const Vec2 uv_dot(0.5 * (M(0, 0) - M(1, 1)), 0.5 * (M(0, 1) + M(1, 0)));
-    const Vec2 pq_dot(0.5 * (M(0, 0) + M(1, 1)), 0.5 * (M(1, 0) - M(0, 1)));
-    const double J = scene.body.inertia;
-    sol.anticonformal = plane_motion(J, abc.A, abc.C, uv, uv_dot);
-    sol.conformal = plane_motion(J, abc.B, abc.C, pq, pq_dot);
-  }
+  sol.initial = initial_kinematics(scene);
+  if (const auto* abc = std::get_if<AbcPotential>(&scene.potential.deformation)) sol.internal = *abc;
   return sol;
+}
+
+BodyKinematics integrable_flow(const Scene& scene, const AbcPotential& internal, const BodyKinematics& start,
+                               double t) {
+  const Surface& surface = scene.surface;
+  const double m = scene.body.mass, R = surface.radius;
+  BodyKinematics body;
+  body.spin = start.spin;
+  if (surface.kind == SurfaceKind::plane) {
+    body.X = start.X + t * start.V;
+    body.V = start.V;
+    body.F1 = start.F1;
+  } else {
+    const Vec3 momentum =
+        m * start.X.cross(start.V) + curvature(surface) * R * start.spin * raise(surface, start.X);
+    const Mat3 G = orbital_isometry(surface, momentum, m, t);
+    body.X = G * start.X;
+    body.V = G * start.V;
+    body.F1 = G * start.F1;
+  }
+  // Rotation of the body frame against the moved frame (flow of −σs²/(2mR²)).
+  const double theta_s = -curvature_sign(surface) * start.spin * t / (m * R * R);
+  if (scene.body.model == BodyModel::rigid) {
+    const double l0 = scene.initial.lambda;
+    const double omega = start.spin / (2.0 * scene.body.inertia * l0 * l0);
+    body.L = rotation2(theta_s + omega * t) * start.L;
+    body.M = omega * epsilon() * body.L;
+    return body;
+  }
+  const Mat2& L = start.L;
+  const Mat2& M = start.M;
+  const double J = scene.body.inertia;
+  const PlaneMotion anticonformal =
+      plane_motion(J, internal.A, internal.C, Vec2(0.5 * (L(0, 0) - L(1, 1)), 0.5 * (L(0, 1) + L(1, 0))),
+                   Vec2(0.5 * (M(0, 0) - M(1, 1)), 0.5 * (M(0, 1) + M(1, 0))));
+  const PlaneMotion conformal =
+      plane_motion(J, internal.B, internal.C, Vec2(0.5 * (L(0, 0) + L(1, 1)), 0.5 * (L(1, 0) - L(0, 1))),
+                   Vec2(0.5 * (M(0, 0) + M(1, 1)), 0.5 * (M(1, 0) - M(0, 1))));
+  const auto [uv, uv_dot] = plane_motion_at(anticonformal, t);
+  const auto [pq, pq_dot] = plane_motion_at(conformal, t);
+  const Mat2 U = rotation2(theta_s);
+  body.L = U * assemble(uv, pq);
+  body.M = U * assemble(uv_dot, pq_dot);
+  return body;
 }
 
 State exact_state(const ExactSolution& sol, double t) {
   const Scene& scene = sol.scene;
-  const Surface& surface = scene.surface;
-  const double m = scene.body.mass, R = surface.radius;
-  BodyKinematics body;
-  body.spin = sol.spin;
-  if (surface.kind == SurfaceKind::plane) {
-    body.X = sol.X0 + t * sol.V0;
-    body.V = sol.V0;
-    body.F1 = sol.f1;
-  } else {
-    const Mat3 G = orbital_isometry(surface, sol.momentum, m, t);
-    body.X = G * sol.X0;
-    body.V = G * sol.V0;
-    body.F1 = G * sol.f1;
-  }
-  // Rotation of the body frame against the moved frame (flow of −σs²/(2mR²)).
-  const double theta_s = -curvature_sign(surface) * sol.spin * t / (m * R * R);
-  if (scene.body.model == BodyModel::rigid) {
-    const double l0 = scene.initial.lambda;
-    const double omega = sol.spin / (2.0 * scene.body.inertia * l0 * l0);
-    body.L = rotation2(theta_s + omega * t) * sol.L0;
-    body.M = omega * epsilon() * body.L;
-  } else {
-    const auto [uv, uv_dot] = plane_motion_at(sol.anticonformal, t);
-    const auto [pq, pq_dot] = plane_motion_at(sol.conformal, t);
-    const Mat2 U = rotation2(theta_s);
-    body.L = U * assemble(uv, pq);
-    body.M = U * assemble(uv_dot, pq_dot);
-  }
+  const BodyKinematics body = integrable_flow(scene, sol.internal, sol.initial, t);
   State state;
   state.t = t;
-  if (chart_well_conditioned(surface, polar_coordinates(surface, body.X).r)) {
+  if (chart_well_conditioned(scene.surface, polar_coordinates(scene.surface, body.X).r)) {
     state.y = chart_coords(scene, body);
   } else {
     recentre(scene, body, state.chart, state.y);

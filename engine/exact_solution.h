@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "engine/chart.h"
 #include "engine/scene.h"
 #include "engine/state.h"
 
@@ -26,14 +27,17 @@ PlaneMotion plane_motion(double J, double A, double C, const Eigen::Vector2d& w0
 // w(t) and ẇ(t).
 std::pair<Eigen::Vector2d, Eigen::Vector2d> plane_motion_at(const PlaneMotion& motion, double t);
 
+// The exact flow for time t of the integrable part of H (physics.md §8.6): the orbit's isometry
+// flow MᵀηM/(2mR²), the body-frame rotation −σs²/(2mR²) and the internal motion at a fixed point
+// under J‖M‖²/2 + V_abc (`internal`; zero for a free body). `start` may be in any chart's embedding
+// coordinates (the flow commutes with isometries); the result is in the same coordinates.
+BodyKinematics integrable_flow(const Scene& scene, const AbcPotential& internal, const BodyKinematics& start,
+                               double t);
+
 struct ExactSolution {
   Scene scene;
-  // Initial data in the scene's embedding coordinates.
-  Vec3 X0, V0, f1;  // position, velocity, a unit tangent frame vector at X0 (f₂ = jf₁)
-  Mat2 L0, M0;      // internal matrix and covariant rate in (f₁, f₂)
-  double spin = 0.0;
-  Vec3 momentum;    // M (physics.md §6); on the plane unused
-  PlaneMotion conformal, anticonformal;  // affine bodies: (p, q) and (u, v) planes
+  BodyKinematics initial;  // in the scene's embedding coordinates
+  AbcPotential internal;   // the scene's abc potential, or zero
 };
 
 // The reason a scene has no closed form here, or nullopt when it has one.

@@ -5,7 +5,7 @@
 namespace spinfold {
 
 template <int Stages>
-StepResult GaussCollocation<Stages>::try_step(const VectorField& f, const Coords& y, double h,
+StepResult GaussCollocation<Stages>::try_step(const StepProblem& f, const Coords& y, double h,
                                               double /*tolerance*/, Coords& y_next) {
   const auto& a = tableau_.a;
   const double scale = 1.0 + y.cwiseAbs().maxCoeff();

@@ -28,7 +28,7 @@ class GaussCollocation final : public Integrator {
   GaussCollocation(const IntegratorInfo& info, const GaussTableau<Stages>& tableau)
       : info_(info), tableau_(tableau) {}
   const IntegratorInfo& info() const override { return info_; }
-  StepResult try_step(const VectorField& f, const Coords& y, double h, double tolerance,
+  StepResult try_step(const StepProblem& f, const Coords& y, double h, double tolerance,
                       Coords& y_next) override;
 
   int last_iterations() const { return iterations_; }

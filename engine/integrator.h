@@ -1,17 +1,22 @@
 // The integrator interface and the catalog (one entry per integrator_<name>.cpp).
 #pragma once
 
-#include <functional>
 #include <memory>
 #include <span>
 #include <string_view>
 
+#include "engine/scene.h"
 #include "engine/state.h"
 
 namespace spinfold {
 
-// dy/dt = f(y): the vector field of the current chart (autonomous).
-using VectorField = std::function<void(const Coords& y, Coords& dydt)>;
+// What a step integrates: Hamilton's equations of `scene` in `chart` (dynamics.h), callable as the
+// autonomous vector field dy/dt = f(y). Splitting methods also use the scene's structure.
+struct StepProblem {
+  const Scene& scene;
+  const Chart& chart;
+  void operator()(const Coords& y, Coords& dydt) const;
+};
 
 struct IntegratorInfo {
   std::string_view name;
@@ -34,7 +39,7 @@ class Integrator {
   virtual ~Integrator() = default;
   virtual const IntegratorInfo& info() const = 0;
   // One attempt at a step of size h [time] with the per-step error tolerance (adaptive methods).
-  virtual StepResult try_step(const VectorField& f, const Coords& y, double h, double tolerance,
+  virtual StepResult try_step(const StepProblem& f, const Coords& y, double h, double tolerance,
                               Coords& y_next) = 0;
 };
 
@@ -56,11 +61,15 @@ std::unique_ptr<Integrator> make_dop853();
 std::unique_ptr<Integrator> make_implicit_midpoint();
 std::unique_ptr<Integrator> make_gauss4();
 std::unique_ptr<Integrator> make_gauss6();
+std::unique_ptr<Integrator> make_split4();
+std::unique_ptr<Integrator> make_split6();
 extern const IntegratorInfo rk4_info;
 extern const IntegratorInfo dop853_info;
 extern const IntegratorInfo implicit_midpoint_info;
 extern const IntegratorInfo gauss4_info;
 extern const IntegratorInfo gauss6_info;
 extern const IntegratorInfo exact_info;
+extern const IntegratorInfo split4_info;
+extern const IntegratorInfo split6_info;
 
 }  // namespace spinfold

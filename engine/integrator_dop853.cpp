@@ -87,7 +87,7 @@ class Dop853 final : public Integrator {
  public:
   const IntegratorInfo& info() const override { return dop853_info; }
 
-  StepResult try_step(const VectorField& f, const Coords& y, double h, double tolerance,
+  StepResult try_step(const StepProblem& f, const Coords& y, double h, double tolerance,
                       Coords& y_next) override {
     const Eigen::Index n = y.size();
     for (int i = 0; i < kStages; ++i) {

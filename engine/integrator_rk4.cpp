@@ -12,7 +12,7 @@ class Rk4 final : public Integrator {
  public:
   const IntegratorInfo& info() const override { return rk4_info; }
 
-  StepResult try_step(const VectorField& f, const Coords& y, double h, double /*tolerance*/,
+  StepResult try_step(const StepProblem& f, const Coords& y, double h, double /*tolerance*/,
                       Coords& y_next) override {
     f(y, k1_);
     f(y + 0.5 * h * k1_, k2_);

@@ -42,7 +42,7 @@ double det_of(const Coords& y) {
 }
 
 // Time in [0, h] where det L crosses zero along the step from y, by bisection on sub-steps.
-double locate_degenerate(Integrator& integrator, const VectorField& f, const Coords& y, double h,
+double locate_degenerate(Integrator& integrator, const StepProblem& f, const Coords& y, double h,
                          double tolerance) {
   const double det0 = det_of(y);
   double lo = 0.0, hi = h;
@@ -101,9 +101,7 @@ void advance_to(Simulation& run, double t_end) {
   const bool adaptive = run.integrator->info().adaptive;
   const bool affine = scene.body.model == BodyModel::affine;
   const double tolerance = scene.integrator.tolerance;
-  const VectorField f = [&scene, &state](const Coords& y, Coords& dydt) {
-    vector_field(scene, state.chart, y, dydt);
-  };
+  const StepProblem f{scene, state.chart};
   Coords y_next;
   while (state.status == Status::ok && state.t < t_end) {
     const double remaining = t_end - state.t;

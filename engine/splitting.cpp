@@ -1,0 +1,45 @@
+#include "engine/splitting.h"
+
+#include "engine/chart.h"
+#include "engine/exact_solution.h"
+#include "engine/potentials.h"
+
+namespace spinfold {
+
+namespace {
+
+// Flow of H_B for time h: X and L stay, V and M receive the potential forces (physics.md §7).
+void kick(const Scene& scene, const Chart& chart, double h, BodyKinematics& body) {
+  const Surface& surface = scene.surface;
+  if (scene.potential.radial) {
+    // ∂V_r/∂X at the global point, pulled back to chart coordinates (covector: Aᵀ), then raised
+    // and projected: the surface gradient P(η ∂V_r/∂X).
+    const Vec3 covector = chart.A.transpose() *
+                          radial_potential_gradient(surface, *scene.potential.radial, chart.A * body.X + chart.b);
+    body.V -= (h / scene.body.mass) * tangential(surface, body.X, raise(surface, covector));
+  }
+  if (const auto* polar = std::get_if<PolarPotential>(&scene.potential.deformation)) {
+    const DeformationInvariants inv = deformation_invariants(body.L);
+    body.M -= (h / scene.body.inertia) * deformation_gradient(deformation_potential(*polar, inv.a, inv.b), body.L);
+  }
+}
+
+}  // namespace
+
+StepResult SplittingComposition::try_step(const StepProblem& problem, const Coords& y, double h,
+                                          double /*tolerance*/, Coords& y_next) {
+  const Scene& scene = problem.scene;
+  AbcPotential internal;  // the part of V_def inside the exact flow
+  if (const auto* abc = std::get_if<AbcPotential>(&scene.potential.deformation)) internal = *abc;
+  BodyKinematics body = chart_kinematics(scene, y);
+  kick(scene, problem.chart, 0.5 * weights_.front() * h, body);
+  for (std::size_t i = 0; i < weights_.size(); ++i) {
+    body = integrable_flow(scene, internal, body, weights_[i] * h);
+    const double next = i + 1 < weights_.size() ? weights_[i + 1] : 0.0;
+    kick(scene, problem.chart, 0.5 * (weights_[i] + next) * h, body);  // adjacent half-kicks merged
+  }
+  y_next = chart_coords(scene, body);
+  return {true, h};
+}
+
+}  // namespace spinfold
