@@ -74,11 +74,27 @@ BodyKinematics initial_kinematics(const Scene& scene) {
   return {p.X, q.r_dot * p.E1 + S * q.phi_dot * p.E2, p.E1, L, M, spin};
 }
 
-bool chart_well_conditioned(const Surface& surface, double r) {
+namespace {
+
+// Lower bound of |S(r)|/R on S² and of r/R on H² and the plane, and the upper bound of r/R there.
+struct Band {
+  double low, high;
+};
+
+bool in_band(const Surface& surface, double r, Band band) {
   const double x = r / surface.radius;
-  if (surface.kind == SurfaceKind::sphere)
-    return x >= 0.25 * std::numbers::pi && x <= 0.75 * std::numbers::pi;
-  return x >= 0.5 && x <= 3.0;
+  if (surface.kind == SurfaceKind::sphere) return x > 0.0 && x < std::numbers::pi && std::sin(x) >= band.low;
+  return x >= band.low && x <= band.high;
+}
+
+}  // namespace
+
+bool chart_well_conditioned(const Surface& surface, double r) {
+  return in_band(surface, r, {0.3, 4.0});
+}
+
+bool chart_comfortable(const Surface& surface, double r) {
+  return in_band(surface, r, {0.5, 3.0});
 }
 
 namespace {
@@ -126,6 +142,23 @@ void recentre(const Scene& scene, const BodyKinematics& body, Chart& chart, Coor
 
 void recentre(const Scene& scene, State& state) {
   recentre(scene, chart_kinematics(scene, state.y), state.chart, state.y);
+}
+
+bool maintain_chart(const Scene& scene, State& state) {
+  const bool leave = !chart_well_conditioned(scene.surface, state.y[coord::r]);
+  if (state.chart.global && !leave) return false;
+  const BodyKinematics body = chart_kinematics(scene, state.y);
+  const Chart& chart = state.chart;
+  const BodyKinematics global{
+      chart.A * body.X + chart.b, chart.A * body.V, chart.A * body.F1, body.L, body.M, body.spin};
+  if (!state.chart.global && chart_comfortable(scene.surface, polar_coordinates(scene.surface, global.X).r)) {
+    state.chart = Chart{};
+    state.y = chart_coords(scene, global);
+    return true;
+  }
+  if (!leave) return false;
+  recentre(scene, body, state.chart, state.y);
+  return true;
 }
 
 EmbeddedBody global_embedding(const Scene& scene, const State& state) {

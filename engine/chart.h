@@ -31,8 +31,15 @@ BodyKinematics initial_kinematics(const Scene& scene);
 State initial_state(const Scene& scene);
 
 // True while the chart coordinate r keeps the polar chart accurate: away from its pole(s) and,
-// on H², not so far out that φ loses precision.
+// on H², not so far out that φ loses precision. A chart is left when this turns false.
 bool chart_well_conditioned(const Surface& surface, double r);
+// A narrower band: a moved chart returns to the scene's chart once the body is this well inside
+// it (the gap between the two bands keeps the chart from flip-flopping).
+bool chart_comfortable(const Surface& surface, double r);
+
+// After a step: leaves an ill-conditioned chart, and returns to the scene's chart when it is
+// comfortable, where p_φ is a coordinate and kept exactly by every integrator. True if it moved.
+bool maintain_chart(const Scene& scene, State& state);
 
 // Moves the chart so that the body sits at a well-conditioned distance from the new pole, with
 // the new pole placed off the body's path. The physical state is unchanged.

@@ -19,11 +19,12 @@ struct PlaneMotion {
   double J = 1.0, A = 0.0, C = 0.0;
   Eigen::Vector2d w0, w_dot0;
   // Derived at construction.
-  double energy = 0.0;    // J|ẇ|² + A/(2s) + 2Cs
-  double ell = 0.0;       // 2J(w × ẇ): ψ̇ = ℓ/(2Js)
+  double energy = 0.0;  // J|ẇ|² + A/(2s) + 2Cs
+  double ell = 0.0;     // 2J(w × ẇ): ψ̇ = ℓ/(2Js)
   double s0 = 0.0, s_dot0 = 0.0, psi0 = 0.0;
 };
-PlaneMotion plane_motion(double J, double A, double C, const Eigen::Vector2d& w0, const Eigen::Vector2d& w_dot0);
+PlaneMotion plane_motion(double J, double A, double C, const Eigen::Vector2d& w0,
+                         const Eigen::Vector2d& w_dot0);
 // w(t) and ẇ(t).
 std::pair<Eigen::Vector2d, Eigen::Vector2d> plane_motion_at(const PlaneMotion& motion, double t);
 

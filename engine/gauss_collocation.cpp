@@ -16,7 +16,7 @@ StepResult GaussCollocation<Stages>::try_step(const StepProblem& f, const Coords
     for (int j = 0; j < Stages; ++j) c += a[i][j];
     z_[i] = (c * h) * k_[0];
   }
-  double previous_change = INFINITY;
+  double previous_change = INFINITY, first_change = 0.0;
   bool converged = false;
   for (iterations_ = 1; iterations_ <= kMaxIterations; ++iterations_) {
     for (int j = 0; j < Stages; ++j) {
@@ -29,11 +29,11 @@ StepResult GaussCollocation<Stages>::try_step(const StepProblem& f, const Coords
       for (int j = 1; j < Stages; ++j) z_new_[i] += (h * a[i][j]) * k_[j];
       change = std::max(change, (z_new_[i] - z_[i]).cwiseAbs().maxCoeff());
     }
-    if (!std::isfinite(change)) break;
-    const bool stalled = change >= previous_change;
-    if (stalled && change > 1e-12 * scale) break;  // diverging or stuck far from a solution
+    if (iterations_ == 1) first_change = change;
+    if (!std::isfinite(change) || change > 1e6 * first_change) break;  // diverging
     z_.swap(z_new_);
-    if (change == 0.0 || (stalled && change <= 1e-12 * scale)) {
+    // Round-off reached: no change, or no more progress once below 1e-12 of the state's scale.
+    if (change == 0.0 || (change <= 1e-12 * scale && change >= previous_change)) {
       converged = true;
       break;
     }

@@ -17,9 +17,10 @@ struct GaussTableau {
 };
 
 // Stage equations Z_i = h Σ_j a_ij f(y + Z_j) solved by fixed-point iteration to round-off.
-// Stopping rule: iterate while the max-norm of the change of Z keeps decreasing; stop when it is
-// zero, or when it no longer decreases after falling below 1e-12 of the state's scale. More than
-// kMaxIterations, or a change that grows while still large, is a failed step (not accepted).
+// Stopping rule: stop when the max-norm change of Z is zero, or when it has fallen below 1e-12 of
+// the state's scale and no longer decreases (round-off reached). A solve that has not stopped after
+// kMaxIterations, or whose change grows to 1e6 times the first one or to a non-finite value, is a
+// failed step (not accepted): the caller keeps its state.
 template <int Stages>
 class GaussCollocation final : public Integrator {
  public:

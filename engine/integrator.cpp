@@ -6,7 +6,9 @@
 
 namespace spinfold {
 
-void StepProblem::operator()(const Coords& y, Coords& dydt) const { vector_field(scene, chart, y, dydt); }
+void StepProblem::operator()(const Coords& y, Coords& dydt) const {
+  vector_field(scene, chart, y, dydt);
+}
 
 std::span<const CatalogEntry> integrator_catalog() {
   static const std::array<CatalogEntry, 8> catalog{{

@@ -5,8 +5,8 @@
 
 namespace spinfold {
 
-const IntegratorInfo gauss4_info{"gauss4", 4, true, false, false,
-                                 "two-stage Gauss-Legendre, symplectic, fixed step"};
+const IntegratorInfo gauss4_info{"gauss4", 4,     true,
+                                 false,    false, "two-stage Gauss-Legendre, symplectic, fixed step"};
 
 std::unique_ptr<Integrator> make_gauss4() {
   const double r = std::sqrt(3.0) / 6.0;

@@ -5,8 +5,8 @@
 
 namespace spinfold {
 
-const IntegratorInfo gauss6_info{"gauss6", 6, true, false, false,
-                                 "three-stage Gauss-Legendre, symplectic, fixed step"};
+const IntegratorInfo gauss6_info{"gauss6", 6,     true,
+                                 false,    false, "three-stage Gauss-Legendre, symplectic, fixed step"};
 
 std::unique_ptr<Integrator> make_gauss6() {
   const double q = std::sqrt(15.0);

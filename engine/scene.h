@@ -74,8 +74,8 @@ struct InitialState {
 
 struct IntegratorSettings {
   std::string name = "auto";  // a catalog name (integrator.h), or "auto": the engine chooses
-  double dt = 0.01;             // [time]: the step of fixed-step methods, the first trial step otherwise
-  double tolerance = 1e-10;     // relative and absolute error per step of adaptive methods
+  double dt = 0.01;           // [time]: the step of fixed-step methods, the first trial step otherwise
+  double tolerance = 1e-10;   // relative and absolute error per step of adaptive methods
 };
 
 enum class OnDegenerate {

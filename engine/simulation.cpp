@@ -24,8 +24,10 @@ Simulation start_simulation(const Scene& scene) {
   run.state = initial_state(scene);
   const CatalogEntry* entry = find_integrator(resolve_integrator(scene));
   run.info = &entry->info;
-  if (entry->make) run.integrator = entry->make();
-  else run.exact = make_exact_solution(scene);
+  if (entry->make)
+    run.integrator = entry->make();
+  else
+    run.exact = make_exact_solution(scene);
   run.h_next = scene.integrator.dt;
   run.initial_energy = energy(scene, run.state);
   return run;
@@ -76,8 +78,10 @@ void advance_exact(Simulation& run, double t_end) {
     double lo = run.state.t, hi = t_end;
     for (int i = 0; i < 200 && hi - lo > 1e-14 * std::max(1.0, std::abs(hi)); ++i) {
       const double mid = 0.5 * (lo + hi);
-      if ((det_of(exact_state(*run.exact, mid).y) > 0.0) == positive) lo = mid;
-      else hi = mid;
+      if ((det_of(exact_state(*run.exact, mid).y) > 0.0) == positive)
+        lo = mid;
+      else
+        hi = mid;
     }
     run.events.push_back({0.5 * (lo + hi)});
     if (scene.on_degenerate == OnDegenerate::stop) {
@@ -139,10 +143,7 @@ void advance_to(Simulation& run, double t_end) {
     ++run.steps;
     // A step shortened to land on t_end says nothing about the step the solution allows.
     if (adaptive) run.h_next = (last && h < h_planned) ? h_planned : result.h_next;
-    if (!chart_well_conditioned(scene.surface, state.y[coord::r])) {
-      recentre(scene, state);
-      ++run.recentres;
-    }
+    if (maintain_chart(scene, state)) ++run.recentres;
   }
 }
 

@@ -14,13 +14,14 @@ void kick(const Scene& scene, const Chart& chart, double h, BodyKinematics& body
   if (scene.potential.radial) {
     // ∂V_r/∂X at the global point, pulled back to chart coordinates (covector: Aᵀ), then raised
     // and projected: the surface gradient P(η ∂V_r/∂X).
-    const Vec3 covector = chart.A.transpose() *
-                          radial_potential_gradient(surface, *scene.potential.radial, chart.A * body.X + chart.b);
+    const Vec3 covector = chart.A.transpose() * radial_potential_gradient(surface, *scene.potential.radial,
+                                                                          chart.A * body.X + chart.b);
     body.V -= (h / scene.body.mass) * tangential(surface, body.X, raise(surface, covector));
   }
   if (const auto* polar = std::get_if<PolarPotential>(&scene.potential.deformation)) {
     const DeformationInvariants inv = deformation_invariants(body.L);
-    body.M -= (h / scene.body.inertia) * deformation_gradient(deformation_potential(*polar, inv.a, inv.b), body.L);
+    body.M -=
+        (h / scene.body.inertia) * deformation_gradient(deformation_potential(*polar, inv.a, inv.b), body.L);
   }
 }
 

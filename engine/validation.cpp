@@ -117,7 +117,8 @@ std::vector<FieldError> validate_scene(const Scene& scene) {
 
   const IntegratorSettings& in = scene.integrator;
   if (in.name != kAutoIntegrator && !find_integrator(in.name))
-    c.add_text("integrator.name", in.name, "is not in the integrator catalog (see `spinfold integrators`) nor \"auto\"");
+    c.add_text("integrator.name", in.name,
+               "is not in the integrator catalog (see `spinfold integrators`) nor \"auto\"");
   if (in.name == exact_info.name)
     if (const auto why = exact_unsupported_reason(scene)) c.add_text("integrator.name", in.name, *why);
   c.positive("integrator.dt", in.dt);

@@ -1,10 +1,11 @@
 // The closed form against tight integrations, across every branch of physics.md §8.3–8.4.
-#include <numbers>
+#include "engine/exact_solution.h"
 
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 #include "engine/chart.h"
-#include "engine/exact_solution.h"
 #include "engine/invariants.h"
 #include "engine/paper_coordinates.h"
 #include "test_support.h"
@@ -51,13 +52,13 @@ TEST_P(ExactAgainstIntegration, WholeStateAgreesAtSeveralTimes) {
 
 INSTANTIATE_TEST_SUITE_P(
     Branches, ExactAgainstIntegration,
-    ::testing::Values(Branch{SurfaceKind::sphere, 0.02, 0.1, 0.4},     // harmonic |w|², §8.4 (i)
-                      Branch{SurfaceKind::sphere, 0.05, 0.0, -0.1},    // hyperbolic, §8.4 (ii)
-                      Branch{SurfaceKind::sphere, 0.02, 0.1, 0.0},     // quadratic, §8.4 (iii)
+    ::testing::Values(Branch{SurfaceKind::sphere, 0.02, 0.1, 0.4},   // harmonic |w|², §8.4 (i)
+                      Branch{SurfaceKind::sphere, 0.05, 0.0, -0.1},  // hyperbolic, §8.4 (ii)
+                      Branch{SurfaceKind::sphere, 0.02, 0.1, 0.0},   // quadratic, §8.4 (iii)
                       Branch{SurfaceKind::pseudosphere, 0.02, 0.1, 0.4},
                       Branch{SurfaceKind::pseudosphere, 0.0, 0.1, 0.3},  // A = 0: linear oscillator plane
                       Branch{SurfaceKind::plane, 0.02, 0.1, 0.4},
-                      Branch{SurfaceKind::plane, 0.0, 0.0, 0.0}));      // free body
+                      Branch{SurfaceKind::plane, 0.0, 0.0, 0.0}));  // free body
 
 TEST(Exact, ManyPeriodsStayOnTheClosedOrbit) {
   // W3 after 1000 periods: the closed form does not accumulate error.

@@ -269,8 +269,7 @@ TEST(FlatLimit, PlaneIsStraightAndLargeSpheresConverge) {
   plane.initial.r = 2.0;
   plane.initial.lambda = 1.2;
   plane.initial.mu = 0.9;
-  plane.initial.r_dot = -0.3;
-  plane.initial.phi_dot = 0.2;
+  plane.initial.r_dot = -0.3;  // straight through the chart's pole at t = 20/3
   plane.initial.alpha_dot = 0.5;
   plane.integrator = {"dop853", 0.01, 1e-13};
   const double T = 8.0;
@@ -288,7 +287,8 @@ TEST(FlatLimit, PlaneIsStraightAndLargeSpheresConverge) {
     sphere.surface = {SurfaceKind::sphere, R};
     const Simulation curved = run_to(sphere, T);
     const PaperCoordinates cs = paper_coordinates(sphere, curved.state);
-    const double diff = std::abs(cs.r - cf.r) + std::abs(*cs.phi - *cf.phi) + (*cs.L - *cf.L).norm();
+    const double dphi = std::remainder(*cs.phi - *cf.phi, 2.0 * kPi);
+    const double diff = std::abs(cs.r - cf.r) + std::abs(dphi) + (*cs.L - *cf.L).norm();
     EXPECT_LT(diff, 50.0 / (R * R));
     if (previous > 0.0) {
       EXPECT_NEAR(previous / diff, 100.0, 30.0);  // error ∝ 1/R²
