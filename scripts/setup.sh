@@ -10,6 +10,7 @@ packages=(
   libcpp-httplib-dev nlohmann-json3-dev           # server and JSON codec
   libcli11-dev                                    # command line
   libgtest-dev libgmock-dev libbenchmark-dev      # tests and benchmarks
+  libboost-dev gnuplot-nox                        # reference integrators (Boost.Odeint), plots
 )
 
 missing=()

@@ -1,0 +1,76 @@
+#include "bench/bench_scenes.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "engine/chart.h"
+#include "engine/invariants.h"
+#include "engine/simulation.h"
+
+namespace spinfold::bench {
+
+namespace {
+
+Scene rigid_spinning(SurfaceKind kind) {
+  Scene s;
+  s.surface = {kind, 1.0};
+  s.body = {1.0, 0.5, BodyModel::rigid};
+  s.initial.r = 1.0;
+  s.initial.lambda = s.initial.mu = 1.0;
+  const double S = polar_S(s.surface, 1.0), C = polar_C(s.surface, 1.0);
+  s.initial.phi_dot = 0.5 / S;                        // speed 0.5 along E₂
+  s.initial.alpha_dot = 1.0 - C * s.initial.phi_dot;  // spin s = 1 (physics.md W3, W4)
+  return s;
+}
+
+Scene deforming(SurfaceKind kind) {
+  Scene s;
+  s.surface = {kind, 1.0};
+  s.body = {1.0, 0.3, BodyModel::affine};
+  s.potential.deformation = AbcPotential{0.02, 0.1, 0.4};
+  s.initial = {1.2, 0.0, 0.3, -0.4, 1.4, 0.6, 0.1, 0.5, 0.6, -0.2, 0.1, -0.05};
+  if (kind == SurfaceKind::pseudosphere) {
+    s.initial.alpha_dot = 2.0;  // spin > mvR: a bounded orbit (a circle for the orbit's centre)
+    s.initial.phi_dot = 0.3;
+  }
+  return s;
+}
+
+}  // namespace
+
+std::vector<BenchScene> work_precision_scenes() {
+  std::vector<BenchScene> scenes;
+  scenes.push_back({"sphere_rigid", "S², spinning rigid body (W3), no potential", rigid_spinning(SurfaceKind::sphere)});
+  scenes.push_back({"pseudosphere_rigid", "H², spinning rigid body on a circle (W4)",
+                    rigid_spinning(SurfaceKind::pseudosphere)});
+  scenes.push_back({"sphere_deforming_abc", "S², deforming spinning body, abc potential", deforming(SurfaceKind::sphere)});
+  scenes.push_back({"pseudosphere_deforming_abc", "H², deforming spinning body, abc potential, bounded",
+                    deforming(SurfaceKind::pseudosphere)});
+  Scene w5;
+  w5.surface = {SurfaceKind::sphere, 1.5};
+  w5.body = {1.0, 0.4, BodyModel::affine};
+  w5.potential.radial = RadialPotential{0.05};
+  w5.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
+  w5.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.0, 0.05};
+  scenes.push_back({"sphere_radial_abc", "S², radial + abc potentials (W5), numerical reference", w5});
+  Scene polar = deforming(SurfaceKind::sphere);
+  polar.potential.deformation = PolarPotential{0.05, -1.0, PolarForm::cot2};
+  polar.initial.r = 1.3;
+  scenes.push_back({"sphere_polar", "S², polar deformation potential, numerical reference", polar});
+  return scenes;
+}
+
+double characteristic_period(const Scene& scene) {
+  const State s0 = initial_state(scene);
+  const double m = scene.body.mass, R = scene.surface.radius;
+  if (scene.potential.radial) {
+    // Λ = 2KE/m + K²s²/m² (physics.md §8.2): u = C(r) oscillates with ω = √Λ.
+    const double K = curvature(scene.surface), E = orbital_energy(scene, s0), s = spin(scene, s0);
+    return 2.0 * std::numbers::pi / std::sqrt(2.0 * K * E / m + K * K * s * s / (m * m));
+  }
+  const Vec3 M = *momentum_map(scene, s0);
+  const double c = casimir(scene.surface, M);
+  return 2.0 * std::numbers::pi * m * R * R / std::sqrt(std::abs(c));
+}
+
+}  // namespace spinfold::bench
