@@ -40,10 +40,12 @@ Scene deforming(SurfaceKind kind) {
 
 std::vector<BenchScene> work_precision_scenes() {
   std::vector<BenchScene> scenes;
-  scenes.push_back({"sphere_rigid", "S², spinning rigid body (W3), no potential", rigid_spinning(SurfaceKind::sphere)});
+  scenes.push_back(
+      {"sphere_rigid", "S², spinning rigid body (W3), no potential", rigid_spinning(SurfaceKind::sphere)});
   scenes.push_back({"pseudosphere_rigid", "H², spinning rigid body on a circle (W4)",
                     rigid_spinning(SurfaceKind::pseudosphere)});
-  scenes.push_back({"sphere_deforming_abc", "S², deforming spinning body, abc potential", deforming(SurfaceKind::sphere)});
+  scenes.push_back(
+      {"sphere_deforming_abc", "S², deforming spinning body, abc potential", deforming(SurfaceKind::sphere)});
   scenes.push_back({"pseudosphere_deforming_abc", "H², deforming spinning body, abc potential, bounded",
                     deforming(SurfaceKind::pseudosphere)});
   Scene w5;

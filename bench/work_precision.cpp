@@ -1,6 +1,7 @@
 #include "bench/work_precision.h"
 
 #include <array>
+#include <boost/numeric/odeint.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -11,8 +12,6 @@
 #include <limits>
 #include <map>
 #include <sstream>
-
-#include <boost/numeric/odeint.hpp>
 
 #include "bench/bench_scenes.h"
 #include "engine/chart.h"
@@ -58,8 +57,12 @@ double min_seconds(Run&& run) {
 double state_error(const Scene& scene, const State& a, const State& b) {
   const EmbeddedBody x = global_embedding(scene, a), y = global_embedding(scene, b);
   double e = 0.0;
-  for (const auto& [u, v] : {std::pair{x.X, y.X}, {x.V, y.V}, {x.e[0], y.e[0]}, {x.e[1], y.e[1]},
-                             {x.W[0], y.W[0]}, {x.W[1], y.W[1]}})
+  for (const auto& [u, v] : {std::pair{x.X, y.X},
+                             {x.V, y.V},
+                             {x.e[0], y.e[0]},
+                             {x.e[1], y.e[1]},
+                             {x.W[0], y.W[0]},
+                             {x.W[1], y.W[1]}})
     e = std::max(e, (u - v).cwiseAbs().maxCoeff());
   return std::isfinite(e) ? e : kInf;
 }
@@ -87,7 +90,8 @@ Point measure(const Case& c, const std::string& method, const std::string& param
   return p;
 }
 
-State run_ours(const Scene& base, const std::string& name, double dt, double tolerance, double t_end, long& steps) {
+State run_ours(const Scene& base, const std::string& name, double dt, double tolerance, double t_end,
+               long& steps) {
   Scene scene = base;
   scene.integrator = {name, dt, tolerance};
   Simulation run = start_simulation(scene);
@@ -112,7 +116,8 @@ struct OdeintSystem {
   }
 };
 
-State run_odeint(const Scene& scene, const std::string& stepper, double tolerance, double t_end, long& evaluations) {
+State run_odeint(const Scene& scene, const std::string& stepper, double tolerance, double t_end,
+                 long& evaluations) {
   State state = initial_state(scene);
   OdeState x{};
   std::copy(state.y.data(), state.y.data() + state.y.size(), x.begin());
@@ -120,13 +125,16 @@ State run_odeint(const Scene& scene, const std::string& stepper, double toleranc
   const OdeintSystem system{scene, state.chart, state.y.size(), &evaluations};
   const double dt0 = 0.01;
   if (stepper == "odeint_dopri5")
-    odeint::integrate_adaptive(odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_dopri5<OdeState>()),
-                               system, x, 0.0, t_end, dt0);
+    odeint::integrate_adaptive(
+        odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_dopri5<OdeState>()), system, x, 0.0,
+        t_end, dt0);
   else if (stepper == "odeint_fehlberg78")
-    odeint::integrate_adaptive(odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_fehlberg78<OdeState>()),
-                               system, x, 0.0, t_end, dt0);
+    odeint::integrate_adaptive(
+        odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_fehlberg78<OdeState>()), system, x,
+        0.0, t_end, dt0);
   else
-    odeint::integrate_adaptive(odeint::bulirsch_stoer<OdeState>(tolerance, tolerance), system, x, 0.0, t_end, dt0);
+    odeint::integrate_adaptive(odeint::bulirsch_stoer<OdeState>(tolerance, tolerance), system, x, 0.0, t_end,
+                               dt0);
   state.y = Eigen::Map<const Eigen::VectorXd>(x.data(), state.y.size());
   state.t = t_end;
   return state;
@@ -140,7 +148,8 @@ double cost_at(const std::vector<Point>& curve, double target) {
     if (p.state_error <= target) best = std::min(best, p.seconds_per_unit_time);
     if (i + 1 < curve.size()) {
       const Point& q = curve[i + 1];
-      if (p.state_error > target && q.state_error <= target && std::isfinite(p.state_error) && q.state_error > 0) {
+      if (p.state_error > target && q.state_error <= target && std::isfinite(p.state_error) &&
+          q.state_error > 0) {
         const double f = std::log(target / p.state_error) / std::log(q.state_error / p.state_error);
         best = std::min(best, std::exp(std::log(p.seconds_per_unit_time) +
                                        f * std::log(q.seconds_per_unit_time / p.seconds_per_unit_time)));
@@ -163,14 +172,16 @@ void write_plot(const std::filesystem::path& dir, const std::string& scene,
   std::ofstream gp(dir / (scene + ".gp"));
   gp << "set terminal png size 1100,800\nset output '" << (dir / (scene + ".png")).string() << "'\n"
      << "set logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\nset grid\n"
-     << "set xlabel 'state error at T = " << t_end << "'\nset ylabel 'wall time per unit simulated time [s]'\n"
+     << "set xlabel 'state error at T = " << t_end
+     << "'\nset ylabel 'wall time per unit simulated time [s]'\n"
      << "set title 'work-precision: " << scene << "'\nset key outside right\n";
   std::string plot = "plot ";
   for (const auto& [method, curve] : curves) {
     const std::string file = (dir / (scene + "_" + method + ".dat")).string();
     std::ofstream dat(file);
     for (const Point& p : curve)
-      if (std::isfinite(p.state_error) && p.state_error > 0) dat << p.state_error << " " << p.seconds_per_unit_time << "\n";
+      if (std::isfinite(p.state_error) && p.state_error > 0)
+        dat << p.state_error << " " << p.seconds_per_unit_time << "\n";
     plot += "'" + file + "' using 1:2 with linespoints title '" + method + "', ";
   }
   gp << plot.substr(0, plot.size() - 2) << "\n";
@@ -191,7 +202,8 @@ int run_work_precision(const WorkPrecisionOptions& options) {
      << "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
 
   for (const BenchScene& bench : work_precision_scenes()) {
-    if (!options.scenes.empty() && std::find(options.scenes.begin(), options.scenes.end(), bench.name) == options.scenes.end())
+    if (!options.scenes.empty() &&
+        std::find(options.scenes.begin(), options.scenes.end(), bench.name) == options.scenes.end())
       continue;
     const Scene& scene = bench.scene;
     const double t_end = options.periods * characteristic_period(scene);
@@ -215,22 +227,26 @@ int run_work_precision(const WorkPrecisionOptions& options) {
     std::map<std::string, std::vector<Point>> curves;
     const auto record = [&](const Point& p) {
       curves[p.method].push_back(p);
-      csv << bench.name << "," << p.method << "," << p.parameter << "," << p.value << "," << p.seconds_per_unit_time
-          << "," << p.state_error << "," << p.energy_error << "," << p.steps << "\n";
+      csv << bench.name << "," << p.method << "," << p.parameter << "," << p.value << ","
+          << p.seconds_per_unit_time << "," << p.state_error << "," << p.energy_error << "," << p.steps
+          << "\n";
     };
     const double period = characteristic_period(scene);
     for (const CatalogEntry& entry : integrator_catalog()) {
       const std::string name(entry.info.name);
       if (entry.info.exact) {
         if (closed_form)
-          record(measure(c, name, "-", 0.0, [&](long& steps) { return run_ours(scene, name, 0.01, 1e-10, t_end, steps); }));
+          record(measure(c, name, "-", 0.0,
+                         [&](long& steps) { return run_ours(scene, name, 0.01, 1e-10, t_end, steps); }));
       } else if (entry.info.adaptive) {
         for (double tol = 1e-3; tol >= 0.9e-15; tol /= 10)
-          record(measure(c, name, "tol", tol, [&](long& steps) { return run_ours(scene, name, 0.01, tol, t_end, steps); }));
+          record(measure(c, name, "tol", tol,
+                         [&](long& steps) { return run_ours(scene, name, 0.01, tol, t_end, steps); }));
       } else {
         for (int k = 3; k <= 16; ++k) {
           const double dt = period / (1 << k);
-          const Point p = measure(c, name, "dt", dt, [&](long& steps) { return run_ours(scene, name, dt, 1e-10, t_end, steps); });
+          const Point p = measure(
+              c, name, "dt", dt, [&](long& steps) { return run_ours(scene, name, dt, 1e-10, t_end, steps); });
           record(p);
           if (p.state_error < 1e-13 || p.seconds_per_unit_time * t_end > options.max_seconds_per_run) break;
         }
@@ -238,14 +254,16 @@ int run_work_precision(const WorkPrecisionOptions& options) {
     }
     for (const std::string stepper : {"odeint_dopri5", "odeint_fehlberg78", "odeint_bulirsch_stoer"})
       for (double tol = 1e-3; tol >= 0.9e-16; tol /= 10)
-        record(measure(c, stepper, "tol", tol, [&](long& evals) { return run_odeint(scene, stepper, tol, t_end, evals); }));
+        record(measure(c, stepper, "tol", tol,
+                       [&](long& evals) { return run_odeint(scene, stepper, tol, t_end, evals); }));
 
     // Summary at the target error.
     std::string best_ours, best_odeint, best_stepping;
     double cost_ours = kInf, cost_odeint = kInf, cost_stepping = kInf;
     for (const auto& [method, curve] : curves) {
       const double cost = cost_at(curve, options.target_error);
-      std::cerr << "  " << method << ": " << format_cost(cost) << " µs per unit time at " << options.target_error << "\n";
+      std::cerr << "  " << method << ": " << format_cost(cost) << " µs per unit time at "
+                << options.target_error << "\n";
       if (method.starts_with("odeint")) {
         if (cost < cost_odeint) cost_odeint = cost, best_odeint = method;
       } else {
@@ -257,10 +275,11 @@ int run_work_precision(const WorkPrecisionOptions& options) {
     auto_scene.integrator.name = "auto";
     std::ostringstream row;
     row.precision(3);
-    row << "| " << bench.name << " | " << t_end << " | " << reference_kind << " | " << resolve_integrator(auto_scene)
-        << " | " << best_ours << " " << format_cost(cost_ours) << " | " << best_odeint << " " << format_cost(cost_odeint)
-        << " | " << cost_odeint / cost_ours << "× | " << best_stepping << " " << format_cost(cost_stepping) << " | "
-        << cost_odeint / cost_stepping << "× |\n";
+    row << "| " << bench.name << " | " << t_end << " | " << reference_kind << " | "
+        << resolve_integrator(auto_scene) << " | " << best_ours << " " << format_cost(cost_ours) << " | "
+        << best_odeint << " " << format_cost(cost_odeint) << " | " << cost_odeint / cost_ours << "× | "
+        << best_stepping << " " << format_cost(cost_stepping) << " | " << cost_odeint / cost_stepping
+        << "× |\n";
     md << row.str();
     write_plot(dir, bench.name, curves, t_end);
     if (std::system("command -v gnuplot > /dev/null 2>&1") == 0)

@@ -10,8 +10,8 @@ namespace spinfold::bench {
 struct WorkPrecisionOptions {
   std::vector<std::string> scenes;  // empty: all
   std::string out_dir = "out/work_precision";
-  double periods = 100.0;         // T in characteristic periods
-  double target_error = 1e-10;    // the error at which methods are compared
+  double periods = 100.0;            // T in characteristic periods
+  double target_error = 1e-10;       // the error at which methods are compared
   double max_seconds_per_run = 1.0;  // stop refining a fixed-step sweep beyond this
 };
 

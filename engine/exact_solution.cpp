@@ -1,11 +1,14 @@
 #include "engine/exact_solution.h"
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
 #include "engine/integrator.h"
+#include "engine/invariants.h"
+#include "engine/potentials.h"
 
 namespace spinfold {
 
@@ -33,37 +36,53 @@ std::pair<double, double> squared_radius_at(const PlaneMotion& m, double t) {
   return {c + a * ch + (m.s_dot0 / w) * sh, a * w * sh + m.s_dot0 * ch};
 }
 
-// ∫₀ᵗ dt′/s(t′), continuous in t (physics.md §8.4). The smallest value of s comes from the product
-// of the turning points s₊s₋ = (ℓ²/J + 2A)/(8C), never from a difference that would cancel.
+// The three antiderivatives of physics.md §8.4, continuous in t. Each takes the product
+// (c − ρ)(c + ρ) (or the discriminant) from the turning-point identities of §8.2/§8.3, never from a
+// subtraction that would cancel near a pole or near x = 0.
+
+// ∫₀ᵗ dt′/f, f = c + A cos ωt + B sin ωt > 0, product = c² − ρ² > 0.
+double integral_inverse_trig(double c, double A, double B, double w, double product, double t) {
+  const double rho = std::hypot(A, B), theta0 = std::atan2(B, A);
+  const double root = std::sqrt(product), high = c + rho, low = product / high;
+  const auto F = [&](double th) {
+    return (2.0 / root) *
+           (std::atan2(std::sqrt(low) * std::sin(0.5 * th), std::sqrt(high) * std::cos(0.5 * th)) +
+            2.0 * kPi * std::round(th / (4.0 * kPi)));
+  };
+  return (F(w * t - theta0) - F(-theta0)) / w;
+}
+
+// ∫₀ᵗ dt′/f, f = c + A cosh Ωt + B sinh Ωt = c + ρ cosh(Ωt + τ) > 0 (A > |B|), product = c² − ρ².
+double integral_inverse_hyperbolic(double c, double A, double B, double w, double product, double t) {
+  const double rho = std::sqrt((A - B) * (A + B)), tau = std::atanh(B / A);
+  std::function<double(double)> H;
+  if (product > 0.0) {                                                 // c > ρ
+    const double root = std::sqrt(product), ratio = root / (c + rho);  // √((c − ρ)/(c + ρ))
+    H = [=](double th) { return (2.0 / root) * std::atanh(ratio * std::tanh(0.5 * th)); };
+  } else if (product < 0.0) {                                           // |c| < ρ
+    const double root = std::sqrt(-product), ratio = root / (rho + c);  // √((ρ − c)/(ρ + c))
+    H = [=](double th) { return (2.0 / root) * std::atan(ratio * std::tanh(0.5 * th)); };
+  } else {
+    H = [=](double th) { return std::tanh(0.5 * th) / rho; };
+  }
+  return (H(w * t + tau) - H(tau)) / w;
+}
+
+// ∫₀ᵗ dt′/f, f = c + bt + at², a > 0, discriminant = 4ac − b² > 0.
+double integral_inverse_quadratic(double c, double b, double a, double discriminant, double t) {
+  (void)c;
+  const double root = std::sqrt(discriminant);
+  return (2.0 / root) * (std::atan((2.0 * a * t + b) / root) - std::atan(b / root));
+}
+
+// ∫₀ᵗ dt′/s(t′) for the squared radius of a plane motion; s₊s₋ = (ℓ²/J + 2A)/(8C).
 double inverse_squared_radius_integral(const PlaneMotion& m, double t) {
   const double J = m.J, C = m.C;
   const double q = m.ell * m.ell / J + 2.0 * m.A;  // > 0
-  if (C > 0.0) {
-    const double w = std::sqrt(8.0 * C / J), c = m.energy / (4.0 * C);
-    const double a = m.s0 - c, b = m.s_dot0 / w;
-    const double rho = std::hypot(a, b), theta0 = std::atan2(b, a);
-    const double root = std::sqrt(q / (8.0 * C));  // √(c² − ρ²)
-    const double s_max = c + rho, s_min = root * root / s_max;
-    const auto F = [&](double th) {
-      return (2.0 / root) *
-             (std::atan2(std::sqrt(s_min) * std::sin(0.5 * th), std::sqrt(s_max) * std::cos(0.5 * th)) +
-              2.0 * kPi * std::round(th / (4.0 * kPi)));
-    };
-    return (F(w * t - theta0) - F(-theta0)) / w;
-  }
-  if (C < 0.0) {
-    // s = c + ρ cosh(Ωt + τ) with c² − ρ² = q/(8C) < 0: the arctan branch of §8.4 (ii).
-    const double w = std::sqrt(-8.0 * C / J), c = m.energy / (4.0 * C);
-    const double a = m.s0 - c, b = m.s_dot0 / w;
-    const double rho = std::sqrt((a - b) * (a + b)), tau = std::atanh(b / a);
-    const double root = std::sqrt(-q / (8.0 * C));  // √(ρ² − c²)
-    const double ratio = root / (rho + c);          // √((ρ − c)/(ρ + c))
-    const auto H = [&](double th) { return (2.0 / root) * std::atan(ratio * std::tanh(0.5 * th)); };
-    return (H(w * t + tau) - H(tau)) / w;
-  }
-  // s = s₀ + ṡ₀t + (E/J)t², discriminant 4ac − b² = q/J (§8.4 (iii)).
-  const double a = m.energy / J, root = std::sqrt(q / J);
-  return (2.0 / root) * (std::atan((2.0 * a * t + m.s_dot0) / root) - std::atan(m.s_dot0 / root));
+  if (C == 0.0) return integral_inverse_quadratic(m.s0, m.s_dot0, m.energy / J, q / J, t);
+  const double c = m.energy / (4.0 * C), w = std::sqrt(std::abs(8.0 * C / J));
+  if (C > 0.0) return integral_inverse_trig(c, m.s0 - c, m.s_dot0 / w, w, q / (8.0 * C), t);
+  return integral_inverse_hyperbolic(c, m.s0 - c, m.s_dot0 / w, w, q / (8.0 * C), t);
 }
 
 // exp(tA), A w = η((ηM) × w)/(mR²): the orbit's isometry flow (physics.md §8.6), A³ = −cA.
@@ -91,6 +110,73 @@ Mat2 assemble(const Vec2& uv, const Vec2& pq) {
   Mat2 L;
   L << pq.x() + uv.x(), uv.y() - pq.y(), uv.y() + pq.y(), pq.x() - uv.x();
   return L;
+}
+
+// Internal motion at a fixed point without drive from (L₀, M₀) under J‖M‖²/2 + V_abc: L(t), L̇(t).
+std::pair<Mat2, Mat2> internal_motion(double J, const AbcPotential& abc, const Mat2& L, const Mat2& M,
+                                      double t) {
+  const PlaneMotion anticonformal =
+      plane_motion(J, abc.A, abc.C, Vec2(0.5 * (L(0, 0) - L(1, 1)), 0.5 * (L(0, 1) + L(1, 0))),
+                   Vec2(0.5 * (M(0, 0) - M(1, 1)), 0.5 * (M(0, 1) + M(1, 0))));
+  const PlaneMotion conformal =
+      plane_motion(J, abc.B, abc.C, Vec2(0.5 * (L(0, 0) + L(1, 1)), 0.5 * (L(1, 0) - L(0, 1))),
+                   Vec2(0.5 * (M(0, 0) + M(1, 1)), 0.5 * (M(1, 0) - M(0, 1))));
+  const auto [uv, uv_dot] = plane_motion_at(anticonformal, t);
+  const auto [pq, pq_dot] = plane_motion_at(conformal, t);
+  return {assemble(uv, pq), assemble(uv_dot, pq_dot)};
+}
+
+struct OrbitPoint {
+  double r, r_dot, phi, drive;  // drive D(t) = ∫₀ᵗ Cφ̇ dt′
+};
+
+// physics.md §8.2 (S², H²) and §8.9 (plane).
+OrbitPoint radial_orbit_at(const Surface& surface, double m, const RadialOrbit& o, double t) {
+  const double s = o.spin, p = o.p_phi, G = o.strength;
+  if (surface.kind == SurfaceKind::plane) {
+    // r² = r₀² + 2r₀ṙ₀t + (2E/m)t², φ̇ = (p_φ − s)/(mr²), D = φ − φ₀.
+    const double a = 2.0 * o.energy / m, b = 2.0 * o.r0 * o.r_dot0, c = o.r0 * o.r0;
+    const double discriminant = 4.0 * ((p - s) * (p - s) / (m * m) + 2.0 * G / m);
+    const double r2 = c + b * t + a * t * t, r = std::sqrt(r2);
+    const double phi_offset = ((p - s) / m) * integral_inverse_quadratic(c, b, a, discriminant, t);
+    return {r, (b + 2.0 * a * t) / (2.0 * r), o.phi0 + phi_offset, phi_offset};
+  }
+  const double K = curvature(surface), R = surface.radius, L = o.Lambda;
+  const double u0 = polar_C(surface, o.r0), u_dot0 = -K * polar_S(surface, o.r0) * o.r_dot0;
+  const double A = u0 - o.u_c;
+  double u, u_dot, I_minus, I_plus;  // I∓ = ∫dt/(1 ∓ u)
+  // (1 − u₊)(1 − u₋) and (1 + u₊)(1 + u₋), the cancellation-free products of §8.2.
+  const double P_minus = K * K * ((p - s) * (p - s) + 2.0 * m * G) / (m * m * L);
+  const double P_plus = K * K * ((p + s) * (p + s) + 2.0 * m * G) / (m * m * L);
+  const bool sphere = surface.kind == SurfaceKind::sphere;
+  if (L > 0.0) {
+    const double w = std::sqrt(L), B = u_dot0 / w;
+    u = o.u_c + A * std::cos(w * t) + B * std::sin(w * t);
+    u_dot = -A * w * std::sin(w * t) + u_dot0 * std::cos(w * t);
+    // On S², 1 − u > 0; on H², u − 1 > 0 and ∫1/(1 − u) = −∫1/(u − 1).
+    I_minus = sphere ? integral_inverse_trig(1.0 - o.u_c, -A, -B, w, P_minus, t)
+                     : -integral_inverse_trig(o.u_c - 1.0, A, B, w, P_minus, t);
+    I_plus = integral_inverse_trig(1.0 + o.u_c, A, B, w, P_plus, t);
+  } else if (L < 0.0) {
+    const double w = std::sqrt(-L), B = u_dot0 / w;
+    u = o.u_c + A * std::cosh(w * t) + B * std::sinh(w * t);
+    u_dot = A * w * std::sinh(w * t) + u_dot0 * std::cosh(w * t);
+    I_minus = -integral_inverse_hyperbolic(o.u_c - 1.0, A, B, w, P_minus, t);
+    I_plus = integral_inverse_hyperbolic(1.0 + o.u_c, A, B, w, P_plus, t);
+  } else {
+    const double a = K * K * p * s / (2.0 * m * m);
+    u = u0 + u_dot0 * t + a * t * t;
+    u_dot = u_dot0 + 2.0 * a * t;
+    I_minus = -integral_inverse_quadratic(u0 - 1.0, u_dot0, a, 4.0 * a * (u0 - 1.0) - u_dot0 * u_dot0, t);
+    I_plus = integral_inverse_quadratic(u0 + 1.0, u_dot0, a, 4.0 * a * (u0 + 1.0) - u_dot0 * u_dot0, t);
+  }
+  const double half_minus = 0.5 * (p - s), half_plus = 0.5 * (p + s);
+  const double phi = o.phi0 + (K / m) * (half_minus * I_minus + half_plus * I_plus);
+  const double drive = (K / m) * (s * t + half_minus * I_minus - half_plus * I_plus);
+  // S = R√((1 − u)(1 + u)) on S², R√((u − 1)(u + 1)) on H²; ṙ = −u̇/(KS).
+  const double S = R * std::sqrt(std::abs((1.0 - u) * (1.0 + u)));
+  const double r = sphere ? R * std::atan2(S / R, u) : R * std::asinh(S / R);
+  return {r, -u_dot / (K * S), phi, drive};
 }
 
 }  // namespace
@@ -133,9 +219,6 @@ std::pair<Vec2, Vec2> plane_motion_at(const PlaneMotion& m, double t) {
 }
 
 std::optional<std::string> exact_unsupported_reason(const Scene& scene) {
-  if (scene.potential.radial)
-    return "the orbit under the radial potential has no closed form implemented (physics.md §8.2): "
-           "use an integrator";
   if (std::holds_alternative<PolarPotential>(scene.potential.deformation))
     return "the polar deformation potential has no closed form in time (physics.md §8.7): use an integrator";
   return std::nullopt;
@@ -146,6 +229,22 @@ ExactSolution make_exact_solution(const Scene& scene) {
   sol.scene = scene;
   sol.initial = initial_kinematics(scene);
   if (const auto* abc = std::get_if<AbcPotential>(&scene.potential.deformation)) sol.internal = *abc;
+  if (scene.potential.radial && scene.potential.radial->gamma > 0.0) {
+    const State start = initial_state(scene);  // V_r > 0 keeps the start off the pole: scene's chart
+    const InitialState& q = scene.initial;
+    const double m = scene.body.mass, K = curvature(scene.surface);
+    RadialOrbit o;
+    o.r0 = q.r;
+    o.phi0 = q.phi;
+    o.r_dot0 = q.r_dot;
+    o.p_phi = start.y[coord::p_phi];
+    o.spin = spin_of(scene, start.y);
+    o.energy = orbital_energy(scene, start);
+    o.strength = radial_strength(scene.surface, *scene.potential.radial);
+    o.Lambda = 2.0 * K * o.energy / m + K * K * o.spin * o.spin / (m * m);
+    o.u_c = o.Lambda != 0.0 ? K * K * o.p_phi * o.spin / (m * m * o.Lambda) : 0.0;
+    sol.radial = o;
+  }
   return sol;
 }
 
@@ -176,28 +275,57 @@ BodyKinematics integrable_flow(const Scene& scene, const AbcPotential& internal,
     body.M = omega * epsilon() * body.L;
     return body;
   }
-  const Mat2& L = start.L;
-  const Mat2& M = start.M;
-  const double J = scene.body.inertia;
-  const PlaneMotion anticonformal =
-      plane_motion(J, internal.A, internal.C, Vec2(0.5 * (L(0, 0) - L(1, 1)), 0.5 * (L(0, 1) + L(1, 0))),
-                   Vec2(0.5 * (M(0, 0) - M(1, 1)), 0.5 * (M(0, 1) + M(1, 0))));
-  const PlaneMotion conformal =
-      plane_motion(J, internal.B, internal.C, Vec2(0.5 * (L(0, 0) + L(1, 1)), 0.5 * (L(1, 0) - L(0, 1))),
-                   Vec2(0.5 * (M(0, 0) + M(1, 1)), 0.5 * (M(1, 0) - M(0, 1))));
-  const auto [uv, uv_dot] = plane_motion_at(anticonformal, t);
-  const auto [pq, pq_dot] = plane_motion_at(conformal, t);
+  const auto [L, M] = internal_motion(scene.body.inertia, internal, start.L, start.M, t);
   const Mat2 U = rotation2(theta_s);
-  body.L = U * assemble(uv, pq);
-  body.M = U * assemble(uv_dot, pq_dot);
+  body.L = U * L;
+  body.M = U * M;
   return body;
 }
 
+namespace {
+
+// The closed form under a radial potential, in the scene's chart: the orbit of §8.2 and the
+// internal motion of §8.3 turned by −D(t).
+Coords radial_exact_coords(const ExactSolution& sol, double t) {
+  const Scene& scene = sol.scene;
+  const RadialOrbit& o = *sol.radial;
+  const double m = scene.body.mass, J = scene.body.inertia;
+  const OrbitPoint orbit = radial_orbit_at(scene.surface, m, o, t);
+  Coords y;
+  if (scene.body.model == BodyModel::rigid) {
+    const double l0 = scene.initial.lambda;
+    y.resize(coord::rigid_size);
+    y[coord::theta] =
+        scene.initial.alpha - scene.initial.beta + o.spin * t / (2.0 * J * l0 * l0) - orbit.drive;
+    y[coord::spin] = o.spin;
+  } else {
+    const auto [L_int, M_int] = internal_motion(J, sol.internal, sol.initial.L, sol.initial.M, t);
+    const Mat2 U = rotation2(-orbit.drive);
+    const Mat2 L = U * L_int;
+    const Mat2 P = J * (U * M_int);
+    y.resize(coord::affine_size);
+    y.segment<4>(coord::L) << L(0, 0), L(0, 1), L(1, 0), L(1, 1);
+    y.segment<4>(coord::P) << P(0, 0), P(0, 1), P(1, 0), P(1, 1);
+  }
+  y[coord::r] = orbit.r;
+  y[coord::phi] = orbit.phi;
+  y[coord::p_r] = m * orbit.r_dot;
+  y[coord::p_phi] = o.p_phi;
+  return y;
+}
+
+}  // namespace
+
 State exact_state(const ExactSolution& sol, double t) {
   const Scene& scene = sol.scene;
-  const BodyKinematics body = integrable_flow(scene, sol.internal, sol.initial, t);
   State state;
   state.t = t;
+  if (sol.radial) {
+    state.y = radial_exact_coords(sol, t);
+    if (!chart_well_conditioned(scene.surface, state.y[coord::r])) recentre(scene, state);
+    return state;
+  }
+  const BodyKinematics body = integrable_flow(scene, sol.internal, sol.initial, t);
   if (chart_well_conditioned(scene.surface, polar_coordinates(scene.surface, body.X).r)) {
     state.y = chart_coords(scene, body);
   } else {

@@ -1,6 +1,8 @@
-// Closed-form solution of the separable scenes (physics.md §8.6 with §8.3/§8.4): no stepping, the
-// state at any t costs the same. Covers V_r = 0 with no deformation potential or the abc one, for
-// rigid and affine bodies on S², H² and the plane.
+// Closed-form solution of the separable scenes: no stepping, the state at any t costs the same.
+// Covers the radial potential (or none) with the abc deformation potential (or none), for rigid
+// and affine bodies on S², H² and the plane: physics.md §8.6 (chart-free, through the poles) when
+// V_r = 0, §8.2 with §8.9 in the scene's chart when V_r > 0 (its barrier keeps the body off the
+// poles), and §8.3/§8.4 for the internal motion.
 #pragma once
 
 #include <optional>
@@ -35,10 +37,20 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> plane_motion_at(const PlaneMotion& m
 BodyKinematics integrable_flow(const Scene& scene, const AbcPotential& internal, const BodyKinematics& start,
                                double t);
 
+// The orbit under a radial potential in the scene's chart (physics.md §8.2; §8.9 on the plane):
+// u = C(r) is harmonic in time, φ and the frame's drive angle D follow from ∫dt/(1 ∓ u).
+struct RadialOrbit {
+  double r0 = 0.0, phi0 = 0.0, r_dot0 = 0.0;
+  double p_phi = 0.0, spin = 0.0, energy = 0.0;  // conserved: p_φ, s, E_orb
+  double strength = 0.0;                         // Γ = V_r S² (physics.md §5)
+  double Lambda = 0.0, u_c = 0.0;                // ü = −Λu + K²p_φ s/m², u_c its centre
+};
+
 struct ExactSolution {
   Scene scene;
-  BodyKinematics initial;  // in the scene's embedding coordinates
-  AbcPotential internal;   // the scene's abc potential, or zero
+  BodyKinematics initial;             // in the scene's embedding coordinates
+  AbcPotential internal;              // the scene's abc potential, or zero
+  std::optional<RadialOrbit> radial;  // set when the scene has a radial potential with g > 0
 };
 
 // The reason a scene has no closed form here, or nullopt when it has one.

@@ -32,13 +32,22 @@ double state_distance(const Scene& scene, const State& a, const State& b) {
 struct Branch {
   SurfaceKind kind;
   double A, B, C;
+  double gamma = 0.0;  // radial potential g (0: none, the chart-free path of §8.6)
+  BodyModel model = BodyModel::affine;
 };
 
 class ExactAgainstIntegration : public ::testing::TestWithParam<Branch> {};
 
 TEST_P(ExactAgainstIntegration, WholeStateAgreesAtSeveralTimes) {
   const Branch b = GetParam();
-  const Scene scene = deforming(b.kind, b.A, b.B, b.C);
+  Scene scene = deforming(b.kind, b.A, b.B, b.C);
+  if (b.gamma > 0.0) scene.potential.radial = RadialPotential{b.gamma};
+  if (b.model == BodyModel::rigid) {
+    scene.body.model = BodyModel::rigid;
+    scene.potential.deformation = std::monostate{};
+    scene.initial.lambda = scene.initial.mu = 1.0;
+    scene.initial.lambda_dot = scene.initial.mu_dot = 0.0;
+  }
   const ExactSolution exact = make_exact_solution(scene);
   Simulation run = start_simulation(scene);
   EXPECT_LT(state_distance(scene, exact_state(exact, 0.0), run.state), 1e-14);
@@ -58,7 +67,13 @@ INSTANTIATE_TEST_SUITE_P(
                       Branch{SurfaceKind::pseudosphere, 0.02, 0.1, 0.4},
                       Branch{SurfaceKind::pseudosphere, 0.0, 0.1, 0.3},  // A = 0: linear oscillator plane
                       Branch{SurfaceKind::plane, 0.02, 0.1, 0.4},
-                      Branch{SurfaceKind::plane, 0.0, 0.0, 0.0}));  // free body
+                      Branch{SurfaceKind::plane, 0.0, 0.0, 0.0},  // free body
+                      // Radial potential (physics.md §8.2, §8.9): Λ > 0 on S², Λ < 0 on H², the plane.
+                      Branch{SurfaceKind::sphere, 0.02, 0.1, 0.4, 0.05},
+                      Branch{SurfaceKind::sphere, 0.0, 0.0, 0.0, 0.5, BodyModel::rigid},
+                      Branch{SurfaceKind::pseudosphere, 0.02, 0.1, 0.4, 0.5},
+                      Branch{SurfaceKind::pseudosphere, 0.0, 0.0, 0.0, 0.05, BodyModel::rigid},
+                      Branch{SurfaceKind::plane, 0.02, 0.1, 0.4, 0.5}));
 
 TEST(Exact, ManyPeriodsStayOnTheClosedOrbit) {
   // W3 after 1000 periods: the closed form does not accumulate error.
@@ -73,13 +88,28 @@ TEST(Exact, ManyPeriodsStayOnTheClosedOrbit) {
   EXPECT_EQ(run.steps, 1u);  // one evaluation, whatever the time
 }
 
+TEST(Exact, W5ClosedFormStateAtTwoToRoundOff) {
+  Scene scene;
+  scene.surface = {SurfaceKind::sphere, 1.5};
+  scene.body = {1.0, 0.4, BodyModel::affine};
+  scene.potential.radial = RadialPotential{0.05};
+  scene.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
+  scene.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.0, 0.05};
+  const State s = exact_state(make_exact_solution(scene), 2.0);
+  const PaperCoordinates c = paper_coordinates(scene, s);
+  EXPECT_NEAR(c.r, 1.650073264590784, 1e-14);  // physics.md W5
+  EXPECT_NEAR(*c.phi, 0.7053552271149849, 1e-14);
+  const double L_t2[2][2] = {{0.9337349005373956, -0.47142953066718696},
+                             {0.7376511798429146, 0.160781033418681}};
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) EXPECT_NEAR((*c.L)(i, j), L_t2[i][j], 1e-14);
+}
+
 TEST(Exact, RefusesScenesWithoutAClosedFormAndSaysWhy) {
   Scene scene = deforming(SurfaceKind::sphere, 0.0, 0.0, 0.1);
   EXPECT_FALSE(exact_unsupported_reason(scene));
   scene.potential.radial = RadialPotential{0.1};
-  ASSERT_TRUE(exact_unsupported_reason(scene));
-  EXPECT_NE(exact_unsupported_reason(scene)->find("radial"), std::string::npos);
-  scene.potential.radial.reset();
+  EXPECT_FALSE(exact_unsupported_reason(scene));
   scene.potential.deformation = PolarPotential{0.1, -1.0, PolarForm::cot2};
   ASSERT_TRUE(exact_unsupported_reason(scene));
   EXPECT_NE(exact_unsupported_reason(scene)->find("polar"), std::string::npos);
@@ -90,6 +120,8 @@ TEST(Exact, AutoPicksTheClosedFormOnlyWhereItExists) {
   scene.integrator.name = "auto";
   EXPECT_EQ(resolve_integrator(scene), "exact");
   scene.potential.radial = RadialPotential{0.1};
+  EXPECT_EQ(resolve_integrator(scene), "exact");
+  scene.potential.deformation = PolarPotential{0.1, -1.0, PolarForm::cot2};
   EXPECT_NE(resolve_integrator(scene), "exact");
   EXPECT_EQ(start_simulation(scene).info->name, resolve_integrator(scene));
 }
