@@ -124,17 +124,20 @@ State run_odeint(const Scene& scene, const std::string& stepper, double toleranc
   evaluations = 0;
   const OdeintSystem system{scene, state.chart, state.y.size(), &evaluations};
   const double dt0 = 0.01;
-  if (stepper == "odeint_dopri5")
-    odeint::integrate_adaptive(
-        odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_dopri5<OdeState>()), system, x, 0.0,
-        t_end, dt0);
-  else if (stepper == "odeint_fehlberg78")
-    odeint::integrate_adaptive(
-        odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_fehlberg78<OdeState>()), system, x,
-        0.0, t_end, dt0);
-  else
-    odeint::integrate_adaptive(odeint::bulirsch_stoer<OdeState>(tolerance, tolerance), system, x, 0.0, t_end,
-                               dt0);
+  try {
+    if (stepper == "odeint_dopri5")
+      odeint::integrate_adaptive(odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_dopri5<OdeState>()),
+                                 system, x, 0.0, t_end, dt0);
+    else if (stepper == "odeint_fehlberg78")
+      odeint::integrate_adaptive(
+          odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_fehlberg78<OdeState>()), system, x, 0.0,
+          t_end, dt0);
+    else
+      odeint::integrate_adaptive(odeint::bulirsch_stoer<OdeState>(tolerance, tolerance), system, x, 0.0, t_end, dt0);
+  } catch (const std::exception&) {
+    state.status = Status::step_failed;  // Odeint gave up on the step size (tolerance below round-off)
+    return state;
+  }
   state.y = Eigen::Map<const Eigen::VectorXd>(x.data(), state.y.size());
   state.t = t_end;
   return state;

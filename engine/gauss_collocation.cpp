@@ -6,7 +6,7 @@ namespace spinfold {
 
 template <int Stages>
 StepResult GaussCollocation<Stages>::try_step(const StepProblem& f, const Coords& y, double h,
-                                              double /*tolerance*/, Coords& y_next) {
+                                              double /*tolerance*/, Coords& increment) {
   const auto& a = tableau_.a;
   const double scale = 1.0 + y.cwiseAbs().maxCoeff();
   // Start from the explicit Euler guess Z_i = c_i h f(y).
@@ -40,12 +40,12 @@ StepResult GaussCollocation<Stages>::try_step(const StepProblem& f, const Coords
     previous_change = change;
   }
   if (!converged) {
-    y_next = y;
+    increment = Coords::Zero(y.size());
     return {false, 0.5 * h};
   }
   // y₁ = y + h Σ b_i f(y + Z_i): the slopes of the last sweep, taken at Z to round-off.
-  y_next = y;
-  for (int i = 0; i < Stages; ++i) y_next += (h * tableau_.b[i]) * k_[i];
+  increment = (h * tableau_.b[0]) * k_[0];
+  for (int i = 1; i < Stages; ++i) increment += (h * tableau_.b[i]) * k_[i];
   return {true, h};
 }
 

@@ -30,7 +30,7 @@ class GaussCollocation final : public Integrator {
       : info_(info), tableau_(tableau) {}
   const IntegratorInfo& info() const override { return info_; }
   StepResult try_step(const StepProblem& f, const Coords& y, double h, double tolerance,
-                      Coords& y_next) override;
+                      Coords& increment) override;
 
   int last_iterations() const { return iterations_; }
 

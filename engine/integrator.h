@@ -28,19 +28,21 @@ struct IntegratorInfo {
 };
 
 struct StepResult {
-  bool accepted = false;  // false: y_next is meaningless and the caller retries with h_next
+  bool accepted = false;  // false: the increment is meaningless and the caller retries with h_next
   double h_next = 0.0;    // proposed next step [time]
 };
 
-// Contract: try_step never modifies y; on acceptance y_next holds the state after time h.
-// A non-finite y_next must be rejected by the caller (the integrator may not notice it).
+// Contract: try_step never modifies y; on acceptance y + increment is the state after time h.
+// The increment is returned rather than the new state so that the caller can add it with
+// compensated summation (round-off then grows like √t, Brouwer's law). A non-finite increment
+// must be rejected by the caller (the integrator may not notice it).
 class Integrator {
  public:
   virtual ~Integrator() = default;
   virtual const IntegratorInfo& info() const = 0;
   // One attempt at a step of size h [time] with the per-step error tolerance (adaptive methods).
   virtual StepResult try_step(const StepProblem& f, const Coords& y, double h, double tolerance,
-                              Coords& y_next) = 0;
+                              Coords& increment) = 0;
 };
 
 struct CatalogEntry {

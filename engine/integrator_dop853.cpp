@@ -88,7 +88,7 @@ class Dop853 final : public Integrator {
   const IntegratorInfo& info() const override { return dop853_info; }
 
   StepResult try_step(const StepProblem& f, const Coords& y, double h, double tolerance,
-                      Coords& y_next) override {
+                      Coords& increment) override {
     const Eigen::Index n = y.size();
     for (int i = 0; i < kStages; ++i) {
       stage_ = y;
@@ -101,7 +101,8 @@ class Dop853 final : public Integrator {
       if (b[i] != 0.0) slope += b[i] * k_[i];
       if (er[i] != 0.0) err5 += er[i] * k_[i];
     }
-    y_next = y + h * slope;
+    increment = h * slope;
+    const Coords y_next = y + increment;
     const Coords err3 = slope - bhh1 * k_[0] - bhh9 * k_[8] - bhh12 * k_[11];
 
     double sum5 = 0.0, sum3 = 0.0;

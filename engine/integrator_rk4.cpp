@@ -13,12 +13,12 @@ class Rk4 final : public Integrator {
   const IntegratorInfo& info() const override { return rk4_info; }
 
   StepResult try_step(const StepProblem& f, const Coords& y, double h, double /*tolerance*/,
-                      Coords& y_next) override {
+                      Coords& increment) override {
     f(y, k1_);
     f(y + 0.5 * h * k1_, k2_);
     f(y + 0.5 * h * k2_, k3_);
     f(y + h * k3_, k4_);
-    y_next = y + (h / 6.0) * (k1_ + 2.0 * k2_ + 2.0 * k3_ + k4_);
+    increment = (h / 6.0) * (k1_ + 2.0 * k2_ + 2.0 * k3_ + k4_);
     return {true, h};
   }
 

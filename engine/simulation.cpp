@@ -52,6 +52,7 @@ double locate_degenerate(Integrator& integrator, const StepProblem& f, const Coo
   for (int i = 0; i < 60 && hi - lo > 1e-14 * h; ++i) {
     const double mid = 0.5 * (lo + hi);
     integrator.try_step(f, y, mid, tolerance, trial);
+    trial += y;
     if ((det_of(trial) > 0.0) == (det0 > 0.0))
       lo = mid;
     else
@@ -106,14 +107,18 @@ void advance_to(Simulation& run, double t_end) {
   const bool affine = scene.body.model == BodyModel::affine;
   const double tolerance = scene.integrator.tolerance;
   const StepProblem f{scene, state.chart};
-  Coords y_next;
+  Coords increment, y_next;
+  if (run.carry.size() != state.y.size()) run.carry = Coords::Zero(state.y.size());
   while (state.status == Status::ok && state.t < t_end) {
     const double remaining = t_end - state.t;
     const double h_planned = adaptive ? run.h_next : scene.integrator.dt;
     const bool last = h_planned >= remaining;
     const double h = last ? remaining : h_planned;
 
-    StepResult result = run.integrator->try_step(f, state.y, h, tolerance, y_next);
+    StepResult result = run.integrator->try_step(f, state.y, h, tolerance, increment);
+    // Compensated summation: the carry holds the low-order bits lost in earlier additions.
+    const Coords corrected = increment + run.carry;
+    y_next = state.y + corrected;
     const bool finite = all_finite(y_next);
     if (!result.accepted || !finite) {
       ++run.rejected;
@@ -138,12 +143,16 @@ void advance_to(Simulation& run, double t_end) {
         return;
       }
     }
+    run.carry = corrected - (y_next - state.y);
     state.y = y_next;
     state.t = last ? t_end : state.t + h;
     ++run.steps;
     // A step shortened to land on t_end says nothing about the step the solution allows.
     if (adaptive) run.h_next = (last && h < h_planned) ? h_planned : result.h_next;
-    if (maintain_chart(scene, state)) ++run.recentres;
+    if (maintain_chart(scene, state)) {
+      ++run.recentres;
+      run.carry.setZero(state.y.size());  // the new chart's coordinates start exact
+    }
   }
 }
 

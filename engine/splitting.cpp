@@ -28,7 +28,7 @@ void kick(const Scene& scene, const Chart& chart, double h, BodyKinematics& body
 }  // namespace
 
 StepResult SplittingComposition::try_step(const StepProblem& problem, const Coords& y, double h,
-                                          double /*tolerance*/, Coords& y_next) {
+                                          double /*tolerance*/, Coords& increment) {
   const Scene& scene = problem.scene;
   AbcPotential internal;  // the part of V_def inside the exact flow
   if (const auto* abc = std::get_if<AbcPotential>(&scene.potential.deformation)) internal = *abc;
@@ -39,7 +39,7 @@ StepResult SplittingComposition::try_step(const StepProblem& problem, const Coor
     const double next = i + 1 < weights_.size() ? weights_[i + 1] : 0.0;
     kick(scene, problem.chart, 0.5 * (weights_[i] + next) * h, body);  // adjacent half-kicks merged
   }
-  y_next = chart_coords(scene, body);
+  increment = chart_coords(scene, body) - y;
   return {true, h};
 }
 

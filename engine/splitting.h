@@ -19,7 +19,7 @@ class SplittingComposition final : public Integrator {
       : info_(info), weights_(std::move(weights)) {}
   const IntegratorInfo& info() const override { return info_; }
   StepResult try_step(const StepProblem& problem, const Coords& y, double h, double tolerance,
-                      Coords& y_next) override;
+                      Coords& increment) override;
 
  private:
   const IntegratorInfo& info_;

@@ -36,7 +36,7 @@ State fixed_step_run(const Scene& scene, Integrator& integrator, double h, doubl
   const int n = static_cast<int>(std::lround(t_end / h));
   for (int i = 0; i < n; ++i) {
     integrator.try_step(StepProblem{scene, state.chart}, state.y, h, 1.0, next);
-    state.y = next;
+    state.y += next;
     maintain_chart(scene, state);
   }
   state.t = t_end;

@@ -170,9 +170,9 @@ class PoisonIntegrator final : public Integrator {
  public:
   explicit PoisonIntegrator(bool adaptive) : info_{"poison", 1, false, adaptive, false, "test"} {}
   const IntegratorInfo& info() const override { return info_; }
-  StepResult try_step(const StepProblem&, const Coords& y, double h, double, Coords& y_next) override {
-    y_next = y;
-    y_next[0] = std::numeric_limits<double>::quiet_NaN();
+  StepResult try_step(const StepProblem&, const Coords& y, double h, double, Coords& increment) override {
+    increment = Coords::Zero(y.size());
+    increment[0] = std::numeric_limits<double>::quiet_NaN();
     return {true, h};
   }
 
@@ -200,8 +200,8 @@ TEST(FailedStep, StepSizeUnderflowStopsWithStepFailed) {
   class Rejecting final : public Integrator {
    public:
     const IntegratorInfo& info() const override { return dop853_info; }
-    StepResult try_step(const StepProblem&, const Coords& y, double h, double, Coords& y_next) override {
-      y_next = y;
+    StepResult try_step(const StepProblem&, const Coords& y, double h, double, Coords& increment) override {
+      increment = Coords::Zero(y.size());
       return {false, h / 10.0};
     }
   };
