@@ -1,6 +1,7 @@
 // spinfold-bench: benchmarks with their own command, never part of the test suite.
 #include <CLI/CLI.hpp>
 
+#include "bench/stress.h"
 #include "bench/work_precision.h"
 
 int main(int argc, char** argv) {
@@ -14,7 +15,13 @@ int main(int argc, char** argv) {
   wp_cmd->add_option("--periods", wp.periods, "T in characteristic periods")->capture_default_str();
   wp_cmd->add_option("--target", wp.target_error, "Error at which methods are compared")
       ->capture_default_str();
+  std::vector<std::string> stress_names;
+  double stress_size = 1.0;
+  CLI::App* stress_cmd = app.add_subcommand("stress", "Numerical stability stress suite (long versions)");
+  stress_cmd->add_option("--cases", stress_names, "Case names (default: all)");
+  stress_cmd->add_option("--size", stress_size, "1 = the documented long runs")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   if (wp_cmd->parsed()) return spinfold::bench::run_work_precision(wp);
+  if (stress_cmd->parsed()) return spinfold::bench::run_stress(stress_names, stress_size);
   return 0;
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <functional>
+#include <tuple>
 #include <numbers>
 
 #include "engine/chart.h"
@@ -228,9 +229,11 @@ ExactSolution make_exact_solution(const Scene& scene) {
   ExactSolution sol;
   sol.scene = scene;
   sol.initial = initial_kinematics(scene);
+  const State start = initial_state(scene);
+  sol.chart0 = start.chart;
+  sol.local0 = chart_kinematics(scene, start.y);
   if (const auto* abc = std::get_if<AbcPotential>(&scene.potential.deformation)) sol.internal = *abc;
   if (scene.potential.radial && scene.potential.radial->gamma > 0.0) {
-    const State start = initial_state(scene);  // V_r > 0 keeps the start off the pole: scene's chart
     const InitialState& q = scene.initial;
     const double m = scene.body.mass, K = curvature(scene.surface);
     RadialOrbit o;
@@ -248,37 +251,52 @@ ExactSolution make_exact_solution(const Scene& scene) {
   return sol;
 }
 
-BodyKinematics integrable_flow(const Scene& scene, const AbcPotential& internal, const BodyKinematics& start,
-                               double t) {
+namespace {
+
+// The body-frame part of the integrable flow: the internal motion at a fixed point and the
+// rotation θ_s = −σst/(mR²) against the moved frame (flow of −σs²/(2mR²)).
+std::pair<Mat2, Mat2> frame_flow(const Scene& scene, const AbcPotential& internal, const BodyKinematics& start,
+                                 double t) {
   const Surface& surface = scene.surface;
-  const double m = scene.body.mass, R = surface.radius;
-  BodyKinematics body;
-  body.spin = start.spin;
-  if (surface.kind == SurfaceKind::plane) {
-    body.X = start.X + t * start.V;
-    body.V = start.V;
-    body.F1 = start.F1;
-  } else {
-    const Vec3 momentum =
-        m * start.X.cross(start.V) + curvature(surface) * R * start.spin * raise(surface, start.X);
-    const Mat3 G = orbital_isometry(surface, momentum, m, t);
-    body.X = G * start.X;
-    body.V = G * start.V;
-    body.F1 = G * start.F1;
-  }
-  // Rotation of the body frame against the moved frame (flow of −σs²/(2mR²)).
-  const double theta_s = -curvature_sign(surface) * start.spin * t / (m * R * R);
+  const double theta_s =
+      -curvature_sign(surface) * start.spin * t / (scene.body.mass * surface.radius * surface.radius);
   if (scene.body.model == BodyModel::rigid) {
     const double l0 = scene.initial.lambda;
     const double omega = start.spin / (2.0 * scene.body.inertia * l0 * l0);
-    body.L = rotation2(theta_s + omega * t) * start.L;
-    body.M = omega * epsilon() * body.L;
-    return body;
+    const Mat2 L = rotation2(theta_s + omega * t) * start.L;
+    return {L, omega * epsilon() * L};
   }
   const auto [L, M] = internal_motion(scene.body.inertia, internal, start.L, start.M, t);
   const Mat2 U = rotation2(theta_s);
-  body.L = U * L;
-  body.M = U * M;
+  return {U * L, U * M};
+}
+
+Vec3 momentum_of(const Scene& scene, const BodyKinematics& body) {
+  const Surface& surface = scene.surface;
+  return scene.body.mass * body.X.cross(body.V) +
+         curvature(surface) * surface.radius * body.spin * raise(surface, body.X);
+}
+
+// The isometry the orbit has moved by after time t: X ↦ A X + b.
+Chart orbit_motion(const Scene& scene, const BodyKinematics& start, double t) {
+  Chart g;
+  g.global = false;
+  if (scene.surface.kind == SurfaceKind::plane) g.b = t * start.V;
+  else g.A = orbital_isometry(scene.surface, momentum_of(scene, start), scene.body.mass, t);
+  return g;
+}
+
+}  // namespace
+
+BodyKinematics integrable_flow(const Scene& scene, const AbcPotential& internal, const BodyKinematics& start,
+                               double t) {
+  const Chart g = orbit_motion(scene, start, t);
+  BodyKinematics body;
+  body.spin = start.spin;
+  body.X = g.A * start.X + g.b;
+  body.V = g.A * start.V;
+  body.F1 = g.A * start.F1;
+  std::tie(body.L, body.M) = frame_flow(scene, internal, start, t);
   return body;
 }
 
@@ -322,15 +340,34 @@ State exact_state(const ExactSolution& sol, double t) {
   state.t = t;
   if (sol.radial) {
     state.y = radial_exact_coords(sol, t);
-    if (!chart_well_conditioned(scene.surface, state.y[coord::r])) recentre(scene, state);
+    const double r = state.y[coord::r], R = scene.surface.radius;
+    if (scene.surface.kind == SurfaceKind::pseudosphere && r > 2.0 * R) {
+      // Far out on H²: a chart whose pole lies on the body's own radial geodesic at distance R
+      // behind it (rotation by φ after a boost along x by r − R). The frame (E₁, E₂) is the same
+      // in both charts, so L, P and p_r carry over and only p_φ changes: no e^{r/R} cancels.
+      const double beta = r / R - 1.0, phi = state.y[coord::phi];
+      Mat3 boost, turn;
+      boost << std::cosh(beta), 0, std::sinh(beta), 0, 1, 0, std::sinh(beta), 0, std::cosh(beta);
+      turn << std::cos(phi), -std::sin(phi), 0, std::sin(phi), std::cos(phi), 0, 0, 0, 1;
+      const double m = scene.body.mass, s = sol.radial->spin;
+      const double S_phi_dot = (state.y[coord::p_phi] - polar_C(scene.surface, r) * s) / (m * polar_S(scene.surface, r));
+      state.chart = Chart{turn * boost, Vec3::Zero(), false};
+      state.y[coord::r] = R;
+      state.y[coord::phi] = 0.0;
+      state.y[coord::p_phi] = m * polar_S(scene.surface, R) * S_phi_dot + polar_C(scene.surface, R) * s;
+    } else if (!chart_well_conditioned(scene.surface, r)) {
+      recentre(scene, state);  // near a pole: moderate numbers, the general re-centring is exact
+    }
     return state;
   }
-  const BodyKinematics body = integrable_flow(scene, sol.internal, sol.initial, t);
-  if (chart_well_conditioned(scene.surface, polar_coordinates(scene.surface, body.X).r)) {
-    state.y = chart_coords(scene, body);
-  } else {
-    recentre(scene, body, state.chart, state.y);
-  }
+  // Without V_r: the initial local body, its frame turned and deformed, in the moved chart.
+  const Chart g = orbit_motion(scene, sol.initial, t);
+  state.chart.A = g.A * sol.chart0.A;
+  state.chart.b = g.A * sol.chart0.b + g.b;
+  state.chart.global = t == 0.0 && sol.chart0.global;
+  BodyKinematics local = sol.local0;
+  std::tie(local.L, local.M) = frame_flow(scene, sol.internal, sol.local0, t);
+  state.y = chart_coords(scene, local);
   return state;
 }
 
