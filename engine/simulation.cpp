@@ -110,7 +110,7 @@ void advance_to(Simulation& run, double t_end) {
   Coords increment, y_next;
   if (run.carry.size() != state.y.size()) run.carry = Coords::Zero(state.y.size());
   while (state.status == Status::ok && state.t < t_end) {
-    const double remaining = t_end - state.t;
+    const double remaining = (t_end - state.t) - run.t_carry;  // the true elapsed time is t + carry
     const double h_planned = adaptive ? run.h_next : scene.integrator.dt;
     const bool last = h_planned >= remaining;
     const double h = last ? remaining : h_planned;
@@ -145,7 +145,16 @@ void advance_to(Simulation& run, double t_end) {
     }
     run.carry = corrected - (y_next - state.y);
     state.y = y_next;
-    state.t = last ? t_end : state.t + h;
+    // Time is summed with compensation too: over millions of steps a plain sum drifts by ~Nεt,
+    // and the last step, cut to land on t_end, would absorb that drift as a phase error.
+    if (last) {
+      state.t = t_end;
+      run.t_carry = 0.0;
+    } else {
+      const double dt = h + run.t_carry, t_new = state.t + dt;
+      run.t_carry = dt - (t_new - state.t);
+      state.t = t_new;
+    }
     ++run.steps;
     // A step shortened to land on t_end says nothing about the step the solution allows.
     if (adaptive) run.h_next = (last && h < h_planned) ? h_planned : result.h_next;
