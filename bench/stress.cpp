@@ -1,5 +1,7 @@
 #include "bench/stress.h"
 
+#include "bench/bench_scenes.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,16 +20,6 @@ namespace spinfold::bench {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-// Largest component difference of the embedded states, relative to the length scale.
-double state_error(const Scene& scene, const State& a, const State& b) {
-  const EmbeddedBody x = global_embedding(scene, a), y = global_embedding(scene, b);
-  double e = 0.0;
-  for (const auto& [u, v] : {std::pair{x.X, y.X}, {x.V, y.V}, {x.e[0], y.e[0]}, {x.e[1], y.e[1]},
-                             {x.W[0], y.W[0]}, {x.W[1], y.W[1]}})
-    e = std::max(e, (u - v).cwiseAbs().maxCoeff() / std::max(1.0, v.norm()));
-  return std::isfinite(e) ? e : INFINITY;
-}
 
 // |K⟨X,X⟩ − 1| and the largest |⟨X, v⟩|/(|X||v|) over V, e_A, W_A (the plane: |X₃|, |v₃|).
 std::pair<double, double> constraint_residuals(const Scene& scene, const State& s) {

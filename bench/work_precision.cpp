@@ -53,20 +53,6 @@ double min_seconds(Run&& run) {
   return best;
 }
 
-// Largest component difference of the embedded states (X, V, e_A, W_A).
-double state_error(const Scene& scene, const State& a, const State& b) {
-  const EmbeddedBody x = global_embedding(scene, a), y = global_embedding(scene, b);
-  double e = 0.0;
-  for (const auto& [u, v] : {std::pair{x.X, y.X},
-                             {x.V, y.V},
-                             {x.e[0], y.e[0]},
-                             {x.e[1], y.e[1]},
-                             {x.W[0], y.W[0]},
-                             {x.W[1], y.W[1]}})
-    e = std::max(e, (u - v).cwiseAbs().maxCoeff());
-  return std::isfinite(e) ? e : kInf;
-}
-
 struct Case {
   const BenchScene& bench;
   double t_end;
