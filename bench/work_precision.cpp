@@ -112,14 +112,16 @@ State run_odeint(const Scene& scene, const std::string& stepper, double toleranc
   const double dt0 = 0.01;
   try {
     if (stepper == "odeint_dopri5")
-      odeint::integrate_adaptive(odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_dopri5<OdeState>()),
-                                 system, x, 0.0, t_end, dt0);
+      odeint::integrate_adaptive(
+          odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_dopri5<OdeState>()), system, x,
+          0.0, t_end, dt0);
     else if (stepper == "odeint_fehlberg78")
       odeint::integrate_adaptive(
-          odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_fehlberg78<OdeState>()), system, x, 0.0,
-          t_end, dt0);
+          odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_fehlberg78<OdeState>()), system,
+          x, 0.0, t_end, dt0);
     else
-      odeint::integrate_adaptive(odeint::bulirsch_stoer<OdeState>(tolerance, tolerance), system, x, 0.0, t_end, dt0);
+      odeint::integrate_adaptive(odeint::bulirsch_stoer<OdeState>(tolerance, tolerance), system, x, 0.0,
+                                 t_end, dt0);
   } catch (const std::exception&) {
     state.status = Status::step_failed;  // Odeint gave up on the step size (tolerance below round-off)
     return state;
@@ -171,7 +173,8 @@ void write_plot(const std::filesystem::path& dir, const std::string& scene,
     for (const Point& p : curve)
       if (std::isfinite(p.state_error) && p.state_error > 0)
         dat << p.state_error << " " << p.seconds_per_unit_time << "\n";
-    plot += "'" + file + "' using 1:2 with linespoints title '" + method + "', ";
+    const std::string style = method.starts_with("odeint") ? " dashtype 2" : "";  // competitors dashed
+    plot += "'" + file + "' using 1:2 with linespoints" + style + " title '" + method + "', ";
   }
   gp << plot.substr(0, plot.size() - 2) << "\n";
 }

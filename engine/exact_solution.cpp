@@ -2,8 +2,8 @@
 
 #include <cmath>
 #include <functional>
-#include <tuple>
 #include <numbers>
+#include <tuple>
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
@@ -255,8 +255,8 @@ namespace {
 
 // The body-frame part of the integrable flow: the internal motion at a fixed point and the
 // rotation θ_s = −σst/(mR²) against the moved frame (flow of −σs²/(2mR²)).
-std::pair<Mat2, Mat2> frame_flow(const Scene& scene, const AbcPotential& internal, const BodyKinematics& start,
-                                 double t) {
+std::pair<Mat2, Mat2> frame_flow(const Scene& scene, const AbcPotential& internal,
+                                 const BodyKinematics& start, double t) {
   const Surface& surface = scene.surface;
   const double theta_s =
       -curvature_sign(surface) * start.spin * t / (scene.body.mass * surface.radius * surface.radius);
@@ -281,8 +281,10 @@ Vec3 momentum_of(const Scene& scene, const BodyKinematics& body) {
 Chart orbit_motion(const Scene& scene, const BodyKinematics& start, double t) {
   Chart g;
   g.global = false;
-  if (scene.surface.kind == SurfaceKind::plane) g.b = t * start.V;
-  else g.A = orbital_isometry(scene.surface, momentum_of(scene, start), scene.body.mass, t);
+  if (scene.surface.kind == SurfaceKind::plane)
+    g.b = t * start.V;
+  else
+    g.A = orbital_isometry(scene.surface, momentum_of(scene, start), scene.body.mass, t);
   return g;
 }
 
@@ -350,7 +352,8 @@ State exact_state(const ExactSolution& sol, double t) {
       boost << std::cosh(beta), 0, std::sinh(beta), 0, 1, 0, std::sinh(beta), 0, std::cosh(beta);
       turn << std::cos(phi), -std::sin(phi), 0, std::sin(phi), std::cos(phi), 0, 0, 0, 1;
       const double m = scene.body.mass, s = sol.radial->spin;
-      const double S_phi_dot = (state.y[coord::p_phi] - polar_C(scene.surface, r) * s) / (m * polar_S(scene.surface, r));
+      const double S_phi_dot =
+          (state.y[coord::p_phi] - polar_C(scene.surface, r) * s) / (m * polar_S(scene.surface, r));
       state.chart = Chart{turn * boost, Vec3::Zero(), false};
       state.y[coord::r] = R;
       state.y[coord::phi] = 0.0;

@@ -48,7 +48,7 @@ struct RadialOrbit {
 
 struct ExactSolution {
   Scene scene;
-  BodyKinematics initial;             // in the scene's embedding coordinates
+  BodyKinematics initial;  // in the scene's embedding coordinates
   // The initial state's chart and the body in its coordinates. Without a radial potential the
   // state at t is this local body in the chart moved by the orbit's isometry G(t): the e^{r/R}
   // growth far out on H² stays in the chart and never cancels in the body's coordinates.

@@ -23,9 +23,9 @@ struct Simulation {
   const IntegratorInfo* info = nullptr;    // the integrator that runs (auto resolved)
   std::unique_ptr<Integrator> integrator;  // null when the exact solution runs
   std::optional<ExactSolution> exact;
-  double h_next = 0.0;  // next trial step [time]
-  Coords carry;         // compensated-summation remainder of the state (round-off not yet added)
-  double t_carry = 0.0; // the same for the time [time]
+  double h_next = 0.0;   // next trial step [time]
+  Coords carry;          // compensated-summation remainder of the state (round-off not yet added)
+  double t_carry = 0.0;  // the same for the time [time]
   double initial_energy = 0.0;
   std::vector<DegenerateEvent> events;
   std::uint64_t steps = 0;      // accepted steps

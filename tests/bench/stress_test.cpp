@@ -1,7 +1,7 @@
 // The stress suite's short versions: every case must pass at a small size.
-#include <gtest/gtest.h>
-
 #include "bench/stress.h"
+
+#include <gtest/gtest.h>
 
 namespace spinfold::bench {
 namespace {
@@ -15,7 +15,8 @@ TEST_P(StressShort, Passes) {
   EXPECT_TRUE(r.passed) << r.criterion << "\n" << figures;
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, StressShort, ::testing::ValuesIn(stress_cases().begin(), stress_cases().end()),
+INSTANTIATE_TEST_SUITE_P(Cases, StressShort,
+                         ::testing::ValuesIn(stress_cases().begin(), stress_cases().end()),
                          [](const auto& param) { return std::string(param.param.name); });
 
 }  // namespace
