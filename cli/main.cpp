@@ -1,11 +1,13 @@
 // spinfold: the command line. `simulate` prints JSON Lines samples of a run; `scenes` lists the
 // presets; `integrators` prints the catalog. Bad input: a message on stderr and exit code 2.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -13,8 +15,12 @@
 #include "codec/presets.h"
 #include "codec/sample_json.h"
 #include "codec/scene_json.h"
+#include "engine/chart.h"
 #include "engine/integrator.h"
 #include "engine/simulation.h"
+#include "render/renderer.h"
+#include "render/snapshot.h"
+#include "render/view.h"
 
 namespace {
 
@@ -104,6 +110,89 @@ int simulate(const SimulateOptions& opt) {
   return 0;
 }
 
+struct RenderOptions {
+  SimulateOptions scene;
+  double t = 0.0;
+  std::string view;
+  int width = 640, height = 480;
+  std::string layers = "surface,grid,body,frame,trail,hud";
+  std::string camera;  // "yaw,pitch,distance"; empty: look at the body
+  double scale = 0.25;
+  std::optional<double> trail;  // time span of the trail; default: the whole run
+  std::string out;
+};
+
+render::ViewOptions view_options(const RenderOptions& opt, const Scene& scene) {
+  using namespace render;
+  ViewOptions view;
+  view.kind = default_view(scene.surface.kind);
+  if (!opt.view.empty()) {
+    const auto kind = parse_view(opt.view);
+    if (!kind)
+      throw BadInput{"--view: must be one of sphere, hyperboloid, disk, plane (got '" + opt.view + "')"};
+    view.kind = *kind;
+  }
+  if (const auto why = view_unsupported_reason(view.kind, scene.surface.kind))
+    throw BadInput{"--view: " + *why};
+  if (opt.width < 16 || opt.width > kMaxImageSide || opt.height < 16 || opt.height > kMaxImageSide)
+    throw BadInput{"--width/--height: must be between 16 and 4096 pixels"};
+  view.width = opt.width;
+  view.height = opt.height;
+  std::string unknown;
+  const auto layers = parse_layers(opt.layers, &unknown);
+  if (!layers)
+    throw BadInput{"--layers: unknown layer '" + unknown + "' (surface, grid, body, frame, trail, hud)"};
+  view.layers = *layers;
+  if (!std::isfinite(opt.scale) || !(opt.scale > 0.0)) throw BadInput{"--scale: must be a finite number > 0"};
+  view.scale = opt.scale * scene.surface.radius;
+  if (!opt.camera.empty()) {
+    double yaw = 0, pitch = 0, distance = 0;
+    char extra = 0;
+    if (std::sscanf(opt.camera.c_str(), "%lf,%lf,%lf%c", &yaw, &pitch, &distance, &extra) != 3 ||
+        !(distance > 0) || !std::isfinite(yaw) || !std::isfinite(pitch) || !std::isfinite(distance))
+      throw BadInput{"--camera: must be yaw,pitch,distance (radians, radians, radii > 0)"};
+    view.yaw = yaw;
+    view.pitch = pitch;
+    view.distance = distance;
+  }
+  return view;
+}
+
+int render_frame(const RenderOptions& opt) {
+  if (!std::isfinite(opt.t) || opt.t < 0.0) throw BadInput{"--t: must be a finite number >= 0"};
+  if (opt.out.empty()) throw BadInput{"--out: the PNG file to write is required"};
+  if (opt.trail && (!std::isfinite(*opt.trail) || *opt.trail < 0.0)) throw BadInput{"--trail: must be >= 0"};
+  const Scene scene = load_scene(opt.scene);
+  render::ViewOptions view = view_options(opt, scene);
+
+  Simulation run = start_simulation(scene);
+  std::vector<Vec3> trail;
+  if (view.layers & render::kTrail) {
+    // The trail is recorded only when it is drawn: up to 512 positions over its time span.
+    const double span = std::min(opt.t, opt.trail.value_or(opt.t)), start = opt.t - span;
+    if (start > 0.0) advance_to(run, start);
+    const int samples = span > 0.0 ? 512 : 0;
+    for (int k = 0; k <= samples && run.state.status == Status::ok; ++k) {
+      advance_to(run, start + span * k / std::max(samples, 1));
+      trail.push_back(global_embedding(scene, run.state).X);
+    }
+  }
+  advance_to(run, opt.t);
+  const render::Snapshot snapshot = render::make_snapshot(run, std::move(trail));
+  if (opt.camera.empty()) render::aim_camera_at_body(view, snapshot);
+  render::Renderer renderer;
+  const std::vector<std::uint8_t> png = renderer.render_png(snapshot, view);
+  std::ofstream file(opt.out, std::ios::binary);
+  if (!file) throw BadInput{"--out: cannot write '" + opt.out + "'"};
+  file.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+  if (run.state.status != Status::ok) {
+    std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << status_name(run.state.status)
+              << "\n";
+    return kExitRunStopped;
+  }
+  return 0;
+}
+
 int list_scenes() {
   for (const PresetSource& p : preset_sources()) {
     const SceneParse parsed = parse_scene_text(p.json);
@@ -141,6 +230,21 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("--integrator", sim.integrator, "Override the scene's integrator name");
   simulate_cmd->add_option("--dt", sim.dt, "Override the step (fixed-step) or first trial step");
   simulate_cmd->add_option("--tolerance", sim.tolerance, "Override the error tolerance per step");
+  RenderOptions ren;
+  CLI::App* render_cmd = app.add_subcommand("render", "Render the state at time T as a PNG");
+  render_cmd->add_option("scene_file", ren.scene.scene_file, "Scene JSON file (default: the default preset)");
+  render_cmd->add_option("--scene", ren.scene.preset, "Render an embedded preset by name");
+  render_cmd->add_option("--t", ren.t, "Time of the frame")->capture_default_str();
+  render_cmd->add_option("--view", ren.view, "sphere | hyperboloid | disk | plane (default: by surface)");
+  render_cmd->add_option("--width", ren.width, "Image width [pixels]")->capture_default_str();
+  render_cmd->add_option("--height", ren.height, "Image height [pixels]")->capture_default_str();
+  render_cmd->add_option("--layers", ren.layers, "Comma-separated layers")->capture_default_str();
+  render_cmd->add_option("--camera", ren.camera, "yaw,pitch,distance (3-D views; default: look at the body)");
+  render_cmd->add_option("--scale", ren.scale, "Ellipse display scale [surface radii]")
+      ->capture_default_str();
+  render_cmd->add_option("--trail", ren.trail, "Time span of the trail (default: the whole run)");
+  render_cmd->add_option("--out", ren.out, "PNG file to write");
+  render_cmd->add_option("--integrator", ren.scene.integrator, "Override the scene's integrator name");
   CLI::App* scenes_cmd = app.add_subcommand("scenes", "List the embedded preset scenes");
   CLI::App* integrators_cmd = app.add_subcommand("integrators", "Print the integrator catalog");
 
@@ -157,11 +261,15 @@ int main(int argc, char** argv) {
 
   try {
     if (simulate_cmd->parsed()) return simulate(sim);
+    if (render_cmd->parsed()) return render_frame(ren);
     if (scenes_cmd->parsed()) return list_scenes();
     if (integrators_cmd->parsed()) return list_integrators();
   } catch (const BadInput& e) {
     std::cerr << "spinfold: " << e.message << (e.message.ends_with('\n') ? "" : "\n");
     return kExitBadInput;
+  } catch (const std::runtime_error& e) {
+    std::cerr << "spinfold: " << e.what() << "\n";
+    return 1;
   }
   return 0;
 }

@@ -170,3 +170,45 @@ TEST(Cli, BadSceneFileNamesTheField) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(CliRender, WritesAPngOfTheRequestedSize) {
+  const std::string out =
+      std::filesystem::temp_directory_path() / ("spinfold_frame_" + std::to_string(getpid()) + ".png");
+  const Result r =
+      spinfold("render --scene spinning_rigid_sphere --t 2 --width 320 --height 200 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(out, std::ios::binary);
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 24u);
+  EXPECT_EQ(std::string(bytes.begin() + 1, bytes.begin() + 4), "PNG");
+  const auto be32 = [&](int at) {
+    return (bytes[at] << 24) | (bytes[at + 1] << 16) | (bytes[at + 2] << 8) | bytes[at + 3];
+  };
+  EXPECT_EQ(be32(16), 320);  // IHDR width
+  EXPECT_EQ(be32(20), 200);  // IHDR height
+  std::filesystem::remove(out);
+}
+
+class CliRenderBadInput : public ::testing::TestWithParam<BadArgs> {};
+
+TEST_P(CliRenderBadInput, ExitsTwoWithAMessageAndNoOutput) {
+  const Result r = spinfold(GetParam().args);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_NE(r.err.find(GetParam().message), std::string::npos) << r.err;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Table, CliRenderBadInput,
+    ::testing::Values(
+        BadArgs{"render --scene spinning_rigid_sphere --view hyperboloid --out /tmp/x.png", "--view"},
+        BadArgs{"render --scene spinning_rigid_sphere --view cube --out /tmp/x.png", "--view"},
+        BadArgs{"render --scene spinning_rigid_sphere --width 5000 --out /tmp/x.png", "--width"},
+        BadArgs{"render --scene spinning_rigid_sphere --layers body,glitter --out /tmp/x.png", "glitter"},
+        BadArgs{"render --scene spinning_rigid_sphere --camera 1,2 --out /tmp/x.png", "--camera"},
+        BadArgs{"render --scene spinning_rigid_sphere --t -1 --out /tmp/x.png", "--t"},
+        BadArgs{"render --scene spinning_rigid_sphere", "--out"}));
+
+}  // namespace

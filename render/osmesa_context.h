@@ -1,0 +1,33 @@
+// The one place that owns an off-screen OpenGL context (OSMesa, llvmpipe). A context is bound to
+// the thread that made it current; keep one renderer per thread. Swapping OSMesa for an EGL
+// surfaceless context later touches only this file.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace spinfold::render {
+
+class OsmesaContext {
+ public:
+  // A GL 3.3+ core context with a 24-bit depth buffer (none unless asked: platform-notes.md).
+  // Throws std::runtime_error when OSMesa cannot provide one.
+  OsmesaContext();
+  ~OsmesaContext();
+  OsmesaContext(const OsmesaContext&) = delete;
+  OsmesaContext& operator=(const OsmesaContext&) = delete;
+
+  // Binds an RGBA colour buffer of this size [pixels] to the calling thread (rows top-down).
+  void make_current(int width, int height);
+  // The colour buffer after glFinish: width·height·4 bytes, first row on top.
+  const std::uint8_t* pixels() const { return buffer_.data(); }
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  void* context_ = nullptr;  // OSMesaContext
+  std::vector<std::uint8_t> buffer_;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace spinfold::render

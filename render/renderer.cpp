@@ -1,0 +1,34 @@
+#include "render/renderer.h"
+
+#include "render/png_encoder.h"
+
+namespace spinfold::render {
+
+Renderer::Renderer() {
+  context_.make_current(64, 64);
+  gl_ = std::make_unique<GlRenderer>();
+  render_rgba(FrameScene{}, 64, 64);  // warm-up: compile the shaders' machine code now
+}
+
+Renderer::~Renderer() {
+  hud_.reset();
+  gl_.reset();
+}
+
+const std::uint8_t* Renderer::render_rgba(const FrameScene& scene, int width, int height) {
+  context_.make_current(width, height);
+  gl_->draw(scene, width, height);
+  if (!scene.hud_lines.empty()) {
+    if (!hud_) hud_ = std::make_unique<HudOverlay>();
+    hud_->draw(scene.hud_lines, width, height);
+  }
+  gl_->finish();
+  return context_.pixels();
+}
+
+std::vector<std::uint8_t> Renderer::render_png(const Snapshot& snapshot, const ViewOptions& view) {
+  const FrameScene scene = build_scene(snapshot, view);
+  return encode_png(render_rgba(scene, view.width, view.height), view.width, view.height);
+}
+
+}  // namespace spinfold::render

@@ -1,0 +1,33 @@
+// Snapshot in, image out: owns the context, the GL renderer and the HUD of one thread.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "render/gl_renderer.h"
+#include "render/osmesa_context.h"
+#include "render/overlay.h"
+#include "render/scene_builder.h"
+
+namespace spinfold::render {
+
+class Renderer {
+ public:
+  // Creates the context on the calling thread and warms it up (shader JIT costs the first frame
+  // 20–70 ms: platform-notes.md). Use the renderer only from this thread.
+  Renderer();
+  ~Renderer();
+
+  // Draws the scene; the returned pointer is width·height·4 RGBA bytes, valid until the next call.
+  const std::uint8_t* render_rgba(const FrameScene& scene, int width, int height);
+  // build_scene + render + encode_png.
+  std::vector<std::uint8_t> render_png(const Snapshot& snapshot, const ViewOptions& view);
+
+ private:
+  OsmesaContext context_;
+  std::unique_ptr<GlRenderer> gl_;
+  std::unique_ptr<HudOverlay> hud_;  // created at the first frame that shows the HUD
+};
+
+}  // namespace spinfold::render

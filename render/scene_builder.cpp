@@ -1,0 +1,325 @@
+#include "render/scene_builder.h"
+
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <map>
+#include <mutex>
+#include <numbers>
+
+namespace spinfold::render {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// Colours of the layers.
+const glm::vec4 kGridColor{0.45f, 0.52f, 0.62f, 1.0f};
+const glm::vec4 kEllipseFill{0.96f, 0.55f, 0.12f, 0.55f};
+const glm::vec4 kEllipseLine{0.70f, 0.30f, 0.02f, 1.0f};
+const glm::vec4 kArrowColors[2] = {{0.85f, 0.10f, 0.10f, 1.0f}, {0.10f, 0.60f, 0.15f, 1.0f}};
+const glm::vec4 kTrailColor{0.35f, 0.20f, 0.75f, 1.0f};
+
+// Overlays sit this far (in radii) above the 3-D surfaces so that the depth test keeps them.
+constexpr double kLift = 0.004;
+// Extent of the hyperboloid mesh and of the H² grid [radii].
+constexpr double kHyperboloidExtent = 2.5;
+
+bool three_d(ViewKind view) {
+  return view == ViewKind::sphere || view == ViewKind::hyperboloid;
+}
+
+// The body-frame vector a e₁ + b e₂ and its intrinsic length from the Gram matrix.
+struct FrameVector {
+  Vec3 v;
+  double length;
+};
+FrameVector frame_vector(const Snapshot& s, double a, double b) {
+  const double q = s.gram(0, 0) * a * a + 2.0 * s.gram(0, 1) * a * b + s.gram(1, 1) * b * b;
+  return {a * s.e[0] + b * s.e[1], std::sqrt(std::max(0.0, q))};
+}
+
+Vec3 exp_frame(const Snapshot& s, double a, double b) {
+  const FrameVector f = frame_vector(s, a, b);
+  return exponential_map(s.surface, s.X, f.v, f.length);
+}
+
+// A world point lifted off the 3-D surfaces along the normal.
+glm::dvec3 lifted(ViewKind view, const glm::dvec3& w) {
+  if (view == ViewKind::sphere) return w * (1.0 + kLift);
+  if (view == ViewKind::hyperboloid) {
+    const glm::dvec3 n = glm::normalize(glm::dvec3(-w.x, -w.y, w.z + 1.0));
+    return w + kLift * n;
+  }
+  return w;
+}
+
+glm::vec3 to_float(const glm::dvec3& w) {
+  return glm::vec3(w);
+}
+
+void add_segment(std::vector<Vertex>& lines, const glm::dvec3& a, const glm::dvec3& b,
+                 const glm::vec4& color) {
+  lines.push_back({to_float(a), color});
+  lines.push_back({to_float(b), color});
+}
+
+// A polyline through embedded points, mapped and lifted.
+void add_polyline(std::vector<Vertex>& lines, const Surface& surface, ViewKind view,
+                  const std::vector<Vec3>& points, const glm::vec4& color, bool closed) {
+  for (std::size_t i = 0; i + 1 < points.size() + (closed ? 1 : 0); ++i) {
+    const Vec3& a = points[i];
+    const Vec3& b = points[(i + 1) % points.size()];
+    add_segment(lines, lifted(view, world_position(surface, view, a)),
+                lifted(view, world_position(surface, view, b)), color);
+  }
+}
+
+// Points along the geodesic-like path between two nearby embedded points (chords pushed back onto
+// the surface), so that a trail follows the surface instead of cutting through it.
+void append_path(std::vector<Vec3>& out, const Surface& surface, const Vec3& a, const Vec3& b) {
+  const double R = surface.radius;
+  if (std::max(a.norm(), b.norm()) > 1e3 * R) {  // far out on H²: η-norms cancel; a chord will do
+    out.push_back(b);
+    return;
+  }
+  const double gap = (b - a).norm() / std::max(R, std::max(a.norm(), b.norm()) * 1e-3);
+  const int n = std::clamp(static_cast<int>(std::ceil(gap / 0.03)), 1, 16);
+  for (int i = 1; i <= n; ++i) {
+    Vec3 p = a + (b - a) * (static_cast<double>(i) / n);
+    if (surface.kind == SurfaceKind::sphere)
+      p *= R / p.norm();
+    else if (surface.kind == SurfaceKind::pseudosphere)
+      p *= R / std::sqrt(std::max(1e-300, -dot(surface, p, p)));
+    out.push_back(p);
+  }
+}
+
+StaticGeometry build_static(SurfaceKind kind, ViewKind view) {
+  StaticGeometry g;
+  const Surface unit{kind, 1.0};
+  const auto add_quad = [&](const LitVertex& a, const LitVertex& b, const LitVertex& c, const LitVertex& d) {
+    g.surface.insert(g.surface.end(), {a, b, c, a, c, d});
+  };
+  const auto grid_curve = [&](auto point_at, int segments) {
+    std::vector<Vec3> pts;
+    for (int i = 0; i <= segments; ++i) pts.push_back(point_at(static_cast<double>(i) / segments));
+    add_polyline(g.grid, unit, view, pts, kGridColor, false);
+  };
+  if (view == ViewKind::sphere) {
+    const int slices = 64, stacks = 32;
+    const auto vertex = [](double theta, double phi) {
+      const glm::dvec3 p(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+      return LitVertex{to_float(p), to_float(p)};
+    };
+    for (int i = 0; i < stacks; ++i)
+      for (int j = 0; j < slices; ++j) {
+        const double t0 = kPi * i / stacks, t1 = kPi * (i + 1) / stacks;
+        const double p0 = 2 * kPi * j / slices, p1 = 2 * kPi * (j + 1) / slices;
+        add_quad(vertex(t0, p0), vertex(t1, p0), vertex(t1, p1), vertex(t0, p1));
+      }
+    for (int k = 1; k < 12; ++k)  // parallels every 15°
+      grid_curve([&](double s) { return chart_point(unit, kPi * k / 12, 2 * kPi * s).X; }, 96);
+    for (int k = 0; k < 12; ++k)  // meridians every 30°
+      grid_curve([&](double s) { return chart_point(unit, kPi * s, 2 * kPi * k / 12).X; }, 48);
+    return g;
+  }
+  if (view == ViewKind::hyperboloid) {
+    const int rings = 24, slices = 64;
+    const auto vertex = [&](double r, double phi) {
+      const Vec3 X = chart_point(unit, r, phi).X;
+      const glm::dvec3 w = world_position(unit, view, X);
+      return LitVertex{to_float(w), to_float(glm::normalize(glm::dvec3(-X.x(), -X.y(), X.z())))};
+    };
+    for (int i = 0; i < rings; ++i)
+      for (int j = 0; j < slices; ++j) {
+        const double r0 = kHyperboloidExtent * i / rings, r1 = kHyperboloidExtent * (i + 1) / rings;
+        const double p0 = 2 * kPi * j / slices, p1 = 2 * kPi * (j + 1) / slices;
+        add_quad(vertex(r0, p0), vertex(r1, p0), vertex(r1, p1), vertex(r0, p1));
+      }
+  }
+  if (view == ViewKind::hyperboloid || (view == ViewKind::disk && kind == SurfaceKind::pseudosphere)) {
+    // Geodesic polar grid: circles r = 0.5, 1, … and radial geodesics every 30°.
+    const double extent = view == ViewKind::hyperboloid ? kHyperboloidExtent : 6.0;
+    for (double r = 0.5; r <= extent + 1e-9; r += 0.5)
+      grid_curve([&](double s) { return chart_point(unit, r, 2 * kPi * s).X; }, 128);
+    for (int k = 0; k < 12; ++k)
+      grid_curve([&](double s) { return chart_point(unit, extent * s, 2 * kPi * k / 12).X; }, 64);
+  }
+  if (view == ViewKind::disk) {
+    const double radius = kind == SurfaceKind::pseudosphere ? 1.0 : 3.0;
+    const int slices = 128;
+    for (int j = 0; j < slices; ++j) {
+      const double p0 = 2 * kPi * j / slices, p1 = 2 * kPi * (j + 1) / slices;
+      const LitVertex c{{0, 0, 0}, {0, 0, 1}};
+      g.surface.push_back(c);
+      g.surface.push_back({glm::vec3(radius * std::cos(p0), radius * std::sin(p0), 0), {0, 0, 1}});
+      g.surface.push_back({glm::vec3(radius * std::cos(p1), radius * std::sin(p1), 0), {0, 0, 1}});
+    }
+    if (kind == SurfaceKind::sphere) {
+      for (int k = 1; k < 10; ++k)  // parallels down to 150°
+        grid_curve([&](double s) { return chart_point(unit, kPi * k / 12, 2 * kPi * s).X; }, 128);
+      for (int k = 0; k < 12; ++k)
+        grid_curve([&](double s) { return chart_point(unit, kPi * 0.8 * s, 2 * kPi * k / 12).X; }, 64);
+    } else {
+      for (int j = 0; j < slices; ++j) {  // the rim
+        const double p0 = 2 * kPi * j / slices, p1 = 2 * kPi * (j + 1) / slices;
+        add_segment(g.grid, {std::cos(p0), std::sin(p0), 0}, {std::cos(p1), std::sin(p1), 0}, kGridColor);
+      }
+    }
+  }
+  if (view == ViewKind::plane) {
+    add_quad({{-4, -4, 0}, {0, 0, 1}}, {{4, -4, 0}, {0, 0, 1}}, {{4, 4, 0}, {0, 0, 1}},
+             {{-4, 4, 0}, {0, 0, 1}});
+    for (int k = -8; k <= 8; ++k) {
+      add_segment(g.grid, {0.5 * k, -4, 0}, {0.5 * k, 4, 0}, kGridColor);
+      add_segment(g.grid, {-4, 0.5 * k, 0}, {4, 0.5 * k, 0}, kGridColor);
+    }
+  }
+  return g;
+}
+
+glm::mat4 camera(const ViewOptions& view) {
+  const double aspect = static_cast<double>(view.width) / view.height;
+  if (three_d(view.kind)) {
+    const glm::dvec3 target = view.kind == ViewKind::hyperboloid ? glm::dvec3(0, 0, 1.6) : glm::dvec3(0);
+    const glm::dvec3 dir(std::cos(view.pitch) * std::cos(view.yaw), std::cos(view.pitch) * std::sin(view.yaw),
+                         std::sin(view.pitch));
+    const glm::dvec3 eye = target + view.distance * dir;
+    const glm::dvec3 up = std::abs(dir.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+    return glm::mat4(glm::perspective(glm::radians(35.0), aspect, 0.05, 100.0) *
+                     glm::lookAt(eye, target, up));
+  }
+  const double half = view.kind == ViewKind::disk ? 1.08 : 4.0;  // the unit disk, or the plane's ±4
+  const double hx = aspect >= 1 ? half * aspect : half, hy = aspect >= 1 ? half : half / aspect;
+  return glm::mat4(glm::ortho(-hx, hx, -hy, hy, -1.0, 1.0));
+}
+
+}  // namespace
+
+const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view) {
+  static std::mutex mutex;
+  static std::map<std::pair<SurfaceKind, ViewKind>, StaticGeometry> cache;
+  const std::lock_guard lock(mutex);
+  auto it = cache.find({surface, view});
+  if (it == cache.end()) it = cache.emplace(std::pair{surface, view}, build_static(surface, view)).first;
+  return it->second;
+}
+
+Vec3 exponential_map(const Surface& surface, const Vec3& X, const Vec3& v, double length) {
+  if (length == 0.0 || surface.kind == SurfaceKind::plane) return X + v;
+  return polar_C(surface, length) * X + (polar_S(surface, length) / length) * v;
+}
+
+glm::dvec3 world_position(const Surface& surface, ViewKind view, const Vec3& X) {
+  const double R = surface.radius;
+  switch (view) {
+    case ViewKind::sphere: return glm::dvec3(X.x(), X.y(), X.z()) / R;
+    case ViewKind::hyperboloid: return glm::dvec3(X.x() / R, X.y() / R, X.z() / R - 1.0);
+    case ViewKind::disk: {
+      // Poincaré disk (H²) or stereographic projection from the south pole (S²): (X₁, X₂)/(R + X₃).
+      // Far out on H² both grow like e^{r/R} and the ratio stays below 1 without overflow.
+      const double d = R + X.z();
+      return glm::dvec3(X.x() / d, X.y() / d, 0.0);
+    }
+    case ViewKind::plane: return glm::dvec3(X.x() / R, X.y() / R, 0.0);
+  }
+  return {};
+}
+
+std::vector<Vec3> ellipse_points(const Snapshot& snapshot, double scale, int count) {
+  std::vector<Vec3> points;
+  points.reserve(count);
+  for (int i = 0; i < count; ++i) {
+    const double theta = 2 * kPi * i / count;
+    points.push_back(exp_frame(snapshot, scale * std::cos(theta), scale * std::sin(theta)));
+  }
+  return points;
+}
+
+FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
+  FrameScene scene;
+  const Surface& surface = snapshot.surface;
+  const ViewKind kind = view.kind;
+  scene.draw_surface = (view.layers & kSurface) != 0;
+  scene.draw_grid = (view.layers & kGrid) != 0;
+  if (scene.draw_surface || scene.draw_grid) scene.statics = &static_geometry(surface.kind, kind);
+  scene.view_projection = camera(view);
+  scene.depth_test = three_d(kind);
+  if (surface.kind == SurfaceKind::pseudosphere) scene.surface_color = {0.83f, 0.86f, 0.78f, 1.0f};
+
+  if (view.layers & kTrail && snapshot.trail.size() >= 2) {
+    std::vector<Vec3> path{snapshot.trail.front()};
+    for (std::size_t i = 1; i < snapshot.trail.size(); ++i)
+      append_path(path, surface, snapshot.trail[i - 1], snapshot.trail[i]);
+    add_polyline(scene.lines, surface, kind, path, kTrailColor, false);
+  }
+  if (view.layers & kBody) {
+    const std::vector<Vec3> outline = ellipse_points(snapshot, view.scale, 64);
+    // The fill follows the surface: rings at 1/8, 2/8, … of the way out (a flat fan would sink
+    // below the sphere's surface and vanish under the depth test).
+    constexpr int kRings = 8;
+    const auto ring_point = [&](int ring, std::size_t i) {
+      const double theta = 2 * kPi * static_cast<double>(i % outline.size()) / outline.size();
+      const double f = view.scale * ring / kRings;
+      return to_float(lifted(
+          kind,
+          world_position(surface, kind, exp_frame(snapshot, f * std::cos(theta), f * std::sin(theta)))));
+    };
+    for (int ring = 0; ring < kRings; ++ring)
+      for (std::size_t i = 0; i < outline.size(); ++i) {
+        const glm::vec3 a = ring_point(ring, i), b = ring_point(ring + 1, i), c = ring_point(ring + 1, i + 1),
+                        d = ring_point(ring, i + 1);
+        scene.fills.insert(scene.fills.end(), {{a, kEllipseFill}, {b, kEllipseFill}, {c, kEllipseFill}});
+        if (ring > 0)
+          scene.fills.insert(scene.fills.end(), {{a, kEllipseFill}, {c, kEllipseFill}, {d, kEllipseFill}});
+      }
+    add_polyline(scene.lines, surface, kind, outline, kEllipseLine, true);
+  }
+  if (view.layers & kFrame) {
+    for (int a = 0; a < 2; ++a) {
+      std::vector<Vec3> shaft;
+      for (int i = 0; i <= 16; ++i) {
+        const double f = view.scale * 1.3 * i / 16;
+        shaft.push_back(exp_frame(snapshot, a == 0 ? f : 0.0, a == 0 ? 0.0 : f));
+      }
+      add_polyline(scene.lines, surface, kind, shaft, kArrowColors[a], false);
+      // Arrowhead in world space: two barbs back from the tip, in the surface's tangent plane.
+      const glm::dvec3 tip = lifted(kind, world_position(surface, kind, shaft.back()));
+      const glm::dvec3 before = lifted(kind, world_position(surface, kind, shaft[12]));
+      const glm::dvec3 back = before - tip;
+      if (glm::length(back) > 0.0) {
+        const glm::dvec3 normal = kind == ViewKind::sphere ? glm::normalize(tip)
+                                  : kind == ViewKind::hyperboloid
+                                      ? glm::normalize(glm::dvec3(-tip.x, -tip.y, tip.z + 1.0))
+                                      : glm::dvec3(0, 0, 1);
+        const glm::dvec3 side = 0.45 * glm::length(back) * glm::normalize(glm::cross(normal, back));
+        add_segment(scene.lines, tip, before + side, kArrowColors[a]);
+        add_segment(scene.lines, tip, before - side, kArrowColors[a]);
+      }
+    }
+  }
+  if (view.layers & kHud) scene.hud_lines = snapshot.hud_lines;
+  return scene;
+}
+
+void aim_camera_at_body(ViewOptions& view, const Snapshot& snapshot) {
+  if (view.kind == ViewKind::sphere) {
+    const Vec3 n = snapshot.X.normalized();
+    view.yaw = std::atan2(n.y(), n.x());
+    view.pitch = std::clamp(std::asin(n.z()), -1.3, 1.3);
+  } else if (view.kind == ViewKind::hyperboloid) {
+    view.distance = 15.0;
+    view.pitch = 0.55;
+    if (snapshot.X.head<2>().norm() > 0.0) view.yaw = std::atan2(snapshot.X.y(), snapshot.X.x()) + kPi;
+  }
+}
+
+std::optional<glm::dvec2> pixel_position(const FrameScene& scene, const ViewOptions& view,
+                                         const glm::dvec3& world) {
+  const glm::dvec4 clip = glm::dmat4(scene.view_projection) * glm::dvec4(world, 1.0);
+  if (clip.w <= 0.0) return std::nullopt;
+  const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
+  return glm::dvec2((ndc.x + 1.0) * 0.5 * view.width, (1.0 - ndc.y) * 0.5 * view.height);
+}
+
+}  // namespace spinfold::render

@@ -1,0 +1,66 @@
+// build_scene: a snapshot and a view in, plain draw lists out. No GL: everything here is testable
+// without a context (physics of the drawing, not pixels).
+#pragma once
+
+#include <array>
+#include <glm/glm.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "render/snapshot.h"
+#include "render/view.h"
+
+namespace spinfold::render {
+
+struct Vertex {
+  glm::vec3 position;  // world coordinates (embedding / R, see world_position)
+  glm::vec4 color;     // RGBA in [0, 1]
+};
+
+struct LitVertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+};
+
+// Geometry that depends only on the surface kind and the view: built once and reused.
+struct StaticGeometry {
+  std::vector<LitVertex> surface;  // triangles, lit
+  std::vector<Vertex> grid;        // line segments
+};
+const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view);
+
+struct FrameScene {
+  const StaticGeometry* statics = nullptr;  // null when neither surface nor grid is drawn
+  bool draw_surface = false, draw_grid = false;
+  std::vector<Vertex> fills;           // translucent triangles (the ellipse)
+  std::vector<Vertex> lines;           // line segments (trail, outline, arrows)
+  std::vector<std::string> hud_lines;  // empty when the HUD is off
+  glm::mat4 view_projection{1.0f};
+  bool depth_test = true;  // 3-D views hide what is behind the surface
+  glm::vec4 surface_color{0.78f, 0.83f, 0.90f, 1.0f};
+  glm::vec4 clear_color{0.97f, 0.97f, 0.96f, 1.0f};
+};
+
+FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view);
+
+// The camera of the 3-D views placed to show the body: above it on the sphere, across the bowl
+// from it on the hyperboloid (whose default distance and pitch frame the grid's extent).
+void aim_camera_at_body(ViewOptions& view, const Snapshot& snapshot);
+
+// Points of the body's ellipse on the surface: exp_X(scale·(cos θ e₁ + sin θ e₂)), embedding
+// coordinates (exposed for tests).
+std::vector<Vec3> ellipse_points(const Snapshot& snapshot, double scale, int count);
+
+// exp_X(v) on the surface for a tangent v at X of intrinsic length |v| (passed in: far out on H²
+// it cannot be computed from v's embedded components).
+Vec3 exponential_map(const Surface& surface, const Vec3& X, const Vec3& v, double length);
+
+// Where an embedded point lands in the view's world coordinates.
+glm::dvec3 world_position(const Surface& surface, ViewKind view, const Vec3& X);
+
+// Its pixel position (x right, y down) and whether it is in front of the camera.
+std::optional<glm::dvec2> pixel_position(const FrameScene& scene, const ViewOptions& view,
+                                         const glm::dvec3& world);
+
+}  // namespace spinfold::render

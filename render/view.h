@@ -1,0 +1,53 @@
+// What a frame shows and how: the view, the layers and the camera. Plain data, no GL.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "engine/surface.h"
+
+namespace spinfold::render {
+
+enum class ViewKind {
+  sphere,       // the 3-D sphere, orbiting camera
+  hyperboloid,  // the upper sheet of the hyperboloid model of H², orbiting camera
+  disk,         // Poincaré disk (H²) or stereographic plane (S²), 2-D
+  plane,        // the flat plane, 2-D
+};
+
+// Layers, each on or off per frame; an unselected layer costs nothing.
+enum Layer : unsigned {
+  kSurface = 1u << 0,  // shaded surface
+  kGrid = 1u << 1,     // geodesic grid
+  kBody = 1u << 2,     // the deformed-frame ellipse
+  kFrame = 1u << 3,    // the frame arrows e₁, e₂
+  kTrail = 1u << 4,    // the path on the surface
+  kHud = 1u << 5,      // text overlay (Dear ImGui)
+  kAllLayers = 63u,
+};
+
+struct ViewOptions {
+  ViewKind kind = ViewKind::sphere;
+  int width = 640;   // [pixels]
+  int height = 480;  // [pixels]
+  unsigned layers = kAllLayers;
+  double yaw = 0.7;       // camera azimuth [rad] (3-D views)
+  double pitch = 0.45;    // camera elevation [rad] (3-D views)
+  double distance = 3.4;  // camera distance [surface radii] (3-D views)
+  double scale = 0.25;    // display scale: the ellipse is the image of scale·(unit circle) under e_A
+};
+
+inline constexpr int kMaxImageSide = 4096;
+
+// The view a surface is shown in by default: sphere → sphere, pseudosphere → disk, plane → plane.
+ViewKind default_view(SurfaceKind surface);
+// Why a view cannot show a surface, or nullopt.
+std::optional<std::string> view_unsupported_reason(ViewKind view, SurfaceKind surface);
+
+std::optional<ViewKind> parse_view(std::string_view name);
+std::string_view view_name(ViewKind view);
+// "surface,grid,body" → bitmask; nullopt names the first unknown layer in `unknown`.
+std::optional<unsigned> parse_layers(std::string_view list, std::string* unknown = nullptr);
+
+}  // namespace spinfold::render

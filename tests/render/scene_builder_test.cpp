@@ -1,0 +1,102 @@
+// build_scene without GL: the geometry of the drawing.
+#include "render/scene_builder.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "engine/chart.h"
+
+namespace spinfold::render {
+namespace {
+
+// A body at chart point (r, φ) with L = diag(λ, μ) in the paper's frame.
+Snapshot body_at(SurfaceKind kind, double R, double r, double phi, double lambda, double mu) {
+  Snapshot s;
+  s.surface = {kind, R};
+  const ChartPoint p = chart_point(s.surface, r, phi);
+  s.X = p.X;
+  s.e[0] = lambda * p.E1;
+  s.e[1] = mu * p.E2;
+  s.gram << lambda * lambda, 0.0, 0.0, mu * mu;
+  return s;
+}
+
+double geodesic_distance(const Surface& surface, const Vec3& a, const Vec3& b) {
+  const double R = surface.radius, c = dot(surface, a, b) / (R * R);
+  return surface.kind == SurfaceKind::sphere ? R * std::acos(std::clamp(c, -1.0, 1.0))
+                                             : R * std::acosh(std::max(1.0, -c));
+}
+
+TEST(SceneBuilder, EllipseLiesOnTheSurfaceCentredOnTheBodyWithTheAxesOfL) {
+  for (SurfaceKind kind : {SurfaceKind::sphere, SurfaceKind::pseudosphere}) {
+    const Snapshot s = body_at(kind, 2.0, 1.3, 0.4, 1.5, 0.5);
+    const double scale = 0.2;
+    const std::vector<Vec3> points = ellipse_points(s, scale, 64);
+    for (const Vec3& P : points) EXPECT_NEAR(curvature(s.surface) * dot(s.surface, P, P), 1.0, 1e-12);
+    // Opposite points are geodesically symmetric about the body: equal distances, and their sum
+    // is parallel to X.
+    for (int i = 0; i < 32; ++i) {
+      const Vec3 sum = points[i] + points[i + 32];
+      EXPECT_LT(sum.cross(s.X).norm(), 1e-12 * sum.norm() * s.X.norm());
+      EXPECT_NEAR(geodesic_distance(s.surface, s.X, points[i]),
+                  geodesic_distance(s.surface, s.X, points[i + 32]), 1e-12);
+    }
+    // Semi-axes: scale·λ along e₁ (θ = 0), scale·μ along e₂ (θ = π/2).
+    EXPECT_NEAR(geodesic_distance(s.surface, s.X, points[0]), scale * 1.5, 1e-12);
+    EXPECT_NEAR(geodesic_distance(s.surface, s.X, points[16]), scale * 0.5, 1e-12);
+  }
+}
+
+TEST(SceneBuilder, UnselectedLayersCostNothing) {
+  const Snapshot s = body_at(SurfaceKind::sphere, 1.0, 1.0, 0.0, 1.0, 1.0);
+  ViewOptions view;
+  view.layers = 0;
+  const FrameScene none = build_scene(s, view);
+  EXPECT_EQ(none.statics, nullptr);
+  EXPECT_TRUE(none.fills.empty());
+  EXPECT_TRUE(none.lines.empty());
+  EXPECT_TRUE(none.hud_lines.empty());
+  view.layers = kBody;
+  EXPECT_FALSE(build_scene(s, view).fills.empty());
+  EXPECT_TRUE(build_scene(s, view).hud_lines.empty());
+}
+
+TEST(SceneBuilder, StaticGeometryIsBuiltOncePerSurfaceAndView) {
+  const StaticGeometry& a = static_geometry(SurfaceKind::sphere, ViewKind::sphere);
+  const StaticGeometry& b = static_geometry(SurfaceKind::sphere, ViewKind::sphere);
+  EXPECT_EQ(&a, &b);
+  EXPECT_FALSE(a.surface.empty());
+  EXPECT_FALSE(a.grid.empty());
+  EXPECT_NE(&a, &static_geometry(SurfaceKind::sphere, ViewKind::disk));
+}
+
+TEST(SceneBuilder, FarOutOnH2TheDiskViewDrawsNearTheRimWithoutOverflow) {
+  const Snapshot s = body_at(SurfaceKind::pseudosphere, 1.0, 50.0, 0.3, 1.0, 1.0);
+  ViewOptions view;
+  view.kind = ViewKind::disk;
+  const glm::dvec3 w = world_position(s.surface, view.kind, s.X);
+  EXPECT_TRUE(std::isfinite(w.x) && std::isfinite(w.y));
+  EXPECT_LE(glm::length(w), 1.0);  // 1 − |p| = 2e^{−50}: the rim, to double precision
+  EXPECT_GT(glm::length(w), 1.0 - 1e-9);
+  EXPECT_NEAR(std::atan2(w.y, w.x), 0.3, 1e-12);
+  const FrameScene scene = build_scene(s, view);
+  ASSERT_FALSE(scene.fills.empty());
+  for (const auto* list : {&scene.fills, &scene.lines})
+    for (const Vertex& v : *list) EXPECT_TRUE(std::isfinite(v.position.x) && std::isfinite(v.position.y));
+}
+
+TEST(SceneBuilder, ViewsMatchSurfaces) {
+  EXPECT_FALSE(view_unsupported_reason(ViewKind::sphere, SurfaceKind::sphere));
+  EXPECT_FALSE(view_unsupported_reason(ViewKind::disk, SurfaceKind::pseudosphere));
+  EXPECT_TRUE(view_unsupported_reason(ViewKind::hyperboloid, SurfaceKind::sphere));
+  EXPECT_TRUE(view_unsupported_reason(ViewKind::sphere, SurfaceKind::plane));
+  std::string unknown;
+  EXPECT_EQ(parse_layers("body,trail", &unknown), kBody | kTrail);
+  EXPECT_FALSE(parse_layers("body,sparkles", &unknown));
+  EXPECT_EQ(unknown, "sparkles");
+}
+
+}  // namespace
+}  // namespace spinfold::render
