@@ -1,6 +1,7 @@
 // spinfold-bench: benchmarks with their own command, never part of the test suite.
 #include <CLI/CLI.hpp>
 
+#include "bench/render_bench.h"
 #include "bench/stress.h"
 #include "bench/work_precision.h"
 
@@ -20,7 +21,11 @@ int main(int argc, char** argv) {
   CLI::App* stress_cmd = app.add_subcommand("stress", "Numerical stability stress suite (long versions)");
   stress_cmd->add_option("--cases", stress_names, "Case names (default: all)");
   stress_cmd->add_option("--size", stress_size, "1 = the documented long runs")->capture_default_str();
+  int render_frames = 30;
+  CLI::App* render_cmd = app.add_subcommand("render", "Frame cost against the bare OSMesa + libpng loop");
+  render_cmd->add_option("--frames", render_frames, "Frames per measurement (median)")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  if (render_cmd->parsed()) return spinfold::bench::run_render_bench(render_frames);
   if (wp_cmd->parsed()) return spinfold::bench::run_work_precision(wp);
   if (stress_cmd->parsed()) return spinfold::bench::run_stress(stress_names, stress_size);
   return 0;

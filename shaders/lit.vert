@@ -1,10 +1,15 @@
 #version 330 core
-// The surface: positions in world units, normals for Lambert shading.
+// The surface: Lambert shading per vertex (Gouraud), two-sided, with an ambient floor; the light
+// comes from the camera's side. Per-vertex lighting keeps the fragment work at one interpolation.
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 uniform mat4 view_projection;
-out vec3 v_normal;
+uniform vec4 color;
+uniform vec3 light_direction;
+uniform float ambient;
+out vec4 v_color;
 void main() {
-  v_normal = normal;
+  float diffuse = abs(dot(normal, light_direction));
+  v_color = vec4(color.rgb * (ambient + (1.0 - ambient) * diffuse), color.a);
   gl_Position = view_projection * vec4(position, 1.0);
 }

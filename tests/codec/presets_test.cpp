@@ -53,6 +53,17 @@ TEST(Presets, PseudosphereSpinningBodyClosesACircleTurningAgainstItsSpin) {
   EXPECT_LT((global_embedding(scene, run.state).X - b0.X).norm(), 1e-8);
 }
 
+TEST(Presets, OnThePlaneTheSpinningBodyGoesStraight) {
+  const Scene scene = preset("spinning_rigid_plane");
+  Simulation run = start_simulation(scene);
+  const EmbeddedBody b0 = global_embedding(scene, run.state);
+  EXPECT_GT(spin(scene, run.state), 0.1);
+  for (int k = 1; k <= 5; ++k) {
+    advance_to(run, 2.0 * k);
+    EXPECT_LT((global_embedding(scene, run.state).X - (b0.X + run.state.t * b0.V)).norm(), 1e-12);
+  }
+}
+
 TEST(Presets, PoleCrossingPassesThroughThePole) {
   const Scene scene = preset("pole_crossing_sphere");
   Simulation run = start_simulation(scene);

@@ -168,7 +168,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Golden{"sphere", "spinning_rigid_sphere", ViewKind::sphere},
                       Golden{"hyperboloid", "spinning_rigid_pseudosphere", ViewKind::hyperboloid},
                       Golden{"disk", "spinning_rigid_pseudosphere", ViewKind::disk},
-                      Golden{"stereographic", "breathing_ellipse_sphere", ViewKind::disk}),
+                      Golden{"stereographic", "breathing_ellipse_sphere", ViewKind::disk},
+                      Golden{"plane", "spinning_rigid_plane", ViewKind::plane}),
     [](const auto& param) { return std::string(param.param.name); });
 
 }  // namespace

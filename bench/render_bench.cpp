@@ -1,0 +1,108 @@
+#include "bench/render_bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <vector>
+
+#include "bench/bare_render_loop.h"
+#include "engine/chart.h"
+#include "engine/simulation.h"
+#include "render/png_encoder.h"
+#include "render/renderer.h"
+
+namespace spinfold::bench {
+
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+// A deforming, spinning body on the sphere with a 513-point trail.
+render::Snapshot bench_snapshot() {
+  Scene scene;
+  scene.surface = {SurfaceKind::sphere, 1.0};
+  scene.body = {1.0, 0.2, BodyModel::affine};
+  scene.potential.deformation = AbcPotential{0.0, 0.0, 0.5};
+  scene.initial = {1.2, 0.0, 0.2, 0.0, 1.3, 0.7, 0.0, 0.3, 0.8, 0.0, 0.0, 0.0};
+  Simulation run = start_simulation(scene);
+  std::vector<Vec3> trail;
+  for (int k = 0; k <= 512; ++k) {
+    advance_to(run, 20.0 * k / 512);
+    trail.push_back(global_embedding(scene, run.state).X);
+  }
+  return render::make_snapshot(run, std::move(trail));
+}
+
+}  // namespace
+
+int run_render_bench(int frames) {
+  const render::Snapshot snapshot = bench_snapshot();
+  render::Renderer renderer;
+  struct Size {
+    int w, h;
+  };
+  struct LayerSet {
+    const char* name;
+    unsigned layers;
+  };
+  const Size sizes[] = {{640, 480}, {1024, 768}, {1920, 1080}};
+  const LayerSet sets[] = {{"all layers", render::kAllLayers},
+                           {"no trail, no HUD", render::kSurface | render::kGrid | render::kBody | render::kFrame},
+                           {"body only", render::kBody}};
+  std::printf("| size | layers | triangles | segments | build ms | render ms | encode ms | frame ms | bare render ms | "
+              "bare encode ms | frame / bare |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+  for (const Size& size : sizes) {
+    double all_ms = 0.0;
+    for (const LayerSet& set : sets) {
+      render::ViewOptions view;
+      view.width = size.w;
+      view.height = size.h;
+      view.layers = set.layers;
+      render::aim_camera_at_body(view, snapshot);
+      std::vector<double> build, draw, encode;
+      render::FrameScene scene;
+      for (int f = 0; f < frames + 2; ++f) {
+        auto t = std::chrono::steady_clock::now();
+        scene = render::build_scene(snapshot, view);
+        const double b = ms_since(t);
+        t = std::chrono::steady_clock::now();
+        const std::uint8_t* rgba = renderer.render_rgba(scene, view.width, view.height);
+        const double d = ms_since(t);
+        t = std::chrono::steady_clock::now();
+        const std::vector<std::uint8_t> png = render::encode_png(rgba, view.width, view.height);
+        const double e = ms_since(t);
+        if (f >= 2) build.push_back(b), draw.push_back(d), encode.push_back(e);
+      }
+      const int triangles = static_cast<int>(((scene.statics && scene.draw_surface) ? scene.statics->surface.size() : 0) / 3 +
+                                             scene.fills.size() / 3);
+      const int segments = static_cast<int>(((scene.statics && scene.draw_grid) ? scene.statics->grid.size() : 0) / 2 +
+                                            scene.lines.size() / 2);
+      // The same vertices for the bare loop.
+      std::vector<float> tri, lin;
+      if (scene.statics && scene.draw_surface)
+        for (const auto& v : scene.statics->surface) tri.insert(tri.end(), {v.position.x, v.position.y, v.position.z});
+      for (const auto& v : scene.fills) tri.insert(tri.end(), {v.position.x, v.position.y, v.position.z});
+      if (scene.statics && scene.draw_grid)
+        for (const auto& v : scene.statics->grid) lin.insert(lin.end(), {v.position.x, v.position.y, v.position.z});
+      for (const auto& v : scene.lines) lin.insert(lin.end(), {v.position.x, v.position.y, v.position.z});
+      const BareTimings bare = bare_render_loop(size.w, size.h, tri, lin, &scene.view_projection[0][0], frames);
+      const double frame = median(build) + median(draw) + median(encode);
+      if (set.layers == render::kAllLayers) all_ms = frame;
+      std::printf("| %dx%d | %s | %d | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", size.w, size.h,
+                  set.name, triangles, segments, median(build), median(draw), median(encode), frame, bare.render_ms,
+                  bare.encode_ms, frame / (bare.render_ms + bare.encode_ms));
+      if (set.layers != render::kAllLayers && set.layers != render::kBody)
+        std::printf("| | all layers / no trail, no HUD | | | | | | %.2f× | | | |\n", all_ms / frame);
+    }
+  }
+  return 0;
+}
+
+}  // namespace spinfold::bench
