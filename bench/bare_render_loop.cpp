@@ -17,8 +17,9 @@ namespace spinfold::bench {
 namespace {
 
 const char* kVertex =
-    "#version 330 core\nlayout(location=0) in vec3 p;\nuniform mat4 m;\nvoid main(){gl_Position=m*vec4(p,1.0);}\n";
-const char* kFragment = "#version 330 core\nout vec4 f;\nvoid main(){f=vec4(0.8,0.5,0.2,1.0);}\n";
+    "#version 330 core\nlayout(location=0) in vec3 p;\nlayout(location=1) in vec4 c;\nuniform mat4 m;\nout vec4 v;\n"
+    "void main(){v=c;gl_Position=m*vec4(p,1.0);}\n";
+const char* kFragment = "#version 330 core\nin vec4 v;\nout vec4 f;\nvoid main(){f=v;}\n";
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -52,7 +53,8 @@ std::vector<unsigned char> encode(const unsigned char* rgba, int w, int h) {
 
 }  // namespace
 
-BareTimings bare_render_loop(int width, int height, const std::vector<float>& tri, const std::vector<float>& lin,
+BareTimings bare_render_loop(int width, int height, const std::vector<float>& opaque,
+                             const std::vector<float>& translucent, const std::vector<float>& lines,
                              const float* view_projection, int frames) {
   const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
                             OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
@@ -70,30 +72,39 @@ BareTimings bare_render_loop(int width, int height, const std::vector<float>& tr
     glAttachShader(program, s);
   }
   glLinkProgram(program);
-  GLuint vao[2], vbo[2];
-  glGenVertexArrays(2, vao);
-  glGenBuffers(2, vbo);
-  const std::vector<float>* data[2] = {&tri, &lin};
-  for (int k = 0; k < 2; ++k) {
+  GLuint vao[3], vbo[3];
+  glGenVertexArrays(3, vao);
+  glGenBuffers(3, vbo);
+  const std::vector<float>* data[3] = {&opaque, &translucent, &lines};
+  for (int k = 0; k < 3; ++k) {
     glBindVertexArray(vao[k]);
     glBindBuffer(GL_ARRAY_BUFFER, vbo[k]);
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data[k]->size() * sizeof(float)), data[k]->data(), GL_STATIC_DRAW);
     glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 28, nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 28, reinterpret_cast<void*>(12));
   }
   std::vector<double> render, enc;
   for (int f = 0; f < frames + 2; ++f) {
     const auto t0 = std::chrono::steady_clock::now();
     glViewport(0, 0, width, height);
-    glClearColor(1, 1, 1, 1);
+    glClearColor(0.97f, 0.97f, 0.96f, 1.0f);
     glEnable(GL_DEPTH_TEST);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glUseProgram(program);
     glUniformMatrix4fv(glGetUniformLocation(program, "m"), 1, GL_FALSE, view_projection);
     glBindVertexArray(vao[0]);
-    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(tri.size() / 3));
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(opaque.size() / 7));
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
     glBindVertexArray(vao[1]);
-    glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(lin.size() / 3));
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(translucent.size() / 7));
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glBindVertexArray(vao[2]);
+    glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(lines.size() / 7));
     glFinish();
     const auto t1 = std::chrono::steady_clock::now();
     const std::vector<unsigned char> png = encode(buffer.data(), width, height);
@@ -103,8 +114,8 @@ BareTimings bare_render_loop(int width, int height, const std::vector<float>& tr
       enc.push_back(std::chrono::duration<double, std::milli>(t2 - t1).count());
     }
   }
-  glDeleteBuffers(2, vbo);
-  glDeleteVertexArrays(2, vao);
+  glDeleteBuffers(3, vbo);
+  glDeleteVertexArrays(3, vao);
   glDeleteProgram(program);
   OSMesaDestroyContext(context);
   return {median(render), median(enc)};

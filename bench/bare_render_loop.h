@@ -12,10 +12,12 @@ struct BareTimings {
   double encode_ms = 0.0;  // PNG encoding, median
 };
 
-// Draws the given triangle and line-segment vertices (x, y, z triples, world coordinates) through
-// `view_projection` (column-major 4x4) with one flat shader: the same geometry and screen coverage
-// as the frame, none of its shading, blending, state changes or overlay.
-BareTimings bare_render_loop(int width, int height, const std::vector<float>& triangles,
-                             const std::vector<float>& lines, const float* view_projection, int frames);
+// Draws opaque triangles, translucent triangles and line segments given as (x, y, z, r, g, b, a)
+// vertices in world coordinates through `view_projection` (column-major 4x4) with one
+// pass-through shader: the same pixels as the frame (colours precomputed, the surface's lighting
+// included), none of the frame's machinery (scene building, programs, uniforms, caches, overlay).
+BareTimings bare_render_loop(int width, int height, const std::vector<float>& opaque,
+                             const std::vector<float>& translucent, const std::vector<float>& lines,
+                             const float* view_projection, int frames);
 
 }  // namespace spinfold::bench

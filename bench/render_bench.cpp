@@ -1,6 +1,7 @@
 #include "bench/render_bench.h"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <vector>
@@ -8,6 +9,8 @@
 #include "bench/bare_render_loop.h"
 #include "engine/chart.h"
 #include "engine/simulation.h"
+#include <glm/glm.hpp>
+
 #include "render/png_encoder.h"
 #include "render/renderer.h"
 
@@ -84,15 +87,25 @@ int run_render_bench(int frames) {
                                              scene.fills.size() / 3);
       const int segments = static_cast<int>(((scene.statics && scene.draw_grid) ? scene.statics->grid.size() : 0) / 2 +
                                             scene.lines.size() / 2);
-      // The same vertices for the bare loop.
-      std::vector<float> tri, lin;
-      if (scene.statics && scene.draw_surface)
-        for (const auto& v : scene.statics->surface) tri.insert(tri.end(), {v.position.x, v.position.y, v.position.z});
-      for (const auto& v : scene.fills) tri.insert(tri.end(), {v.position.x, v.position.y, v.position.z});
+      // The same pixels for the bare loop: vertices with their final colours (the surface's
+      // per-vertex lighting computed here once, as lit.vert does).
+      std::vector<float> opaque, translucent, lines;
+      const auto put = [](std::vector<float>& out, const glm::vec3& p, const glm::vec4& c) {
+        out.insert(out.end(), {p.x, p.y, p.z, c.r, c.g, c.b, c.a});
+      };
+      if (scene.statics && scene.draw_surface) {
+        const glm::vec3 light = glm::normalize(glm::vec3(glm::inverse(scene.view_projection) * glm::vec4(0, 0, -1, 0)));
+        for (const auto& v : scene.statics->surface) {
+          const float shade = 0.35f + 0.65f * std::abs(glm::dot(v.normal, light));
+          put(opaque, v.position, glm::vec4(glm::vec3(scene.surface_color) * shade, 1.0f));
+        }
+      }
+      for (const auto& v : scene.fills) put(translucent, v.position, v.color);
       if (scene.statics && scene.draw_grid)
-        for (const auto& v : scene.statics->grid) lin.insert(lin.end(), {v.position.x, v.position.y, v.position.z});
-      for (const auto& v : scene.lines) lin.insert(lin.end(), {v.position.x, v.position.y, v.position.z});
-      const BareTimings bare = bare_render_loop(size.w, size.h, tri, lin, &scene.view_projection[0][0], frames);
+        for (const auto& v : scene.statics->grid) put(lines, v.position, v.color);
+      for (const auto& v : scene.lines) put(lines, v.position, v.color);
+      const BareTimings bare =
+          bare_render_loop(size.w, size.h, opaque, translucent, lines, &scene.view_projection[0][0], frames);
       const double frame = median(build) + median(draw) + median(encode);
       if (set.layers == render::kAllLayers) all_ms = frame;
       std::printf("| %dx%d | %s | %d | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", size.w, size.h,
