@@ -21,6 +21,7 @@
 #include "render/renderer.h"
 #include "render/snapshot.h"
 #include "render/view.h"
+#include "server/api.h"
 
 namespace {
 
@@ -193,6 +194,23 @@ int render_frame(const RenderOptions& opt) {
   return 0;
 }
 
+int serve(const server::ServerOptions& options) {
+  if (options.port < 0 || options.port > 65535) throw BadInput{"--port: must be 0..65535"};
+  if (options.threads < 2 || options.threads > 256) throw BadInput{"--threads: must be 2..256"};
+  server::ApiServer api(options);
+  const int port = api.bind();
+  if (port < 0) {
+    std::cerr << "spinfold: cannot listen on " << options.host << ":" << options.port << "\n";
+    return 1;
+  }
+  const std::string id = api.create_session(*parse_scene_text(find_preset(kDefaultPreset)->json).scene);
+  const std::string base = "http://" + options.host + ":" + std::to_string(port);
+  std::cout << "Spinfold " << SPINFOLD_VERSION << " serving on " << base << "/\n"
+            << "  default scene '" << kDefaultPreset << "': " << base << "/api/v1/sessions/" << id << "\n"
+            << "  its frame:  " << base << "/api/v1/sessions/" << id << "/frame.png" << std::endl;
+  return api.listen() ? 0 : 1;
+}
+
 int list_scenes() {
   for (const PresetSource& p : preset_sources()) {
     const SceneParse parsed = parse_scene_text(p.json);
@@ -245,6 +263,11 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--trail", ren.trail, "Time span of the trail (default: the whole run)");
   render_cmd->add_option("--out", ren.out, "PNG file to write");
   render_cmd->add_option("--integrator", ren.scene.integrator, "Override the scene's integrator name");
+  server::ServerOptions serve_opt;
+  CLI::App* serve_cmd = app.add_subcommand("serve", "Serve the HTTP API with a session on the default scene");
+  serve_cmd->add_option("--host", serve_opt.host, "Address to bind")->capture_default_str();
+  serve_cmd->add_option("--port", serve_opt.port, "Port (0: any free port)")->capture_default_str();
+  serve_cmd->add_option("--threads", serve_opt.threads, "HTTP worker threads")->capture_default_str();
   CLI::App* scenes_cmd = app.add_subcommand("scenes", "List the embedded preset scenes");
   CLI::App* integrators_cmd = app.add_subcommand("integrators", "Print the integrator catalog");
 
@@ -262,6 +285,7 @@ int main(int argc, char** argv) {
   try {
     if (simulate_cmd->parsed()) return simulate(sim);
     if (render_cmd->parsed()) return render_frame(ren);
+    if (serve_cmd->parsed()) return serve(serve_opt);
     if (scenes_cmd->parsed()) return list_scenes();
     if (integrators_cmd->parsed()) return list_integrators();
   } catch (const BadInput& e) {

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The main job: install what is missing, build, and run the default scene.
-# Extra arguments replace the default run, e.g. scripts/run.sh simulate --scene pole_crossing_sphere
+# The main job: install what is missing, build, and serve the HTTP API with a session on the
+# embedded default scene (it prints the URLs to open). Extra arguments replace the default, e.g.
+#   scripts/run.sh simulate --scene pole_crossing_sphere
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -11,4 +12,4 @@ cmake --build build --target spinfold
 if (($#)); then
   exec build/spinfold "$@"
 fi
-exec build/spinfold simulate --t-end 10 --every 0.5
+exec build/spinfold serve

@@ -1,0 +1,406 @@
+#include "server/api.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "codec/presets.h"
+#include "codec/sample_json.h"
+#include "codec/scene_json.h"
+#include "engine/integrator.h"
+#include "render/snapshot.h"
+#include "render/view.h"
+#include "server/render_worker.h"
+#include "server/sessions.h"
+
+// After Eigen: httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's parameter names.
+#include <httplib.h>
+
+#ifndef SPINFOLD_VERSION
+#define SPINFOLD_VERSION "0.0.0"
+#endif
+
+namespace spinfold::server {
+
+namespace {
+
+using nlohmann::json;
+using nlohmann::ordered_json;
+
+// An error a handler reports: mapped to application/problem+json in one place (send_error).
+struct ApiError {
+  int status;
+  std::string title;
+  std::vector<FieldError> errors;
+  std::string retry_after;  // seconds, for 429/503
+};
+
+ApiError bad(int status, const std::string& title, const std::string& field, const std::string& value,
+             const std::string& reason) {
+  return {status, title, {{field, value, reason}}, ""};
+}
+
+void send_error(httplib::Response& res, const ApiError& e) {
+  ordered_json body{{"type", "about:blank"}, {"title", e.title}, {"status", e.status}};
+  std::string detail;
+  json errors = json::array();
+  for (const FieldError& f : e.errors) {
+    errors.push_back({{"field", f.field}, {"value", f.value}, {"reason", f.reason}});
+    detail += (detail.empty() ? "" : "; ") + (f.field.empty() ? std::string() : f.field + ": ") + f.reason;
+  }
+  body["detail"] = detail;
+  body["errors"] = errors;
+  res.status = e.status;
+  if (!e.retry_after.empty()) res.set_header("Retry-After", e.retry_after);
+  res.body = body.dump();
+  res.set_header("Content-Type", "application/problem+json");
+}
+
+void send_json(httplib::Response& res, const ordered_json& body, int status = 200) {
+  res.status = status;
+  res.body = body.dump();
+  res.set_header("Content-Type", "application/json");
+}
+
+std::string provenance(const Session& s) {
+  return std::string("version=") + SPINFOLD_VERSION + "; integrator=" + std::string(s.run.info->name) +
+         "; tolerance=" + std::to_string(s.scene.integrator.tolerance);
+}
+
+// The JSON body of a request: Content-Type application/json, well-formed, nested at most 32 deep.
+json parse_body(const httplib::Request& req) {
+  const std::string type = req.get_header_value("Content-Type");
+  if (type.rfind("application/json", 0) != 0)
+    throw bad(415, "Unsupported media type", "Content-Type", type, "must be application/json");
+  try {
+    const json::parser_callback_t guard = [](int depth, json::parse_event_t, json&) {
+      if (depth > kMaxJsonDepth) throw std::length_error("nesting");
+      return true;
+    };
+    return json::parse(req.body, guard);
+  } catch (const std::length_error&) {
+    throw bad(400, "Malformed request", "", "",
+              "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+  } catch (const json::exception& e) {
+    throw bad(400, "Malformed request", "", "", std::string("malformed JSON: ") + e.what());
+  }
+}
+
+double number_field(const json& body, const char* key) {
+  const auto it = body.find(key);
+  if (!it->is_number()) throw bad(422, "Invalid value", key, it->dump(), "must be a number");
+  const double v = it->get<double>();
+  if (!std::isfinite(v)) throw bad(422, "Invalid value", key, it->dump(), "must be finite");
+  return v;
+}
+
+ordered_json session_json(const std::string& id, const Session& s) {
+  ordered_json j;
+  j["id"] = id;
+  j["state"] = sample_to_json(s.run, {});
+  j["scene"] = scene_to_json(s.scene);
+  return j;
+}
+
+}  // namespace
+
+struct ApiServer::State {
+  ServerOptions options;
+  httplib::Server http;
+  SessionStore sessions;
+  RenderWorker renderer;
+
+  explicit State(ServerOptions o)
+      : options(std::move(o)), sessions(options.limits.max_sessions, options.limits.idle_expiry) {}
+
+  std::shared_ptr<Session> session(const std::string& id) {
+    auto s = sessions.find(id);
+    if (!s) throw bad(404, "Unknown session", "id", id, "no session with this id (it may have expired)");
+    return s;
+  }
+
+  // Runs a handler, mapping ApiError to problem+json; every response carries the version.
+  template <typename Handler>
+  httplib::Server::Handler wrap(Handler handler) {
+    return [handler](const httplib::Request& req, httplib::Response& res) {
+      res.set_header("X-Spinfold-Version", SPINFOLD_VERSION);
+      try {
+        handler(req, res);
+      } catch (const ApiError& e) {
+        send_error(res, e);
+      }
+    };
+  }
+
+  void routes();
+};
+
+void ApiServer::State::routes() {
+  const std::string api = "/api/v1";
+  const std::string sid = "/sessions/([0-9a-f]{1,32})";
+
+  http.Get(api + "/health", wrap([this](const httplib::Request&, httplib::Response& res) {
+             send_json(res, {{"status", "ok"}, {"version", SPINFOLD_VERSION}, {"sessions", sessions.size()}});
+           }));
+
+  http.Get(api + "/scenes", wrap([](const httplib::Request&, httplib::Response& res) {
+             ordered_json list = ordered_json::array();
+             for (const PresetSource& p : preset_sources()) {
+               const SceneParse parsed = parse_scene_text(p.json);
+               list.push_back({{"name", std::string(p.name)},
+                               {"description", parsed.scene ? parsed.scene->description : ""},
+                               {"scene", json::parse(p.json)}});
+             }
+             send_json(res, list);
+           }));
+
+  http.Get(api + "/integrators", wrap([](const httplib::Request&, httplib::Response& res) {
+             ordered_json list = ordered_json::array();
+             for (const CatalogEntry& e : integrator_catalog())
+               list.push_back({{"name", std::string(e.info.name)},
+                               {"order", e.info.order},
+                               {"symplectic", e.info.symplectic},
+                               {"adaptive", e.info.adaptive},
+                               {"exact", e.info.exact},
+                               {"summary", std::string(e.info.summary)}});
+             send_json(res, list);
+           }));
+
+  http.Post(api + "/sessions", wrap([this, api](const httplib::Request& req, httplib::Response& res) {
+              json body = parse_body(req);
+              SceneParse parsed;
+              if (body.is_object() && body.size() == 1 && body.contains("preset")) {
+                const json& name = body["preset"];
+                const PresetSource* p = name.is_string() ? find_preset(name.get<std::string>()) : nullptr;
+                if (!p)
+                  throw bad(422, "Unknown preset", "preset", name.dump(),
+                            "is not a preset (GET /api/v1/scenes)");
+                parsed = parse_scene_text(p->json);
+              } else {
+                parsed = parse_scene(body);
+              }
+              if (!parsed.scene) throw ApiError{422, "Invalid scene", parsed.errors, ""};
+              std::string id;
+              const auto session = sessions.create(*parsed.scene, id);
+              if (!session)
+                throw ApiError{
+                    503, "Too many sessions", {{"", "", "the session limit is reached; retry later"}}, "30"};
+              const std::lock_guard lock(session->mutex);
+              res.set_header("Location", api + "/sessions/" + id);
+              res.set_header("X-Spinfold-Provenance", provenance(*session));
+              send_json(res, session_json(id, *session), 201);
+            }));
+
+  http.Get(api + sid, wrap([this](const httplib::Request& req, httplib::Response& res) {
+             const auto s = session(req.matches[1]);
+             const std::lock_guard lock(s->mutex);
+             res.set_header("X-Spinfold-Provenance", provenance(*s));
+             send_json(res, session_json(req.matches[1], *s));
+           }));
+
+  http.Delete(api + sid, wrap([this](const httplib::Request& req, httplib::Response& res) {
+                if (!sessions.erase(req.matches[1]))
+                  throw bad(404, "Unknown session", "id", req.matches[1], "no session with this id");
+                res.status = 204;
+              }));
+
+  http.Post(
+      api + sid + "/advance", wrap([this](const httplib::Request& req, httplib::Response& res) {
+        const auto s = session(req.matches[1]);
+        const json body = parse_body(req);
+        if (!body.is_object())
+          throw bad(400, "Malformed request", "", body.dump(), "the body must be a JSON object");
+        for (const auto& [key, value] : body.items())
+          if (key != "until" && key != "steps")
+            throw bad(422, "Invalid value", key, value.dump(), "is not a known field (until, steps)");
+        if (body.contains("until") == body.contains("steps"))
+          throw bad(422, "Invalid value", "until", body.dump(), "give exactly one of until or steps");
+        const Limits& limits = options.limits;
+        const std::lock_guard lock(s->mutex);
+        double target = 0.0;
+        if (body.contains("until")) {
+          target = number_field(body, "until");
+          if (target < s->run.state.t)
+            throw bad(422, "Invalid value", "until", body["until"].dump(), "is before the session's time");
+        } else {
+          const double steps = number_field(body, "steps");
+          if (steps < 1 || steps != std::floor(steps))
+            throw bad(422, "Invalid value", "steps", body["steps"].dump(), "must be a whole number >= 1");
+          if (steps > static_cast<double>(limits.max_steps))
+            throw bad(422, "Over a limit", "steps", body["steps"].dump(),
+                      "exceeds the limit of " + std::to_string(limits.max_steps) + " steps per request");
+          target = s->run.state.t + steps * s->scene.integrator.dt;
+        }
+        if (target - s->run.state.t > limits.max_advance_time)
+          throw bad(
+              422, "Over a limit", "until", std::to_string(target),
+              "advances more than " + std::to_string(limits.max_advance_time) + " time units in one request");
+        if (!s->run.info->adaptive && !s->run.info->exact &&
+            (target - s->run.state.t) / s->scene.integrator.dt > static_cast<double>(limits.max_steps))
+          throw bad(422, "Over a limit", "until", std::to_string(target),
+                    "needs more than " + std::to_string(limits.max_steps) + " fixed steps in one request");
+        advance_to(s->run, target);
+        record_sample(*s);
+        res.set_header("X-Spinfold-Provenance", provenance(*s));
+        send_json(res, session_json(req.matches[1], *s));
+      }));
+
+  http.Post(api + sid + "/reset", wrap([this](const httplib::Request& req, httplib::Response& res) {
+              const auto s = session(req.matches[1]);
+              const std::lock_guard lock(s->mutex);
+              s->run = start_simulation(s->scene);
+              s->trajectory.clear();
+              s->trail.clear();
+              s->reported_events = 0;
+              record_sample(*s);
+              send_json(res, session_json(req.matches[1], *s));
+            }));
+
+  http.Get(api + sid + "/trajectory", wrap([this](const httplib::Request& req, httplib::Response& res) {
+             const auto s = session(req.matches[1]);
+             const std::string format = req.has_param("format") ? req.get_param_value("format") : "json";
+             if (format != "json" && format != "csv")
+               throw bad(422, "Invalid value", "format", format, "must be json or csv");
+             const std::lock_guard lock(s->mutex);
+             if (format == "json") {
+               send_json(res, ordered_json(s->trajectory));
+               return;
+             }
+             std::ostringstream csv;
+             csv.precision(17);
+             csv << "t,r,phi,lambda,mu,det_L,energy,energy_error,X0,X1,X2,status\n";
+             const auto cell = [](const ordered_json& v) { return v.is_null() ? std::string() : v.dump(); };
+             for (const ordered_json& row : s->trajectory)
+               csv << cell(row["t"]) << "," << cell(row["r"]) << "," << cell(row["phi"]) << ","
+                   << cell(row["lambda"]) << "," << cell(row["mu"]) << "," << cell(row["det_L"]) << ","
+                   << cell(row["energy"]) << "," << cell(row["energy_error"]) << "," << cell(row["X"][0])
+                   << "," << cell(row["X"][1]) << "," << cell(row["X"][2]) << ","
+                   << row["status"].get<std::string>() << "\n";
+             res.body = csv.str();
+             res.set_header("Content-Type", "text/csv");
+           }));
+
+  http.Get(api + sid + "/frame.png", wrap([this](const httplib::Request& req, httplib::Response& res) {
+             const auto s = session(req.matches[1]);
+             render::ViewOptions view;
+             {
+               const std::lock_guard lock(s->mutex);
+               view.kind = render::default_view(s->scene.surface.kind);
+             }
+             const auto param = [&](const char* key) {
+               return req.has_param(key) ? std::optional<std::string>(req.get_param_value(key))
+                                         : std::nullopt;
+             };
+             const auto integer = [&](const char* key, int& out) {
+               if (const auto v = param(key)) {
+                 char* end = nullptr;
+                 const long n = std::strtol(v->c_str(), &end, 10);
+                 if (v->empty() || *end || n < 16 || n > options.limits.max_image_side)
+                   throw bad(422, "Invalid value", key, *v,
+                             "must be a whole number of pixels from 16 to " +
+                                 std::to_string(options.limits.max_image_side));
+                 out = static_cast<int>(n);
+               }
+             };
+             integer("width", view.width);
+             integer("height", view.height);
+             if (const auto v = param("view")) {
+               const auto kind = render::parse_view(*v);
+               if (!kind)
+                 throw bad(422, "Invalid value", "view", *v, "must be sphere, hyperboloid, disk or plane");
+               view.kind = *kind;
+             }
+             if (const auto v = param("layers")) {
+               std::string unknown;
+               const auto mask = render::parse_layers(*v, &unknown);
+               if (!mask) throw bad(422, "Invalid value", "layers", *v, "unknown layer '" + unknown + "'");
+               view.layers = *mask;
+             }
+             double scale = 0.25;
+             if (const auto v = param("scale")) {
+               char* end = nullptr;
+               scale = std::strtod(v->c_str(), &end);
+               if (v->empty() || *end || !std::isfinite(scale) || !(scale > 0.0) || scale > 10.0)
+                 throw bad(422, "Invalid value", "scale", *v, "must be a number in (0, 10]");
+             }
+             render::Snapshot snapshot;
+             std::uint64_t version = 0;
+             {
+               const std::lock_guard lock(s->mutex);
+               if (const auto why = render::view_unsupported_reason(view.kind, s->scene.surface.kind))
+                 throw bad(422, "Invalid value", "view", std::string(render::view_name(view.kind)), *why);
+               view.scale = scale * s->scene.surface.radius;
+               version = s->version;
+               std::vector<Vec3> trail;
+               if (view.layers & render::kTrail) trail = s->trail;  // copied only when drawn
+               snapshot = render::make_snapshot(s->run, std::move(trail));
+             }
+             render::aim_camera_at_body(view, snapshot);
+             // The ETag names the state and every parameter of the picture: a match renders nothing.
+             char etag[128];
+             std::snprintf(etag, sizeof etag, "\"%s-%llu-%d-%dx%d-%u-%.17g\"", req.matches[1].str().c_str(),
+                           static_cast<unsigned long long>(version), static_cast<int>(view.kind), view.width,
+                           view.height, view.layers, scale);
+             res.set_header("ETag", etag);
+             res.set_header("Cache-Control", "no-cache");
+             if (req.get_header_value("If-None-Match") == etag) {
+               res.status = 304;
+               return;
+             }
+             try {
+               const std::vector<std::uint8_t> png = renderer.render(std::move(snapshot), view).get();
+               res.body.assign(png.begin(), png.end());
+             } catch (const std::exception& e) {
+               throw ApiError{503, "Rendering unavailable", {{"", "", e.what()}}, "5"};
+             }
+             res.set_header("Content-Type", "image/png");
+           }));
+
+  http.set_error_handler([](const httplib::Request&, httplib::Response& res) {
+    if (!res.body.empty()) return;
+    const int status = res.status;
+    send_error(res, {status,
+                     status == 413   ? "Payload too large"
+                     : status == 404 ? "Not found"
+                                     : "Error",
+                     {{"", "",
+                       status == 413   ? "the request body exceeds the server's limit"
+                       : status == 404 ? "no such resource"
+                                       : "request failed"}},
+                     ""});
+  });
+}
+
+ApiServer::ApiServer(ServerOptions options) : state_(std::make_unique<State>(std::move(options))) {
+  auto& http = state_->http;
+  http.set_tcp_nodelay(true);  // without it every small response waits ~40 ms (platform-notes.md)
+  http.set_payload_max_length(state_->options.limits.max_body_bytes);
+  const int threads = state_->options.threads;
+  http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
+  state_->routes();
+}
+
+ApiServer::~ApiServer() {
+  stop();
+}
+
+int ApiServer::bind() {
+  const ServerOptions& o = state_->options;
+  if (o.port == 0) return state_->http.bind_to_any_port(o.host);
+  return state_->http.bind_to_port(o.host, o.port) ? o.port : -1;
+}
+
+bool ApiServer::listen() {
+  return state_->http.listen_after_bind();
+}
+
+std::string ApiServer::create_session(const Scene& scene) {
+  std::string id;
+  return state_->sessions.create(scene, id) ? id : std::string();
+}
+
+void ApiServer::stop() {
+  if (state_) state_->http.stop();
+}
+
+}  // namespace spinfold::server

@@ -1,0 +1,269 @@
+// The HTTP API in-process on 127.0.0.1 with an ephemeral port and a real HTTP client.
+#include "server/api.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <thread>
+
+// After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
+#include <httplib.h>
+
+namespace spinfold::server {
+namespace {
+
+using nlohmann::json;
+
+class Api : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    ServerOptions options;
+    options.port = 0;
+    options.threads = 8;
+    options.limits.max_sessions = 6;
+    options.limits.max_body_bytes = 16 * 1024;
+    options.limits.max_steps = 100000;
+    server_ = new ApiServer(options);
+    port_ = server_->bind();
+    ASSERT_GT(port_, 0);
+    thread_ = new std::thread([] { server_->listen(); });
+  }
+  static void TearDownTestSuite() {
+    server_->stop();
+    thread_->join();
+    delete thread_;
+    delete server_;
+  }
+
+  static httplib::Client client() {
+    httplib::Client c("127.0.0.1", port_);
+    c.set_read_timeout(30, 0);
+    return c;
+  }
+  static std::string create(const std::string& body) {
+    auto res = client().Post("/api/v1/sessions", body, "application/json");
+    EXPECT_TRUE(res);
+    EXPECT_EQ(res->status, 201) << res->body;
+    return json::parse(res->body)["id"];
+  }
+  static void remove(const std::string& id) { client().Delete("/api/v1/sessions/" + id); }
+
+  static ApiServer* server_;
+  static std::thread* thread_;
+  static int port_;
+};
+
+ApiServer* Api::server_ = nullptr;
+std::thread* Api::thread_ = nullptr;
+int Api::port_ = 0;
+
+TEST_F(Api, HealthScenesAndIntegrators) {
+  auto c = client();
+  auto health = c.Get("/api/v1/health");
+  ASSERT_TRUE(health);
+  EXPECT_EQ(health->status, 200);
+  EXPECT_EQ(json::parse(health->body)["status"], "ok");
+  EXPECT_FALSE(health->get_header_value("X-Spinfold-Version").empty());
+  auto scenes = c.Get("/api/v1/scenes");
+  ASSERT_TRUE(scenes);
+  EXPECT_GE(json::parse(scenes->body).size(), 8u);
+  auto integrators = c.Get("/api/v1/integrators");
+  ASSERT_TRUE(integrators);
+  bool has_exact = false;
+  for (const auto& e : json::parse(integrators->body)) has_exact = has_exact || e["name"] == "exact";
+  EXPECT_TRUE(has_exact);
+}
+
+TEST_F(Api, SessionLifecycle) {
+  auto c = client();
+  auto created = c.Post("/api/v1/sessions", R"({"preset": "separable_radial_abc"})", "application/json");
+  ASSERT_TRUE(created);
+  ASSERT_EQ(created->status, 201);
+  const json body = json::parse(created->body);
+  const std::string id = body["id"];
+  EXPECT_EQ(created->get_header_value("Location"), "/api/v1/sessions/" + id);
+  EXPECT_NE(created->get_header_value("X-Spinfold-Provenance").find("integrator=exact"), std::string::npos);
+  EXPECT_EQ(body["state"]["t"], 0.0);
+
+  auto advanced = c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 2})", "application/json");
+  ASSERT_TRUE(advanced);
+  ASSERT_EQ(advanced->status, 200) << advanced->body;
+  const json state = json::parse(advanced->body)["state"];
+  EXPECT_NEAR(state["r"].get<double>(), 1.650073264590784, 1e-12);  // physics.md W5
+
+  auto got = c.Get("/api/v1/sessions/" + id);
+  ASSERT_TRUE(got);
+  EXPECT_EQ(json::parse(got->body)["state"], state);
+
+  auto steps = c.Post("/api/v1/sessions/" + id + "/advance", R"({"steps": 10})", "application/json");
+  ASSERT_TRUE(steps);
+  EXPECT_NEAR(json::parse(steps->body)["state"]["t"].get<double>(), 2.1, 1e-12);  // 10 × dt 0.01
+
+  auto csv = c.Get("/api/v1/sessions/" + id + "/trajectory?format=csv");
+  ASSERT_TRUE(csv);
+  EXPECT_EQ(csv->get_header_value("Content-Type"), "text/csv");
+  EXPECT_EQ(std::count(csv->body.begin(), csv->body.end(), '\n'), 4);  // header + 3 samples
+  auto trajectory = c.Get("/api/v1/sessions/" + id + "/trajectory");
+  ASSERT_TRUE(trajectory);
+  EXPECT_EQ(json::parse(trajectory->body).size(), 3u);
+
+  auto reset = c.Post("/api/v1/sessions/" + id + "/reset", "{}", "application/json");
+  ASSERT_TRUE(reset);
+  EXPECT_EQ(json::parse(reset->body)["state"]["t"], 0.0);
+
+  auto deleted = c.Delete("/api/v1/sessions/" + id);
+  ASSERT_TRUE(deleted);
+  EXPECT_EQ(deleted->status, 204);
+  EXPECT_EQ(c.Get("/api/v1/sessions/" + id)->status, 404);
+}
+
+TEST_F(Api, FrameWithEtagAnd304) {
+  const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
+  auto c = client();
+  auto frame = c.Get("/api/v1/sessions/" + id + "/frame.png?width=320&height=240&layers=surface,body");
+  ASSERT_TRUE(frame);
+  ASSERT_EQ(frame->status, 200) << frame->body;
+  EXPECT_EQ(frame->get_header_value("Content-Type"), "image/png");
+  EXPECT_EQ(frame->body.substr(1, 3), "PNG");
+  const std::string etag = frame->get_header_value("ETag");
+  ASSERT_FALSE(etag.empty());
+  auto again = c.Get("/api/v1/sessions/" + id + "/frame.png?width=320&height=240&layers=surface,body",
+                     {{"If-None-Match", etag}});
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->status, 304);
+  EXPECT_TRUE(again->body.empty());
+  // A new state is a new picture.
+  c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 1})", "application/json");
+  auto moved = c.Get("/api/v1/sessions/" + id + "/frame.png?width=320&height=240&layers=surface,body",
+                     {{"If-None-Match", etag}});
+  ASSERT_TRUE(moved);
+  EXPECT_EQ(moved->status, 200);
+  EXPECT_NE(moved->get_header_value("ETag"), etag);
+  remove(id);
+}
+
+TEST_F(Api, ConcurrentClientsSteerDifferentSessions) {
+  std::vector<std::string> ids;
+  for (int i = 0; i < 4; ++i) ids.push_back(create(R"({"preset": "breathing_ellipse_sphere"})"));
+  std::vector<std::thread> clients;
+  std::vector<double> final_t(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    clients.emplace_back([&, i] {
+      auto c = client();
+      for (int k = 1; k <= 20; ++k)
+        c.Post("/api/v1/sessions/" + ids[i] + "/advance",
+               "{\"until\": " + std::to_string(0.1 * k * (i + 1)) + "}", "application/json");
+      final_t[i] = json::parse(c.Get("/api/v1/sessions/" + ids[i])->body)["state"]["t"];
+    });
+  for (auto& t : clients) t.join();
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    EXPECT_NEAR(final_t[i], 2.0 * (i + 1), 1e-12);
+    remove(ids[i]);
+  }
+}
+
+struct BadRequest {
+  const char* method;
+  const char* path;  // "{id}" is replaced by a live session's id
+  const char* body;
+  const char* content_type;
+  int status;
+  const char* field;  // the field the problem names ("" for any)
+};
+
+void PrintTo(const BadRequest& b, std::ostream* os) {
+  *os << b.method << " " << b.path << " " << b.body;
+}
+
+class BadRequests : public Api, public ::testing::WithParamInterface<BadRequest> {};
+
+TEST_P(BadRequests, ProblemJsonAndTheSessionIsUnchanged) {
+  const BadRequest b = GetParam();
+  const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
+  auto c = client();
+  const std::string before = c.Get("/api/v1/sessions/" + id)->body;
+  std::string path = b.path;
+  if (const auto at = path.find("{id}"); at != std::string::npos) path.replace(at, 4, id);
+  httplib::Result res = std::string(b.method) == "GET"      ? c.Get(path)
+                        : std::string(b.method) == "DELETE" ? c.Delete(path)
+                                                            : c.Post(path, b.body, b.content_type);
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, b.status) << res->body;
+  EXPECT_EQ(res->get_header_value("Content-Type"), "application/problem+json");
+  const json problem = json::parse(res->body);
+  EXPECT_EQ(problem["status"], b.status);
+  EXPECT_FALSE(problem["detail"].get<std::string>().empty());
+  if (*b.field) {
+    bool named = false;
+    for (const auto& e : problem["errors"]) named = named || e["field"] == b.field;
+    EXPECT_TRUE(named) << res->body;
+  }
+  EXPECT_EQ(c.Get("/api/v1/sessions/" + id)->body, before);  // nothing lost, nothing changed
+  remove(id);
+}
+
+const std::string kDeep = std::string(100, '[') + std::string(100, ']');
+const std::string kHuge = "{\"name\": \"" + std::string(20000, 'x') + "\"}";
+
+INSTANTIATE_TEST_SUITE_P(
+    Table, BadRequests,
+    ::testing::Values(
+        BadRequest{"POST", "/api/v1/sessions", "{}", "text/plain", 415, "Content-Type"},
+        BadRequest{"POST", "/api/v1/sessions", "{\"surface\": ", "application/json", 400, ""},
+        BadRequest{"POST", "/api/v1/sessions", kDeep.c_str(), "application/json", 400, ""},
+        BadRequest{"POST", "/api/v1/sessions", kHuge.c_str(), "application/json", 413, ""},
+        BadRequest{"POST", "/api/v1/sessions", R"({"body": {"mass": -1}})", "application/json", 422,
+                   "body.mass"},
+        BadRequest{"POST", "/api/v1/sessions", R"({"gravity": 9.8})", "application/json", 422, "gravity"},
+        BadRequest{"POST", "/api/v1/sessions", R"({"preset": "no_such"})", "application/json", 422, "preset"},
+        BadRequest{"POST", "/api/v1/sessions", R"({"surface": {"kind": "torus"}})", "application/json", 422,
+                   "surface.kind"},
+        BadRequest{"POST", "/api/v1/sessions", R"({"integrator": {"name": "euler"}})", "application/json",
+                   422, "integrator.name"},
+        BadRequest{"POST", "/api/v1/sessions", R"({"initial": {"r": 1e400}})", "application/json", 400, ""},
+        BadRequest{"GET", "/api/v1/sessions/0123456789abcdef", "", "", 404, "id"},
+        BadRequest{"DELETE", "/api/v1/sessions/0123456789abcdef", "", "", 404, "id"},
+        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"until": -1})", "application/json", 422,
+                   "until"},
+        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"until": 1, "steps": 2})", "application/json",
+                   422, "until"},
+        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({})", "application/json", 422, "until"},
+        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"steps": 2.5})", "application/json", 422,
+                   "steps"},
+        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"steps": 1e9})", "application/json", 422,
+                   "steps"},
+        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"until": "soon"})", "application/json", 422,
+                   "until"},
+        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"until": 1e12})", "application/json", 422,
+                   "until"},
+        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"speed": 2})", "application/json", 422,
+                   "speed"},
+        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"([1, 2])", "application/json", 400, ""},
+        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"until": 1})", "application/xml", 415,
+                   "Content-Type"},
+        BadRequest{"GET", "/api/v1/sessions/{id}/frame.png?width=5000", "", "", 422, "width"},
+        BadRequest{"GET", "/api/v1/sessions/{id}/frame.png?height=abc", "", "", 422, "height"},
+        BadRequest{"GET", "/api/v1/sessions/{id}/frame.png?view=hyperboloid", "", "", 422, "view"},
+        BadRequest{"GET", "/api/v1/sessions/{id}/frame.png?view=cube", "", "", 422, "view"},
+        BadRequest{"GET", "/api/v1/sessions/{id}/frame.png?layers=body,glitter", "", "", 422, "layers"},
+        BadRequest{"GET", "/api/v1/sessions/{id}/frame.png?scale=-1", "", "", 422, "scale"},
+        BadRequest{"GET", "/api/v1/sessions/{id}/trajectory?format=xml", "", "", 422, "format"},
+        BadRequest{"GET", "/api/v1/nowhere", "", "", 404, ""}));
+
+TEST_F(Api, SessionLimitAnswers503WithRetryAfter) {
+  std::vector<std::string> ids;
+  for (int i = 0; i < 6; ++i) {
+    auto res =
+        client().Post("/api/v1/sessions", R"({"preset": "geodesic_rigid_sphere"})", "application/json");
+    ASSERT_TRUE(res);
+    if (res->status == 201) ids.push_back(json::parse(res->body)["id"]);
+  }
+  auto over = client().Post("/api/v1/sessions", R"({"preset": "geodesic_rigid_sphere"})", "application/json");
+  ASSERT_TRUE(over);
+  EXPECT_EQ(over->status, 503);
+  EXPECT_FALSE(over->get_header_value("Retry-After").empty());
+  for (const std::string& id : ids) remove(id);
+}
+
+}  // namespace
+}  // namespace spinfold::server
