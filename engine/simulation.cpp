@@ -18,10 +18,12 @@ std::string_view resolve_integrator(const Scene& scene) {
   return dop853_info.name;
 }
 
-Simulation start_simulation(const Scene& scene) {
+Simulation start_simulation(const Scene& scene, double start_time) {
   Simulation run;
   run.scene = scene;
   run.state = initial_state(scene);
+  run.state.t = start_time;
+  run.start_time = start_time;
   const CatalogEntry* entry = find_integrator(resolve_integrator(scene));
   run.info = &entry->info;
   if (entry->make)
@@ -68,7 +70,8 @@ namespace {
 // The closed form jumps straight to t_end; a det L sign change since the last state is located by
 // bisection on the closed form itself.
 void advance_exact(Simulation& run, double t_end) {
-  State next = exact_state(*run.exact, t_end);
+  State next = exact_state(*run.exact, t_end - run.start_time);
+  next.t = t_end;
   if (!all_finite(next.y)) {
     run.state.status = Status::non_finite;
     return;

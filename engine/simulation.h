@@ -27,6 +27,7 @@ struct Simulation {
   Coords carry;          // compensated-summation remainder of the state (round-off not yet added)
   double t_carry = 0.0;  // the same for the time [time]
   double initial_energy = 0.0;
+  double start_time = 0.0;  // [time] at which the scene's initial state holds
   std::vector<DegenerateEvent> events;
   std::uint64_t steps = 0;      // accepted steps
   std::uint64_t rejected = 0;   // rejected step attempts
@@ -37,8 +38,9 @@ struct Simulation {
 // when the scene has one and otherwise the integrator that is cheapest at the scene's tolerance.
 std::string_view resolve_integrator(const Scene& scene);
 
-// A run at t = 0. The scene must have passed validate_scene.
-Simulation start_simulation(const Scene& scene);
+// A run whose initial state (the scene's) is at time start_time [time]. The scene must have passed
+// validate_scene.
+Simulation start_simulation(const Scene& scene, double start_time = 0.0);
 
 // Advances the run to exactly t_end [time] unless its status stops it earlier. On numerical
 // trouble the state stays at the last good step and the status says why.

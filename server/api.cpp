@@ -3,11 +3,13 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <variant>
 
 #include "codec/presets.h"
 #include "codec/sample_json.h"
 #include "codec/scene_json.h"
 #include "engine/integrator.h"
+#include "engine/paper_coordinates.h"
 #include "render/snapshot.h"
 #include "render/view.h"
 #include "server/render_worker.h"
@@ -92,6 +94,30 @@ double number_field(const json& body, const char* key) {
   const double v = it->get<double>();
   if (!std::isfinite(v)) throw bad(422, "Invalid value", key, it->dump(), "must be finite");
   return v;
+}
+
+// The current state as a scene's "initial" block, so that new parameters apply from here on; or
+// the reason it cannot be written in the paper's coordinates.
+std::variant<json, std::string> current_initial(const Session& s) {
+  const PaperCoordinates c = paper_coordinates(s.scene, s.run.state);
+  if (!c.phi || !c.r_dot || !c.phi_dot) return std::string("the body is at a pole, where phi is undefined");
+  if (!(c.mu > 0.0))
+    return std::string("the frame is mirrored (det L <= 0), which an initial state cannot be");
+  const bool rigid = s.scene.body.model == BodyModel::rigid;
+  const bool isotropic = !c.alpha;  // λ = μ: only θ = α − β is defined; write it as α with β = 0
+  json q{{"r", c.r},
+         {"phi", *c.phi},
+         {"alpha", isotropic ? c.theta.value_or(0.0) : *c.alpha},
+         {"beta", isotropic ? 0.0 : *c.beta},
+         {"lambda", rigid ? s.scene.initial.lambda : c.lambda},
+         {"mu", rigid ? s.scene.initial.lambda : c.mu},
+         {"r_dot", *c.r_dot},
+         {"phi_dot", *c.phi_dot},
+         {"alpha_dot", isotropic ? c.theta_dot.value_or(0.0) : *c.alpha_dot},
+         {"beta_dot", isotropic ? 0.0 : *c.beta_dot},
+         {"lambda_dot", rigid ? 0.0 : c.lambda_dot},
+         {"mu_dot", rigid ? 0.0 : c.mu_dot}};
+  return q;
 }
 
 ordered_json session_json(const std::string& id, const Session& s) {
@@ -203,6 +229,33 @@ void ApiServer::State::routes() {
                   throw bad(404, "Unknown session", "id", req.matches[1], "no session with this id");
                 res.status = 204;
               }));
+
+  // PATCH: a JSON merge patch of the scene. Without "initial" the run continues from its current
+  // state (and time) under the new parameters; with it, that state is set.
+  http.Patch(api + sid, wrap([this](const httplib::Request& req, httplib::Response& res) {
+               const auto s = session(req.matches[1]);
+               const json patch = parse_body(req);
+               if (!patch.is_object())
+                 throw bad(400, "Malformed request", "", patch.dump(), "the body must be a JSON object");
+               const std::lock_guard lock(s->mutex);
+               json document = scene_to_json(s->scene);
+               if (!patch.contains("initial")) {
+                 auto initial = current_initial(*s);
+                 if (auto* why = std::get_if<std::string>(&initial))
+                   throw bad(409, "Conflict", "initial", "", *why + ": give \"initial\" explicitly");
+                 document["initial"] = std::get<json>(initial);
+               }
+               document.merge_patch(patch);
+               const SceneParse parsed = parse_scene(document);
+               if (!parsed.scene) throw ApiError{422, "Invalid scene", parsed.errors, ""};
+               const double now = s->run.state.t;
+               s->scene = *parsed.scene;
+               s->run = start_simulation(s->scene, now);
+               s->reported_events = 0;
+               record_sample(*s);
+               res.set_header("X-Spinfold-Provenance", provenance(*s));
+               send_json(res, session_json(req.matches[1], *s));
+             }));
 
   http.Post(
       api + sid + "/advance", wrap([this](const httplib::Request& req, httplib::Response& res) {

@@ -117,6 +117,33 @@ TEST_F(Api, SessionLifecycle) {
   EXPECT_EQ(c.Get("/api/v1/sessions/" + id)->status, 404);
 }
 
+TEST_F(Api, PatchContinuesFromTheCurrentStateUnderNewParameters) {
+  const std::string id = create(R"({"preset": "breathing_ellipse_sphere"})");
+  auto c = client();
+  const json before = json::parse(
+      c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 1.5})", "application/json")->body)["state"];
+  auto patched = c.Patch("/api/v1/sessions/" + id,
+                         R"({"body": {"mass": 3}, "integrator": {"name": "dop853"}})", "application/json");
+  ASSERT_TRUE(patched);
+  ASSERT_EQ(patched->status, 200) << patched->body;
+  const json after = json::parse(patched->body);
+  EXPECT_EQ(after["scene"]["body"]["mass"], 3.0);
+  EXPECT_EQ(after["state"]["t"], 1.5);  // the clock goes on
+  EXPECT_NEAR(after["state"]["r"].get<double>(), before["r"].get<double>(), 1e-12);
+  EXPECT_NEAR(after["state"]["lambda"].get<double>(), before["lambda"].get<double>(), 1e-12);
+  EXPECT_NEAR(after["state"]["phi_dot"].get<double>(), before["phi_dot"].get<double>(), 1e-12);
+  EXPECT_NE(patched->get_header_value("X-Spinfold-Provenance").find("integrator=dop853"), std::string::npos);
+  // Setting the state explicitly.
+  auto set = c.Patch("/api/v1/sessions/" + id, R"({"initial": {"r": 0.7, "lambda": 1.1, "mu": 0.9}})",
+                     "application/json");
+  ASSERT_TRUE(set);
+  EXPECT_NEAR(json::parse(set->body)["state"]["r"].get<double>(), 0.7, 1e-15);
+  // Advancing after a PATCH goes on from the patched time.
+  auto moved = c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 2.5})", "application/json");
+  EXPECT_EQ(json::parse(moved->body)["state"]["t"], 2.5);
+  remove(id);
+}
+
 TEST_F(Api, FrameWithEtagAnd304) {
   const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
   auto c = client();
@@ -186,6 +213,7 @@ TEST_P(BadRequests, ProblemJsonAndTheSessionIsUnchanged) {
   if (const auto at = path.find("{id}"); at != std::string::npos) path.replace(at, 4, id);
   httplib::Result res = std::string(b.method) == "GET"      ? c.Get(path)
                         : std::string(b.method) == "DELETE" ? c.Delete(path)
+                        : std::string(b.method) == "PATCH"  ? c.Patch(path, b.body, b.content_type)
                                                             : c.Post(path, b.body, b.content_type);
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, b.status) << res->body;
@@ -248,7 +276,14 @@ INSTANTIATE_TEST_SUITE_P(
         BadRequest{"GET", "/api/v1/sessions/{id}/frame.png?layers=body,glitter", "", "", 422, "layers"},
         BadRequest{"GET", "/api/v1/sessions/{id}/frame.png?scale=-1", "", "", 422, "scale"},
         BadRequest{"GET", "/api/v1/sessions/{id}/trajectory?format=xml", "", "", 422, "format"},
-        BadRequest{"GET", "/api/v1/nowhere", "", "", 404, ""}));
+        BadRequest{"GET", "/api/v1/nowhere", "", "", 404, ""},
+        BadRequest{"PATCH", "/api/v1/sessions/{id}", R"({"body": {"inertia": 0}})", "application/json", 422,
+                   "body.inertia"},
+        BadRequest{"PATCH", "/api/v1/sessions/{id}", R"({"surface": {"kind": "cylinder"}})",
+                   "application/json", 422, "surface.kind"},
+        BadRequest{"PATCH", "/api/v1/sessions/{id}", R"({"initial": {"lambda": -1}})", "application/json",
+                   422, "initial.lambda"},
+        BadRequest{"PATCH", "/api/v1/sessions/{id}", R"("mass")", "application/json", 400, ""}));
 
 TEST_F(Api, SessionLimitAnswers503WithRetryAfter) {
   std::vector<std::string> ids;
