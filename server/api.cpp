@@ -1,8 +1,10 @@
 #include "server/api.h"
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <thread>
 #include <variant>
 
 #include "codec/presets.h"
@@ -130,14 +132,48 @@ ordered_json session_json(const std::string& id, const Session& s) {
 
 }  // namespace
 
+// Releases an event-stream slot when the last copy of its stream's provider is gone.
+struct StreamSlot {
+  std::atomic<int>& open;
+  explicit StreamSlot(std::atomic<int>& counter) : open(counter) {}
+  ~StreamSlot() { --open; }
+};
+
 struct ApiServer::State {
   ServerOptions options;
   httplib::Server http;
   SessionStore sessions;
   RenderWorker renderer;
+  std::atomic<int> open_streams{0};
+  std::atomic<bool> stopping{false};
+  std::thread player;
 
   explicit State(ServerOptions o)
-      : options(std::move(o)), sessions(options.limits.max_sessions, options.limits.idle_expiry) {}
+      : options(std::move(o)), sessions(options.limits.max_sessions, options.limits.idle_expiry) {
+    player = std::thread([this] { play_loop(); });
+  }
+  ~State() {
+    stopping = true;
+    player.join();
+  }
+
+  // Advances playing sessions in real time, 50 times a second.
+  void play_loop() {
+    auto last = std::chrono::steady_clock::now();
+    while (!stopping) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      const auto now = std::chrono::steady_clock::now();
+      const double wall = std::chrono::duration<double>(now - last).count();
+      last = now;
+      for (const auto& s : sessions.all()) {
+        const std::lock_guard lock(s->mutex);
+        if (!s->playing) continue;
+        advance_to(s->run, s->run.state.t + s->rate * wall);
+        record_sample(*s);
+        if (s->run.state.status != Status::ok) s->playing = false;
+      }
+    }
+  }
 
   std::shared_ptr<Session> session(const std::string& id) {
     auto s = sessions.find(id);
@@ -298,6 +334,82 @@ void ApiServer::State::routes() {
         send_json(res, session_json(req.matches[1], *s));
       }));
 
+  http.Post(api + sid + "/play", wrap([this](const httplib::Request& req, httplib::Response& res) {
+              const auto s = session(req.matches[1]);
+              double rate = 1.0;
+              if (!req.body.empty()) {
+                const json body = parse_body(req);
+                if (!body.is_object())
+                  throw bad(400, "Malformed request", "", body.dump(), "the body must be a JSON object");
+                for (const auto& [key, value] : body.items())
+                  if (key != "rate")
+                    throw bad(422, "Invalid value", key, value.dump(), "is not a known field (rate)");
+                if (body.contains("rate")) {
+                  rate = number_field(body, "rate");
+                  if (!(rate > 0.0) || rate > options.limits.max_play_rate)
+                    throw bad(422, "Invalid value", "rate", body["rate"].dump(),
+                              "must be > 0 and <= " + std::to_string(options.limits.max_play_rate));
+                }
+              }
+              const std::lock_guard lock(s->mutex);
+              if (s->run.state.status != Status::ok)
+                throw bad(409, "Conflict", "status", std::string(status_name(s->run.state.status)),
+                          "the run has stopped; reset or PATCH it first");
+              s->playing = true;
+              s->rate = rate;
+              send_json(res, session_json(req.matches[1], *s));
+            }));
+
+  http.Post(api + sid + "/pause", wrap([this](const httplib::Request& req, httplib::Response& res) {
+              const auto s = session(req.matches[1]);
+              const std::lock_guard lock(s->mutex);
+              s->playing = false;
+              send_json(res, session_json(req.matches[1], *s));
+            }));
+
+  // Server-Sent Events: the state whenever it changed, checked `rate` times a second.
+  http.Get(api + sid + "/events", wrap([this](const httplib::Request& req, httplib::Response& res) {
+             const std::string id = req.matches[1];
+             session(id);
+             double hz = 10.0;
+             if (req.has_param("rate")) {
+               char* end = nullptr;
+               const std::string v = req.get_param_value("rate");
+               hz = std::strtod(v.c_str(), &end);
+               if (v.empty() || *end || !(hz >= 0.5 && hz <= 60.0))
+                 throw bad(422, "Invalid value", "rate", v, "must be between 0.5 and 60 events per second");
+             }
+             if (++open_streams > options.limits.max_streams) {
+               --open_streams;
+               throw ApiError{429, "Too many streams", {{"", "", "the event-stream limit is reached"}}, "10"};
+             }
+             auto slot = std::make_shared<StreamSlot>(open_streams);
+             const auto interval = std::chrono::duration<double>(1.0 / hz);
+             std::uint64_t sent = ~std::uint64_t{0};
+             res.set_header("Cache-Control", "no-cache");
+             res.set_chunked_content_provider(
+                 "text/event-stream",
+                 [this, id, interval, slot, sent](std::size_t, httplib::DataSink& sink) mutable {
+                   if (stopping) return false;
+                   const auto s = sessions.find(id);
+                   if (!s) {
+                     sink.done();  // the session is gone: end the stream
+                     return true;
+                   }
+                   std::string event = ":\n\n";  // a comment keeps the connection checked
+                   {
+                     const std::lock_guard lock(s->mutex);
+                     if (s->version != sent) {
+                       event = "event: state\ndata: " + sample_to_json(s->run, {}).dump() + "\n\n";
+                       sent = s->version;
+                     }
+                   }
+                   if (!sink.write(event.data(), event.size())) return false;  // the client left
+                   std::this_thread::sleep_for(interval);
+                   return true;
+                 });
+           }));
+
   http.Post(api + sid + "/reset", wrap([this](const httplib::Request& req, httplib::Response& res) {
               const auto s = session(req.matches[1]);
               const std::lock_guard lock(s->mutex);
@@ -453,7 +565,9 @@ std::string ApiServer::create_session(const Scene& scene) {
 }
 
 void ApiServer::stop() {
-  if (state_) state_->http.stop();
+  if (!state_) return;
+  state_->stopping = true;  // ends the event streams, which would hold the pool open
+  state_->http.stop();
 }
 
 }  // namespace spinfold::server

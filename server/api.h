@@ -23,6 +23,8 @@ struct Limits {
   long max_steps = 1000000;                // accepted steps per advance request
   double max_advance_time = 1e6;           // simulated time per advance request
   int max_image_side = 4096;               // [pixels]
+  int max_streams = 4;                     // open event streams (each holds a worker thread)
+  double max_play_rate = 1000.0;           // simulated time per second while playing
 };
 
 struct ServerOptions {

@@ -13,6 +13,10 @@ void record_sample(Session& session) {
   session.trajectory.push_back(sample_to_json(session.run, fresh));
   session.reported_events = session.run.events.size();
   session.trail.push_back(global_embedding(session.scene, session.run.state).X);
+  if (session.trajectory.size() > kMaxTrajectory) {
+    session.trajectory.erase(session.trajectory.begin(), session.trajectory.begin() + kMaxTrajectory / 2);
+    session.trail.erase(session.trail.begin(), session.trail.begin() + kMaxTrajectory / 2);
+  }
   ++session.version;
 }
 
@@ -49,6 +53,13 @@ bool SessionStore::erase(const std::string& id) {
 std::size_t SessionStore::size() {
   const std::lock_guard lock(mutex_);
   return sessions_.size();
+}
+
+std::vector<std::shared_ptr<Session>> SessionStore::all() {
+  const std::lock_guard lock(mutex_);
+  std::vector<std::shared_ptr<Session>> list;
+  for (const auto& [id, session] : sessions_) list.push_back(session);
+  return list;
 }
 
 void SessionStore::expire_idle_locked() {

@@ -23,6 +23,8 @@ struct Session {
   std::vector<nlohmann::ordered_json> trajectory;  // a sample after creation, each advance and reset
   std::vector<Vec3> trail;                         // positions of those samples, for frames
   std::size_t reported_events = 0;
+  bool playing = false;  // advanced in real time by the server's player
+  double rate = 1.0;     // simulated time per second of wall time while playing
   std::chrono::steady_clock::time_point last_used;
 };
 
@@ -36,6 +38,7 @@ class SessionStore {
   std::shared_ptr<Session> find(const std::string& id);
   bool erase(const std::string& id);
   std::size_t size();
+  std::vector<std::shared_ptr<Session>> all();
 
  private:
   void expire_idle_locked();
@@ -45,6 +48,9 @@ class SessionStore {
   std::chrono::seconds idle_expiry_;
   std::uint64_t next_id_ = 1;
 };
+
+// The most recent samples kept per session (older ones are dropped in halves).
+inline constexpr std::size_t kMaxTrajectory = 20000;
 
 // Records the session's current state as a trajectory sample and a trail point (lock held).
 void record_sample(Session& session);

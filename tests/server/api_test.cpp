@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -141,6 +142,60 @@ TEST_F(Api, PatchContinuesFromTheCurrentStateUnderNewParameters) {
   // Advancing after a PATCH goes on from the patched time.
   auto moved = c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 2.5})", "application/json");
   EXPECT_EQ(json::parse(moved->body)["state"]["t"], 2.5);
+  remove(id);
+}
+
+TEST_F(Api, PlayAdvancesInRealTimeAndEventsStreamIt) {
+  const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
+  auto c = client();
+  auto played = c.Post("/api/v1/sessions/" + id + "/play", R"({"rate": 2})", "application/json");
+  ASSERT_TRUE(played);
+  ASSERT_EQ(played->status, 200) << played->body;
+  std::vector<double> times;
+  std::string buffer;
+  auto stream =
+      client().Get("/api/v1/sessions/" + id + "/events?rate=20", [&](const char* data, std::size_t n) {
+        buffer.append(data, n);
+        for (std::size_t at; (at = buffer.find("\n\n")) != std::string::npos; buffer.erase(0, at + 2)) {
+          const std::string event = buffer.substr(0, at);
+          if (event.rfind("event: state\ndata: ", 0) == 0)
+            times.push_back(json::parse(event.substr(19))["t"]);
+        }
+        return times.size() < 4;
+      });
+  ASSERT_GE(times.size(), 4u);
+  for (std::size_t i = 1; i < times.size(); ++i) EXPECT_GT(times[i], times[i - 1]);
+  auto paused = c.Post("/api/v1/sessions/" + id + "/pause", "", "application/json");
+  ASSERT_TRUE(paused);
+  const double t1 = json::parse(paused->body)["state"]["t"];
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_EQ(json::parse(c.Get("/api/v1/sessions/" + id)->body)["state"]["t"], t1);
+  EXPECT_GT(t1, 0.0);
+  remove(id);
+}
+
+TEST_F(Api, OpenStreamsAreLimited) {
+  const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
+  std::atomic<bool> done{false};
+  std::atomic<int> connected{0};
+  std::vector<std::thread> streams;
+  for (int i = 0; i < 4; ++i)
+    streams.emplace_back([&] {
+      bool counted = false;
+      client().Get("/api/v1/sessions/" + id + "/events?rate=20", [&](const char*, std::size_t) {
+        if (!counted) counted = true, ++connected;
+        return !done.load();
+      });
+    });
+  for (int wait = 0; wait < 200 && connected < 4; ++wait)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_EQ(connected, 4);
+  auto over = client().Get("/api/v1/sessions/" + id + "/events");
+  ASSERT_TRUE(over);
+  EXPECT_EQ(over->status, 429);
+  EXPECT_FALSE(over->get_header_value("Retry-After").empty());
+  done = true;
+  for (auto& t : streams) t.join();
   remove(id);
 }
 
@@ -283,7 +338,10 @@ INSTANTIATE_TEST_SUITE_P(
                    "application/json", 422, "surface.kind"},
         BadRequest{"PATCH", "/api/v1/sessions/{id}", R"({"initial": {"lambda": -1}})", "application/json",
                    422, "initial.lambda"},
-        BadRequest{"PATCH", "/api/v1/sessions/{id}", R"("mass")", "application/json", 400, ""}));
+        BadRequest{"PATCH", "/api/v1/sessions/{id}", R"("mass")", "application/json", 400, ""},
+        BadRequest{"POST", "/api/v1/sessions/{id}/play", R"({"rate": -1})", "application/json", 422, "rate"},
+        BadRequest{"POST", "/api/v1/sessions/{id}/play", R"({"speed": 1})", "application/json", 422, "speed"},
+        BadRequest{"GET", "/api/v1/sessions/{id}/events?rate=1000", "", "", 422, "rate"}));
 
 TEST_F(Api, SessionLimitAnswers503WithRetryAfter) {
   std::vector<std::string> ids;
