@@ -10,10 +10,12 @@
 #include "codec/presets.h"
 #include "codec/sample_json.h"
 #include "codec/scene_json.h"
+#include "codec/scene_schema.h"
 #include "engine/integrator.h"
 #include "engine/paper_coordinates.h"
 #include "render/snapshot.h"
 #include "render/view.h"
+#include "server/openapi.h"
 #include "server/render_worker.h"
 #include "server/sessions.h"
 
@@ -227,6 +229,11 @@ void ApiServer::State::routes() {
                                {"summary", std::string(e.info.summary)}});
              send_json(res, list);
            }));
+
+  http.Get(api + "/schema",
+           wrap([](const httplib::Request&, httplib::Response& res) { send_json(res, scene_schema()); }));
+  http.Get(api + "/openapi.json",
+           wrap([](const httplib::Request&, httplib::Response& res) { send_json(res, openapi_document()); }));
 
   http.Post(api + "/sessions", wrap([this, api](const httplib::Request& req, httplib::Response& res) {
               json body = parse_body(req);

@@ -75,6 +75,34 @@ TEST_F(Api, HealthScenesAndIntegrators) {
   EXPECT_TRUE(has_exact);
 }
 
+// The OpenAPI document is kept true: every operation it lists is routed (an unknown session id
+// gets "Unknown session", never the router's "Not found").
+TEST_F(Api, EveryOpenApiOperationIsRouted) {
+  auto c = client();
+  auto doc = c.Get("/api/v1/openapi.json");
+  ASSERT_TRUE(doc);
+  const json paths = json::parse(doc->body)["paths"];
+  ASSERT_GE(paths.size(), 12u);
+  for (const auto& [path_template, operations] : paths.items()) {
+    std::string path = path_template;
+    if (const auto at = path.find("{id}"); at != std::string::npos) path.replace(at, 4, "0123456789abcdef");
+    for (const auto& [method, operation] : operations.items()) {
+      httplib::Result res = method == "get"      ? c.Get(path)
+                            : method == "delete" ? c.Delete(path)
+                            : method == "patch"  ? c.Patch(path, "{}", "application/json")
+                                                 : c.Post(path, "{}", "application/json");
+      ASSERT_TRUE(res) << method << " " << path;
+      if (res->status == 201) c.Delete(res->get_header_value("Location"));  // {} is a valid scene
+      if (res->status >= 400) {
+        EXPECT_NE(json::parse(res->body)["title"], "Not found") << method << " " << path;
+      }
+    }
+  }
+  auto schema = c.Get("/api/v1/schema");
+  ASSERT_TRUE(schema);
+  EXPECT_EQ(json::parse(schema->body)["title"], "Spinfold scene");
+}
+
 TEST_F(Api, SessionLifecycle) {
   auto c = client();
   auto created = c.Post("/api/v1/sessions", R"({"preset": "separable_radial_abc"})", "application/json");

@@ -1,0 +1,52 @@
+// The JSON Schema says what parse_scene accepts: every property it names is accepted, every field
+// the codec writes is in it, and its defaults are the codec's.
+#include "codec/scene_schema.h"
+
+#include <gtest/gtest.h>
+
+#include "codec/scene_json.h"
+
+namespace spinfold {
+namespace {
+
+using nlohmann::json;
+
+TEST(SceneSchema, EveryWrittenFieldIsDescribedWithItsDefault) {
+  const json schema = scene_schema();
+  const json written = scene_to_json(Scene{});
+  for (const auto& [section, value] : written.items()) {
+    ASSERT_TRUE(schema["properties"].contains(section)) << section;
+    if (!value.is_object() || section == "potential") continue;
+    for (const auto& [key, v] : value.items()) {
+      const json& property = schema["properties"][section]["properties"][key];
+      ASSERT_FALSE(property.is_null()) << section << "." << key;
+      EXPECT_EQ(property["default"], v) << section << "." << key;
+    }
+  }
+}
+
+TEST(SceneSchema, EveryDescribedPropertyIsAccepted) {
+  const json schema = scene_schema();
+  for (const auto& [section, property] : schema["properties"].items()) {
+    if (!property.contains("properties")) continue;
+    for (const auto& [key, sub] : property["properties"].items()) {
+      if (!sub.contains("default")) continue;
+      json scene = {{section, {{key, sub["default"]}}}};
+      const SceneParse parsed = parse_scene(scene);
+      for (const FieldError& e : parsed.errors)
+        EXPECT_EQ(e.reason.find("not a known field"), std::string::npos) << section << "." << key;
+    }
+  }
+  // Both deformation kinds and their fields.
+  for (const json& kind : schema["properties"]["potential"]["properties"]["deformation"]["oneOf"]) {
+    json deformation = {{"kind", kind["properties"]["kind"]["const"]}};
+    for (const auto& [key, sub] : kind["properties"].items())
+      if (sub.contains("default")) deformation[key] = sub["default"];
+    const SceneParse parsed =
+        parse_scene(json{{"potential", {{"deformation", deformation}}}, {"initial", {{"mu", 0.5}}}});
+    EXPECT_TRUE(parsed.errors.empty()) << describe_errors(parsed.errors);
+  }
+}
+
+}  // namespace
+}  // namespace spinfold
