@@ -17,7 +17,8 @@ namespace spinfold::bench {
 namespace {
 
 const char* kVertex =
-    "#version 330 core\nlayout(location=0) in vec3 p;\nlayout(location=1) in vec4 c;\nuniform mat4 m;\nout vec4 v;\n"
+    "#version 330 core\nlayout(location=0) in vec3 p;\nlayout(location=1) in vec4 c;\nuniform mat4 m;\nout "
+    "vec4 v;\n"
     "void main(){v=c;gl_Position=m*vec4(p,1.0);}\n";
 const char* kFragment = "#version 330 core\nin vec4 v;\nout vec4 f;\nvoid main(){f=v;}\n";
 
@@ -56,8 +57,17 @@ std::vector<unsigned char> encode(const unsigned char* rgba, int w, int h) {
 BareTimings bare_render_loop(int width, int height, const std::vector<float>& opaque,
                              const std::vector<float>& translucent, const std::vector<float>& lines,
                              const float* view_projection, int frames) {
-  const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                            OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+  const int attributes[] = {OSMESA_FORMAT,
+                            OSMESA_RGBA,
+                            OSMESA_DEPTH_BITS,
+                            24,
+                            OSMESA_PROFILE,
+                            OSMESA_CORE_PROFILE,
+                            OSMESA_CONTEXT_MAJOR_VERSION,
+                            3,
+                            OSMESA_CONTEXT_MINOR_VERSION,
+                            3,
+                            0};
   OSMesaContext context = OSMesaCreateContextAttribs(attributes, nullptr);
   if (!context) throw std::runtime_error("OSMesa context");
   std::vector<unsigned char> buffer(static_cast<std::size_t>(width) * height * 4);
@@ -79,7 +89,8 @@ BareTimings bare_render_loop(int width, int height, const std::vector<float>& op
   for (int k = 0; k < 3; ++k) {
     glBindVertexArray(vao[k]);
     glBindBuffer(GL_ARRAY_BUFFER, vbo[k]);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data[k]->size() * sizeof(float)), data[k]->data(), GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data[k]->size() * sizeof(float)), data[k]->data(),
+                 GL_STATIC_DRAW);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 28, nullptr);
     glEnableVertexAttribArray(1);

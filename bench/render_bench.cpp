@@ -1,16 +1,15 @@
 #include "bench/render_bench.h"
 
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <glm/glm.hpp>
 #include <vector>
 
 #include "bench/bare_render_loop.h"
 #include "engine/chart.h"
 #include "engine/simulation.h"
-#include <glm/glm.hpp>
-
 #include "render/png_encoder.h"
 #include "render/renderer.h"
 
@@ -56,11 +55,15 @@ int run_render_bench(int frames) {
     unsigned layers;
   };
   const Size sizes[] = {{640, 480}, {1024, 768}, {1920, 1080}};
-  const LayerSet sets[] = {{"all layers", render::kAllLayers},
-                           {"no trail, no HUD", render::kSurface | render::kGrid | render::kBody | render::kFrame},
-                           {"body only", render::kBody}};
-  std::printf("| size | layers | triangles | segments | build ms | render ms | encode ms | frame ms | bare render ms | "
-              "bare encode ms | frame / bare |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+  const LayerSet sets[] = {
+      {"all layers", render::kAllLayers},
+      {"no trail, no HUD", render::kSurface | render::kGrid | render::kBody | render::kFrame},
+      {"body only", render::kBody}};
+  std::printf(
+      "| size | layers | triangles | segments | build ms | render ms | encode ms | frame ms | bare render ms "
+      "| "
+      "bare encode ms | frame / bare |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- "
+      "|\n");
   for (const Size& size : sizes) {
     double all_ms = 0.0;
     for (const LayerSet& set : sets) {
@@ -83,10 +86,11 @@ int run_render_bench(int frames) {
         const double e = ms_since(t);
         if (f >= 2) build.push_back(b), draw.push_back(d), encode.push_back(e);
       }
-      const int triangles = static_cast<int>(((scene.statics && scene.draw_surface) ? scene.statics->surface.size() : 0) / 3 +
-                                             scene.fills.size() / 3);
-      const int segments = static_cast<int>(((scene.statics && scene.draw_grid) ? scene.statics->grid.size() : 0) / 2 +
-                                            scene.lines.size() / 2);
+      const int triangles =
+          static_cast<int>(((scene.statics && scene.draw_surface) ? scene.statics->surface.size() : 0) / 3 +
+                           scene.fills.size() / 3);
+      const int segments = static_cast<int>(
+          ((scene.statics && scene.draw_grid) ? scene.statics->grid.size() : 0) / 2 + scene.lines.size() / 2);
       // The same pixels for the bare loop: vertices with their final colours (the surface's
       // per-vertex lighting computed here once, as lit.vert does).
       std::vector<float> opaque, translucent, lines;
@@ -94,7 +98,8 @@ int run_render_bench(int frames) {
         out.insert(out.end(), {p.x, p.y, p.z, c.r, c.g, c.b, c.a});
       };
       if (scene.statics && scene.draw_surface) {
-        const glm::vec3 light = glm::normalize(glm::vec3(glm::inverse(scene.view_projection) * glm::vec4(0, 0, -1, 0)));
+        const glm::vec3 light =
+            glm::normalize(glm::vec3(glm::inverse(scene.view_projection) * glm::vec4(0, 0, -1, 0)));
         for (const auto& v : scene.statics->surface) {
           const float shade = 0.35f + 0.65f * std::abs(glm::dot(v.normal, light));
           put(opaque, v.position, glm::vec4(glm::vec3(scene.surface_color) * shade, 1.0f));
@@ -108,9 +113,9 @@ int run_render_bench(int frames) {
           bare_render_loop(size.w, size.h, opaque, translucent, lines, &scene.view_projection[0][0], frames);
       const double frame = median(build) + median(draw) + median(encode);
       if (set.layers == render::kAllLayers) all_ms = frame;
-      std::printf("| %dx%d | %s | %d | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", size.w, size.h,
-                  set.name, triangles, segments, median(build), median(draw), median(encode), frame, bare.render_ms,
-                  bare.encode_ms, frame / (bare.render_ms + bare.encode_ms));
+      std::printf("| %dx%d | %s | %d | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", size.w,
+                  size.h, set.name, triangles, segments, median(build), median(draw), median(encode), frame,
+                  bare.render_ms, bare.encode_ms, frame / (bare.render_ms + bare.encode_ms));
       if (set.layers != render::kAllLayers && set.layers != render::kBody)
         std::printf("| | all layers / no trail, no HUD | | | | | | %.2f× | | | |\n", all_ms / frame);
     }

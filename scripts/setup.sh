@@ -11,6 +11,7 @@ packages=(
   libcli11-dev                                    # command line
   libgtest-dev libgmock-dev libbenchmark-dev      # tests and benchmarks
   libboost-dev gnuplot-nox                        # reference integrators (Boost.Odeint), plots
+  wrk curl                                        # HTTP load benchmark
 )
 
 missing=()

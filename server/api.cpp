@@ -15,6 +15,7 @@
 #include "engine/paper_coordinates.h"
 #include "render/snapshot.h"
 #include "render/view.h"
+#include "server/frame_cache.h"
 #include "server/openapi.h"
 #include "server/render_worker.h"
 #include "server/sessions.h"
@@ -146,6 +147,7 @@ struct ApiServer::State {
   httplib::Server http;
   SessionStore sessions;
   RenderWorker renderer;
+  FrameCache frames{64};
   std::atomic<int> open_streams{0};
   std::atomic<bool> stopping{false};
   std::thread player;
@@ -260,11 +262,17 @@ void ApiServer::State::routes() {
               send_json(res, session_json(id, *session), 201);
             }));
 
+  // The state's JSON is built once per change of state and then served as it is.
   http.Get(api + sid, wrap([this](const httplib::Request& req, httplib::Response& res) {
              const auto s = session(req.matches[1]);
              const std::lock_guard lock(s->mutex);
+             if (s->body_version != s->version) {
+               s->body = session_json(req.matches[1], *s).dump();
+               s->body_version = s->version;
+             }
              res.set_header("X-Spinfold-Provenance", provenance(*s));
-             send_json(res, session_json(req.matches[1], *s));
+             res.body = s->body;
+             res.set_header("Content-Type", "application/json");
            }));
 
   http.Delete(api + sid, wrap([this](const httplib::Request& req, httplib::Response& res) {
@@ -495,38 +503,72 @@ void ApiServer::State::routes() {
                if (v->empty() || *end || !std::isfinite(scale) || !(scale > 0.0) || scale > 10.0)
                  throw bad(422, "Invalid value", "scale", *v, "must be a number in (0, 10]");
              }
-             render::Snapshot snapshot;
-             std::uint64_t version = 0;
+             // The ETag names the state and every parameter of the picture: a match renders nothing.
+             const auto etag_of = [&](std::uint64_t version) {
+               char text[128];
+               std::snprintf(text, sizeof text, "\"%s-%llu-%d-%dx%d-%u-%.17g\"", req.matches[1].str().c_str(),
+                             static_cast<unsigned long long>(version), static_cast<int>(view.kind),
+                             view.width, view.height, view.layers, scale);
+               return std::string(text);
+             };
+             std::string etag;
+             Png png;
+             std::optional<render::Snapshot> snapshot;
              {
                const std::lock_guard lock(s->mutex);
                if (const auto why = render::view_unsupported_reason(view.kind, s->scene.surface.kind))
                  throw bad(422, "Invalid value", "view", std::string(render::view_name(view.kind)), *why);
-               view.scale = scale * s->scene.surface.radius;
-               version = s->version;
-               std::vector<Vec3> trail;
-               if (view.layers & render::kTrail) trail = s->trail;  // copied only when drawn
-               snapshot = render::make_snapshot(s->run, std::move(trail));
+               etag = etag_of(s->version);
+               png = frames.find(etag);
+               if (!png && req.get_header_value("If-None-Match") != etag) {
+                 view.scale = scale * s->scene.surface.radius;
+                 std::vector<Vec3> trail;
+                 if (view.layers & render::kTrail) trail = s->trail;  // copied only when drawn
+                 snapshot = render::make_snapshot(s->run, std::move(trail));
+               }
              }
-             render::aim_camera_at_body(view, snapshot);
-             // The ETag names the state and every parameter of the picture: a match renders nothing.
-             char etag[128];
-             std::snprintf(etag, sizeof etag, "\"%s-%llu-%d-%dx%d-%u-%.17g\"", req.matches[1].str().c_str(),
-                           static_cast<unsigned long long>(version), static_cast<int>(view.kind), view.width,
-                           view.height, view.layers, scale);
              res.set_header("ETag", etag);
              res.set_header("Cache-Control", "no-cache");
+             {
+               const std::lock_guard lock(s->mutex);
+               res.set_header("X-Spinfold-Provenance", provenance(*s));
+             }
              if (req.get_header_value("If-None-Match") == etag) {
                res.status = 304;
                return;
              }
-             try {
-               const std::vector<std::uint8_t> png = renderer.render(std::move(snapshot), view).get();
-               res.body.assign(png.begin(), png.end());
-             } catch (const std::exception& e) {
-               throw ApiError{503, "Rendering unavailable", {{"", "", e.what()}}, "5"};
+             if (!png) {
+               render::aim_camera_at_body(view, *snapshot);
+               try {
+                 png = std::make_shared<const std::vector<std::uint8_t>>(
+                     renderer.render(std::move(*snapshot), view).get());
+               } catch (const std::exception& e) {
+                 throw ApiError{503, "Rendering unavailable", {{"", "", e.what()}}, "5"};
+               }
+               frames.insert(etag, png);
              }
+             res.body.assign(png->begin(), png->end());
              res.set_header("Content-Type", "image/png");
            }));
+
+  // A known path asked with a method it does not have: 405 with Allow, not the router's 404.
+  const auto only = [this](const std::string& pattern, const std::string& allowed) {
+    const auto refuse = wrap([allowed](const httplib::Request& req, httplib::Response& res) {
+      res.set_header("Allow", allowed);
+      throw bad(405, "Method not allowed", "method", req.method, "allowed: " + allowed);
+    });
+    if (allowed.find("GET") == std::string::npos) http.Get(pattern, refuse);
+    if (allowed.find("POST") == std::string::npos) http.Post(pattern, refuse);
+    if (allowed.find("PATCH") == std::string::npos) http.Patch(pattern, refuse);
+    if (allowed.find("DELETE") == std::string::npos) http.Delete(pattern, refuse);
+    http.Put(pattern, refuse);
+  };
+  for (const char* path : {"/health", "/scenes", "/integrators", "/schema", "/openapi.json"})
+    only(api + path, "GET");
+  only(api + "/sessions", "POST");
+  only(api + sid, "GET, PATCH, DELETE");
+  for (const char* action : {"/advance", "/play", "/pause", "/reset"}) only(api + sid + action, "POST");
+  for (const char* view : {"/events", "/trajectory", "/frame.png"}) only(api + sid + view, "GET");
 
   http.set_error_handler([](const httplib::Request&, httplib::Response& res) {
     if (!res.body.empty()) return;

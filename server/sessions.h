@@ -23,6 +23,8 @@ struct Session {
   std::vector<nlohmann::ordered_json> trajectory;  // a sample after creation, each advance and reset
   std::vector<Vec3> trail;                         // positions of those samples, for frames
   std::size_t reported_events = 0;
+  std::string body;  // the serialized GET response of `body_version`
+  std::uint64_t body_version = ~std::uint64_t{0};
   bool playing = false;  // advanced in real time by the server's player
   double rate = 1.0;     // simulated time per second of wall time while playing
   std::chrono::steady_clock::time_point last_used;

@@ -237,6 +237,11 @@ TEST_F(Api, FrameWithEtagAnd304) {
   EXPECT_EQ(frame->body.substr(1, 3), "PNG");
   const std::string etag = frame->get_header_value("ETag");
   ASSERT_FALSE(etag.empty());
+  // Asked again without the ETag: served from the frame cache, the same bytes.
+  auto cached = c.Get("/api/v1/sessions/" + id + "/frame.png?width=320&height=240&layers=surface,body");
+  ASSERT_TRUE(cached);
+  EXPECT_EQ(cached->body, frame->body);
+  EXPECT_EQ(cached->get_header_value("ETag"), etag);
   auto again = c.Get("/api/v1/sessions/" + id + "/frame.png?width=320&height=240&layers=surface,body",
                      {{"If-None-Match", etag}});
   ASSERT_TRUE(again);
@@ -360,6 +365,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadRequest{"GET", "/api/v1/sessions/{id}/frame.png?scale=-1", "", "", 422, "scale"},
         BadRequest{"GET", "/api/v1/sessions/{id}/trajectory?format=xml", "", "", 422, "format"},
         BadRequest{"GET", "/api/v1/nowhere", "", "", 404, ""},
+        BadRequest{"DELETE", "/api/v1/scenes", "", "", 405, "method"},
+        BadRequest{"POST", "/api/v1/sessions/{id}/frame.png", "{}", "application/json", 405, "method"},
+        BadRequest{"PATCH", "/api/v1/sessions/{id}/advance", "{}", "application/json", 405, "method"},
         BadRequest{"PATCH", "/api/v1/sessions/{id}", R"({"body": {"inertia": 0}})", "application/json", 422,
                    "body.inertia"},
         BadRequest{"PATCH", "/api/v1/sessions/{id}", R"({"surface": {"kind": "cylinder"}})",
