@@ -3,6 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <atomic>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -378,6 +383,29 @@ INSTANTIATE_TEST_SUITE_P(
         BadRequest{"POST", "/api/v1/sessions/{id}/play", R"({"rate": -1})", "application/json", 422, "rate"},
         BadRequest{"POST", "/api/v1/sessions/{id}/play", R"({"speed": 1})", "application/json", 422, "speed"},
         BadRequest{"GET", "/api/v1/sessions/{id}/events?rate=1000", "", "", 422, "rate"}));
+
+// A client that leaves mid-request (a frame being rendered, an open event stream) does not take
+// the server down.
+TEST_F(Api, DroppedClientsDoNotHurtTheServer) {
+  const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
+  for (const std::string& path : {"/api/v1/sessions/" + id + "/frame.png?width=1024&height=768&scale=0.3",
+                                 "/api/v1/sessions/" + id + "/events?rate=50"}) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(static_cast<std::uint16_t>(port_));
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+    const std::string request = "GET " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n";
+    ASSERT_GT(::send(fd, request.data(), request.size(), 0), 0);
+    ::close(fd);  // gone before the answer
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  auto health = client().Get("/api/v1/health");
+  ASSERT_TRUE(health);
+  EXPECT_EQ(health->status, 200);
+  remove(id);
+}
 
 TEST_F(Api, SessionLimitAnswers503WithRetryAfter) {
   std::vector<std::string> ids;
