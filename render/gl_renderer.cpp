@@ -78,26 +78,25 @@ GlRenderer::~GlRenderer() {
   glDeleteProgram(flat_program_);
 }
 
-const GlRenderer::Mesh& GlRenderer::static_surface(const StaticGeometry& g) {
-  auto [it, fresh] = surfaces_.try_emplace(&g);
+const GlRenderer::Mesh& GlRenderer::static_mesh(std::map<const StaticGeometry*, Mesh>& meshes,
+                                                 const StaticGeometry& g, const void* data, std::size_t count,
+                                                 bool lit) {
+  auto [it, fresh] = meshes.try_emplace(&g);
   if (fresh) {
     glGenVertexArrays(1, &it->second.vao);
     glGenBuffers(1, &it->second.vbo);
-    upload(it->second.vao, it->second.vbo, g.surface.data(), g.surface.size() * sizeof(LitVertex), true);
-    it->second.count = static_cast<int>(g.surface.size());
+    upload(it->second.vao, it->second.vbo, data, count * (lit ? sizeof(LitVertex) : sizeof(Vertex)), lit);
+    it->second.count = static_cast<int>(count);
   }
   return it->second;
 }
 
+const GlRenderer::Mesh& GlRenderer::static_surface(const StaticGeometry& g) {
+  return static_mesh(surfaces_, g, g.surface.data(), g.surface.size(), true);
+}
+
 const GlRenderer::Mesh& GlRenderer::static_grid(const StaticGeometry& g) {
-  auto [it, fresh] = grids_.try_emplace(&g);
-  if (fresh) {
-    glGenVertexArrays(1, &it->second.vao);
-    glGenBuffers(1, &it->second.vbo);
-    upload(it->second.vao, it->second.vbo, g.grid.data(), g.grid.size() * sizeof(Vertex), false);
-    it->second.count = static_cast<int>(g.grid.size());
-  }
-  return it->second;
+  return static_mesh(grids_, g, g.grid.data(), g.grid.size(), false);
 }
 
 void GlRenderer::draw_flat(const std::vector<Vertex>& vertices, unsigned mode) {

@@ -28,6 +28,8 @@ class GlRenderer {
   // Static geometry is uploaded once per surface and view and kept.
   const Mesh& static_surface(const StaticGeometry& g);
   const Mesh& static_grid(const StaticGeometry& g);
+  const Mesh& static_mesh(std::map<const StaticGeometry*, Mesh>& meshes, const StaticGeometry& g, const void* data,
+                          std::size_t count, bool lit);
   void draw_flat(const std::vector<Vertex>& vertices, unsigned mode);
 
   unsigned lit_program_ = 0, flat_program_ = 0;
