@@ -12,6 +12,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev      # tests and benchmarks
   libboost-dev gnuplot-nox                        # reference integrators (Boost.Odeint), plots
   wrk curl                                        # HTTP load benchmark
+  chromium                                        # browser tests of the web UI (playwright-core)
 )
 
 missing=()
@@ -28,4 +29,12 @@ if ((${#missing[@]})); then
   "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
 else
   echo "setup: all packages present"
+fi
+
+# The web UI's npm packages (uPlot, served to the browser; playwright-core, for the browser tests),
+# from the npm registry, pinned by web/package-lock.json.
+root=$(cd "$(dirname "$0")/.." && pwd)
+if [[ ! -d "$root/web/node_modules/uplot" || ! -d "$root/web/node_modules/playwright-core" ]]; then
+  echo "setup: installing the web UI's npm packages"
+  (cd "$root/web" && npm ci --no-audit --no-fund)
 fi

@@ -18,6 +18,7 @@
 #include "server/frame_cache.h"
 #include "server/openapi.h"
 #include "server/render_worker.h"
+#include "server/web_assets.h"
 #include "server/sessions.h"
 
 // After Eigen: httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's parameter names.
@@ -130,6 +131,7 @@ ordered_json session_json(const std::string& id, const Session& s) {
   j["id"] = id;
   j["state"] = sample_to_json(s.run, {});
   j["scene"] = scene_to_json(s.scene);
+  j["start_time"] = s.run.start_time;  // when the scene's initial state holds (after a PATCH: > 0)
   return j;
 }
 
@@ -251,8 +253,17 @@ void ApiServer::State::routes() {
                 parsed = parse_scene(body);
               }
               if (!parsed.scene) throw ApiError{422, "Invalid scene", parsed.errors, ""};
+              // ?start_time=t0: the scene's initial state holds at t0 (a shared PATCHed session).
+              double start_time = 0.0;
+              if (req.has_param("start_time")) {
+                const std::string v = req.get_param_value("start_time");
+                char* end = nullptr;
+                start_time = std::strtod(v.c_str(), &end);
+                if (v.empty() || *end || !std::isfinite(start_time) || start_time < 0.0)
+                  throw bad(422, "Invalid value", "start_time", v, "must be a finite number >= 0");
+              }
               std::string id;
-              const auto session = sessions.create(*parsed.scene, id);
+              const auto session = sessions.create(*parsed.scene, id, start_time);
               if (!session)
                 throw ApiError{
                     503, "Too many sessions", {{"", "", "the session limit is reached; retry later"}}, "30"};
@@ -496,6 +507,21 @@ void ApiServer::State::routes() {
                if (!mask) throw bad(422, "Invalid value", "layers", *v, "unknown layer '" + unknown + "'");
                view.layers = *mask;
              }
+             // Camera (3-D views): yaw and pitch [rad], distance [radii]; absent: aimed at the body.
+             std::optional<double> yaw, pitch, distance;
+             const auto real = [&](const char* key, double lo, double hi, std::optional<double>& out) {
+               if (const auto v = param(key)) {
+                 char* end = nullptr;
+                 const double x = std::strtod(v->c_str(), &end);
+                 if (v->empty() || *end || !std::isfinite(x) || x < lo || x > hi)
+                   throw bad(422, "Invalid value", key, *v,
+                             "must be a number from " + std::to_string(lo) + " to " + std::to_string(hi));
+                 out = x;
+               }
+             };
+             real("yaw", -100.0, 100.0, yaw);
+             real("pitch", -1.55, 1.55, pitch);
+             real("distance", 1.2, 100.0, distance);
              double scale = 0.25;
              if (const auto v = param("scale")) {
                char* end = nullptr;
@@ -505,7 +531,7 @@ void ApiServer::State::routes() {
              }
              // The ETag names the state and every parameter of the picture: a match renders nothing.
              const auto etag_of = [&](std::uint64_t version) {
-               char text[128];
+               char text[256];
                std::snprintf(text, sizeof text, "\"%s-%llu-%d-%dx%d-%u-%.17g\"", req.matches[1].str().c_str(),
                              static_cast<unsigned long long>(version), static_cast<int>(view.kind),
                              view.width, view.height, view.layers, scale);
@@ -539,6 +565,9 @@ void ApiServer::State::routes() {
              }
              if (!png) {
                render::aim_camera_at_body(view, *snapshot);
+               if (yaw) view.yaw = *yaw;
+               if (pitch) view.pitch = *pitch;
+               if (distance) view.distance = *distance;
                try {
                  png = std::make_shared<const std::vector<std::uint8_t>>(
                      renderer.render(std::move(*snapshot), view).get());
@@ -549,6 +578,15 @@ void ApiServer::State::routes() {
              }
              res.body.assign(png->begin(), png->end());
              res.set_header("Content-Type", "image/png");
+           }));
+
+  // The browser UI, embedded.
+  http.Get("(/|/app\\.js|/style\\.css|/vendor/uPlot\\.esm\\.js|/vendor/uPlot\\.min\\.css)",
+           wrap([](const httplib::Request& req, httplib::Response& res) {
+             const WebAsset* asset = web_asset(req.matches[1].str());
+             if (!asset) throw bad(404, "Not found", "path", req.path, "no such file");
+             res.body.assign(asset->body.begin(), asset->body.end());
+             res.set_header("Content-Type", std::string(asset->content_type));
            }));
 
   // A known path asked with a method it does not have: 405 with Allow, not the router's 404.

@@ -20,7 +20,7 @@ void record_sample(Session& session) {
   ++session.version;
 }
 
-std::shared_ptr<Session> SessionStore::create(const Scene& scene, std::string& id) {
+std::shared_ptr<Session> SessionStore::create(const Scene& scene, std::string& id, double start_time) {
   const std::lock_guard lock(mutex_);
   expire_idle_locked();
   if (sessions_.size() >= max_sessions_) return nullptr;
@@ -30,7 +30,7 @@ std::shared_ptr<Session> SessionStore::create(const Scene& scene, std::string& i
   id = text;
   auto session = std::make_shared<Session>();
   session->scene = scene;
-  session->run = start_simulation(scene);
+  session->run = start_simulation(scene, start_time);
   session->last_used = std::chrono::steady_clock::now();
   record_sample(*session);
   sessions_[id] = session;

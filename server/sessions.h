@@ -35,8 +35,8 @@ class SessionStore {
   SessionStore(std::size_t max_sessions, std::chrono::seconds idle_expiry)
       : max_sessions_(max_sessions), idle_expiry_(idle_expiry) {}
 
-  // A new session at t = 0, or nullptr when the store is full (after expiring idle sessions).
-  std::shared_ptr<Session> create(const Scene& scene, std::string& id);
+  // A new session at t = start_time, or nullptr when the store is full (after expiring idle sessions).
+  std::shared_ptr<Session> create(const Scene& scene, std::string& id, double start_time = 0.0);
   std::shared_ptr<Session> find(const std::string& id);
   bool erase(const std::string& id);
   std::size_t size();

@@ -1,0 +1,127 @@
+// Browser tests of the web UI in real headless Chromium (Debian's, driven by playwright-core):
+// load, pick a preset, play and see the frame change, change a field and see the state change,
+// an invalid value shows the server's message and changes nothing, a share URL reproduces the
+// state, the exports answer. Usage: node ui.test.mjs SPINFOLD_BINARY [SCREENSHOT_DIR]
+import { spawn } from "node:child_process";
+import { createRequire } from "node:module";
+import assert from "node:assert/strict";
+import path from "node:path";
+import { fileURLToPath } from "node:url";
+
+const require = createRequire(path.join(path.dirname(fileURLToPath(import.meta.url)), "../../web/package.json"));
+const { chromium } = require("playwright-core");
+
+const [binary, screenshots] = process.argv.slice(2);
+const port = 18000 + (process.pid % 1000);
+const server = spawn(binary, ["serve", "--port", String(port)], { stdio: ["ignore", "pipe", "inherit"] });
+const base = `http://127.0.0.1:${port}/`;
+let failed = false;
+
+async function waitForServer() {
+  for (let i = 0; i < 100; ++i) {
+    try { if ((await fetch(base + "api/v1/health")).ok) return; } catch (e) { /* not yet */ }
+    await new Promise((r) => setTimeout(r, 100));
+  }
+  throw new Error("server did not start");
+}
+
+async function test(name, body) {
+  try {
+    await body();
+    console.log(`ok   ${name}`);
+  } catch (e) {
+    failed = true;
+    console.log(`FAIL ${name}\n${e.stack}`);
+  }
+}
+
+const readoutT = (page) => page.$eval("#readout", (el) => Number(el.dataset.t));
+
+try {
+  await waitForServer();
+  const browser = await chromium.launch({
+    executablePath: "/usr/bin/chromium",
+    args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+           "--disable-background-networking", "--disable-component-update", "--disable-sync"],
+  });
+  const page = await browser.newPage({ viewport: { width: 1280, height: 900 } });
+  page.on("pageerror", (e) => { failed = true; console.log(`page error: ${e.stack}`); });
+  await page.goto(base);
+  await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+
+  await test("the page loads a session and its frame", async () => {
+    await page.waitForFunction(() => document.querySelector("#frame").naturalWidth === 640);
+    assert.match(await page.textContent("#readout"), /integrator: exact/);
+  });
+
+  await test("picking a preset opens it", async () => {
+    await page.click('.preset[data-name="breathing_ellipse_sphere"]');
+    await page.waitForFunction(() => document.querySelector("#explanation").textContent.includes("breathes"));
+    assert.equal(await readoutT(page), 0);
+  });
+
+  await test("play advances the state and the frame changes", async () => {
+    const before = await page.$eval("#frame", (el) => el.dataset.etag);
+    await page.click("#play");
+    await page.waitForFunction(() => Number(document.querySelector("#readout").dataset.t) > 0.5, null, { timeout: 10000 });
+    await page.waitForFunction((etag) => document.querySelector("#frame").dataset.etag !== etag, before, { timeout: 10000 });
+    await page.click("#pause");
+  });
+
+  await test("changing a field changes the state", async () => {
+    await page.fill('[name="initial.r"]', "0.9");
+    await page.dispatchEvent('[name="initial.r"]', "change");
+    await page.waitForFunction(() => /r = 0\.900000/.test(document.querySelector("#readout").textContent));
+  });
+
+  await test("an invalid value shows the server's message and changes nothing", async () => {
+    const before = await page.textContent("#readout");
+    await page.fill('[name="body.mass"]', "-2");
+    await page.dispatchEvent('[name="body.mass"]', "change");
+    await page.waitForFunction(() => [...document.querySelectorAll(".error")].some((e) => e.textContent.includes("must be > 0")));
+    assert.equal(await page.inputValue('[name="body.mass"]'), "1");
+    assert.equal(await page.textContent("#readout"), before);
+  });
+
+  await test("a share URL reproduces the same state", async () => {
+    await page.click("#step");
+    await page.waitForTimeout(300);
+    const t = await readoutT(page);
+    const readout = await page.textContent("#readout");
+    await page.click("#share");
+    const url = page.url();
+    assert.match(url, /#scene=/);
+    const other = await browser.newPage();
+    await other.goto(url);
+    await other.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+    assert.equal(await readoutT(other), t);
+    const strip = (s) => s.replace(/integrator: \w+/, "");
+    assert.equal(strip(await other.textContent("#readout")), strip(readout));
+    await other.close();
+  });
+
+  await test("exports answer: PNG, state JSON, trajectory CSV", async () => {
+    for (const [id, type] of [["export-png", "image/png"], ["export-state", "application/json"], ["export-csv", "text/csv"]]) {
+      const href = await page.$eval(`#${id}`, (a) => a.href);
+      const res = await fetch(href);
+      assert.equal(res.status, 200, id);
+      assert.equal(res.headers.get("content-type"), type);
+    }
+    const csv = await (await fetch(await page.$eval("#export-csv", (a) => a.href))).text();
+    assert.match(csv.split("\n")[0], /^t,r,phi/);
+  });
+
+  if (screenshots) {
+    await page.screenshot({ path: path.join(screenshots, "desktop.png") });
+    await page.setViewportSize({ width: 390, height: 844 });
+    await page.waitForTimeout(300);
+    await page.screenshot({ path: path.join(screenshots, "phone.png"), fullPage: true });
+  }
+  await browser.close();
+} catch (e) {
+  failed = true;
+  console.log(e.stack);
+} finally {
+  server.kill();
+}
+process.exit(failed ? 1 : 0);

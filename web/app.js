@@ -1,0 +1,315 @@
+// Spinfold's browser UI: everything comes from the API (presets, schema, state, frames); no
+// physics here.
+import uPlot from "/vendor/uPlot.esm.js";
+
+const api = "/api/v1";
+const ui = {
+  id: null, scene: null, schema: null, presets: [], version: -1, t: 0, startTime: 0,
+  view: { kind: null, layers: new Set(["surface", "grid", "body", "frame", "trail", "hud"]), yaw: null, pitch: null },
+  events: null, frameUrl: null, plots: null, series: [[], [], [], [], [], []],
+};
+const $ = (id) => document.getElementById(id);
+
+class ProblemError extends Error {
+  constructor(problem) { super(problem.detail || problem.title); this.problem = problem; }
+}
+
+async function call(method, path, body) {
+  const options = { method, headers: {} };
+  if (body !== undefined) {
+    options.headers["Content-Type"] = "application/json";
+    options.body = JSON.stringify(body);
+  }
+  const res = await fetch(api + path, options);
+  if (res.status === 204) return null;
+  const data = await res.json();
+  if (!res.ok) throw new ProblemError(data);
+  return data;
+}
+
+function status(text) { $("status").textContent = text; }
+
+// ---- Frames: fetched only when the state or the view changed; the ETag answers 304 otherwise.
+function frameQuery(width = 640, height = 480) {
+  const q = new URLSearchParams({ width, height, view: ui.view.kind, layers: [...ui.view.layers].join(",") });
+  if (ui.view.yaw !== null) { q.set("yaw", ui.view.yaw.toFixed(4)); q.set("pitch", ui.view.pitch.toFixed(4)); }
+  return `${api}/sessions/${ui.id}/frame.png?${q}`;
+}
+
+let frameBusy = false, framePending = false;
+async function refreshFrame() {
+  if (!ui.id) return;
+  if (frameBusy) { framePending = true; return; }
+  frameBusy = true;
+  try {
+    const res = await fetch(frameQuery(), { cache: "no-cache" });
+    if (res.status === 200) {
+      const url = URL.createObjectURL(await res.blob());
+      if (ui.frameUrl) URL.revokeObjectURL(ui.frameUrl);
+      ui.frameUrl = url;
+      $("frame").src = url;
+      $("frame").dataset.etag = res.headers.get("ETag") || "";
+    }
+  } finally {
+    frameBusy = false;
+    if (framePending) { framePending = false; refreshFrame(); }
+  }
+  $("export-png").href = frameQuery();
+}
+
+// ---- State, readouts and plots.
+function showState(state) {
+  ui.t = state.t;
+  const num = (v) => (v === null || v === undefined ? "—" : Number(v).toPrecision(6));
+  $("readout").textContent =
+    `t = ${num(state.t)}   r = ${num(state.r)}   phi = ${num(state.phi)}   lambda = ${num(state.lambda)}   mu = ${num(state.mu)}\n` +
+    `energy = ${num(state.energy)}   energy error = ${num(state.energy_error)}   spin = ${num(state.spin)}   ` +
+    `p_phi = ${num(state.p_phi)}   det L = ${num(state.det_L)}   integrator: ${state.integrator}   status: ${state.status}`;
+  $("readout").dataset.t = state.t;
+  const s = ui.series;
+  if (s[0].length && state.t <= s[0][s[0].length - 1]) s.forEach((a) => (a.length = 0));
+  s[0].push(state.t);
+  s[1].push(Math.max(Math.abs(state.energy_error ?? 0), 1e-16));
+  s[2].push(state.spin);
+  s[3].push(state.p_phi);
+  s[4].push(state.C_x ?? null);
+  s[5].push(state.C_y ?? null);
+  if (ui.plots) {
+    ui.plots.energy.setData([s[0], s[1]]);
+    ui.plots.invariants.setData([s[0], s[2], s[3], s[4], s[5]]);
+  }
+}
+
+// Whole decades from 1e-16 (uPlot tick formatting stops there) up to above the largest value: finite, positive, never empty.
+function logRange(u, lo, hi) {
+  const top = Number.isFinite(hi) && hi > 0 ? hi : 1e-15;
+  return [1e-16, Math.max(1e-15, 10 ** Math.ceil(Math.log10(top) + 0.01))];
+}
+
+function makePlots() {
+  const width = Math.max(260, Math.min(420, ($("side").clientWidth || 360) - 8));
+  ui.plots = {
+    // Log scale with a range that never collapses (uPlot cannot tick an empty log range).
+    energy: new uPlot({ width, height: 160, title: "relative energy error",
+                        scales: { x: { time: false }, y: { distr: 3, log: 10, range: logRange } },
+                        series: [{}, { label: "|ΔH/H|", stroke: "#c40" }] }, [[], []], $("plot-energy")),
+    invariants: new uPlot({ width, height: 180, title: "spin, p_φ, C_x, C_y", scales: { x: { time: false } },
+                            series: [{}, { label: "spin", stroke: "#06c" }, { label: "p_φ", stroke: "#080" },
+                                     { label: "C_x", stroke: "#a0a" }, { label: "C_y", stroke: "#aa0" }] },
+                          [[], [], [], [], []], $("plot-invariants")),
+  };
+}
+
+function listen() {
+  if (ui.events) ui.events.close();
+  ui.events = new EventSource(`${api}/sessions/${ui.id}/events?rate=20`);
+  ui.events.addEventListener("state", (e) => {
+    showState(JSON.parse(e.data));
+    refreshFrame();
+  });
+}
+
+// ---- Controls built from the scene's JSON Schema. A change is a PATCH; a refusal shows the
+// server's message beside the field and the value goes back.
+function fieldFor(path, spec, value) {
+  const row = document.createElement("div");
+  row.className = "field";
+  const label = document.createElement("label");
+  label.textContent = path[path.length - 1] + (spec["x-unit"] && spec["x-unit"] !== "1" ? ` [${spec["x-unit"]}]` : "");
+  let input;
+  if (spec.enum) {
+    input = document.createElement("select");
+    for (const option of spec.enum) input.add(new Option(option, option));
+    input.value = value ?? spec.default;
+  } else {
+    input = document.createElement("input");
+    input.type = "number";
+    input.step = "any";
+    input.value = value ?? spec.default;
+  }
+  input.name = path.join(".");
+  input.title = spec.description || "";
+  label.htmlFor = input.id = "field-" + path.join("-");
+  const error = document.createElement("span");
+  error.className = "error";
+  input.addEventListener("change", async () => {
+    const patch = {};
+    let node = patch;
+    path.slice(0, -1).forEach((key) => (node = node[key] = {}));
+    node[path[path.length - 1]] = spec.enum ? input.value : Number(input.value);
+    try {
+      const res = await call("PATCH", `/sessions/${ui.id}`, patch);
+      error.textContent = "";
+      ui.scene = res.scene;
+      ui.startTime = res.start_time;
+      showState(res.state);
+      refreshFrame();
+    } catch (e) {
+      error.textContent = e.message;
+      input.value = lookup(ui.scene, path) ?? spec.default;
+    }
+  });
+  row.append(label, input, error);
+  return row;
+}
+
+function lookup(object, path) { return path.reduce((node, key) => (node ? node[key] : undefined), object); }
+
+function buildControls() {
+  const form = $("controls");
+  form.textContent = "";
+  const props = ui.schema.properties;
+  for (const section of ["surface", "body", "initial", "integrator"]) {
+    const set = document.createElement("fieldset");
+    set.innerHTML = `<legend>${section}</legend>`;
+    for (const [key, spec] of Object.entries(props[section].properties))
+      set.append(fieldFor([section, key], spec, lookup(ui.scene, [section, key])));
+    form.append(set);
+  }
+  const potential = document.createElement("fieldset");
+  potential.innerHTML = "<legend>potential</legend>";
+  const gamma = props.potential.properties.radial.properties.gamma;
+  potential.append(fieldFor(["potential", "radial", "gamma"], gamma, lookup(ui.scene, ["potential", "radial", "gamma"]) ?? 0));
+  const deformation = lookup(ui.scene, ["potential", "deformation"]);
+  for (const branch of props.potential.properties.deformation.oneOf) {
+    const kind = branch.properties.kind.const;
+    if (deformation && deformation.kind !== kind) continue;
+    for (const [key, spec] of Object.entries(branch.properties))
+      if (key !== "kind") potential.append(fieldFor(["potential", "deformation", key], spec, deformation?.[key]));
+    if (!deformation) break;  // offer the abc fields when there is no deformation potential yet
+  }
+  form.append(potential);
+  const degenerate = document.createElement("fieldset");
+  degenerate.innerHTML = "<legend>run</legend>";
+  degenerate.append(fieldFor(["on_degenerate"], props.on_degenerate, ui.scene.on_degenerate));
+  form.append(degenerate);
+}
+
+// ---- Views and layers.
+function buildViewControls() {
+  const kinds = { sphere: ["sphere", "disk"], pseudosphere: ["disk", "hyperboloid"], plane: ["plane"] }[ui.scene.surface.kind];
+  const select = $("view");
+  select.textContent = "";
+  kinds.forEach((k) => select.add(new Option(k, k)));
+  if (!kinds.includes(ui.view.kind)) ui.view.kind = kinds[0];
+  select.value = ui.view.kind;
+  const layers = $("layers");
+  if (!layers.childElementCount)
+    for (const layer of ["surface", "grid", "body", "frame", "trail", "hud"]) {
+      const label = document.createElement("label");
+      label.innerHTML = `<input type="checkbox" name="layer-${layer}" ${ui.view.layers.has(layer) ? "checked" : ""}> ${layer}`;
+      label.firstChild.addEventListener("change", (e) => {
+        e.target.checked ? ui.view.layers.add(layer) : ui.view.layers.delete(layer);
+        refreshFrame();
+      });
+      layers.append(label);
+    }
+}
+
+// ---- Sessions.
+async function openScene(scene, { until = 0, startTime = 0 } = {}) {
+  if (ui.id) call("DELETE", `/sessions/${ui.id}`).catch(() => {});
+  const created = await call("POST", startTime > 0 ? `/sessions?start_time=${startTime}` : "/sessions", scene);
+  ui.id = created.id;
+  ui.scene = created.scene;
+  ui.startTime = created.start_time;
+  ui.view.yaw = ui.view.pitch = null;
+  ui.series.forEach((a) => (a.length = 0));
+  showState(created.state);
+  if (until > 0) showState((await call("POST", `/sessions/${ui.id}/advance`, { until })).state);
+  $("explanation").textContent = created.scene.description || "";
+  buildControls();
+  buildViewControls();
+  $("export-state").href = `${api}/sessions/${ui.id}`;
+  $("export-csv").href = `${api}/sessions/${ui.id}/trajectory?format=csv`;
+  document.querySelectorAll(".preset").forEach((b) => b.classList.toggle("active", b.dataset.name === created.scene.name));
+  listen();
+  await refreshFrame();
+  status(`session ${ui.id}`);
+}
+
+async function buildGallery() {
+  const gallery = $("gallery");
+  for (const preset of ui.presets) {
+    const button = document.createElement("button");
+    button.className = "preset";
+    button.dataset.name = preset.name;
+    button.title = preset.description;
+    button.innerHTML = `<img alt=""><b>${preset.name.replaceAll("_", " ")}</b>`;
+    button.addEventListener("click", () => openScene(preset.scene));
+    gallery.append(button);
+  }
+  // Thumbnails rendered by the server, one short-lived session at a time.
+  for (const preset of ui.presets) {
+    try {
+      const s = await call("POST", "/sessions", preset.scene);
+      await call("POST", `/sessions/${s.id}/advance`, { until: 2 });
+      const res = await fetch(`${api}/sessions/${s.id}/frame.png?width=160&height=120&layers=surface,grid,body,trail`);
+      const img = gallery.querySelector(`[data-name="${preset.name}"] img`);
+      img.src = URL.createObjectURL(await res.blob());
+      await call("DELETE", `/sessions/${s.id}`);
+    } catch (e) { /* a missing thumbnail is not worth an error */ }
+  }
+}
+
+// ---- Share: the URL carries the scene, the view and the time.
+function shareUrl() {
+  const params = new URLSearchParams({ scene: JSON.stringify(ui.scene), view: ui.view.kind, t: String(ui.t),
+                                       start: String(ui.startTime),
+                                       layers: [...ui.view.layers].join(",") });
+  return `${location.origin}${location.pathname}#${params}`;
+}
+
+function fromHash() {
+  if (!location.hash) return null;
+  const params = new URLSearchParams(location.hash.slice(1));
+  if (!params.has("scene")) return null;
+  ui.view.kind = params.get("view");
+  if (params.has("layers")) ui.view.layers = new Set(params.get("layers").split(",").filter(Boolean));
+  return { scene: JSON.parse(params.get("scene")), until: Number(params.get("t") || 0),
+           startTime: Number(params.get("start") || 0) };
+}
+
+// ---- Wiring.
+function wire() {
+  $("play").onclick = () => call("POST", `/sessions/${ui.id}/play`, { rate: Number($("speed").value) }).catch((e) => status(e.message));
+  $("pause").onclick = () => call("POST", `/sessions/${ui.id}/pause`, {});
+  $("step").onclick = async () => showState((await call("POST", `/sessions/${ui.id}/advance`, { steps: 10 })).state);
+  $("reset").onclick = async () => showState((await call("POST", `/sessions/${ui.id}/reset`, {})).state);
+  $("speed").oninput = () => ($("speed-out").textContent = $("speed").value);
+  $("speed").onchange = () => call("POST", `/sessions/${ui.id}/pause`, {}).then(() => $("play").onclick());
+  $("view").onchange = () => { ui.view.kind = $("view").value; ui.view.yaw = ui.view.pitch = null; refreshFrame(); };
+  $("share").onclick = async () => {
+    const url = shareUrl();
+    history.replaceState(null, "", url);
+    try { await navigator.clipboard.writeText(url); } catch (e) { /* the address bar has it */ }
+    status("share link in the address bar");
+  };
+  // Orbit the camera by dragging (3-D views).
+  let drag = null;
+  $("frame").addEventListener("pointerdown", (e) => {
+    if (ui.view.kind !== "sphere" && ui.view.kind !== "hyperboloid") return;
+    drag = { x: e.clientX, y: e.clientY, yaw: ui.view.yaw ?? 0.7, pitch: ui.view.pitch ?? 0.45 };
+    $("frame").setPointerCapture(e.pointerId);
+  });
+  $("frame").addEventListener("pointermove", (e) => {
+    if (!drag) return;
+    ui.view.yaw = drag.yaw - (e.clientX - drag.x) * 0.01;
+    ui.view.pitch = Math.max(-1.5, Math.min(1.5, drag.pitch + (e.clientY - drag.y) * 0.01));
+    refreshFrame();
+  });
+  $("frame").addEventListener("pointerup", () => (drag = null));
+}
+
+async function main() {
+  [ui.schema, ui.presets] = await Promise.all([call("GET", "/schema"), call("GET", "/scenes")]);
+  wire();
+  makePlots();
+  const shared = fromHash();
+  const first = shared ? shared.scene : (ui.presets.find((p) => p.name === "spinning_rigid_sphere") || ui.presets[0]).scene;
+  await openScene(first, shared ? { until: shared.until, startTime: shared.startTime } : {});
+  document.body.dataset.ready = "true";
+  buildGallery();
+}
+
+main().catch((e) => status(`error: ${e.message}`));
