@@ -137,12 +137,15 @@ function fieldFor(path, spec, value) {
     let node = patch;
     path.slice(0, -1).forEach((key) => (node = node[key] = {}));
     node[path[path.length - 1]] = spec.enum ? input.value : Number(input.value);
+    // A deformation field needs its kind: the scene's, or abc when there is none yet.
+    if (path[1] === "deformation") node.kind = lookup(ui.scene, ["potential", "deformation", "kind"]) ?? "abc";
     try {
       const res = await call("PATCH", `/sessions/${ui.id}`, patch);
       error.textContent = "";
       ui.scene = res.scene;
       ui.startTime = res.start_time;
       showState(res.state);
+      if (path[0] === "surface" || path[1] === "deformation") { buildControls(); buildViewControls(); }
       refreshFrame();
     } catch (e) {
       error.textContent = e.message;

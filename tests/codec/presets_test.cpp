@@ -53,6 +53,36 @@ TEST(Presets, PseudosphereSpinningBodyClosesACircleTurningAgainstItsSpin) {
   EXPECT_LT((global_embedding(scene, run.state).X - b0.X).norm(), 1e-8);
 }
 
+TEST(Presets, NonSpinningBodyOnH2FollowsAGeodesic) {
+  // A geodesic of H² is a plane section through the origin of ℝ^{2,1}: X·M = sR = 0 with s = 0.
+  const Scene scene = preset("geodesic_rigid_pseudosphere");
+  Simulation run = start_simulation(scene);
+  EXPECT_NEAR(spin(scene, run.state), 0.0, 1e-15);
+  const Vec3 M = *momentum_map(scene, run.state);
+  for (int k = 1; k <= 5; ++k) {
+    advance_to(run, 1.0 * k);
+    const Vec3 X = global_embedding(scene, run.state).X;
+    EXPECT_NEAR(X.dot(M) / (X.norm() * M.norm()), 0.0, 1e-12);
+  }
+}
+
+TEST(Presets, DeformationCarriesSpinThatBendsThePathOnH2) {
+  // α̇ = β̇: the frame's rotation part θ = α − β is still, yet the rotating deformed axes carry spin
+  // s ≠ 0; the path's geodesic curvature is K s/(m v) (physics.md §8.5).
+  const Scene scene = preset("deforming_spin_pseudosphere");
+  Simulation run = start_simulation(scene);
+  const double s = spin(scene, run.state);
+  EXPECT_GT(std::abs(s), 0.1);
+  const EmbeddedBody b0 = global_embedding(scene, run.state);
+  const double v = std::sqrt(dot(scene.surface, b0.V, b0.V));
+  const double h = 1e-3;
+  advance_to(run, h);
+  const Vec3 V1 = global_embedding(scene, run.state).V;
+  const Vec3 a = tangential(scene.surface, b0.X, (V1 - b0.V) / h);
+  const double kappa = dot(scene.surface, a, rotate_quarter(scene.surface, b0.X, b0.V)) / (v * v * v);
+  EXPECT_NEAR(kappa, curvature(scene.surface) * s / (scene.body.mass * v), 1e-2 * std::abs(kappa));  // O(h) difference
+}
+
 TEST(Presets, OnThePlaneTheSpinningBodyGoesStraight) {
   const Scene scene = preset("spinning_rigid_plane");
   Simulation run = start_simulation(scene);
