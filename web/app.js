@@ -238,7 +238,8 @@ async function buildGallery() {
     button.className = "preset";
     button.dataset.name = preset.name;
     button.title = preset.description;
-    button.innerHTML = `<img alt=""><b>${preset.name.replaceAll("_", " ")}</b>`;
+    button.innerHTML = `<img alt=""><b>${preset.name.replaceAll("_", " ")}</b><small></small>`;
+    button.querySelector("small").textContent = preset.description;
     button.addEventListener("click", () => openScene(preset.scene));
     gallery.append(button);
   }

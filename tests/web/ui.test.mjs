@@ -68,6 +68,14 @@ try {
     await page.click("#pause");
   });
 
+  await test("moving the speed slider changes how fast the state advances", async () => {
+    await page.click("#reset");
+    await page.$eval("#speed", (el) => { el.value = "5"; el.dispatchEvent(new Event("input")); el.dispatchEvent(new Event("change")); });
+    await page.waitForFunction(() => Number(document.querySelector("#readout").dataset.t) > 2.5, null, { timeout: 10000 });
+    await page.click("#pause");
+    assert.equal(await page.textContent("#speed-out"), "5");
+  });
+
   await test("changing a field changes the state", async () => {
     await page.fill('[name="initial.r"]', "0.9");
     await page.dispatchEvent('[name="initial.r"]', "change");
