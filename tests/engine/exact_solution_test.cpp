@@ -127,15 +127,7 @@ TEST(Exact, AutoPicksTheClosedFormOnlyWhereItExists) {
 }
 
 TEST(Exact, DegenerateCrossingLocatedOnTheClosedForm) {
-  Scene scene;
-  scene.surface = {SurfaceKind::sphere, 1.0};
-  scene.body = {1.0, 0.1, BodyModel::affine};
-  scene.initial.r = 1.2;
-  scene.initial.lambda = 1.0;
-  scene.initial.mu = 0.3;
-  scene.initial.phi_dot = 0.4;
-  scene.initial.mu_dot = -0.6;
-  scene.initial.alpha_dot = -std::cos(1.2) * 0.4;
+  Scene scene = test::degenerate_crossing_scene();
   scene.integrator.name = "exact";
   Simulation run = start_simulation(scene);
   advance_to(run, 1.0);

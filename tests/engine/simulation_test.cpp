@@ -121,15 +121,7 @@ TEST(RigidModel, MatchesTheAffineBodyAtSpinEquilibrium) {
 }
 
 TEST(DegenerateFrame, CrossingIsFollowedAndReported) {
-  Scene scene;
-  scene.surface = {SurfaceKind::sphere, 1.0};
-  scene.body = {1.0, 0.1, BodyModel::affine};
-  scene.initial.r = 1.2;
-  scene.initial.lambda = 1.0;
-  scene.initial.mu = 0.3;
-  scene.initial.phi_dot = 0.4;
-  scene.initial.mu_dot = -0.6;
-  scene.initial.alpha_dot = -std::cos(1.2) * 0.4;  // M = diag(0, −0.6): det L = 0.3 − 0.6t
+  Scene scene = test::degenerate_crossing_scene();
   scene.integrator = {"dop853", 0.01, 1e-12};
   Simulation run = start_simulation(scene);
   const double H0 = energy(scene, run.state);

@@ -30,6 +30,21 @@ inline void set_rigid_motion(Scene& s, double v, double heading, double spin) {
   s.initial.beta_dot = 0.0;
 }
 
+// A free affine body whose covariant rate is M = diag(0, −0.6): relative to parallel transport
+// det L = 0.3 − 0.6t, so the frame is squashed to a segment at t = 0.5 (physics.md §2).
+inline Scene degenerate_crossing_scene() {
+  Scene s;
+  s.surface = {SurfaceKind::sphere, 1.0};
+  s.body = {1.0, 0.1, BodyModel::affine};
+  s.initial.r = 1.2;
+  s.initial.lambda = 1.0;
+  s.initial.mu = 0.3;
+  s.initial.phi_dot = 0.4;
+  s.initial.mu_dot = -0.6;
+  s.initial.alpha_dot = -std::cos(1.2) * 0.4;  // cancels the chart frame's rotation Cφ̇
+  return s;
+}
+
 inline Simulation run_to(const Scene& scene, double t) {
   Simulation run = start_simulation(scene);
   advance_to(run, t);
