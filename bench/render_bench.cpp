@@ -59,14 +59,15 @@ int run_render_bench(int frames) {
   const LayerSet sets[] = {
       {"all layers", render::kAllLayers},
       {"no trail, no HUD", render::kSurface | render::kGrid | render::kBody | render::kFrame},
-      {"body only", render::kBody}};
+      {"body only", render::kBody},
+      {"surface only", render::kSurface},
+      {"no layers (clear + encode)", 0u}};
   std::printf(
       "| size | layers | triangles | segments | build ms | render ms | encode ms | frame ms | bare render ms "
       "| "
       "bare encode ms | frame / bare |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- "
       "|\n");
   for (const Size& size : sizes) {
-    double all_ms = 0.0;
     for (const LayerSet& set : sets) {
       render::ViewOptions view;
       view.width = size.w;
@@ -113,34 +114,45 @@ int run_render_bench(int frames) {
       const BareTimings bare =
           bare_render_loop(size.w, size.h, opaque, translucent, lines, &scene.view_projection[0][0], frames);
       const double frame = median(build) + median(draw) + median(encode);
-      if (set.layers == render::kAllLayers) all_ms = frame;
       std::printf("| %dx%d | %s | %d | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", size.w,
                   size.h, set.name, triangles, segments, median(build), median(draw), median(encode), frame,
                   bare.render_ms, bare.encode_ms, frame / (bare.render_ms + bare.encode_ms));
-      if (set.layers != render::kAllLayers && set.layers != render::kBody)
-        std::printf("| | all layers / no trail, no HUD | | | | | | %.2f× | | | |\n", all_ms / frame);
     }
   }
-  // The same comparison with a long trail, as a played server session accumulates.
+  // What the trail and the HUD cost, measured interleaved (one frame of each layer set in turn) so
+  // that the machine's drift falls on all of them alike; also with a long trail, as a played
+  // server session accumulates.
+  std::printf(
+      "\n| size | trail points | all layers ms | no trail ms | no HUD ms | no trail, no HUD ms | trail ms | HUD ms "
+      "| all / no trail, no HUD |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   const render::Snapshot long_trail = bench_snapshot(10001);
-  double with_ms = 0.0, without_ms = 0.0;
-  for (const unsigned layers : {unsigned{render::kAllLayers}, unsigned{render::kSurface | render::kGrid |
-                                                                       render::kBody | render::kFrame}}) {
-    render::ViewOptions view;
-    view.layers = layers;
-    render::aim_camera_at_body(view, long_trail);
-    std::vector<double> total;
-    for (int f = 0; f < frames + 2; ++f) {
-      const auto t = std::chrono::steady_clock::now();
-      const render::FrameScene scene = render::build_scene(long_trail, view);
-      const std::uint8_t* rgba = renderer.render_rgba(scene, view.width, view.height);
-      render::encode_png(rgba, view.width, view.height);
-      if (f >= 2) total.push_back(ms_since(t));
-    }
-    (layers == render::kAllLayers ? with_ms : without_ms) = median(total);
+  const unsigned without_trail = render::kAllLayers & ~unsigned{render::kTrail};
+  const unsigned without_hud = render::kAllLayers & ~unsigned{render::kHud};
+  const unsigned without_both = without_trail & without_hud;
+  const unsigned interleaved[] = {unsigned{render::kAllLayers}, without_trail, without_hud, without_both};
+  for (const auto& [size, trail_snapshot] :
+       {std::pair{sizes[0], &snapshot}, std::pair{sizes[1], &snapshot}, std::pair{sizes[2], &snapshot},
+        std::pair{sizes[0], &long_trail}}) {
+    std::vector<double> total[4];
+    for (int f = 0; f < frames + 2; ++f)
+      for (int k = 0; k < 4; ++k) {
+        render::ViewOptions view;
+        view.width = size.w;
+        view.height = size.h;
+        view.layers = interleaved[k];
+        render::aim_camera_at_body(view, *trail_snapshot);
+        const auto t = std::chrono::steady_clock::now();
+        const render::FrameScene scene = render::build_scene(*trail_snapshot, view);
+        const std::uint8_t* rgba = renderer.render_rgba(scene, view.width, view.height);
+        render::encode_png(rgba, view.width, view.height);
+        if (f >= 2) total[k].push_back(ms_since(t));
+      }
+    const double all = median(total[0]), no_trail = median(total[1]), no_hud = median(total[2]),
+                 neither = median(total[3]);
+    std::printf("| %dx%d | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f× |\n", size.w, size.h,
+                trail_snapshot->trail.size(), all, no_trail, no_hud, neither, all - no_trail, all - no_hud,
+                all / neither);
   }
-  std::printf("\n640x480 with a 10,001-point trail: all layers %.2f ms, no trail and no HUD %.2f ms: %.2f×\n",
-              with_ms, without_ms, with_ms / without_ms);
   return 0;
 }
 
