@@ -99,10 +99,13 @@ void advance_exact(Simulation& run, double t_end) {
 
 }  // namespace
 
-void advance_to(Simulation& run, double t_end) {
+bool advance_to(Simulation& run, double t_end, std::uint64_t max_attempts) {
   if (run.exact) {
-    if (run.state.status == Status::ok && run.state.t < t_end) advance_exact(run, t_end);
-    return;
+    if (run.state.status == Status::ok && run.state.t < t_end && max_attempts > 0) {
+      advance_exact(run, t_end);
+      return true;
+    }
+    return run.state.status != Status::ok || run.state.t >= t_end;
   }
   State& state = run.state;
   const Scene& scene = run.scene;
@@ -112,7 +115,8 @@ void advance_to(Simulation& run, double t_end) {
   const StepProblem f{scene, state.chart};
   Coords increment, y_next;
   if (run.carry.size() != state.y.size()) run.carry = Coords::Zero(state.y.size());
-  while (state.status == Status::ok && state.t < t_end) {
+  for (std::uint64_t attempts = 0; state.status == Status::ok && state.t < t_end; ++attempts) {
+    if (attempts == max_attempts) return false;
     const double remaining = (t_end - state.t) - run.t_carry;  // the true elapsed time is t + carry
     const double h_planned = adaptive ? run.h_next : scene.integrator.dt;
     const bool last = h_planned >= remaining;
@@ -127,13 +131,13 @@ void advance_to(Simulation& run, double t_end) {
       ++run.rejected;
       if (!adaptive) {
         state.status = finite ? Status::step_failed : Status::non_finite;
-        return;
+        return true;
       }
       const double h_min = 1e-14 * std::max(1.0, std::abs(state.t));
       run.h_next = finite ? result.h_next : 0.25 * h;
       if (!(run.h_next > h_min)) {
         state.status = finite ? Status::step_failed : Status::non_finite;
-        return;
+        return true;
       }
       continue;
     }
@@ -143,7 +147,7 @@ void advance_to(Simulation& run, double t_end) {
       run.events.push_back({t_cross});
       if (scene.on_degenerate == OnDegenerate::stop) {
         state.status = Status::degenerate_frame;
-        return;
+        return true;
       }
     }
     run.carry = corrected - (y_next - state.y);
@@ -166,6 +170,7 @@ void advance_to(Simulation& run, double t_end) {
       run.carry.setZero(state.y.size());  // the new chart's coordinates start exact
     }
   }
+  return true;
 }
 
 }  // namespace spinfold

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -42,9 +43,15 @@ std::string_view resolve_integrator(const Scene& scene);
 // validate_scene.
 Simulation start_simulation(const Scene& scene, double start_time = 0.0);
 
+inline constexpr std::uint64_t kNoStepLimit = std::numeric_limits<std::uint64_t>::max();
+
 // Advances the run to exactly t_end [time] unless its status stops it earlier. On numerical
-// trouble the state stays at the last good step and the status says why.
-void advance_to(Simulation& run, double t_end);
+// trouble the state stays at the last good step and the status says why. At most max_attempts
+// step attempts (accepted or rejected; the exact solution makes one) are made: when they run out
+// first, the function returns false with the state at the last accepted step and the status ok,
+// and a later call continues from there. A stiff scene can need arbitrarily many steps; callers
+// that serve others (the server, the fuzzers) bound the work of one call this way.
+bool advance_to(Simulation& run, double t_end, std::uint64_t max_attempts = kNoStepLimit);
 
 // det L of the current state (frame-independent; λ₀² for the rigid model).
 double det_L(const Scene& scene, const State& state);

@@ -174,7 +174,8 @@ struct ApiServer::State {
       for (const auto& s : sessions.all()) {
         const std::lock_guard lock(s->mutex);
         if (!s->playing) continue;
-        advance_to(s->run, s->run.state.t + s->rate * wall);
+        // A stiff scene falls behind real time rather than holding the player from the others.
+        advance_to(s->run, s->run.state.t + s->rate * wall, options.limits.max_play_steps);
         record_sample(*s);
         if (s->run.state.status != Status::ok) s->playing = false;
       }
@@ -354,10 +355,17 @@ void ApiServer::State::routes() {
             (target - s->run.state.t) / s->scene.integrator.dt > static_cast<double>(limits.max_steps))
           throw bad(422, "Over a limit", "until", std::to_string(target),
                     "needs more than " + std::to_string(limits.max_steps) + " fixed steps in one request");
-        advance_to(s->run, target);
+        // An adaptive method may need any number of steps: the work is bounded, the progress kept.
+        const bool complete = advance_to(s->run, target, static_cast<std::uint64_t>(limits.max_steps));
         record_sample(*s);
         res.set_header("X-Spinfold-Provenance", provenance(*s));
-        send_json(res, session_json(req.matches[1], *s));
+        ordered_json out = session_json(req.matches[1], *s);
+        out["advance"] = {{"until", target}, {"complete", complete}};
+        if (!complete)
+          out["advance"]["reason"] = "stopped after " + std::to_string(limits.max_steps) +
+                                     " step attempts, the limit per request, at t = " +
+                                     std::to_string(s->run.state.t) + ": advance again to continue";
+        send_json(res, out);
       }));
 
   http.Post(api + sid + "/play", wrap([this](const httplib::Request& req, httplib::Response& res) {

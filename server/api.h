@@ -20,7 +20,8 @@ struct Limits {
   std::size_t max_body_bytes = 64 * 1024;  // request bodies [bytes]
   std::size_t max_sessions = 64;
   std::chrono::seconds idle_expiry{1800};  // sessions unused this long are dropped
-  long max_steps = 1000000;                // accepted steps per advance request
+  long max_steps = 1000000;                // step attempts per advance request (and fixed steps)
+  long max_play_steps = 20000;             // step attempts per session per player tick (50 Hz)
   double max_advance_time = 1e6;           // simulated time per advance request
   int max_image_side = 4096;               // [pixels]
   int max_streams = 4;                     // open event streams (each holds a worker thread)

@@ -50,7 +50,8 @@ json openapi_document() {
       {"/api/v1/sessions/{id}", "delete", "Delete the session", {{"204", "deleted"}, {"404", "unknown"}}},
       {"/api/v1/sessions/{id}/advance",
        "post",
-       "Advance to {\"until\": t} or by {\"steps\": n}",
+       "Advance to {\"until\": t} or by {\"steps\": n}; at most max_steps attempts (\"advance\": "
+       "{\"complete\": false} when they run out first)",
        {{"200", "state"}, {"422", "invalid or over a limit"}},
        true},
       {"/api/v1/sessions/{id}/play",

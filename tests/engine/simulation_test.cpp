@@ -216,6 +216,36 @@ TEST(Reproducibility, SameSceneSameBits) {
   }
 }
 
+TEST(StepBudget, StopsEarlyAndContinuesToTheSameBits) {
+  for (const ConservationCase& c : conservation_cases()) {
+    const Simulation whole = test::run_to(c.scene, 3.0);
+    Simulation pieces = start_simulation(c.scene);
+    int calls = 0;
+    while (!advance_to(pieces, 3.0, 7)) {
+      ++calls;
+      EXPECT_EQ(pieces.state.status, Status::ok) << c.name;
+      EXPECT_LT(pieces.state.t, 3.0) << c.name;
+      ASSERT_LT(calls, 100000) << c.name;
+    }
+    EXPECT_EQ(pieces.state.t, 3.0) << c.name;
+    if (whole.exact) continue;  // one attempt: nothing to cut
+    EXPECT_GT(calls, 0) << c.name;
+    ASSERT_EQ(pieces.state.y.size(), whole.state.y.size());
+    EXPECT_EQ(std::memcmp(pieces.state.y.data(), whole.state.y.data(), sizeof(double) * whole.state.y.size()),
+              0)
+        << c.name;
+    EXPECT_EQ(pieces.steps, whole.steps) << c.name;
+  }
+}
+
+TEST(StepBudget, ZeroAttemptsChangeNothing) {
+  const Scene scene = test::rigid_scene(SurfaceKind::sphere, 1.0, 1.0, 0.5, 1.0);
+  Simulation run = start_simulation(scene);
+  EXPECT_FALSE(advance_to(run, 1.0, 0));
+  EXPECT_EQ(run.state.t, 0.0);
+  EXPECT_EQ(run.steps, 0u);
+}
+
 TEST(Rk4, FourthOrderOnTheSpinningCircle) {
   Scene scene = test::rigid_scene(SurfaceKind::sphere, 1.0, 1.0, 0.5, 1.0);
   scene.initial.r = 1.0;

@@ -151,6 +151,37 @@ TEST_F(Api, SessionLifecycle) {
   EXPECT_EQ(c.Get("/api/v1/sessions/" + id)->status, 404);
 }
 
+// An adaptive method on a stiff scene may need any number of steps: one request does at most
+// max_steps attempts (100,000 here), keeps the progress and says so; the next one continues.
+TEST_F(Api, AdvanceStopsAtTheStepLimitAndKeepsTheProgress) {
+  auto c = client();
+  const std::string id = create(R"({"potential": {"deformation": {"kind": "abc", "C": 1e8}},
+      "initial": {"lambda": 1.3, "mu": 0.7}, "integrator": {"name": "dop853", "tolerance": 1e-14}})");
+  auto first = c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 1000})", "application/json");
+  ASSERT_TRUE(first);
+  ASSERT_EQ(first->status, 200) << first->body;
+  const json a = json::parse(first->body);
+  EXPECT_EQ(a["advance"]["complete"], false);
+  EXPECT_EQ(a["advance"]["until"], 1000.0);
+  EXPECT_NE(a["advance"]["reason"].get<std::string>().find("advance again"), std::string::npos);
+  EXPECT_EQ(a["state"]["status"], "ok");
+  const double t1 = a["state"]["t"];
+  EXPECT_GT(t1, 0.0);
+  EXPECT_LT(t1, 1000.0);
+  auto second = c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 1000})", "application/json");
+  ASSERT_TRUE(second);
+  const double t2 = json::parse(second->body)["state"]["t"];
+  EXPECT_GT(t2, t1);
+  auto short_one =
+      c.Post("/api/v1/sessions/" + id + "/advance", json{{"until", t2 + 1e-3}}.dump(), "application/json");
+  ASSERT_TRUE(short_one);
+  const json b = json::parse(short_one->body);
+  EXPECT_EQ(b["advance"]["complete"], true);
+  EXPECT_FALSE(b["advance"].contains("reason"));
+  EXPECT_EQ(b["state"]["t"], t2 + 1e-3);
+  remove(id);
+}
+
 TEST_F(Api, PatchContinuesFromTheCurrentStateUnderNewParameters) {
   const std::string id = create(R"({"preset": "breathing_ellipse_sphere"})");
   auto c = client();
