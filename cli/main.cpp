@@ -239,10 +239,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   SimulateOptions sim;
-  CLI::App* simulate_cmd = app.add_subcommand("simulate", "Simulation a scene and print JSON Lines samples");
+  CLI::App* simulate_cmd = app.add_subcommand("simulate", "Simulate a scene and print JSON Lines samples");
   simulate_cmd->add_option("scene_file", sim.scene_file, "Scene JSON file (default: the default preset)");
   simulate_cmd->add_option("--scene", sim.preset,
-                           "Simulation an embedded preset by name (see `spinfold scenes`)");
+                           "Simulate an embedded preset by name (see `spinfold scenes`)");
   simulate_cmd->add_option("--t-end", sim.t_end, "Simulated time to reach")->capture_default_str();
   simulate_cmd->add_option("--every", sim.every, "Sample interval")->capture_default_str();
   simulate_cmd->add_option("--integrator", sim.integrator, "Override the scene's integrator name");

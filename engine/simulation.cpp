@@ -32,6 +32,10 @@ Simulation start_simulation(const Scene& scene, double start_time) {
     run.exact = make_exact_solution(scene);
   run.h_next = scene.integrator.dt;
   run.initial_energy = energy(scene, run.state);
+  Scene free = scene;
+  free.potential = {};
+  const double kinetic = energy(free, run.state);
+  run.energy_scale = kinetic + std::abs(run.initial_energy - kinetic);
   return run;
 }
 
@@ -39,6 +43,11 @@ namespace {
 
 bool all_finite(const Coords& y) {
   return y.allFinite();
+}
+
+// The coordinates and the chart they are in (an extreme scene can overflow the chart alone).
+bool all_finite(const State& state) {
+  return state.y.allFinite() && state.chart.A.allFinite() && state.chart.b.allFinite();
 }
 
 double det_of(const Coords& y) {
@@ -72,7 +81,7 @@ namespace {
 void advance_exact(Simulation& run, double t_end) {
   State next = exact_state(*run.exact, t_end - run.start_time);
   next.t = t_end;
-  if (!all_finite(next.y)) {
+  if (!all_finite(next)) {
     run.state.status = Status::non_finite;
     return;
   }
@@ -97,16 +106,7 @@ void advance_exact(Simulation& run, double t_end) {
   ++run.steps;
 }
 
-}  // namespace
-
-bool advance_to(Simulation& run, double t_end, std::uint64_t max_attempts) {
-  if (run.exact) {
-    if (run.state.status == Status::ok && run.state.t < t_end && max_attempts > 0) {
-      advance_exact(run, t_end);
-      return true;
-    }
-    return run.state.status != Status::ok || run.state.t >= t_end;
-  }
+bool advance_steps(Simulation& run, double t_end, std::uint64_t max_attempts) {
   State& state = run.state;
   const Scene& scene = run.scene;
   const bool adaptive = run.integrator->info().adaptive;
@@ -165,12 +165,52 @@ bool advance_to(Simulation& run, double t_end, std::uint64_t max_attempts) {
     ++run.steps;
     // A step shortened to land on t_end says nothing about the step the solution allows.
     if (adaptive) run.h_next = (last && h < h_planned) ? h_planned : result.h_next;
+    const State before_chart_move = state;
     if (maintain_chart(scene, state)) {
+      if (!all_finite(state)) {
+        state = before_chart_move;
+        state.status = Status::non_finite;
+        return true;
+      }
       ++run.recentres;
       run.carry.setZero(state.y.size());  // the new chart's coordinates start exact
     }
   }
   return true;
+}
+
+}  // namespace
+
+bool advance_to(Simulation& run, double t_end, std::uint64_t max_attempts) {
+  const State checkpoint = run.state;
+  bool done = true;
+  if (!run.exact)
+    done = advance_steps(run, t_end, max_attempts);
+  else if (run.state.status == Status::ok && run.state.t < t_end && max_attempts > 0)
+    advance_exact(run, t_end);
+  else
+    done = run.state.status != Status::ok || run.state.t >= t_end;
+  // The motion conserves energy. A step beyond a method's stability blows the state up (to 1e64
+  // and on, every number still finite) long before anything overflows: an energy error as large
+  // as the energy scale itself marks that, and the last state known to be good is the one this
+  // call started from.
+  const double E = energy(run.scene, run.state);
+  Status trouble = Status::ok;
+  if (!std::isfinite(E))
+    trouble = Status::non_finite;
+  else if (std::abs(E - run.initial_energy) > run.energy_scale)
+    trouble = Status::diverged;
+  else if (run.scene.surface.kind == SurfaceKind::pseudosphere &&
+           global_body(run.scene, run.state).r > kMaxHyperbolicDistance * run.scene.surface.radius)
+    trouble = Status::out_of_range;
+  if (trouble != Status::ok) {
+    run.state = checkpoint;
+    run.state.status = trouble;
+    run.carry.setZero(run.state.y.size());
+    run.t_carry = 0.0;
+    return true;
+  }
+  return done;
 }
 
 }  // namespace spinfold

@@ -27,7 +27,9 @@ struct Simulation {
   double h_next = 0.0;   // next trial step [time]
   Coords carry;          // compensated-summation remainder of the state (round-off not yet added)
   double t_carry = 0.0;  // the same for the time [time]
-  double initial_energy = 0.0;
+  double initial_energy = 0.0;  // [energy]
+  double energy_scale = 0.0;    // kinetic + |potential| energy at the start [energy]: the yardstick
+                                // of divergence
   double start_time = 0.0;  // [time] at which the scene's initial state holds
   std::vector<DegenerateEvent> events;
   std::uint64_t steps = 0;      // accepted steps

@@ -35,6 +35,10 @@ enum class Status {
   non_finite,        // a step produced a non-finite value; the state is the last good one
   step_failed,       // the step size underflowed; the state is the last good one
   degenerate_frame,  // det L reached 0 and the scene asked to stop there
+  out_of_range,      // farther out on H² than the scene's global coordinates can express in double
+                     // (r > kMaxHyperbolicDistance · R); the state is the last one within
+  diverged,          // the energy error grew as large as the energy itself: the step is beyond the
+                     // method's stability (or the tolerance too loose); the state is the last good one
 };
 
 std::string_view status_name(Status status);

@@ -13,6 +13,10 @@ using Mat3 = Eigen::Matrix3d;
 // struct with a kind serves every formula (K = σ/R²) without a visitor per function.
 enum class SurfaceKind { sphere, pseudosphere, plane };
 
+// Farthest a body may go on H², in units of R: the global embedding grows as R e^{r/R}/2 and the
+// outputs built from it (X, p_φ, the paper's frame) must stay finite in double (e^250 ≈ 1e108).
+inline constexpr double kMaxHyperbolicDistance = 250.0;
+
 struct Surface {
   SurfaceKind kind = SurfaceKind::sphere;
   double radius = 1.0;  // R [length]; on the plane only the length scale for charts and display

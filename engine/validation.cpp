@@ -4,8 +4,10 @@
 #include <numbers>
 #include <sstream>
 
+#include "engine/chart.h"
 #include "engine/exact_solution.h"
 #include "engine/integrator.h"
+#include "engine/invariants.h"
 #include "engine/potentials.h"
 
 namespace spinfold {
@@ -21,14 +23,24 @@ std::string number_text(double v) {
 
 class Checker {
  public:
-  // Records a non-finite value; returns true when the value is finite.
+  // Records a non-finite value or one beyond the supported magnitudes; true when it is usable.
   bool finite(const std::string& field, double v) {
-    if (std::isfinite(v)) return true;
-    add(field, v, "must be a finite number");
-    return false;
+    if (!std::isfinite(v)) {
+      add(field, v, "must be a finite number");
+      return false;
+    }
+    if (std::abs(v) > kMaxSceneMagnitude) {
+      add(field, v, "must be at most 1e100 in magnitude");
+      return false;
+    }
+    return true;
   }
   void positive(const std::string& field, double v) {
-    if (finite(field, v) && !(v > 0.0)) add(field, v, "must be > 0");
+    if (!finite(field, v)) return;
+    if (!(v > 0.0))
+      add(field, v, "must be > 0");
+    else if (v < kMinScenePositive)
+      add(field, v, "must be at least 1e-100");
   }
   void non_negative(const std::string& field, double v) {
     if (finite(field, v) && v < 0.0) add(field, v, "must be >= 0");
@@ -62,6 +74,10 @@ void check_initial(const Scene& scene, Checker& c) {
     if (surface.kind == SurfaceKind::sphere && std::isfinite(surface.radius) && surface.radius > 0.0 &&
         q.r > std::numbers::pi * surface.radius)
       c.add("initial.r", q.r, "must be <= pi * radius on the sphere (the south pole)");
+    if (surface.kind == SurfaceKind::pseudosphere && std::isfinite(surface.radius) && surface.radius > 0.0 &&
+        q.r > kMaxHyperbolicDistance * surface.radius)
+      c.add("initial.r", q.r,
+            "must be <= 250 * radius on the pseudosphere (farther out its global coordinates overflow)");
   }
 }
 
@@ -98,6 +114,51 @@ void check_potentials(const Scene& scene, Checker& c) {
                "a rigid body has no deformation degrees of freedom: remove the deformation potential");
 }
 
+bool finite_start(const Scene& scene) {
+  const State start = initial_state(scene);
+  return start.y.allFinite() && std::isfinite(energy(scene, start));
+}
+
+// Finite inputs can still overflow in the state they make (a rate of 1e300, squared). Names the
+// fields whose value alone does it: those for which a neutral value gives a finite start.
+void check_finite_start(const Scene& scene, Checker& c) {
+  if (finite_start(scene)) return;
+  struct Candidate {
+    const char* field;
+    double& (*slot)(Scene&);
+    double neutral;
+  };
+  const Candidate candidates[] = {
+      {"initial.r_dot", [](Scene& s) -> double& { return s.initial.r_dot; }, 0.0},
+      {"initial.phi_dot", [](Scene& s) -> double& { return s.initial.phi_dot; }, 0.0},
+      {"initial.alpha_dot", [](Scene& s) -> double& { return s.initial.alpha_dot; }, 0.0},
+      {"initial.beta_dot", [](Scene& s) -> double& { return s.initial.beta_dot; }, 0.0},
+      {"initial.lambda_dot", [](Scene& s) -> double& { return s.initial.lambda_dot; }, 0.0},
+      {"initial.mu_dot", [](Scene& s) -> double& { return s.initial.mu_dot; }, 0.0},
+      {"initial.lambda", [](Scene& s) -> double& { return s.initial.lambda; }, 1.0},
+      {"initial.mu", [](Scene& s) -> double& { return s.initial.mu; }, 1.0},
+      {"body.mass", [](Scene& s) -> double& { return s.body.mass; }, 1.0},
+      {"body.inertia", [](Scene& s) -> double& { return s.body.inertia; }, 1.0},
+  };
+  bool named = false;
+  Scene probe = scene;
+  for (const Candidate& k : candidates) {
+    const double value = k.slot(probe);
+    k.slot(probe) = k.neutral;
+    const bool culprit = finite_start(probe);
+    k.slot(probe) = value;
+    if (!culprit) continue;
+    c.add(k.field, value,
+          "makes the initial state overflow (its energy is not a finite number): use a value of smaller "
+          "magnitude");
+    named = true;
+  }
+  if (!named)
+    c.add_text("initial", "(state)",
+               "the initial state overflows (its energy is not a finite number): use values of smaller "
+               "magnitude");
+}
+
 }  // namespace
 
 std::vector<FieldError> validate_scene(const Scene& scene) {
@@ -124,6 +185,7 @@ std::vector<FieldError> validate_scene(const Scene& scene) {
   c.positive("integrator.dt", in.dt);
   if (c.finite("integrator.tolerance", in.tolerance) && !(in.tolerance >= 1e-15 && in.tolerance <= 1e-2))
     c.add("integrator.tolerance", in.tolerance, "must be between 1e-15 and 1e-2");
+  if (c.errors.empty()) check_finite_start(scene, c);
   return c.errors;
 }
 

@@ -95,6 +95,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{R"({"initial": {"mu": -1}})", "initial.mu"},
         BadScene{R"({"initial": {"r": -0.1}})", "initial.r"},
         BadScene{R"({"initial": {"r": 3.2}})", "initial.r"},  // > πR on the unit sphere
+        BadScene{R"({"surface": {"kind": "pseudosphere", "radius": 2}, "initial": {"r": 501}})", "initial.r"},
         BadScene{R"({"initial": {"phi": null}})", "initial.phi"},
         BadScene{R"({"initial": {"spin": 1}})", "initial.spin"},
         BadScene{R"({"body": {"model": "rigid"}, "initial": {"lambda": 1, "mu": 2}})", "initial.mu"},
@@ -119,6 +120,14 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{R"({"integrator": {"tolerance": 1}})", "integrator.tolerance"},
         BadScene{R"({"integrator": {"tolerance": 1e-20}})", "integrator.tolerance"},
         BadScene{R"({"on_degenerate": "explode"})", "on_degenerate"},
+        // Beyond the supported magnitudes, and finite inputs whose start overflows.
+        BadScene{R"({"initial": {"alpha_dot": 1e101}})", "initial.alpha_dot"},
+        BadScene{R"({"body": {"mass": 1e-101}})", "body.mass"},
+        BadScene{R"({"surface": {"radius": 1e300}})", "surface.radius"},
+        BadScene{R"({"potential": {"deformation": {"kind": "abc", "C": -1e200}}})", "potential.deformation.C"},
+        BadScene{R"({"body": {"inertia": 1e100}, "initial": {"lambda_dot": 1e100}})", "initial.lambda_dot"},
+        BadScene{R"({"surface": {"kind": "plane"}, "body": {"mass": 1e100}, "initial": {"r": 1e10, "phi_dot": 1e100}})",
+                 "initial.phi_dot"},
         BadScene{R"({"gravity": 9.81})", "gravity"}, BadScene{R"([1, 2, 3])", ""},
         BadScene{R"({"surface": )", ""}, BadScene{R"({"initial": {"r": 1e400}})", ""}));
 

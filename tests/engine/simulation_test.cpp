@@ -206,6 +206,46 @@ TEST(FailedStep, StepSizeUnderflowStopsWithStepFailed) {
   EXPECT_EQ(run.state.y, before.y);
 }
 
+// RK4 with a step far beyond its stability blows the state up to 1e40 and beyond while every
+// number stays finite. The run stops as diverged on the last state whose energy was right.
+TEST(FailedStep, UnstableFixedStepStopsAsDivergedOnTheLastGoodState) {
+  Scene scene;
+  scene.surface = {SurfaceKind::plane, 0.001};  // the plane's radius sets where charts move
+  scene.initial.r = 0.0;
+  scene.initial.phi = -3.568627450980415;
+  scene.initial.alpha = 0.5;
+  scene.initial.beta = 1.0;
+  scene.initial.alpha_dot = scene.initial.beta_dot = 1.0;
+  scene.initial.lambda_dot = scene.initial.mu_dot = 1.0;
+  scene.integrator = {"rk4", 1.5707963267948966, 1e-10};
+  Simulation run = start_simulation(scene);
+  for (int k = 1; k <= 10; ++k) advance_to(run, 0.5 * k);
+  EXPECT_EQ(run.state.status, Status::diverged);
+  EXPECT_EQ(run.state.t, 1.5);  // the blow-up happens in the step to t = 2
+  EXPECT_TRUE(run.state.y.allFinite());
+  EXPECT_LT(std::abs(energy(scene, run.state) - run.initial_energy), 0.1 * run.energy_scale);
+}
+
+// Far out on H² the global embedding grows as e^{r/R}: the run stops before its outputs overflow,
+// on the last state within 250 R, whose outputs are all finite.
+TEST(OutOfRange, FarOutOnThePseudosphereStopsBeforeTheOutputsOverflow) {
+  for (const char* integrator : {"auto", "dop853"}) {
+    Scene scene = test::rigid_scene(SurfaceKind::pseudosphere, 1.0, 1.0, 0.5, 1.0);
+    scene.integrator.name = integrator;
+    test::set_rigid_motion(scene, 100.0, 0.3, 2.0);
+    Simulation run = start_simulation(scene);
+    for (int k = 1; k <= 40 && run.state.status == Status::ok; ++k) advance_to(run, 0.1 * k);
+    EXPECT_EQ(run.state.status, Status::out_of_range) << integrator;
+    const PaperCoordinates c = paper_coordinates(scene, run.state);
+    EXPECT_GT(c.r, 200.0) << integrator;
+    EXPECT_LE(c.r, kMaxHyperbolicDistance) << integrator;
+    EXPECT_TRUE(c.X.allFinite()) << integrator;
+    EXPECT_TRUE(std::isfinite(c.p_phi) && std::isfinite(c.lambda) && std::isfinite(c.det_L)) << integrator;
+    ASSERT_TRUE(c.phi && c.r_dot) << integrator;
+    EXPECT_TRUE(std::isfinite(*c.phi) && std::isfinite(*c.r_dot)) << integrator;
+  }
+}
+
 TEST(Reproducibility, SameSceneSameBits) {
   for (const ConservationCase& c : conservation_cases()) {
     const Simulation a = test::run_to(c.scene, 7.0), b = test::run_to(c.scene, 7.0);
