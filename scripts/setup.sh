@@ -10,6 +10,7 @@ packages=(
   libcpp-httplib-dev nlohmann-json3-dev           # server and JSON codec
   libcli11-dev                                    # command line
   libgtest-dev libgmock-dev libbenchmark-dev      # tests and benchmarks
+  clang libclang-rt-14-dev                        # fuzzing (libFuzzer) and sanitizer runtimes
   libboost-dev gnuplot-nox                        # reference integrators (Boost.Odeint), plots
   wrk curl                                        # HTTP load benchmark
   chromium                                        # browser tests of the web UI (playwright-core)

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Install what is missing, build with warnings as errors, and run every test; then the engine
-# and codec tests again under AddressSanitizer and UBSan.
+# Install what is missing, build with warnings as errors, and run every test; then every test
+# but the browser's again under AddressSanitizer and UBSan; then the libFuzzer targets (clang)
+# for a fixed number of inputs from a fixed seed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -17,4 +18,8 @@ cmake --build build-sanitize -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions="$PWD/tests/lsan.supp" \
   UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
   ctest --test-dir build-sanitize --output-on-failure -j "$jobs"
+CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Release -DSPINFOLD_WERROR=ON \
+  -DSPINFOLD_FUZZ=ON > /dev/null
+cmake --build build-fuzz -j "$jobs"
+ctest --test-dir build-fuzz --output-on-failure -j "$jobs"
 echo "test.sh: all tests passed"
