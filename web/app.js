@@ -156,6 +156,43 @@ function fieldFor(path, spec, value) {
   return row;
 }
 
+// The deformation potential's kind: none or one of the schema's. A switch is one merge patch that
+// sets the new kind and removes the old kind's fields (null), so the server sees one whole object.
+function deformationKindField(branches, deformation) {
+  const row = document.createElement("div");
+  row.className = "field";
+  const label = document.createElement("label");
+  label.textContent = "deformation kind";
+  const input = document.createElement("select");
+  input.add(new Option("none", "none"));
+  for (const branch of branches) input.add(new Option(branch.properties.kind.const, branch.properties.kind.const));
+  input.value = deformation?.kind ?? "none";
+  input.name = "potential.deformation.kind";
+  label.htmlFor = input.id = "field-potential-deformation-kind";
+  const error = document.createElement("span");
+  error.className = "error";
+  input.addEventListener("change", async () => {
+    let replacement = null;
+    if (input.value !== "none") {
+      replacement = { kind: input.value };
+      for (const key of Object.keys(deformation ?? {})) if (key !== "kind") replacement[key] = null;
+    }
+    try {
+      const res = await call("PATCH", `/sessions/${ui.id}`, { potential: { deformation: replacement } });
+      ui.scene = res.scene;
+      ui.startTime = res.start_time;
+      showState(res.state);
+      buildControls();
+      refreshFrame();
+    } catch (e) {
+      error.textContent = e.message;
+      input.value = deformation?.kind ?? "none";
+    }
+  });
+  row.append(label, input, error);
+  return row;
+}
+
 function lookup(object, path) { return path.reduce((node, key) => (node ? node[key] : undefined), object); }
 
 function buildControls() {
@@ -174,6 +211,7 @@ function buildControls() {
   const gamma = props.potential.properties.radial.properties.gamma;
   potential.append(fieldFor(["potential", "radial", "gamma"], gamma, lookup(ui.scene, ["potential", "radial", "gamma"]) ?? 0));
   const deformation = lookup(ui.scene, ["potential", "deformation"]);
+  potential.append(deformationKindField(props.potential.properties.deformation.oneOf, deformation));
   for (const branch of props.potential.properties.deformation.oneOf) {
     const kind = branch.properties.kind.const;
     if (deformation && deformation.kind !== kind) continue;

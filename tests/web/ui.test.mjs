@@ -1,6 +1,6 @@
 // Browser tests of the web UI in real headless Chromium (Debian's, driven by playwright-core):
 // load, pick a preset, play and see the frame change, change a field and see the state change,
-// an invalid value shows the server's message and changes nothing, a share URL reproduces the
+// an invalid value shows the server's message and changes nothing, the deformation kind switches, a share URL reproduces the
 // state, the exports answer. Usage: node ui.test.mjs SPINFOLD_BINARY [SCREENSHOT_DIR]
 import { spawn } from "node:child_process";
 import { createRequire } from "node:module";
@@ -89,6 +89,20 @@ try {
     await page.waitForFunction(() => [...document.querySelectorAll(".error")].some((e) => e.textContent.includes("must be > 0")));
     assert.equal(await page.inputValue('[name="body.mass"]'), "1");
     assert.equal(await page.textContent("#readout"), before);
+  });
+
+  await test("switching the deformation kind replaces its fields on the server and in the form", async () => {
+    const scene = async () => (await (await fetch(await page.$eval("#export-state", (a) => a.href))).json()).scene;
+    await page.selectOption('[name="potential.deformation.kind"]', "polar");
+    await page.waitForSelector('[name="potential.deformation.ghat"]');
+    assert.equal(await page.$('[name="potential.deformation.C"]'), null);
+    assert.equal((await scene()).potential.deformation.kind, "polar");
+    await page.selectOption('[name="potential.deformation.kind"]', "none");
+    await page.waitForFunction(() => !document.querySelector('[name="potential.deformation.ghat"]'));
+    assert.equal((await scene()).potential.deformation, undefined);
+    await page.selectOption('[name="potential.deformation.kind"]', "abc");
+    await page.waitForSelector('[name="potential.deformation.C"]');
+    assert.equal((await scene()).potential.deformation.kind, "abc");
   });
 
   await test("a share URL reproduces the same state", async () => {
