@@ -303,6 +303,16 @@ void ApiServer::State::routes() {
                const std::lock_guard lock(s->mutex);
                json document = scene_to_json(s->scene);
                if (!patch.contains("initial")) {
+                 // A patch that changes nothing leaves the run as it is (no restart from the
+                 // paper coordinates, which would cost bits and the integrator's step size).
+                 json unchanged = document;
+                 unchanged.merge_patch(patch);
+                 const SceneParse same = parse_scene(unchanged);
+                 if (same.scene && scene_to_json(*same.scene) == document) {
+                   res.set_header("X-Spinfold-Provenance", provenance(*s));
+                   send_json(res, session_json(req.matches[1], *s));
+                   return;
+                 }
                  auto initial = current_initial(*s);
                  if (auto* why = std::get_if<std::string>(&initial))
                    throw bad(409, "Conflict", "initial", "", *why + ": give \"initial\" explicitly");

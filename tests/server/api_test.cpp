@@ -209,6 +209,24 @@ TEST_F(Api, PatchContinuesFromTheCurrentStateUnderNewParameters) {
   remove(id);
 }
 
+// A patch that changes nothing (the same values, written differently) leaves the run untouched:
+// the same state bits and start time, where a restart would re-derive the state at t = 1.5.
+TEST_F(Api, PatchThatChangesNothingLeavesTheRunAsItIs) {
+  const std::string id = create(R"({"preset": "breathing_ellipse_sphere"})");
+  auto c = client();
+  const json before =
+      json::parse(c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 1.5})", "application/json")->body);
+  auto patched = c.Patch("/api/v1/sessions/" + id, R"({"body": {"mass": 1}, "surface": {"kind": "sphere"}})",
+                         "application/json");
+  ASSERT_TRUE(patched);
+  ASSERT_EQ(patched->status, 200) << patched->body;
+  const json after = json::parse(patched->body);
+  EXPECT_EQ(after["start_time"], 0.0);
+  EXPECT_EQ(after["state"], before["state"]);
+  EXPECT_EQ(after["scene"], before["scene"]);
+  remove(id);
+}
+
 TEST_F(Api, PlayAdvancesInRealTimeAndEventsStreamIt) {
   const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
   auto c = client();
