@@ -72,21 +72,29 @@ RadialTerms radial_terms(const Scene& scene, const Chart& chart, double r, doubl
   return t;
 }
 
-double hamiltonian(const Scene& scene, const Chart& chart, const Coords& y) {
+EnergyParts energy_parts(const Scene& scene, const Chart& chart, const Coords& y) {
   const double m = scene.body.mass, J = scene.body.inertia;
   const double r = y[coord::r], S = polar_S(scene.surface, r), C = polar_C(scene.surface, r);
   const double s = spin_of(scene, y);
   const double Pi = y[coord::p_phi] - C * s;
-  double H = y[coord::p_r] * y[coord::p_r] / (2.0 * m) + Pi * Pi / (2.0 * m * S * S);
-  H += radial_terms(scene, chart, r, y[coord::phi]).value;
+  EnergyParts e;
+  e.kinetic = y[coord::p_r] * y[coord::p_r] / (2.0 * m) + Pi * Pi / (2.0 * m * S * S);
+  e.potential = radial_terms(scene, chart, r, y[coord::phi]).value;
   if (scene.body.model == BodyModel::rigid) {
     const double l0 = rigid_scale(scene);
-    return H + s * s / (4.0 * J * l0 * l0);
+    e.kinetic += s * s / (4.0 * J * l0 * l0);
+    return e;
   }
   const Mat2 L = block(y, coord::L), P = block(y, coord::P);
   const DeformationInvariants inv = deformation_invariants(L);
-  return H + P.squaredNorm() / (2.0 * J) +
-         deformation_potential(scene.potential.deformation, inv.a, inv.b).value;
+  e.kinetic += P.squaredNorm() / (2.0 * J);
+  e.potential += deformation_potential(scene.potential.deformation, inv.a, inv.b).value;
+  return e;
+}
+
+double hamiltonian(const Scene& scene, const Chart& chart, const Coords& y) {
+  const EnergyParts e = energy_parts(scene, chart, y);
+  return e.kinetic + e.potential;
 }
 
 void vector_field(const Scene& scene, const Chart& chart, const Coords& y, Coords& dydt) {

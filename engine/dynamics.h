@@ -30,6 +30,13 @@ RadialTerms radial_terms(const Scene& scene, const Chart& chart, double r, doubl
 // H = p_r²/2m + (p_φ − Cs)²/(2mS²) + ‖P‖²/2J + V_r + V_def   (rigid: s²/(4Jλ₀²) for the internal part)
 double hamiltonian(const Scene& scene, const Chart& chart, const Coords& y);
 
+// H split into its kinetic part (orbital, spin and deformation rates) and its potential part.
+struct EnergyParts {
+  double kinetic = 0.0;    // [energy]
+  double potential = 0.0;  // [energy]
+};
+EnergyParts energy_parts(const Scene& scene, const Chart& chart, const Coords& y);
+
 // dy/dt = X_H(y):
 //   ṙ = p_r/m, φ̇ = Π/(mS²), ṗ_r = CΠ²/(mS³) − KsΠ/(mS) − ∂V_r/∂r, ṗ_φ = −∂V_r/∂φ, Π = p_φ − Cs,
 //   L̇ = P/J − Cφ̇εL, Ṗ = −∂V/∂L − Cφ̇εP   (rigid: θ̇ = s/(2Jλ₀²) − Cφ̇, ṡ = 0).

@@ -18,6 +18,16 @@ std::string_view resolve_integrator(const Scene& scene) {
   return dop853_info.name;
 }
 
+namespace {
+
+// Kinetic + |potential| energy [energy]: what an energy error is measured against.
+double energy_scale(const Scene& scene, const State& state) {
+  const EnergyParts e = energy_parts(scene, state.chart, state.y);
+  return e.kinetic + std::abs(e.potential);
+}
+
+}  // namespace
+
 Simulation start_simulation(const Scene& scene, double start_time) {
   Simulation run;
   run.scene = scene;
@@ -32,10 +42,7 @@ Simulation start_simulation(const Scene& scene, double start_time) {
     run.exact = make_exact_solution(scene);
   run.h_next = scene.integrator.dt;
   run.initial_energy = energy(scene, run.state);
-  Scene free = scene;
-  free.potential = {};
-  const double kinetic = energy(free, run.state);
-  run.energy_scale = kinetic + std::abs(run.initial_energy - kinetic);
+  run.energy_scale = energy_scale(scene, run.state);
   return run;
 }
 
@@ -191,14 +198,16 @@ bool advance_to(Simulation& run, double t_end, std::uint64_t max_attempts) {
   else
     done = run.state.status != Status::ok || run.state.t >= t_end;
   // The motion conserves energy. A step beyond a method's stability blows the state up (to 1e64
-  // and on, every number still finite) long before anything overflows: an energy error as large
-  // as the energy scale itself marks that, and the last state known to be good is the one this
-  // call started from.
+  // and on, every number still finite) long before anything overflows: then the energy error is
+  // as large as the initial energy scale and as the current one (a body that legitimately speeds
+  // up, C < 0, has an error far below the current scale). The last state known to be good is the
+  // one this call started from.
   const double E = energy(run.scene, run.state);
+  const double error = std::abs(E - run.initial_energy);
   Status trouble = Status::ok;
   if (!std::isfinite(E))
     trouble = Status::non_finite;
-  else if (std::abs(E - run.initial_energy) > run.energy_scale)
+  else if (error > run.energy_scale && error > 0.5 * energy_scale(run.scene, run.state))
     trouble = Status::diverged;
   else if (run.scene.surface.kind == SurfaceKind::pseudosphere &&
            global_body(run.scene, run.state).r > kMaxHyperbolicDistance * run.scene.surface.radius)

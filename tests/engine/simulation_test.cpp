@@ -226,6 +226,22 @@ TEST(FailedStep, UnstableFixedStepStopsAsDivergedOnTheLastGoodState) {
   EXPECT_LT(std::abs(energy(scene, run.state) - run.initial_energy), 0.1 * run.energy_scale);
 }
 
+// An unbounded potential (C < 0) lets the frame grow exponentially: the energy error grows with the
+// energies far beyond the initial scale, yet stays tiny against the current one: not diverged.
+TEST(FailedStep, ExponentialGrowthIsNotDivergence) {
+  Scene scene;
+  scene.body = {1.0, 0.1, BodyModel::affine};
+  scene.potential.deformation = AbcPotential{0.0, 0.0, -1.0};
+  scene.initial.lambda = 1.2;
+  scene.initial.mu = 0.8;
+  scene.integrator = {"dop853", 0.01, 1e-10};
+  Simulation run = start_simulation(scene);
+  for (int k = 1; k <= 60; ++k) advance_to(run, 0.1 * k);
+  EXPECT_EQ(run.state.status, Status::ok);
+  EXPECT_EQ(run.state.t, 6.0);
+  EXPECT_GT(std::abs(energy(scene, run.state) - run.initial_energy), run.energy_scale);
+}
+
 // Far out on H² the global embedding grows as e^{r/R}: the run stops before its outputs overflow,
 // on the last state within 250 R, whose outputs are all finite.
 TEST(OutOfRange, FarOutOnThePseudosphereStopsBeforeTheOutputsOverflow) {
