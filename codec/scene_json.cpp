@@ -67,8 +67,12 @@ class Reader {
     errors_.push_back({field, value.dump(), reason});
   }
 
+  // Dotted path; a key that is empty or holds a dot is written quoted, so that the field named
+  // is never "" (the whole document) nor ambiguous.
   static std::string join(const std::string& path, std::string_view key) {
-    return path.empty() ? std::string(key) : path + "." + std::string(key);
+    const std::string name =
+        key.empty() || key.find('.') != std::string_view::npos ? json(std::string(key)).dump() : std::string(key);
+    return path.empty() ? name : path + "." + name;
   }
 
  private:

@@ -128,7 +128,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{R"({"body": {"inertia": 1e100}, "initial": {"lambda_dot": 1e100}})", "initial.lambda_dot"},
         BadScene{R"({"surface": {"kind": "plane"}, "body": {"mass": 1e100}, "initial": {"r": 1e10, "phi_dot": 1e100}})",
                  "initial.phi_dot"},
-        BadScene{R"({"gravity": 9.81})", "gravity"}, BadScene{R"([1, 2, 3])", ""},
+        BadScene{R"({"gravity": 9.81})", "gravity"}, BadScene{R"({"": 1})", R"("")"},
+        BadScene{R"({"body": {"mass.x": 1}})", R"(body."mass.x")"}, BadScene{R"([1, 2, 3])", ""},
         BadScene{R"({"surface": )", ""}, BadScene{R"({"initial": {"r": 1e400}})", ""}));
 
 TEST(SceneJson, DeepNestingIsRejectedBeforeItIsBuilt) {
