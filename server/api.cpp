@@ -60,7 +60,9 @@ void send_error(httplib::Response& res, const ApiError& e) {
   body["errors"] = errors;
   res.status = e.status;
   if (!e.retry_after.empty()) res.set_header("Retry-After", e.retry_after);
-  res.body = body.dump();
+  // The values quoted back may hold bytes that are not UTF-8 (a malformed body, a header): they
+  // are replaced (U+FFFD) rather than failing the answer.
+  res.body = body.dump(-1, ' ', false, json::error_handler_t::replace);
   res.set_header("Content-Type", "application/problem+json");
 }
 

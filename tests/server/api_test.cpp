@@ -380,6 +380,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadRequest{"POST", "/api/v1/sessions", "{}", "text/plain", 415, "Content-Type"},
         BadRequest{"POST", "/api/v1/sessions", "{\"surface\": ", "application/json", 400, ""},
+        BadRequest{"POST", "/api/v1/sessions", "\x88", "application/json", 400, ""},  // not UTF-8
+        BadRequest{"PATCH", "/api/v1/sessions/{id}", "{\"name\": \"\xff\"}", "application/json", 400, ""},
         BadRequest{"POST", "/api/v1/sessions", kDeep.c_str(), "application/json", 400, ""},
         BadRequest{"POST", "/api/v1/sessions", kHuge.c_str(), "application/json", 413, ""},
         BadRequest{"POST", "/api/v1/sessions", R"({"body": {"mass": -1}})", "application/json", 422,
