@@ -4,7 +4,8 @@
 // - an error is application/problem+json with its status and a detail;
 // - a refused request (4xx) changes nothing: the session reads the same before and after;
 // - a JSON answer parses.
-// Frames and event streams are left out: they cost milliseconds each and hold connections.
+// Event streams and play are left out: they hold connections and change the session while the
+// properties are checked.
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <cstdio>
@@ -76,6 +77,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string route = in.PickValueInArray({"/api/v1/sessions", "/api/v1/sessions/{id}",
                                                  "/api/v1/sessions/{id}/advance", "/api/v1/sessions/{id}/reset",
                                                  "/api/v1/sessions/{id}/pause", "/api/v1/sessions/{id}/trajectory",
+                                                 "/api/v1/sessions/{id}/frame.png",
                                                  "/api/v1/sessions/nope", "/api/v1/schema", "/api/v1/scenes",
                                                  "/api/v1/integrators", "/api/v1/health", "/api/v1/"});
   std::string target = route;
@@ -83,7 +85,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const int parameters = in.ConsumeIntegralInRange(0, 3);
   for (int k = 0; k < parameters; ++k) {
     const std::string key = in.PickValueInArray(
-        {"format", "width", "height", "view", "layers", "yaw", "pitch", "distance", "rate", "start_time", "t", "x"});
+        {"format", "width", "height", "view", "layers", "yaw", "pitch", "distance", "scale", "rate", "start_time", "x"});
     target += (k == 0 ? "?" : "&") + key + "=" + httplib::detail::encode_query_param(in.ConsumeRandomLengthString(24));
   }
   const std::string type = in.PickValueInArray({"application/json", "application/merge-patch+json", "text/plain",

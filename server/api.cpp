@@ -550,11 +550,17 @@ void ApiServer::State::routes() {
                  throw bad(422, "Invalid value", "scale", *v, "must be a number in (0, 10]");
              }
              // The ETag names the state and every parameter of the picture: a match renders nothing.
+             const auto camera = [](const std::optional<double>& v) {
+               char text[32] = "auto";  // aimed at the body
+               if (v) std::snprintf(text, sizeof text, "%.17g", *v);
+               return std::string(text);
+             };
              const auto etag_of = [&](std::uint64_t version) {
                char text[256];
-               std::snprintf(text, sizeof text, "\"%s-%llu-%d-%dx%d-%u-%.17g\"", req.matches[1].str().c_str(),
-                             static_cast<unsigned long long>(version), static_cast<int>(view.kind),
-                             view.width, view.height, view.layers, scale);
+               std::snprintf(text, sizeof text, "\"%s-%llu-%d-%dx%d-%u-%.17g-%s-%s-%s\"",
+                             req.matches[1].str().c_str(), static_cast<unsigned long long>(version),
+                             static_cast<int>(view.kind), view.width, view.height, view.layers, scale,
+                             camera(yaw).c_str(), camera(pitch).c_str(), camera(distance).c_str());
                return std::string(text);
              };
              std::string etag;

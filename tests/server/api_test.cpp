@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <set>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -308,6 +309,25 @@ TEST_F(Api, FrameWithEtagAnd304) {
   ASSERT_TRUE(moved);
   EXPECT_EQ(moved->status, 200);
   EXPECT_NE(moved->get_header_value("ETag"), etag);
+  remove(id);
+}
+
+// The camera is part of the picture: another yaw, pitch or distance is another ETag and other
+// pixels, never the cached frame of the first camera.
+TEST_F(Api, FrameEtagNamesTheCamera) {
+  const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
+  auto c = client();
+  const std::string base = "/api/v1/sessions/" + id + "/frame.png?width=160&height=120";
+  std::set<std::string> etags, bodies;
+  for (const char* camera : {"", "&yaw=2", "&yaw=1", "&yaw=1&pitch=0.5", "&yaw=1&pitch=0.5&distance=6"}) {
+    auto frame = c.Get(base + camera);
+    ASSERT_TRUE(frame);
+    ASSERT_EQ(frame->status, 200) << camera << ": " << frame->body;
+    etags.insert(frame->get_header_value("ETag"));
+    bodies.insert(frame->body);
+  }
+  EXPECT_EQ(etags.size(), 5u);
+  EXPECT_EQ(bodies.size(), 5u);
   remove(id);
 }
 

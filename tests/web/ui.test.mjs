@@ -1,6 +1,7 @@
 // Browser tests of the web UI in real headless Chromium (Debian's, driven by playwright-core):
 // load, pick a preset, play and see the frame change, change a field and see the state change,
-// an invalid value shows the server's message and changes nothing, the deformation kind switches, a share URL reproduces the
+// an invalid value shows the server's message and changes nothing, the deformation kind switches,
+// dragging orbits the camera, a share URL reproduces the
 // state, the exports answer. Usage: node ui.test.mjs SPINFOLD_BINARY [SCREENSHOT_DIR]
 import { spawn } from "node:child_process";
 import { createRequire } from "node:module";
@@ -103,6 +104,17 @@ try {
     await page.selectOption('[name="potential.deformation.kind"]', "abc");
     await page.waitForSelector('[name="potential.deformation.C"]');
     assert.equal((await scene()).potential.deformation.kind, "abc");
+  });
+
+  await test("dragging the frame orbits the camera: a new picture", async () => {
+    await page.click("#pause");
+    const before = await page.$eval("#frame", (el) => el.dataset.etag);
+    const box = await (await page.$("#frame")).boundingBox();
+    await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(box.x + box.width / 2 + 120, box.y + box.height / 2 + 40, { steps: 4 });
+    await page.mouse.up();
+    await page.waitForFunction((etag) => document.querySelector("#frame").dataset.etag !== etag, before, { timeout: 10000 });
   });
 
   await test("a share URL reproduces the same state", async () => {
