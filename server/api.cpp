@@ -459,7 +459,9 @@ void ApiServer::State::routes() {
   http.Post(api + sid + "/reset", wrap([this](const httplib::Request& req, httplib::Response& res) {
               const auto s = session(req.matches[1]);
               const std::lock_guard lock(s->mutex);
-              s->run = start_simulation(s->scene);
+              // Back to where the scene's initial state holds: its start time (after a PATCH, the
+              // moment of the patch), not t = 0 with a later state.
+              s->run = start_simulation(s->scene, s->run.start_time);
               s->trajectory.clear();
               s->trail.clear();
               s->reported_events = 0;

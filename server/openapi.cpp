@@ -60,7 +60,7 @@ json openapi_document() {
        {{"200", "state"}, {"409", "stopped"}},
        true},
       {"/api/v1/sessions/{id}/pause", "post", "Stop real-time advancing", {{"200", "state"}}},
-      {"/api/v1/sessions/{id}/reset", "post", "Back to t = 0", {{"200", "state"}}},
+      {"/api/v1/sessions/{id}/reset", "post", "Back to the scene's initial state at its start time", {{"200", "state"}}},
       {"/api/v1/sessions/{id}/events",
        "get",
        "Server-Sent Events: the state when it changes (?rate=hz)",

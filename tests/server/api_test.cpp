@@ -207,6 +207,12 @@ TEST_F(Api, PatchContinuesFromTheCurrentStateUnderNewParameters) {
   // Advancing after a PATCH goes on from the patched time.
   auto moved = c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 2.5})", "application/json");
   EXPECT_EQ(json::parse(moved->body)["state"]["t"], 2.5);
+  // Reset goes back to where the patched scene's initial state holds: t = 1.5, r = 0.7.
+  auto reset = c.Post("/api/v1/sessions/" + id + "/reset", "{}", "application/json");
+  ASSERT_TRUE(reset);
+  const json back = json::parse(reset->body)["state"];
+  EXPECT_EQ(back["t"], 1.5);
+  EXPECT_NEAR(back["r"].get<double>(), 0.7, 1e-15);
   remove(id);
 }
 
