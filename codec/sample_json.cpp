@@ -76,6 +76,7 @@ json sample_to_json(const Simulation& run, std::span<const DegenerateEvent> new_
   for (const DegenerateEvent& e : new_events) events.push_back({{"kind", "det_L_zero"}, {"t", number(e.t)}});
   j["events"] = events;
   j["status"] = std::string(status_name(state.status));
+  j["status_detail"] = std::string(status_description(state.status));
   j["integrator"] = std::string(run.info->name);
   j["steps"] = run.steps;
   return j;

@@ -14,4 +14,26 @@ std::string_view status_name(Status status) {
   return "unknown";
 }
 
+std::string_view status_description(Status status) {
+  switch (status) {
+    case Status::ok: return "running";
+    case Status::non_finite:
+      return "stopped: a step produced a number that is not finite; the state is the last good one "
+             "(lower dt or the tolerance, or change the parameters)";
+    case Status::step_failed:
+      return "stopped: the step size collapsed (a stiff or singular motion, or an implicit stage that "
+             "did not converge); the state is the last good one";
+    case Status::degenerate_frame:
+      return "stopped: det L reached 0 and the scene asks to stop there (on_degenerate: stop); the state "
+             "is the last one with det L > 0";
+    case Status::out_of_range:
+      return "stopped: the body went farther than 250 R out on the pseudosphere, beyond what the global "
+             "coordinates hold in double; the state is the last one within";
+    case Status::diverged:
+      return "stopped: the energy error grew as large as the energy itself, so the step is beyond this "
+             "integrator's stability; the state is the last good one (lower dt, or use auto)";
+  }
+  return "unknown";
+}
+
 }  // namespace spinfold

@@ -42,6 +42,8 @@ enum class Status {
 };
 
 std::string_view status_name(Status status);
+// One sentence for a person: what happened and what the state is.
+std::string_view status_description(Status status);
 
 struct State {
   double t = 0.0;  // [time]

@@ -66,6 +66,7 @@ function showState(state) {
     `energy = ${num(state.energy)}   energy error = ${num(state.energy_error)}   spin = ${num(state.spin)}   ` +
     `p_phi = ${num(state.p_phi)}   det L = ${num(state.det_L)}   integrator: ${state.integrator}   status: ${state.status}`;
   $("readout").dataset.t = state.t;
+  if (state.status !== "ok" && state.status_detail) status(state.status_detail);
   const s = ui.series;
   if (s[0].length && state.t <= s[0][s[0].length - 1]) s.forEach((a) => (a.length = 0));
   s[0].push(state.t);

@@ -216,6 +216,29 @@ TEST_F(Api, PatchContinuesFromTheCurrentStateUnderNewParameters) {
   remove(id);
 }
 
+// RK4 far beyond its stability: the run stops as diverged, says why in a sentence, and keeps the
+// last good state (the one before the request that blew up).
+TEST_F(Api, DivergedRunStopsWithItsReason) {
+  const std::string id = create(R"({"surface": {"kind": "plane", "radius": 0.001},
+      "initial": {"r": 0, "phi": -3.568627450980415, "alpha": 0.5, "beta": 1, "alpha_dot": 1, "beta_dot": 1,
+                  "lambda_dot": 1, "mu_dot": 1},
+      "integrator": {"name": "rk4", "dt": 1.5707963267948966}})");
+  auto c = client();
+  json state;
+  for (int k = 1; k <= 10; ++k) {
+    auto res = c.Post("/api/v1/sessions/" + id + "/advance", json{{"until", 0.5 * k}}.dump(), "application/json");
+    ASSERT_TRUE(res);
+    ASSERT_EQ(res->status, 200) << res->body;
+    state = json::parse(res->body)["state"];
+    if (state["status"] != "ok") break;
+  }
+  EXPECT_EQ(state["status"], "diverged");
+  EXPECT_EQ(state["t"], 1.5);
+  EXPECT_NE(state["status_detail"].get<std::string>().find("energy error"), std::string::npos);
+  EXPECT_LT(std::abs(state["energy_error"].get<double>()), 1.0);
+  remove(id);
+}
+
 // A patch that changes nothing (the same values, written differently) leaves the run untouched:
 // the same state bits and start time, where a restart would re-derive the state at t = 1.5.
 TEST_F(Api, PatchThatChangesNothingLeavesTheRunAsItIs) {
