@@ -232,6 +232,7 @@ ExactSolution make_exact_solution(const Scene& scene) {
   const State start = initial_state(scene);
   sol.chart0 = start.chart;
   sol.local0 = chart_kinematics(scene, start.y);
+  sol.theta0 = scene.initial.alpha - scene.initial.beta;
   if (const auto* abc = std::get_if<AbcPotential>(&scene.potential.deformation)) sol.internal = *abc;
   if (scene.potential.radial && scene.potential.radial->gamma > 0.0) {
     const InitialState& q = scene.initial;
@@ -242,6 +243,39 @@ ExactSolution make_exact_solution(const Scene& scene) {
     o.r_dot0 = q.r_dot;
     o.p_phi = start.y[coord::p_phi];
     o.spin = spin_of(scene, start.y);
+    o.energy = orbital_energy(scene, start);
+    o.strength = radial_strength(scene.surface, *scene.potential.radial);
+    o.Lambda = 2.0 * K * o.energy / m + K * K * o.spin * o.spin / (m * m);
+    o.u_c = o.Lambda != 0.0 ? K * K * o.p_phi * o.spin / (m * m * o.Lambda) : 0.0;
+    sol.radial = o;
+  }
+  return sol;
+}
+
+ExactSolution make_exact_solution(const Scene& scene, const State& start) {
+  ExactSolution sol;
+  sol.scene = scene;
+  sol.chart0 = start.chart;
+  sol.local0 = chart_kinematics(scene, start.y);
+  // The same body in the scene's coordinates: X ↦ AX + b, tangent vectors by A.
+  sol.initial = sol.local0;
+  sol.initial.X = start.chart.A * sol.local0.X + start.chart.b;
+  sol.initial.V = start.chart.A * sol.local0.V;
+  sol.initial.F1 = start.chart.A * sol.local0.F1;
+  if (const auto* abc = std::get_if<AbcPotential>(&scene.potential.deformation)) sol.internal = *abc;
+  if (scene.potential.radial && scene.potential.radial->gamma > 0.0) {
+    // The radial closed form runs in the scene's chart, frame (E₁, E₂).
+    const GlobalBody g = global_body(scene, start);
+    sol.initial.L = g.L;
+    sol.initial.M = g.M;
+    sol.theta0 = std::atan2(g.L(1, 0), g.L(0, 0));
+    const double m = scene.body.mass, K = curvature(scene.surface);
+    RadialOrbit o;
+    o.r0 = g.r;
+    o.phi0 = g.phi;
+    o.r_dot0 = g.r_dot;
+    o.p_phi = angular_momentum(scene, start);
+    o.spin = g.spin;
     o.energy = orbital_energy(scene, start);
     o.strength = radial_strength(scene.surface, *scene.potential.radial);
     o.Lambda = 2.0 * K * o.energy / m + K * K * o.spin * o.spin / (m * m);
@@ -315,8 +349,7 @@ Coords radial_exact_coords(const ExactSolution& sol, double t) {
   if (scene.body.model == BodyModel::rigid) {
     const double l0 = scene.initial.lambda;
     y.resize(coord::rigid_size);
-    y[coord::theta] =
-        scene.initial.alpha - scene.initial.beta + o.spin * t / (2.0 * J * l0 * l0) - orbit.drive;
+    y[coord::theta] = sol.theta0 + o.spin * t / (2.0 * J * l0 * l0) - orbit.drive;
     y[coord::spin] = o.spin;
   } else {
     const auto [L_int, M_int] = internal_motion(J, sol.internal, sol.initial.L, sol.initial.M, t);

@@ -54,6 +54,7 @@ struct ExactSolution {
   // growth far out on H² stays in the chart and never cancels in the body's coordinates.
   Chart chart0;
   BodyKinematics local0;
+  double theta0 = 0.0;                // rigid body: the frame angle θ at the start in the scene's chart
   AbcPotential internal;              // the scene's abc potential, or zero
   std::optional<RadialOrbit> radial;  // set when the scene has a radial potential with g > 0
 };
@@ -63,6 +64,11 @@ std::optional<std::string> exact_unsupported_reason(const Scene& scene);
 
 // Prepares the closed form from the scene's initial state (the scene must be supported).
 ExactSolution make_exact_solution(const Scene& scene);
+
+// The same from a state of a run under this scene's parameters (after a change of them): t = 0
+// of the solution is that state's moment. The body must not be at the scene's pole when the
+// scene has a radial potential (its barrier keeps it off).
+ExactSolution make_exact_solution(const Scene& scene, const State& start);
 
 // The state at time t [time], in a well-conditioned chart.
 State exact_state(const ExactSolution& solution, double t);

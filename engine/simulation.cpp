@@ -27,22 +27,35 @@ double energy_scale(const EnergyParts& e) {
 
 }  // namespace
 
+namespace {
+
+void measure_energy_from_here(Simulation& run) {
+  const EnergyParts now = energy_parts(run.scene, run.state.chart, run.state.y);
+  run.initial_energy = now.kinetic + now.potential;  // = energy(): the same sum
+  run.energy_scale = energy_scale(now);
+  run.segment_start = run.state.t;
+}
+
+void use_integrator(Simulation& run) {
+  const CatalogEntry* entry = find_integrator(resolve_integrator(run.scene));
+  run.info = &entry->info;
+  run.integrator = entry->make ? entry->make() : nullptr;
+  run.exact.reset();
+}
+
+}  // namespace
+
 Simulation start_simulation(const Scene& scene, double start_time) {
   Simulation run;
   run.scene = scene;
   run.state = initial_state(scene);
   run.state.t = start_time;
   run.start_time = start_time;
-  const CatalogEntry* entry = find_integrator(resolve_integrator(scene));
-  run.info = &entry->info;
-  if (entry->make)
-    run.integrator = entry->make();
-  else
-    run.exact = make_exact_solution(scene);
-  run.h_next = scene.integrator.dt;
-  const EnergyParts start = energy_parts(scene, run.state.chart, run.state.y);
-  run.initial_energy = start.kinetic + start.potential;  // = energy(): the same sum
-  run.energy_scale = energy_scale(start);
+  use_integrator(run);
+  if (!run.integrator) run.exact = make_exact_solution(scene);
+  measure_energy_from_here(run);
+  run.grid = {run.state, Coords::Zero(run.state.y.size()), 0.0, scene.integrator.dt};
+  run.checked = run.grid;
   return run;
 }
 
@@ -83,11 +96,42 @@ double locate_degenerate(Integrator& integrator, const StepProblem& f, const Coo
 
 namespace {
 
-// The closed form jumps straight to t_end; a det L sign change since the last state is located by
-// bisection on the closed form itself.
+// Every this many accepted steps the sequence's energy and range are checked, so that a run that
+// blows up stops at a good point of its own sequence, wherever advances stopped.
+constexpr std::uint64_t kCheckEvery = 16;
+
+// What the energy and the position say of a state: diverged (a step beyond the method's
+// stability blows the state up to 1e64 and on, every number still finite, long before anything
+// overflows: the energy error is then as large as the energy scale at the last change and as the
+// current one; a body that legitimately speeds up, C < 0, has an error far below the current
+// scale), non_finite, out_of_range (far out on H²) or ok.
+Status health(const Simulation& run, const State& state) {
+  const EnergyParts now = energy_parts(run.scene, state.chart, state.y);
+  const double E = now.kinetic + now.potential;
+  const double error = std::abs(E - run.initial_energy);
+  if (!std::isfinite(E)) return Status::non_finite;
+  if (error > run.energy_scale && error > 0.5 * energy_scale(now)) return Status::diverged;
+  if (run.scene.surface.kind == SurfaceKind::pseudosphere &&
+      global_body(run.scene, state).r > kMaxHyperbolicDistance * run.scene.surface.radius)
+    return Status::out_of_range;
+  return Status::ok;
+}
+
+// A crossing found again (by the sequence after the cut step, or twice by bisection) is one event.
+void add_event(std::vector<DegenerateEvent>& events, double t) {
+  if (!events.empty() && std::abs(events.back().t - t) <= 1e-9 * std::max(1.0, std::abs(t))) return;
+  events.push_back({t});
+}
+
+// The closed form jumps straight to t_end from the segment's start; a det L sign change since the
+// last state is located by bisection on the closed form itself, and a stop lands just before it.
 void advance_exact(Simulation& run, double t_end) {
-  State next = exact_state(*run.exact, t_end - run.start_time);
-  next.t = t_end;
+  const auto at = [&run](double t) {
+    State s = exact_state(*run.exact, t - run.segment_start);
+    s.t = t;
+    return s;
+  };
+  State next = at(t_end);
   if (!all_finite(next)) {
     run.state.status = Status::non_finite;
     return;
@@ -98,51 +142,62 @@ void advance_exact(Simulation& run, double t_end) {
     double lo = run.state.t, hi = t_end;
     for (int i = 0; i < 200 && hi - lo > 1e-14 * std::max(1.0, std::abs(hi)); ++i) {
       const double mid = 0.5 * (lo + hi);
-      if ((det_of(exact_state(*run.exact, mid).y) > 0.0) == positive)
+      if ((det_of(at(mid).y) > 0.0) == positive)
         lo = mid;
       else
         hi = mid;
     }
-    run.events.push_back({0.5 * (lo + hi)});
+    add_event(run.events, 0.5 * (lo + hi));
     if (scene.on_degenerate == OnDegenerate::stop) {
+      run.state = at(lo);
       run.state.status = Status::degenerate_frame;
       return;
     }
   }
   run.state = next;
-  ++run.steps;
+  ++run.steps;  // evaluations of the closed form
 }
 
-bool advance_steps(Simulation& run, double t_end, std::uint64_t max_attempts) {
-  State& state = run.state;
+enum class Mode {
+  sequence,  // only whole steps that end before t_end: the run's own step sequence
+  land,      // the last step cut to end exactly at t_end
+};
+
+// Steps `p` toward t_end; every attempt uses one of `attempts`. False when they ran out first.
+bool step_toward(Simulation& run, StepPoint& p, double t_end, Mode mode, std::uint64_t& attempts,
+                 std::vector<DegenerateEvent>& events) {
+  State& state = p.state;
   const Scene& scene = run.scene;
   const bool adaptive = run.integrator->info().adaptive;
   const bool affine = scene.body.model == BodyModel::affine;
+  const bool sequence = mode == Mode::sequence;
   const double tolerance = scene.integrator.tolerance;
   const StepProblem f{scene, state.chart};
   Coords increment, y_next;
-  if (run.carry.size() != state.y.size()) run.carry = Coords::Zero(state.y.size());
-  for (std::uint64_t attempts = 0; state.status == Status::ok && state.t < t_end; ++attempts) {
-    if (attempts == max_attempts) return false;
-    const double remaining = (t_end - state.t) - run.t_carry;  // the true elapsed time is t + carry
-    const double h_planned = adaptive ? run.h_next : scene.integrator.dt;
+  if (p.carry.size() != state.y.size()) p.carry = Coords::Zero(state.y.size());
+  while (state.status == Status::ok && state.t < t_end) {
+    const double remaining = (t_end - state.t) - p.t_carry;  // the true elapsed time is t + carry
+    const double h_planned = adaptive ? p.h_next : scene.integrator.dt;
     const bool last = h_planned >= remaining;
+    if (last && sequence) return true;
+    if (attempts == 0) return false;
+    --attempts;
     const double h = last ? remaining : h_planned;
 
     StepResult result = run.integrator->try_step(f, state.y, h, tolerance, increment);
     // Compensated summation: the carry holds the low-order bits lost in earlier additions.
-    const Coords corrected = increment + run.carry;
+    const Coords corrected = increment + p.carry;
     y_next = state.y + corrected;
     const bool finite = all_finite(y_next);
     if (!result.accepted || !finite) {
-      ++run.rejected;
+      if (sequence) ++run.rejected;
       if (!adaptive) {
         state.status = finite ? Status::step_failed : Status::non_finite;
         return true;
       }
       const double h_min = 1e-14 * std::max(1.0, std::abs(state.t));
-      run.h_next = finite ? result.h_next : 0.25 * h;
-      if (!(run.h_next > h_min)) {
+      p.h_next = finite ? result.h_next : 0.25 * h;
+      if (!(p.h_next > h_min)) {
         state.status = finite ? Status::step_failed : Status::non_finite;
         return true;
       }
@@ -150,28 +205,26 @@ bool advance_steps(Simulation& run, double t_end, std::uint64_t max_attempts) {
     }
 
     if (affine && (det_of(state.y) > 0.0) != (det_of(y_next) > 0.0)) {
-      const double t_cross = state.t + locate_degenerate(*run.integrator, f, state.y, h, tolerance);
-      run.events.push_back({t_cross});
+      add_event(events, state.t + locate_degenerate(*run.integrator, f, state.y, h, tolerance));
       if (scene.on_degenerate == OnDegenerate::stop) {
         state.status = Status::degenerate_frame;
         return true;
       }
     }
-    run.carry = corrected - (y_next - state.y);
+    p.carry = corrected - (y_next - state.y);
     state.y = y_next;
     // Time is summed with compensation too: over millions of steps a plain sum drifts by ~Nεt,
     // and the last step, cut to land on t_end, would absorb that drift as a phase error.
     if (last) {
       state.t = t_end;
-      run.t_carry = 0.0;
+      p.t_carry = 0.0;
     } else {
-      const double dt = h + run.t_carry, t_new = state.t + dt;
-      run.t_carry = dt - (t_new - state.t);
+      const double dt = h + p.t_carry, t_new = state.t + dt;
+      p.t_carry = dt - (t_new - state.t);
       state.t = t_new;
     }
-    ++run.steps;
     // A step shortened to land on t_end says nothing about the step the solution allows.
-    if (adaptive) run.h_next = (last && h < h_planned) ? h_planned : result.h_next;
+    if (adaptive) p.h_next = (last && h < h_planned) ? h_planned : result.h_next;
     const State before_chart_move = state;
     if (maintain_chart(scene, state)) {
       if (!all_finite(state)) {
@@ -179,48 +232,123 @@ bool advance_steps(Simulation& run, double t_end, std::uint64_t max_attempts) {
         state.status = Status::non_finite;
         return true;
       }
-      ++run.recentres;
-      run.carry.setZero(state.y.size());  // the new chart's coordinates start exact
+      if (sequence) ++run.recentres;
+      p.carry.setZero(state.y.size());  // the new chart's coordinates start exact
+    }
+    if (sequence && ++run.steps % kCheckEvery == 0) {
+      if (const Status trouble = health(run, state); trouble != Status::ok) {
+        p = run.checked;
+        p.state.status = trouble;
+        return true;
+      }
+      run.checked = p;
     }
   }
   return true;
 }
 
-}  // namespace
+// Stops the run on `trouble` at the last good state: the later of the state asked for before
+// (checked when it was reached) and the sequence's last good point.
+void stop_at_last_good(Simulation& run, const State& before, Status trouble) {
+  if (run.grid.state.status == Status::ok && health(run, run.grid.state) != Status::ok)
+    run.grid = run.checked;
+  run.grid.state.status = trouble;
+  run.state = before.t > run.grid.state.t ? before : run.grid.state;
+  run.state.status = trouble;
+  run.view_events.clear();
+}
 
-bool advance_to(Simulation& run, double t_end, std::uint64_t max_attempts) {
-  const State checkpoint = run.state;
-  bool done = true;
-  if (!run.exact)
-    done = advance_steps(run, t_end, max_attempts);
-  else if (run.state.status == Status::ok && run.state.t < t_end && max_attempts > 0)
-    advance_exact(run, t_end);
-  else
-    done = run.state.status != Status::ok || run.state.t >= t_end;
-  // The motion conserves energy. A step beyond a method's stability blows the state up (to 1e64
-  // and on, every number still finite) long before anything overflows: then the energy error is
-  // as large as the initial energy scale and as the current one (a body that legitimately speeds
-  // up, C < 0, has an error far below the current scale). The last state known to be good is the
-  // one this call started from.
-  const EnergyParts now = energy_parts(run.scene, run.state.chart, run.state.y);
-  const double E = now.kinetic + now.potential;
-  const double error = std::abs(E - run.initial_energy);
-  Status trouble = Status::ok;
-  if (!std::isfinite(E))
-    trouble = Status::non_finite;
-  else if (error > run.energy_scale && error > 0.5 * energy_scale(now))
-    trouble = Status::diverged;
-  else if (run.scene.surface.kind == SurfaceKind::pseudosphere &&
-           global_body(run.scene, run.state).r > kMaxHyperbolicDistance * run.scene.surface.radius)
-    trouble = Status::out_of_range;
-  if (trouble != Status::ok) {
-    run.state = checkpoint;
-    run.state.status = trouble;
-    run.carry.setZero(run.state.y.size());
-    run.t_carry = 0.0;
+// The sequence up to t_end, then the cut step from it to t_end (recomputed on every call).
+bool advance_steps(Simulation& run, double t_end, std::uint64_t& attempts) {
+  const State before = run.state;
+  const std::vector<DegenerateEvent> view_events_before = std::move(run.view_events);
+  run.view_events.clear();
+  const bool sequence_done = step_toward(run, run.grid, t_end, Mode::sequence, attempts, run.events);
+  const Status sequence_status = run.grid.state.status;
+  if (sequence_status == Status::degenerate_frame) {
+    run.state = run.grid.state;
     return true;
   }
-  return done;
+  if (sequence_status != Status::ok) {
+    stop_at_last_good(run, before, sequence_status);
+    return true;
+  }
+  if (!sequence_done) {
+    run.state = run.grid.state.t > before.t ? run.grid.state : before;
+    if (run.state.t == before.t) run.view_events = view_events_before;
+    return false;
+  }
+  StepPoint view = run.grid;
+  if (!step_toward(run, view, t_end, Mode::land, attempts, run.view_events)) {
+    run.state = run.grid.state.t > before.t ? run.grid.state : before;
+    run.view_events = run.state.t == before.t ? view_events_before : std::vector<DegenerateEvent>{};
+    return false;
+  }
+  if (view.state.status == Status::degenerate_frame) {
+    // The crossing stops the run: the point before it becomes the sequence's last.
+    for (const DegenerateEvent& e : run.view_events) add_event(run.events, e.t);
+    run.view_events.clear();
+    run.grid = view;
+    run.state = view.state;
+    return true;
+  }
+  Status trouble = view.state.status;
+  if (trouble == Status::ok) trouble = health(run, view.state);
+  if (trouble != Status::ok) {
+    stop_at_last_good(run, before, trouble);
+    return true;
+  }
+  run.state = view.state;
+  return true;
+}
+
+}  // namespace
+
+bool advance_within(Simulation& run, double t_end, std::uint64_t& attempts) {
+  if (run.state.status != Status::ok || !(t_end > run.state.t)) return true;
+  if (!run.exact) return advance_steps(run, t_end, attempts);
+  if (attempts == 0) return false;
+  --attempts;
+  const State before = run.state;
+  advance_exact(run, t_end);
+  if (run.state.status == Status::ok) {
+    if (const Status trouble = health(run, run.state); trouble != Status::ok) {
+      run.state = before;
+      run.state.status = trouble;
+    }
+  }
+  return true;
+}
+
+bool advance_to(Simulation& run, double t_end, std::uint64_t max_attempts) {
+  return advance_within(run, t_end, max_attempts);
+}
+
+void retune(Simulation& run, const Scene& next) {
+  // The state asked for becomes a point of the step sequence: a change is hit exactly. New
+  // parameters may cure what stopped the run (a step beyond stability): it continues.
+  State here = run.state;
+  here.status = Status::ok;
+  BodyKinematics body = chart_kinematics(run.scene, here.y);
+  const Surface& before = run.scene.surface;
+  if (before.kind != SurfaceKind::plane && next.surface.radius != before.radius)
+    body.X *= next.surface.radius / before.radius;  // the same place on the surface
+  // Velocities and frame rates are kept; the spin follows from the new inertia (s = J tr((εL)ᵀM)).
+  body.spin = next.body.inertia * (epsilon() * body.L).cwiseProduct(body.M).sum();
+  here.y = chart_coords(next, body);
+  if (!chart_well_conditioned(next.surface, here.y[coord::r])) recentre(next, here);
+
+  const bool same_method = resolve_integrator(next) == run.info->name &&
+                           next.integrator.tolerance == run.scene.integrator.tolerance;
+  const double h_next = same_method && run.info->adaptive ? run.grid.h_next : next.integrator.dt;
+  run.scene = next;
+  if (!same_method || !run.integrator) use_integrator(run);
+  if (!run.integrator) run.exact = make_exact_solution(next, here);
+  run.state = here;
+  run.grid = {here, Coords::Zero(here.y.size()), 0.0, h_next};
+  run.checked = run.grid;
+  run.view_events.clear();
+  measure_energy_from_here(run);
 }
 
 }  // namespace spinfold

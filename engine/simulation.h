@@ -18,23 +18,36 @@ struct DegenerateEvent {
   double t = 0.0;  // time of the crossing [time], located to ~1e-12 of the step
 };
 
-struct Simulation {
-  Scene scene;
+// A point of the run's own step sequence, with what the next step continues from.
+struct StepPoint {
   State state;
-  const IntegratorInfo* info = nullptr;    // the integrator that runs (auto resolved)
-  std::unique_ptr<Integrator> integrator;  // null when the exact solution runs
-  std::optional<ExactSolution> exact;
-  double h_next = 0.0;   // next trial step [time]
   Coords carry;          // compensated-summation remainder of the state (round-off not yet added)
   double t_carry = 0.0;  // the same for the time [time]
-  double initial_energy = 0.0;  // [energy]
-  double energy_scale = 0.0;    // kinetic + |potential| energy at the start [energy]: the yardstick
-                                // of divergence
-  double start_time = 0.0;  // [time] at which the scene's initial state holds
-  std::vector<DegenerateEvent> events;
-  std::uint64_t steps = 0;      // accepted steps
-  std::uint64_t rejected = 0;   // rejected step attempts
-  std::uint64_t recentres = 0;  // chart moves
+  double h_next = 0.0;   // next trial step [time]
+};
+
+struct Simulation {
+  Scene scene;  // the parameters in force now
+  State state;  // the state at the time last asked for (advance_to's t_end)
+  // The run's own step sequence: only whole steps that end before the time asked for are taken
+  // here, so where advances, play ticks or frame requests stop never changes it. `state` is reached
+  // from it by a cut step (or a few), which is recomputed, never kept: replay is bit-exact.
+  StepPoint grid;
+  StepPoint checked;  // the last grid point whose energy and range were checked and found good
+  const IntegratorInfo* info = nullptr;      // the integrator that runs (auto resolved)
+  std::unique_ptr<Integrator> integrator;    // null when the exact solution runs
+  std::optional<ExactSolution> exact;        // from the state at segment_start
+  double initial_energy = 0.0;               // H right after the last change (energy_reference_t) [energy]
+  double energy_scale = 0.0;                 // kinetic + |potential| energy then [energy]: the yardstick of
+                                             // divergence
+  double start_time = 0.0;                   // [time] at which the scene's initial state holds
+  double segment_start = 0.0;                // [time] of the last change of parameters (start_time at first):
+                                             // energy errors are measured from here (energy_reference_t)
+  std::vector<DegenerateEvent> events;       // crossings on the step sequence
+  std::vector<DegenerateEvent> view_events;  // crossings between the sequence and `state`
+  std::uint64_t steps = 0;                   // accepted steps of the sequence
+  std::uint64_t rejected = 0;                // rejected step attempts of the sequence
+  std::uint64_t recentres = 0;               // chart moves of the sequence
 };
 
 // The catalog name that runs for this scene: the scene's own, or for "auto" the exact solution
@@ -53,7 +66,20 @@ inline constexpr std::uint64_t kNoStepLimit = std::numeric_limits<std::uint64_t>
 // first, the function returns false with the state at the last accepted step and the status ok,
 // and a later call continues from there. A stiff scene can need arbitrarily many steps; callers
 // that serve others (the server, the fuzzers) bound the work of one call this way.
+//
+// Steppers take whole steps of their own sequence (run.grid) up to t_end and reach t_end by a cut
+// step from there that is not kept, so the result at any t is the same however the run got
+// there (one advance or many). The exact solution jumps from the last change.
 bool advance_to(Simulation& run, double t_end, std::uint64_t max_attempts = kNoStepLimit);
+// The same, spending `attempts` (what is left stays there): for callers that split one budget
+// over several advances (trail samples).
+bool advance_within(Simulation& run, double t_end, std::uint64_t& attempts);
+
+// Changes the parameters at the current time and state: the body keeps its
+// position, velocity, frame and frame rates; the new mass, inertia, potentials, radius and
+// integrator act from here on; energy errors are measured from here. `next` must have passed
+// validate_scene and have the same surface kind (a different surface is a different run).
+void retune(Simulation& run, const Scene& next);
 
 // det L of the current state (frame-independent; λ₀² for the rigid model).
 double det_L(const Scene& scene, const State& state);

@@ -81,7 +81,10 @@ TEST(Conservation, InvariantsAlongRuns) {
       const double tol = 1e-9;
       EXPECT_NEAR(energy(scene, s), energy(scene, s0), tol * std::abs(energy(scene, s0)));
       EXPECT_NEAR(orbital_energy(scene, s), orbital_energy(scene, s0), tol);
-      EXPECT_NEAR(angular_momentum(scene, s), angular_momentum(scene, s0), tol);
+      // Relative: far out on H² the charts move and p_φ of the scene's chart is read back through
+      // them (the pseudosphere case drifts 1.3e-9 of 2.17 by t = 20, also with one advance).
+      EXPECT_NEAR(angular_momentum(scene, s), angular_momentum(scene, s0),
+                  tol * std::max(1.0, std::abs(angular_momentum(scene, s0))));
       EXPECT_NEAR(spin(scene, s), spin(scene, s0), tol);
       EXPECT_NEAR(vorticity(scene, s), vorticity(scene, s0), tol);
       if (sep0) {
@@ -221,7 +224,9 @@ TEST(FailedStep, UnstableFixedStepStopsAsDivergedOnTheLastGoodState) {
   Simulation run = start_simulation(scene);
   for (int k = 1; k <= 10; ++k) advance_to(run, 0.5 * k);
   EXPECT_EQ(run.state.status, Status::diverged);
-  EXPECT_EQ(run.state.t, 1.5);  // the blow-up happens in the step to t = 2
+  // The run's own steps are dt = π/2 long (advances to 0.5, 1, … land by a cut step from them):
+  // the energy shows the blow-up in the cut step from 2 dt to 3.5, so 2 dt is the last good state.
+  EXPECT_EQ(run.state.t, 2 * scene.integrator.dt);
   EXPECT_TRUE(run.state.y.allFinite());
   EXPECT_LT(std::abs(energy(scene, run.state) - run.initial_energy), 0.1 * run.energy_scale);
 }

@@ -1,0 +1,25 @@
+// A run as a pure function of its timeline: the scene at t = 0 and the parameter changes after.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "engine/simulation.h"
+#include "engine/trail.h"
+
+namespace spinfold {
+
+// The parameters in force from time t on (applied with retune).
+struct ParameterChange {
+  double t = 0.0;  // [time], ≥ 0 and not before the previous change
+  Scene scene;     // the whole scene after the change
+};
+
+// Rebuilds the run at `until` [time] from t = 0: advances to each change, retunes, and advances on,
+// recording the trail (`trail` starts empty, with the spacing and cap wanted). The state and trail are
+// bit-identical to those of a run advanced in any other pattern through the same changes. False when
+// max_attempts ran out first (the run then stands where it got to).
+bool replay(const Scene& scene, std::span<const ParameterChange> changes, double until, Simulation& run,
+            Trail& trail, std::uint64_t max_attempts = kNoStepLimit);
+
+}  // namespace spinfold
