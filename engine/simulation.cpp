@@ -320,6 +320,14 @@ bool advance_within(Simulation& run, double t_end, std::uint64_t& attempts) {
   return true;
 }
 
+std::vector<DegenerateEvent> events_after(const Simulation& run, double after) {
+  std::vector<DegenerateEvent> list;
+  for (const auto* events : {&run.events, &run.view_events})
+    for (const DegenerateEvent& e : *events)
+      if (e.t > after && e.t <= run.state.t) add_event(list, e.t);
+  return list;
+}
+
 bool advance_to(Simulation& run, double t_end, std::uint64_t max_attempts) {
   return advance_within(run, t_end, max_attempts);
 }

@@ -81,6 +81,10 @@ bool advance_within(Simulation& run, double t_end, std::uint64_t& attempts);
 // validate_scene and have the same surface kind (a different surface is a different run).
 void retune(Simulation& run, const Scene& next);
 
+// The det L = 0 crossings up to the current state that come after time `after` [time], oldest
+// first: those of the step sequence and those between it and the state (each once).
+std::vector<DegenerateEvent> events_after(const Simulation& run, double after);
+
 // det L of the current state (frame-independent; λ₀² for the rigid model).
 double det_L(const Scene& scene, const State& state);
 
