@@ -2,9 +2,6 @@
 
 #include <cmath>
 
-#include "engine/invariants.h"
-#include "engine/paper_coordinates.h"
-
 namespace spinfold {
 
 using json = nlohmann::ordered_json;
@@ -22,11 +19,13 @@ json number(const std::optional<double>& v) {
 }  // namespace
 
 json sample_to_json(const Simulation& run, std::span<const DegenerateEvent> new_events) {
-  const Scene& scene = run.scene;
-  const State& state = run.state;
-  const PaperCoordinates c = paper_coordinates(scene, state);
+  return sample_to_json(readout(run), new_events);
+}
+
+json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_events) {
+  const PaperCoordinates& c = r.coordinates;
   json j;
-  j["t"] = number(state.t);
+  j["t"] = number(r.t);
   j["r"] = number(c.r);
   j["phi"] = number(c.phi);
   j["alpha"] = number(c.alpha);
@@ -51,22 +50,22 @@ json sample_to_json(const Simulation& run, std::span<const DegenerateEvent> new_
   j["L"] =
       c.L ? json{{number((*c.L)(0, 0)), number((*c.L)(0, 1))}, {number((*c.L)(1, 0)), number((*c.L)(1, 1))}}
           : json(nullptr);
-  j["det_L"] = number(c.det_L);
+  j["det_L"] = number(r.det_L);
 
-  const double H = energy(scene, state);
-  j["energy"] = number(H);
-  j["energy_error"] = number((H - run.initial_energy) / std::max(std::abs(run.initial_energy), 1e-300));
-  j["energy_orbital"] = number(orbital_energy(scene, state));
-  j["energy_deformation"] = number(deformation_energy(scene, state));
-  j["spin"] = number(c.p_alpha);
-  j["vorticity"] = number(c.p_beta);
-  if (const auto sep = separated_energies(scene, state)) {
-    j["C_x"] = number(sep->C_x);
-    j["C_y"] = number(sep->C_y);
+  j["energy"] = number(r.energy);
+  j["energy_error"] = number(r.energy_error);
+  j["energy_orbital"] = number(r.energy_orbital);
+  j["energy_deformation"] = number(r.energy_deformation);
+  j["spin"] = number(r.spin);
+  j["vorticity"] = number(r.vorticity);
+  if (r.separated) {
+    j["C_x"] = number(r.separated->C_x);
+    j["C_y"] = number(r.separated->C_y);
   }
-  if (const auto M = momentum_map(scene, state)) {
-    j["M"] = {number(M->x()), number(M->y()), number(M->z())};
-    if (scene.surface.kind != SurfaceKind::plane) j["casimir"] = number(casimir(scene.surface, *M));
+  if (r.momentum_map) {
+    const Vec3& M = *r.momentum_map;
+    j["M"] = {number(M.x()), number(M.y()), number(M.z())};
+    if (r.casimir) j["casimir"] = number(*r.casimir);
   }
 
   json undefined = json::object();
@@ -75,10 +74,10 @@ json sample_to_json(const Simulation& run, std::span<const DegenerateEvent> new_
   json events = json::array();
   for (const DegenerateEvent& e : new_events) events.push_back({{"kind", "det_L_zero"}, {"t", number(e.t)}});
   j["events"] = events;
-  j["status"] = std::string(status_name(state.status));
-  j["status_detail"] = std::string(status_description(state.status));
-  j["integrator"] = std::string(run.info->name);
-  j["steps"] = run.steps;
+  j["status"] = std::string(r.status_name);
+  j["status_detail"] = std::string(r.status_detail);
+  j["integrator"] = std::string(r.integrator);
+  j["steps"] = r.steps;
   return j;
 }
 

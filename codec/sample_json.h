@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <span>
 
+#include "engine/readout.h"
 #include "engine/simulation.h"
 
 namespace spinfold {
@@ -12,5 +13,7 @@ namespace spinfold {
 // Undefined values are null and listed under "undefined" with the reason; `new_events` are the
 // det L = 0 crossings since the previous sample.
 nlohmann::ordered_json sample_to_json(const Simulation& run, std::span<const DegenerateEvent> new_events);
+// The same from a read-out already made (engine/readout.h): the HUD shows the same values.
+nlohmann::ordered_json sample_to_json(const Readout& readout, std::span<const DegenerateEvent> new_events);
 
 }  // namespace spinfold

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <sstream>
+#include <type_traits>
+
+#include "engine/scene_fields.h"
 
 namespace spinfold {
 
@@ -17,7 +20,7 @@ class Reader {
   explicit Reader(std::vector<FieldError>& errors) : errors_(errors) {}
 
   // True if `j` is an object whose keys are all in `allowed`; unknown keys are errors.
-  bool object(const json& j, const std::string& path, std::initializer_list<std::string_view> allowed) {
+  bool object(const json& j, const std::string& path, const std::vector<std::string_view>& allowed) {
     if (!j.is_object()) {
       error(path, j, "must be a JSON object");
       return false;
@@ -28,7 +31,7 @@ class Reader {
     return true;
   }
 
-  void number(const json& obj, const std::string& path, const char* key, double& out) {
+  void number(const json& obj, const std::string& path, std::string_view key, double& out) {
     const auto it = obj.find(key);
     if (it == obj.end()) return;
     if (it->is_number())
@@ -37,7 +40,7 @@ class Reader {
       error(join(path, key), *it, "must be a number");
   }
 
-  void text(const json& obj, const std::string& path, const char* key, std::string& out) {
+  void text(const json& obj, const std::string& path, std::string_view key, std::string& out) {
     const auto it = obj.find(key);
     if (it == obj.end()) return;
     if (it->is_string())
@@ -46,20 +49,19 @@ class Reader {
       error(join(path, key), *it, "must be a string");
   }
 
-  // A string that must be one of `names`; sets `out` to the index of the match.
-  template <typename Enum>
-  void choice(const json& obj, const std::string& path, const char* key,
-              std::initializer_list<std::pair<std::string_view, Enum>> names, Enum& out) {
+  // A string that must be one of the enum's names (engine/scene_fields.h).
+  template <Enumerated Enum>
+  void choice(const json& obj, const std::string& path, std::string_view key, Enum& out) {
     const auto it = obj.find(key);
     if (it == obj.end()) return;
-    std::string allowed;
-    for (const auto& [name, value] : names) {
-      if (it->is_string() && it->get<std::string>() == name) {
-        out = value;
+    if (it->is_string())
+      if (const auto value = enum_value<Enum>(it->get<std::string>())) {
+        out = *value;
         return;
       }
-      allowed += (allowed.empty() ? "" : ", ") + std::string(name);
-    }
+    std::string allowed;
+    for (const EnumName<Enum>& n : enum_names(std::type_identity<Enum>{}))
+      allowed += (allowed.empty() ? "" : ", ") + std::string(n.name);
     error(join(path, key), *it, "must be one of: " + allowed);
   }
 
@@ -70,8 +72,9 @@ class Reader {
   // Dotted path; a key that is empty or holds a dot is written quoted, so that the field named
   // is never "" (the whole document) nor ambiguous.
   static std::string join(const std::string& path, std::string_view key) {
-    const std::string name =
-        key.empty() || key.find('.') != std::string_view::npos ? json(std::string(key)).dump() : std::string(key);
+    const std::string name = key.empty() || key.find('.') != std::string_view::npos
+                                 ? json(std::string(key)).dump()
+                                 : std::string(key);
     return path.empty() ? name : path + "." + name;
   }
 
@@ -79,62 +82,110 @@ class Reader {
   std::vector<FieldError>& errors_;
 };
 
-void read_potential(Reader& in, const json& j, Potentials& pot) {
-  if (!in.object(j, "potential", {"radial", "deformation"})) return;
-  if (const auto it = j.find("radial"); it != j.end()) {
-    pot.radial = RadialPotential{};
-    if (in.object(*it, "potential.radial", {"gamma"}))
-      in.number(*it, "potential.radial", "gamma", pot.radial->gamma);
-  }
-  const auto it = j.find("deformation");
-  if (it == j.end()) return;
-  const std::string path = "potential.deformation";
-  if (!it->is_object()) {
-    in.error(path, *it, "must be a JSON object");
-    return;
-  }
-  const auto kind = it->find("kind");
-  const std::string name = kind != it->end() && kind->is_string() ? kind->get<std::string>() : "";
-  if (name == "abc") {
-    AbcPotential abc;
-    if (in.object(*it, path, {"kind", "A", "B", "C"})) {
-      in.number(*it, path, "A", abc.A);
-      in.number(*it, path, "B", abc.B);
-      in.number(*it, path, "C", abc.C);
-    }
-    pot.deformation = abc;
-  } else if (name == "polar") {
-    PolarPotential polar;
-    if (in.object(*it, path, {"kind", "ghat", "gtilde", "form"})) {
-      in.number(*it, path, "ghat", polar.ghat);
-      in.number(*it, path, "gtilde", polar.gtilde);
-      in.choice(*it, path, "form", {{"cot2", PolarForm::cot2}, {"literal", PolarForm::literal}}, polar.form);
-    }
-    pot.deformation = polar;
-  } else {
-    in.error(path + ".kind", kind != it->end() ? *kind : json(nullptr), "must be one of: abc, polar");
-  }
+// The keys of a struct's table, after `first` (a deformation's "kind").
+template <typename S>
+std::vector<std::string_view> keys_of(std::optional<std::string_view> first = std::nullopt) {
+  std::vector<std::string_view> keys;
+  if (first) keys.push_back(*first);
+  for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) { keys.push_back(field.name); });
+  return keys;
 }
 
-void read_initial(Reader& in, const json& j, InitialState& q) {
-  const std::string path = "initial";
-  if (!in.object(j, path,
-                 {"r", "phi", "alpha", "beta", "lambda", "mu", "r_dot", "phi_dot", "alpha_dot", "beta_dot",
-                  "lambda_dot", "mu_dot"}))
+template <typename S>
+void read_fields(Reader& in, const json& j, const std::string& path, S& out);
+
+// A section: reads `j` into `out` when it is an object of known keys.
+template <typename S>
+void read_section(Reader& in, const json& j, const std::string& path, S& out) {
+  if (in.object(j, path, keys_of<S>())) read_fields(in, j, path, out);
+}
+
+// {"kind": name, fields of that kind...}: the alternative of DeformationPotential named by kind.
+void read_deformation(Reader& in, const json& j, const std::string& path, DeformationPotential& out) {
+  if (!j.is_object()) {
+    in.error(path, j, "must be a JSON object");
     return;
-  for (const auto& [key, field] : {std::pair{"r", &q.r},
-                                   {"phi", &q.phi},
-                                   {"alpha", &q.alpha},
-                                   {"beta", &q.beta},
-                                   {"lambda", &q.lambda},
-                                   {"mu", &q.mu},
-                                   {"r_dot", &q.r_dot},
-                                   {"phi_dot", &q.phi_dot},
-                                   {"alpha_dot", &q.alpha_dot},
-                                   {"beta_dot", &q.beta_dot},
-                                   {"lambda_dot", &q.lambda_dot},
-                                   {"mu_dot", &q.mu_dot}})
-    in.number(j, path, key, *field);
+  }
+  const auto kind = j.find("kind");
+  const std::string name = kind != j.end() && kind->is_string() ? kind->get<std::string>() : "";
+  bool known = false;
+  std::string allowed;
+  for_each_deformation_kind([&](auto index, auto alternative) {
+    using Alternative = typename decltype(alternative)::type;
+    const std::string_view kind_name = kDeformationKindNames[index];
+    allowed += (allowed.empty() ? "" : ", ") + std::string(kind_name);
+    if (known || name != kind_name) return;
+    known = true;
+    Alternative value;
+    if (in.object(j, path, keys_of<Alternative>("kind"))) read_fields(in, j, path, value);
+    out = value;
+  });
+  if (!known) in.error(path + ".kind", kind != j.end() ? *kind : json(nullptr), "must be one of: " + allowed);
+}
+
+// Reads every field of the table of S that `j` (an object) holds; absent ones keep their value.
+template <typename S>
+void read_fields(Reader& in, const json& j, const std::string& path, S& out) {
+  for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    T& value = out.*field.member;
+    if constexpr (std::is_same_v<T, double>) {
+      in.number(j, path, field.name, value);
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      in.text(j, path, field.name, value);
+    } else if constexpr (Enumerated<T>) {
+      in.choice(j, path, field.name, value);
+    } else {
+      const auto it = j.find(field.name);
+      if (it == j.end()) return;
+      const std::string sub = Reader::join(path, field.name);
+      if constexpr (HasFields<T>) {
+        read_section(in, *it, sub, value);
+      } else if constexpr (OptionalSection<T>) {
+        value.emplace();
+        read_section(in, *it, sub, *value);
+      } else {
+        static_assert(std::is_same_v<T, DeformationPotential>, "a field type the reader does not know");
+        read_deformation(in, *it, sub, value);
+      }
+    }
+  });
+}
+
+// The JSON of every field of the table of S (informational text only when not empty, absent
+// optional sections and deformations omitted).
+template <typename S>
+json write_fields(const S& in) {
+  json j = json::object();
+  for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    const T& value = in.*field.member;
+    const std::string key(field.name);
+    if constexpr (std::is_same_v<T, double>) {
+      j[key] = value;
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      if (field.text_rule != TextRule::any || !value.empty()) j[key] = value;
+    } else if constexpr (Enumerated<T>) {
+      j[key] = enum_name(value);
+    } else if constexpr (HasFields<T>) {
+      j[key] = write_fields(value);
+    } else if constexpr (OptionalSection<T>) {
+      if (value) j[key] = write_fields(*value);
+    } else {
+      static_assert(std::is_same_v<T, DeformationPotential>, "a field type the writer does not know");
+      std::visit(
+          [&](const auto& alternative) {
+            using Alternative = std::remove_cvref_t<decltype(alternative)>;
+            if constexpr (HasFields<Alternative>) {
+              json d = write_fields(alternative);
+              d["kind"] = kDeformationKindNames[value.index()];
+              j[key] = d;
+            }
+          },
+          value);
+    }
+  });
+  return j;
 }
 
 }  // namespace
@@ -143,39 +194,8 @@ SceneParse parse_scene(const json& document) {
   SceneParse result;
   Reader in(result.errors);
   Scene scene;
-  if (!in.object(
-          document, "",
-          {"name", "description", "surface", "body", "potential", "initial", "integrator", "on_degenerate"}))
-    return result;
-  in.text(document, "", "name", scene.name);
-  in.text(document, "", "description", scene.description);
-  if (const auto it = document.find("surface");
-      it != document.end() && in.object(*it, "surface", {"kind", "radius"})) {
-    in.choice(*it, "surface", "kind",
-              {{"sphere", SurfaceKind::sphere},
-               {"pseudosphere", SurfaceKind::pseudosphere},
-               {"plane", SurfaceKind::plane}},
-              scene.surface.kind);
-    in.number(*it, "surface", "radius", scene.surface.radius);
-  }
-  if (const auto it = document.find("body");
-      it != document.end() && in.object(*it, "body", {"mass", "inertia", "model"})) {
-    in.number(*it, "body", "mass", scene.body.mass);
-    in.number(*it, "body", "inertia", scene.body.inertia);
-    in.choice(*it, "body", "model", {{"affine", BodyModel::affine}, {"rigid", BodyModel::rigid}},
-              scene.body.model);
-  }
-  if (const auto it = document.find("potential"); it != document.end())
-    read_potential(in, *it, scene.potential);
-  if (const auto it = document.find("initial"); it != document.end()) read_initial(in, *it, scene.initial);
-  if (const auto it = document.find("integrator");
-      it != document.end() && in.object(*it, "integrator", {"name", "dt", "tolerance"})) {
-    in.text(*it, "integrator", "name", scene.integrator.name);
-    in.number(*it, "integrator", "dt", scene.integrator.dt);
-    in.number(*it, "integrator", "tolerance", scene.integrator.tolerance);
-  }
-  in.choice(document, "", "on_degenerate", {{"report", OnDegenerate::report}, {"stop", OnDegenerate::stop}},
-            scene.on_degenerate);
+  if (!in.object(document, "", keys_of<Scene>())) return result;
+  read_fields(in, document, "", scene);
 
   // Report value errors too, except for fields whose structure was already wrong.
   for (FieldError& e : validate_scene(scene)) {
@@ -204,44 +224,7 @@ SceneParse parse_scene_text(std::string_view text) {
 }
 
 json scene_to_json(const Scene& scene) {
-  const auto surface_kind = [](SurfaceKind k) {
-    return k == SurfaceKind::sphere ? "sphere" : k == SurfaceKind::pseudosphere ? "pseudosphere" : "plane";
-  };
-  json j;
-  if (!scene.name.empty()) j["name"] = scene.name;
-  if (!scene.description.empty()) j["description"] = scene.description;
-  j["surface"] = {{"kind", surface_kind(scene.surface.kind)}, {"radius", scene.surface.radius}};
-  j["body"] = {{"mass", scene.body.mass},
-               {"inertia", scene.body.inertia},
-               {"model", scene.body.model == BodyModel::rigid ? "rigid" : "affine"}};
-  json pot = json::object();
-  if (scene.potential.radial) pot["radial"] = {{"gamma", scene.potential.radial->gamma}};
-  if (const auto* abc = std::get_if<AbcPotential>(&scene.potential.deformation))
-    pot["deformation"] = {{"kind", "abc"}, {"A", abc->A}, {"B", abc->B}, {"C", abc->C}};
-  if (const auto* polar = std::get_if<PolarPotential>(&scene.potential.deformation))
-    pot["deformation"] = {{"kind", "polar"},
-                          {"ghat", polar->ghat},
-                          {"gtilde", polar->gtilde},
-                          {"form", polar->form == PolarForm::literal ? "literal" : "cot2"}};
-  j["potential"] = pot;
-  const InitialState& q = scene.initial;
-  j["initial"] = {{"r", q.r},
-                  {"phi", q.phi},
-                  {"alpha", q.alpha},
-                  {"beta", q.beta},
-                  {"lambda", q.lambda},
-                  {"mu", q.mu},
-                  {"r_dot", q.r_dot},
-                  {"phi_dot", q.phi_dot},
-                  {"alpha_dot", q.alpha_dot},
-                  {"beta_dot", q.beta_dot},
-                  {"lambda_dot", q.lambda_dot},
-                  {"mu_dot", q.mu_dot}};
-  j["integrator"] = {{"name", scene.integrator.name},
-                     {"dt", scene.integrator.dt},
-                     {"tolerance", scene.integrator.tolerance}};
-  j["on_degenerate"] = scene.on_degenerate == OnDegenerate::stop ? "stop" : "report";
-  return j;
+  return write_fields(scene);
 }
 
 std::string describe_errors(const std::vector<FieldError>& errors) {

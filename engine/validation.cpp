@@ -1,24 +1,54 @@
 #include "engine/validation.h"
 
+#include <charconv>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 
 #include "engine/chart.h"
 #include "engine/exact_solution.h"
 #include "engine/integrator.h"
 #include "engine/invariants.h"
+#include "engine/number_text.h"
 #include "engine/potentials.h"
+#include "engine/scene_fields.h"
 
 namespace spinfold {
 
+std::string bound_text(double bound) {
+  char text[32];
+  const auto result = std::to_chars(text, text + sizeof text, bound, std::chars_format::scientific);
+  const std::string_view scientific(text, static_cast<std::size_t>(result.ptr - text));  // "1e-02"
+  if (scientific.starts_with("1e")) {
+    int exponent = 0;
+    std::string_view digits = scientific.substr(2);
+    if (digits.starts_with('+')) digits.remove_prefix(1);
+    std::from_chars(digits.data(), digits.data() + digits.size(), exponent);
+    if (std::abs(exponent) >= 2) return "1e" + std::to_string(exponent);
+  }
+  return shortest(bound);
+}
+
+std::string range_reason(const Range& range, std::string_view note) {
+  std::string reason;
+  if (range.has_min() && range.has_max()) {
+    if (!range.min_open && !range.max_open)
+      reason = "must be between " + bound_text(range.min) + " and " + bound_text(range.max);
+    else
+      reason = std::string("must be in ") + (range.min_open ? "(" : "[") + bound_text(range.min) + ", " +
+               bound_text(range.max) + (range.max_open ? ")" : "]");
+  } else if (range.has_min()) {
+    reason = std::string("must be ") + (range.min_open ? "> " : ">= ") + bound_text(range.min);
+  } else if (range.has_max()) {
+    reason = std::string("must be ") + (range.max_open ? "< " : "<= ") + bound_text(range.max);
+  }
+  if (!reason.empty() && !note.empty()) reason += " (" + std::string(note) + ")";
+  return reason;
+}
+
 namespace {
 
-std::string number_text(double v) {
-  std::ostringstream out;
-  out.precision(17);
-  out << v;
-  return out.str();
+std::string join(const std::string& path, std::string_view key) {
+  return path.empty() ? std::string(key) : path + "." + std::string(key);
 }
 
 class Checker {
@@ -30,23 +60,22 @@ class Checker {
       return false;
     }
     if (std::abs(v) > kMaxSceneMagnitude) {
-      add(field, v, "must be at most 1e100 in magnitude");
+      add(field, v, "must be at most " + bound_text(kMaxSceneMagnitude) + " in magnitude");
       return false;
     }
     return true;
   }
-  void positive(const std::string& field, double v) {
+  // Records a number that is not finite or outside its range; a number that must be > 0 must also
+  // be at least kMinScenePositive.
+  void number(const std::string& field, double v, const Range& range, std::string_view note) {
     if (!finite(field, v)) return;
-    if (!(v > 0.0))
-      add(field, v, "must be > 0");
-    else if (v < kMinScenePositive)
-      add(field, v, "must be at least 1e-100");
-  }
-  void non_negative(const std::string& field, double v) {
-    if (finite(field, v) && v < 0.0) add(field, v, "must be >= 0");
+    if (!range.contains(v))
+      add(field, v, range_reason(range, note));
+    else if (range.has_min() && range.min == 0.0 && range.min_open && v < kMinScenePositive)
+      add(field, v, "must be at least " + bound_text(kMinScenePositive));
   }
   void add(const std::string& field, double v, const std::string& reason) {
-    errors.push_back({field, number_text(v), reason});
+    errors.push_back({field, shortest(v), reason});
   }
   void add_text(const std::string& field, const std::string& value, const std::string& reason) {
     errors.push_back({field, value, reason});
@@ -54,31 +83,63 @@ class Checker {
   std::vector<FieldError> errors;
 };
 
+bool is_integrator_name(std::string_view name) {
+  return name == kAutoIntegrator || find_integrator(name) != nullptr;
+}
+
+// Checks every field of a struct as its table says, nested sections included.
+template <typename S>
+void check_fields(Checker& c, const std::string& path, const S& value) {
+  for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    const std::string name = join(path, field.name);
+    const T& v = value.*field.member;
+    if constexpr (std::is_same_v<T, double>) {
+      c.number(name, v, field.range, field.range_note);
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      if (field.text_rule == TextRule::integrator_name && !is_integrator_name(v))
+        c.add_text(name, v, "is not in the integrator catalog (see `spinfold integrators`) nor \"auto\"");
+    } else if constexpr (Enumerated<T>) {
+      if (enum_name(v).empty())
+        c.add_text(name, std::to_string(static_cast<int>(v)), "is not a known " + std::string(field.name));
+    } else if constexpr (HasFields<T>) {
+      check_fields(c, name, v);
+    } else if constexpr (OptionalSection<T>) {
+      if (v) check_fields(c, name, *v);
+    } else {
+      static_assert(std::is_same_v<T, DeformationPotential>, "a field type the validator does not know");
+      std::visit(
+          [&](const auto& alternative) {
+            if constexpr (HasFields<std::remove_cvref_t<decltype(alternative)>>)
+              check_fields(c, name, alternative);
+          },
+          v);
+    }
+  });
+}
+
+// The rules that tie fields together (the fields' own ranges are in scene_fields.h).
+
 void check_initial(const Scene& scene, Checker& c) {
   const InitialState& q = scene.initial;
   const Surface& surface = scene.surface;
-  for (const auto& [name, value] : {std::pair{"phi", q.phi},
-                                    {"alpha", q.alpha},
-                                    {"beta", q.beta},
-                                    {"r_dot", q.r_dot},
-                                    {"phi_dot", q.phi_dot},
-                                    {"alpha_dot", q.alpha_dot},
-                                    {"beta_dot", q.beta_dot},
-                                    {"lambda_dot", q.lambda_dot},
-                                    {"mu_dot", q.mu_dot}})
-    c.finite(std::string("initial.") + name, value);
-  c.positive("initial.lambda", q.lambda);
-  c.positive("initial.mu", q.mu);
-  if (c.finite("initial.r", q.r)) {
-    if (q.r < 0.0) c.add("initial.r", q.r, "must be >= 0 (geodesic distance from the pole)");
-    if (surface.kind == SurfaceKind::sphere && std::isfinite(surface.radius) && surface.radius > 0.0 &&
-        q.r > std::numbers::pi * surface.radius)
-      c.add("initial.r", q.r, "must be <= pi * radius on the sphere (the south pole)");
-    if (surface.kind == SurfaceKind::pseudosphere && std::isfinite(surface.radius) && surface.radius > 0.0 &&
-        q.r > kMaxHyperbolicDistance * surface.radius)
-      c.add("initial.r", q.r,
-            "must be <= 250 * radius on the pseudosphere (farther out its global coordinates overflow)");
-  }
+  if (!std::isfinite(q.r) || std::abs(q.r) > kMaxSceneMagnitude || !std::isfinite(surface.radius) ||
+      !(surface.radius > 0.0))
+    return;
+  if (surface.kind == SurfaceKind::sphere && q.r > std::numbers::pi * surface.radius)
+    c.add("initial.r", q.r, "must be <= pi * radius on the sphere (the south pole)");
+  if (surface.kind == SurfaceKind::pseudosphere && q.r > kMaxHyperbolicDistance * surface.radius)
+    c.add("initial.r", q.r,
+          "must be <= " + shortest(kMaxHyperbolicDistance) +
+              " * radius on the pseudosphere (farther out its global coordinates overflow)");
+}
+
+void check_rigid(const Scene& scene, Checker& c) {
+  if (scene.body.model != BodyModel::rigid) return;
+  const InitialState& q = scene.initial;
+  if (q.mu != q.lambda) c.add("initial.mu", q.mu, "a rigid body needs mu = lambda (it cannot deform)");
+  if (q.lambda_dot != 0.0) c.add("initial.lambda_dot", q.lambda_dot, "a rigid body cannot deform: must be 0");
+  if (q.mu_dot != 0.0) c.add("initial.mu_dot", q.mu_dot, "a rigid body cannot deform: must be 0");
 }
 
 void check_potentials(const Scene& scene, Checker& c) {
@@ -86,29 +147,19 @@ void check_potentials(const Scene& scene, Checker& c) {
   const InitialState& q = scene.initial;
   const bool isotropic = q.lambda == q.mu;
   if (pot.radial) {
-    if (c.finite("potential.radial.gamma", pot.radial->gamma) && pot.radial->gamma < 0.0)
-      c.add("potential.radial.gamma", pot.radial->gamma,
-            "must be >= 0 (a negative g lets the body fall into a pole, which is not supported)");
     const bool at_pole = q.r == 0.0 || (scene.surface.kind == SurfaceKind::sphere &&
                                         q.r == std::numbers::pi * scene.surface.radius);
     if (pot.radial->gamma > 0.0 && at_pole)
       c.add("initial.r", q.r, "the radial potential is infinite at a pole: start away from it");
   }
-  if (const auto* abc = std::get_if<AbcPotential>(&pot.deformation)) {
-    c.non_negative("potential.deformation.A", abc->A);
-    c.non_negative("potential.deformation.B", abc->B);
-    c.finite("potential.deformation.C", abc->C);
+  if (const auto* abc = std::get_if<AbcPotential>(&pot.deformation))
     if (abc->A > 0.0 && isotropic)
       c.add("initial.mu", q.mu, "A/x^2 is infinite at lambda = mu: start with lambda != mu or set A = 0");
-  }
-  if (const auto* polar = std::get_if<PolarPotential>(&pot.deformation)) {
-    c.finite("potential.deformation.ghat", polar->ghat);
-    c.finite("potential.deformation.gtilde", polar->gtilde);
+  if (const auto* polar = std::get_if<PolarPotential>(&pot.deformation))
     if (polar->ghat != 0.0 && isotropic)
       c.add(
           "initial.mu", q.mu,
           "the polar potential's cot^2(2 epsilon) term is infinite at lambda = mu: start with lambda != mu");
-  }
   if (scene.body.model == BodyModel::rigid && has_deformation_potential(pot))
     c.add_text("potential.deformation", "present",
                "a rigid body has no deformation degrees of freedom: remove the deformation potential");
@@ -163,28 +214,13 @@ void check_finite_start(const Scene& scene, Checker& c) {
 
 std::vector<FieldError> validate_scene(const Scene& scene) {
   Checker c;
-  c.positive("surface.radius", scene.surface.radius);
-  c.positive("body.mass", scene.body.mass);
-  c.positive("body.inertia", scene.body.inertia);
+  check_fields(c, "", scene);
   check_initial(scene, c);
-  if (scene.body.model == BodyModel::rigid) {
-    const InitialState& q = scene.initial;
-    if (q.mu != q.lambda) c.add("initial.mu", q.mu, "a rigid body needs mu = lambda (it cannot deform)");
-    if (q.lambda_dot != 0.0)
-      c.add("initial.lambda_dot", q.lambda_dot, "a rigid body cannot deform: must be 0");
-    if (q.mu_dot != 0.0) c.add("initial.mu_dot", q.mu_dot, "a rigid body cannot deform: must be 0");
-  }
+  check_rigid(scene, c);
   check_potentials(scene, c);
-
   const IntegratorSettings& in = scene.integrator;
-  if (in.name != kAutoIntegrator && !find_integrator(in.name))
-    c.add_text("integrator.name", in.name,
-               "is not in the integrator catalog (see `spinfold integrators`) nor \"auto\"");
   if (in.name == exact_info.name)
     if (const auto why = exact_unsupported_reason(scene)) c.add_text("integrator.name", in.name, *why);
-  c.positive("integrator.dt", in.dt);
-  if (c.finite("integrator.tolerance", in.tolerance) && !(in.tolerance >= 1e-15 && in.tolerance <= 1e-2))
-    c.add("integrator.tolerance", in.tolerance, "must be between 1e-15 and 1e-2");
   if (c.errors.empty()) check_finite_start(scene, c);
   return c.errors;
 }

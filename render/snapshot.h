@@ -17,7 +17,7 @@ struct Snapshot {
   Mat2 gram = Mat2::Identity();        // ⟨e_A, e_B⟩ = (LᵀL)_AB, intrinsic: far out on H² the embedded
                                        // components of e_A are ~e^{r/R} and their η-products cancel
   std::vector<Vec3> trail;             // earlier positions, oldest first (empty: no trail)
-  std::vector<std::string> hud_lines;  // time, energy error, integrator, key parameters
+  std::vector<std::string> hud_lines;  // readout_lines of the run (engine/readout.h)
 };
 
 // The snapshot of a run's current state; `trail` as recorded by the caller.

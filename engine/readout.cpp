@@ -1,0 +1,58 @@
+#include "engine/readout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "engine/scene_fields.h"
+
+namespace spinfold {
+
+namespace {
+
+std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0) {
+  char text[160];
+  std::snprintf(text, sizeof text, pattern, a, b, c);
+  return text;
+}
+
+}  // namespace
+
+Readout readout(const Simulation& run) {
+  const Scene& scene = run.scene;
+  const State& state = run.state;
+  Readout r;
+  r.t = state.t;
+  r.coordinates = paper_coordinates(scene, state);
+  r.energy = energy(scene, state);
+  r.energy_error = (r.energy - run.initial_energy) / std::max(std::abs(run.initial_energy), 1e-300);
+  r.energy_orbital = orbital_energy(scene, state);
+  r.energy_deformation = deformation_energy(scene, state);
+  r.spin = r.coordinates.p_alpha;
+  r.vorticity = r.coordinates.p_beta;
+  r.det_L = r.coordinates.det_L;
+  r.separated = separated_energies(scene, state);
+  r.momentum_map = momentum_map(scene, state);
+  if (r.momentum_map && scene.surface.kind != SurfaceKind::plane)
+    r.casimir = casimir(scene.surface, *r.momentum_map);
+  r.status = state.status;
+  r.status_name = status_name(state.status);
+  r.status_detail = status_description(state.status);
+  r.integrator = run.info->name;
+  r.steps = run.steps;
+  return r;
+}
+
+std::vector<std::string> readout_lines(const Scene& scene, const Readout& readout) {
+  return {
+      format("t = %.3f", readout.t),
+      format("energy error = %.2e", readout.energy_error),
+      "integrator: " + std::string(readout.integrator) + (readout.status == Status::ok ? "" : "  [stopped]"),
+      std::string(enum_name(scene.surface.kind)) + format("  R = %g", scene.surface.radius),
+      format("m = %g  J = %g  ", scene.body.mass, scene.body.inertia) +
+          std::string(enum_name(scene.body.model)),
+      format("spin = %.4f  det L = %.4f", readout.spin, readout.det_L),
+  };
+}
+
+}  // namespace spinfold

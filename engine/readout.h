@@ -1,0 +1,45 @@
+// The read-out of a run: every number a person or a client is shown about the current state,
+// computed once. The JSON sample (codec/sample_json.h) and the HUD (render/snapshot.h) are both
+// made from it, so they cannot disagree.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/invariants.h"
+#include "engine/paper_coordinates.h"
+#include "engine/simulation.h"
+
+namespace spinfold {
+
+struct Readout {
+  double t = 0.0;                   // [time]
+  PaperCoordinates coordinates;     // r, φ, α, β, θ, λ, μ, their rates and momenta, X, L (paper's)
+  double energy = 0.0;              // H [energy]
+  double energy_error = 0.0;        // (H − H₀)/max(|H₀|, 1e-300), H₀ = run.initial_energy [1]
+  double energy_orbital = 0.0;      // E_orb = m⟨V,V⟩/2 + V_r [energy]
+  double energy_deformation = 0.0;  // E_def = H − E_orb [energy]
+  double spin = 0.0;                // s = p_α [mass·length²/time]
+  double vorticity = 0.0;           // p_β = −tr((Lε)ᵀP) [mass·length²/time]
+  double det_L = 0.0;               // det L, frame-independent [1]
+  std::optional<SeparatedEnergies> separated;  // C_x, C_y [energy] (abc or no deformation, affine)
+  std::optional<Vec3> momentum_map;            // M (physics.md §6), when defined
+  std::optional<double> casimir;               // MᵀηM, on S² and H² when M is defined
+  Status status = Status::ok;
+  std::string_view status_name;    // status_name(status), e.g. "ok"
+  std::string_view status_detail;  // status_description(status): one sentence
+  std::string_view integrator;     // catalog name of the integrator that runs (auto resolved)
+  std::uint64_t steps = 0;         // accepted steps of the run's step sequence
+};
+
+// The read-out of the run's current state (run.state).
+Readout readout(const Simulation& run);
+
+// The read-out as the HUD's lines of text: time, energy error, integrator (and whether it stopped),
+// the surface and body of `scene` (the run's), spin and det L.
+std::vector<std::string> readout_lines(const Scene& scene, const Readout& readout);
+
+}  // namespace spinfold

@@ -1,0 +1,298 @@
+// The scene's vocabulary, named once: for every parameter struct of engine/scene.h one table of its
+// fields (JSON key, member, unit, allowed range, one-line description; the default is the struct's
+// own in-class default), and for every enumerated field one table of its names. The JSON reader and
+// writer, the JSON Schema and the validator all iterate these tables. Plain data, no JSON.
+//
+// A table is a std::tuple of Field<Struct, Value>, so that each field keeps its value type; walk
+// one with for_each_field. The rules that tie several fields together (a rigid body needs
+// mu = lambda, r <= πR on the sphere, ...) are code in engine/validation.cpp, not data here.
+#pragma once
+
+#include <iterator>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "engine/scene.h"
+
+namespace spinfold {
+
+// ---- enumerated fields: one table of names each ---------------------------------------------
+
+template <typename Enum>
+struct EnumName {
+  std::string_view name;  // as written in the scene JSON, the CLI and the HUD
+  Enum value;
+  std::string_view description;  // one line
+};
+
+inline constexpr EnumName<SurfaceKind> kSurfaceKindNames[] = {
+    {"sphere", SurfaceKind::sphere, "S², curvature +1/R²"},
+    {"pseudosphere", SurfaceKind::pseudosphere, "H² (Minkowski hyperboloid), curvature -1/R²"},
+    {"plane", SurfaceKind::plane, "the flat plane, the curvature-zero limit"},
+};
+inline constexpr EnumName<BodyModel> kBodyModelNames[] = {
+    {"affine", BodyModel::affine, "L free: 4 internal degrees of freedom"},
+    {"rigid", BodyModel::rigid, "gyroscope L = λ U(θ): needs mu = lambda and no deformation"},
+};
+inline constexpr EnumName<PolarForm> kPolarFormNames[] = {
+    {"cot2", PolarForm::cot2, "W = ĝ cot²(2ε): the paper's action variable"},
+    {"literal", PolarForm::literal, "W = ĝ cot²(2ε)/sin²ε: the potential as printed"},
+};
+inline constexpr EnumName<OnDegenerate> kOnDegenerateNames[] = {
+    {"report", OnDegenerate::report, "follow the frame through det L = 0 and report the event"},
+    {"stop", OnDegenerate::stop, "stop with status degenerate_frame at the last state with det L > 0"},
+};
+
+// The names table of an enumerated type (found by argument-dependent lookup).
+constexpr std::span<const EnumName<SurfaceKind>> enum_names(std::type_identity<SurfaceKind>) {
+  return kSurfaceKindNames;
+}
+constexpr std::span<const EnumName<BodyModel>> enum_names(std::type_identity<BodyModel>) {
+  return kBodyModelNames;
+}
+constexpr std::span<const EnumName<PolarForm>> enum_names(std::type_identity<PolarForm>) {
+  return kPolarFormNames;
+}
+constexpr std::span<const EnumName<OnDegenerate>> enum_names(std::type_identity<OnDegenerate>) {
+  return kOnDegenerateNames;
+}
+
+// The name of an enumerated value ("" for a value outside its table).
+template <typename Enum>
+constexpr std::string_view enum_name(Enum value) {
+  for (const EnumName<Enum>& n : enum_names(std::type_identity<Enum>{}))
+    if (n.value == value) return n.name;
+  return {};
+}
+
+// The value a name stands for, if any.
+template <typename Enum>
+constexpr std::optional<Enum> enum_value(std::string_view name) {
+  for (const EnumName<Enum>& n : enum_names(std::type_identity<Enum>{}))
+    if (n.name == name) return n.value;
+  return std::nullopt;
+}
+
+// The kinds of deformation potential, indexed like the alternatives of DeformationPotential (the
+// monostate, "no deformation potential", has no name: it is written by omission).
+inline constexpr std::string_view kDeformationKindNames[] = {"", "abc", "polar"};
+static_assert(std::size(kDeformationKindNames) == std::variant_size_v<DeformationPotential>);
+
+// "auto" followed by the integrator catalog's names (engine/integrator.h): what integrator.name
+// may hold.
+std::vector<std::string_view> integrator_names();
+
+// ---- numbers: allowed values -------------------------------------------------------------------
+
+// An interval of allowed values, each end open or closed; an infinite end is no bound. Every number
+// must also be finite and at most kMaxSceneMagnitude in magnitude, and one that must be > 0 at least
+// kMinScenePositive (engine/validation.h).
+struct Range {
+  double min = -std::numeric_limits<double>::infinity();
+  bool min_open = false;
+  double max = std::numeric_limits<double>::infinity();
+  bool max_open = false;
+
+  constexpr bool has_min() const { return min != -std::numeric_limits<double>::infinity(); }
+  constexpr bool has_max() const { return max != std::numeric_limits<double>::infinity(); }
+  constexpr bool contains(double v) const {
+    return (min_open ? v > min : v >= min) && (max_open ? v < max : v <= max);
+  }
+};
+
+inline constexpr Range kAnyNumber{};
+inline constexpr Range kPositive{.min = 0.0, .min_open = true};
+inline constexpr Range kNonNegative{.min = 0.0};
+
+// What a text field may hold.
+enum class TextRule {
+  any,              // free, informational text: written only when not empty
+  integrator_name,  // one of integrator_names()
+};
+
+// ---- fields ------------------------------------------------------------------------------------
+
+// One field of the struct S, of type T: a number (double), a text (std::string), an enumerated
+// value (an enum with a names table), or a nested struct with a table of its own (a section; also
+// std::optional of one and DeformationPotential, a section chosen by its "kind").
+template <typename S, typename T>
+struct Field {
+  using Struct = S;
+  using Value = T;
+  std::string_view name;         // the key in the scene JSON
+  T S::*member;                  // where the value lives
+  std::string_view unit;         // numbers: the unit ("1": a pure number); the schema's x-unit
+  Range range;                   // numbers: the allowed values
+  std::string_view description;  // one line
+  std::string_view range_note;   // numbers: why the range, appended to its message ("" for none)
+  TextRule text_rule = TextRule::any;
+
+  // The default: the struct's own in-class default.
+  T fallback() const { return S{}.*member; }
+};
+
+template <typename S>
+constexpr Field<S, double> number_field(std::string_view name, double S::*member, std::string_view unit,
+                                        Range range, std::string_view description,
+                                        std::string_view range_note = {}) {
+  return {name, member, unit, range, description, range_note};
+}
+template <typename S, typename T>
+constexpr Field<S, T> value_field(std::string_view name, T S::*member, std::string_view description,
+                                  TextRule text_rule = TextRule::any) {
+  return {name, member, {}, {}, description, {}, text_rule};
+}
+
+// ---- the tables --------------------------------------------------------------------------------
+
+inline constexpr std::tuple kSurfaceFields{
+    value_field("kind", &Surface::kind, "the surface: sphere, pseudosphere or plane"),
+    number_field("radius", &Surface::radius, "length", kPositive, "R (the plane's length scale)"),
+};
+
+inline constexpr std::tuple kBodyFields{
+    number_field("mass", &Body::mass, "mass", kPositive, "m"),
+    number_field("inertia", &Body::inertia, "mass length^2", kPositive, "J (isotropic)"),
+    value_field("model", &Body::model, "affine (L free) or rigid (gyroscope)"),
+};
+
+inline constexpr std::tuple kRadialPotentialFields{
+    number_field("gamma", &RadialPotential::gamma, "energy", kNonNegative,
+                 "g: V_r = g/sin^2(r/R) (S2), g/(R^2 sinh^2(r/R)) (H2), g/r^2 (plane)",
+                 "a negative g lets the body fall into a pole, which is not supported"),
+};
+
+inline constexpr std::tuple kAbcPotentialFields{
+    number_field("A", &AbcPotential::A, "energy", kNonNegative, "A/x^2 barrier at lambda = mu"),
+    number_field("B", &AbcPotential::B, "energy", kNonNegative, "B/y^2 barrier at lambda = -mu"),
+    number_field("C", &AbcPotential::C, "energy", kAnyNumber, "isotonic C (x^2 + y^2)"),
+};
+
+inline constexpr std::tuple kPolarPotentialFields{
+    number_field("ghat", &PolarPotential::ghat, "energy", kAnyNumber,
+                 "angular coefficient g-hat of W(epsilon)"),
+    number_field("gtilde", &PolarPotential::gtilde, "energy", kAnyNumber,
+                 "radial coefficient g-tilde / varsigma"),
+    value_field("form", &PolarPotential::form, "W(epsilon): cot2 (the paper's action variable) or literal"),
+};
+
+inline constexpr std::tuple kPotentialsFields{
+    value_field("radial", &Potentials::radial, "the radial potential V_r (absent: none)"),
+    value_field("deformation", &Potentials::deformation,
+                "the deformation potential, abc or polar (absent: none)"),
+};
+
+inline constexpr std::tuple kInitialStateFields{
+    number_field("r", &InitialState::r, "length", kNonNegative,
+                 "geodesic distance from the pole (<= pi R on the sphere)",
+                 "geodesic distance from the pole"),
+    number_field("phi", &InitialState::phi, "rad", kAnyNumber, "polar angle"),
+    number_field("alpha", &InitialState::alpha, "rad", kAnyNumber,
+                 "left rotation angle of L = U(alpha) diag(lambda, mu) U(beta)^T"),
+    number_field("beta", &InitialState::beta, "rad", kAnyNumber, "right rotation angle"),
+    number_field("lambda", &InitialState::lambda, "1", kPositive, "first stretch (the rigid body's scale)"),
+    number_field("mu", &InitialState::mu, "1", kPositive, "second stretch (= lambda for a rigid body)"),
+    number_field("r_dot", &InitialState::r_dot, "length/time", kAnyNumber, "rate of r"),
+    number_field("phi_dot", &InitialState::phi_dot, "rad/time", kAnyNumber, "rate of phi"),
+    number_field("alpha_dot", &InitialState::alpha_dot, "rad/time", kAnyNumber, "rate of alpha"),
+    number_field("beta_dot", &InitialState::beta_dot, "rad/time", kAnyNumber, "rate of beta"),
+    number_field("lambda_dot", &InitialState::lambda_dot, "1/time", kAnyNumber,
+                 "rate of lambda (0 for a rigid body)"),
+    number_field("mu_dot", &InitialState::mu_dot, "1/time", kAnyNumber, "rate of mu (0 for a rigid body)"),
+};
+
+inline constexpr std::tuple kIntegratorSettingsFields{
+    value_field("name", &IntegratorSettings::name, "a catalog name, or auto: the engine chooses",
+                TextRule::integrator_name),
+    number_field("dt", &IntegratorSettings::dt, "time", kPositive, "step (fixed-step) or first trial step"),
+    number_field("tolerance", &IntegratorSettings::tolerance, "1", Range{.min = 1e-15, .max = 1e-2},
+                 "error per step (adaptive)"),
+};
+
+inline constexpr std::tuple kSceneFields{
+    value_field("name", &Scene::name, "preset name, informational"),
+    value_field("description", &Scene::description, "one line, informational"),
+    value_field("surface", &Scene::surface, "the surface the body moves on"),
+    value_field("body", &Scene::body, "mass, inertia and model of the body"),
+    value_field("potential", &Scene::potential, "the potentials acting on the body"),
+    value_field("initial", &Scene::initial, "the initial state in the paper's coordinates"),
+    value_field("integrator", &Scene::integrator, "the integrator and its step and tolerance"),
+    value_field("on_degenerate", &Scene::on_degenerate, "what happens when det L reaches 0"),
+};
+
+// The table of a struct (found by argument-dependent lookup).
+constexpr const auto& fields_of(std::type_identity<Surface>) {
+  return kSurfaceFields;
+}
+constexpr const auto& fields_of(std::type_identity<Body>) {
+  return kBodyFields;
+}
+constexpr const auto& fields_of(std::type_identity<RadialPotential>) {
+  return kRadialPotentialFields;
+}
+constexpr const auto& fields_of(std::type_identity<AbcPotential>) {
+  return kAbcPotentialFields;
+}
+constexpr const auto& fields_of(std::type_identity<PolarPotential>) {
+  return kPolarPotentialFields;
+}
+constexpr const auto& fields_of(std::type_identity<Potentials>) {
+  return kPotentialsFields;
+}
+constexpr const auto& fields_of(std::type_identity<InitialState>) {
+  return kInitialStateFields;
+}
+constexpr const auto& fields_of(std::type_identity<IntegratorSettings>) {
+  return kIntegratorSettingsFields;
+}
+constexpr const auto& fields_of(std::type_identity<Scene>) {
+  return kSceneFields;
+}
+
+// ---- kinds of field, for the code that walks the tables ----------------------------------------
+
+template <typename T>
+concept HasFields = requires {
+  fields_of(std::type_identity<T>{});
+};
+
+template <typename T>
+concept Enumerated = std::is_enum_v<T> && requires {
+  enum_names(std::type_identity<T>{});
+};
+
+template <typename T>
+struct IsOptionalSection : std::false_type {};
+template <HasFields T>
+struct IsOptionalSection<std::optional<T>> : std::true_type {};
+// std::optional<S> with a table: a section that is present or absent.
+template <typename T>
+concept OptionalSection = IsOptionalSection<T>::value;
+
+// Calls fn(field) for every field of a table, in order.
+template <typename Table, typename Fn>
+constexpr void for_each_field(const Table& table, Fn&& fn) {
+  std::apply([&](const auto&... field) { (fn(field), ...); }, table);
+}
+
+// Calls fn(std::integral_constant<std::size_t, i>{}, std::type_identity<Alternative>{}) for every
+// named deformation kind (index 1 on).
+template <typename Fn>
+constexpr void for_each_deformation_kind(Fn&& fn) {
+  [&]<std::size_t... i>(std::index_sequence<i...>) {
+    (fn(std::integral_constant<std::size_t, i + 1>{},
+        std::type_identity<std::variant_alternative_t<i + 1, DeformationPotential>>{}),
+     ...);
+  }
+  (std::make_index_sequence<std::variant_size_v<DeformationPotential> - 1>{});
+}
+
+}  // namespace spinfold

@@ -1,0 +1,72 @@
+// The JSON sample and the HUD show the same values: both are made from one read-out.
+#include "codec/sample_json.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "codec/presets.h"
+#include "codec/scene_json.h"
+#include "engine/readout.h"
+
+namespace spinfold {
+namespace {
+
+std::string format(const char* pattern, double v) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, v);
+  return text;
+}
+
+TEST(SampleJson, KeysInTheirDocumentedOrder) {
+  const SceneParse parsed = parse_scene_text(R"({"potential": {"deformation": {"kind": "abc", "C": 0.5}}})");
+  ASSERT_TRUE(parsed.errors.empty()) << describe_errors(parsed.errors);
+  Simulation run = start_simulation(*parsed.scene);
+  advance_to(run, 0.5);
+  std::string keys;
+  const nlohmann::ordered_json sample = sample_to_json(run, run.events);
+  for (const auto& [key, value] : sample.items()) keys += key + " ";
+  EXPECT_EQ(keys,
+            "t r phi alpha beta theta lambda mu r_dot phi_dot alpha_dot beta_dot theta_dot lambda_dot mu_dot "
+            "p_r p_phi p_alpha p_beta p_lambda p_mu X L det_L energy energy_error energy_orbital "
+            "energy_deformation spin vorticity C_x C_y M casimir undefined events status status_detail "
+            "integrator steps ");
+}
+
+TEST(SampleJson, SampleAndHudComeFromTheSameReadout) {
+  for (const PresetSource& preset : preset_sources()) {
+    const SceneParse parsed = parse_scene_text(preset.json);
+    ASSERT_TRUE(parsed.scene) << preset.name;
+    Simulation run = start_simulation(*parsed.scene);
+    advance_to(run, 0.9);
+    const Readout r = readout(run);
+    const nlohmann::ordered_json sample = sample_to_json(run, run.events);
+    EXPECT_EQ(sample, sample_to_json(r, run.events)) << preset.name;
+
+    // The sample's numbers are the read-out's, bit for bit.
+    EXPECT_EQ(sample["t"].get<double>(), r.t);
+    EXPECT_EQ(sample["energy"].get<double>(), r.energy);
+    EXPECT_EQ(sample["energy_error"].get<double>(), r.energy_error);
+    EXPECT_EQ(sample["spin"].get<double>(), r.spin);
+    EXPECT_EQ(sample["vorticity"].get<double>(), r.vorticity);
+    EXPECT_EQ(sample["det_L"].get<double>(), r.det_L);
+    EXPECT_EQ(sample["status"], std::string(r.status_name));
+    EXPECT_EQ(sample["status_detail"], std::string(r.status_detail));
+    EXPECT_EQ(sample["integrator"], std::string(r.integrator));
+    EXPECT_EQ(sample["steps"].get<std::uint64_t>(), r.steps);
+
+    // The HUD's lines print those same numbers.
+    const std::vector<std::string> hud = readout_lines(run.scene, r);
+    ASSERT_EQ(hud.size(), 6u);
+    EXPECT_EQ(hud[0], format("t = %.3f", sample["t"].get<double>())) << preset.name;
+    EXPECT_EQ(hud[1], format("energy error = %.2e", sample["energy_error"].get<double>())) << preset.name;
+    EXPECT_EQ(hud[2].rfind("integrator: " + sample["integrator"].get<std::string>(), 0), 0u) << preset.name;
+    EXPECT_EQ(hud[2].find("[stopped]") != std::string::npos, sample["status"] != "ok") << preset.name;
+    EXPECT_EQ(hud[5], format("spin = %.4f", sample["spin"].get<double>()) +
+                          format("  det L = %.4f", sample["det_L"].get<double>()))
+        << preset.name;
+  }
+}
+
+}  // namespace
+}  // namespace spinfold

@@ -1,0 +1,225 @@
+// The field tables and the validator: every field of every table is validated against its own
+// range, the tables are consistent, and numbers in messages print in their shortest form.
+#include "engine/scene_fields.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "engine/integrator.h"
+#include "engine/validation.h"
+#include "tests/engine/scene_field_paths.h"
+
+namespace spinfold {
+namespace {
+
+using testing_support::for_each_scene_field;
+using testing_support::other_number;
+
+// A valid scene in which every field can take other_number alone: λ ≠ μ, so that the barriers at
+// λ = μ (A, ĝ) may be switched on.
+Scene base_scene() {
+  Scene s;
+  s.initial.mu = 0.5;
+  return s;
+}
+
+std::vector<FieldError> errors_for(const std::vector<FieldError>& errors, const std::string& field) {
+  std::vector<FieldError> named;
+  for (const FieldError& e : errors)
+    if (e.field == field) named.push_back(e);
+  return named;
+}
+
+bool has_reason(const std::vector<FieldError>& errors, const std::string& field, const std::string& reason) {
+  for (const FieldError& e : errors_for(errors, field))
+    if (e.reason == reason) return true;
+  return false;
+}
+
+TEST(SceneFields, EveryTableNamesEachFieldOnceAndDescribesIt) {
+  std::set<std::string> paths;
+  int count = 0;
+  for_each_scene_field([&](const std::string& path, std::string_view kind, const auto& field, auto) {
+    EXPECT_TRUE(paths.insert(std::string(kind) + ":" + path).second) << path;
+    EXPECT_FALSE(field.description.empty()) << path;
+    ++count;
+  });
+  // surface 2, body 3, radial 1, abc 3, polar 3, initial 12, integrator 3, name, description,
+  // on_degenerate. A field added to a struct of engine/scene.h goes into its table and this count.
+  EXPECT_EQ(count, 30);
+}
+
+TEST(SceneFields, EveryDefaultIsAllowedByItsOwnRange) {
+  for_each_scene_field([&](const std::string& path, std::string_view, const auto& field, auto) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    if constexpr (std::is_same_v<T, double>) {
+      EXPECT_FALSE(field.unit.empty()) << path;
+      EXPECT_TRUE(field.range.contains(field.fallback())) << path;
+      EXPECT_TRUE(field.range.contains(other_number(field))) << path;
+      EXPECT_NE(other_number(field), field.fallback()) << path;
+    } else if constexpr (Enumerated<T>) {
+      EXPECT_FALSE(enum_name(field.fallback()).empty()) << path;
+    }
+  });
+  EXPECT_TRUE(validate_scene(Scene{}).empty());
+  EXPECT_TRUE(validate_scene(base_scene()).empty());
+}
+
+template <typename Enum>
+void expect_names_round_trip() {
+  std::set<std::string_view> names;
+  for (const EnumName<Enum>& n : enum_names(std::type_identity<Enum>{})) {
+    EXPECT_TRUE(names.insert(n.name).second) << n.name;
+    EXPECT_EQ(enum_name(n.value), n.name);
+    EXPECT_EQ(enum_value<Enum>(n.name), n.value);
+    EXPECT_FALSE(n.description.empty()) << n.name;
+  }
+  EXPECT_FALSE(enum_value<Enum>("no such name").has_value());
+}
+
+TEST(SceneFields, EveryEnumeratedNameRoundTrips) {
+  expect_names_round_trip<SurfaceKind>();
+  expect_names_round_trip<BodyModel>();
+  expect_names_round_trip<PolarForm>();
+  expect_names_round_trip<OnDegenerate>();
+  EXPECT_EQ(integrator_names().front(), "auto");
+}
+
+TEST(SceneFields, EveryFieldIsValidatedAgainstItsTable) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for_each_scene_field([&](const std::string& path, std::string_view, const auto& field, auto place) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    const auto with = [&](const T& value) {
+      Scene s = base_scene();
+      place(s) = value;
+      return validate_scene(s);
+    };
+    if constexpr (std::is_same_v<T, double>) {
+      EXPECT_TRUE(errors_for(with(other_number(field)), path).empty()) << path;
+      EXPECT_TRUE(has_reason(with(nan), path, "must be a finite number")) << path;
+      EXPECT_TRUE(has_reason(with(-std::numeric_limits<double>::infinity()), path, "must be a finite number"))
+          << path;
+      EXPECT_TRUE(has_reason(with(1e101), path, "must be at most 1e100 in magnitude")) << path;
+      const Range& r = field.range;
+      const std::string reason = range_reason(r, field.range_note);
+      if (r.has_min()) {
+        EXPECT_TRUE(has_reason(with(r.min - std::max(1.0, std::abs(r.min))), path, reason)) << path;
+        if (!r.min_open) {
+          EXPECT_TRUE(errors_for(with(r.min), path).empty()) << path;
+        }
+        if (r.min_open) {
+          EXPECT_TRUE(has_reason(with(r.min), path, reason)) << path;
+        }
+        if (r.min == 0.0 && r.min_open) {
+          EXPECT_TRUE(has_reason(with(1e-101), path, "must be at least 1e-100")) << path;
+        }
+      }
+      if (r.has_max()) {
+        EXPECT_TRUE(has_reason(with(r.max + std::max(1.0, std::abs(r.max))), path, reason)) << path;
+        if (!r.max_open) {
+          EXPECT_TRUE(errors_for(with(r.max), path).empty()) << path;
+        }
+      }
+      if (!r.has_min() && !r.has_max()) {
+        EXPECT_TRUE(errors_for(with(-1e100), path).empty()) << path;
+        EXPECT_TRUE(errors_for(with(1e100), path).empty()) << path;
+      }
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      if (field.text_rule == TextRule::integrator_name) {
+        const auto errors = with("no-such-integrator");
+        ASSERT_EQ(errors_for(errors, path).size(), 1u) << path;
+        EXPECT_EQ(errors_for(errors, path)[0].value, "no-such-integrator");
+        for (const std::string_view name : integrator_names())
+          if (name != exact_info.name) {
+            EXPECT_TRUE(errors_for(with(std::string(name)), path).empty()) << name;
+          }
+      } else {
+        EXPECT_TRUE(errors_for(with("any text at all"), path).empty()) << path;
+      }
+    } else {
+      static_assert(Enumerated<T>);
+      EXPECT_EQ(errors_for(with(static_cast<T>(99)), path).size(), 1u) << path;
+      for (const EnumName<T>& n : enum_names(std::type_identity<T>{})) {
+        Scene s = base_scene();
+        place(s) = n.value;
+        if (s.body.model == BodyModel::rigid) s.initial.mu = s.initial.lambda;  // rigid needs μ = λ
+        EXPECT_TRUE(errors_for(validate_scene(s), path).empty()) << path << " = " << n.name;
+      }
+    }
+  });
+}
+
+TEST(SceneFields, RangeReasonsReadAsBefore) {
+  EXPECT_EQ(range_reason(kPositive), "must be > 0");
+  EXPECT_EQ(range_reason(kNonNegative, "why"), "must be >= 0 (why)");
+  EXPECT_EQ(range_reason(Range{.min = 1e-15, .max = 1e-2}), "must be between 1e-15 and 1e-2");
+  EXPECT_EQ(range_reason(Range{.min = 0, .min_open = true, .max = 1}), "must be in (0, 1]");
+  EXPECT_EQ(range_reason(Range{.max = 2.5, .max_open = true}), "must be < 2.5");
+  EXPECT_EQ(range_reason(kAnyNumber), "");
+  EXPECT_EQ(bound_text(1e100), "1e100");
+  EXPECT_EQ(bound_text(1e-100), "1e-100");
+  EXPECT_EQ(bound_text(0.01), "1e-2");
+  EXPECT_EQ(bound_text(0.1), "0.1");
+  EXPECT_EQ(bound_text(10), "10");
+  EXPECT_EQ(bound_text(250), "250");
+}
+
+// Values in messages are the shortest text that reads back to the same double: never 0.000000
+// for a tiny number nor 9.9999999999999997e+199 for a huge one.
+TEST(SceneFields, MessagesPrintTinyAndHugeNumbersShortest) {
+  Scene tiny_mass;
+  tiny_mass.body.mass = -1e-10;
+  auto errors = validate_scene(tiny_mass);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0].field, "body.mass");
+  EXPECT_EQ(errors[0].value, "-1e-10");
+  EXPECT_EQ(errors[0].reason, "must be > 0");
+
+  Scene below;
+  below.body.inertia = 1e-101;
+  errors = validate_scene(below);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0].value, "1e-101");
+  EXPECT_EQ(errors[0].reason, "must be at least 1e-100");
+
+  Scene huge;
+  huge.potential.deformation = AbcPotential{.C = -1e200};
+  errors = validate_scene(huge);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0].field, "potential.deformation.C");
+  EXPECT_EQ(errors[0].value, "-1e+200");
+
+  Scene tolerance;
+  tolerance.integrator.tolerance = 1e-20;
+  errors = validate_scene(tolerance);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0].value, "1e-20");
+  EXPECT_EQ(errors[0].reason, "must be between 1e-15 and 1e-2");
+
+  Scene tenth;
+  tenth.initial.r = -0.1;
+  errors = validate_scene(tenth);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0].value, "-0.1");  // not -0.10000000000000001
+
+  // Every value of every error of every field: shortest, never fixed-point noise.
+  for_each_scene_field([&](const std::string& path, std::string_view, const auto& field, auto place) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    if constexpr (std::is_same_v<T, double>) {
+      for (const double v : {-3e-300, 1e-200, -7e250}) {
+        Scene s = base_scene();
+        place(s) = v;
+        for (const FieldError& e : errors_for(validate_scene(s), path)) {
+          EXPECT_EQ(std::stod(e.value), v) << path << ": " << e.value;
+          EXPECT_LE(e.value.size(), 8u) << path << ": " << e.value;
+        }
+      }
+    }
+  });
+}
+
+}  // namespace
+}  // namespace spinfold
