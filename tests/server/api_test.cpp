@@ -1,17 +1,18 @@
 // The HTTP API in-process on 127.0.0.1 with an ephemeral port and a real HTTP client.
 #include "server/api.h"
 
-#include <gtest/gtest.h>
-
 #include <arpa/inet.h>
+#include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
 #include <atomic>
-#include <set>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <thread>
+
+#include "server/route_table.h"
 
 // After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
 #include <httplib.h>
@@ -23,14 +24,17 @@ using nlohmann::json;
 
 class Api : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
+  static ServerOptions test_options() {
     ServerOptions options;
     options.port = 0;
     options.threads = 8;
     options.limits.max_sessions = 6;
     options.limits.max_body_bytes = 16 * 1024;
     options.limits.max_steps = 100000;
-    server_ = new ApiServer(options);
+    return options;
+  }
+  static void SetUpTestSuite() {
+    server_ = new ApiServer(test_options());
     port_ = server_->bind();
     ASSERT_GT(port_, 0);
     thread_ = new std::thread([] { server_->listen(); });
@@ -226,7 +230,8 @@ TEST_F(Api, DivergedRunStopsWithItsReason) {
   auto c = client();
   json state;
   for (int k = 1; k <= 10; ++k) {
-    auto res = c.Post("/api/v1/sessions/" + id + "/advance", json{{"until", 0.5 * k}}.dump(), "application/json");
+    auto res =
+        c.Post("/api/v1/sessions/" + id + "/advance", json{{"until", 0.5 * k}}.dump(), "application/json");
     ASSERT_TRUE(res);
     ASSERT_EQ(res->status, 200) << res->body;
     state = json::parse(res->body)["state"];
@@ -244,8 +249,8 @@ TEST_F(Api, DivergedRunStopsWithItsReason) {
 TEST_F(Api, PatchThatChangesNothingLeavesTheRunAsItIs) {
   const std::string id = create(R"({"preset": "breathing_ellipse_sphere"})");
   auto c = client();
-  const json before =
-      json::parse(c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 1.5})", "application/json")->body);
+  const json before = json::parse(
+      c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 1.5})", "application/json")->body);
   auto patched = c.Patch("/api/v1/sessions/" + id, R"({"body": {"mass": 1}, "surface": {"kind": "sphere"}})",
                          "application/json");
   ASSERT_TRUE(patched);
@@ -489,7 +494,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST_F(Api, DroppedClientsDoNotHurtTheServer) {
   const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
   for (const std::string& path : {"/api/v1/sessions/" + id + "/frame.png?width=1024&height=768&scale=0.3",
-                                 "/api/v1/sessions/" + id + "/events?rate=50"}) {
+                                  "/api/v1/sessions/" + id + "/events?rate=50"}) {
     const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
     sockaddr_in address{};
     address.sin_family = AF_INET;
@@ -520,6 +525,279 @@ TEST_F(Api, SessionLimitAnswers503WithRetryAfter) {
   EXPECT_EQ(over->status, 503);
   EXPECT_FALSE(over->get_header_value("Retry-After").empty());
   for (const std::string& id : ids) remove(id);
+}
+
+// ---- The route table: one source for routing, 405s, query checks and the OpenAPI document.
+
+std::string lower(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+// Every row of the table is an operation of openapi.json, with each of its query parameters and
+// their schemas (the test iterates the table itself, so it cannot drift).
+TEST_F(Api, OpenApiDocumentsEveryRouteAndQueryParameterOfTheTable) {
+  auto doc = client().Get("/api/v1/openapi.json");
+  ASSERT_TRUE(doc);
+  const json paths = json::parse(doc->body)["paths"];
+  const std::vector<Route> table = route_table(test_options().limits);
+  ASSERT_GE(table.size(), 15u);
+  std::size_t query_parameters = 0;
+  for (const Route& route : table) {
+    ASSERT_TRUE(paths.contains(route.path)) << route.path;
+    ASSERT_TRUE(paths[route.path].contains(lower(route.method))) << route.method << " " << route.path;
+    const json operation = paths[route.path][lower(route.method)];
+    EXPECT_EQ(operation["summary"], route.summary);
+    EXPECT_EQ(operation.contains("requestBody"), route.body.has_value()) << route.path;
+    if (route.body) {
+      for (const std::string& type : route.body->content_types)
+        EXPECT_TRUE(operation["requestBody"]["content"].contains(type)) << route.path << " " << type;
+    }
+    for (const auto& [status, description] : route.responses)
+      EXPECT_EQ(operation["responses"][std::to_string(status)]["description"], description) << route.path;
+    for (const QueryParam& p : route.query) {
+      ++query_parameters;
+      json documented;
+      for (const json& q : operation["parameters"])
+        if (q["name"] == p.name && q["in"] == "query") documented = q;
+      ASSERT_FALSE(documented.is_null()) << route.method << " " << route.path << " ?" << p.name;
+      EXPECT_EQ(documented["description"], p.description);
+      const json schema = documented["schema"];
+      EXPECT_EQ(schema["type"], p.type == ParamType::integer  ? "integer"
+                                : p.type == ParamType::number ? "number"
+                                                              : "string")
+          << p.name;
+      if (p.minimum) {
+        EXPECT_EQ(schema["minimum"], *p.minimum) << p.name;
+      }
+      if (p.maximum) {
+        EXPECT_EQ(schema["maximum"], *p.maximum) << p.name;
+      }
+      if (p.type == ParamType::enumeration) {
+        EXPECT_EQ(schema["enum"], p.values) << p.name;
+      }
+      if (!p.unit.empty()) {
+        EXPECT_EQ(schema["x-unit"], p.unit) << p.name;
+      }
+      EXPECT_EQ(schema.contains("default"), p.default_value.has_value()) << p.name;
+    }
+  }
+  EXPECT_GE(query_parameters, 11u);
+  // The operations the API has always had, with the parameters the UI and clients send.
+  const auto query_names = [&](const std::string& path, const std::string& method) {
+    std::set<std::string> names;
+    for (const json& q : paths[path][method]["parameters"])
+      if (q["in"] == "query") names.insert(q["name"].get<std::string>());
+    return names;
+  };
+  EXPECT_EQ(
+      query_names("/api/v1/sessions/{id}/frame.png", "get"),
+      (std::set<std::string>{"width", "height", "view", "layers", "scale", "yaw", "pitch", "distance"}));
+  EXPECT_EQ(query_names("/api/v1/sessions/{id}/events", "get"), std::set<std::string>{"rate"});
+  EXPECT_EQ(query_names("/api/v1/sessions/{id}/trajectory", "get"), std::set<std::string>{"format"});
+  EXPECT_EQ(query_names("/api/v1/sessions", "post"), std::set<std::string>{"start_time"});
+  EXPECT_EQ(query_names("/api/v1/sessions/{id}", "get"), std::set<std::string>{});
+  // And nothing is documented that the table does not have.
+  std::size_t operations = 0;
+  for (const auto& [path, methods] : paths.items()) operations += methods.size();
+  EXPECT_EQ(operations, table.size());
+}
+
+TEST(RouteTable, PathsBecomeRegexes) {
+  EXPECT_EQ(path_regex("/api/v1/sessions/{id}/frame.png"), "/api/v1/sessions/([0-9a-f]{1,32})/frame\\.png");
+  EXPECT_EQ(path_regex("/"), "/");
+  // One row per method and path.
+  std::set<std::string> seen;
+  for (const Route& route : route_table(Limits{}))
+    EXPECT_TRUE(seen.insert(route.method + " " + route.path).second) << route.method << " " << route.path;
+}
+
+json problem_of(const httplib::Result& res) {
+  EXPECT_TRUE(res);
+  EXPECT_EQ(res->get_header_value("Content-Type"), "application/problem+json");
+  return json::parse(res->body);
+}
+
+bool names_field(const json& problem, const std::string& field) {
+  for (const auto& e : problem["errors"])
+    if (e["field"] == field) return true;
+  return false;
+}
+
+TEST_F(Api, UnknownQueryParametersAreRefusedByName) {
+  const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
+  auto c = client();
+  for (const std::string& path :
+       std::vector<std::string>{"/api/v1/sessions/" + id + "/frame.png?width=160&nocache=12345",
+                                "/api/v1/sessions/" + id + "?nocache=12345", "/api/v1/health?nocache=12345",
+                                "/api/v1/sessions/" + id + "/trajectory?format=csv&nocache=12345"}) {
+    auto res = c.Get(path);
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 422) << path;
+    const json problem = problem_of(res);
+    EXPECT_TRUE(names_field(problem, "nocache")) << res->body;
+    EXPECT_NE(problem["detail"].get<std::string>().find("nocache"), std::string::npos) << res->body;
+    EXPECT_NE(problem["detail"].get<std::string>().find("(got 12345)"), std::string::npos) << res->body;
+  }
+  // On a POST too, and nothing is created.
+  auto post =
+      c.Post("/api/v1/sessions?start=1", R"({"preset": "spinning_rigid_sphere"})", "application/json");
+  ASSERT_TRUE(post);
+  EXPECT_EQ(post->status, 422);
+  EXPECT_TRUE(names_field(problem_of(post), "start"));
+  // Each parameter once.
+  auto twice = c.Get("/api/v1/sessions/" + id + "/frame.png?width=160&width=320");
+  ASSERT_TRUE(twice);
+  EXPECT_EQ(twice->status, 422);
+  EXPECT_TRUE(names_field(problem_of(twice), "width"));
+  remove(id);
+}
+
+TEST_F(Api, QueryValuesOutOfRangeOrOfTheWrongTypeNameTheValue) {
+  const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
+  auto c = client();
+  const std::string frame = "/api/v1/sessions/" + id + "/frame.png?";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {frame + "scale=11", "scale: must be a number in (0, 10] (got 11)"},
+      {frame + "scale=0", "scale: must be a number in (0, 10] (got 0)"},
+      {frame + "distance=0.5", "distance: must be a number from 1.2 to 100 [radii] (got 0.5)"},
+      {frame + "pitch=2", "pitch: must be a number from -1.55 to 1.55 [rad] (got 2)"},
+      {frame + "width=5000", "width: must be a whole number from 16 to 4096 [pixels] (got 5000)"},
+      {frame + "height=2.5", "height: must be a whole number from 16 to 4096 [pixels] (got 2.5)"},
+      {frame + "yaw=nan", "yaw: must be a number from -100 to 100 [rad] (got nan)"},
+      {frame + "view=cube", "view: must be sphere, hyperboloid, disk or plane (got cube)"},
+      {frame + "layers=body,glitter",
+       "layers: 'glitter' is not one of surface, grid, body, frame, trail, hud (got body,glitter)"},
+      {"/api/v1/sessions/" + id + "/events?rate=1000",
+       "rate: must be a number from 0.5 to 60 [Hz] (got 1000)"},
+      {"/api/v1/sessions/" + id + "/trajectory?format=xml", "format: must be json or csv (got xml)"},
+  };
+  for (const auto& [path, detail] : cases) {
+    auto res = c.Get(path);
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 422) << path;
+    EXPECT_EQ(problem_of(res)["detail"], detail) << path;
+  }
+  auto post =
+      c.Post("/api/v1/sessions?start_time=-1", R"({"preset": "spinning_rigid_sphere"})", "application/json");
+  ASSERT_TRUE(post);
+  EXPECT_EQ(post->status, 422);
+  EXPECT_EQ(problem_of(post)["detail"], "start_time: must be a number >= 0 (got -1)");
+  // Several bad values: every one is named.
+  auto both = c.Get(frame + "width=1&scale=99");
+  ASSERT_TRUE(both);
+  const json problem = problem_of(both);
+  EXPECT_TRUE(names_field(problem, "width"));
+  EXPECT_TRUE(names_field(problem, "scale"));
+  remove(id);
+}
+
+TEST_F(Api, PatchAcceptsMergePatchJson) {
+  const std::string id = create(R"({"preset": "breathing_ellipse_sphere"})");
+  auto c = client();
+  auto patched =
+      c.Patch("/api/v1/sessions/" + id, R"({"body": {"mass": 2}})", "application/merge-patch+json");
+  ASSERT_TRUE(patched);
+  ASSERT_EQ(patched->status, 200) << patched->body;
+  EXPECT_EQ(json::parse(patched->body)["scene"]["body"]["mass"], 2.0);
+  auto with_charset = c.Patch("/api/v1/sessions/" + id, R"({"body": {"mass": 3}})",
+                              "application/merge-patch+json; charset=utf-8");
+  ASSERT_TRUE(with_charset);
+  EXPECT_EQ(with_charset->status, 200) << with_charset->body;
+  // Other routes take JSON only, and the 415 says which types a route takes.
+  auto advance =
+      c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 1})", "application/merge-patch+json");
+  ASSERT_TRUE(advance);
+  EXPECT_EQ(advance->status, 415);
+  auto xml = c.Patch("/api/v1/sessions/" + id, "<mass/>", "application/xml");
+  ASSERT_TRUE(xml);
+  EXPECT_EQ(xml->status, 415);
+  EXPECT_EQ(problem_of(xml)["detail"],
+            "Content-Type: must be application/json or application/merge-patch+json (got application/xml)");
+  remove(id);
+}
+
+TEST_F(Api, AnEmptyBodySaysAJsonObjectIsExpected) {
+  const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
+  auto c = client();
+  for (const auto& [method, path] : {std::pair<std::string, std::string>{"POST", "/api/v1/sessions"},
+                                     {"PATCH", "/api/v1/sessions/" + id},
+                                     {"POST", "/api/v1/sessions/" + id + "/advance"}}) {
+    auto res =
+        method == "PATCH" ? c.Patch(path, "", "application/json") : c.Post(path, "", "application/json");
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 400) << path;
+    EXPECT_NE(problem_of(res)["detail"].get<std::string>().find("a JSON object is expected"),
+              std::string::npos)
+        << res->body;
+  }
+  remove(id);
+}
+
+TEST_F(Api, EveryRouteAnswersAnUnknownSessionTheSameWay) {
+  auto c = client();
+  const std::string path = "/api/v1/sessions/0123456789abcdef";
+  std::vector<httplib::Result> answers;
+  answers.push_back(c.Get(path));
+  answers.push_back(c.Delete(path));
+  answers.push_back(c.Patch(path, R"({"body": {"mass": 2}})", "application/json"));
+  answers.push_back(c.Post(path + "/advance", R"({"until": 1})", "application/json"));
+  answers.push_back(c.Post(path + "/play", R"({"rate": 1})", "application/json"));
+  answers.push_back(c.Post(path + "/pause", "", "application/json"));
+  answers.push_back(c.Post(path + "/reset", "{}", "application/json"));
+  answers.push_back(c.Get(path + "/trajectory"));
+  answers.push_back(c.Get(path + "/frame.png"));
+  answers.push_back(c.Get(path + "/events"));
+  for (const auto& res : answers) {
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 404);
+    EXPECT_EQ(res->body, answers.front()->body);
+  }
+  const json problem = problem_of(answers.front());
+  EXPECT_EQ(problem["title"], "Unknown session");
+  EXPECT_TRUE(names_field(problem, "id"));
+  EXPECT_NE(problem["detail"].get<std::string>().find("(got 0123456789abcdef)"), std::string::npos);
+}
+
+// Numbers written for people: the shortest form that reads back (1e-10, not 0.000000).
+TEST_F(Api, NumbersInHeadersAndMessagesAreInShortestForm) {
+  const std::string id = create(R"({"preset": "breathing_ellipse_sphere"})");
+  auto c = client();
+  auto got = c.Get("/api/v1/sessions/" + id);
+  ASSERT_TRUE(got);
+  const std::string provenance = got->get_header_value("X-Spinfold-Provenance");
+  EXPECT_NE(provenance.find("tolerance=1e-10"), std::string::npos) << provenance;
+  c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 1.5})", "application/json");
+  auto before = c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 0.25})", "application/json");
+  ASSERT_TRUE(before);
+  EXPECT_EQ(problem_of(before)["detail"], "until: is before the session's time (t = 1.5) (got 0.25)");
+  auto far = c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 1e12})", "application/json");
+  ASSERT_TRUE(far);
+  EXPECT_EQ(problem_of(far)["detail"],
+            "until: advances more than 1e+06 time units in one request (got 1e+12)");
+  auto fast = c.Post("/api/v1/sessions/" + id + "/play", R"({"rate": 5000})", "application/json");
+  ASSERT_TRUE(fast);
+  EXPECT_EQ(problem_of(fast)["detail"], "rate: must be > 0 and <= 1000 (got 5000)");
+  for (const auto* res : {&before, &far, &fast})
+    EXPECT_EQ((*res)->body.find("000000,"), std::string::npos) << (*res)->body;
+  remove(id);
+}
+
+TEST_F(Api, KnownPathsWithAnotherMethodAnswer405WithAllow) {
+  auto c = client();
+  auto sessions = c.Delete("/api/v1/sessions");
+  ASSERT_TRUE(sessions);
+  EXPECT_EQ(sessions->status, 405);
+  EXPECT_EQ(sessions->get_header_value("Allow"), "POST");
+  auto session = c.Put("/api/v1/sessions/0123456789abcdef", "{}", "application/json");
+  ASSERT_TRUE(session);
+  EXPECT_EQ(session->status, 405);
+  EXPECT_EQ(session->get_header_value("Allow"), "GET, PATCH, DELETE");
+  EXPECT_TRUE(names_field(problem_of(session), "method"));
+  auto frame = c.Post("/api/v1/sessions/0123456789abcdef/frame.png", "{}", "application/json");
+  ASSERT_TRUE(frame);
+  EXPECT_EQ(frame->status, 405);
+  EXPECT_EQ(frame->get_header_value("Allow"), "GET");
 }
 
 }  // namespace

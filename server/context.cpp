@@ -1,0 +1,47 @@
+#include "server/context.h"
+
+#include "codec/sample_json.h"
+#include "codec/scene_json.h"
+#include "engine/number_text.h"
+#include "server/problem.h"
+
+// After Eigen: httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's parameter names.
+#include <httplib.h>
+
+#ifndef SPINFOLD_VERSION
+#define SPINFOLD_VERSION "0.0.0"
+#endif
+
+namespace spinfold::server {
+
+std::shared_ptr<Session> find_session(ServerContext& server, const std::string& id) {
+  auto s = server.sessions.find(id);
+  if (!s) throw unknown_session(id);
+  return s;
+}
+
+std::string provenance(const Session& s) {
+  return std::string("version=") + SPINFOLD_VERSION + "; integrator=" + std::string(s.run.info->name) +
+         "; tolerance=" + shortest(s.scene.integrator.tolerance);
+}
+
+nlohmann::ordered_json session_json(const std::string& id, const Session& s) {
+  nlohmann::ordered_json j;
+  j["id"] = id;
+  j["state"] = sample_to_json(s.run, {});
+  j["scene"] = scene_to_json(s.scene);
+  j["start_time"] = s.run.start_time;  // when the scene's initial state holds (after a PATCH: > 0)
+  return j;
+}
+
+void send_json(httplib::Response& res, const nlohmann::ordered_json& body, int status) {
+  res.status = status;
+  res.body = body.dump();
+  res.set_header("Content-Type", "application/json");
+}
+
+const char* server_version() {
+  return SPINFOLD_VERSION;
+}
+
+}  // namespace spinfold::server

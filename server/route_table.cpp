@@ -1,0 +1,356 @@
+#include "server/route_table.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+#include "codec/scene_schema.h"
+#include "engine/number_text.h"
+#include "server/context.h"
+#include "server/problem.h"
+
+// After Eigen: httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's parameter names.
+#include <httplib.h>
+
+namespace spinfold::server {
+
+using nlohmann::json;
+using nlohmann::ordered_json;
+
+namespace {
+
+constexpr const char* kIdPattern = "[0-9a-f]{1,32}";  // session ids (SessionStore::create)
+
+std::string joined(const std::vector<std::string>& items, const std::string& last) {
+  std::string text;
+  for (std::size_t i = 0; i < items.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == items.size() ? last : ", ") + items[i];
+  return text;
+}
+
+// Why a value of this parameter is refused, e.g. "must be a whole number from 16 to 4096 [pixels]".
+std::string expectation(const QueryParam& p) {
+  switch (p.type) {
+    case ParamType::integer:
+    case ParamType::number: {
+      std::string text = p.type == ParamType::integer ? "must be a whole number" : "must be a number";
+      if (p.minimum && p.maximum)
+        text += p.exclusive_minimum ? " in (" + shortest(*p.minimum) + ", " + shortest(*p.maximum) + "]"
+                                    : " from " + shortest(*p.minimum) + " to " + shortest(*p.maximum);
+      else if (p.minimum)
+        text += (p.exclusive_minimum ? " > " : " >= ") + shortest(*p.minimum);
+      else if (p.maximum)
+        text += " <= " + shortest(*p.maximum);
+      if (!p.unit.empty()) text += " [" + p.unit + "]";
+      return text;
+    }
+    case ParamType::enumeration: return "must be " + joined(p.values, " or ");
+    case ParamType::list: return "must be a comma-separated list of " + joined(p.values, ", ");
+    case ParamType::string: break;
+  }
+  return "must be text";
+}
+
+bool in_range(const QueryParam& p, double x) {
+  if (p.minimum && (p.exclusive_minimum ? !(x > *p.minimum) : !(x >= *p.minimum))) return false;
+  return !(p.maximum && !(x <= *p.maximum));
+}
+
+// The value of one parameter, or the reason it is refused.
+std::variant<QueryValue, std::string> parse_value(const QueryParam& p, const std::string& text) {
+  const char* first = text.data();
+  const char* last = text.data() + text.size();
+  switch (p.type) {
+    case ParamType::integer: {
+      long long n = 0;
+      const auto [end, ec] = std::from_chars(first, last, n);
+      if (text.empty() || ec != std::errc() || end != last || !in_range(p, static_cast<double>(n)))
+        return expectation(p);
+      return QueryValue(n);
+    }
+    case ParamType::number: {
+      double x = 0.0;
+      const auto [end, ec] = std::from_chars(first, last, x);
+      if (text.empty() || ec != std::errc() || end != last || !std::isfinite(x) || !in_range(p, x))
+        return expectation(p);
+      return QueryValue(x);
+    }
+    case ParamType::enumeration:
+      for (const std::string& v : p.values)
+        if (v == text) return QueryValue(text);
+      return expectation(p);
+    case ParamType::list: {
+      std::string_view rest = text;
+      while (true) {
+        const std::size_t comma = rest.find(',');
+        const std::string_view item = rest.substr(0, comma);
+        bool known = item.empty();
+        for (const std::string& v : p.values) known = known || v == item;
+        if (!known) return "'" + std::string(item) + "' is not one of " + joined(p.values, ", ");
+        if (comma == std::string_view::npos) break;
+        rest.remove_prefix(comma + 1);
+      }
+      return QueryValue(text);
+    }
+    case ParamType::string: break;
+  }
+  return QueryValue(text);
+}
+
+std::vector<std::string> methods_of(const std::vector<Route>& routes, const std::string& path) {
+  std::vector<std::string> methods;
+  for (const Route& r : routes)
+    if (r.path == path) methods.push_back(r.method);
+  return methods;
+}
+
+const char* type_name(ParamType type) {
+  switch (type) {
+    case ParamType::integer: return "integer";
+    case ParamType::number: return "number";
+    case ParamType::enumeration:
+    case ParamType::list:
+    case ParamType::string: break;
+  }
+  return "string";
+}
+
+ordered_json parameter_schema(const QueryParam& p) {
+  ordered_json schema{{"type", type_name(p.type)}};
+  if (p.type == ParamType::enumeration) schema["enum"] = p.values;
+  if (p.type == ParamType::list)
+    schema["pattern"] = "^(" + joined(p.values, "|") + "|)(,(" + joined(p.values, "|") + "|))*$";
+  if (p.type == ParamType::number && p.exclusive_minimum && p.minimum) schema["exclusiveMinimum"] = true;
+  const auto bound = [&](double x) {
+    return p.type == ParamType::integer ? ordered_json(static_cast<long long>(x)) : ordered_json(x);
+  };
+  if (p.minimum) schema["minimum"] = bound(*p.minimum);
+  if (p.maximum) schema["maximum"] = bound(*p.maximum);
+  if (p.default_value) std::visit([&](const auto& v) { schema["default"] = v; }, *p.default_value);
+  if (!p.unit.empty()) schema["x-unit"] = p.unit;
+  return schema;
+}
+
+}  // namespace
+
+// ---- Query values.
+
+const QueryValue* Query::find(std::string_view name) const {
+  bool known = false;
+  if (declared_)
+    for (const QueryParam& p : *declared_) known = known || p.name == name;
+  if (!known) throw std::logic_error("query parameter not declared by the route: " + std::string(name));
+  const auto it = values_.find(name);
+  return it == values_.end() ? nullptr : &it->second;
+}
+
+std::optional<long long> Query::integer(std::string_view name) const {
+  const QueryValue* v = find(name);
+  if (!v) return std::nullopt;
+  if (const auto* n = std::get_if<long long>(v)) return *n;
+  throw std::logic_error("query parameter is not an integer: " + std::string(name));
+}
+
+std::optional<double> Query::number(std::string_view name) const {
+  const QueryValue* v = find(name);
+  if (!v) return std::nullopt;
+  if (const auto* x = std::get_if<double>(v)) return *x;
+  if (const auto* n = std::get_if<long long>(v)) return static_cast<double>(*n);
+  throw std::logic_error("query parameter is not a number: " + std::string(name));
+}
+
+std::optional<std::string> Query::text(std::string_view name) const {
+  const QueryValue* v = find(name);
+  if (!v) return std::nullopt;
+  if (const auto* s = std::get_if<std::string>(v)) return *s;
+  throw std::logic_error("query parameter is not text: " + std::string(name));
+}
+
+Query parse_query(const Route& route, const httplib::Request& req) {
+  // The query of the URL only (httplib's req.params also holds a form-encoded body's fields).
+  httplib::Params given;
+  if (const auto at = req.target.find('?'); at != std::string::npos)
+    httplib::detail::parse_query_text(req.target.substr(at + 1), given);
+  Query query(&route.query);
+  std::vector<FieldError> errors;
+  std::vector<std::string> names;
+  for (const QueryParam& p : route.query) names.push_back(p.name);
+  for (auto it = given.begin(); it != given.end(); it = given.upper_bound(it->first)) {
+    const std::string& name = it->first;
+    const QueryParam* param = nullptr;
+    for (const QueryParam& p : route.query)
+      if (p.name == name) param = &p;
+    if (!param) {
+      errors.push_back({name, it->second,
+                        "is not a query parameter of " + route.method + " " + route.path + " (" +
+                            (names.empty() ? std::string("it takes none") : "known: " + joined(names, ", ")) +
+                            ")"});
+      continue;
+    }
+    if (given.count(name) > 1) {
+      errors.push_back({name, it->second, "is given more than once"});
+      continue;
+    }
+    auto value = parse_value(*param, it->second);
+    if (auto* why = std::get_if<std::string>(&value))
+      errors.push_back({name, it->second, *why});
+    else
+      query.set(name, std::get<QueryValue>(value));
+  }
+  if (!errors.empty()) throw ApiError{422, "Invalid query", errors, ""};
+  for (const QueryParam& p : route.query)
+    if (p.default_value && !given.count(p.name)) query.set(p.name, *p.default_value);
+  return query;
+}
+
+// ---- The request body.
+
+json Call::body() const {
+  if (!route.body) throw std::logic_error(route.method + " " + route.path + " declares no body");
+  return parse_body(http, route.body->content_types);
+}
+
+bool Call::has_body() const {
+  return !http.body.empty();
+}
+
+// ---- Routing.
+
+std::vector<Route> route_table(const Limits& limits) {
+  std::vector<Route> routes;
+  for (auto part :
+       {catalog_routes(limits), session_routes(limits), frame_routes(limits), event_routes(limits)})
+    for (Route& r : part) routes.push_back(std::move(r));
+  return routes;
+}
+
+std::string path_regex(const std::string& path) {
+  std::string regex;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (path.compare(i, 4, "{id}") == 0) {
+      regex += std::string("(") + kIdPattern + ")";
+      i += 3;
+    } else if (std::string_view(".^$|()[]{}*+?\\").find(path[i]) != std::string_view::npos) {
+      regex += std::string("\\") + path[i];
+    } else {
+      regex += path[i];
+    }
+  }
+  return regex;
+}
+
+void register_routes(httplib::Server& http, ServerContext& server, const std::vector<Route>& routes) {
+  // Runs a handler on the parsed query, mapping ApiError to problem+json; every response carries
+  // the version.
+  const auto wrap = [&server](const Route& route) {
+    return [&server, route](const httplib::Request& req, httplib::Response& res) {
+      res.set_header("X-Spinfold-Version", server_version());
+      try {
+        const std::string id = route.path.find("{id}") != std::string::npos ? req.matches[1].str() : "";
+        const Call call{req, route, id, parse_query(route, req)};
+        route.handler(server, call, res);
+      } catch (const ApiError& e) {
+        send_error(res, e);
+      }
+    };
+  };
+  const auto add = [&http](const std::string& method, const std::string& pattern,
+                           httplib::Server::Handler h) {
+    if (method == "GET") http.Get(pattern, std::move(h));
+    if (method == "POST") http.Post(pattern, std::move(h));
+    if (method == "PATCH") http.Patch(pattern, std::move(h));
+    if (method == "DELETE") http.Delete(pattern, std::move(h));
+    if (method == "PUT") http.Put(pattern, std::move(h));
+  };
+  std::set<std::string> paths_done;
+  for (const Route& route : routes) {
+    add(route.method, path_regex(route.path), wrap(route));
+    if (!paths_done.insert(route.path).second) continue;
+    // A known path asked with a method it does not have: 405 with Allow, not the router's 404.
+    const std::vector<std::string> allowed = methods_of(routes, route.path);
+    std::string allow;
+    for (const std::string& m : allowed) allow += (allow.empty() ? "" : ", ") + m;
+    const auto refuse = [allow](const httplib::Request& req, httplib::Response& res) {
+      res.set_header("X-Spinfold-Version", server_version());
+      res.set_header("Allow", allow);
+      send_error(res, bad(405, "Method not allowed", "method", req.method, "this path allows " + allow));
+    };
+    for (const char* method : {"GET", "POST", "PATCH", "DELETE", "PUT"})
+      if (std::find(allowed.begin(), allowed.end(), method) == allowed.end())
+        add(method, path_regex(route.path), refuse);
+  }
+}
+
+// ---- The OpenAPI document.
+
+ordered_json openapi_document(const std::vector<Route>& routes) {
+  ordered_json paths = ordered_json::object();
+  for (const Route& route : routes) {
+    const bool has_id = route.path.find("{id}") != std::string::npos;
+    std::vector<std::pair<int, std::string>> responses = route.responses;
+    const auto add = [&](int status, const std::string& description) {
+      for (const auto& r : responses)
+        if (r.first == status) return;
+      responses.emplace_back(status, description);
+    };
+    if (route.body) {
+      add(400, "malformed JSON, or an empty body");
+      add(413, "body over the size limit");
+      add(415, "Content-Type not " + joined(route.body->content_types, " or "));
+    }
+    if (has_id) add(404, "unknown session");
+    add(422, "an invalid value or an unknown query parameter (problem+json names them)");
+    std::sort(responses.begin(), responses.end());
+    ordered_json answers = ordered_json::object();
+    for (const auto& [status, description] : responses)
+      answers[std::to_string(status)] = {{"description", description}};
+    ordered_json operation{{"summary", route.summary}};
+    ordered_json parameters = ordered_json::array();
+    if (has_id)
+      parameters.push_back(
+          {{"name", "id"},
+           {"in", "path"},
+           {"required", true},
+           {"description", "the session's id"},
+           {"schema", {{"type", "string"}, {"pattern", std::string("^") + kIdPattern + "$"}}}});
+    for (const QueryParam& p : route.query)
+      parameters.push_back({{"name", p.name},
+                            {"in", "query"},
+                            {"required", false},
+                            {"description", p.description},
+                            {"schema", parameter_schema(p)}});
+    if (!parameters.empty()) operation["parameters"] = parameters;
+    if (route.body) {
+      ordered_json content = ordered_json::object();
+      for (const std::string& type : route.body->content_types)
+        content[type] = {{"schema", route.body->schema}};
+      operation["requestBody"] = {
+          {"description", route.body->description}, {"required", route.body->required}, {"content", content}};
+    }
+    operation["responses"] = answers;
+    std::string method = route.method;
+    std::transform(method.begin(), method.end(), method.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    paths[route.path][method] = operation;
+  }
+  const ordered_json text{{"type", "string"}};
+  const ordered_json field_error{{"type", "object"},
+                                 {"properties", {{"field", text}, {"value", text}, {"reason", text}}}};
+  const ordered_json problem{{"type", "object"},
+                             {"properties",
+                              {{"type", text},
+                               {"title", text},
+                               {"status", {{"type", "integer"}}},
+                               {"detail", text},
+                               {"errors", {{"type", "array"}, {"items", field_error}}}}}};
+  const ordered_json components{{"schemas", {{"Scene", scene_schema()}, {"Problem", problem}}}};
+  return {{"openapi", "3.0.3"},
+          {"info", {{"title", "Spinfold API"}, {"version", "1"}}},
+          {"servers", {{{"url", "/"}}}},
+          {"paths", paths},
+          {"components", components}};
+}
+
+}  // namespace spinfold::server

@@ -1,0 +1,122 @@
+// The HTTP API as one table: each route is one row of data (method, path, handler, summary, typed
+// query parameters, request body, responses). From the table come the router's registrations, the
+// 405 answers with `Allow`, the parsing and checking of query parameters, and the OpenAPI document.
+#pragma once
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace httplib {
+class Server;
+struct Request;
+struct Response;
+}  // namespace httplib
+
+namespace spinfold::server {
+
+struct Limits;
+struct ServerContext;
+struct Route;
+
+enum class ParamType {
+  integer,      // a whole number (64-bit)
+  number,       // a finite double
+  string,       // any text
+  enumeration,  // one of `values`
+  list,         // comma-separated items, each one of `values` (empty items are ignored)
+};
+
+// A query parameter's value after parsing: integer → long long, number → double, the rest → text.
+using QueryValue = std::variant<long long, double, std::string>;
+
+struct QueryParam {
+  std::string name{};
+  ParamType type = ParamType::string;
+  std::string unit{};                         // "" when none (e.g. "pixels", "rad", "Hz")
+  std::optional<double> minimum{};            // integer and number: the smallest value allowed
+  std::optional<double> maximum{};            // integer and number: the largest value allowed
+  bool exclusive_minimum = false;             // the minimum itself is refused: (minimum, maximum]
+  std::vector<std::string> values{};          // enumeration and list: the allowed values
+  std::optional<QueryValue> default_value{};  // what the handler gets when the parameter is absent
+  std::string description{};                  // one line, for the OpenAPI document
+};
+
+struct RequestBody {
+  std::string description{};  // what the body holds
+  std::vector<std::string> content_types = {"application/json"};
+  bool required = true;  // false: an empty body is allowed (the handler checks)
+  nlohmann::ordered_json schema = {{"type", "object"}};  // JSON Schema of the body
+};
+
+// The query parameters of one request, parsed and checked against the route's declarations.
+class Query {
+ public:
+  Query() = default;
+  explicit Query(const std::vector<QueryParam>* declared) : declared_(declared) {}
+  // The value given (or the declared default), or nullopt; asking for an undeclared name or the
+  // wrong type is a programming error (std::logic_error).
+  std::optional<long long> integer(std::string_view name) const;
+  std::optional<double> number(std::string_view name) const;     // number, or integer as a double
+  std::optional<std::string> text(std::string_view name) const;  // string, enumeration or list
+  void set(const std::string& name, QueryValue value) { values_[name] = std::move(value); }
+
+ private:
+  const QueryValue* find(std::string_view name) const;
+  const std::vector<QueryParam>* declared_ = nullptr;
+  std::map<std::string, QueryValue, std::less<>> values_;
+};
+
+// What a handler receives: the request, its route, the {id} of the path and the parsed query.
+struct Call {
+  const httplib::Request& http;
+  const Route& route;
+  std::string id;  // the {id} path segment ("" when the path has none)
+  Query query;
+  // The JSON body, of one of the route's content types (ApiError 400/415 otherwise).
+  nlohmann::json body() const;
+  bool has_body() const;
+};
+
+// Handlers only translate: parse (already done for the query), call, serialise.
+using Handler = void (*)(ServerContext& server, const Call& call, httplib::Response& res);
+
+struct Route {
+  std::string method{};  // "GET", "POST", "PATCH" or "DELETE"
+  std::string path{};    // OpenAPI style: "/api/v1/sessions/{id}/frame.png"
+  Handler handler = nullptr;
+  std::string summary{};                                 // one line, for the OpenAPI document
+  std::vector<QueryParam> query{};                       // every query parameter the route takes
+  std::optional<RequestBody> body{};                     // nullopt: the body is ignored
+  std::vector<std::pair<int, std::string>> responses{};  // status → description (404, 400, 413,
+                                                         // 415 and 422 are added where they apply)
+};
+
+// Every route of the API, with the limits of this server in its parameters' ranges.
+std::vector<Route> route_table(const Limits& limits);
+
+// Each resource's rows (routes_catalog.cpp, routes_sessions.cpp, routes_frames.cpp, routes_events.cpp).
+std::vector<Route> catalog_routes(const Limits& limits);
+std::vector<Route> session_routes(const Limits& limits);
+std::vector<Route> frame_routes(const Limits& limits);
+std::vector<Route> event_routes(const Limits& limits);
+
+// The router regex of an OpenAPI path: "{id}" → a session id group, the rest literal.
+std::string path_regex(const std::string& path);
+
+// Registers every route, and 405 (with `Allow`) for a known path asked with another method.
+void register_routes(httplib::Server& http, ServerContext& server, const std::vector<Route>& routes);
+
+// The query of a request checked against a route: unknown names, duplicates, values of the wrong
+// type or out of range are ApiError 422 naming the parameter, the value and the reason.
+Query parse_query(const Route& route, const httplib::Request& req);
+
+// The OpenAPI 3 document of the table: every operation with its query parameters and schemas.
+nlohmann::ordered_json openapi_document(const std::vector<Route>& routes);
+
+}  // namespace spinfold::server

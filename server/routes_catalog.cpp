@@ -1,0 +1,108 @@
+// What the API describes about itself: health, the presets, the integrators, the scene schema,
+// this API (OpenAPI), and the browser UI's files.
+#include "codec/presets.h"
+#include "codec/scene_json.h"
+#include "codec/scene_schema.h"
+#include "engine/integrator.h"
+#include "server/context.h"
+#include "server/problem.h"
+#include "server/route_table.h"
+#include "server/web_assets.h"
+
+// After Eigen: httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's parameter names.
+#include <httplib.h>
+
+namespace spinfold::server {
+
+namespace {
+
+using nlohmann::json;
+using nlohmann::ordered_json;
+
+void get_health(ServerContext& server, const Call&, httplib::Response& res) {
+  send_json(res, {{"status", "ok"}, {"version", server_version()}, {"sessions", server.sessions.size()}});
+}
+
+void get_scenes(ServerContext&, const Call&, httplib::Response& res) {
+  ordered_json list = ordered_json::array();
+  for (const PresetSource& p : preset_sources()) {
+    const SceneParse parsed = parse_scene_text(p.json);
+    list.push_back({{"name", std::string(p.name)},
+                    {"description", parsed.scene ? parsed.scene->description : ""},
+                    {"scene", json::parse(p.json)}});
+  }
+  send_json(res, list);
+}
+
+void get_integrators(ServerContext&, const Call&, httplib::Response& res) {
+  ordered_json list = ordered_json::array();
+  for (const CatalogEntry& e : integrator_catalog())
+    list.push_back({{"name", std::string(e.info.name)},
+                    {"order", e.info.order},
+                    {"symplectic", e.info.symplectic},
+                    {"adaptive", e.info.adaptive},
+                    {"exact", e.info.exact},
+                    {"summary", std::string(e.info.summary)}});
+  send_json(res, list);
+}
+
+void get_schema(ServerContext&, const Call&, httplib::Response& res) {
+  send_json(res, scene_schema());
+}
+
+void get_openapi(ServerContext& server, const Call&, httplib::Response& res) {
+  send_json(res, openapi_document(route_table(server.options.limits)));
+}
+
+void get_web_asset(ServerContext&, const Call& call, httplib::Response& res) {
+  const WebAsset* asset = web_asset(call.http.path);
+  if (!asset) throw bad(404, "Not found", "path", call.http.path, "no such file");
+  res.body.assign(asset->body.begin(), asset->body.end());
+  res.set_header("Content-Type", std::string(asset->content_type));
+}
+
+}  // namespace
+
+std::vector<Route> catalog_routes(const Limits&) {
+  std::vector<Route> routes = {
+      {.method = "GET",
+       .path = "/api/v1/health",
+       .handler = get_health,
+       .summary = "Liveness, version and session count",
+       .responses = {{200, "{\"status\": \"ok\", \"version\", \"sessions\"}"}}},
+      {.method = "GET",
+       .path = "/api/v1/scenes",
+       .handler = get_scenes,
+       .summary = "The preset scenes",
+       .responses = {{200, "name, description, scene"}}},
+      {.method = "GET",
+       .path = "/api/v1/integrators",
+       .handler = get_integrators,
+       .summary = "The integrator catalog",
+       .responses = {{200, "name, order, symplectic, adaptive, exact, summary"}}},
+      {.method = "GET",
+       .path = "/api/v1/schema",
+       .handler = get_schema,
+       .summary = "The scene format as JSON Schema (defaults, units, limits)",
+       .responses = {{200, "JSON Schema"}}},
+      {.method = "GET",
+       .path = "/api/v1/openapi.json",
+       .handler = get_openapi,
+       .summary = "This document",
+       .responses = {{200, "OpenAPI 3"}}},
+  };
+  // The browser UI, embedded at build time.
+  for (const auto& [path, summary] :
+       {std::pair{"/", "The browser UI"}, std::pair{"/app.js", "The browser UI's script"},
+        std::pair{"/style.css", "The browser UI's style sheet"},
+        std::pair{"/vendor/uPlot.esm.js", "uPlot, the UI's plotting library"},
+        std::pair{"/vendor/uPlot.min.css", "uPlot's style sheet"}})
+    routes.push_back({.method = "GET",
+                      .path = path,
+                      .handler = get_web_asset,
+                      .summary = summary,
+                      .responses = {{200, "the file"}}});
+  return routes;
+}
+
+}  // namespace spinfold::server
