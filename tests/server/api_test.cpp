@@ -783,6 +783,26 @@ TEST_F(Api, NumbersInHeadersAndMessagesAreInShortestForm) {
   remove(id);
 }
 
+// httplib refuses a POST without Content-Length before any route sees it: the answer says why.
+TEST_F(Api, APostWithoutContentLengthIsToldWhy) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port_));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+  const std::string request =
+      "POST /api/v1/sessions/0123456789abcdef/pause HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n";
+  ASSERT_GT(::send(fd, request.data(), request.size(), 0), 0);
+  std::string answer;
+  char buffer[4096];
+  for (ssize_t n; (n = ::recv(fd, buffer, sizeof buffer, 0)) > 0;)
+    answer.append(buffer, static_cast<std::size_t>(n));
+  ::close(fd);
+  EXPECT_EQ(answer.rfind("HTTP/1.1 400", 0), 0u) << answer;
+  EXPECT_NE(answer.find("needs a Content-Length header"), std::string::npos) << answer;
+}
+
 TEST_F(Api, KnownPathsWithAnotherMethodAnswer405WithAllow) {
   auto c = client();
   auto sessions = c.Delete("/api/v1/sessions");
