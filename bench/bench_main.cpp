@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bench/render_bench.h"
+#include "bench/share_link_bench.h"
 #include "bench/stress.h"
 #include "bench/work_precision.h"
 
@@ -24,7 +25,14 @@ int main(int argc, char** argv) {
   int render_frames = 30;
   CLI::App* render_cmd = app.add_subcommand("render", "Frame cost against the bare OSMesa + libpng loop");
   render_cmd->add_option("--frames", render_frames, "Frames per measurement (median)")->capture_default_str();
+  int share_repeats = 9;
+  double share_until = 1000.0;
+  CLI::App* share_cmd = app.add_subcommand(
+      "share-link", "Time to open a share link (timeline of 5 changes) against a bare session");
+  share_cmd->add_option("--repeats", share_repeats, "Measurements per case (median)")->capture_default_str();
+  share_cmd->add_option("--until", share_until, "Simulated time the link shows")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  if (share_cmd->parsed()) return spinfold::bench::run_share_link_bench(share_repeats, share_until);
   if (render_cmd->parsed()) return spinfold::bench::run_render_bench(render_frames);
   if (wp_cmd->parsed()) return spinfold::bench::run_work_precision(wp);
   if (stress_cmd->parsed()) return spinfold::bench::run_stress(stress_names, stress_size);

@@ -90,12 +90,10 @@ int simulate(const SimulateOptions& opt) {
   const Scene scene = load_scene(opt);
 
   Simulation run = start_simulation(scene);
-  std::size_t reported_events = 0;
+  double reported_until = -1.0;  // events up to this time were printed
   const auto emit = [&] {
-    const std::span<const DegenerateEvent> fresh(run.events.data() + reported_events,
-                                                 run.events.size() - reported_events);
-    std::cout << sample_to_json(run, fresh).dump() << '\n';
-    reported_events = run.events.size();
+    std::cout << sample_to_json(run, events_after(run, reported_until)).dump() << '\n';
+    reported_until = run.state.t;
   };
   emit();
   for (long k = 1; run.state.status == Status::ok && run.state.t < opt.t_end; ++k) {

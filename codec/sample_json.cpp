@@ -54,6 +54,7 @@ json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_event
 
   j["energy"] = number(r.energy);
   j["energy_error"] = number(r.energy_error);
+  j["energy_reference_t"] = number(r.energy_reference_t);
   j["energy_orbital"] = number(r.energy_orbital);
   j["energy_deformation"] = number(r.energy_deformation);
   j["spin"] = number(r.spin);

@@ -26,6 +26,7 @@ Readout readout(const Simulation& run) {
   r.coordinates = paper_coordinates(scene, state);
   r.energy = energy(scene, state);
   r.energy_error = (r.energy - run.initial_energy) / std::max(std::abs(run.initial_energy), 1e-300);
+  r.energy_reference_t = run.segment_start;
   r.energy_orbital = orbital_energy(scene, state);
   r.energy_deformation = deformation_energy(scene, state);
   r.spin = r.coordinates.p_alpha;

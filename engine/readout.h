@@ -20,6 +20,7 @@ struct Readout {
   PaperCoordinates coordinates;     // r, φ, α, β, θ, λ, μ, their rates and momenta, X, L (paper's)
   double energy = 0.0;              // H [energy]
   double energy_error = 0.0;        // (H − H₀)/max(|H₀|, 1e-300), H₀ = run.initial_energy [1]
+  double energy_reference_t = 0.0;  // when H₀ was measured: the start or the last change [time]
   double energy_orbital = 0.0;      // E_orb = m⟨V,V⟩/2 + V_r [energy]
   double energy_deformation = 0.0;  // E_def = H − E_orb [energy]
   double spin = 0.0;                // s = p_α [mass·length²/time]

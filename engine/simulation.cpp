@@ -155,7 +155,8 @@ void advance_exact(Simulation& run, double t_end) {
     }
   }
   run.state = next;
-  ++run.steps;  // evaluations of the closed form
+  if (!run.exact_evaluated) ++run.steps;  // one per segment: the same however the run was advanced
+  run.exact_evaluated = true;
 }
 
 enum class Mode {
@@ -356,6 +357,7 @@ void retune(Simulation& run, const Scene& next) {
   run.grid = {here, Coords::Zero(here.y.size()), 0.0, h_next};
   run.checked = run.grid;
   run.view_events.clear();
+  run.exact_evaluated = false;
   measure_energy_from_here(run);
 }
 

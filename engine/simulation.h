@@ -34,16 +34,17 @@ struct Simulation {
   // from it by a cut step (or a few), which is recomputed, never kept: replay is bit-exact.
   StepPoint grid;
   StepPoint checked;  // the last grid point whose energy and range were checked and found good
-  const IntegratorInfo* info = nullptr;      // the integrator that runs (auto resolved)
-  std::unique_ptr<Integrator> integrator;    // null when the exact solution runs
-  std::optional<ExactSolution> exact;        // from the state at segment_start
-  double initial_energy = 0.0;               // H right after the last change (energy_reference_t) [energy]
-  double energy_scale = 0.0;                 // kinetic + |potential| energy then [energy]: the yardstick of
-                                             // divergence
-  double start_time = 0.0;                   // [time] at which the scene's initial state holds
-  double segment_start = 0.0;                // [time] of the last change of parameters (start_time at first):
-                                             // energy errors are measured from here (energy_reference_t)
-  std::vector<DegenerateEvent> events;       // crossings on the step sequence
+  const IntegratorInfo* info = nullptr;    // the integrator that runs (auto resolved)
+  std::unique_ptr<Integrator> integrator;  // null when the exact solution runs
+  std::optional<ExactSolution> exact;      // from the state at segment_start
+  bool exact_evaluated = false;            // the closed form of this segment was used (counted once in steps)
+  double initial_energy = 0.0;             // H right after the last change (energy_reference_t) [energy]
+  double energy_scale = 0.0;               // kinetic + |potential| energy then [energy]: the yardstick of
+                                           // divergence
+  double start_time = 0.0;                 // [time] at which the scene's initial state holds
+  double segment_start = 0.0;              // [time] of the last change of parameters (start_time at first):
+                                           // energy errors are measured from here (energy_reference_t)
+  std::vector<DegenerateEvent> events;     // crossings on the step sequence
   std::vector<DegenerateEvent> view_events;  // crossings between the sequence and `state`
   std::uint64_t steps = 0;                   // accepted steps of the sequence
   std::uint64_t rejected = 0;                // rejected step attempts of the sequence

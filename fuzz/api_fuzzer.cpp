@@ -85,7 +85,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const int parameters = in.ConsumeIntegralInRange(0, 3);
   for (int k = 0; k < parameters; ++k) {
     const std::string key = in.PickValueInArray(
-        {"format", "width", "height", "view", "layers", "yaw", "pitch", "distance", "scale", "rate", "start_time", "x"});
+        {"format", "width", "height", "view", "layers", "yaw", "pitch", "distance", "scale", "rate", "trail", "x"});
     target += (k == 0 ? "?" : "&") + key + "=" + httplib::detail::encode_query_param(in.ConsumeRandomLengthString(24));
   }
   const std::string type = in.PickValueInArray({"application/json", "application/merge-patch+json", "text/plain",

@@ -22,15 +22,16 @@ std::shared_ptr<Session> find_session(ServerContext& server, const std::string& 
 
 std::string provenance(const Session& s) {
   return std::string("version=") + SPINFOLD_VERSION + "; integrator=" + std::string(s.run.info->name) +
-         "; tolerance=" + shortest(s.scene.integrator.tolerance);
+         "; tolerance=" + shortest(s.run.scene.integrator.tolerance);
 }
 
 nlohmann::ordered_json session_json(const std::string& id, const Session& s) {
   nlohmann::ordered_json j;
   j["id"] = id;
   j["state"] = sample_to_json(s.run, {});
-  j["scene"] = scene_to_json(s.scene);
-  j["start_time"] = s.run.start_time;  // when the scene's initial state holds (after a PATCH: > 0)
+  j["scene"] = scene_to_json(s.scene);        // the parameters at t = 0
+  j["timeline"] = s.timeline;                 // the changes since: [{"t", "patch"}]
+  j["current"] = scene_to_json(s.run.scene);  // the parameters in force now
   return j;
 }
 

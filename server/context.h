@@ -36,7 +36,7 @@ std::shared_ptr<Session> find_session(ServerContext& server, const std::string& 
 // X-Spinfold-Provenance: "version=…; integrator=…; tolerance=…" (numbers in shortest form).
 std::string provenance(const Session& s);
 
-// {"id", "state", "scene", "start_time"} of a session (its lock held).
+// {"id", "state", "scene", "timeline", "current"} of a session (its lock held).
 nlohmann::ordered_json session_json(const std::string& id, const Session& s);
 
 // A JSON answer.

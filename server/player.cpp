@@ -30,8 +30,7 @@ void Player::loop() {
       const std::lock_guard lock(s->mutex);
       if (!s->playing) continue;
       // A stiff scene falls behind real time rather than holding the player from the others.
-      advance_to(s->run, s->run.state.t + s->rate * wall, static_cast<std::uint64_t>(max_steps_));
-      record_sample(*s);
+      advance(*s, s->run.state.t + s->rate * wall, static_cast<std::uint64_t>(max_steps_));
       if (s->run.state.status != Status::ok) s->playing = false;
     }
   }

@@ -1,6 +1,8 @@
 // Frames: a session's state as a PNG, rendered on the one render thread and cached by ETag.
 #include <cstdio>
 
+#include "engine/chart.h"
+#include "engine/trail.h"
 #include "render/snapshot.h"
 #include "render/view.h"
 #include "server/context.h"
@@ -19,6 +21,7 @@ struct FrameRequest {
   render::ViewOptions view;
   double scale = 0.25;                         // [surface radii per unit of e_A]
   std::optional<double> yaw, pitch, distance;  // absent: the camera is aimed at the body
+  std::optional<double> trail;                 // [time] span of the trail; absent: the whole run
 };
 
 FrameRequest frame_request(const Query& q, SurfaceKind surface) {
@@ -32,6 +35,7 @@ FrameRequest frame_request(const Query& q, SurfaceKind surface) {
   f.yaw = q.number("yaw");
   f.pitch = q.number("pitch");
   f.distance = q.number("distance");
+  f.trail = q.number("trail");
   return f;
 }
 
@@ -43,10 +47,10 @@ std::string frame_etag(const std::string& id, std::uint64_t version, const Frame
     return std::string(text);
   };
   char text[256];
-  std::snprintf(text, sizeof text, "\"%s-%llu-%d-%dx%d-%u-%.17g-%s-%s-%s\"", id.c_str(),
+  std::snprintf(text, sizeof text, "\"%s-%llu-%d-%dx%d-%u-%.17g-%s-%s-%s-%s\"", id.c_str(),
                 static_cast<unsigned long long>(version), static_cast<int>(f.view.kind), f.view.width,
                 f.view.height, f.view.layers, f.scale, camera(f.yaw).c_str(), camera(f.pitch).c_str(),
-                camera(f.distance).c_str());
+                camera(f.distance).c_str(), camera(f.trail).c_str());
   return text;
 }
 
@@ -59,15 +63,19 @@ void get_frame(ServerContext& server, const Call& call, httplib::Response& res) 
   std::optional<render::Snapshot> snapshot;
   {
     const std::lock_guard lock(s->mutex);
-    f = frame_request(call.query, s->scene.surface.kind);
-    if (const auto why = render::view_unsupported_reason(f.view.kind, s->scene.surface.kind))
+    const SurfaceKind surface = s->run.scene.surface.kind;
+    f = frame_request(call.query, surface);
+    if (const auto why = render::view_unsupported_reason(f.view.kind, surface))
       throw bad(422, "Invalid value", "view", std::string(render::view_name(f.view.kind)), *why);
     etag = frame_etag(call.id, s->version, f);
     png = server.frames.find(etag);
     if (!png && if_none_match != etag) {
-      f.view.scale = f.scale * s->scene.surface.radius;
-      std::vector<Vec3> trail;
-      if (f.view.layers & render::kTrail) trail = s->trail;  // copied only when drawn
+      f.view.scale = f.scale * s->run.scene.surface.radius;
+      std::vector<Vec3> trail;  // copied only when drawn: the samples, then the body's position
+      if (f.view.layers & render::kTrail) {
+        trail = trail_positions(s->trail, s->run.state.t, f.trail.value_or(-1.0));
+        trail.push_back(global_embedding(s->run.scene, s->run.state).X);
+      }
       snapshot = render::make_snapshot(s->run, std::move(trail));
     }
     res.set_header("X-Spinfold-Provenance", provenance(*s));
@@ -160,7 +168,14 @@ std::vector<Route> frame_routes(const Limits& limits) {
                   .minimum = 1.2,
                   .maximum = 100.0,
                   .description = "camera distance from the centre in surface radii (3-D views); default: "
-                                 "aimed at the body"}},
+                                 "aimed at the body"},
+                 {.name = "trail",
+                  .type = ParamType::number,
+                  .unit = "time",
+                  .minimum = 0.0,
+                  .description = "the trail's span: the path over this much simulated time before now; "
+                                 "default: the whole run (sampled every 0.01, the spacing doubling past "
+                                 "8192 samples)"}},
        .responses = {{200, "image/png"},
                      {304, "unchanged (If-None-Match)"},
                      {422, "an invalid parameter, or a view that cannot show this surface"},

@@ -1,14 +1,13 @@
 // Sessions: create, read, patch, delete, and the run's controls (advance, play, pause, reset) and
 // record (trajectory).
 #include <cmath>
+#include <optional>
 #include <sstream>
-#include <variant>
 
 #include "codec/presets.h"
 #include "codec/sample_json.h"
 #include "codec/scene_json.h"
 #include "engine/number_text.h"
-#include "engine/paper_coordinates.h"
 #include "server/context.h"
 #include "server/problem.h"
 #include "server/route_table.h"
@@ -25,56 +24,73 @@ using nlohmann::ordered_json;
 
 const std::string kSessions = "/api/v1/sessions";
 
-// The current state as a scene's "initial" block, so that new parameters apply from here on; or
-// the reason it cannot be written in the paper's coordinates.
-std::variant<json, std::string> current_initial(const Session& s) {
-  const PaperCoordinates c = paper_coordinates(s.scene, s.run.state);
-  if (!c.phi || !c.r_dot || !c.phi_dot) return std::string("the body is at a pole, where phi is undefined");
-  if (!(c.mu > 0.0))
-    return std::string("the frame is mirrored (det L <= 0), which an initial state cannot be");
-  const bool rigid = s.scene.body.model == BodyModel::rigid;
-  const bool isotropic = !c.alpha;  // λ = μ: only θ = α − β is defined; write it as α with β = 0
-  json q{{"r", c.r},
-         {"phi", *c.phi},
-         {"alpha", isotropic ? c.theta.value_or(0.0) : *c.alpha},
-         {"beta", isotropic ? 0.0 : *c.beta},
-         {"lambda", rigid ? s.scene.initial.lambda : c.lambda},
-         {"mu", rigid ? s.scene.initial.lambda : c.mu},
-         {"r_dot", *c.r_dot},
-         {"phi_dot", *c.phi_dot},
-         {"alpha_dot", isotropic ? c.theta_dot.value_or(0.0) : *c.alpha_dot},
-         {"beta_dot", isotropic ? 0.0 : *c.beta_dot},
-         {"lambda_dot", rigid ? 0.0 : c.lambda_dot},
-         {"mu_dot", rigid ? 0.0 : c.mu_dot}};
-  return q;
-}
-
-// The session's answer with its provenance.
-void send_session(httplib::Response& res, const std::string& id, const Session& s, int status = 200) {
-  res.set_header("X-Spinfold-Provenance", provenance(s));
-  send_json(res, session_json(id, s), status);
-}
-
-// POST /sessions: a scene, or {"preset": name}; ?start_time=t0: its initial state holds at t0.
-void create_session(ServerContext& server, const Call& call, httplib::Response& res) {
-  json body = call.body();
+// A scene, or {"preset": name}; `field` names it in errors ("" at the top, "scene" in a link).
+Scene scene_of(const json& body, const std::string& field) {
+  const std::string prefix = field.empty() ? "" : field + ".";
   SceneParse parsed;
   if (body.is_object() && body.size() == 1 && body.contains("preset")) {
     const json& name = body["preset"];
     const PresetSource* p = name.is_string() ? find_preset(name.get<std::string>()) : nullptr;
-    if (!p) throw bad(422, "Unknown preset", "preset", name.dump(), "is not a preset (GET /api/v1/scenes)");
+    if (!p)
+      throw bad(422, "Unknown preset", prefix + "preset", name.dump(),
+                "is not a preset (GET /api/v1/scenes)");
     parsed = parse_scene_text(p->json);
   } else {
     parsed = parse_scene(body);
+    for (FieldError& e : parsed.errors) e.field = e.field.empty() ? field : prefix + e.field;
   }
   if (!parsed.scene) throw ApiError{422, "Invalid scene", parsed.errors, ""};
+  return *parsed.scene;
+}
+
+// A share link's body: {"scene", "timeline", "until"} (a scene itself never has a "scene" key).
+bool is_share_link(const json& body) {
+  if (!body.is_object() || !body.contains("scene")) return false;
+  for (const auto& [key, value] : body.items())
+    if (key != "scene" && key != "timeline" && key != "until") return false;
+  return true;
+}
+
+// POST /sessions: a scene, {"preset": name}, or a share link rebuilt from t = 0 to `until`.
+void create_session(ServerContext& server, const Call& call, httplib::Response& res) {
+  const json body = call.body();
+  require_object(body);
+  const Limits& limits = server.options.limits;
+  const bool link = is_share_link(body);
+  const Scene scene = scene_of(link ? body["scene"] : body, link ? "scene" : "");
+  double until = 0.0;
+  const json timeline = link ? body.value("timeline", json::array()) : json::array();
+  if (link && body.contains("until")) {
+    until = number_field(body, "until");
+    if (until < 0.0 || until > limits.max_advance_time)
+      throw bad(422, "Invalid value", "until", body["until"].dump(),
+                "must be from 0 to " + shortest(limits.max_advance_time));
+  }
   std::string id;
-  const auto session = server.sessions.create(*parsed.scene, id, *call.query.number("start_time"));
+  const auto session = server.sessions.create(scene, id);
   if (!session)
     throw ApiError{503, "Too many sessions", {{"", "", "the session limit is reached; retry later"}}, "30"};
   const std::lock_guard lock(session->mutex);
+  std::optional<Rebuild> rebuilt;
+  if (link) {
+    // The work is bounded like that of advances: max_steps attempts per segment of the timeline.
+    const auto budget = static_cast<std::uint64_t>(limits.max_steps) * (timeline.size() + 1);
+    rebuilt = rebuild(*session, scene, timeline, until, budget);
+    if (!rebuilt->errors.empty()) {
+      server.sessions.erase(id);
+      throw ApiError{422, "Invalid timeline", rebuilt->errors, ""};
+    }
+  }
   res.set_header("Location", kSessions + "/" + id);
-  send_session(res, id, *session, 201);
+  res.set_header("X-Spinfold-Provenance", provenance(*session));
+  ordered_json out = session_json(id, *session);
+  if (rebuilt) {
+    out["advance"] = {{"until", until}, {"complete", rebuilt->complete}};
+    if (!rebuilt->complete)
+      out["advance"]["reason"] = "stopped at t = " + shortest(session->run.state.t) +
+                                 " after the step attempts allowed per request: advance again to continue";
+  }
+  send_json(res, out, 201);
 }
 
 // GET: the state's JSON is built once per change of state and then served as it is.
@@ -95,35 +111,23 @@ void delete_session(ServerContext& server, const Call& call, httplib::Response& 
   res.status = 204;
 }
 
-// PATCH: a JSON merge patch of the scene. Without "initial" the run continues from its current
-// state (and time) under the new parameters; with it, that state is set.
+// PATCH: a JSON merge patch of the parameters in force. The run continues from its current time
+// and state (a timeline entry), or starts over when the start or the surface changed.
 void patch_session(ServerContext& server, const Call& call, httplib::Response& res) {
   const auto s = find_session(server, call.id);
   const json patch = call.body();
   require_object(patch);
   const std::lock_guard lock(s->mutex);
-  json document = scene_to_json(s->scene);
-  if (!patch.contains("initial")) {
-    // A patch that changes nothing leaves the run as it is (no restart from the paper coordinates,
-    // which would cost bits and the integrator's step size).
-    json unchanged = document;
-    unchanged.merge_patch(patch);
-    const SceneParse same = parse_scene(unchanged);
-    if (same.scene && scene_to_json(*same.scene) == document) return send_session(res, call.id, *s);
-    auto initial = current_initial(*s);
-    if (auto* why = std::get_if<std::string>(&initial))
-      throw bad(409, "Conflict", "initial", "", *why + ": give \"initial\" explicitly");
-    document["initial"] = std::get<json>(initial);
-  }
-  document.merge_patch(patch);
-  const SceneParse parsed = parse_scene(document);
-  if (!parsed.scene) throw ApiError{422, "Invalid scene", parsed.errors, ""};
-  const double now = s->run.state.t;
-  s->scene = *parsed.scene;
-  s->run = start_simulation(s->scene, now);
-  s->reported_events = 0;
-  record_sample(*s);
-  send_session(res, call.id, *s);
+  const double t = s->run.state.t;
+  const ChangeOutcome outcome = change(*s, patch);
+  if (!outcome.errors.empty()) throw ApiError{422, "Invalid scene", outcome.errors, ""};
+  static constexpr const char* kinds[] = {"unchanged", "continued", "restarted"};
+  ordered_json out = session_json(call.id, *s);
+  out["change"] = {{"kind", kinds[outcome.kind]},
+                   {"t", outcome.kind == ChangeOutcome::restarted ? 0.0 : t},
+                   {"reason", outcome.reason}};
+  res.set_header("X-Spinfold-Provenance", provenance(*s));
+  send_json(res, out);
 }
 
 // The time an advance request aims at ({"until": t} or {"steps": n}), within the limits (lock held).
@@ -146,13 +150,13 @@ double advance_target(const json& body, const Session& s, const Limits& limits) 
       throw bad(422, "Over a limit", "steps", body["steps"].dump(),
                 "exceeds the limit of " + shortest(static_cast<long long>(limits.max_steps)) +
                     " steps per request");
-    target = now + steps * s.scene.integrator.dt;
+    target = now + steps * s.run.scene.integrator.dt;
   }
   if (target - now > limits.max_advance_time)
     throw bad(422, "Over a limit", "until", shortest(target),
               "advances more than " + shortest(limits.max_advance_time) + " time units in one request");
   if (!s.run.info->adaptive && !s.run.info->exact &&
-      (target - now) / s.scene.integrator.dt > static_cast<double>(limits.max_steps))
+      (target - now) / s.run.scene.integrator.dt > static_cast<double>(limits.max_steps))
     throw bad(422, "Over a limit", "until", shortest(target),
               "needs more than " + shortest(static_cast<long long>(limits.max_steps)) +
                   " fixed steps in one request");
@@ -167,8 +171,7 @@ void advance_session(ServerContext& server, const Call& call, httplib::Response&
   const Limits& limits = server.options.limits;
   const std::lock_guard lock(s->mutex);
   const double target = advance_target(body, *s, limits);
-  const bool complete = advance_to(s->run, target, static_cast<std::uint64_t>(limits.max_steps));
-  record_sample(*s);
+  const bool complete = advance(*s, target, static_cast<std::uint64_t>(limits.max_steps));
   res.set_header("X-Spinfold-Provenance", provenance(*s));
   ordered_json out = session_json(call.id, *s);
   out["advance"] = {{"until", target}, {"complete", complete}};
@@ -209,16 +212,11 @@ void pause_session(ServerContext& server, const Call& call, httplib::Response& r
   send_json(res, session_json(call.id, *s));
 }
 
-// Back to where the scene's initial state holds: its start time (after a PATCH, the moment of the
-// patch), not t = 0 with a later state.
+// Back to t = 0 with the parameters in force: they become the scene, the timeline empties.
 void reset_session(ServerContext& server, const Call& call, httplib::Response& res) {
   const auto s = find_session(server, call.id);
   const std::lock_guard lock(s->mutex);
-  s->run = start_simulation(s->scene, s->run.start_time);
-  s->trajectory.clear();
-  s->trail.clear();
-  s->reported_events = 0;
-  record_sample(*s);
+  restart(*s, s->run.scene);
   send_json(res, session_json(call.id, *s));
 }
 
@@ -244,41 +242,58 @@ void get_trajectory(ServerContext& server, const Call& call, httplib::Response& 
 std::vector<Route> session_routes(const Limits& limits) {
   const std::string sid = kSessions + "/{id}";
   const ordered_json scene_ref = {{"$ref", "#/components/schemas/Scene"}};
+  const ordered_json preset_ref = {{"type", "object"},
+                                   {"required", {"preset"}},
+                                   {"properties", {{"preset", {{"type", "string"}}}}},
+                                   {"additionalProperties", false}};
   return {
       {.method = "POST",
        .path = kSessions,
        .handler = create_session,
-       .summary = "Create a session from a scene or {\"preset\": name}",
-       .query = {{.name = "start_time",
-                  .type = ParamType::number,
-                  .minimum = 0.0,
-                  .default_value = 0.0,
-                  .description = "the time at which the scene's initial state holds (a shared PATCHed "
-                                 "session)"}},
-       .body = RequestBody{.description = "a scene, or {\"preset\": name} (GET /api/v1/scenes)",
-                           .schema = {{"oneOf",
-                                       {scene_ref,
-                                        {{"type", "object"},
-                                         {"required", {"preset"}},
-                                         {"properties", {{"preset", {{"type", "string"}}}}},
-                                         {"additionalProperties", false}}}}}},
-       .responses = {{201, "created: Location, {\"id\", \"state\", \"scene\", \"start_time\"}"},
+       .summary = "Create a session from a scene, {\"preset\": name}, or a share link {\"scene\", "
+                  "\"timeline\", \"until\"} (rebuilt from t = 0, bit for bit)",
+       .body =
+           RequestBody{
+               .description = "a scene, {\"preset\": name} (GET /api/v1/scenes), or {\"scene\": a "
+                              "scene or preset, \"timeline\": [{\"t\", \"patch\"}], \"until\": t}",
+               .schema =
+                   {{"oneOf",
+                     {scene_ref,
+                      preset_ref,
+                      {{"type", "object"},
+                       {"required", {"scene"}},
+                       {"properties",
+                        {{"scene", {{"oneOf", {scene_ref, preset_ref}}}},
+                         {"timeline",
+                          {{"type", "array"},
+                           {"items",
+                            {{"type", "object"},
+                             {"required", {"t", "patch"}},
+                             {"properties",
+                              {{"t", {{"type", "number"}, {"minimum", 0}}}, {"patch", {{"type", "object"}}}}},
+                             {"additionalProperties", false}}}}},
+                         {"until",
+                          {{"type", "number"}, {"minimum", 0}, {"maximum", limits.max_advance_time}}}}},
+                       {"additionalProperties", false}}}}}},
+       .responses = {{201,
+                      "created: Location, the session {\"id\", \"state\", \"scene\", \"timeline\", "
+                      "\"current\"} (and \"advance\" for a share link)"},
                      {422, "invalid scene, unknown preset"},
                      {503, "session limit; Retry-After"}}},
       {.method = "GET",
        .path = sid,
        .handler = get_session,
-       .summary = "The session's state and scene",
-       .responses = {{200, "{\"id\", \"state\", \"scene\", \"start_time\"}"}}},
+       .summary = "The session: its state, scene (t = 0), timeline of changes and parameters in force",
+       .responses = {{200, "{\"id\", \"state\", \"scene\", \"timeline\", \"current\"}"}}},
       {.method = "PATCH",
        .path = sid,
        .handler = patch_session,
-       .summary = "Merge-patch the scene (continues from the current state) or set the state (\"initial\")",
+       .summary = "Merge-patch the parameters in force: the run continues from now (a timeline entry), or "
+                  "restarts at t = 0 for \"initial\" or another surface kind; \"change\" says which",
        .body = RequestBody{.description = "a JSON merge patch (RFC 7396) of the scene",
                            .content_types = {"application/json", "application/merge-patch+json"},
                            .schema = {{"type", "object"}}},
-       .responses = {{200, "the session"},
-                     {409, "the current state has no paper coordinates: give \"initial\""},
+       .responses = {{200, "the session and \"change\": {\"kind\", \"t\", \"reason\"}"},
                      {422, "invalid scene"}}},
       {.method = "DELETE",
        .path = sid,
@@ -325,7 +340,7 @@ std::vector<Route> session_routes(const Limits& limits) {
       {.method = "POST",
        .path = sid + "/reset",
        .handler = reset_session,
-       .summary = "Back to the scene's initial state at the session's start time",
+       .summary = "Back to t = 0 with the parameters in force (the timeline empties)",
        .responses = {{200, "the session"}}},
       {.method = "GET",
        .path = sid + "/trajectory",

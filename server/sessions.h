@@ -1,5 +1,5 @@
-// Sessions: one simulation each, advanced and read under its own lock. The store owns them and
-// expires idle ones.
+// Sessions: a scene and its timeline of parameter changes, the run they determine, its trail.
+// Each is advanced and read under its own lock; the store owns them and expires idle ones.
 #pragma once
 
 #include <chrono>
@@ -8,22 +8,29 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "engine/simulation.h"
+#include "engine/timeline.h"
+#include "engine/trail.h"
+#include "engine/validation.h"
 
 namespace spinfold::server {
 
 struct Session {
   std::mutex mutex;  // guards everything below
+  // The session is a pure function of these two: the parameters at t = 0 (as created, restarted or
+  // reset) and the changes since, in order, each as given and as the whole scene after it.
   Scene scene;
-  Simulation run;
+  nlohmann::ordered_json timeline = nlohmann::ordered_json::array();  // [{"t", "patch"}]
+  std::vector<ParameterChange> changes;
+  Simulation run;                                  // run.scene: the parameters in force now
+  Trail trail;                                     // the path at fixed times since t = 0
   std::uint64_t version = 0;                       // changes with every change of state: part of frame ETags
-  std::vector<nlohmann::ordered_json> trajectory;  // a sample after creation, each advance and reset
-  std::vector<Vec3> trail;                         // positions of those samples, for frames
-  std::size_t reported_events = 0;
-  std::string body;  // the serialized GET response of `body_version`
+  std::vector<nlohmann::ordered_json> trajectory;  // a sample after creation, each advance, change and reset
+  double reported_until = -1.0;                    // det L events up to this time are in the trajectory
+  std::string body;                                // the serialized GET response of `body_version`
   std::uint64_t body_version = ~std::uint64_t{0};
   bool playing = false;  // advanced in real time by the server's player
   double rate = 1.0;     // simulated time per second of wall time while playing
@@ -35,8 +42,9 @@ class SessionStore {
   SessionStore(std::size_t max_sessions, std::chrono::seconds idle_expiry)
       : max_sessions_(max_sessions), idle_expiry_(idle_expiry) {}
 
-  // A new session at t = start_time, or nullptr when the store is full (after expiring idle sessions).
-  std::shared_ptr<Session> create(const Scene& scene, std::string& id, double start_time = 0.0);
+  // A new session at t = 0 of the scene, or nullptr when the store is full (after expiring idle
+  // sessions).
+  std::shared_ptr<Session> create(const Scene& scene, std::string& id);
   std::shared_ptr<Session> find(const std::string& id);
   bool erase(const std::string& id);
   std::size_t size();
@@ -54,7 +62,38 @@ class SessionStore {
 // The most recent samples kept per session (older ones are dropped in halves).
 inline constexpr std::size_t kMaxTrajectory = 20000;
 
-// Records the session's current state as a trajectory sample and a trail point (lock held).
-void record_sample(Session& session);
+// The operations below hold the session's lock. Each records a sample and bumps the version.
+
+// Starts the session over at t = 0 of `scene` with an empty timeline (creation, reset, restart).
+void restart(Session& session, const Scene& scene);
+
+// Advances to `t` [time] recording the trail; false when `max_attempts` ran out first.
+bool advance(Session& session, double t, std::uint64_t max_attempts);
+
+// What a merge patch of the parameters did.
+struct ChangeOutcome {
+  enum Kind {
+    unchanged,  // the patch changes nothing: the run is left as it is
+    continued,  // new parameters from the current time and state on (a timeline entry)
+    restarted,  // a new start (`initial`) or another surface: the run starts over at t = 0
+  } kind = unchanged;
+  std::string reason;              // one sentence for a person
+  std::vector<FieldError> errors;  // non-empty: refused, nothing changed
+};
+
+// Applies a JSON merge patch of the scene at the current time.
+ChangeOutcome change(Session& session, const nlohmann::json& patch);
+
+// Why a patch cannot be a timeline entry (it would restart the run), or "" when it can.
+std::string restart_reason(const nlohmann::json& patch, const Scene& before, const Scene& after);
+
+// Rebuilds a session from a scene, a timeline [{"t", "patch"}] and a time: the state and the
+// trail are those of the session that made the timeline, bit for bit. Refusals name the entry.
+struct Rebuild {
+  std::vector<FieldError> errors;  // non-empty: refused
+  bool complete = true;            // false: max_attempts ran out before `until`
+};
+Rebuild rebuild(Session& session, const Scene& scene, const nlohmann::json& timeline, double until,
+                std::uint64_t max_attempts);
 
 }  // namespace spinfold::server

@@ -3,8 +3,10 @@
 import uPlot from "/vendor/uPlot.esm.js";
 
 const api = "/api/v1";
+// scene: the parameters at t = 0; current: those in force now; timeline: the changes since
+// ([{t, patch}]); the session is a pure function of scene + timeline, and so is a share link.
 const ui = {
-  id: null, scene: null, schema: null, presets: [], version: -1, t: 0, startTime: 0,
+  id: null, scene: null, current: null, timeline: [], schema: null, presets: [], version: -1, t: 0,
   view: { kind: null, layers: new Set(["surface", "grid", "body", "frame", "trail", "hud"]), yaw: null, pitch: null },
   events: null, frameUrl: null, plots: null, series: [[], [], [], [], [], []],
 };
@@ -17,7 +19,7 @@ class ProblemError extends Error {
 async function call(method, path, body) {
   const options = { method, headers: {} };
   if (body !== undefined) {
-    options.headers["Content-Type"] = "application/json";
+    options.headers["Content-Type"] = method === "PATCH" ? "application/merge-patch+json" : "application/json";
     options.body = JSON.stringify(body);
   }
   const res = await fetch(api + path, options);
@@ -81,6 +83,37 @@ function showState(state) {
   }
 }
 
+// A session's answer to create, change or reset: its scene, timeline and parameters in force.
+function adopt(session) {
+  ui.scene = session.scene;
+  ui.current = session.current;
+  ui.timeline = session.timeline;
+  if (ui.plots) { ui.plots.energy.redraw(); ui.plots.invariants.redraw(); }
+}
+
+// A dashed line on the plots at every parameter change (the plots keep their history across it).
+const changeMarks = {
+  hooks: {
+    draw: [(u) => {
+      const { ctx } = u;
+      const { top, height } = u.bbox;
+      ctx.save();
+      ctx.strokeStyle = "#888";
+      ctx.setLineDash([4, 4]);
+      ctx.lineWidth = 1;
+      for (const change of ui.timeline) {
+        const x = Math.round(u.valToPos(change.t, "x", true));
+        if (x < u.bbox.left || x > u.bbox.left + u.bbox.width) continue;
+        ctx.beginPath();
+        ctx.moveTo(x, top);
+        ctx.lineTo(x, top + height);
+        ctx.stroke();
+      }
+      ctx.restore();
+    }],
+  },
+};
+
 // Whole decades from 1e-16 (uPlot tick formatting stops there) up to above the largest value: finite, positive, never empty.
 function logRange(u, lo, hi) {
   const top = Number.isFinite(hi) && hi > 0 ? hi : 1e-15;
@@ -91,10 +124,10 @@ function makePlots() {
   const width = Math.max(260, Math.min(420, ($("side").clientWidth || 360) - 8));
   ui.plots = {
     // Log scale with a range that never collapses (uPlot cannot tick an empty log range).
-    energy: new uPlot({ width, height: 160, title: "relative energy error",
+    energy: new uPlot({ width, height: 160, title: "relative energy error", plugins: [changeMarks],
                         scales: { x: { time: false }, y: { distr: 3, log: 10, range: logRange } },
                         series: [{}, { label: "|ΔH/H|", stroke: "#c40" }] }, [[], []], $("plot-energy")),
-    invariants: new uPlot({ width, height: 180, title: "spin, p_φ, C_x, C_y", scales: { x: { time: false } },
+    invariants: new uPlot({ width, height: 180, title: "spin, p_φ, C_x, C_y", plugins: [changeMarks], scales: { x: { time: false } },
                             series: [{}, { label: "spin", stroke: "#06c" }, { label: "p_φ", stroke: "#080" },
                                      { label: "C_x", stroke: "#a0a" }, { label: "C_y", stroke: "#aa0" }] },
                           [[], [], [], [], []], $("plot-invariants")),
@@ -139,18 +172,13 @@ function fieldFor(path, spec, value) {
     path.slice(0, -1).forEach((key) => (node = node[key] = {}));
     node[path[path.length - 1]] = spec.enum ? input.value : Number(input.value);
     // A deformation field needs its kind: the scene's, or abc when there is none yet.
-    if (path[1] === "deformation") node.kind = lookup(ui.scene, ["potential", "deformation", "kind"]) ?? "abc";
+    if (path[1] === "deformation") node.kind = lookup(ui.current, ["potential", "deformation", "kind"]) ?? "abc";
     try {
-      const res = await call("PATCH", `/sessions/${ui.id}`, patch);
+      await applyChange(patch, path[0] === "surface" || path[1] === "deformation");
       error.textContent = "";
-      ui.scene = res.scene;
-      ui.startTime = res.start_time;
-      showState(res.state);
-      if (path[0] === "surface" || path[1] === "deformation") { buildControls(); buildViewControls(); }
-      refreshFrame();
     } catch (e) {
       error.textContent = e.message;
-      input.value = lookup(ui.scene, path) ?? spec.default;
+      input.value = lookup(ui.current, path) ?? spec.default;
     }
   });
   row.append(label, input, error);
@@ -179,12 +207,7 @@ function deformationKindField(branches, deformation) {
       for (const key of Object.keys(deformation ?? {})) if (key !== "kind") replacement[key] = null;
     }
     try {
-      const res = await call("PATCH", `/sessions/${ui.id}`, { potential: { deformation: replacement } });
-      ui.scene = res.scene;
-      ui.startTime = res.start_time;
-      showState(res.state);
-      buildControls();
-      refreshFrame();
+      await applyChange({ potential: { deformation: replacement } }, true);
     } catch (e) {
       error.textContent = e.message;
       input.value = deformation?.kind ?? "none";
@@ -192,6 +215,18 @@ function deformationKindField(branches, deformation) {
   });
   row.append(label, input, error);
   return row;
+}
+
+// A change of parameters: continues the run from now (a mark on the plots), or restarts it at
+// t = 0 when the start or the surface changed; the server says which.
+async function applyChange(patch, rebuild) {
+  const res = await call("PATCH", `/sessions/${ui.id}`, patch);
+  adopt(res);
+  showState(res.state);
+  status(res.change.reason);
+  if (rebuild || res.change.kind === "restarted") { buildControls(); buildViewControls(); }
+  refreshFrame();
+  return res;
 }
 
 function lookup(object, path) { return path.reduce((node, key) => (node ? node[key] : undefined), object); }
@@ -204,14 +239,14 @@ function buildControls() {
     const set = document.createElement("fieldset");
     set.innerHTML = `<legend>${section}</legend>`;
     for (const [key, spec] of Object.entries(props[section].properties))
-      set.append(fieldFor([section, key], spec, lookup(ui.scene, [section, key])));
+      set.append(fieldFor([section, key], spec, lookup(ui.current, [section, key])));
     form.append(set);
   }
   const potential = document.createElement("fieldset");
   potential.innerHTML = "<legend>potential</legend>";
   const gamma = props.potential.properties.radial.properties.gamma;
-  potential.append(fieldFor(["potential", "radial", "gamma"], gamma, lookup(ui.scene, ["potential", "radial", "gamma"]) ?? 0));
-  const deformation = lookup(ui.scene, ["potential", "deformation"]);
+  potential.append(fieldFor(["potential", "radial", "gamma"], gamma, lookup(ui.current, ["potential", "radial", "gamma"]) ?? 0));
+  const deformation = lookup(ui.current, ["potential", "deformation"]);
   potential.append(deformationKindField(props.potential.properties.deformation.oneOf, deformation));
   for (const branch of props.potential.properties.deformation.oneOf) {
     const kind = branch.properties.kind.const;
@@ -223,13 +258,13 @@ function buildControls() {
   form.append(potential);
   const degenerate = document.createElement("fieldset");
   degenerate.innerHTML = "<legend>run</legend>";
-  degenerate.append(fieldFor(["on_degenerate"], props.on_degenerate, ui.scene.on_degenerate));
+  degenerate.append(fieldFor(["on_degenerate"], props.on_degenerate, ui.current.on_degenerate));
   form.append(degenerate);
 }
 
 // ---- Views and layers.
 function buildViewControls() {
-  const kinds = { sphere: ["sphere", "disk"], pseudosphere: ["disk", "hyperboloid"], plane: ["plane"] }[ui.scene.surface.kind];
+  const kinds = { sphere: ["sphere", "disk"], pseudosphere: ["disk", "hyperboloid"], plane: ["plane"] }[ui.current.surface.kind];
   const select = $("view");
   select.textContent = "";
   kinds.forEach((k) => select.add(new Option(k, k)));
@@ -249,16 +284,15 @@ function buildViewControls() {
 }
 
 // ---- Sessions.
-async function openScene(scene, { until = 0, startTime = 0 } = {}) {
+// A scene from t = 0, or (a share link) a scene with its timeline rebuilt up to `until`.
+async function openScene(scene, { until = 0, timeline = [] } = {}) {
   if (ui.id) call("DELETE", `/sessions/${ui.id}`).catch(() => {});
-  const created = await call("POST", startTime > 0 ? `/sessions?start_time=${startTime}` : "/sessions", scene);
+  const created = await call("POST", "/sessions", until > 0 || timeline.length ? { scene, timeline, until } : scene);
   ui.id = created.id;
-  ui.scene = created.scene;
-  ui.startTime = created.start_time;
   ui.view.yaw = ui.view.pitch = null;
   ui.series.forEach((a) => (a.length = 0));
+  adopt(created);
   showState(created.state);
-  if (until > 0) showState((await call("POST", `/sessions/${ui.id}/advance`, { until })).state);
   $("explanation").textContent = created.scene.description || "";
   buildControls();
   buildViewControls();
@@ -295,10 +329,11 @@ async function buildGallery() {
   }
 }
 
-// ---- Share: the URL carries the scene, the view and the time.
+// ---- Share: the URL carries the scene, its timeline, the time and the view; opening it rebuilds
+// the same run (the same state and picture, trail included).
 function shareUrl() {
-  const params = new URLSearchParams({ scene: JSON.stringify(ui.scene), view: ui.view.kind, t: String(ui.t),
-                                       start: String(ui.startTime),
+  const params = new URLSearchParams({ scene: JSON.stringify(ui.scene), timeline: JSON.stringify(ui.timeline),
+                                       t: String(ui.t), view: ui.view.kind,
                                        layers: [...ui.view.layers].join(",") });
   return `${location.origin}${location.pathname}#${params}`;
 }
@@ -310,7 +345,7 @@ function fromHash() {
   ui.view.kind = params.get("view");
   if (params.has("layers")) ui.view.layers = new Set(params.get("layers").split(",").filter(Boolean));
   return { scene: JSON.parse(params.get("scene")), until: Number(params.get("t") || 0),
-           startTime: Number(params.get("start") || 0) };
+           timeline: JSON.parse(params.get("timeline") || "[]") };
 }
 
 // ---- Wiring.
@@ -318,7 +353,13 @@ function wire() {
   $("play").onclick = () => call("POST", `/sessions/${ui.id}/play`, { rate: Number($("speed").value) }).catch((e) => status(e.message));
   $("pause").onclick = () => call("POST", `/sessions/${ui.id}/pause`, {});
   $("step").onclick = async () => showState((await call("POST", `/sessions/${ui.id}/advance`, { steps: 10 })).state);
-  $("reset").onclick = async () => showState((await call("POST", `/sessions/${ui.id}/reset`, {})).state);
+  $("reset").onclick = async () => {
+    const res = await call("POST", `/sessions/${ui.id}/reset`, {});
+    adopt(res);
+    showState(res.state);
+    buildControls();
+    refreshFrame();
+  };
   $("speed").oninput = () => ($("speed-out").textContent = $("speed").value);
   $("speed").onchange = () => call("POST", `/sessions/${ui.id}/pause`, {}).then(() => $("play").onclick());
   $("view").onchange = () => { ui.view.kind = $("view").value; ui.view.yaw = ui.view.pitch = null; refreshFrame(); };
@@ -350,7 +391,7 @@ async function main() {
   makePlots();
   const shared = fromHash();
   const first = shared ? shared.scene : (ui.presets.find((p) => p.name === "spinning_rigid_sphere") || ui.presets[0]).scene;
-  await openScene(first, shared ? { until: shared.until, startTime: shared.startTime } : {});
+  await openScene(first, shared ? { until: shared.until, timeline: shared.timeline } : {});
   document.body.dataset.ready = "true";
   buildGallery();
 }

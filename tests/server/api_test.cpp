@@ -197,26 +197,36 @@ TEST_F(Api, PatchContinuesFromTheCurrentStateUnderNewParameters) {
   ASSERT_TRUE(patched);
   ASSERT_EQ(patched->status, 200) << patched->body;
   const json after = json::parse(patched->body);
-  EXPECT_EQ(after["scene"]["body"]["mass"], 3.0);
+  EXPECT_EQ(after["current"]["body"]["mass"], 3.0);  // in force from now
+  EXPECT_EQ(after["scene"]["body"]["mass"], 1.0);    // the scene at t = 0 is what it was
+  EXPECT_EQ(after["timeline"], json::parse(R"([{"t": 1.5, "patch": {"body": {"mass": 3}, "integrator": {"name": "dop853"}}}])"));
+  EXPECT_EQ(after["change"]["kind"], "continued");
   EXPECT_EQ(after["state"]["t"], 1.5);  // the clock goes on
+  EXPECT_EQ(after["state"]["energy_error"], 0.0);  // measured from the change
   EXPECT_NEAR(after["state"]["r"].get<double>(), before["r"].get<double>(), 1e-12);
   EXPECT_NEAR(after["state"]["lambda"].get<double>(), before["lambda"].get<double>(), 1e-12);
   EXPECT_NEAR(after["state"]["phi_dot"].get<double>(), before["phi_dot"].get<double>(), 1e-12);
   EXPECT_NE(patched->get_header_value("X-Spinfold-Provenance").find("integrator=dop853"), std::string::npos);
-  // Setting the state explicitly.
+  // A new start restarts the run at t = 0 with the parameters in force and that start.
   auto set = c.Patch("/api/v1/sessions/" + id, R"({"initial": {"r": 0.7, "lambda": 1.1, "mu": 0.9}})",
                      "application/json");
   ASSERT_TRUE(set);
-  EXPECT_NEAR(json::parse(set->body)["state"]["r"].get<double>(), 0.7, 1e-15);
-  // Advancing after a PATCH goes on from the patched time.
+  const json restarted = json::parse(set->body);
+  EXPECT_EQ(restarted["change"]["kind"], "restarted");
+  EXPECT_NE(restarted["change"]["reason"].get<std::string>().find("initial"), std::string::npos);
+  EXPECT_EQ(restarted["state"]["t"], 0.0);
+  EXPECT_NEAR(restarted["state"]["r"].get<double>(), 0.7, 1e-15);
+  EXPECT_EQ(restarted["scene"]["body"]["mass"], 3.0);
+  EXPECT_EQ(restarted["timeline"], json::array());
   auto moved = c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 2.5})", "application/json");
   EXPECT_EQ(json::parse(moved->body)["state"]["t"], 2.5);
-  // Reset goes back to where the patched scene's initial state holds: t = 1.5, r = 0.7.
+  // Reset goes back to t = 0 with the parameters in force.
   auto reset = c.Post("/api/v1/sessions/" + id + "/reset", "{}", "application/json");
   ASSERT_TRUE(reset);
-  const json back = json::parse(reset->body)["state"];
-  EXPECT_EQ(back["t"], 1.5);
-  EXPECT_NEAR(back["r"].get<double>(), 0.7, 1e-15);
+  const json back = json::parse(reset->body);
+  EXPECT_EQ(back["state"]["t"], 0.0);
+  EXPECT_NEAR(back["state"]["r"].get<double>(), 0.7, 1e-15);
+  EXPECT_EQ(back["scene"]["body"]["mass"], 3.0);
   remove(id);
 }
 
@@ -238,14 +248,16 @@ TEST_F(Api, DivergedRunStopsWithItsReason) {
     if (state["status"] != "ok") break;
   }
   EXPECT_EQ(state["status"], "diverged");
-  EXPECT_EQ(state["t"], 1.5);
+  // The run's own steps are dt = π/2 long; the server samples the trail every 0.01, so the last
+  // state seen good is the trail sample at 3.16, in the cut step from 2 dt where the blow-up shows.
+  EXPECT_EQ(state["t"], 316 * 0.01);
   EXPECT_NE(state["status_detail"].get<std::string>().find("energy error"), std::string::npos);
   EXPECT_LT(std::abs(state["energy_error"].get<double>()), 1.0);
   remove(id);
 }
 
 // A patch that changes nothing (the same values, written differently) leaves the run untouched:
-// the same state bits and start time, where a restart would re-derive the state at t = 1.5.
+// the same state bits and no timeline entry, where a change would start a new segment at t = 1.5.
 TEST_F(Api, PatchThatChangesNothingLeavesTheRunAsItIs) {
   const std::string id = create(R"({"preset": "breathing_ellipse_sphere"})");
   auto c = client();
@@ -256,7 +268,8 @@ TEST_F(Api, PatchThatChangesNothingLeavesTheRunAsItIs) {
   ASSERT_TRUE(patched);
   ASSERT_EQ(patched->status, 200) << patched->body;
   const json after = json::parse(patched->body);
-  EXPECT_EQ(after["start_time"], 0.0);
+  EXPECT_EQ(after["change"]["kind"], "unchanged");
+  EXPECT_EQ(after["timeline"], json::array());
   EXPECT_EQ(after["state"], before["state"]);
   EXPECT_EQ(after["scene"], before["scene"]);
   remove(id);
@@ -586,16 +599,16 @@ TEST_F(Api, OpenApiDocumentsEveryRouteAndQueryParameterOfTheTable) {
   // The operations the API has always had, with the parameters the UI and clients send.
   const auto query_names = [&](const std::string& path, const std::string& method) {
     std::set<std::string> names;
-    for (const json& q : paths[path][method]["parameters"])
+    for (const json& q : paths[path][method].value("parameters", json::array()))
       if (q["in"] == "query") names.insert(q["name"].get<std::string>());
     return names;
   };
   EXPECT_EQ(
       query_names("/api/v1/sessions/{id}/frame.png", "get"),
-      (std::set<std::string>{"width", "height", "view", "layers", "scale", "yaw", "pitch", "distance"}));
+      (std::set<std::string>{"width", "height", "view", "layers", "scale", "yaw", "pitch", "distance", "trail"}));
   EXPECT_EQ(query_names("/api/v1/sessions/{id}/events", "get"), std::set<std::string>{"rate"});
   EXPECT_EQ(query_names("/api/v1/sessions/{id}/trajectory", "get"), std::set<std::string>{"format"});
-  EXPECT_EQ(query_names("/api/v1/sessions", "post"), std::set<std::string>{"start_time"});
+  EXPECT_EQ(query_names("/api/v1/sessions", "post"), std::set<std::string>{});
   EXPECT_EQ(query_names("/api/v1/sessions/{id}", "get"), std::set<std::string>{});
   // And nothing is documented that the table does not have.
   std::size_t operations = 0;
@@ -678,11 +691,10 @@ TEST_F(Api, QueryValuesOutOfRangeOrOfTheWrongTypeNameTheValue) {
     EXPECT_EQ(res->status, 422) << path;
     EXPECT_EQ(problem_of(res)["detail"], detail) << path;
   }
-  auto post =
-      c.Post("/api/v1/sessions?start_time=-1", R"({"preset": "spinning_rigid_sphere"})", "application/json");
-  ASSERT_TRUE(post);
-  EXPECT_EQ(post->status, 422);
-  EXPECT_EQ(problem_of(post)["detail"], "start_time: must be a number >= 0 (got -1)");
+  auto span = c.Get(frame + "trail=-1");
+  ASSERT_TRUE(span);
+  EXPECT_EQ(span->status, 422);
+  EXPECT_EQ(problem_of(span)["detail"], "trail: must be a number >= 0 [time] (got -1)");
   // Several bad values: every one is named.
   auto both = c.Get(frame + "width=1&scale=99");
   ASSERT_TRUE(both);
@@ -818,6 +830,128 @@ TEST_F(Api, KnownPathsWithAnotherMethodAnswer405WithAllow) {
   ASSERT_TRUE(frame);
   EXPECT_EQ(frame->status, 405);
   EXPECT_EQ(frame->get_header_value("Allow"), "GET");
+}
+
+
+// The trail follows the true path whatever the advances: one to t = 6 and sixty of 0.1 draw the
+// same frame, byte for byte (the spinning body circles; chords would cut across).
+TEST_F(Api, TrailIsTheSameHoweverTheRunWasAdvanced) {
+  auto c = client();
+  for (const char* preset : {"spinning_rigid_sphere", "deforming_spin_pseudosphere"}) {
+    SCOPED_TRACE(preset);
+    const std::string once = create(json{{"preset", preset}}.dump());
+    const std::string many = create(json{{"preset", preset}}.dump());
+    ASSERT_EQ(c.Post("/api/v1/sessions/" + once + "/advance", R"({"until": 6})", "application/json")->status, 200);
+    for (int k = 1; k <= 60; ++k)
+      ASSERT_EQ(c.Post("/api/v1/sessions/" + many + "/advance", json{{"until", k * 0.1}}.dump(), "application/json")->status,
+                200);
+    c.Post("/api/v1/sessions/" + many + "/advance", R"({"until": 6})", "application/json");
+    const json a = json::parse(c.Get("/api/v1/sessions/" + once)->body)["state"];
+    const json b = json::parse(c.Get("/api/v1/sessions/" + many)->body)["state"];
+    EXPECT_EQ(a, b);
+    const std::string query = "/frame.png?width=320&height=240";
+    auto fa = c.Get("/api/v1/sessions/" + once + query);
+    auto fb = c.Get("/api/v1/sessions/" + many + query);
+    ASSERT_EQ(fa->status, 200);
+    ASSERT_EQ(fb->status, 200);
+    EXPECT_TRUE(fa->body == fb->body) << "frames differ";
+    // A span of the trail is a different picture, and the same for both.
+    auto sa = c.Get("/api/v1/sessions/" + once + query + "&trail=1");
+    auto sb = c.Get("/api/v1/sessions/" + many + query + "&trail=1");
+    EXPECT_TRUE(sa->body == sb->body);
+    EXPECT_FALSE(sa->body == fa->body);
+    remove(once);
+    remove(many);
+  }
+}
+
+// A session rebuilt from its scene, timeline and time equals the original: state and frame bytes.
+TEST_F(Api, RebuiltSessionEqualsTheOriginalAfterSeveralPatches) {
+  auto c = client();
+  for (const char* integrator : {"auto", "dop853"}) {
+    SCOPED_TRACE(integrator);
+    const std::string id = create(json{{"surface", {{"kind", "sphere"}, {"radius", 1.0}}},
+                                       {"body", {{"mass", 1.0}, {"inertia", 0.2}}},
+                                       {"potential", {{"deformation", {{"kind", "abc"}, {"C", 0.5}}}}},
+                                       {"initial", {{"r", 1.2}, {"lambda", 1.3}, {"mu", 0.7}, {"phi_dot", 0.3},
+                                                    {"alpha_dot", 0.8}}},
+                                       {"integrator", {{"name", integrator}}}}
+                                      .dump());
+    const std::string session = "/api/v1/sessions/" + id;
+    const char* patches[] = {R"({"body": {"mass": 2}})", R"({"potential": {"deformation": {"C": 0.2}}})",
+                             R"({"surface": {"radius": 1.5}})", R"({"body": {"inertia": 0.3}})"};
+    double t = 0.0;
+    for (const char* patch : patches) {
+      for (int k = 0; k < 7; ++k) {
+        t += 0.137;
+        c.Post(session + "/advance", json{{"until", t}}.dump(), "application/json");
+      }
+      auto patched = c.Patch(session, patch, "application/merge-patch+json");
+      ASSERT_EQ(patched->status, 200) << patched->body;
+      EXPECT_EQ(json::parse(patched->body)["change"]["kind"], "continued");
+    }
+    c.Post(session + "/advance", json{{"until", t + 0.5}}.dump(), "application/json");
+    const json original = json::parse(c.Get(session)->body);
+    ASSERT_EQ(original["timeline"].size(), 4u);
+    auto copy = c.Post("/api/v1/sessions",
+                       json{{"scene", original["scene"]}, {"timeline", original["timeline"]},
+                            {"until", original["state"]["t"]}}
+                           .dump(),
+                       "application/json");
+    ASSERT_EQ(copy->status, 201) << copy->body;
+    const json rebuilt = json::parse(copy->body);
+    EXPECT_EQ(rebuilt["advance"]["complete"], true);
+    EXPECT_EQ(rebuilt["state"], original["state"]);
+    EXPECT_EQ(rebuilt["current"], original["current"]);
+    EXPECT_EQ(rebuilt["timeline"], original["timeline"]);
+    const std::string query = "/frame.png?width=320&height=240";
+    auto fa = c.Get(session + query);
+    auto fb = c.Get("/api/v1/sessions/" + rebuilt["id"].get<std::string>() + query);
+    ASSERT_EQ(fa->status, 200);
+    EXPECT_TRUE(fa->body == fb->body) << "frames differ";
+    remove(id);
+    remove(rebuilt["id"]);
+  }
+}
+
+// Changes at a pole (where the paper's coordinates are undefined) and after det L = 0 (a mirrored
+// frame no initial state can be) continue the run at its time and place.
+TEST_F(Api, PatchAtAPoleAndAfterAFrameCrossingContinues) {
+  auto c = client();
+  for (const auto& [preset, until] : {std::pair{"pole_crossing_sphere", 2.0}, std::pair{"degenerate_crossing", 0.8}}) {
+    SCOPED_TRACE(preset);
+    const std::string id = create(json{{"preset", preset}}.dump());
+    const std::string session = "/api/v1/sessions/" + id;
+    const json before =
+        json::parse(c.Post(session + "/advance", json{{"until", until}}.dump(), "application/json")->body)["state"];
+    auto patched = c.Patch(session, R"({"body": {"mass": 2}})", "application/json");
+    ASSERT_EQ(patched->status, 200) << patched->body;
+    const json after = json::parse(patched->body)["state"];
+    EXPECT_EQ(after["t"], until);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(after["X"][i].get<double>(), before["X"][i].get<double>(), 1e-12);
+    EXPECT_EQ(after["status"], "ok");
+    auto on = c.Post(session + "/advance", json{{"until", until + 1}}.dump(), "application/json");
+    EXPECT_EQ(json::parse(on->body)["state"]["status"], "ok");
+    remove(id);
+  }
+}
+
+TEST_F(Api, ABadTimelineIsRefusedNamingTheEntry) {
+  auto c = client();
+  const auto refused = [&](const std::string& timeline, const std::string& field) {
+    auto res = c.Post("/api/v1/sessions",
+                      R"({"scene": {"preset": "spinning_rigid_sphere"}, "until": 3, "timeline": )" + timeline + "}",
+                      "application/json");
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 422) << res->body;
+    EXPECT_EQ(json::parse(res->body)["errors"][0]["field"], field) << res->body;
+  };
+  refused(R"([{"t": 1, "patch": {"initial": {"r": 0.5}}}])", "timeline[0].patch");
+  refused(R"([{"t": 2, "patch": {"body": {"mass": 2}}}, {"t": 1, "patch": {"body": {"mass": 3}}}])", "timeline[1].t");
+  refused(R"([{"t": 1, "patch": {"body": {"mass": -2}}}])", "timeline[0].patch.body.mass");
+  refused(R"([{"t": 4, "patch": {"body": {"mass": 2}}}])", "timeline[0].t");
+  refused(R"([{"t": 1, "patch": {}, "extra": 1}])", "timeline[0].extra");
+  EXPECT_EQ(json::parse(c.Get("/api/v1/health")->body)["sessions"], 0);  // nothing left behind
 }
 
 }  // namespace

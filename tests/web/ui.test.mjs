@@ -93,7 +93,8 @@ try {
   });
 
   await test("switching the deformation kind replaces its fields on the server and in the form", async () => {
-    const scene = async () => (await (await fetch(await page.$eval("#export-state", (a) => a.href))).json()).scene;
+    // The parameters in force (a change after t = 0 is a timeline entry; the scene is t = 0's).
+    const scene = async () => (await (await fetch(await page.$eval("#export-state", (a) => a.href))).json()).current;
     await page.selectOption('[name="potential.deformation.kind"]', "polar");
     await page.waitForSelector('[name="potential.deformation.ghat"]');
     assert.equal(await page.$('[name="potential.deformation.C"]'), null);
@@ -117,6 +118,21 @@ try {
     await page.waitForFunction((etag) => document.querySelector("#frame").dataset.etag !== etag, before, { timeout: 10000 });
   });
 
+  await test("a parameter change continues the run: no teleport, the initial fields untouched", async () => {
+    await page.click("#step");
+    await page.waitForTimeout(300);
+    const t = await readoutT(page);
+    const r = await page.inputValue('[name="initial.r"]');
+    await page.fill('[name="body.mass"]', "1.5");
+    await page.dispatchEvent('[name="body.mass"]', "change");
+    await page.waitForFunction(() => /continuing/.test(document.querySelector("#status").textContent));
+    assert.equal(await readoutT(page), t);  // the clock goes on from where it was
+    assert.equal(await page.inputValue('[name="initial.r"]'), r);  // no 16-digit refill
+    const session = await (await fetch(await page.$eval("#export-state", (a) => a.href))).json();
+    assert.equal(session.timeline.at(-1).t, t);
+    assert.equal(session.current.body.mass, 1.5);
+  });
+
   await test("a share URL reproduces the same state", async () => {
     await page.click("#step");
     await page.waitForTimeout(300);
@@ -131,6 +147,14 @@ try {
     assert.equal(await readoutT(other), t);
     const strip = (s) => s.replace(/integrator: \w+/, "");
     assert.equal(strip(await other.textContent("#readout")), strip(readout));
+    // The same picture, trail included: the frames of both sessions are the same bytes.
+    const frameDigest = (p) => p.evaluate(async () => {
+      const id = new URL(document.querySelector("#export-state").href).pathname.split("/").pop();
+      const res = await fetch(`/api/v1/sessions/${id}/frame.png?width=320&height=240&view=sphere&layers=surface,grid,body,frame,trail,hud`);
+      const bytes = new Uint8Array(await crypto.subtle.digest("SHA-256", await res.arrayBuffer()));
+      return Array.from(bytes, (b) => b.toString(16).padStart(2, "0")).join("");
+    });
+    assert.equal(await frameDigest(other), await frameDigest(page));
     await other.close();
   });
 
