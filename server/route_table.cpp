@@ -183,6 +183,7 @@ Query parse_query(const Route& route, const httplib::Request& req) {
     for (const QueryParam& p : route.query)
       if (p.name == name) param = &p;
     if (!param) {
+      if (route.ignores_unknown_query) continue;
       errors.push_back({name, it->second,
                         "is not a query parameter of " + route.method + " " + route.path + " (" +
                             (names.empty() ? std::string("it takes none") : "known: " + joined(names, ", ")) +

@@ -90,9 +90,11 @@ struct Route {
   std::string method{};  // "GET", "POST", "PATCH" or "DELETE"
   std::string path{};    // OpenAPI style: "/api/v1/sessions/{id}/frame.png"
   Handler handler = nullptr;
-  std::string summary{};                                 // one line, for the OpenAPI document
-  std::vector<QueryParam> query{};                       // every query parameter the route takes
-  std::optional<RequestBody> body{};                     // nullopt: the body is ignored
+  std::string summary{};               // one line, for the OpenAPI document
+  std::vector<QueryParam> query{};     // every query parameter the route takes
+  std::optional<RequestBody> body{};   // nullopt: the body is ignored
+  bool ignores_unknown_query = false;  // a page people open: links may carry parameters it does
+                                       // not use (tracking, cache busting); the API refuses them
   std::vector<std::pair<int, std::string>> responses{};  // status → description (404, 400, 413,
                                                          // 415 and 422 are added where they apply)
 };

@@ -101,6 +101,7 @@ std::vector<Route> catalog_routes(const Limits&) {
                       .path = path,
                       .handler = get_web_asset,
                       .summary = summary,
+                      .ignores_unknown_query = true,
                       .responses = {{200, "the file"}}});
   return routes;
 }

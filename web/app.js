@@ -70,13 +70,18 @@ function showState(state) {
   $("readout").dataset.t = state.t;
   if (state.status !== "ok" && state.status_detail) status(state.status_detail);
   const s = ui.series;
-  if (s[0].length && state.t <= s[0][s[0].length - 1]) s.forEach((a) => (a.length = 0));
+  // Back in time: a restart or reset (a change at the current time keeps the history; the plots
+  // mark it). The same time again: the sample after a change replaces the one before it.
+  const last = s[0].length ? s[0][s[0].length - 1] : -Infinity;
+  if (state.t < last) s.forEach((a) => (a.length = 0));
+  else if (state.t === last) s.forEach((a) => a.pop());
   s[0].push(state.t);
   s[1].push(Math.max(Math.abs(state.energy_error ?? 0), 1e-16));
   s[2].push(state.spin);
   s[3].push(state.p_phi);
   s[4].push(state.C_x ?? null);
   s[5].push(state.C_y ?? null);
+  $("plot-energy").dataset.from = s[0][0];  // the plotted history's start (browser tests read it)
   if (ui.plots) {
     ui.plots.energy.setData([s[0], s[1]]);
     ui.plots.invariants.setData([s[0], s[2], s[3], s[4], s[5]]);
@@ -223,7 +228,7 @@ async function applyChange(patch, rebuild) {
   const res = await call("PATCH", `/sessions/${ui.id}`, patch);
   adopt(res);
   showState(res.state);
-  status(res.change.reason);
+  if (res.change.kind !== "unchanged") status(res.change.reason);
   if (rebuild || res.change.kind === "restarted") { buildControls(); buildViewControls(); }
   refreshFrame();
   return res;

@@ -666,6 +666,14 @@ TEST_F(Api, UnknownQueryParametersAreRefusedByName) {
   remove(id);
 }
 
+// The UI page is opened by people from links that may carry parameters it does not use.
+TEST_F(Api, TheUiPageIgnoresUnknownQueryParameters) {
+  auto page = client().Get("/?utm_source=slides&v=2");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_NE(page->body.find("<html"), std::string::npos);
+}
+
 TEST_F(Api, QueryValuesOutOfRangeOrOfTheWrongTypeNameTheValue) {
   const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
   auto c = client();

@@ -131,6 +131,8 @@ try {
     const session = await (await fetch(await page.$eval("#export-state", (a) => a.href))).json();
     assert.equal(session.timeline.at(-1).t, t);
     assert.equal(session.current.body.mass, 1.5);
+    // The plots keep their history across the change.
+    assert.ok(Number(await page.$eval("#plot-energy", (el) => el.dataset.from)) < t);
   });
 
   await test("a share URL reproduces the same state", async () => {
