@@ -48,6 +48,11 @@ std::vector<ParameterChange> changes_of(const Scene& start) {
   list.push_back({3.3, s});
   s.potential.radial.reset();
   list.push_back({4.0, s});
+  s.on_degenerate = OnDegenerate::stop;
+  s.integrator.dt = 0.02;
+  list.push_back({4.3, s});
+  s.integrator.name = s.integrator.name == "split6" ? "gauss6" : "split6";  // another integrator
+  list.push_back({4.6, s});
   return list;
 }
 
