@@ -225,6 +225,32 @@ std::optional<std::string> exact_unsupported_reason(const Scene& scene) {
   return std::nullopt;
 }
 
+namespace {
+
+// The orbit's constants under the radial potential (physics.md §8.2) from its start in the scene's
+// chart: r, φ, ṙ and the conserved p_φ, s, E_orb.
+RadialOrbit radial_orbit(const Scene& scene, double r0, double phi0, double r_dot0, double p_phi, double spin,
+                         double energy) {
+  const double m = scene.body.mass, K = curvature(scene.surface);
+  RadialOrbit o;
+  o.r0 = r0;
+  o.phi0 = phi0;
+  o.r_dot0 = r_dot0;
+  o.p_phi = p_phi;
+  o.spin = spin;
+  o.energy = energy;
+  o.strength = radial_strength(scene.surface, *scene.potential.radial);
+  o.Lambda = 2.0 * K * o.energy / m + K * K * o.spin * o.spin / (m * m);
+  o.u_c = o.Lambda != 0.0 ? K * K * o.p_phi * o.spin / (m * m * o.Lambda) : 0.0;
+  return o;
+}
+
+bool has_radial_barrier(const Scene& scene) {
+  return scene.potential.radial && scene.potential.radial->gamma > 0.0;
+}
+
+}  // namespace
+
 ExactSolution make_exact_solution(const Scene& scene) {
   ExactSolution sol;
   sol.scene = scene;
@@ -234,20 +260,10 @@ ExactSolution make_exact_solution(const Scene& scene) {
   sol.local0 = chart_kinematics(scene, start.y);
   sol.theta0 = scene.initial.alpha - scene.initial.beta;
   if (const auto* abc = std::get_if<AbcPotential>(&scene.potential.deformation)) sol.internal = *abc;
-  if (scene.potential.radial && scene.potential.radial->gamma > 0.0) {
+  if (has_radial_barrier(scene)) {
     const InitialState& q = scene.initial;
-    const double m = scene.body.mass, K = curvature(scene.surface);
-    RadialOrbit o;
-    o.r0 = q.r;
-    o.phi0 = q.phi;
-    o.r_dot0 = q.r_dot;
-    o.p_phi = start.y[coord::p_phi];
-    o.spin = spin_of(scene, start.y);
-    o.energy = orbital_energy(scene, start);
-    o.strength = radial_strength(scene.surface, *scene.potential.radial);
-    o.Lambda = 2.0 * K * o.energy / m + K * K * o.spin * o.spin / (m * m);
-    o.u_c = o.Lambda != 0.0 ? K * K * o.p_phi * o.spin / (m * m * o.Lambda) : 0.0;
-    sol.radial = o;
+    sol.radial = radial_orbit(scene, q.r, q.phi, q.r_dot, start.y[coord::p_phi], spin_of(scene, start.y),
+                              orbital_energy(scene, start));
   }
   return sol;
 }
@@ -263,24 +279,14 @@ ExactSolution make_exact_solution(const Scene& scene, const State& start) {
   sol.initial.V = start.chart.A * sol.local0.V;
   sol.initial.F1 = start.chart.A * sol.local0.F1;
   if (const auto* abc = std::get_if<AbcPotential>(&scene.potential.deformation)) sol.internal = *abc;
-  if (scene.potential.radial && scene.potential.radial->gamma > 0.0) {
+  if (has_radial_barrier(scene)) {
     // The radial closed form runs in the scene's chart, frame (E₁, E₂).
     const GlobalBody g = global_body(scene, start);
     sol.initial.L = g.L;
     sol.initial.M = g.M;
     sol.theta0 = std::atan2(g.L(1, 0), g.L(0, 0));
-    const double m = scene.body.mass, K = curvature(scene.surface);
-    RadialOrbit o;
-    o.r0 = g.r;
-    o.phi0 = g.phi;
-    o.r_dot0 = g.r_dot;
-    o.p_phi = angular_momentum(scene, start);
-    o.spin = g.spin;
-    o.energy = orbital_energy(scene, start);
-    o.strength = radial_strength(scene.surface, *scene.potential.radial);
-    o.Lambda = 2.0 * K * o.energy / m + K * K * o.spin * o.spin / (m * m);
-    o.u_c = o.Lambda != 0.0 ? K * K * o.p_phi * o.spin / (m * m * o.Lambda) : 0.0;
-    sol.radial = o;
+    sol.radial = radial_orbit(scene, g.r, g.phi, g.r_dot, angular_momentum(scene, start), g.spin,
+                              orbital_energy(scene, start));
   }
   return sol;
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstring>
 
 #include "engine/chart.h"
 #include "engine/invariants.h"
@@ -43,6 +44,13 @@ inline Scene degenerate_crossing_scene() {
   s.initial.mu_dot = -0.6;
   s.initial.alpha_dot = -std::cos(1.2) * 0.4;  // cancels the chart frame's rotation Cφ̇
   return s;
+}
+
+// Two states with the same time, chart, coordinates (bit for bit) and status.
+inline bool same_bits(const State& a, const State& b) {
+  return a.t == b.t && a.y.size() == b.y.size() &&
+         std::memcmp(a.y.data(), b.y.data(), sizeof(double) * a.y.size()) == 0 && a.chart.A == b.chart.A &&
+         a.chart.b == b.chart.b && a.status == b.status;
 }
 
 inline Simulation run_to(const Scene& scene, double t) {

@@ -12,11 +12,7 @@
 namespace spinfold {
 namespace {
 
-bool same_bits(const State& a, const State& b) {
-  return a.t == b.t && a.y.size() == b.y.size() &&
-         std::memcmp(a.y.data(), b.y.data(), sizeof(double) * a.y.size()) == 0 && a.chart.A == b.chart.A &&
-         a.chart.b == b.chart.b && a.status == b.status;
-}
+using test::same_bits;
 
 bool same_points(const Trail& a, const Trail& b) {
   if (a.points.size() != b.points.size() || a.spacing != b.spacing) return false;
