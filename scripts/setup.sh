@@ -14,6 +14,7 @@ packages=(
   libboost-dev gnuplot-nox                        # reference integrators (Boost.Odeint), plots
   wrk curl                                        # HTTP load benchmark
   chromium                                        # browser tests of the web UI (playwright-core)
+  nginx                                           # the front of the shared server (scripts/front.sh)
 )
 
 missing=()

@@ -12,6 +12,7 @@
 #include <set>
 #include <thread>
 
+#include "bad_requests.h"
 #include "server/route_table.h"
 
 // After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
@@ -199,9 +200,10 @@ TEST_F(Api, PatchContinuesFromTheCurrentStateUnderNewParameters) {
   const json after = json::parse(patched->body);
   EXPECT_EQ(after["current"]["body"]["mass"], 3.0);  // in force from now
   EXPECT_EQ(after["scene"]["body"]["mass"], 1.0);    // the scene at t = 0 is what it was
-  EXPECT_EQ(after["timeline"], json::parse(R"([{"t": 1.5, "patch": {"body": {"mass": 3}, "integrator": {"name": "dop853"}}}])"));
+  EXPECT_EQ(after["timeline"],
+            json::parse(R"([{"t": 1.5, "patch": {"body": {"mass": 3}, "integrator": {"name": "dop853"}}}])"));
   EXPECT_EQ(after["change"]["kind"], "continued");
-  EXPECT_EQ(after["state"]["t"], 1.5);  // the clock goes on
+  EXPECT_EQ(after["state"]["t"], 1.5);             // the clock goes on
   EXPECT_EQ(after["state"]["energy_error"], 0.0);  // measured from the change
   EXPECT_NEAR(after["state"]["r"].get<double>(), before["r"].get<double>(), 1e-12);
   EXPECT_NEAR(after["state"]["lambda"].get<double>(), before["lambda"].get<double>(), 1e-12);
@@ -398,109 +400,20 @@ TEST_F(Api, ConcurrentClientsSteerDifferentSessions) {
   }
 }
 
-struct BadRequest {
-  const char* method;
-  const char* path;  // "{id}" is replaced by a live session's id
-  const char* body;
-  const char* content_type;
-  int status;
-  const char* field;  // the field the problem names ("" for any)
-};
-
-void PrintTo(const BadRequest& b, std::ostream* os) {
-  *os << b.method << " " << b.path << " " << b.body;
-}
+using test::BadRequest;
 
 class BadRequests : public Api, public ::testing::WithParamInterface<BadRequest> {};
 
 TEST_P(BadRequests, ProblemJsonAndTheSessionIsUnchanged) {
-  const BadRequest b = GetParam();
   const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
   auto c = client();
   const std::string before = c.Get("/api/v1/sessions/" + id)->body;
-  std::string path = b.path;
-  if (const auto at = path.find("{id}"); at != std::string::npos) path.replace(at, 4, id);
-  httplib::Result res = std::string(b.method) == "GET"      ? c.Get(path)
-                        : std::string(b.method) == "DELETE" ? c.Delete(path)
-                        : std::string(b.method) == "PATCH"  ? c.Patch(path, b.body, b.content_type)
-                                                            : c.Post(path, b.body, b.content_type);
-  ASSERT_TRUE(res);
-  EXPECT_EQ(res->status, b.status) << res->body;
-  EXPECT_EQ(res->get_header_value("Content-Type"), "application/problem+json");
-  const json problem = json::parse(res->body);
-  EXPECT_EQ(problem["status"], b.status);
-  EXPECT_FALSE(problem["detail"].get<std::string>().empty());
-  if (*b.field) {
-    bool named = false;
-    for (const auto& e : problem["errors"]) named = named || e["field"] == b.field;
-    EXPECT_TRUE(named) << res->body;
-  }
+  test::expect_problem(c, GetParam(), id);
   EXPECT_EQ(c.Get("/api/v1/sessions/" + id)->body, before);  // nothing lost, nothing changed
   remove(id);
 }
 
-const std::string kDeep = std::string(100, '[') + std::string(100, ']');
-const std::string kHuge = "{\"name\": \"" + std::string(20000, 'x') + "\"}";
-
-INSTANTIATE_TEST_SUITE_P(
-    Table, BadRequests,
-    ::testing::Values(
-        BadRequest{"POST", "/api/v1/sessions", "{}", "text/plain", 415, "Content-Type"},
-        BadRequest{"POST", "/api/v1/sessions", "{\"surface\": ", "application/json", 400, ""},
-        BadRequest{"POST", "/api/v1/sessions", "\x88", "application/json", 400, ""},  // not UTF-8
-        BadRequest{"PATCH", "/api/v1/sessions/{id}", "{\"name\": \"\xff\"}", "application/json", 400, ""},
-        BadRequest{"POST", "/api/v1/sessions", kDeep.c_str(), "application/json", 400, ""},
-        BadRequest{"POST", "/api/v1/sessions", kHuge.c_str(), "application/json", 413, ""},
-        BadRequest{"POST", "/api/v1/sessions", R"({"body": {"mass": -1}})", "application/json", 422,
-                   "body.mass"},
-        BadRequest{"POST", "/api/v1/sessions", R"({"gravity": 9.8})", "application/json", 422, "gravity"},
-        BadRequest{"POST", "/api/v1/sessions", R"({"preset": "no_such"})", "application/json", 422, "preset"},
-        BadRequest{"POST", "/api/v1/sessions", R"({"surface": {"kind": "torus"}})", "application/json", 422,
-                   "surface.kind"},
-        BadRequest{"POST", "/api/v1/sessions", R"({"integrator": {"name": "euler"}})", "application/json",
-                   422, "integrator.name"},
-        BadRequest{"POST", "/api/v1/sessions", R"({"initial": {"r": 1e400}})", "application/json", 400, ""},
-        BadRequest{"GET", "/api/v1/sessions/0123456789abcdef", "", "", 404, "id"},
-        BadRequest{"DELETE", "/api/v1/sessions/0123456789abcdef", "", "", 404, "id"},
-        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"until": -1})", "application/json", 422,
-                   "until"},
-        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"until": 1, "steps": 2})", "application/json",
-                   422, "until"},
-        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({})", "application/json", 422, "until"},
-        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"steps": 2.5})", "application/json", 422,
-                   "steps"},
-        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"steps": 1e9})", "application/json", 422,
-                   "steps"},
-        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"until": "soon"})", "application/json", 422,
-                   "until"},
-        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"until": 1e12})", "application/json", 422,
-                   "until"},
-        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"speed": 2})", "application/json", 422,
-                   "speed"},
-        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"([1, 2])", "application/json", 400, ""},
-        BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"until": 1})", "application/xml", 415,
-                   "Content-Type"},
-        BadRequest{"GET", "/api/v1/sessions/{id}/frame.png?width=5000", "", "", 422, "width"},
-        BadRequest{"GET", "/api/v1/sessions/{id}/frame.png?height=abc", "", "", 422, "height"},
-        BadRequest{"GET", "/api/v1/sessions/{id}/frame.png?view=hyperboloid", "", "", 422, "view"},
-        BadRequest{"GET", "/api/v1/sessions/{id}/frame.png?view=cube", "", "", 422, "view"},
-        BadRequest{"GET", "/api/v1/sessions/{id}/frame.png?layers=body,glitter", "", "", 422, "layers"},
-        BadRequest{"GET", "/api/v1/sessions/{id}/frame.png?scale=-1", "", "", 422, "scale"},
-        BadRequest{"GET", "/api/v1/sessions/{id}/trajectory?format=xml", "", "", 422, "format"},
-        BadRequest{"GET", "/api/v1/nowhere", "", "", 404, ""},
-        BadRequest{"DELETE", "/api/v1/scenes", "", "", 405, "method"},
-        BadRequest{"POST", "/api/v1/sessions/{id}/frame.png", "{}", "application/json", 405, "method"},
-        BadRequest{"PATCH", "/api/v1/sessions/{id}/advance", "{}", "application/json", 405, "method"},
-        BadRequest{"PATCH", "/api/v1/sessions/{id}", R"({"body": {"inertia": 0}})", "application/json", 422,
-                   "body.inertia"},
-        BadRequest{"PATCH", "/api/v1/sessions/{id}", R"({"surface": {"kind": "cylinder"}})",
-                   "application/json", 422, "surface.kind"},
-        BadRequest{"PATCH", "/api/v1/sessions/{id}", R"({"initial": {"lambda": -1}})", "application/json",
-                   422, "initial.lambda"},
-        BadRequest{"PATCH", "/api/v1/sessions/{id}", R"("mass")", "application/json", 400, ""},
-        BadRequest{"POST", "/api/v1/sessions/{id}/play", R"({"rate": -1})", "application/json", 422, "rate"},
-        BadRequest{"POST", "/api/v1/sessions/{id}/play", R"({"speed": 1})", "application/json", 422, "speed"},
-        BadRequest{"GET", "/api/v1/sessions/{id}/events?rate=1000", "", "", 422, "rate"}));
+INSTANTIATE_TEST_SUITE_P(Table, BadRequests, ::testing::ValuesIn(test::bad_requests()));
 
 // A client that leaves mid-request (a frame being rendered, an open event stream) does not take
 // the server down.
@@ -603,9 +516,9 @@ TEST_F(Api, OpenApiDocumentsEveryRouteAndQueryParameterOfTheTable) {
       if (q["in"] == "query") names.insert(q["name"].get<std::string>());
     return names;
   };
-  EXPECT_EQ(
-      query_names("/api/v1/sessions/{id}/frame.png", "get"),
-      (std::set<std::string>{"width", "height", "view", "layers", "scale", "yaw", "pitch", "distance", "trail"}));
+  EXPECT_EQ(query_names("/api/v1/sessions/{id}/frame.png", "get"),
+            (std::set<std::string>{"width", "height", "view", "layers", "scale", "yaw", "pitch", "distance",
+                                   "trail"}));
   EXPECT_EQ(query_names("/api/v1/sessions/{id}/events", "get"), std::set<std::string>{"rate"});
   EXPECT_EQ(query_names("/api/v1/sessions/{id}/trajectory", "get"), std::set<std::string>{"format"});
   EXPECT_EQ(query_names("/api/v1/sessions", "post"), std::set<std::string>{});
@@ -840,7 +753,6 @@ TEST_F(Api, KnownPathsWithAnotherMethodAnswer405WithAllow) {
   EXPECT_EQ(frame->get_header_value("Allow"), "GET");
 }
 
-
 // The trail follows the true path whatever the advances: one to t = 6 and sixty of 0.1 draw the
 // same frame, byte for byte (the spinning body circles; chords would cut across).
 TEST_F(Api, TrailIsTheSameHoweverTheRunWasAdvanced) {
@@ -849,10 +761,13 @@ TEST_F(Api, TrailIsTheSameHoweverTheRunWasAdvanced) {
     SCOPED_TRACE(preset);
     const std::string once = create(json{{"preset", preset}}.dump());
     const std::string many = create(json{{"preset", preset}}.dump());
-    ASSERT_EQ(c.Post("/api/v1/sessions/" + once + "/advance", R"({"until": 6})", "application/json")->status, 200);
+    ASSERT_EQ(c.Post("/api/v1/sessions/" + once + "/advance", R"({"until": 6})", "application/json")->status,
+              200);
     for (int k = 1; k <= 60; ++k)
-      ASSERT_EQ(c.Post("/api/v1/sessions/" + many + "/advance", json{{"until", k * 0.1}}.dump(), "application/json")->status,
-                200);
+      ASSERT_EQ(
+          c.Post("/api/v1/sessions/" + many + "/advance", json{{"until", k * 0.1}}.dump(), "application/json")
+              ->status,
+          200);
     c.Post("/api/v1/sessions/" + many + "/advance", R"({"until": 6})", "application/json");
     const json a = json::parse(c.Get("/api/v1/sessions/" + once)->body)["state"];
     const json b = json::parse(c.Get("/api/v1/sessions/" + many)->body)["state"];
@@ -878,13 +793,13 @@ TEST_F(Api, RebuiltSessionEqualsTheOriginalAfterSeveralPatches) {
   auto c = client();
   for (const char* integrator : {"auto", "dop853"}) {
     SCOPED_TRACE(integrator);
-    const std::string id = create(json{{"surface", {{"kind", "sphere"}, {"radius", 1.0}}},
-                                       {"body", {{"mass", 1.0}, {"inertia", 0.2}}},
-                                       {"potential", {{"deformation", {{"kind", "abc"}, {"C", 0.5}}}}},
-                                       {"initial", {{"r", 1.2}, {"lambda", 1.3}, {"mu", 0.7}, {"phi_dot", 0.3},
-                                                    {"alpha_dot", 0.8}}},
-                                       {"integrator", {{"name", integrator}}}}
-                                      .dump());
+    const std::string id = create(json{
+        {"surface", {{"kind", "sphere"}, {"radius", 1.0}}},
+        {"body", {{"mass", 1.0}, {"inertia", 0.2}}},
+        {"potential", {{"deformation", {{"kind", "abc"}, {"C", 0.5}}}}},
+        {"initial", {{"r", 1.2}, {"lambda", 1.3}, {"mu", 0.7}, {"phi_dot", 0.3}, {"alpha_dot", 0.8}}},
+        {"integrator",
+         {{"name", integrator}}}}.dump());
     const std::string session = "/api/v1/sessions/" + id;
     const char* patches[] = {R"({"body": {"mass": 2}})", R"({"potential": {"deformation": {"C": 0.2}}})",
                              R"({"surface": {"radius": 1.5}})", R"({"body": {"inertia": 0.3}})"};
@@ -902,7 +817,8 @@ TEST_F(Api, RebuiltSessionEqualsTheOriginalAfterSeveralPatches) {
     const json original = json::parse(c.Get(session)->body);
     ASSERT_EQ(original["timeline"].size(), 4u);
     auto copy = c.Post("/api/v1/sessions",
-                       json{{"scene", original["scene"]}, {"timeline", original["timeline"]},
+                       json{{"scene", original["scene"]},
+                            {"timeline", original["timeline"]},
                             {"until", original["state"]["t"]}}
                            .dump(),
                        "application/json");
@@ -926,12 +842,13 @@ TEST_F(Api, RebuiltSessionEqualsTheOriginalAfterSeveralPatches) {
 // frame no initial state can be) continue the run at its time and place.
 TEST_F(Api, PatchAtAPoleAndAfterAFrameCrossingContinues) {
   auto c = client();
-  for (const auto& [preset, until] : {std::pair{"pole_crossing_sphere", 2.0}, std::pair{"degenerate_crossing", 0.8}}) {
+  for (const auto& [preset, until] :
+       {std::pair{"pole_crossing_sphere", 2.0}, std::pair{"degenerate_crossing", 0.8}}) {
     SCOPED_TRACE(preset);
     const std::string id = create(json{{"preset", preset}}.dump());
     const std::string session = "/api/v1/sessions/" + id;
-    const json before =
-        json::parse(c.Post(session + "/advance", json{{"until", until}}.dump(), "application/json")->body)["state"];
+    const json before = json::parse(
+        c.Post(session + "/advance", json{{"until", until}}.dump(), "application/json")->body)["state"];
     auto patched = c.Patch(session, R"({"body": {"mass": 2}})", "application/json");
     ASSERT_EQ(patched->status, 200) << patched->body;
     const json after = json::parse(patched->body)["state"];
@@ -947,15 +864,17 @@ TEST_F(Api, PatchAtAPoleAndAfterAFrameCrossingContinues) {
 TEST_F(Api, ABadTimelineIsRefusedNamingTheEntry) {
   auto c = client();
   const auto refused = [&](const std::string& timeline, const std::string& field) {
-    auto res = c.Post("/api/v1/sessions",
-                      R"({"scene": {"preset": "spinning_rigid_sphere"}, "until": 3, "timeline": )" + timeline + "}",
-                      "application/json");
+    auto res =
+        c.Post("/api/v1/sessions",
+               R"({"scene": {"preset": "spinning_rigid_sphere"}, "until": 3, "timeline": )" + timeline + "}",
+               "application/json");
     ASSERT_TRUE(res);
     EXPECT_EQ(res->status, 422) << res->body;
     EXPECT_EQ(json::parse(res->body)["errors"][0]["field"], field) << res->body;
   };
   refused(R"([{"t": 1, "patch": {"initial": {"r": 0.5}}}])", "timeline[0].patch");
-  refused(R"([{"t": 2, "patch": {"body": {"mass": 2}}}, {"t": 1, "patch": {"body": {"mass": 3}}}])", "timeline[1].t");
+  refused(R"([{"t": 2, "patch": {"body": {"mass": 2}}}, {"t": 1, "patch": {"body": {"mass": 3}}}])",
+          "timeline[1].t");
   refused(R"([{"t": 1, "patch": {"body": {"mass": -2}}}])", "timeline[0].patch.body.mass");
   refused(R"([{"t": 4, "patch": {"body": {"mass": 2}}}])", "timeline[0].t");
   refused(R"([{"t": 1, "patch": {}, "extra": 1}])", "timeline[0].extra");
