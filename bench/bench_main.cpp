@@ -3,6 +3,7 @@
 
 #include "bench/render_bench.h"
 #include "bench/share_link_bench.h"
+#include "bench/soak.h"
 #include "bench/stress.h"
 #include "bench/work_precision.h"
 
@@ -31,7 +32,17 @@ int main(int argc, char** argv) {
       "share-link", "Time to open a share link (timeline of 5 changes) against a bare session");
   share_cmd->add_option("--repeats", share_repeats, "Measurements per case (median)")->capture_default_str();
   share_cmd->add_option("--until", share_until, "Simulated time the link shows")->capture_default_str();
+  spinfold::bench::SoakOptions soak;
+  CLI::App* soak_cmd = app.add_subcommand(
+      "soak", "Mixed load for minutes: errors, latency percentiles, server memory (in-process or --url)");
+  soak_cmd->add_option("--minutes", soak.minutes, "Duration")->capture_default_str();
+  soak_cmd->add_option("--clients", soak.clients, "Concurrent clients")->capture_default_str();
+  soak_cmd->add_option("--url", soak.url, "A running server or front, e.g. http://127.0.0.1:8080");
+  soak_cmd->add_option("--pid", soak.server_pid, "With --url: the server process whose memory to report");
+  soak_cmd->add_option("--data-dir", soak.data_dir,
+                       "The in-process server's session store ('': memory only)");
   CLI11_PARSE(app, argc, argv);
+  if (soak_cmd->parsed()) return spinfold::bench::run_soak(soak);
   if (share_cmd->parsed()) return spinfold::bench::run_share_link_bench(share_repeats, share_until);
   if (render_cmd->parsed()) return spinfold::bench::run_render_bench(render_frames);
   if (wp_cmd->parsed()) return spinfold::bench::run_work_precision(wp);

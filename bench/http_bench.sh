@@ -9,9 +9,9 @@ duration=${DURATION:-5s}; connections=${CONNECTIONS:-16}; threads=2
 work=$(mktemp -d)
 trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$work"' EXIT
 
-"$build/spinfold" serve --port $port --threads 8 > "$work/serve.log" &
+"$build/spinfold" serve --port $port --threads 8 --requests-per-second 0 > "$work/serve.log" &
 for _ in $(seq 50); do curl -sf "http://127.0.0.1:$port/api/v1/health" > /dev/null && break; sleep 0.1; done
-id=$(grep -o 'sessions/[0-9a-f]*' "$work/serve.log" | head -1 | cut -d/ -f2)
+id=$(grep -o 'sessions/[A-Za-z0-9_-]*' "$work/serve.log" | head -1 | cut -d/ -f2)
 base="http://127.0.0.1:$port/api/v1/sessions/$id"
 curl -sf -X POST -H 'Content-Type: application/json' -d '{"until": 3}' "$base/advance" > /dev/null
 curl -sf "$base" > "$work/state.json"

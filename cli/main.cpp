@@ -1,16 +1,22 @@
 // spinfold: the command line. `simulate` prints JSON Lines samples of a run; `scenes` lists the
 // presets; `integrators` prints the catalog. Bad input: a message on stderr and exit code 2.
+#include <pthread.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "codec/presets.h"
 #include "codec/sample_json.h"
@@ -22,6 +28,7 @@
 #include "render/snapshot.h"
 #include "render/view.h"
 #include "server/api.h"
+#include "server/session_db.h"
 
 namespace {
 
@@ -192,21 +199,49 @@ int render_frame(const RenderOptions& opt) {
   return 0;
 }
 
+// Serves until SIGTERM or SIGINT: a thread waits for them (sigwait; blocked in every thread, so
+// no handler runs in the middle of anything) and stops the server, which ends the event streams and
+// stores the time of playing sessions.
 int serve(const server::ServerOptions& options) {
   if (options.port < 0 || options.port > 65535) throw BadInput{"--port: must be 0..65535"};
   if (options.threads < 2 || options.threads > 256) throw BadInput{"--threads: must be 2..256"};
-  server::ApiServer api(options);
-  const int port = api.bind();
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGINT);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);  // before any thread starts: they inherit it
+  std::unique_ptr<server::ApiServer> api;
+  try {
+    api = std::make_unique<server::ApiServer>(options);
+  } catch (const server::StoreError& e) {
+    throw BadInput{std::string("the session store: ") + e.what()};
+  }
+  const int port = api->bind();
   if (port < 0) {
     std::cerr << "spinfold: cannot listen on " << options.host << ":" << options.port << "\n";
     return 1;
   }
-  const std::string id = api.create_session(*parse_scene_text(find_preset(kDefaultPreset)->json).scene);
+  const std::string id = api->create_session(*parse_scene_text(find_preset(kDefaultPreset)->json).scene);
   const std::string base = "http://" + options.host + ":" + std::to_string(port);
   std::cout << "Spinfold " << SPINFOLD_VERSION << " serving on " << base << "/\n"
             << "  default scene '" << kDefaultPreset << "': " << base << "/api/v1/sessions/" << id << "\n"
-            << "  its frame:  " << base << "/api/v1/sessions/" << id << "/frame.png" << std::endl;
-  return api.listen() ? 0 : 1;
+            << "  its frame:  " << base << "/api/v1/sessions/" << id << "/frame.png\n"
+            << "  sessions: "
+            << (options.data_dir.empty() ? "in memory only"
+                                         : "stored in " + options.data_dir + "/sessions.db")
+            << std::endl;
+  std::atomic<bool> signalled{false};
+  std::thread waiter([&] {
+    int signal = 0;
+    sigwait(&signals, &signal);
+    signalled = true;
+    api->stop();
+  });
+  const bool served = api->listen();
+  if (!signalled) pthread_kill(waiter.native_handle(), SIGTERM);  // listen failed: end the waiter
+  waiter.join();
+  api.reset();  // joins the player and the render thread before the exit code is returned
+  return served || signalled ? 0 : 1;
 }
 
 int list_scenes() {
@@ -265,7 +300,23 @@ int main(int argc, char** argv) {
   CLI::App* serve_cmd = app.add_subcommand("serve", "Serve the HTTP API with a session on the default scene");
   serve_cmd->add_option("--host", serve_opt.host, "Address to bind")->capture_default_str();
   serve_cmd->add_option("--port", serve_opt.port, "Port (0: any free port)")->capture_default_str();
-  serve_cmd->add_option("--threads", serve_opt.threads, "HTTP worker threads")->capture_default_str();
+  serve_cmd->add_option("--threads", serve_opt.threads, "HTTP worker threads (one per open connection)")
+      ->capture_default_str();
+  serve_cmd
+      ->add_option("--trusted-proxy", serve_opt.trusted_proxy,
+                   "Address of the reverse proxy whose X-Forwarded-For names the client ('' never trusts it)")
+      ->capture_default_str();
+  serve_cmd
+      ->add_option("--requests-per-second", serve_opt.limits.requests_per_second_per_client,
+                   "Requests a second per client address (token bucket; 0: unlimited)")
+      ->capture_default_str();
+  serve_opt.data_dir = server::default_data_dir();
+  serve_cmd
+      ->add_option("--data-dir", serve_opt.data_dir,
+                   "Directory of the session store (sessions.db, SQLite); '' keeps sessions in memory only")
+      ->capture_default_str();
+  bool no_store = false;
+  serve_cmd->add_flag("--no-store", no_store, "Keep sessions in memory only (as --data-dir '')");
   CLI::App* scenes_cmd = app.add_subcommand("scenes", "List the embedded preset scenes");
   CLI::App* integrators_cmd = app.add_subcommand("integrators", "Print the integrator catalog");
 
@@ -283,7 +334,10 @@ int main(int argc, char** argv) {
   try {
     if (simulate_cmd->parsed()) return simulate(sim);
     if (render_cmd->parsed()) return render_frame(ren);
-    if (serve_cmd->parsed()) return serve(serve_opt);
+    if (serve_cmd->parsed()) {
+      if (no_store) serve_opt.data_dir.clear();
+      return serve(serve_opt);
+    }
     if (scenes_cmd->parsed()) return list_scenes();
     if (integrators_cmd->parsed()) return list_integrators();
   } catch (const BadInput& e) {

@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev                                   # engine
   libosmesa6-dev libglm-dev libimgui-dev libpng-dev  # renderer
   libcpp-httplib-dev nlohmann-json3-dev           # server and JSON codec
+  libsqlite3-dev                                  # the durable session store
   libcli11-dev                                    # command line
   libgtest-dev libgmock-dev libbenchmark-dev      # tests and benchmarks
   clang libclang-rt-14-dev                        # fuzzing (libFuzzer) and sanitizer runtimes

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Install what is missing, build with warnings as errors, and run every test; then every test
-# but the browser's again under AddressSanitizer and UBSan; then the libFuzzer targets (clang)
-# for a fixed number of inputs from a fixed seed.
+# but the browser's and the front's again under AddressSanitizer and UBSan; the server tests under
+# ThreadSanitizer; then the libFuzzer targets (clang) for a fixed number of inputs from a fixed
+# seed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -18,6 +19,13 @@ cmake --build build-sanitize -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions="$PWD/tests/lsan.supp" \
   UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
   ctest --test-dir build-sanitize --output-on-failure -j "$jobs"
+# ThreadSanitizer over the server tests: HTTP workers, the player and the render thread share
+# sessions (the other tests are single-threaded).
+cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSPINFOLD_WERROR=ON \
+  -DSPINFOLD_TSAN=ON > /dev/null
+cmake --build build-tsan -j "$jobs" --target server_tests
+TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$PWD/tests/tsan.supp" \
+  build-tsan/tests/server_tests
 CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Release -DSPINFOLD_WERROR=ON \
   -DSPINFOLD_FUZZ=ON > /dev/null
 cmake --build build-fuzz -j "$jobs"

@@ -1,5 +1,7 @@
 #include "server/api.h"
 
+#include <sys/socket.h>
+
 #include "server/context.h"
 #include "server/player.h"
 #include "server/problem.h"
@@ -25,7 +27,20 @@ ApiError unrouted(const httplib::Request& req, int status) {
                unsized ? "a " + req.method + " needs a Content-Length header (0 when there is no body)"
                        : "the request could not be read");
   }
+  if (status == 414) return bad(414, "URI too long", "", "", "the request line is longer than 8192 bytes");
   return bad(status, "Error", "", "", "request failed");
+}
+
+// On every response (the UI page and its files above all; harmless on the API): the page runs only
+// its own scripts and styles, shows its own images and the frames it fetched (blob: URLs), talks
+// only to this origin (fetch, EventSource), and cannot be framed; no MIME sniffing, no Referer
+// (a share link's scene and timeline stay out of other sites' logs).
+httplib::Headers security_headers() {
+  return {{"Content-Security-Policy",
+           "default-src 'none'; script-src 'self'; style-src 'self'; img-src 'self' blob:; "
+           "connect-src 'self'; base-uri 'none'; form-action 'none'; frame-ancestors 'none'"},
+          {"X-Content-Type-Options", "nosniff"},
+          {"Referrer-Policy", "no-referrer"}};
 }
 
 }  // namespace
@@ -33,7 +48,8 @@ ApiError unrouted(const httplib::Request& req, int status) {
 struct ApiServer::State {
   ServerContext server;
   httplib::Server http;
-  Player player;  // destroyed (joined) before the sessions it advances
+  Player player;           // destroyed (joined) before the sessions it advances
+  int listen_socket = -1;  // remembered by the socket options, for bind() to raise its backlog
 
   explicit State(ServerOptions o)
       : server(std::move(o)), player(server.sessions, server.options.limits.max_play_steps) {}
@@ -45,6 +61,19 @@ ApiServer::ApiServer(ServerOptions options) : state_(std::make_unique<State>(std
   http.set_payload_max_length(state_->server.options.limits.max_body_bytes);
   const int threads = state_->server.options.threads;
   http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
+  // Slow and idle clients: each connection holds a worker thread while open (ServerOptions::threads).
+  const Limits& limits = state_->server.options.limits;
+  http.set_read_timeout(limits.read_timeout);
+  http.set_keep_alive_timeout(limits.keep_alive_timeout.count());
+  http.set_keep_alive_max_count(static_cast<std::size_t>(limits.keep_alive_max_requests));
+  http.set_default_headers(security_headers());
+  // The listening socket: SO_REUSEADDR (a restart binds at once) but not httplib's SO_REUSEPORT,
+  // with which a second server on the same port silently takes part of the connections.
+  http.set_socket_options([state = state_.get()](socket_t sock) {
+    const int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    state->listen_socket = sock;
+  });
   register_routes(http, state_->server, route_table(state_->server.options.limits));
   http.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (res.body.empty()) send_error(res, unrouted(req, res.status));
@@ -57,8 +86,12 @@ ApiServer::~ApiServer() {
 
 int ApiServer::bind() {
   const ServerOptions& o = state_->server.options;
-  if (o.port == 0) return state_->http.bind_to_any_port(o.host);
-  return state_->http.bind_to_port(o.host, o.port) ? o.port : -1;
+  const int port = o.port == 0 ? state_->http.bind_to_any_port(o.host)
+                               : (state_->http.bind_to_port(o.host, o.port) ? o.port : -1);
+  // httplib listens with a backlog of 5: a class opening the page at once (6 connections per
+  // browser) would see connections dropped and retried 1-3 s later. Listening again sets the backlog.
+  if (port > 0 && state_->listen_socket >= 0) ::listen(state_->listen_socket, SOMAXCONN);
+  return port;
 }
 
 bool ApiServer::listen() {
@@ -67,7 +100,10 @@ bool ApiServer::listen() {
 
 std::string ApiServer::create_session(const Scene& scene) {
   std::string id;
-  return state_->server.sessions.create(scene, id) ? id : std::string();
+  const auto session = state_->server.sessions.create(scene, id);
+  if (!session) return "";
+  const std::lock_guard lock(session->mutex);
+  return state_->server.sessions.save(id, *session) == SessionStore::Saved::stored ? id : "";
 }
 
 void ApiServer::stop() {
@@ -75,6 +111,7 @@ void ApiServer::stop() {
   state_->server.stopping = true;  // ends the event streams, which would hold the pool open
   state_->player.stop();
   state_->http.stop();
+  state_->server.sessions.flush();  // the time of playing sessions
 }
 
 }  // namespace spinfold::server

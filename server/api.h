@@ -24,19 +24,49 @@ struct Limits {
   long max_play_steps = 20000;             // step attempts per session per player tick (50 Hz)
   double max_advance_time = 1e6;           // simulated time per advance request
   int max_image_side = 4096;               // [pixels]
-  int max_streams = 4;                     // open event streams (each holds a worker thread)
+  int max_streams = 64;                    // open event streams (each holds a worker thread)
   double max_play_rate = 1000.0;           // simulated time per second while playing
+
+  // Per client address (server/quota.h): the socket's peer, or X-Forwarded-For's first address when
+  // the peer is ServerOptions::trusted_proxy. A whole classroom often shares one address (NAT), so
+  // these stop one runaway client, not a class: 30 students with 1-2 tabs each (each tab a session
+  // and, while playing, one event stream) fit, while one address cannot take every session or stream
+  // from the others (max_sessions, max_streams). Over a quota: 429 with Retry-After naming it.
+  int max_sessions_per_client = 48;  // sessions created from one address and not yet deleted or expired
+  int max_streams_per_client = 48;   // event streams open from one address
+  // Requests from one address: a token bucket refilled at this rate [requests/s] holding at most
+  // the burst [requests]. A playing tab asks about 20 frames and states a second (serialised behind
+  // the one render thread, ~66 frames/s at 640x480 for everyone); a page load about 50 requests (its
+  // files, the catalogs, 10 thumbnails of 4 requests each). So a class of 30 opening the page at once
+  // fits the burst plus a few seconds of refill, and playing stays far below the rate. 0: unlimited
+  // (benchmarks from one address: spinfold serve --requests-per-second 0).
+  double requests_per_second_per_client = 300.0;
+  double request_burst_per_client = 600.0;
+
+  // Slow and idle connections (each holds a worker thread while open; ServerOptions::threads).
+  std::chrono::seconds read_timeout{3};        // the longest wait for the next bytes of a request
+  std::chrono::seconds keep_alive_timeout{3};  // an idle keep-alive connection is closed after this
+  int keep_alive_max_requests = 100;           // requests per connection before it is closed
 };
 
 struct ServerOptions {
   std::string host = "127.0.0.1";
   int port = 8080;  // 0: any free port
-  int threads = 8;  // HTTP worker threads (one per open connection)
+  // HTTP worker threads: one per open connection, idle or not (cpp-httplib 0.11), so the pool is sized
+  // for max_streams event streams plus as many idle, slow or busy connections again: 32 idle or
+  // trickling connections then leave the API answering at once (docs/performance.md).
+  int threads = 128;
+  // The address of a reverse proxy (the front, scripts/front.sh) whose X-Forwarded-For names the
+  // client; "": never trust the header (the socket's peer is the client).
+  std::string trusted_proxy;
+  std::string data_dir;  // the durable session store (DIR/sessions.db, SQLite); "": memory only
   Limits limits;
 };
 
 class ApiServer {
  public:
+  // With a data_dir, opens the store and restores its sessions: StoreError (server/session_db.h)
+  // when it cannot (unwritable directory, damaged or locked database).
   explicit ApiServer(ServerOptions options);
   ~ApiServer();
   // Binds and returns the port (or -1); then listen() serves until stop().

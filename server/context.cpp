@@ -1,5 +1,7 @@
 #include "server/context.h"
 
+#include <cstdio>
+
 #include "codec/sample_json.h"
 #include "codec/scene_json.h"
 #include "engine/number_text.h"
@@ -18,6 +20,36 @@ std::shared_ptr<Session> find_session(ServerContext& server, const std::string& 
   auto s = server.sessions.find(id);
   if (!s) throw unknown_session(id);
   return s;
+}
+
+namespace {
+
+ApiError store_unavailable(const std::string& what) {
+  return ApiError{503, "Store unavailable", {{"", "", what + " could not be stored; retry later"}}, "1"};
+}
+
+}  // namespace
+
+void commit(ServerContext& server, const std::string& id, Session& s) {
+  switch (server.sessions.save(id, s)) {
+    case SessionStore::Saved::stored: return;
+    case SessionStore::Saved::conflict:
+      throw bad(409, "Conflict", "id", id,
+                "another server changed or deleted the session meanwhile; nothing was changed here: "
+                "GET it and retry");
+    case SessionStore::Saved::failed: throw store_unavailable("the change");
+  }
+}
+
+void remove_session(ServerContext& server, const std::string& id) {
+  bool removed = false;
+  try {
+    removed = server.sessions.erase(id);
+  } catch (const StoreError& e) {
+    std::fprintf(stderr, "spinfold: %s\n", e.what());
+    throw store_unavailable("the deletion");
+  }
+  if (!removed) throw unknown_session(id);
 }
 
 std::string provenance(const Session& s) {

@@ -9,7 +9,9 @@
 
 #include "server/api.h"
 #include "server/frame_cache.h"
+#include "server/quota.h"
 #include "server/render_worker.h"
+#include "server/session_db.h"
 #include "server/sessions.h"
 
 namespace httplib {
@@ -20,18 +22,31 @@ namespace spinfold::server {
 
 struct ServerContext {
   ServerOptions options;
+  std::unique_ptr<SessionDb> db;  // the durable store (options.data_dir), or none: memory only
   SessionStore sessions;
   RenderWorker renderer;
   FrameCache frames{64};
-  std::atomic<int> open_streams{0};   // event streams now open
-  std::atomic<bool> stopping{false};  // set by stop(): ends the event streams
+  std::atomic<int> open_streams{0};     // event streams now open
+  ClientQuotas quotas{options.limits};  // per client address (server/quota.h)
+  std::atomic<bool> stopping{false};    // set by stop(): ends the event streams
 
   explicit ServerContext(ServerOptions o)
-      : options(std::move(o)), sessions(options.limits.max_sessions, options.limits.idle_expiry) {}
+      : options(std::move(o)),
+        db(options.data_dir.empty() ? nullptr : std::make_unique<SessionDb>(options.data_dir)),
+        sessions(options.limits.max_sessions, options.limits.idle_expiry, db.get()) {
+    sessions.restore();
+  }
 };
 
 // The session with this id, or ApiError 404 (the same answer on every route).
 std::shared_ptr<Session> find_session(ServerContext& server, const std::string& id);
+
+// Commits a change before it is acknowledged (the session's lock held): ApiError 409 when another
+// server changed the session meanwhile, 503 when the store cannot be written (nothing is kept).
+void commit(ServerContext& server, const std::string& id, Session& s);
+
+// Deletes the session from memory and store, or ApiError 404 (503 when the store cannot be written).
+void remove_session(ServerContext& server, const std::string& id);
 
 // X-Spinfold-Provenance: "version=…; integrator=…; tolerance=…" (numbers in shortest form).
 std::string provenance(const Session& s);

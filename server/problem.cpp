@@ -76,19 +76,20 @@ void send_error(httplib::Response& res, const ApiError& e) {
   res.set_header("Content-Type", "application/problem+json");
 }
 
-json parse_body(const httplib::Request& req, const std::vector<std::string>& content_types) {
+json parse_body(const httplib::Request& req, const std::string& body,
+                const std::vector<std::string>& content_types) {
   const std::string header = req.get_header_value("Content-Type");
   if (std::find(content_types.begin(), content_types.end(), media_type(header)) == content_types.end())
     throw bad(415, "Unsupported media type", "Content-Type", header,
               (header.empty() ? "is missing: must be " : "must be ") + joined(content_types, " or "));
-  if (req.body.empty())
+  if (body.empty())
     throw bad(400, "Malformed request", "", "", "the body is empty: a JSON object is expected");
   try {
     const json::parser_callback_t guard = [](int depth, json::parse_event_t, json&) {
       if (depth > kMaxJsonDepth) throw std::length_error("nesting");
       return true;
     };
-    return json::parse(req.body, guard);
+    return json::parse(body, guard);
   } catch (const std::length_error&) {
     throw bad(400, "Malformed request", "", "",
               "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");

@@ -38,7 +38,8 @@ void send_error(httplib::Response& res, const ApiError& e);
 
 // The JSON body of a request: its Content-Type one of `content_types` (parameters such as charset
 // aside), not empty, well-formed, nested at most kMaxJsonDepth deep; ApiError 400/415 otherwise.
-nlohmann::json parse_body(const httplib::Request& req, const std::vector<std::string>& content_types);
+nlohmann::json parse_body(const httplib::Request& req, const std::string& body,
+                          const std::vector<std::string>& content_types);
 
 // The body must be a JSON object (400 otherwise).
 void require_object(const nlohmann::json& body);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <set>
 #include <stdexcept>
 
@@ -21,7 +22,9 @@ using nlohmann::ordered_json;
 
 namespace {
 
-constexpr const char* kIdPattern = "[0-9a-f]{1,32}";  // session ids (SessionStore::create)
+// Session ids (server/session_id.h: 22 characters of base64url); any such text up to 32 characters
+// routes, so that an unknown or malformed id gets the one 404 of an unknown session.
+constexpr const char* kIdPattern = "[A-Za-z0-9_-]{1,32}";
 
 std::string joined(const std::vector<std::string>& items, const std::string& last) {
   std::string text;
@@ -210,11 +213,11 @@ Query parse_query(const Route& route, const httplib::Request& req) {
 
 json Call::body() const {
   if (!route.body) throw std::logic_error(route.method + " " + route.path + " declares no body");
-  return parse_body(http, route.body->content_types);
+  return parse_body(http, body_text, route.body->content_types);
 }
 
 bool Call::has_body() const {
-  return !http.body.empty();
+  return !body_text.empty();
 }
 
 // ---- Routing.
@@ -242,23 +245,82 @@ std::string path_regex(const std::string& path) {
   return regex;
 }
 
-void register_routes(httplib::Server& http, ServerContext& server, const std::vector<Route>& routes) {
-  // Runs a handler on the parsed query, mapping ApiError to problem+json; every response carries
-  // the version.
-  const auto wrap = [&server](const Route& route) {
-    return [&server, route](const httplib::Request& req, httplib::Response& res) {
-      res.set_header("X-Spinfold-Version", server_version());
-      try {
-        const std::string id = route.path.find("{id}") != std::string::npos ? req.matches[1].str() : "";
-        const Call call{req, route, id, parse_query(route, req)};
-        route.handler(server, call, res);
-      } catch (const ApiError& e) {
-        send_error(res, e);
-      }
-    };
+namespace {
+
+// The body, read here rather than by httplib: Debian's cpp-httplib 0.11.4 holds a chunked body
+// in memory whatever its size (its payload limit checks only Content-Length), so the reading stops
+// at the limit and the request is refused (413). The answer says `Connection: close`, which clients
+// heed; httplib itself keeps the connection and reads what follows as further (refused) requests,
+// holding one line at a time: bounding those is the front's job (README, security model).
+std::string bounded_body(const httplib::Request& req, const httplib::ContentReader& reader, std::size_t limit,
+                         httplib::Response& res) {
+  const auto close_connection = [&] {
+    if (req.get_header_value("Connection") != "close") res.set_header("Connection", "close");
   };
-  const auto add = [&http](const std::string& method, const std::string& pattern,
-                           httplib::Server::Handler h) {
+  const std::string declared = req.get_header_value("Content-Length");
+  if (declared.empty() && !req.has_header("Transfer-Encoding")) {
+    if (req.method == "DELETE") return "";  // no body
+    close_connection();                     // whatever follows cannot be told from a body
+    throw bad(400, "Malformed request", "", "",
+              "a " + req.method + " needs a Content-Length header (0 when there is no body)");
+  }
+  if (std::strtoull(declared.c_str(), nullptr, 10) > limit) {
+    close_connection();
+    throw bad(413, "Payload too large", "Content-Length", declared,
+              "the request body exceeds the server's limit of " + std::to_string(limit) + " bytes");
+  }
+  std::string body;
+  bool over = false;
+  const bool whole = reader([&](const char* data, std::size_t length) {
+    over = body.size() + length > limit;
+    if (!over) body.append(data, length);
+    return !over;
+  });
+  if (whole) return body;
+  close_connection();
+  if (over)
+    throw bad(413, "Payload too large", "", "",
+              "the request body exceeds the server's limit of " + std::to_string(limit) + " bytes");
+  throw bad(400, "Malformed request", "", "", "the request body could not be read");
+}
+
+}  // namespace
+
+void register_routes(httplib::Server& http, ServerContext& server, const std::vector<Route>& routes) {
+  // Runs a handler on the parsed query and the body (when the method has one), mapping ApiError
+  // to problem+json; every response carries the version. The client's request rate is checked
+  // first (server/quota.h).
+  const auto run = [&server](const Route& route, const httplib::Request& req, httplib::Response& res,
+                             const httplib::ContentReader* reader) {
+    res.set_header("X-Spinfold-Version", server_version());
+    try {
+      std::string client = client_address(req, server.options.trusted_proxy);
+      server.quotas.admit_request(client);
+      std::string body = reader ? bounded_body(req, *reader, server.options.limits.max_body_bytes, res) : "";
+      const std::string id = route.path.find("{id}") != std::string::npos ? req.matches[1].str() : "";
+      const Call call{req, route, id, std::move(client), parse_query(route, req), std::move(body)};
+      route.handler(server, call, res);
+    } catch (const ApiError& e) {
+      send_error(res, e);
+    }
+  };
+  const auto add = [&http, run](const std::string& method, const std::string& pattern, const Route& route) {
+    if (method == "GET") {
+      http.Get(pattern, [run, route](const httplib::Request& req, httplib::Response& res) {
+        run(route, req, res, nullptr);
+      });
+      return;
+    }
+    const httplib::Server::HandlerWithContentReader h =
+        [run, route](const httplib::Request& req, httplib::Response& res,
+                     const httplib::ContentReader& reader) { run(route, req, res, &reader); };
+    if (method == "POST") http.Post(pattern, h);
+    if (method == "PATCH") http.Patch(pattern, h);
+    if (method == "DELETE") http.Delete(pattern, h);
+    if (method == "PUT") http.Put(pattern, h);
+  };
+  const auto add_refusal = [&http](const std::string& method, const std::string& pattern,
+                                   httplib::Server::Handler h) {
     if (method == "GET") http.Get(pattern, std::move(h));
     if (method == "POST") http.Post(pattern, std::move(h));
     if (method == "PATCH") http.Patch(pattern, std::move(h));
@@ -267,7 +329,7 @@ void register_routes(httplib::Server& http, ServerContext& server, const std::ve
   };
   std::set<std::string> paths_done;
   for (const Route& route : routes) {
-    add(route.method, path_regex(route.path), wrap(route));
+    add(route.method, path_regex(route.path), route);
     if (!paths_done.insert(route.path).second) continue;
     // A known path asked with a method it does not have: 405 with Allow, not the router's 404.
     const std::vector<std::string> allowed = methods_of(routes, route.path);
@@ -280,7 +342,7 @@ void register_routes(httplib::Server& http, ServerContext& server, const std::ve
     };
     for (const char* method : {"GET", "POST", "PATCH", "DELETE", "PUT"})
       if (std::find(allowed.begin(), allowed.end(), method) == allowed.end())
-        add(method, path_regex(route.path), refuse);
+        add_refusal(method, path_regex(route.path), refuse);
   }
 }
 
@@ -303,6 +365,7 @@ ordered_json openapi_document(const std::vector<Route>& routes) {
     }
     if (has_id) add(404, "unknown session");
     add(422, "an invalid value or an unknown query parameter (problem+json names them)");
+    add(429, "over this client's request rate (limits.requests_per_second_per_client); Retry-After");
     std::sort(responses.begin(), responses.end());
     ordered_json answers = ordered_json::object();
     for (const auto& [status, description] : responses)

@@ -76,8 +76,10 @@ class Query {
 struct Call {
   const httplib::Request& http;
   const Route& route;
-  std::string id;  // the {id} path segment ("" when the path has none)
+  std::string id;      // the {id} path segment ("" when the path has none)
+  std::string client;  // the client's address (server/quota.h: client_address)
   Query query;
+  std::string body_text;  // read by register_routes, at most Limits::max_body_bytes (else 413)
   // The JSON body, of one of the route's content types (ApiError 400/415 otherwise).
   nlohmann::json body() const;
   bool has_body() const;

@@ -14,10 +14,13 @@ namespace spinfold::server {
 
 namespace {
 
-// Releases an event-stream slot when the last copy of its stream's provider is gone.
+// Releases an event-stream slot (and the client's, server/quota.h) when the last copy of its
+// stream's provider is gone.
 struct StreamSlot {
   std::atomic<int>& open;
-  explicit StreamSlot(std::atomic<int>& counter) : open(counter) {}
+  std::shared_ptr<void> client;
+  StreamSlot(std::atomic<int>& counter, std::shared_ptr<void> client_slot)
+      : open(counter), client(std::move(client_slot)) {}
   ~StreamSlot() { --open; }
 };
 
@@ -25,11 +28,12 @@ void get_events(ServerContext& server, const Call& call, httplib::Response& res)
   const std::string id = call.id;
   find_session(server, id);
   const double hz = *call.query.number("rate");
+  std::shared_ptr<void> client_slot = server.quotas.open_stream(call.client);  // 429 over the client's quota
   if (++server.open_streams > server.options.limits.max_streams) {
     --server.open_streams;
     throw ApiError{429, "Too many streams", {{"", "", "the event-stream limit is reached"}}, "10"};
   }
-  auto slot = std::make_shared<StreamSlot>(server.open_streams);
+  auto slot = std::make_shared<StreamSlot>(server.open_streams, std::move(client_slot));
   const auto interval = std::chrono::duration<double>(1.0 / hz);
   std::uint64_t sent = ~std::uint64_t{0};
   res.set_header("Cache-Control", "no-cache");
@@ -71,7 +75,8 @@ std::vector<Route> event_routes(const Limits& limits) {
                   .maximum = 60.0,
                   .default_value = 10.0,
                   .description = "how often the state is checked for a change"}},
-       .responses = {{200, "text/event-stream"}, {429, "stream limit; Retry-After"}}},
+       .responses = {{200, "text/event-stream"},
+                     {429, "stream limit (of the server or the client); Retry-After"}}},
   };
 }
 

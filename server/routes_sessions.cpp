@@ -70,6 +70,12 @@ void create_session(ServerContext& server, const Call& call, httplib::Response& 
   const auto session = server.sessions.create(scene, id);
   if (!session)
     throw ApiError{503, "Too many sessions", {{"", "", "the session limit is reached; retry later"}}, "30"};
+  try {
+    server.quotas.add_session(call.client, id, session);  // counted until deleted or expired
+  } catch (const ApiError&) {
+    server.sessions.erase(id);
+    throw;
+  }
   const std::lock_guard lock(session->mutex);
   std::optional<Rebuild> rebuilt;
   if (link) {
@@ -81,6 +87,7 @@ void create_session(ServerContext& server, const Call& call, httplib::Response& 
       throw ApiError{422, "Invalid timeline", rebuilt->errors, ""};
     }
   }
+  commit(server, id, *session);
   res.set_header("Location", kSessions + "/" + id);
   res.set_header("X-Spinfold-Provenance", provenance(*session));
   ordered_json out = session_json(id, *session);
@@ -107,7 +114,8 @@ void get_session(ServerContext& server, const Call& call, httplib::Response& res
 }
 
 void delete_session(ServerContext& server, const Call& call, httplib::Response& res) {
-  if (!server.sessions.erase(call.id)) throw unknown_session(call.id);
+  remove_session(server, call.id);
+  server.quotas.release_session(call.id);
   res.status = 204;
 }
 
@@ -121,6 +129,7 @@ void patch_session(ServerContext& server, const Call& call, httplib::Response& r
   const double t = s->run.state.t;
   const ChangeOutcome outcome = change(*s, patch);
   if (!outcome.errors.empty()) throw ApiError{422, "Invalid scene", outcome.errors, ""};
+  if (outcome.kind != ChangeOutcome::unchanged) commit(server, call.id, *s);
   static constexpr const char* kinds[] = {"unchanged", "continued", "restarted"};
   ordered_json out = session_json(call.id, *s);
   out["change"] = {{"kind", kinds[outcome.kind]},
@@ -172,6 +181,7 @@ void advance_session(ServerContext& server, const Call& call, httplib::Response&
   const std::lock_guard lock(s->mutex);
   const double target = advance_target(body, *s, limits);
   const bool complete = advance(*s, target, static_cast<std::uint64_t>(limits.max_steps));
+  commit(server, call.id, *s);
   res.set_header("X-Spinfold-Provenance", provenance(*s));
   ordered_json out = session_json(call.id, *s);
   out["advance"] = {{"until", target}, {"complete", complete}};
@@ -202,6 +212,7 @@ void play_session(ServerContext& server, const Call& call, httplib::Response& re
               "the run has stopped; reset or PATCH it first");
   s->playing = true;
   s->rate = rate;
+  commit(server, call.id, *s);
   send_json(res, session_json(call.id, *s));
 }
 
@@ -209,6 +220,7 @@ void pause_session(ServerContext& server, const Call& call, httplib::Response& r
   const auto s = find_session(server, call.id);
   const std::lock_guard lock(s->mutex);
   s->playing = false;
+  commit(server, call.id, *s);  // the time played so far too
   send_json(res, session_json(call.id, *s));
 }
 
@@ -217,6 +229,7 @@ void reset_session(ServerContext& server, const Call& call, httplib::Response& r
   const auto s = find_session(server, call.id);
   const std::lock_guard lock(s->mutex);
   restart(*s, s->run.scene);
+  commit(server, call.id, *s);
   send_json(res, session_json(call.id, *s));
 }
 
@@ -279,6 +292,7 @@ std::vector<Route> session_routes(const Limits& limits) {
                       "created: Location, the session {\"id\", \"state\", \"scene\", \"timeline\", "
                       "\"current\"} (and \"advance\" for a share link)"},
                      {422, "invalid scene, unknown preset"},
+                     {429, "this client's session quota (limits.max_sessions_per_client); Retry-After"},
                      {503, "session limit; Retry-After"}}},
       {.method = "GET",
        .path = sid,

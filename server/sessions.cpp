@@ -1,11 +1,12 @@
 #include "server/sessions.h"
 
 #include <cmath>
-#include <cstdio>
 
 #include "codec/sample_json.h"
 #include "codec/scene_json.h"
 #include "engine/number_text.h"
+#include "server/session_db.h"
+#include "server/session_id.h"
 
 namespace spinfold::server {
 
@@ -149,11 +150,9 @@ Rebuild rebuild(Session& session, const Scene& scene, const json& timeline, doub
 std::shared_ptr<Session> SessionStore::create(const Scene& scene, std::string& id) {
   const std::lock_guard lock(mutex_);
   expire_idle_locked();
-  if (sessions_.size() >= max_sessions_) return nullptr;
-  char text[32];
-  std::snprintf(text, sizeof text, "%016llx",
-                static_cast<unsigned long long>(next_id_++ * 0x9E3779B97F4A7C15ull));
-  id = text;
+  if (count_locked() >= max_sessions_) return nullptr;
+  do id = new_session_id();  // 128 random bits: a repeat is never expected, but never reused
+  while (sessions_.count(id) > 0);
   auto session = std::make_shared<Session>();
   restart(*session, scene);
   session->last_used = std::chrono::steady_clock::now();
@@ -162,16 +161,22 @@ std::shared_ptr<Session> SessionStore::create(const Scene& scene, std::string& i
 }
 
 std::shared_ptr<Session> SessionStore::find(const std::string& id) {
-  const std::lock_guard lock(mutex_);
-  const auto it = sessions_.find(id);
-  if (it == sessions_.end()) return nullptr;
-  it->second->last_used = std::chrono::steady_clock::now();
-  return it->second;
+  std::shared_ptr<Session> session;
+  {
+    const std::lock_guard lock(mutex_);
+    const auto it = sessions_.find(id);
+    if (it != sessions_.end()) {
+      it->second->last_used = std::chrono::steady_clock::now();
+      session = it->second;
+    }
+  }
+  return db_ ? checked(id, std::move(session)) : session;
 }
 
 bool SessionStore::erase(const std::string& id) {
+  const bool row = db_ && db_->remove(id);  // first: a failure (StoreError) changes nothing
   const std::lock_guard lock(mutex_);
-  return sessions_.erase(id) > 0;
+  return sessions_.erase(id) > 0 || row;
 }
 
 std::size_t SessionStore::size() {
@@ -186,10 +191,16 @@ std::vector<std::shared_ptr<Session>> SessionStore::all() {
   return list;
 }
 
+std::vector<std::pair<std::string, std::shared_ptr<Session>>> SessionStore::entries() {
+  const std::lock_guard lock(mutex_);
+  return {sessions_.begin(), sessions_.end()};
+}
+
 void SessionStore::expire_idle_locked() {
   const auto now = std::chrono::steady_clock::now();
   for (auto it = sessions_.begin(); it != sessions_.end();)
     it = now - it->second->last_used > idle_expiry_ ? sessions_.erase(it) : std::next(it);
+  expire_stored();  // rows no process used for as long
 }
 
 }  // namespace spinfold::server

@@ -35,12 +35,21 @@ struct Session {
   bool playing = false;  // advanced in real time by the server's player
   double rate = 1.0;     // simulated time per second of wall time while playing
   std::chrono::steady_clock::time_point last_used;
+  // With a store (server/session_db.h): the row's version this memory matches (0: not stored, or
+  // stale: the next find reloads it), when the row was last written, and play not yet stored.
+  std::int64_t stored_version = 0;
+  std::chrono::steady_clock::time_point stored_at;
+  bool unsaved = false;
 };
+
+class SessionDb;
 
 class SessionStore {
  public:
-  SessionStore(std::size_t max_sessions, std::chrono::seconds idle_expiry)
-      : max_sessions_(max_sessions), idle_expiry_(idle_expiry) {}
+  // With `db`, every session is also a row of the store (session_store.cpp): the limit counts the
+  // rows, find() reloads a session another process changed, erase() and expiry delete rows.
+  SessionStore(std::size_t max_sessions, std::chrono::seconds idle_expiry, SessionDb* db = nullptr)
+      : max_sessions_(max_sessions), idle_expiry_(idle_expiry), db_(db) {}
 
   // A new session at t = 0 of the scene, or nullptr when the store is full (after expiring idle
   // sessions).
@@ -49,14 +58,32 @@ class SessionStore {
   bool erase(const std::string& id);
   std::size_t size();
   std::vector<std::shared_ptr<Session>> all();
+  std::vector<std::pair<std::string, std::shared_ptr<Session>>> entries();
+
+  // The durable store (session_store.cpp); without a db these do nothing.
+  bool stored() const { return db_ != nullptr; }
+  enum class Saved { stored, conflict, failed };
+  // Commits the session (its lock held). conflict: another process changed or deleted it since this
+  // one loaded it; failed: the store's error (on stderr). Either way nothing is written and the
+  // memory reloads from the store at the next find (a new, never stored session is dropped).
+  Saved save(const std::string& id, Session& session);
+  // Stores the time of sessions played since their last save (at most once a second while playing).
+  void save_played(const std::string& id, Session& session, bool now = false);
+  void flush();           // save_played(now) for every session: at shutdown
+  std::size_t restore();  // loads every stored session (paused) at start; returns how many
 
  private:
   void expire_idle_locked();
+  std::size_t count_locked();
+  void expire_stored();
+  std::shared_ptr<Session> checked(const std::string& id, std::shared_ptr<Session> memory);
+  void forget(const std::string& id, const Session* session);
   std::mutex mutex_;
   std::map<std::string, std::shared_ptr<Session>> sessions_;
   std::size_t max_sessions_;
   std::chrono::seconds idle_expiry_;
   std::uint64_t next_id_ = 1;
+  SessionDb* db_ = nullptr;
 };
 
 // The most recent samples kept per session (older ones are dropped in halves).

@@ -45,7 +45,28 @@ try {
     args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
            "--disable-background-networking", "--disable-component-update", "--disable-sync"],
   });
-  const page = await browser.newPage({ viewport: { width: 1280, height: 900 } });
+  // The UI under its Content-Security-Policy: it loads, shows its thumbnails and frame (blob: URLs)
+  // and plays (EventSource) without a violation. The page driven below bypasses the policy, because
+  // playwright-core 1.49's waitForFunction evaluates strings in the page, which the policy forbids
+  // (fixed upstream: microsoft/playwright#36986).
+  await test("the UI runs under its Content-Security-Policy", async () => {
+    const strict = await browser.newPage();
+    const violations = [];
+    strict.on("console", (m) => { if (/Content.Security.Policy/i.test(m.text())) violations.push(m.text()); });
+    strict.on("pageerror", (e) => violations.push(e.message));
+    const response = await strict.goto(base);
+    assert.match(response.headers()["content-security-policy"], /script-src 'self'/);
+    await strict.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+    await strict.waitForSelector('#frame[src^="blob:"]', { timeout: 10000 });
+    await strict.waitForSelector('.preset img[src^="blob:"]', { timeout: 20000 });
+    await strict.click("#play");
+    await strict.waitForSelector('#readout:not([data-t="0"])', { timeout: 10000 });
+    await strict.click("#pause");
+    assert.deepEqual(violations, []);
+    await strict.close();
+  });
+
+  const page = await browser.newPage({ viewport: { width: 1280, height: 900 }, bypassCSP: true });
   page.on("pageerror", (e) => { failed = true; console.log(`page error: ${e.stack}`); });
   await page.goto(base);
   await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });

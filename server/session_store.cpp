@@ -1,0 +1,189 @@
+// SessionStore with a durable store (server/session_db.h): what a session is made of goes to its
+// row, a session another process changed is rebuilt from its row, and sessions come back at start.
+// Memory is a cache of the store: each request compares the row's version with the one the memory
+// was built from (one SELECT by primary key) and rebuilds when they differ.
+#include <cstdio>
+
+#include "codec/scene_json.h"
+#include "server/session_db.h"
+#include "server/sessions.h"
+
+namespace spinfold::server {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// How often the player stores the time of a playing session [s]: a crash loses at most this much play.
+constexpr auto kPlaySaveInterval = std::chrono::seconds(1);
+// How often a session only read (GET, frames, streams) marks its row used, against expiry.
+constexpr auto kTouchInterval = std::chrono::seconds(60);
+
+void warn(const std::string& what) {
+  std::fprintf(stderr, "spinfold: %s\n", what.c_str());
+}
+
+StoredSession row_of(const std::string& id, const Session& s) {
+  return {.id = id,
+          .version = s.stored_version,
+          .scene = scene_to_json(s.scene).dump(),
+          .timeline = s.timeline.dump(),
+          .t = s.run.state.t,
+          .playing = s.playing,
+          .rate = s.rate};
+}
+
+// Rebuilds the session from its row (its lock held): the replay of scene and timeline to the stored
+// time, bit for bit, paused. False (on stderr) when the row does not parse.
+bool load_row(Session& s, const StoredSession& row) {
+  const auto refuse = [&row](const std::string& why) {
+    warn("stored session " + row.id + " cannot be restored: " + why);
+    return false;
+  };
+  const nlohmann::json scene_json = nlohmann::json::parse(row.scene, nullptr, false);
+  const nlohmann::json timeline = nlohmann::json::parse(row.timeline, nullptr, false);
+  if (scene_json.is_discarded() || timeline.is_discarded()) return refuse("malformed JSON");
+  const SceneParse scene = parse_scene(scene_json);
+  if (!scene.scene) return refuse(describe_errors(scene.errors));
+  const Rebuild rebuilt = rebuild(s, *scene.scene, timeline, row.t, kNoStepLimit);
+  if (!rebuilt.errors.empty()) return refuse(describe_errors(rebuilt.errors));
+  // Paused: the owner that was playing it may be gone (a crash) or still alive (another replica).
+  s.playing = false;
+  s.rate = row.rate;
+  s.stored_version = row.version;
+  s.stored_at = Clock::now();
+  s.unsaved = false;
+  return true;
+}
+
+// A session rebuilt from its row, or nullptr when the row does not parse.
+std::shared_ptr<Session> loaded(const StoredSession& row) {
+  auto s = std::make_shared<Session>();
+  const std::lock_guard lock(s->mutex);
+  if (!load_row(*s, row)) return nullptr;
+  s->last_used = Clock::now();
+  return s;
+}
+
+// Writes the session's row if it is still the version this memory was built from: false when
+// another process changed or deleted it first; StoreError when the store cannot be written.
+bool write(SessionDb& db, const std::string& id, Session& s) {
+  const std::int64_t version = db.save(row_of(id, s));
+  if (version == 0) return false;
+  s.stored_version = version;
+  s.stored_at = Clock::now();
+  s.unsaved = false;
+  return true;
+}
+
+}  // namespace
+
+std::size_t SessionStore::count_locked() {
+  if (db_) try {
+      return static_cast<std::size_t>(db_->count());
+    } catch (const StoreError& e) {
+      warn(e.what());
+    }
+  return sessions_.size();
+}
+
+void SessionStore::expire_stored() {
+  if (db_) try {
+      db_->expire(idle_expiry_);
+    } catch (const StoreError& e) {
+      warn(e.what());
+    }
+}
+
+void SessionStore::forget(const std::string& id, const Session* session) {
+  const std::lock_guard lock(mutex_);
+  const auto it = sessions_.find(id);
+  if (it != sessions_.end() && it->second.get() == session) sessions_.erase(it);
+}
+
+std::shared_ptr<Session> SessionStore::checked(const std::string& id, std::shared_ptr<Session> memory) {
+  try {
+    if (memory) {
+      const std::lock_guard lock(memory->mutex);
+      const std::optional<std::int64_t> version = db_->version(id);
+      if (version && *version == memory->stored_version) {
+        if (Clock::now() - memory->stored_at > kTouchInterval) {
+          db_->touch(id);
+          memory->stored_at = Clock::now();
+        }
+        return memory;
+      }
+      // Changed by another process (or a write here failed): rebuild; deleted: forget.
+      const std::optional<StoredSession> row = version ? db_->load(id) : std::nullopt;
+      if (row && load_row(*memory, *row)) return memory;
+      forget(id, memory.get());
+      return nullptr;
+    }
+    // Not in memory: created by another process, or this one forgot it.
+    const std::optional<StoredSession> row = db_->load(id);
+    if (!row) return nullptr;
+    auto s = loaded(*row);
+    if (!s) return nullptr;
+    const std::lock_guard lock(mutex_);
+    return sessions_.emplace(id, s).first->second;  // another thread's load if it came first
+  } catch (const StoreError& e) {
+    warn(e.what());
+    return memory;  // the store cannot be read: what this process has
+  }
+}
+
+SessionStore::Saved SessionStore::save(const std::string& id, Session& s) {
+  if (!db_) return Saved::stored;
+  const bool fresh = s.stored_version == 0;
+  Saved saved = Saved::conflict;
+  try {
+    if (write(*db_, id, s)) return Saved::stored;
+  } catch (const StoreError& e) {
+    warn(e.what());
+    saved = Saved::failed;
+  }
+  s.stored_version = 0;  // the memory is ahead of the store: the next find reloads it
+  s.playing = false;
+  if (fresh) forget(id, &s);
+  return saved;
+}
+
+void SessionStore::save_played(const std::string& id, Session& s, bool now) {
+  if (!db_ || !s.unsaved || s.stored_version == 0) return;
+  if (!now && s.playing && Clock::now() - s.stored_at < kPlaySaveInterval) return;
+  try {
+    if (!write(*db_, id, s)) {
+      // Another process changed the session: it is theirs now; this one stops playing it.
+      s.stored_version = 0;
+      s.playing = false;
+    }
+  } catch (const StoreError& e) {
+    warn(e.what());  // kept unsaved: the next tick tries again
+  }
+}
+
+void SessionStore::flush() {
+  for (const auto& [id, s] : entries()) {
+    const std::lock_guard lock(s->mutex);
+    save_played(id, *s, true);
+  }
+}
+
+std::size_t SessionStore::restore() {
+  if (!db_) return 0;
+  const auto start = Clock::now();
+  std::size_t restored = 0;
+  for (const StoredSession& row : db_->load_all()) {
+    auto s = loaded(row);
+    if (!s) continue;
+    const std::lock_guard lock(mutex_);
+    sessions_[row.id] = s;
+    ++restored;
+  }
+  const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  std::fprintf(stderr, "spinfold: restored %zu sessions from %s in %.0f ms\n", restored, db_->path().c_str(),
+               ms);
+  return restored;
+}
+
+}  // namespace spinfold::server
