@@ -99,7 +99,7 @@ int simulate(const SimulateOptions& opt) {
   Simulation run = start_simulation(scene);
   double reported_until = -1.0;  // events up to this time were printed
   const auto emit = [&] {
-    std::cout << sample_to_json(run, events_after(run, reported_until)).dump() << '\n';
+    std::cout << sample_to_json(run, reported_until).dump() << '\n';
     reported_until = run.state.t;
   };
   emit();

@@ -18,8 +18,18 @@ json number(const std::optional<double>& v) {
 
 }  // namespace
 
-json sample_to_json(const Simulation& run, std::span<const DegenerateEvent> new_events) {
-  return sample_to_json(readout(run), new_events);
+json sample_to_json(const Simulation& run, double events_since) {
+  json j = sample_to_json(readout(run), events_after(run, events_since));
+  if (run.companions.empty()) return j;
+  json companions = json::array();
+  for (std::size_t i = 0; i < run.companions.size(); ++i) {
+    const Simulation& c = run.companions[i];
+    json sample = {{"label", companion_label(run.scene, i)}};
+    sample.update(sample_to_json(readout(c), events_after(c, events_since)));
+    companions.push_back(std::move(sample));
+  }
+  j["companions"] = std::move(companions);
+  return j;
 }
 
 json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_events) {

@@ -4,7 +4,9 @@
 #include <sstream>
 #include <type_traits>
 
+#include "engine/number_text.h"
 #include "engine/scene_fields.h"
+#include "engine/surface.h"
 
 namespace spinfold {
 
@@ -68,6 +70,7 @@ class Reader {
   void error(const std::string& field, const json& value, const std::string& reason) {
     errors_.push_back({field, value.dump(), reason});
   }
+  std::size_t count() const { return errors_.size(); }
 
   // Dotted path; a key that is empty or holds a dot is written quoted, so that the field named
   // is never "" (the whole document) nor ambiguous.
@@ -188,14 +191,215 @@ json write_fields(const S& in) {
   return j;
 }
 
+// ---- Companions: merge patches over the main body's blocks, and fans (physics: test bodies do
+// not interact, so each companion is a scene of its own on the same surface; engine/scene.h).
+
+constexpr std::string_view kCompanionKeys[] = {"label",     "color",   "geodesic",  "body",
+                                               "potential", "initial", "integrator"};
+
+// The blocks a companion patches, as the main body's document gives them.
+json companion_base(const json& document) {
+  json base = json::object();
+  for (const char* key : {"body", "initial", "integrator"})
+    if (const auto it = document.find(key); it != document.end()) base[key] = *it;
+  if (const auto p = document.find("potential"); p != document.end() && p->is_object())
+    if (const auto d = p->find("deformation"); d != p->end()) base["potential"]["deformation"] = *d;
+  return base;
+}
+
+// The point particle from the main body's start: same position and velocity, a rigid body of the
+// same mass with zero spin (s = 2Jλ₀²(α̇ − β̇ + Cφ̇) = 0, physics.md §8.8) and no deformation force.
+json geodesic_base(const Scene& main) {
+  const InitialState& in = main.initial;
+  const double scale = std::sqrt(in.lambda * in.mu);
+  return {{"body", {{"mass", main.body.mass}, {"inertia", main.body.inertia}, {"model", "rigid"}}},
+          {"initial",
+           {{"r", in.r},
+            {"phi", in.phi},
+            {"r_dot", in.r_dot},
+            {"phi_dot", in.phi_dot},
+            {"alpha", in.alpha},
+            {"beta", in.beta},
+            {"lambda", scale},
+            {"mu", scale},
+            {"alpha_dot", -polar_C(main.surface, in.r) * in.phi_dot}}}};
+}
+
+// A merge patch (RFC 7396) of the initial block that sets one form of a degree of freedom drops
+// the other form inherited from the base, so that a companion's own value wins.
+void merge_initial(json& base, const json& patch) {
+  static const std::pair<std::vector<std::string>, std::vector<std::string>> kForms[] = {
+      {{"spin"}, {"alpha_dot"}}, {{"speed", "heading"}, {"r_dot", "phi_dot"}}};
+  if (!patch.is_object() || !base.is_object()) return;
+  for (const auto& [physical, rates] : kForms)
+    for (const auto* set : {&physical, &rates}) {
+      const auto* other = set == &physical ? &rates : &physical;
+      if (std::any_of(set->begin(), set->end(), [&](const std::string& k) { return patch.contains(k); }))
+        for (const std::string& k : *other) base.erase(k);
+    }
+}
+
+// "#rrggbb" or [r, g, b] in [0, 1].
+std::optional<std::array<double, 3>> read_color(Reader& in, const json& value, const std::string& path) {
+  std::array<double, 3> rgb{};
+  if (value.is_string()) {
+    const std::string text = value.get<std::string>();
+    if (text.size() == 7 && text[0] == '#' &&
+        text.find_first_not_of("0123456789abcdefABCDEF", 1) == std::string::npos) {
+      for (int k = 0; k < 3; ++k) rgb[k] = std::stoi(text.substr(1 + 2 * k, 2), nullptr, 16) / 255.0;
+      return rgb;
+    }
+  } else if (value.is_array() && value.size() == 3 &&
+             std::all_of(value.begin(), value.end(), [](const json& v) { return v.is_number(); })) {
+    for (int k = 0; k < 3; ++k) rgb[k] = value[k].get<double>();
+    return rgb;
+  }
+  in.error(path, value, "must be \"#rrggbb\" or [r, g, b] with components from 0 to 1");
+  return std::nullopt;
+}
+
+// One companion entry over the main body: its blocks merged into the base and read as a scene.
+std::optional<Companion> read_companion(Reader& in, const json& entry, const json& document,
+                                        const Scene& main, const std::string& path) {
+  const std::vector<std::string_view> keys(std::begin(kCompanionKeys), std::end(kCompanionKeys));
+  if (!in.object(entry, path, keys)) return std::nullopt;
+  Companion c;
+  const std::size_t errors_before = in.count();
+  in.text(entry, path, "label", c.label);
+  if (const auto it = entry.find("color"); it != entry.end())
+    c.color = read_color(in, *it, Reader::join(path, "color"));
+  if (const auto it = entry.find("geodesic"); it != entry.end()) {
+    if (it->is_boolean())
+      c.geodesic = it->get<bool>();
+    else
+      in.error(Reader::join(path, "geodesic"), *it, "must be true or false");
+  }
+  if (const auto p = entry.find("potential"); p != entry.end())
+    in.object(*p, Reader::join(path, "potential"), {"deformation"});
+  json merged = companion_base(document);
+  if (c.geodesic) {
+    const json point = geodesic_base(main);
+    merged["body"] = point["body"];
+    merged["initial"] = point["initial"];
+    merged.erase("potential");
+  }
+  for (const char* key : {"body", "integrator", "potential"})
+    if (const auto it = entry.find(key); it != entry.end()) {
+      if (!merged.contains(key)) merged[key] = json::object();
+      merged[key].merge_patch(*it);
+    }
+  if (const auto it = entry.find("initial"); it != entry.end()) {
+    if (!merged.contains("initial")) merged["initial"] = json::object();
+    merge_initial(merged["initial"], *it);
+    merged["initial"].merge_patch(*it);
+  }
+  Scene scene;
+  if (const auto it = merged.find("body"); it != merged.end())
+    read_section(in, *it, Reader::join(path, "body"), scene.body);
+  if (const auto it = merged.find("initial"); it != merged.end())
+    read_section(in, *it, Reader::join(path, "initial"), scene.initial);
+  if (const auto it = merged.find("integrator"); it != merged.end())
+    read_section(in, *it, Reader::join(path, "integrator"), scene.integrator);
+  if (const auto p = merged.find("potential"); p != merged.end() && p->is_object())
+    if (const auto d = p->find("deformation"); d != p->end() && !d->is_null())
+      read_deformation(in, *d, Reader::join(path, "potential.deformation"), scene.potential.deformation);
+  if (in.count() != errors_before) return std::nullopt;
+  c.body = scene.body;
+  c.deformation = scene.potential.deformation;
+  c.initial = scene.initial;
+  c.integrator = scene.integrator;
+  return c;
+}
+
+// {"field": "initial.spin", "values": [...]}: one companion entry per value, labelled by it.
+std::vector<json> fan_entries(Reader& in, const json& vary) {
+  std::vector<json> entries;
+  if (!in.object(vary, "vary", {"field", "values"})) return entries;
+  const auto field = vary.find("field");
+  const auto values = vary.find("values");
+  if (field == vary.end() || !field->is_string()) {
+    in.error("vary.field", field == vary.end() ? json(nullptr) : *field,
+             "must name a numeric field of body, initial or potential.deformation, e.g. \"initial.spin\"");
+    return entries;
+  }
+  const std::string name = field->get<std::string>();
+  std::vector<std::string> parts;
+  for (std::size_t at = 0; at <= name.size();) {
+    const std::size_t dot = std::min(name.find('.', at), name.size());
+    parts.push_back(name.substr(at, dot - at));
+    at = dot + 1;
+  }
+  const auto has = [](const std::vector<std::string_view>& keys, const std::string& key) {
+    return std::find(keys.begin(), keys.end(), key) != keys.end();
+  };
+  std::vector<std::string_view> deformation_keys;
+  for_each_deformation_kind([&](auto, auto alternative) {
+    for (std::string_view k : keys_of<typename decltype(alternative)::type>()) deformation_keys.push_back(k);
+  });
+  const bool numeric =
+      (parts.size() == 2 && parts[0] == "body" && (parts[1] == "mass" || parts[1] == "inertia")) ||
+      (parts.size() == 2 && parts[0] == "initial" && has(keys_of<InitialState>(), parts[1])) ||
+      (parts.size() == 3 && parts[0] == "potential" && parts[1] == "deformation" && parts[2] != "kind" &&
+       has(deformation_keys, parts[2]));
+  if (!numeric) {
+    in.error("vary.field", *field, "must name a numeric field of body, initial or potential.deformation");
+    return entries;
+  }
+  if (values == vary.end() || !values->is_array() || values->empty() ||
+      !std::all_of(values->begin(), values->end(), [](const json& v) { return v.is_number(); })) {
+    in.error("vary.values", values == vary.end() ? json(nullptr) : *values,
+             "must be a non-empty array of numbers");
+    return entries;
+  }
+  for (const json& v : *values) {
+    json patch = v;
+    for (auto it = parts.rbegin(); it != parts.rend(); ++it) patch = json{{*it, patch}};
+    patch["label"] = parts.back() + " = " + shortest(v.get<double>());
+    entries.push_back(patch);
+  }
+  return entries;
+}
+
+// Expands "companions" and "vary" of the document into scene.companions (errors under
+// companions[i], i counting the fan's entries after the listed ones).
+void read_companions(Reader& in, const json& document, Scene& scene) {
+  std::vector<json> entries;
+  json source = json::object();
+  if (const auto it = document.find("companions"); it != document.end()) {
+    source["companions"] = *it;
+    if (it->is_array())
+      entries.assign(it->begin(), it->end());
+    else
+      in.error("companions", *it, "must be an array of companion objects");
+  }
+  if (const auto it = document.find("vary"); it != document.end()) {
+    source["vary"] = *it;
+    for (json& e : fan_entries(in, *it)) entries.push_back(std::move(e));
+  }
+  if (source.empty()) return;
+  scene.companions_source = source.dump();
+  if (entries.size() > kMaxCompanions) {
+    in.error("companions", json(entries.size()),
+             "at most " + std::to_string(kMaxCompanions) + " companions (listed and from vary together)");
+    return;
+  }
+  for (std::size_t i = 0; i < entries.size(); ++i)
+    if (auto c = read_companion(in, entries[i], document, scene, "companions[" + std::to_string(i) + "]"))
+      scene.companions.push_back(std::move(*c));
+}
+
 }  // namespace
 
 SceneParse parse_scene(const json& document) {
   SceneParse result;
   Reader in(result.errors);
   Scene scene;
-  if (!in.object(document, "", keys_of<Scene>())) return result;
+  std::vector<std::string_view> keys = keys_of<Scene>();
+  keys.insert(keys.end(), {"companions", "vary"});
+  if (!in.object(document, "", keys)) return result;
   read_fields(in, document, "", scene);
+  // Companions build on the main body: only once it reads and validates.
+  if (result.errors.empty() && validate_scene(scene).empty()) read_companions(in, document, scene);
 
   // Report value errors too, except for fields whose structure was already wrong.
   for (FieldError& e : validate_scene(scene)) {
@@ -224,7 +428,28 @@ SceneParse parse_scene_text(std::string_view text) {
 }
 
 json scene_to_json(const Scene& scene) {
-  return write_fields(scene);
+  json j = write_fields(scene);
+  if (!scene.companions_source.empty()) {
+    const json source = json::parse(scene.companions_source);
+    for (auto it = source.begin(); it != source.end(); ++it) j[it.key()] = it.value();
+    return j;
+  }
+  // Companions made in code: each written whole (a merge patch that sets every field).
+  for (const Companion& c : scene.companions) {
+    json entry = {{"body", write_fields(c.body)},
+                  {"initial", write_fields(c.initial)},
+                  {"integrator", write_fields(c.integrator)}};
+    Scene holder;
+    holder.potential.deformation = c.deformation;
+    const json potential = write_fields(holder.potential);
+    entry["potential"] = {
+        {"deformation", potential.contains("deformation") ? potential["deformation"] : json(nullptr)}};
+    if (!c.label.empty()) entry["label"] = c.label;
+    if (c.color) entry["color"] = *c.color;
+    if (c.geodesic) entry["geodesic"] = true;
+    j["companions"].push_back(entry);
+  }
+  return j;
 }
 
 std::string describe_errors(const std::vector<FieldError>& errors) {

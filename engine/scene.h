@@ -2,9 +2,11 @@
 // Every field has a default; units are "any consistent set", angles in radians.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "engine/surface.h"
 
@@ -83,6 +85,22 @@ enum class OnDegenerate {
   stop,    // stop with status degenerate_frame and keep the last state with det L > 0
 };
 
+// A second body on the same surface under the same radial potential, with its own body,
+// deformation potential, initial state and integrator (test bodies do not interact: each is its
+// own run). The scene format writes it as a JSON merge patch over the main body's blocks
+// (codec/scene_json.h); here it is the expanded result.
+struct Companion {
+  std::string label;                           // legend text ("" → "body N")
+  std::optional<std::array<double, 3>> color;  // sRGB in [0, 1]; none: the renderer's palette
+  bool geodesic = false;  // the point-particle companion (zero spin, rigid), drawn dashed
+  Body body;
+  DeformationPotential deformation;
+  InitialState initial;
+  IntegratorSettings integrator;
+};
+
+inline constexpr std::size_t kMaxCompanions = 8;
+
 struct Scene {
   std::string name;         // preset name, informational
   std::string description;  // one line, informational
@@ -92,6 +110,18 @@ struct Scene {
   InitialState initial;
   IntegratorSettings integrator;
   OnDegenerate on_degenerate = OnDegenerate::report;
+  std::vector<Companion> companions;  // at most kMaxCompanions
+  // The scene format's "companions" and "vary" blocks as written (JSON text, "" when absent): the
+  // writer gives them back, and a change of the main body's blocks reaches the companions through
+  // them (each is a merge patch over those blocks).
+  std::string companions_source;
 };
+
+// Companion i as a scene of its own: the main scene's surface, radial potential and degenerate
+// policy with the companion's body, deformation potential, initial state and integrator.
+Scene companion_scene(const Scene& scene, std::size_t i);
+
+// Companion i's label: its own, else "body i+2" (the main body is body 1).
+std::string companion_label(const Scene& scene, std::size_t i);
 
 }  // namespace spinfold

@@ -47,6 +47,8 @@ void use_integrator(Simulation& run) {
 
 Simulation start_simulation(const Scene& scene, double start_time) {
   Simulation run;
+  for (std::size_t i = 0; i < scene.companions.size(); ++i)
+    run.companions.push_back(start_simulation(companion_scene(scene, i), start_time));
   run.scene = scene;
   run.state = initial_state(scene);
   run.state.t = start_time;
@@ -303,9 +305,8 @@ bool advance_steps(Simulation& run, double t_end, std::uint64_t& attempts) {
   return true;
 }
 
-}  // namespace
-
-bool advance_within(Simulation& run, double t_end, std::uint64_t& attempts) {
+// One body (not its companions).
+bool advance_body(Simulation& run, double t_end, std::uint64_t& attempts) {
   if (run.state.status != Status::ok || !(t_end > run.state.t)) return true;
   if (!run.exact) return advance_steps(run, t_end, attempts);
   if (attempts == 0) return false;
@@ -318,6 +319,15 @@ bool advance_within(Simulation& run, double t_end, std::uint64_t& attempts) {
       run.state.status = trouble;
     }
   }
+  return true;
+}
+
+}  // namespace
+
+bool advance_within(Simulation& run, double t_end, std::uint64_t& attempts) {
+  if (!advance_body(run, t_end, attempts)) return false;
+  for (Simulation& companion : run.companions)
+    if (!advance_body(companion, t_end, attempts)) return false;
   return true;
 }
 
@@ -334,6 +344,8 @@ bool advance_to(Simulation& run, double t_end, std::uint64_t max_attempts) {
 }
 
 void retune(Simulation& run, const Scene& next) {
+  for (std::size_t i = 0; i < run.companions.size() && i < next.companions.size(); ++i)
+    retune(run.companions[i], companion_scene(next, i));
   // The state asked for becomes a point of the step sequence: a change is hit exactly. New
   // parameters may cure what stopped the run (a step beyond stability): it continues.
   State here = run.state;

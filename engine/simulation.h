@@ -49,6 +49,9 @@ struct Simulation {
   std::uint64_t steps = 0;                   // accepted steps of the sequence
   std::uint64_t rejected = 0;                // rejected step attempts of the sequence
   std::uint64_t recentres = 0;               // chart moves of the sequence
+  // The companions' runs (scene.companions[i], companion_scene), advanced with this one to the same
+  // times. A companion that stops keeps its last good state and status; the others go on.
+  std::vector<Simulation> companions;
 };
 
 // The catalog name that runs for this scene: the scene's own, or for "auto" the exact solution
@@ -73,13 +76,15 @@ inline constexpr std::uint64_t kNoStepLimit = std::numeric_limits<std::uint64_t>
 // there (one advance or many). The exact solution jumps from the last change.
 bool advance_to(Simulation& run, double t_end, std::uint64_t max_attempts = kNoStepLimit);
 // The same, spending `attempts` (what is left stays there): for callers that split one budget
-// over several advances (trail samples).
+// over several advances (trail samples). Companions are advanced after the main body, from the
+// same budget; a companion's trouble stops only that companion.
 bool advance_within(Simulation& run, double t_end, std::uint64_t& attempts);
 
 // Changes the parameters at the current time and state: the body keeps its
 // position, velocity, frame and frame rates; the new mass, inertia, potentials, radius and
 // integrator act from here on; energy errors are measured from here. `next` must have passed
-// validate_scene and have the same surface kind (a different surface is a different run).
+// validate_scene and have the same surface kind (a different surface is a different run) and as
+// many companions: each companion is retuned to its new scene the same way.
 void retune(Simulation& run, const Scene& next);
 
 // The det L = 0 crossings up to the current state that come after time `after` [time], oldest

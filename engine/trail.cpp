@@ -33,6 +33,14 @@ double next_sample_time(const Trail& trail) {
 }
 
 void record_if_due(Trail& trail, const Simulation& run) {
+  if (trail.companions.size() != run.companions.size()) {
+    Trail fresh;
+    fresh.spacing = trail.spacing;
+    fresh.max_points = trail.max_points;
+    trail.companions.assign(run.companions.size(), fresh);
+  }
+  for (std::size_t i = 0; i < run.companions.size(); ++i)
+    record_if_due(trail.companions[i], run.companions[i]);
   if (run.state.t != next_sample_time(trail)) return;
   trail.points.push_back({next_index(trail), run.state.t, global_embedding(run.scene, run.state).X});
   if (trail.points.size() > trail.max_points) halve(trail);

@@ -21,12 +21,14 @@ struct Trail {
   std::size_t max_points = 8192;   // beyond this every other sample is dropped (the run's whole
                                    // path is kept, at half the resolution)
   std::vector<TrailPoint> points;  // oldest first; points[i].t = points[i].k · spacing
+  std::vector<Trail> companions;   // the run's companions' trails, sampled at the same times
 };
 
 // The first sample time after the last one recorded (or 0) [time].
 double next_sample_time(const Trail& trail);
 
-// Records the run's current position if it is at a sample time not yet recorded.
+// Records the run's current position if it is at a sample time not yet recorded, and each
+// companion's likewise (a companion that stopped records no more).
 void record_if_due(Trail& trail, const Simulation& run);
 
 // advance_to that records the trail's samples on the way to t_end (each is the state advance_to

@@ -222,6 +222,22 @@ std::vector<FieldError> validate_scene(const Scene& scene) {
   if (in.name == exact_info.name)
     if (const auto why = exact_unsupported_reason(scene)) c.add_text("integrator.name", in.name, *why);
   if (c.errors.empty()) check_finite_start(scene, c);
+  // Each companion as the scene it runs (its errors named under companions[i]).
+  if (scene.companions.size() > kMaxCompanions)
+    c.errors.push_back({"companions", std::to_string(scene.companions.size()) + " bodies",
+                        "at most " + std::to_string(kMaxCompanions) + " companions (after expanding vary)"});
+  for (std::size_t i = 0; i < scene.companions.size() && i < kMaxCompanions; ++i) {
+    const std::string prefix = "companions[" + std::to_string(i) + "].";
+    for (FieldError& e : validate_scene(companion_scene(scene, i))) {
+      e.field = prefix + e.field;
+      c.errors.push_back(std::move(e));
+    }
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto& color = scene.companions[i].color;
+      if (color && !((*color)[k] >= 0.0 && (*color)[k] <= 1.0))
+        c.errors.push_back({prefix + "color", shortest((*color)[k]), "each component must be from 0 to 1"});
+    }
+  }
   return c.errors;
 }
 

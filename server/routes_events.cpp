@@ -49,7 +49,7 @@ void get_events(ServerContext& server, const Call& call, httplib::Response& res)
         {
           const std::lock_guard lock(s->mutex);
           if (s->version != sent) {
-            event = "event: state\ndata: " + sample_to_json(s->run, {}).dump() + "\n\n";
+            event = "event: state\ndata: " + sample_to_json(s->run, s->run.state.t).dump() + "\n\n";
             sent = s->version;
           }
         }

@@ -17,7 +17,7 @@ namespace {
 
 void record_sample(Session& session) {
   session.trajectory.push_back(
-      sample_to_json(session.run, events_after(session.run, session.reported_until)));
+      sample_to_json(session.run, session.reported_until));
   session.reported_until = session.run.state.t;
   if (session.trajectory.size() > kMaxTrajectory)
     session.trajectory.erase(session.trajectory.begin(), session.trajectory.begin() + kMaxTrajectory / 2);
