@@ -4,6 +4,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "engine/initial_rates.h"
 #include "engine/scene_fields.h"
 
 namespace spinfold {
@@ -32,6 +33,16 @@ class Reader {
   }
 
   void number(const json& obj, const std::string& path, std::string_view key, double& out) {
+    const auto it = obj.find(key);
+    if (it == obj.end()) return;
+    if (it->is_number())
+      out = it->get<double>();
+    else
+      error(join(path, key), *it, "must be a number");
+  }
+
+  void optional_number(const json& obj, const std::string& path, std::string_view key,
+                       std::optional<double>& out) {
     const auto it = obj.find(key);
     if (it == obj.end()) return;
     if (it->is_number())
@@ -93,6 +104,8 @@ std::vector<std::string_view> keys_of(std::optional<std::string_view> first = st
 
 template <typename S>
 void read_fields(Reader& in, const json& j, const std::string& path, S& out);
+template <typename S>
+void refuse_both_forms(Reader& in, const json& j, const std::string& path);
 
 // A section: reads `j` into `out` when it is an object of known keys.
 template <typename S>
@@ -131,6 +144,8 @@ void read_fields(Reader& in, const json& j, const std::string& path, S& out) {
     T& value = out.*field.member;
     if constexpr (std::is_same_v<T, double>) {
       in.number(j, path, field.name, value);
+    } else if constexpr (OptionalNumber<T>) {
+      in.optional_number(j, path, field.name, value);
     } else if constexpr (std::is_same_v<T, std::string>) {
       in.text(j, path, field.name, value);
     } else if constexpr (Enumerated<T>) {
@@ -150,19 +165,55 @@ void read_fields(Reader& in, const json& j, const std::string& path, S& out) {
       }
     }
   });
+  refuse_both_forms<S>(in, j, path);
+}
+
+// An optional number given in the same block as a field it stands in for (spin with alpha_dot):
+// one error per such pair, naming both.
+template <typename S>
+void refuse_both_forms(Reader& in, const json& j, const std::string& path) {
+  for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    if constexpr (OptionalNumber<T>) {
+      const auto it = j.find(field.name);
+      if (it == j.end()) return;
+      for (const std::string_view replaced : field.replaces)
+        if (!replaced.empty() && j.contains(replaced))
+          in.error(Reader::join(path, field.name), *it,
+                   "give either " + std::string(field.name) + " or " + std::string(replaced) + ", not both");
+    }
+  });
+}
+
+// The fields of S that a set optional number stands in for (alpha_dot when spin is set).
+template <typename S>
+std::vector<std::string_view> replaced_fields(const S& in) {
+  std::vector<std::string_view> replaced;
+  for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    if constexpr (OptionalNumber<T>)
+      if (in.*field.member)
+        for (const std::string_view name : field.replaces)
+          if (!name.empty()) replaced.push_back(name);
+  });
+  return replaced;
 }
 
 // The JSON of every field of the table of S (informational text only when not empty, absent
-// optional sections and deformations omitted).
+// optional numbers, optional sections and deformations omitted, and a number omitted when a set
+// optional number stands in for it: the scene is written as it was given).
 template <typename S>
 json write_fields(const S& in) {
   json j = json::object();
+  const std::vector<std::string_view> replaced = replaced_fields(in);
   for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
     using T = typename std::remove_cvref_t<decltype(field)>::Value;
     const T& value = in.*field.member;
     const std::string key(field.name);
     if constexpr (std::is_same_v<T, double>) {
-      j[key] = value;
+      if (std::find(replaced.begin(), replaced.end(), field.name) == replaced.end()) j[key] = value;
+    } else if constexpr (OptionalNumber<T>) {
+      if (value) j[key] = *value;
     } else if constexpr (std::is_same_v<T, std::string>) {
       if (field.text_rule != TextRule::any || !value.empty()) j[key] = value;
     } else if constexpr (Enumerated<T>) {
@@ -197,12 +248,17 @@ SceneParse parse_scene(const json& document) {
   if (!in.object(document, "", keys_of<Scene>())) return result;
   read_fields(in, document, "", scene);
 
-  // Report value errors too, except for fields whose structure was already wrong.
-  for (FieldError& e : validate_scene(scene)) {
-    const bool known = std::any_of(result.errors.begin(), result.errors.end(),
-                                   [&](const FieldError& s) { return s.field == e.field; });
-    if (!known) result.errors.push_back(std::move(e));
-  }
+  // The rates from spin, speed and heading; then value errors too, except for fields already named
+  // (whose structure was wrong, or which could not be converted).
+  const auto add_new = [&](std::vector<FieldError> errors) {
+    for (FieldError& e : errors) {
+      const bool known = std::any_of(result.errors.begin(), result.errors.end(),
+                                     [&](const FieldError& s) { return s.field == e.field; });
+      if (!known) result.errors.push_back(std::move(e));
+    }
+  };
+  add_new(resolve_initial_rates(scene));
+  add_new(validate_scene(scene));
   if (result.errors.empty()) result.scene = scene;
   return result;
 }
