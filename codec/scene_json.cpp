@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "engine/initial_rates.h"
+#include "engine/number_text.h"
 #include "engine/scene_fields.h"
 
 namespace spinfold {
@@ -239,6 +240,25 @@ json write_fields(const S& in) {
   return j;
 }
 
+// Errors about a rate that a given optional number filled name that number instead: the scene
+// said spin, not alpha_dot.
+template <typename S>
+void name_given_fields(std::vector<FieldError>& errors, const std::string& path, const S& in) {
+  for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    if constexpr (OptionalNumber<T>) {
+      const T& value = in.*field.member;
+      if (!value) return;
+      for (const std::string_view replaced : field.replaces)
+        for (FieldError& e : errors)
+          if (!replaced.empty() && e.field == Reader::join(path, replaced)) {
+            e.field = Reader::join(path, field.name);
+            e.value = shortest(*value);
+          }
+    }
+  });
+}
+
 }  // namespace
 
 SceneParse parse_scene(const json& document) {
@@ -258,7 +278,9 @@ SceneParse parse_scene(const json& document) {
     }
   };
   add_new(resolve_initial_rates(scene));
-  add_new(validate_scene(scene));
+  std::vector<FieldError> invalid = validate_scene(scene);
+  name_given_fields(invalid, "initial", scene.initial);
+  add_new(std::move(invalid));
   if (result.errors.empty()) result.scene = scene;
   return result;
 }

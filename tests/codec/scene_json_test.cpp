@@ -111,6 +111,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{
             R"({"body": {"inertia": 1e-100}, "initial": {"lambda": 1e-100, "mu": 1e-100, "spin": 1e100}})",
             "initial.spin"},
+        BadScene{R"({"body": {"inertia": 1e-100}, "initial": {"spin": 1e100}})",
+                 "initial.spin"},  // overflows
         BadScene{R"({"body": {"model": "rigid"}, "initial": {"lambda": 1, "mu": 2}})", "initial.mu"},
         BadScene{R"({"body": {"model": "rigid"}, "initial": {"lambda_dot": 0.1}})", "initial.lambda_dot"},
         BadScene{R"({"body": {"model": "rigid"}, "potential": {"deformation": {"kind": "abc", "C": 1}}})",
