@@ -4,6 +4,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "engine/initial_rates.h"
 #include "engine/number_text.h"
 #include "engine/scene_fields.h"
 #include "engine/surface.h"
@@ -42,6 +43,16 @@ class Reader {
       error(join(path, key), *it, "must be a number");
   }
 
+  void optional_number(const json& obj, const std::string& path, std::string_view key,
+                       std::optional<double>& out) {
+    const auto it = obj.find(key);
+    if (it == obj.end()) return;
+    if (it->is_number())
+      out = it->get<double>();
+    else
+      error(join(path, key), *it, "must be a number");
+  }
+
   void text(const json& obj, const std::string& path, std::string_view key, std::string& out) {
     const auto it = obj.find(key);
     if (it == obj.end()) return;
@@ -71,6 +82,7 @@ class Reader {
     errors_.push_back({field, value.dump(), reason});
   }
   std::size_t count() const { return errors_.size(); }
+  void add(FieldError e) { errors_.push_back(std::move(e)); }
 
   // Dotted path; a key that is empty or holds a dot is written quoted, so that the field named
   // is never "" (the whole document) nor ambiguous.
@@ -96,6 +108,8 @@ std::vector<std::string_view> keys_of(std::optional<std::string_view> first = st
 
 template <typename S>
 void read_fields(Reader& in, const json& j, const std::string& path, S& out);
+template <typename S>
+void refuse_both_forms(Reader& in, const json& j, const std::string& path);
 
 // A section: reads `j` into `out` when it is an object of known keys.
 template <typename S>
@@ -134,6 +148,8 @@ void read_fields(Reader& in, const json& j, const std::string& path, S& out) {
     T& value = out.*field.member;
     if constexpr (std::is_same_v<T, double>) {
       in.number(j, path, field.name, value);
+    } else if constexpr (OptionalNumber<T>) {
+      in.optional_number(j, path, field.name, value);
     } else if constexpr (std::is_same_v<T, std::string>) {
       in.text(j, path, field.name, value);
     } else if constexpr (Enumerated<T>) {
@@ -153,19 +169,55 @@ void read_fields(Reader& in, const json& j, const std::string& path, S& out) {
       }
     }
   });
+  refuse_both_forms<S>(in, j, path);
+}
+
+// An optional number given in the same block as a field it stands in for (spin with alpha_dot):
+// one error per such pair, naming both.
+template <typename S>
+void refuse_both_forms(Reader& in, const json& j, const std::string& path) {
+  for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    if constexpr (OptionalNumber<T>) {
+      const auto it = j.find(field.name);
+      if (it == j.end()) return;
+      for (const std::string_view replaced : field.replaces)
+        if (!replaced.empty() && j.contains(replaced))
+          in.error(Reader::join(path, field.name), *it,
+                   "give either " + std::string(field.name) + " or " + std::string(replaced) + ", not both");
+    }
+  });
+}
+
+// The fields of S that a set optional number stands in for (alpha_dot when spin is set).
+template <typename S>
+std::vector<std::string_view> replaced_fields(const S& in) {
+  std::vector<std::string_view> replaced;
+  for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    if constexpr (OptionalNumber<T>)
+      if (in.*field.member)
+        for (const std::string_view name : field.replaces)
+          if (!name.empty()) replaced.push_back(name);
+  });
+  return replaced;
 }
 
 // The JSON of every field of the table of S (informational text only when not empty, absent
-// optional sections and deformations omitted).
+// optional numbers, optional sections and deformations omitted, and a number omitted when a set
+// optional number stands in for it: the scene is written as it was given).
 template <typename S>
 json write_fields(const S& in) {
   json j = json::object();
+  const std::vector<std::string_view> replaced = replaced_fields(in);
   for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
     using T = typename std::remove_cvref_t<decltype(field)>::Value;
     const T& value = in.*field.member;
     const std::string key(field.name);
     if constexpr (std::is_same_v<T, double>) {
-      j[key] = value;
+      if (std::find(replaced.begin(), replaced.end(), field.name) == replaced.end()) j[key] = value;
+    } else if constexpr (OptionalNumber<T>) {
+      if (value) j[key] = *value;
     } else if constexpr (std::is_same_v<T, std::string>) {
       if (field.text_rule != TextRule::any || !value.empty()) j[key] = value;
     } else if constexpr (Enumerated<T>) {
@@ -208,7 +260,8 @@ json companion_base(const json& document) {
 }
 
 // The point particle from the main body's start: same position and velocity, a rigid body of the
-// same mass with zero spin (s = 2Jλ₀²(α̇ − β̇ + Cφ̇) = 0, physics.md §8.8) and no deformation force.
+// same mass with zero spin (s = 2Jλ₀²(α̇ − β̇ + Cφ̇) = 0, physics.md §8.8; β̇ = 0) and no deformation
+// force.
 json geodesic_base(const Scene& main) {
   const InitialState& in = main.initial;
   const double scale = std::sqrt(in.lambda * in.mu);
@@ -222,7 +275,7 @@ json geodesic_base(const Scene& main) {
             {"beta", in.beta},
             {"lambda", scale},
             {"mu", scale},
-            {"alpha_dot", -polar_C(main.surface, in.r) * in.phi_dot}}}};
+            {"spin", 0.0}}}};
 }
 
 // A merge patch (RFC 7396) of the initial block that sets one form of a degree of freedom drops
@@ -303,6 +356,13 @@ std::optional<Companion> read_companion(Reader& in, const json& entry, const jso
   if (const auto p = merged.find("potential"); p != merged.end() && p->is_object())
     if (const auto d = p->find("deformation"); d != p->end() && !d->is_null())
       read_deformation(in, *d, Reader::join(path, "potential.deformation"), scene.potential.deformation);
+  if (in.count() != errors_before) return std::nullopt;
+  // Its own spin, speed and heading on its own body and the shared surface.
+  scene.surface = main.surface;
+  for (FieldError& e : resolve_initial_rates(scene)) {
+    e.field = path + "." + e.field;
+    in.add(std::move(e));
+  }
   if (in.count() != errors_before) return std::nullopt;
   c.body = scene.body;
   c.deformation = scene.potential.deformation;
@@ -388,6 +448,25 @@ void read_companions(Reader& in, const json& document, Scene& scene) {
       scene.companions.push_back(std::move(*c));
 }
 
+// Errors about a rate that a given optional number filled name that number instead: the scene
+// said spin, not alpha_dot.
+template <typename S>
+void name_given_fields(std::vector<FieldError>& errors, const std::string& path, const S& in) {
+  for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    if constexpr (OptionalNumber<T>) {
+      const T& value = in.*field.member;
+      if (!value) return;
+      for (const std::string_view replaced : field.replaces)
+        for (FieldError& e : errors)
+          if (!replaced.empty() && e.field == Reader::join(path, replaced)) {
+            e.field = Reader::join(path, field.name);
+            e.value = shortest(*value);
+          }
+    }
+  });
+}
+
 }  // namespace
 
 SceneParse parse_scene(const json& document) {
@@ -398,15 +477,24 @@ SceneParse parse_scene(const json& document) {
   keys.insert(keys.end(), {"companions", "vary"});
   if (!in.object(document, "", keys)) return result;
   read_fields(in, document, "", scene);
+
+  // The rates from spin, speed and heading; then value errors too, except for fields already named
+  // (whose structure was wrong, or which could not be converted).
+  const auto add_new = [&](std::vector<FieldError> errors) {
+    for (FieldError& e : errors) {
+      const bool known = std::any_of(result.errors.begin(), result.errors.end(),
+                                     [&](const FieldError& s) { return s.field == e.field; });
+      if (!known) result.errors.push_back(std::move(e));
+    }
+  };
+  add_new(resolve_initial_rates(scene));
   // Companions build on the main body: only once it reads and validates.
   if (result.errors.empty() && validate_scene(scene).empty()) read_companions(in, document, scene);
-
-  // Report value errors too, except for fields whose structure was already wrong.
-  for (FieldError& e : validate_scene(scene)) {
-    const bool known = std::any_of(result.errors.begin(), result.errors.end(),
-                                   [&](const FieldError& s) { return s.field == e.field; });
-    if (!known) result.errors.push_back(std::move(e));
-  }
+  std::vector<FieldError> invalid = validate_scene(scene);
+  name_given_fields(invalid, "initial", scene.initial);
+  for (std::size_t i = 0; i < scene.companions.size(); ++i)
+    name_given_fields(invalid, "companions[" + std::to_string(i) + "].initial", scene.companions[i].initial);
+  add_new(std::move(invalid));
   if (result.errors.empty()) result.scene = scene;
   return result;
 }

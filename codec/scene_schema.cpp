@@ -26,15 +26,37 @@ json object(json properties, std::vector<std::string> required = {}) {
 template <typename S>
 json properties_of(json properties = json::object());
 
+// The object of the table of S, with the rules of its optional numbers: one comes with its partner
+// (dependentRequired) and never with a field it stands in for (dependentSchemas).
+template <typename S>
+json section() {
+  json o = object(properties_of<S>());
+  json required = json::object(), excluded = json::object();
+  for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    if constexpr (OptionalNumber<T>) {
+      const std::string name(field.name);
+      if (!field.partner.empty()) required[name] = json::array({field.partner});
+      json any = json::array();
+      for (const std::string_view replaced : field.replaces)
+        if (!replaced.empty()) any.push_back({{"required", json::array({replaced})}});
+      if (!any.empty()) excluded[name] = {{"not", {{"anyOf", any}}}};
+    }
+  });
+  if (!required.empty()) o["dependentRequired"] = required;
+  if (!excluded.empty()) o["dependentSchemas"] = excluded;
+  return o;
+}
+
 // The schema of one field, from its table entry.
 template <typename Field>
 json property(const Field& field) {
   using T = typename Field::Value;
-  if constexpr (std::is_same_v<T, double>) {
-    json n{{"type", "number"},
-           {"default", field.fallback()},
-           {"description", field.description},
-           {"x-unit", field.unit}};
+  if constexpr (std::is_same_v<T, double> || OptionalNumber<T>) {
+    json n{{"type", "number"}};
+    if constexpr (std::is_same_v<T, double>) n["default"] = field.fallback();  // an optional one has none
+    n["description"] = field.description;
+    n["x-unit"] = field.unit;
     const Range& r = field.range;
     if (r.has_min()) n[r.min_open ? "exclusiveMinimum" : "minimum"] = bound(r.min);
     if (r.has_max()) n[r.max_open ? "exclusiveMaximum" : "maximum"] = bound(r.max);
@@ -48,9 +70,9 @@ json property(const Field& field) {
     for (const EnumName<T>& n : enum_names(std::type_identity<T>{})) names.push_back(n.name);
     return {{"enum", names}, {"default", enum_name(field.fallback())}};
   } else if constexpr (HasFields<T>) {
-    return object(properties_of<T>());
+    return section<T>();
   } else if constexpr (OptionalSection<T>) {
-    return object(properties_of<typename T::value_type>());
+    return section<typename T::value_type>();
   } else {
     static_assert(std::is_same_v<T, DeformationPotential>, "a field type the schema does not know");
     json kinds = json::array();
@@ -79,7 +101,7 @@ json scene_schema() {
       {"title", "Spinfold scene"},
       {"description", "An affinely-rigid body on a surface of constant curvature (docs/physics.md)."},
   };
-  const json top = object(properties_of<Scene>());
+  const json top = section<Scene>();
   for (const auto& [key, value] : top.items()) schema[key] = value;
   return schema;
 }

@@ -59,6 +59,11 @@ struct Potentials {
 // Initial state in the paper's coordinates: L = U(α) diag(λ, μ) U(β)ᵀ in the frame
 // E₁ = ∂/∂r, E₂ = (1/S)∂/∂φ (physics.md §2). For the rigid model λ is the scale λ₀, μ must equal
 // λ, and only α − β (the angle θ) and its rate matter.
+//
+// spin, speed and heading are the physical alternatives to the rates, as given by the scene: when
+// set, the reader has filled alpha_dot (from spin) or r_dot and phi_dot (from speed and heading)
+// with engine/initial_rates.h's resolve_initial_rates, and the writer writes them back instead of
+// those rates. A scene built in code that sets them calls resolve_initial_rates itself.
 struct InitialState {
   double r = 1.0;           // geodesic distance from the pole [length]
   double phi = 0.0;         // [rad]
@@ -72,6 +77,12 @@ struct InitialState {
   double beta_dot = 0.0;    // [rad/time]
   double lambda_dot = 0.0;  // [1/time]
   double mu_dot = 0.0;      // [1/time]
+  // s = p_α = J[(λ² + μ²)(α̇ + Cφ̇) − 2λμβ̇] [mass·length²/time] (physics.md §3): replaces alpha_dot
+  std::optional<double> spin = std::nullopt;
+  // v = √(ṙ² + S²φ̇²) ≥ 0 [length/time], with heading: replaces r_dot and phi_dot
+  std::optional<double> speed = std::nullopt;
+  // angle of the velocity from E₁ = ∂/∂r towards E₂ = (1/S)∂/∂φ [rad], with speed
+  std::optional<double> heading = std::nullopt;
 };
 
 struct IntegratorSettings {

@@ -8,6 +8,7 @@
 // mu = lambda, r <= πR on the sphere, ...) are code in engine/validation.cpp, not data here.
 #pragma once
 
+#include <array>
 #include <iterator>
 #include <limits>
 #include <optional>
@@ -120,9 +121,10 @@ enum class TextRule {
 
 // ---- fields ------------------------------------------------------------------------------------
 
-// One field of the struct S, of type T: a number (double), a text (std::string), an enumerated
-// value (an enum with a names table), or a nested struct with a table of its own (a section; also
-// std::optional of one and DeformationPotential, a section chosen by its "kind").
+// One field of the struct S, of type T: a number (double), an optional number (std::optional<double>:
+// written only when set, no default), a text (std::string), an enumerated value (an enum with a
+// names table), or a nested struct with a table of its own (a section; also std::optional of one
+// and DeformationPotential, a section chosen by its "kind").
 template <typename S, typename T>
 struct Field {
   using Struct = S;
@@ -134,6 +136,11 @@ struct Field {
   std::string_view description;  // one line
   std::string_view range_note;   // numbers: why the range, appended to its message ("" for none)
   TextRule text_rule = TextRule::any;
+  // Optional numbers: the fields of S that this one stands in for when set (a scene gives one or
+  // the other, never both; the writer writes this one instead), and the field it comes with ("" for
+  // none: given alone).
+  std::array<std::string_view, 2> replaces{};
+  std::string_view partner{};
 
   // The default: the struct's own in-class default.
   T fallback() const { return S{}.*member; }
@@ -144,6 +151,13 @@ constexpr Field<S, double> number_field(std::string_view name, double S::*member
                                         Range range, std::string_view description,
                                         std::string_view range_note = {}) {
   return {name, member, unit, range, description, range_note};
+}
+// An optional number in place of the fields `replaces` (see Field), given together with `partner`.
+template <typename S>
+constexpr Field<S, std::optional<double>> optional_number_field(
+    std::string_view name, std::optional<double> S::*member, std::string_view unit, Range range,
+    std::string_view description, std::array<std::string_view, 2> replaces, std::string_view partner = {}) {
+  return {name, member, unit, range, description, {}, TextRule::any, replaces, partner};
 }
 template <typename S, typename T>
 constexpr Field<S, T> value_field(std::string_view name, T S::*member, std::string_view description,
@@ -207,6 +221,16 @@ inline constexpr std::tuple kInitialStateFields{
     number_field("lambda_dot", &InitialState::lambda_dot, "1/time", kAnyNumber,
                  "rate of lambda (0 for a rigid body)"),
     number_field("mu_dot", &InitialState::mu_dot, "1/time", kAnyNumber, "rate of mu (0 for a rigid body)"),
+    optional_number_field("spin", &InitialState::spin, "mass length^2/time", kAnyNumber,
+                          "s = p_alpha = J[(lambda^2 + mu^2)(alpha_dot + C phi_dot) - 2 lambda mu beta_dot], "
+                          "instead of alpha_dot",
+                          {"alpha_dot"}),
+    optional_number_field("speed", &InitialState::speed, "length/time", kNonNegative,
+                          "v = sqrt(r_dot^2 + S^2 phi_dot^2), with heading instead of r_dot and phi_dot",
+                          {"r_dot", "phi_dot"}, "heading"),
+    optional_number_field("heading", &InitialState::heading, "rad", kAnyNumber,
+                          "angle of the velocity from d/dr towards (1/S) d/dphi, with speed",
+                          {"r_dot", "phi_dot"}, "speed"),
 };
 
 inline constexpr std::tuple kIntegratorSettingsFields{
@@ -268,6 +292,10 @@ template <typename T>
 concept Enumerated = std::is_enum_v<T> && requires {
   enum_names(std::type_identity<T>{});
 };
+
+// std::optional<double>: a number that is present or absent.
+template <typename T>
+concept OptionalNumber = std::is_same_v<T, std::optional<double>>;
 
 template <typename T>
 struct IsOptionalSection : std::false_type {};

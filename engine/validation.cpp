@@ -96,6 +96,8 @@ void check_fields(Checker& c, const std::string& path, const S& value) {
     const T& v = value.*field.member;
     if constexpr (std::is_same_v<T, double>) {
       c.number(name, v, field.range, field.range_note);
+    } else if constexpr (OptionalNumber<T>) {
+      if (v) c.number(name, *v, field.range, field.range_note);
     } else if constexpr (std::is_same_v<T, std::string>) {
       if (field.text_rule == TextRule::integrator_name && !is_integrator_name(v))
         c.add_text(name, v, "is not in the integrator catalog (see `spinfold integrators`) nor \"auto\"");

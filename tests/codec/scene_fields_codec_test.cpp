@@ -73,7 +73,7 @@ nlohmann::ordered_json schema_property(const std::string& path, std::string_view
 template <typename Field>
 typename Field::Value test_value(const Field& field) {
   using T = typename Field::Value;
-  if constexpr (std::is_same_v<T, double>) {
+  if constexpr (std::is_same_v<T, double> || OptionalNumber<T>) {
     return other_number(field);
   } else if constexpr (std::is_same_v<T, std::string>) {
     if (field.text_rule == TextRule::any) return "some text";
@@ -88,14 +88,33 @@ template <typename T>
 json as_json(const T& value) {
   if constexpr (Enumerated<T>)
     return std::string(enum_name(value));
+  else if constexpr (OptionalNumber<T>)
+    return value ? json(*value) : json(nullptr);
   else
     return value;
+}
+
+// An optional number comes with its partner (speed with heading): the partner's value in a test.
+constexpr double kPartnerValue = 0.25;
+
+// `doc` with the partner of the field at `path`, if it has one, beside it.
+template <typename Field>
+json with_partner(json doc, const std::string& path, const Field& field) {
+  if constexpr (OptionalNumber<typename Field::Value>) {
+    if (field.partner.empty()) return doc;
+    json* at = &doc;
+    const std::vector<std::string> parts = split(path);
+    for (std::size_t i = 0; i + 1 < parts.size(); ++i) at = &(*at)[parts[i]];
+    (*at)[std::string(field.partner)] = kPartnerValue;
+  }
+  return doc;
 }
 
 TEST(SceneFieldsCodec, EveryFieldIsRead) {
   for_each_scene_field([&](const std::string& path, std::string_view kind, const auto& field, auto place) {
     const auto value = test_value(field);
-    const SceneParse parsed = parse_scene(document(path, kind, value, as_json(value)));
+    const SceneParse parsed =
+        parse_scene(with_partner(document(path, kind, value, as_json(value)), path, field));
     ASSERT_TRUE(parsed.errors.empty()) << path << ": " << describe_errors(parsed.errors);
     Scene scene = *parsed.scene;
     EXPECT_EQ(place(scene), value) << path;
@@ -110,7 +129,7 @@ TEST(SceneFieldsCodec, EveryFieldWithAWrongTypeIsNamed) {
     ASSERT_FALSE(parsed.errors.empty()) << path;
     EXPECT_EQ(parsed.errors[0].field, path);
     EXPECT_EQ(parsed.errors[0].value, "[]");
-    if constexpr (std::is_same_v<T, double>) {
+    if constexpr (std::is_same_v<T, double> || OptionalNumber<T>) {
       EXPECT_EQ(parsed.errors[0].reason, "must be a number");
     } else if constexpr (std::is_same_v<T, std::string>) {
       EXPECT_EQ(parsed.errors[0].reason, "must be a string");
@@ -128,6 +147,8 @@ TEST(SceneFieldsCodec, EveryFieldIsWrittenAndReadBack) {
     const auto value = test_value(field);
     Scene scene = base_scene(value);
     place(scene) = value;
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    if constexpr (OptionalNumber<T>) testing_support::set_partner(scene, field, kPartnerValue);
     const json written = scene_to_json(scene);
     EXPECT_EQ(at_path(written, path), as_json(value)) << path;
     if (!kind.empty()) {
@@ -136,10 +157,9 @@ TEST(SceneFieldsCodec, EveryFieldIsWrittenAndReadBack) {
     const SceneParse again = parse_scene(written);
     ASSERT_TRUE(again.errors.empty()) << path << ": " << describe_errors(again.errors);
     EXPECT_EQ(scene_to_json(*again.scene), written) << path;
-    // Defaults are written too (informational text only when set).
+    // Defaults are written too (informational text only when set; an optional number is absent).
     Scene defaults;
     place(defaults);  // the field present, at its default
-    using T = typename std::remove_cvref_t<decltype(field)>::Value;
     if constexpr (std::is_same_v<T, std::string>)
       if (field.text_rule == TextRule::any) return;
     EXPECT_EQ(at_path(scene_to_json(defaults), path), as_json(field.fallback())) << path;
@@ -153,9 +173,13 @@ TEST(SceneFieldsCodec, EveryFieldIsInTheSchemaAsInItsTable) {
     const nlohmann::ordered_json p = schema_property(path, kind);
     ASSERT_FALSE(p.is_null()) << path;
     ++described;
-    if constexpr (std::is_same_v<T, double>) {
+    if constexpr (std::is_same_v<T, double> || OptionalNumber<T>) {
       EXPECT_EQ(p["type"], "number") << path;
-      EXPECT_EQ(p["default"], field.fallback()) << path;
+      if constexpr (OptionalNumber<T>) {
+        EXPECT_FALSE(p.contains("default")) << path;  // absent unless given
+      } else {
+        EXPECT_EQ(p["default"], field.fallback()) << path;
+      }
       EXPECT_EQ(p["x-unit"], std::string(field.unit)) << path;
       EXPECT_EQ(p["description"], std::string(field.description)) << path;
       const Range& r = field.range;

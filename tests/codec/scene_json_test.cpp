@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "codec/presets.h"
+#include "codec/scene_schema.h"
+#include "engine/initial_rates.h"
 
 namespace spinfold {
 namespace {
@@ -97,7 +99,20 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{R"({"initial": {"r": 3.2}})", "initial.r"},  // > πR on the unit sphere
         BadScene{R"({"surface": {"kind": "pseudosphere", "radius": 2}, "initial": {"r": 501}})", "initial.r"},
         BadScene{R"({"initial": {"phi": null}})", "initial.phi"},
-        BadScene{R"({"initial": {"spin": 1}})", "initial.spin"},
+        BadScene{R"({"initial": {"omega": 1}})", "initial.omega"},
+        // The physical alternatives to the rates (initial.spin, speed, heading).
+        BadScene{R"({"initial": {"spin": 1, "alpha_dot": 0.5}})", "initial.spin"},
+        BadScene{R"({"initial": {"speed": 1}})", "initial.heading"},
+        BadScene{R"({"initial": {"heading": 1}})", "initial.speed"},
+        BadScene{R"({"initial": {"speed": 1, "heading": 0, "phi_dot": 1}})", "initial.speed"},
+        BadScene{R"({"initial": {"speed": -1, "heading": 0}})", "initial.speed"},
+        BadScene{R"({"initial": {"spin": "1"}})", "initial.spin"},
+        BadScene{R"({"initial": {"r": 0, "speed": 1, "heading": 1}})", "initial.heading"},
+        BadScene{
+            R"({"body": {"inertia": 1e-100}, "initial": {"lambda": 1e-100, "mu": 1e-100, "spin": 1e100}})",
+            "initial.spin"},
+        BadScene{R"({"body": {"inertia": 1e-100}, "initial": {"spin": 1e100}})",
+                 "initial.spin"},  // overflows
         BadScene{R"({"body": {"model": "rigid"}, "initial": {"lambda": 1, "mu": 2}})", "initial.mu"},
         BadScene{R"({"body": {"model": "rigid"}, "initial": {"lambda_dot": 0.1}})", "initial.lambda_dot"},
         BadScene{R"({"body": {"model": "rigid"}, "potential": {"deformation": {"kind": "abc", "C": 1}}})",
@@ -124,10 +139,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{R"({"initial": {"alpha_dot": 1e101}})", "initial.alpha_dot"},
         BadScene{R"({"body": {"mass": 1e-101}})", "body.mass"},
         BadScene{R"({"surface": {"radius": 1e300}})", "surface.radius"},
-        BadScene{R"({"potential": {"deformation": {"kind": "abc", "C": -1e200}}})", "potential.deformation.C"},
+        BadScene{R"({"potential": {"deformation": {"kind": "abc", "C": -1e200}}})",
+                 "potential.deformation.C"},
         BadScene{R"({"body": {"inertia": 1e100}, "initial": {"lambda_dot": 1e100}})", "initial.lambda_dot"},
-        BadScene{R"({"surface": {"kind": "plane"}, "body": {"mass": 1e100}, "initial": {"r": 1e10, "phi_dot": 1e100}})",
-                 "initial.phi_dot"},
+        BadScene{
+            R"({"surface": {"kind": "plane"}, "body": {"mass": 1e100}, "initial": {"r": 1e10, "phi_dot": 1e100}})",
+            "initial.phi_dot"},
         BadScene{R"({"gravity": 9.81})", "gravity"}, BadScene{R"({"": 1})", R"("")"},
         BadScene{R"({"body": {"mass.x": 1}})", R"(body."mass.x")"}, BadScene{R"([1, 2, 3])", ""},
         BadScene{R"({"surface": )", ""}, BadScene{R"({"initial": {"r": 1e400}})", ""}));
@@ -147,6 +164,165 @@ TEST(SceneJson, ErrorsNameTheValueAndTheReason) {
   EXPECT_EQ(p.errors[0].value, "-3");
   EXPECT_EQ(p.errors[0].reason, "must be > 0");
   EXPECT_EQ(describe_errors(p.errors), "body.mass: must be > 0 (got -3)\n");
+}
+
+// ---- spin, speed and heading: the physical alternatives to the rates ----------------------------
+
+// The errors naming `field`.
+std::vector<FieldError> naming(const SceneParse& p, const std::string& field) {
+  std::vector<FieldError> named;
+  for (const FieldError& e : p.errors)
+    if (e.field == field) named.push_back(e);
+  return named;
+}
+
+TEST(SceneJson, SpinSpeedAndHeadingFillTheRates) {
+  const SceneParse p = parse_scene_text(R"({
+    "surface": {"kind": "sphere", "radius": 1},
+    "body": {"mass": 2, "inertia": 0.5},
+    "initial": {"r": 1, "phi": 0.5, "alpha": 0.25, "beta": -0.5, "lambda": 1.5, "mu": 0.5,
+                "speed": 0.5, "heading": 0.7, "spin": 0.3, "beta_dot": 0.1}})");
+  ASSERT_TRUE(p.errors.empty()) << describe_errors(p.errors);
+  const Scene& s = *p.scene;
+  EXPECT_NEAR(s.initial.r_dot, 0.5 * std::cos(0.7), 1e-15);
+  EXPECT_NEAR(s.initial.phi_dot, 0.5 * std::sin(0.7) / std::sin(1.0), 1e-15);
+  EXPECT_NEAR(spin_of(s), 0.3, 1e-15);
+  EXPECT_NEAR(speed_of(s), 0.5, 1e-15);
+  EXPECT_NEAR(heading_of(s), 0.7, 1e-15);
+  EXPECT_EQ(s.initial.spin, 0.3);
+  EXPECT_EQ(s.initial.speed, 0.5);
+  EXPECT_EQ(s.initial.heading, 0.7);
+}
+
+// W1 of physics.md §10 given by its spin: the rate alpha_dot = 0.4 comes back.
+TEST(SceneJson, WorkedExampleW1GivenBySpin) {
+  const SceneParse p = parse_scene_text(R"({
+    "surface": {"kind": "sphere", "radius": 1},
+    "body": {"mass": 2, "inertia": 0.5},
+    "initial": {"r": 1, "phi": 0.5, "alpha": 0.25, "beta": -0.5, "lambda": 1.5, "mu": 0.5,
+                "r_dot": 0.2, "phi_dot": -0.3, "spin": 0.22238663529944763, "beta_dot": 0.1,
+                "lambda_dot": 0.05, "mu_dot": -0.02}})");
+  ASSERT_TRUE(p.errors.empty()) << describe_errors(p.errors);
+  EXPECT_NEAR(p.scene->initial.alpha_dot, 0.4, 1e-14);
+}
+
+TEST(SceneJson, SpinSpeedAndHeadingAreWrittenBackInsteadOfTheRates) {
+  const SceneParse first = parse_scene_text(R"({
+    "surface": {"kind": "pseudosphere", "radius": 2},
+    "body": {"model": "rigid", "inertia": 0.3},
+    "initial": {"r": 1.5, "lambda": 1.2, "mu": 1.2, "spin": -0.4, "speed": 0.8, "heading": 2.5}})");
+  ASSERT_TRUE(first.errors.empty()) << describe_errors(first.errors);
+  const nlohmann::json written = scene_to_json(*first.scene);
+  const nlohmann::json& initial = written["initial"];
+  EXPECT_EQ(initial["spin"], -0.4);
+  EXPECT_EQ(initial["speed"], 0.8);
+  EXPECT_EQ(initial["heading"], 2.5);
+  for (const char* rate : {"alpha_dot", "r_dot", "phi_dot"}) EXPECT_FALSE(initial.contains(rate)) << rate;
+  EXPECT_TRUE(initial.contains("beta_dot"));  // not replaced
+
+  const SceneParse second = parse_scene(written);
+  ASSERT_TRUE(second.errors.empty()) << describe_errors(second.errors);
+  EXPECT_EQ(scene_to_json(*second.scene), written);
+  const InitialState& a = first.scene->initial;
+  const InitialState& b = second.scene->initial;
+  EXPECT_EQ(a.alpha_dot, b.alpha_dot);
+  EXPECT_EQ(a.r_dot, b.r_dot);
+  EXPECT_EQ(a.phi_dot, b.phi_dot);
+  EXPECT_EQ(a.spin, b.spin);
+  EXPECT_EQ(a.speed, b.speed);
+  EXPECT_EQ(a.heading, b.heading);
+
+  // Without them the rates are written, as before.
+  const SceneParse rates = parse_scene_text(R"({"initial": {"alpha_dot": 0.5}})");
+  ASSERT_TRUE(rates.errors.empty());
+  const nlohmann::json plain = scene_to_json(*rates.scene)["initial"];
+  EXPECT_EQ(plain["alpha_dot"], 0.5);
+  EXPECT_FALSE(plain.contains("spin"));
+  EXPECT_FALSE(plain.contains("speed"));
+  EXPECT_FALSE(plain.contains("heading"));
+}
+
+struct BothForms {
+  const char* initial;  // the initial block
+  const char* field;    // the field named
+  const char* value;    // its value as written
+  const char* reason;
+};
+
+void PrintTo(const BothForms& b, std::ostream* os) {
+  *os << b.initial;
+}
+
+class PhysicalFieldErrors : public ::testing::TestWithParam<BothForms> {};
+
+TEST_P(PhysicalFieldErrors, NameTheFieldTheValueAndTheReason) {
+  const BothForms& c = GetParam();
+  const SceneParse p = parse_scene_text(std::string(R"({"initial": )") + c.initial + "}");
+  EXPECT_FALSE(p.scene.has_value());
+  const std::vector<FieldError> named = naming(p, c.field);
+  ASSERT_FALSE(named.empty()) << describe_errors(p.errors);
+  bool found = false;
+  for (const FieldError& e : named)
+    found = found || (e.value == c.value && e.reason.find(c.reason) != std::string::npos);
+  EXPECT_TRUE(found) << describe_errors(p.errors);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Table, PhysicalFieldErrors,
+    ::testing::Values(
+        BothForms{R"({"spin": 1, "alpha_dot": 0.5})", "initial.spin", "1",
+                  "give either spin or alpha_dot, not both"},
+        BothForms{R"({"speed": 1})", "initial.heading", "null", "is missing: speed comes with heading"},
+        BothForms{R"({"heading": 0.5})", "initial.speed", "null", "is missing: heading comes with speed"},
+        BothForms{R"({"speed": 1, "heading": 0.5, "r_dot": 0.1})", "initial.heading", "0.5",
+                  "give either heading or r_dot, not both"},
+        BothForms{R"({"speed": 1, "heading": 0.5, "r_dot": 0.1})", "initial.speed", "1",
+                  "give either speed or r_dot, not both"},
+        BothForms{R"({"speed": 1, "heading": 0.5, "phi_dot": 0.1})", "initial.speed", "1",
+                  "give either speed or phi_dot, not both"},
+        BothForms{R"({"r": 0, "speed": 0.5, "heading": 1})", "initial.heading", "1",
+                  "cannot be converted at a pole"},
+        BothForms{R"({"r": 3.141592653589793, "speed": 0.5, "heading": -2})", "initial.heading", "-2",
+                  "cannot be converted at a pole"},
+        BothForms{R"({"speed": -0.5, "heading": 1})", "initial.speed", "-0.5", "must be >= 0"}));
+
+// At a pole a heading along E₁ (0 or π) is a radial start; with speed 0 any heading is.
+TEST(SceneJson, HeadingAlongE1IsAcceptedAtAPole) {
+  for (const char* initial :
+       {R"({"r": 0, "speed": 0.5, "heading": 0})", R"({"r": 0, "speed": 0.5, "heading": 3.141592653589793})",
+        R"({"r": 0, "speed": 0, "heading": 1})"}) {
+    const SceneParse p = parse_scene_text(std::string(R"({"initial": )") + initial + "}");
+    ASSERT_TRUE(p.errors.empty()) << initial << ": " << describe_errors(p.errors);
+    EXPECT_EQ(p.scene->initial.phi_dot, 0.0) << initial;
+  }
+}
+
+// The "both given" rule is per block: a merge patch can swap one form for the other by removing it.
+TEST(SceneJson, APatchSwapsSpinForAlphaDot) {
+  const SceneParse p = parse_scene_text(R"({"initial": {"spin": 0.2}})");
+  ASSERT_TRUE(p.errors.empty());
+  nlohmann::json document = scene_to_json(*p.scene);
+  nlohmann::json refused = document;
+  refused.merge_patch(nlohmann::json::parse(R"({"initial": {"alpha_dot": 1}})"));
+  EXPECT_FALSE(parse_scene(refused).scene.has_value());
+  document.merge_patch(nlohmann::json::parse(R"({"initial": {"alpha_dot": 1, "spin": null}})"));
+  const SceneParse swapped = parse_scene(document);
+  ASSERT_TRUE(swapped.errors.empty()) << describe_errors(swapped.errors);
+  EXPECT_EQ(swapped.scene->initial.alpha_dot, 1.0);
+  EXPECT_FALSE(swapped.scene->initial.spin.has_value());
+}
+
+TEST(SceneJson, SchemaDescribesTheRulesOfSpinSpeedAndHeading) {
+  const nlohmann::ordered_json initial = scene_schema()["properties"]["initial"];
+  for (const char* key : {"spin", "speed", "heading"}) {
+    EXPECT_EQ(initial["properties"][key]["type"], "number") << key;
+    EXPECT_FALSE(initial["properties"][key].contains("default")) << key;
+  }
+  EXPECT_EQ(initial["properties"]["speed"]["minimum"], 0);
+  EXPECT_EQ(initial["dependentRequired"]["speed"], nlohmann::ordered_json::array({"heading"}));
+  EXPECT_EQ(initial["dependentRequired"]["heading"], nlohmann::ordered_json::array({"speed"}));
+  EXPECT_EQ(initial["dependentSchemas"]["spin"]["not"]["anyOf"][0]["required"][0], "alpha_dot");
+  EXPECT_EQ(initial["dependentSchemas"]["speed"]["not"]["anyOf"].size(), 2u);
 }
 
 }  // namespace

@@ -19,7 +19,8 @@ void walk_fields(const std::string& path, std::string_view kind, Place place, Fn
     const std::string name = path.empty() ? std::string(field.name) : path + "." + std::string(field.name);
     const auto member = field.member;
     auto here = [place, member](Scene& s) -> T& { return place(s).*member; };
-    if constexpr (std::is_same_v<T, double> || std::is_same_v<T, std::string> || Enumerated<T>) {
+    if constexpr (std::is_same_v<T, double> || OptionalNumber<T> || std::is_same_v<T, std::string> ||
+                  Enumerated<T>) {
       fn(name, kind, field, here);
     } else if constexpr (HasFields<T>) {
       walk_fields<T>(name, kind, here, fn);
@@ -66,6 +67,25 @@ double other_number(const Field<S, double>& field) {
   const Range& r = field.range;
   if (r.has_min() && r.has_max()) return (r.min + r.max) / 2;
   return field.fallback() * 1.5 + 0.25;
+}
+// An optional number: one allowed by its range (it has no default).
+template <typename S>
+double other_number(const Field<S, std::optional<double>>& field) {
+  const Range& r = field.range;
+  if (r.has_min() && r.has_max()) return (r.min + r.max) / 2;
+  return r.has_min() ? r.min + 0.25 : 0.25;
+}
+
+// Sets the partner of an optional number (speed for heading) in `scene.initial`, the struct that
+// holds them, to `value`; nothing for a field without one.
+template <typename S>
+void set_partner(Scene& scene, const Field<S, std::optional<double>>& field, double value) {
+  static_assert(std::is_same_v<S, InitialState>, "optional numbers live in InitialState");
+  for_each_field(kInitialStateFields, [&](const auto& other) {
+    using U = typename std::remove_cvref_t<decltype(other)>::Value;
+    if constexpr (OptionalNumber<U>)
+      if (!field.partner.empty() && other.name == field.partner) scene.initial.*other.member = value;
+  });
 }
 
 }  // namespace spinfold::testing_support

@@ -47,9 +47,10 @@ TEST(SceneFields, EveryTableNamesEachFieldOnceAndDescribesIt) {
     EXPECT_FALSE(field.description.empty()) << path;
     ++count;
   });
-  // surface 2, body 3, radial 1, abc 3, polar 3, initial 12, integrator 3, name, description,
-  // on_degenerate. A field added to a struct of engine/scene.h goes into its table and this count.
-  EXPECT_EQ(count, 30);
+  // surface 2, body 3, radial 1, abc 3, polar 3, initial 12 + 3 optional (spin, speed, heading),
+  // integrator 3, name, description, on_degenerate. A field added to a struct of engine/scene.h
+  // goes into its table and this count.
+  EXPECT_EQ(count, 33);
 }
 
 TEST(SceneFields, EveryDefaultIsAllowedByItsOwnRange) {
@@ -60,6 +61,11 @@ TEST(SceneFields, EveryDefaultIsAllowedByItsOwnRange) {
       EXPECT_TRUE(field.range.contains(field.fallback())) << path;
       EXPECT_TRUE(field.range.contains(other_number(field))) << path;
       EXPECT_NE(other_number(field), field.fallback()) << path;
+    } else if constexpr (OptionalNumber<T>) {
+      EXPECT_FALSE(field.unit.empty()) << path;
+      EXPECT_FALSE(field.fallback().has_value()) << path;  // absent unless given
+      EXPECT_TRUE(field.range.contains(other_number(field))) << path;
+      EXPECT_FALSE(field.replaces[0].empty()) << path << ": stands in for no field";
     } else if constexpr (Enumerated<T>) {
       EXPECT_FALSE(enum_name(field.fallback()).empty()) << path;
     }
@@ -97,7 +103,7 @@ TEST(SceneFields, EveryFieldIsValidatedAgainstItsTable) {
       place(s) = value;
       return validate_scene(s);
     };
-    if constexpr (std::is_same_v<T, double>) {
+    if constexpr (std::is_same_v<T, double> || OptionalNumber<T>) {
       EXPECT_TRUE(errors_for(with(other_number(field)), path).empty()) << path;
       EXPECT_TRUE(has_reason(with(nan), path, "must be a finite number")) << path;
       EXPECT_TRUE(has_reason(with(-std::numeric_limits<double>::infinity()), path, "must be a finite number"))
@@ -208,7 +214,7 @@ TEST(SceneFields, MessagesPrintTinyAndHugeNumbersShortest) {
   // Every value of every error of every field: shortest, never fixed-point noise.
   for_each_scene_field([&](const std::string& path, std::string_view, const auto& field, auto place) {
     using T = typename std::remove_cvref_t<decltype(field)>::Value;
-    if constexpr (std::is_same_v<T, double>) {
+    if constexpr (std::is_same_v<T, double> || OptionalNumber<T>) {
       for (const double v : {-3e-300, 1e-200, -7e250}) {
         Scene s = base_scene();
         place(s) = v;

@@ -165,6 +165,7 @@ TEST_F(Api, SessionLifecycle) {
 // max_steps attempts (100,000 here), keeps the progress and says so; the next one continues.
 TEST_F(Api, AdvanceStopsAtTheStepLimitAndKeepsTheProgress) {
   auto c = client();
+  c.set_read_timeout(180, 0);  // 10⁵ stiff steps a request: seconds under the sanitizers on 2 busy cores
   const std::string id = create(R"({"potential": {"deformation": {"kind": "abc", "C": 1e8}},
       "initial": {"lambda": 1.3, "mu": 0.7}, "integrator": {"name": "dop853", "tolerance": 1e-14}})");
   auto first = c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 1000})", "application/json");

@@ -1,0 +1,99 @@
+#include "engine/initial_rates.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "engine/number_text.h"
+#include "engine/surface.h"
+
+namespace spinfold {
+
+namespace {
+
+bool finite(double v) {
+  return std::isfinite(v);
+}
+
+// The chart's poles, where S(r) = 0 and φ, E₂ are undefined: r = 0, and r = πR on the sphere
+// (where R sin(r/R) rounds to ~1e-16 R, not 0).
+bool at_pole(const Surface& surface, double r) {
+  return r == 0.0 || (surface.kind == SurfaceKind::sphere && r == std::numbers::pi * surface.radius);
+}
+
+// sin h is zero up to its rounding at a multiple of π (sin(π) = 1.2e-16 in double).
+bool along_E1(double heading) {
+  const double eps = std::numeric_limits<double>::epsilon();
+  return std::abs(std::sin(heading)) <= 4.0 * eps * std::max(1.0, std::abs(heading));
+}
+
+}  // namespace
+
+std::vector<FieldError> resolve_initial_rates(Scene& scene) {
+  std::vector<FieldError> errors;
+  const InitialState& q = scene.initial;
+  double r_dot = q.r_dot, phi_dot = q.phi_dot, alpha_dot = q.alpha_dot;
+
+  // Speed and heading: V = v(cos h E₁ + sin h E₂) = ṙ E₁ + Sφ̇ E₂ (physics.md §1, §3).
+  if (q.speed.has_value() != q.heading.has_value()) {
+    if (q.speed)
+      errors.push_back({"initial.heading", "null",
+                        "is missing: speed comes with heading (the angle of the velocity from E1 = d/dr "
+                        "towards E2, rad)"});
+    else
+      errors.push_back({"initial.speed", "null", "is missing: heading comes with speed (|velocity| >= 0)"});
+  } else if (q.speed && finite(*q.speed) && finite(*q.heading) && finite(q.r)) {
+    const double v = *q.speed, h = *q.heading;
+    const bool pole = at_pole(scene.surface, q.r);
+    if (pole && v != 0.0 && !along_E1(h)) {
+      errors.push_back(
+          {"initial.heading", shortest(h),
+           "cannot be converted at a pole (S(r) = 0, where E2 = (1/S) d/dphi is undefined): with "
+           "speed > 0 give heading 0 or pi, or r_dot and phi_dot, or start away from the pole"});
+    } else {
+      r_dot = v * std::cos(h);
+      phi_dot = pole ? 0.0 : v * std::sin(h) / polar_S(scene.surface, q.r);
+      if (!finite(r_dot) || !finite(phi_dot))
+        errors.push_back({"initial.speed", shortest(v),
+                          "gives a rate r_dot or phi_dot that is not a finite number: use a smaller speed"});
+    }
+  }
+
+  // Spin: s = J[(λ² + μ²)(α̇ + Cφ̇) − 2λμβ̇] solved for α̇ (physics.md §3), with the φ̇ above.
+  if (q.spin && finite(*q.spin) && finite(scene.body.inertia) && scene.body.inertia > 0.0 &&
+      finite(q.lambda) && finite(q.mu) && finite(q.beta_dot) && finite(phi_dot) && finite(q.r)) {
+    const double J = scene.body.inertia, l = q.lambda, m = q.mu;
+    const double C = polar_C(scene.surface, q.r);
+    alpha_dot = (*q.spin / J + 2.0 * l * m * q.beta_dot) / (l * l + m * m) - C * phi_dot;
+    if (!finite(alpha_dot))
+      errors.push_back(
+          {"initial.spin", shortest(*q.spin),
+           "gives a rate alpha_dot that is not a finite number: use a spin of smaller magnitude"});
+  }
+
+  if (!errors.empty()) return errors;
+  scene.initial.r_dot = r_dot;
+  scene.initial.phi_dot = phi_dot;
+  scene.initial.alpha_dot = alpha_dot;
+  return errors;
+}
+
+double spin_of(const Scene& scene) {
+  const InitialState& q = scene.initial;
+  const double chi = q.alpha_dot + polar_C(scene.surface, q.r) * q.phi_dot;  // χ = α̇ + Cφ̇
+  return scene.body.inertia *
+         ((q.lambda * q.lambda + q.mu * q.mu) * chi - 2.0 * q.lambda * q.mu * q.beta_dot);
+}
+
+double speed_of(const Scene& scene) {
+  const InitialState& q = scene.initial;
+  return std::hypot(q.r_dot, polar_S(scene.surface, q.r) * q.phi_dot);
+}
+
+double heading_of(const Scene& scene) {
+  const InitialState& q = scene.initial;
+  return std::atan2(polar_S(scene.surface, q.r) * q.phi_dot, q.r_dot);
+}
+
+}  // namespace spinfold
