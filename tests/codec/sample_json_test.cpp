@@ -41,7 +41,17 @@ TEST(SampleJson, SampleAndHudComeFromTheSameReadout) {
     advance_to(run, 0.9);
     const Readout r = readout(run);
     const nlohmann::ordered_json sample = sample_to_json(run, -1.0);
-    EXPECT_EQ(sample, sample_to_json(r, events_after(run, -1.0))) << preset.name;
+    nlohmann::ordered_json main_body = sample;
+    main_body.erase("companions");
+    EXPECT_EQ(main_body, sample_to_json(r, events_after(run, -1.0))) << preset.name;
+    // Each companion's sample is its own run's read-out, with its label first.
+    for (std::size_t i = 0; i < run.companions.size(); ++i) {
+      nlohmann::ordered_json companion = sample["companions"][i];
+      EXPECT_EQ(companion["label"], companion_label(run.scene, i));
+      companion.erase("label");
+      EXPECT_EQ(companion, sample_to_json(readout(run.companions[i]), events_after(run.companions[i], -1.0)));
+    }
+    EXPECT_EQ(sample.contains("companions"), !run.companions.empty()) << preset.name;
 
     // The sample's numbers are the read-out's, bit for bit.
     EXPECT_EQ(sample["t"].get<double>(), r.t);
