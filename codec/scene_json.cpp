@@ -540,6 +540,13 @@ json scene_to_json(const Scene& scene) {
   return j;
 }
 
+void merge_scene_patch(json& document, const json& patch) {
+  if (patch.is_object() && document.is_object())
+    if (const auto initial = patch.find("initial"); initial != patch.end() && document.contains("initial"))
+      merge_initial(document["initial"], *initial);
+  document.merge_patch(patch);
+}
+
 std::string describe_errors(const std::vector<FieldError>& errors) {
   std::ostringstream out;
   for (const FieldError& e : errors) {

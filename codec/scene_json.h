@@ -27,6 +27,11 @@ SceneParse parse_scene(const nlohmann::json& document);
 
 nlohmann::json scene_to_json(const Scene& scene);
 
+// Applies a JSON merge patch (RFC 7396) to a scene document, except that a patch of `initial` that
+// sets one form of a degree of freedom drops the other form already there (spin ↔ alpha_dot;
+// speed, heading ↔ r_dot, phi_dot): the patch's value wins instead of clashing with it.
+void merge_scene_patch(nlohmann::json& document, const nlohmann::json& patch);
+
 // "field: reason (value)" lines, one per error.
 std::string describe_errors(const std::vector<FieldError>& errors);
 

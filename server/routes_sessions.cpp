@@ -7,6 +7,7 @@
 #include "codec/presets.h"
 #include "codec/sample_json.h"
 #include "codec/scene_json.h"
+#include "codec/trajectory_csv.h"
 #include "engine/number_text.h"
 #include "server/context.h"
 #include "server/problem.h"
@@ -237,16 +238,7 @@ void get_trajectory(ServerContext& server, const Call& call, httplib::Response& 
   const auto s = find_session(server, call.id);
   const std::lock_guard lock(s->mutex);
   if (*call.query.text("format") == "json") return send_json(res, ordered_json(s->trajectory));
-  std::ostringstream csv;
-  csv.precision(17);
-  csv << "t,r,phi,lambda,mu,det_L,energy,energy_error,X0,X1,X2,status\n";
-  const auto cell = [](const ordered_json& v) { return v.is_null() ? std::string() : v.dump(); };
-  for (const ordered_json& row : s->trajectory)
-    csv << cell(row["t"]) << "," << cell(row["r"]) << "," << cell(row["phi"]) << "," << cell(row["lambda"])
-        << "," << cell(row["mu"]) << "," << cell(row["det_L"]) << "," << cell(row["energy"]) << ","
-        << cell(row["energy_error"]) << "," << cell(row["X"][0]) << "," << cell(row["X"][1]) << ","
-        << cell(row["X"][2]) << "," << row["status"].get<std::string>() << "\n";
-  res.body = csv.str();
+  res.body = trajectory_csv(s->trajectory);
   res.set_header("Content-Type", "text/csv");
 }
 
@@ -364,8 +356,9 @@ std::vector<Route> session_routes(const Limits& limits) {
                   .type = ParamType::enumeration,
                   .values = {"json", "csv"},
                   .default_value = "json",
-                  .description = "json: an array of samples; csv: t, r, phi, lambda, mu, det_L, energy, "
-                                 "energy_error, X, status"}},
+                  .description = "json: an array of samples (companions nested in each); csv: t, then "
+                                 "per body r, phi, lambda, mu, det_L, energy, energy_error, X, status "
+                                 "(companions' columns named LABEL.column)"}},
        .responses = {{200, "application/json or text/csv"}}},
   };
 }

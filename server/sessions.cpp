@@ -16,8 +16,7 @@ using nlohmann::ordered_json;
 namespace {
 
 void record_sample(Session& session) {
-  session.trajectory.push_back(
-      sample_to_json(session.run, session.reported_until));
+  session.trajectory.push_back(sample_to_json(session.run, session.reported_until));
   session.reported_until = session.run.state.t;
   if (session.trajectory.size() > kMaxTrajectory)
     session.trajectory.erase(session.trajectory.begin(), session.trajectory.begin() + kMaxTrajectory / 2);
@@ -46,6 +45,9 @@ bool advance(Session& session, double t, std::uint64_t max_attempts) {
 
 std::string restart_reason(const json& patch, const Scene& before, const Scene& after) {
   if (patch.contains("initial")) return "the initial state changed: the run starts over at t = 0";
+  if (patch.contains("companions") || patch.contains("vary") ||
+      before.companions.size() != after.companions.size())
+    return "the companions changed: the run starts over at t = 0";
   if (before.surface.kind != after.surface.kind)
     return "the surface changed kind: the run starts over at t = 0 on the new surface";
   return "";
@@ -55,7 +57,7 @@ ChangeOutcome change(Session& session, const json& patch) {
   ChangeOutcome out;
   json document = scene_to_json(session.run.scene);
   json merged = document;
-  merged.merge_patch(patch);
+  merge_scene_patch(merged, patch);
   const SceneParse parsed = parse_scene(merged);
   if (!parsed.scene) {
     out.errors = parsed.errors;
@@ -121,7 +123,7 @@ Rebuild rebuild(Session& session, const Scene& scene, const json& timeline, doub
       return refuse(at + ".patch", entry.value("patch", json()),
                     "must be a JSON merge patch of the scene (an object)");
     json merged = current;
-    merged.merge_patch(*patch);
+    merge_scene_patch(merged, *patch);
     SceneParse parsed = parse_scene(merged);
     if (!parsed.scene) {
       for (FieldError& e : parsed.errors) e.field = at + ".patch." + e.field;
