@@ -1,6 +1,7 @@
 // spinfold-bench: benchmarks with their own command, never part of the test suite.
 #include <CLI/CLI.hpp>
 
+#include "bench/companions_bench.h"
 #include "bench/render_bench.h"
 #include "bench/share_link_bench.h"
 #include "bench/soak.h"
@@ -41,7 +42,16 @@ int main(int argc, char** argv) {
   soak_cmd->add_option("--pid", soak.server_pid, "With --url: the server process whose memory to report");
   soak_cmd->add_option("--data-dir", soak.data_dir,
                        "The in-process server's session store ('': memory only)");
+  int companions_repeats = 5;
+  double companions_until = 100.0;
+  CLI::App* companions_cmd =
+      app.add_subcommand("companions", "A run with 8 companions against the main body alone (engine)");
+  companions_cmd->add_option("--repeats", companions_repeats, "Measurements per case (median)")
+      ->capture_default_str();
+  companions_cmd->add_option("--until", companions_until, "Simulated time")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  if (companions_cmd->parsed())
+    return spinfold::bench::run_companions_bench(companions_repeats, companions_until);
   if (soak_cmd->parsed()) return spinfold::bench::run_soak(soak);
   if (share_cmd->parsed()) return spinfold::bench::run_share_link_bench(share_repeats, share_until);
   if (render_cmd->parsed()) return spinfold::bench::run_render_bench(render_frames);
