@@ -102,7 +102,42 @@ json scene_schema() {
       {"description", "An affinely-rigid body on a surface of constant curvature (docs/physics.md)."},
   };
   const json top = section<Scene>();
-  for (const auto& [key, value] : top.items()) schema[key] = value;
+  for (auto it = top.begin(); it != top.end(); ++it) schema[it.key()] = it.value();
+  // Companions (codec/scene_json.h): merge patches over the main body's blocks.
+  const json& main = schema["properties"];
+  json deformation = main["potential"]["properties"]["deformation"];
+  deformation["oneOf"].push_back({{"type", "null"}});
+  json companion = object(
+      {{"label", {{"type", "string"}, {"description", "legend text (default: body N)"}}},
+       {"color",
+        {{"description", "\"#rrggbb\" or [r, g, b] in [0, 1] (default: the renderer's palette)"},
+         {"oneOf",
+          {{{"type", "string"}, {"pattern", "^#[0-9a-fA-F]{6}$"}},
+           {{"type", "array"},
+            {"items", {{"type", "number"}, {"minimum", 0}, {"maximum", 1}}},
+            {"minItems", 3},
+            {"maxItems", 3}}}}}},
+       {"geodesic",
+        {{"type", "boolean"}, {"description", "the point particle from the same start (rigid, zero spin)"}}},
+       {"body", main["body"]},
+       {"initial", main["initial"]},
+       {"integrator", main["integrator"]},
+       {"potential", object({{"deformation", deformation}})}});
+  schema["properties"]["companions"] = {
+      {"type", "array"},
+      {"maxItems", kMaxCompanions},
+      {"description",
+       "more bodies on the same surface: JSON merge patches over the main body's body, "
+       "potential.deformation, initial and integrator blocks"},
+      {"items", companion}};
+  schema["properties"]["vary"] = object(
+      {{"field",
+        {{"type", "string"},
+         {"description", "a numeric field of body, initial or potential.deformation, e.g. initial.spin"}}},
+       {"values",
+        {{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 1}, {"maxItems", kMaxCompanions}}}},
+      {"field", "values"});
+  schema["properties"]["vary"]["description"] = "a fan: one companion per value of the field";
   return schema;
 }
 
