@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "bench/timing.h"
 #include "codec/presets.h"
 #include "codec/scene_json.h"
 #include "engine/trail.h"
@@ -12,19 +13,6 @@
 namespace spinfold::bench {
 
 namespace {
-
-template <typename F>
-double median_ms(int repeats, F&& f) {
-  std::vector<double> times;
-  for (int i = 0; i < repeats; ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    f();
-    times.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-  }
-  std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
-}
 
 // The spin fan preset widened to 8 companions (spins 0.25 … 2), with every body on `integrator`.
 Scene fan_of_eight(const std::string& integrator) {

@@ -123,7 +123,8 @@ int run_render_bench(int frames) {
   // that the machine's drift falls on all of them alike; also with a long trail, as a played
   // server session accumulates.
   std::printf(
-      "\n| size | trail points | all layers ms | no trail ms | no HUD ms | no trail, no HUD ms | trail ms | HUD ms "
+      "\n| size | trail points | all layers ms | no trail ms | no HUD ms | no trail, no HUD ms | trail ms | "
+      "HUD ms "
       "| all / no trail, no HUD |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   const render::Snapshot long_trail = bench_snapshot(10001);
   const unsigned without_trail = render::kAllLayers & ~unsigned{render::kTrail};

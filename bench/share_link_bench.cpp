@@ -7,6 +7,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/timing.h"
 #include "codec/scene_json.h"
 #include "engine/timeline.h"
 #include "server/api.h"
@@ -19,23 +20,6 @@ namespace spinfold::bench {
 namespace {
 
 using nlohmann::json;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
-template <typename F>
-double median_ms(int repeats, F&& f) {
-  std::vector<double> times;
-  for (int i = 0; i < repeats; ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    f();
-    times.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-  }
-  return median(times);
-}
 
 // A deforming, spinning affine body on the sphere; `integrator` picks dop853 or the closed form
 // (abc potential, no radial term: `exact` applies).

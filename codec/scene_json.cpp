@@ -45,12 +45,11 @@ class Reader {
 
   void optional_number(const json& obj, const std::string& path, std::string_view key,
                        std::optional<double>& out) {
-    const auto it = obj.find(key);
-    if (it == obj.end()) return;
-    if (it->is_number())
-      out = it->get<double>();
-    else
-      error(join(path, key), *it, "must be a number");
+    if (!obj.contains(key)) return;
+    double value = 0.0;
+    const std::size_t before = count();
+    number(obj, path, key, value);
+    if (count() == before) out = value;
   }
 
   void text(const json& obj, const std::string& path, std::string_view key, std::string& out) {

@@ -300,14 +300,20 @@ TEST_F(Hardening, SecurityHeadersOnTheUiAndItsFiles) {
 
 // ---- Idle and slow connections.
 
-// A connection that has sent the start of a request line and goes on sending it a byte at a time.
-int trickling_connection(int port) {
+// A TCP connection to the server on 127.0.0.1.
+int connect_loopback(int port) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
   sockaddr_in address{};
   address.sin_family = AF_INET;
   address.sin_port = htons(static_cast<std::uint16_t>(port));
   address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   EXPECT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+  return fd;
+}
+
+// A connection that has sent the start of a request line and goes on sending it a byte at a time.
+int trickling_connection(int port) {
+  const int fd = connect_loopback(port);
   EXPECT_GT(::send(fd, "GET /api/v1/hea", 15, MSG_NOSIGNAL), 0);
   return fd;
 }
@@ -376,12 +382,7 @@ struct RawAnswer {
 // Sends `head`, then `repeat` copies of `chunk` (stopping when the server closes), and reads the
 // answer.
 RawAnswer raw_request(int port, const std::string& head, const std::string& chunk = "", int repeat = 0) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(static_cast<std::uint16_t>(port));
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  EXPECT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+  const int fd = connect_loopback(port);
   const timeval timeout{10, 0};
   ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
   const auto send_all = [fd](const std::string& data) {
