@@ -35,12 +35,11 @@ render::Snapshot bench_snapshot(int trail_points = 513) {
   scene.potential.deformation = AbcPotential{0.0, 0.0, 0.5};
   scene.initial = {1.2, 0.0, 0.2, 0.0, 1.3, 0.7, 0.0, 0.3, 0.8, 0.0, 0.0, 0.0};
   Simulation run = start_simulation(scene);
-  std::vector<Vec3> trail;
-  for (int k = 0; k < trail_points; ++k) {
-    advance_to(run, 20.0 * k / 512);
-    trail.push_back(global_embedding(scene, run.state).X);
-  }
-  return render::make_snapshot(run, std::move(trail));
+  Trail trail;
+  trail.spacing = 20.0 / 512;
+  trail.max_points = static_cast<std::size_t>(trail_points);
+  advance_recording(run, trail, 20.0 * (trail_points - 1) / 512);
+  return render::make_snapshot(run, trail, -1.0);
 }
 
 }  // namespace
@@ -123,7 +122,8 @@ int run_render_bench(int frames) {
   // that the machine's drift falls on all of them alike; also with a long trail, as a played
   // server session accumulates.
   std::printf(
-      "\n| size | trail points | all layers ms | no trail ms | no HUD ms | no trail, no HUD ms | trail ms | HUD ms "
+      "\n| size | trail points | all layers ms | no trail ms | no HUD ms | no trail, no HUD ms | trail ms | "
+      "HUD ms "
       "| all / no trail, no HUD |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   const render::Snapshot long_trail = bench_snapshot(10001);
   const unsigned without_trail = render::kAllLayers & ~unsigned{render::kTrail};
@@ -150,8 +150,8 @@ int run_render_bench(int frames) {
     const double all = median(total[0]), no_trail = median(total[1]), no_hud = median(total[2]),
                  neither = median(total[3]);
     std::printf("| %dx%d | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f× |\n", size.w, size.h,
-                trail_snapshot->trail.size(), all, no_trail, no_hud, neither, all - no_trail, all - no_hud,
-                all / neither);
+                trail_snapshot->bodies.front().trail.size(), all, no_trail, no_hud, neither, all - no_trail,
+                all - no_hud, all / neither);
   }
   return 0;
 }
