@@ -175,11 +175,11 @@ int render_frame(const RenderOptions& opt) {
   Trail trail;  // every body's, companions' included
   const double span = std::min(opt.t, opt.trail.value_or(opt.t));
   if (view.layers & render::kTrail && span > 0.0) {
-    // The trail is recorded only when it is drawn: 512 samples over its time span, taken at
-    // k·span/512 from t = 0 (the samples before the span are kept, up to 2^18, then thinned).
-    trail.spacing = span / 512;
-    trail.max_points =
-        static_cast<std::size_t>(std::clamp(std::ceil(opt.t / trail.spacing) + 2.0, 8192.0, 262144.0));
+    // The trail is recorded only when it is drawn, every body's at k·spacing from t = 0: 512
+    // samples over its span, fewer when the span is under 1/128 of the run (at most 2^16 samples
+    // in all, so that a short span late in a long run does not stop the run millions of times).
+    trail.spacing = std::max(span / 512, opt.t / 65536);
+    trail.max_points = 65536 + 2;
     advance_recording(run, trail, opt.t);
   }
   advance_to(run, opt.t);
