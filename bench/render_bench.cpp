@@ -5,9 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <glm/glm.hpp>
+#include <string>
 #include <vector>
 
 #include "bench/bare_render_loop.h"
+#include "codec/scene_json.h"
 #include "engine/chart.h"
 #include "engine/simulation.h"
 #include "render/png_encoder.h"
@@ -35,12 +37,38 @@ render::Snapshot bench_snapshot(int trail_points = 513) {
   scene.potential.deformation = AbcPotential{0.0, 0.0, 0.5};
   scene.initial = {1.2, 0.0, 0.2, 0.0, 1.3, 0.7, 0.0, 0.3, 0.8, 0.0, 0.0, 0.0};
   Simulation run = start_simulation(scene);
-  std::vector<Vec3> trail;
-  for (int k = 0; k < trail_points; ++k) {
-    advance_to(run, 20.0 * k / 512);
-    trail.push_back(global_embedding(scene, run.state).X);
+  Trail trail;
+  trail.spacing = 20.0 / 512;
+  trail.max_points = static_cast<std::size_t>(trail_points);
+  advance_recording(run, trail, 20.0 * (trail_points - 1) / 512);
+  return render::make_snapshot(run, trail, -1.0);
+}
+
+// The spin fan of spin_fan_sphere with `companions` companions (spins 0.25, 0.5, …), run to t = 20
+// with every body's trail sampled 512 times.
+struct FanRun {
+  Simulation run;
+  Trail trail;
+};
+FanRun fan_run(int companions) {
+  std::string values;
+  for (int i = 1; i <= companions; ++i) {
+    if (i > 1) values += ',';
+    values += std::to_string(0.25 * i);
   }
-  return render::make_snapshot(run, std::move(trail));
+  std::string text = R"({"surface": {"kind": "sphere", "radius": 1.0},
+    "body": {"mass": 1.0, "inertia": 0.5, "model": "rigid"},
+    "initial": {"r": 1.0, "lambda": 1.0, "mu": 1.0, "speed": 0.5, "heading": 1.5707963267948966, "spin": 0.0})";
+  if (companions > 0) {
+    text += R"(, "vary": {"field": "initial.spin", "values": [)";
+    text += values;
+    text += "]}";
+  }
+  text += '}';
+  FanRun fan{start_simulation(*parse_scene_text(text).scene), Trail{}};
+  fan.trail.spacing = 20.0 / 512;
+  advance_recording(fan.run, fan.trail, 20.0);
+  return fan;
 }
 
 }  // namespace
@@ -151,8 +179,45 @@ int run_render_bench(int frames) {
     const double all = median(total[0]), no_trail = median(total[1]), no_hud = median(total[2]),
                  neither = median(total[3]);
     std::printf("| %dx%d | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f× |\n", size.w, size.h,
-                trail_snapshot->trail.size(), all, no_trail, no_hud, neither, all - no_trail, all - no_hud,
-                all / neither);
+                trail_snapshot->bodies.front().trail.size(), all, no_trail, no_hud, neither, all - no_trail,
+                all - no_hud, all / neither);
+  }
+  // What companions cost: one body against 8 companions (the most a scene may have), all layers,
+  // interleaved as above. Building the snapshot is part of a frame (readouts, trails copied).
+  std::printf(
+      "\n| size | bodies | snapshot ms | build ms | render ms | encode ms | frame ms |\n| --- | --- | --- | "
+      "--- | "
+      "--- | --- | --- |\n");
+  for (const Size& size : {sizes[0], sizes[1]}) {
+    std::vector<double> snap[2], build[2], draw[2], encode[2];
+    const FanRun fans[2] = {fan_run(0), fan_run(8)};
+    render::Snapshot snapshots[2];
+    for (int f = 0; f < frames + 2; ++f)
+      for (int k = 0; k < 2; ++k) {
+        render::ViewOptions view;
+        view.width = size.w;
+        view.height = size.h;
+        auto t = std::chrono::steady_clock::now();
+        snapshots[k] = render::make_snapshot(fans[k].run, fans[k].trail, -1.0);
+        const double sn = ms_since(t);
+        render::aim_camera_at_body(view, snapshots[k]);
+        t = std::chrono::steady_clock::now();
+        const render::FrameScene scene = render::build_scene(snapshots[k], view);
+        const double b = ms_since(t);
+        t = std::chrono::steady_clock::now();
+        const std::uint8_t* rgba = renderer.render_rgba(scene, view.width, view.height);
+        const double d = ms_since(t);
+        t = std::chrono::steady_clock::now();
+        render::encode_png(rgba, view.width, view.height);
+        const double e = ms_since(t);
+        if (f >= 2)
+          snap[k].push_back(sn), build[k].push_back(b), draw[k].push_back(d), encode[k].push_back(e);
+      }
+    for (int k = 0; k < 2; ++k)
+      std::printf("| %dx%d | %zu | %.2f | %.2f | %.2f | %.2f | %.2f |\n", size.w, size.h,
+                  snapshots[k].bodies.size(), median(snap[k]), median(build[k]), median(draw[k]),
+                  median(encode[k]),
+                  median(snap[k]) + median(build[k]) + median(draw[k]) + median(encode[k]));
   }
   return 0;
 }

@@ -172,19 +172,18 @@ int render_frame(const RenderOptions& opt) {
   render::ViewOptions view = view_options(opt, scene);
 
   Simulation run = start_simulation(scene);
-  std::vector<Vec3> trail;
-  if (view.layers & render::kTrail) {
-    // The trail is recorded only when it is drawn: up to 512 positions over its time span.
-    const double span = std::min(opt.t, opt.trail.value_or(opt.t)), start = opt.t - span;
-    if (start > 0.0) advance_to(run, start);
-    const int samples = span > 0.0 ? 512 : 0;
-    for (int k = 0; k <= samples && run.state.status == Status::ok; ++k) {
-      advance_to(run, start + span * k / std::max(samples, 1));
-      trail.push_back(global_embedding(scene, run.state).X);
-    }
+  Trail trail;  // every body's, companions' included
+  const double span = std::min(opt.t, opt.trail.value_or(opt.t));
+  if (view.layers & render::kTrail && span > 0.0) {
+    // The trail is recorded only when it is drawn, every body's at k·spacing from t = 0: 512
+    // samples over its span, fewer when the span is under 1/128 of the run (at most 2^16 samples
+    // in all, so that a short span late in a long run does not stop the run millions of times).
+    trail.spacing = std::max(span / 512, opt.t / 65536);
+    trail.max_points = 65536 + 2;
+    advance_recording(run, trail, opt.t);
   }
   advance_to(run, opt.t);
-  const render::Snapshot snapshot = render::make_snapshot(run, std::move(trail));
+  const render::Snapshot snapshot = render::make_snapshot(run, trail, span);
   if (opt.camera.empty()) render::aim_camera_at_body(view, snapshot);
   render::Renderer renderer;
   const std::vector<std::uint8_t> png = renderer.render_png(snapshot, view);

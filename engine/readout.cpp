@@ -56,4 +56,11 @@ std::vector<std::string> readout_lines(const Scene& scene, const Readout& readou
   };
 }
 
+std::string companion_readout_line(std::string_view label, const Readout& readout) {
+  std::string line =
+      std::string(label) + format(": spin = %.4f  energy error = %.2e", readout.spin, readout.energy_error);
+  if (readout.status != Status::ok) line += "  [stopped: " + std::string(readout.status_name) + "]";
+  return line;
+}
+
 }  // namespace spinfold

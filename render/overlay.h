@@ -1,9 +1,11 @@
-// The HUD: text drawn with Dear ImGui's OpenGL 3 backend into the same frame. Costs nothing when
-// the HUD layer is off (no ImGui frame is started).
+// The HUD and the legend: text drawn with Dear ImGui's OpenGL 3 backend into the same frame. Costs
+// nothing when neither is shown (no ImGui frame is started).
 #pragma once
 
 #include <string>
 #include <vector>
+
+#include "render/scene_builder.h"
 
 namespace spinfold::render {
 
@@ -15,8 +17,10 @@ class HudOverlay {
   HudOverlay(const HudOverlay&) = delete;
   HudOverlay& operator=(const HudOverlay&) = delete;
 
-  // Draws the lines in a box at the top-left corner; deterministic (one pass, fixed sizes).
-  void draw(const std::vector<std::string>& lines, int width, int height);
+  // Draws the lines in a box at the top-left corner and the legend (when not empty) in a box at the
+  // top-right corner; deterministic (one pass, fixed sizes).
+  void draw(const std::vector<std::string>& lines, const std::vector<LegendEntry>& legend, int width,
+            int height);
 
  private:
   void* context_ = nullptr;  // ImGuiContext

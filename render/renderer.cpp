@@ -18,9 +18,9 @@ Renderer::~Renderer() {
 const std::uint8_t* Renderer::render_rgba(const FrameScene& scene, int width, int height) {
   context_.make_current(width, height);
   gl_->draw(scene, width, height);
-  if (!scene.hud_lines.empty()) {
+  if (!scene.hud_lines.empty() || !scene.legend.empty()) {
     if (!hud_) hud_ = std::make_unique<HudOverlay>();
-    hud_->draw(scene.hud_lines, width, height);
+    hud_->draw(scene.hud_lines, scene.legend, width, height);
   }
   gl_->finish();
   return context_.pixels();

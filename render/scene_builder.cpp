@@ -14,10 +14,10 @@ constexpr double kPi = std::numbers::pi;
 
 // Colours of the layers.
 const glm::vec4 kGridColor{0.45f, 0.52f, 0.62f, 1.0f};
-const glm::vec4 kEllipseFill{0.96f, 0.55f, 0.12f, 0.55f};
-const glm::vec4 kEllipseLine{0.70f, 0.30f, 0.02f, 1.0f};
+constexpr float kFillAlpha = 0.55f;
 const glm::vec4 kArrowColors[2] = {{0.85f, 0.10f, 0.10f, 1.0f}, {0.10f, 0.60f, 0.15f, 1.0f}};
-const glm::vec4 kTrailColor{0.35f, 0.20f, 0.75f, 1.0f};
+// The geodesic companion's trail: dashes and gaps of these lengths [world units, radii].
+constexpr double kDash = 0.045, kGap = 0.03;
 
 // Overlays sit this far (in radii) above the 3-D surfaces so that the depth test keeps them.
 constexpr double kLift = 0.004;
@@ -33,14 +33,25 @@ struct FrameVector {
   Vec3 v;
   double length;
 };
-FrameVector frame_vector(const Snapshot& s, double a, double b) {
+FrameVector frame_vector(const BodySnapshot& s, double a, double b) {
   const double q = s.gram(0, 0) * a * a + 2.0 * s.gram(0, 1) * a * b + s.gram(1, 1) * b * b;
   return {a * s.e[0] + b * s.e[1], std::sqrt(std::max(0.0, q))};
 }
 
-Vec3 exp_frame(const Snapshot& s, double a, double b) {
+Vec3 exp_frame(const Surface& surface, const BodySnapshot& s, double a, double b) {
   const FrameVector f = frame_vector(s, a, b);
-  return exponential_map(s.surface, s.X, f.v, f.length);
+  return exponential_map(surface, s.X, f.v, f.length);
+}
+
+glm::vec4 rgba(const std::array<float, 3>& c, float alpha = 1.0f) {
+  return {c[0], c[1], c[2], alpha};
+}
+
+// The outline of an ellipse: the main body's dark orange as before, a companion's own colour
+// darkened by a quarter.
+glm::vec4 outline_color(const BodySnapshot& body) {
+  if (body.color == kMainBodyColor) return {0.70f, 0.30f, 0.02f, 1.0f};
+  return {0.75f * body.color[0], 0.75f * body.color[1], 0.75f * body.color[2], 1.0f};
 }
 
 // A world point lifted off the 3-D surfaces along the normal.
@@ -71,6 +82,28 @@ void add_polyline(std::vector<Vertex>& lines, const Surface& surface, ViewKind v
     const Vec3& b = points[(i + 1) % points.size()];
     add_segment(lines, lifted(view, world_position(surface, view, a)),
                 lifted(view, world_position(surface, view, b)), color);
+  }
+}
+
+// The same polyline dashed: kDash on, kGap off, measured along the drawn (world) path, so that the
+// dashes keep their length however densely the path is sampled.
+void add_dashed_polyline(std::vector<Vertex>& lines, const Surface& surface, ViewKind view,
+                         const std::vector<Vec3>& points, const glm::vec4& color) {
+  double phase = 0.0;  // distance into the current dash + gap period
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+    const glm::dvec3 a = lifted(view, world_position(surface, view, points[i]));
+    const glm::dvec3 b = lifted(view, world_position(surface, view, points[i + 1]));
+    const double length = glm::length(b - a);
+    double done = 0.0;
+    while (done < length) {
+      const bool on = phase < kDash;
+      const double step = std::min(length - done, (on ? kDash : kDash + kGap) - phase);
+      if (on)
+        add_segment(lines, a + (b - a) * (done / length), a + (b - a) * ((done + step) / length), color);
+      done += step;
+      phase += step;
+      if (phase >= kDash + kGap) phase = 0.0;
+    }
   }
 }
 
@@ -194,6 +227,57 @@ glm::mat4 camera(const ViewOptions& view) {
   return glm::mat4(glm::ortho(-hx, hx, -hy, hy, -1.0, 1.0));
 }
 
+// A body's ellipse: a translucent fill following the surface and its outline.
+void add_body(FrameScene& scene, const Surface& surface, ViewKind kind, double scale,
+              const BodySnapshot& body) {
+  const glm::vec4 fill = rgba(body.color, kFillAlpha);
+  const std::vector<Vec3> outline = ellipse_points(surface, body, scale, 64);
+  // The fill follows the surface: rings at 1/8, 2/8, … of the way out (a flat fan would sink
+  // below the sphere's surface and vanish under the depth test).
+  constexpr int kRings = 8;
+  const auto ring_point = [&](int ring, std::size_t i) {
+    const double theta = 2 * kPi * static_cast<double>(i % outline.size()) / outline.size();
+    const double f = scale * ring / kRings;
+    return to_float(lifted(
+        kind,
+        world_position(surface, kind, exp_frame(surface, body, f * std::cos(theta), f * std::sin(theta)))));
+  };
+  for (int ring = 0; ring < kRings; ++ring)
+    for (std::size_t i = 0; i < outline.size(); ++i) {
+      const glm::vec3 a = ring_point(ring, i), b = ring_point(ring + 1, i), c = ring_point(ring + 1, i + 1),
+                      d = ring_point(ring, i + 1);
+      scene.fills.insert(scene.fills.end(), {{a, fill}, {b, fill}, {c, fill}});
+      if (ring > 0) scene.fills.insert(scene.fills.end(), {{a, fill}, {c, fill}, {d, fill}});
+    }
+  add_polyline(scene.lines, surface, kind, outline, outline_color(body), true);
+}
+
+// A body's frame arrows e₁ (red) and e₂ (green).
+void add_frame_arrows(FrameScene& scene, const Surface& surface, ViewKind kind, double scale,
+                      const BodySnapshot& body) {
+  for (int a = 0; a < 2; ++a) {
+    std::vector<Vec3> shaft;
+    for (int i = 0; i <= 16; ++i) {
+      const double f = scale * 1.3 * i / 16;
+      shaft.push_back(exp_frame(surface, body, a == 0 ? f : 0.0, a == 0 ? 0.0 : f));
+    }
+    add_polyline(scene.lines, surface, kind, shaft, kArrowColors[a], false);
+    // Arrowhead in world space: two barbs back from the tip, in the surface's tangent plane.
+    const glm::dvec3 tip = lifted(kind, world_position(surface, kind, shaft.back()));
+    const glm::dvec3 before = lifted(kind, world_position(surface, kind, shaft[12]));
+    const glm::dvec3 back = before - tip;
+    if (glm::length(back) > 0.0) {
+      const glm::dvec3 normal = kind == ViewKind::sphere ? glm::normalize(tip)
+                                : kind == ViewKind::hyperboloid
+                                    ? glm::normalize(glm::dvec3(-tip.x, -tip.y, tip.z + 1.0))
+                                    : glm::dvec3(0, 0, 1);
+      const glm::dvec3 side = 0.45 * glm::length(back) * glm::normalize(glm::cross(normal, back));
+      add_segment(scene.lines, tip, before + side, kArrowColors[a]);
+      add_segment(scene.lines, tip, before - side, kArrowColors[a]);
+    }
+  }
+}
+
 }  // namespace
 
 const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view) {
@@ -226,12 +310,12 @@ glm::dvec3 world_position(const Surface& surface, ViewKind view, const Vec3& X) 
   return {};
 }
 
-std::vector<Vec3> ellipse_points(const Snapshot& snapshot, double scale, int count) {
+std::vector<Vec3> ellipse_points(const Surface& surface, const BodySnapshot& body, double scale, int count) {
   std::vector<Vec3> points;
   points.reserve(count);
   for (int i = 0; i < count; ++i) {
     const double theta = 2 * kPi * i / count;
-    points.push_back(exp_frame(snapshot, scale * std::cos(theta), scale * std::sin(theta)));
+    points.push_back(exp_frame(surface, body, scale * std::cos(theta), scale * std::sin(theta)));
   }
   return points;
 }
@@ -247,70 +331,65 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   scene.depth_test = three_d(kind);
   if (surface.kind == SurfaceKind::pseudosphere) scene.surface_color = {0.83f, 0.86f, 0.78f, 1.0f};
 
-  if (view.layers & kTrail && snapshot.trail.size() >= 2) {
-    std::vector<Vec3> path{snapshot.trail.front()};
-    for (std::size_t i = 1; i < snapshot.trail.size(); ++i)
-      append_path(path, surface, snapshot.trail[i - 1], snapshot.trail[i]);
-    add_polyline(scene.lines, surface, kind, path, kTrailColor, false);
-  }
-  if (view.layers & kBody) {
-    const std::vector<Vec3> outline = ellipse_points(snapshot, view.scale, 64);
-    // The fill follows the surface: rings at 1/8, 2/8, … of the way out (a flat fan would sink
-    // below the sphere's surface and vanish under the depth test).
-    constexpr int kRings = 8;
-    const auto ring_point = [&](int ring, std::size_t i) {
-      const double theta = 2 * kPi * static_cast<double>(i % outline.size()) / outline.size();
-      const double f = view.scale * ring / kRings;
-      return to_float(lifted(
-          kind,
-          world_position(surface, kind, exp_frame(snapshot, f * std::cos(theta), f * std::sin(theta)))));
-    };
-    for (int ring = 0; ring < kRings; ++ring)
-      for (std::size_t i = 0; i < outline.size(); ++i) {
-        const glm::vec3 a = ring_point(ring, i), b = ring_point(ring + 1, i), c = ring_point(ring + 1, i + 1),
-                        d = ring_point(ring, i + 1);
-        scene.fills.insert(scene.fills.end(), {{a, kEllipseFill}, {b, kEllipseFill}, {c, kEllipseFill}});
-        if (ring > 0)
-          scene.fills.insert(scene.fills.end(), {{a, kEllipseFill}, {c, kEllipseFill}, {d, kEllipseFill}});
-      }
-    add_polyline(scene.lines, surface, kind, outline, kEllipseLine, true);
-  }
-  if (view.layers & kFrame) {
-    for (int a = 0; a < 2; ++a) {
-      std::vector<Vec3> shaft;
-      for (int i = 0; i <= 16; ++i) {
-        const double f = view.scale * 1.3 * i / 16;
-        shaft.push_back(exp_frame(snapshot, a == 0 ? f : 0.0, a == 0 ? 0.0 : f));
-      }
-      add_polyline(scene.lines, surface, kind, shaft, kArrowColors[a], false);
-      // Arrowhead in world space: two barbs back from the tip, in the surface's tangent plane.
-      const glm::dvec3 tip = lifted(kind, world_position(surface, kind, shaft.back()));
-      const glm::dvec3 before = lifted(kind, world_position(surface, kind, shaft[12]));
-      const glm::dvec3 back = before - tip;
-      if (glm::length(back) > 0.0) {
-        const glm::dvec3 normal = kind == ViewKind::sphere ? glm::normalize(tip)
-                                  : kind == ViewKind::hyperboloid
-                                      ? glm::normalize(glm::dvec3(-tip.x, -tip.y, tip.z + 1.0))
-                                      : glm::dvec3(0, 0, 1);
-        const glm::dvec3 side = 0.45 * glm::length(back) * glm::normalize(glm::cross(normal, back));
-        add_segment(scene.lines, tip, before + side, kArrowColors[a]);
-        add_segment(scene.lines, tip, before - side, kArrowColors[a]);
-      }
+  // Trails first, then the bodies over them: every body's, main body first.
+  if (view.layers & kTrail)
+    for (const BodySnapshot& body : snapshot.bodies) {
+      if (body.trail.size() < 2) continue;
+      std::vector<Vec3> path{body.trail.front()};
+      for (std::size_t i = 1; i < body.trail.size(); ++i)
+        append_path(path, surface, body.trail[i - 1], body.trail[i]);
+      if (body.geodesic)
+        add_dashed_polyline(scene.lines, surface, kind, path, rgba(body.trail_color));
+      else
+        add_polyline(scene.lines, surface, kind, path, rgba(body.trail_color), false);
     }
-  }
+  if (view.layers & kBody)
+    for (const BodySnapshot& body : snapshot.bodies) add_body(scene, surface, kind, view.scale, body);
+  if (view.layers & kFrame)
+    for (const BodySnapshot& body : snapshot.bodies) add_frame_arrows(scene, surface, kind, view.scale, body);
+  if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)))
+    for (const BodySnapshot& body : snapshot.bodies)
+      scene.legend.push_back({body.label, rgba(body.color), rgba(body.trail_color), body.geodesic});
   if (view.layers & kHud) scene.hud_lines = snapshot.hud_lines;
   return scene;
 }
 
+namespace {
+
+// The direction at the centre of everything drawn of the bodies (positions and trails, on the
+// unit sphere): the centre of their smallest enclosing ball by Bădoiu–Clarkson's iteration
+// (c ← c + (p_far − c)/(k + 1), within 1/√k of the optimum), so that a comparison shows all its
+// bodies however far apart they went. Up to 256 points of each trail are used.
+Vec3 drawn_centre(const Snapshot& snapshot) {
+  std::vector<Vec3> points;
+  for (const BodySnapshot& body : snapshot.bodies) {
+    points.push_back(body.X.normalized());
+    const std::size_t stride = body.trail.size() / 256 + 1;
+    for (std::size_t i = 0; i < body.trail.size(); i += stride) points.push_back(body.trail[i].normalized());
+  }
+  Vec3 c = points.front();
+  for (int k = 1; k <= 64; ++k) {
+    const Vec3* far = &points.front();
+    for (const Vec3& p : points)
+      if ((p - c).squaredNorm() > (*far - c).squaredNorm()) far = &p;
+    c += (*far - c) / (k + 1.0);
+  }
+  return c.norm() > 1e-3 ? c.normalized() : snapshot.bodies.front().X.normalized();
+}
+
+}  // namespace
+
 void aim_camera_at_body(ViewOptions& view, const Snapshot& snapshot) {
   if (view.kind == ViewKind::sphere) {
-    const Vec3 n = snapshot.X.normalized();
+    const Vec3 n =
+        snapshot.bodies.size() > 1 ? drawn_centre(snapshot) : snapshot.bodies.front().X.normalized();
     view.yaw = std::atan2(n.y(), n.x());
     view.pitch = std::clamp(std::asin(n.z()), -1.3, 1.3);
   } else if (view.kind == ViewKind::hyperboloid) {
     view.distance = 15.0;
     view.pitch = 0.55;
-    if (snapshot.X.head<2>().norm() > 0.0) view.yaw = std::atan2(snapshot.X.y(), snapshot.X.x()) + kPi;
+    const Vec3& X = snapshot.bodies.front().X;
+    if (X.head<2>().norm() > 0.0) view.yaw = std::atan2(X.y(), X.x()) + kPi;
   }
 }
 

@@ -30,12 +30,22 @@ struct StaticGeometry {
 };
 const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view);
 
+// One line of the in-frame legend: a body's swatch (its trail, dashed for the geodesic companion,
+// and its fill) and label.
+struct LegendEntry {
+  std::string label;
+  glm::vec4 color;        // the body's fill, opaque
+  glm::vec4 trail_color;  // its trail's
+  bool dashed = false;    // the geodesic companion's trail
+};
+
 struct FrameScene {
   const StaticGeometry* statics = nullptr;  // null when neither surface nor grid is drawn
   bool draw_surface = false, draw_grid = false;
   std::vector<Vertex> fills;           // translucent triangles (the ellipse)
   std::vector<Vertex> lines;           // line segments (trail, outline, arrows)
   std::vector<std::string> hud_lines;  // empty when the HUD is off
+  std::vector<LegendEntry> legend;     // one per body when there is more than one body to tell apart
   glm::mat4 view_projection{1.0f};
   bool depth_test = true;  // 3-D views hide what is behind the surface
   glm::vec4 surface_color{0.78f, 0.83f, 0.90f, 1.0f};
@@ -44,13 +54,14 @@ struct FrameScene {
 
 FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view);
 
-// The camera of the 3-D views placed to show the body: above it on the sphere, across the bowl
-// from it on the hyperboloid (whose default distance and pitch frame the grid's extent).
+// The camera of the 3-D views placed to show the body: above it on the sphere (above the centre of
+// all the bodies' positions and trails when there are companions), across the bowl from it on the
+// hyperboloid (whose default distance and pitch frame the grid's extent).
 void aim_camera_at_body(ViewOptions& view, const Snapshot& snapshot);
 
-// Points of the body's ellipse on the surface: exp_X(scale·(cos θ e₁ + sin θ e₂)), embedding
+// Points of a body's ellipse on the surface: exp_X(scale·(cos θ e₁ + sin θ e₂)), embedding
 // coordinates (exposed for tests).
-std::vector<Vec3> ellipse_points(const Snapshot& snapshot, double scale, int count);
+std::vector<Vec3> ellipse_points(const Surface& surface, const BodySnapshot& body, double scale, int count);
 
 // exp_X(v) on the surface for a tangent v at X of intrinsic length |v| (passed in: far out on H²
 // it cannot be computed from v's embedded components).

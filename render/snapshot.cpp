@@ -6,18 +6,50 @@
 
 namespace spinfold::render {
 
-Snapshot make_snapshot(const Simulation& run, std::vector<Vec3> trail) {
+namespace {
+
+// One body of the run (the main run or a companion's) with its trail's points in the span.
+BodySnapshot body_snapshot(const Simulation& run, const Trail* trail, double span) {
   const Scene& scene = run.scene;
   const EmbeddedBody body = global_embedding(scene, run.state);
+  BodySnapshot b;
+  b.X = body.X;
+  b.e[0] = body.e[0];
+  b.e[1] = body.e[1];
+  const Mat2 L = internal_state(scene, run.state.y).L;
+  b.gram = L.transpose() * L;
+  if (trail) {
+    b.trail = trail_positions(*trail, run.state.t, span);
+    if (!b.trail.empty() && b.trail.back() != b.X) b.trail.push_back(b.X);
+  }
+  return b;
+}
+
+}  // namespace
+
+std::array<float, 3> companion_color(const Scene& scene, std::size_t i) {
+  if (const auto& c = scene.companions.at(i).color)
+    return {static_cast<float>((*c)[0]), static_cast<float>((*c)[1]), static_cast<float>((*c)[2])};
+  return kCompanionPalette[i % kCompanionPalette.size()];
+}
+
+Snapshot make_snapshot(const Simulation& run, const Trail& trail, double span) {
+  const Scene& scene = run.scene;
   Snapshot s;
   s.surface = scene.surface;
-  s.X = body.X;
-  s.e[0] = body.e[0];
-  s.e[1] = body.e[1];
-  const Mat2 L = internal_state(scene, run.state.y).L;
-  s.gram = L.transpose() * L;
-  s.trail = std::move(trail);
+  s.bodies.reserve(1 + run.companions.size());
+  s.bodies.push_back(body_snapshot(run, &trail, span));
+  s.bodies.front().label = "body 1";
   s.hud_lines = readout_lines(scene, readout(run));
+  for (std::size_t i = 0; i < run.companions.size() && i < scene.companions.size(); ++i) {
+    const Trail* own = i < trail.companions.size() ? &trail.companions[i] : nullptr;
+    BodySnapshot b = body_snapshot(run.companions[i], own, span);
+    b.color = b.trail_color = companion_color(scene, i);
+    b.label = companion_label(scene, i);
+    b.geodesic = scene.companions[i].geodesic;
+    s.hud_lines.push_back(companion_readout_line(b.label, readout(run.companions[i])));
+    s.bodies.push_back(std::move(b));
+  }
   return s;
 }
 

@@ -71,12 +71,9 @@ void get_frame(ServerContext& server, const Call& call, httplib::Response& res) 
     png = server.frames.find(etag);
     if (!png && if_none_match != etag) {
       f.view.scale = f.scale * s->run.scene.surface.radius;
-      std::vector<Vec3> trail;  // copied only when drawn: the samples, then the body's position
-      if (f.view.layers & render::kTrail) {
-        trail = trail_positions(s->trail, s->run.state.t, f.trail.value_or(-1.0));
-        trail.push_back(global_embedding(s->run.scene, s->run.state).X);
-      }
-      snapshot = render::make_snapshot(s->run, std::move(trail));
+      static const Trail kNoTrail;  // trails are copied only when drawn
+      snapshot = render::make_snapshot(s->run, f.view.layers & render::kTrail ? s->trail : kNoTrail,
+                                       f.trail.value_or(-1.0));
     }
     res.set_header("X-Spinfold-Provenance", provenance(*s));
   }

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -23,15 +25,17 @@ Renderer& renderer() {
   return r;
 }
 
+// The preset's run at t with, when asked, every body's trail sampled at t·k/64.
 Snapshot preset_snapshot(std::string_view name, double t, bool with_trail) {
   const Scene scene = *parse_scene_text(find_preset(name)->json).scene;
   Simulation run = start_simulation(scene);
-  std::vector<Vec3> trail;
-  for (int k = 0; k <= 64; ++k) {
-    advance_to(run, t * k / 64);
-    if (with_trail) trail.push_back(global_embedding(scene, run.state).X);
-  }
-  return make_snapshot(run, std::move(trail));
+  Trail trail;
+  trail.spacing = t / 64;
+  if (with_trail)
+    advance_recording(run, trail, t);
+  else
+    advance_to(run, t);
+  return make_snapshot(run, trail, -1.0);
 }
 
 struct Rgb {
@@ -51,14 +55,15 @@ bool orange(Rgb c) {
 }
 
 // A point inside the ellipse away from the frame arrows (which start at the centre).
-glm::dvec3 inside_ellipse(const Snapshot& s, ViewKind view) {
-  const Vec3 P = s.X + 0.4 * 0.25 * (-std::sqrt(0.5) * s.e[0] - std::sqrt(0.5) * s.e[1]);
+glm::dvec3 inside_ellipse(const Snapshot& s, ViewKind view, std::size_t body = 0, double scale = 0.25) {
+  const BodySnapshot& b = s.bodies.at(body);
+  const Vec3 P = b.X + 0.4 * scale * (-std::sqrt(0.5) * b.e[0] - std::sqrt(0.5) * b.e[1]);
   return world_position(s.surface, view, P * (s.surface.radius / P.norm()));
 }
 
 ViewOptions looking_at(const Snapshot& s, double yaw_offset) {
   ViewOptions view;
-  const Vec3 n = s.X.normalized();
+  const Vec3 n = s.bodies.front().X.normalized();
   view.yaw = std::atan2(n.y(), n.x()) + yaw_offset;
   view.pitch = std::asin(n.z());
   if (yaw_offset != 0.0) view.pitch = -view.pitch;
@@ -119,6 +124,104 @@ TEST(Renderer, HudTextAppearsOnlyWhenTheHudIsOn) {
   EXPECT_GT(with, 200);  // glyph pixels of six text lines
 }
 
+// A body's translucent fill over the background with nothing else drawn: 0.55·colour + 0.45·clear.
+bool fill_of(Rgb c, const std::array<float, 3>& color) {
+  const glm::vec4 clear = FrameScene{}.clear_color;
+  const float want[3] = {0.55f * color[0] + 0.45f * clear.r, 0.55f * color[1] + 0.45f * clear.g,
+                         0.55f * color[2] + 0.45f * clear.b};
+  const int got[3] = {c.r, c.g, c.b};
+  for (int i = 0; i < 3; ++i)
+    if (std::abs(got[i] - 255.0f * want[i]) > 6.0f) return false;
+  return true;
+}
+
+TEST(Renderer, EachCompanionsColourAppearsAtItsProjectedPosition) {
+  for (const char* preset : {"spin_vs_geodesic_sphere", "spin_fan_sphere", "opposite_spins_sphere"}) {
+    SCOPED_TRACE(preset);
+    const Snapshot s = preset_snapshot(preset, 3.0, false);
+    ASSERT_GE(s.bodies.size(), 2u);
+    ViewOptions view;
+    aim_camera_at_body(view, s);  // at the bodies' mean position
+    view.scale = 0.1;             // small ellipses that do not overlap
+    view.layers = kBody;
+    const FrameScene scene = build_scene(s, view);
+    const std::uint8_t* rgba = renderer().render_rgba(scene, view.width, view.height);
+    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+      SCOPED_TRACE(s.bodies[i].label);
+      const auto at = pixel_position(scene, view, inside_ellipse(s, view.kind, i, view.scale));
+      ASSERT_TRUE(at);
+      ASSERT_TRUE(at->x >= 0 && at->x < view.width && at->y >= 0 && at->y < view.height);
+      const Rgb got = pixel(rgba, view, *at);
+      EXPECT_TRUE(fill_of(got, s.bodies[i].color)) << got.r << "," << got.g << "," << got.b;
+      // Each body has its own colour (bodies overlap at t = 0 only).
+      for (std::size_t j = 0; j < s.bodies.size(); ++j) {
+        if (j != i) {
+          EXPECT_NE(s.bodies[i].color, s.bodies[j].color);
+        }
+      }
+    }
+  }
+}
+
+TEST(Renderer, TheMainBodyKeepsItsColourAndCompanionsGiveTheirOwn) {
+  const Snapshot s = preset_snapshot("spin_vs_geodesic_sphere", 1.0, false);
+  ASSERT_EQ(s.bodies.size(), 2u);
+  EXPECT_EQ(s.bodies[0].color, kMainBodyColor);
+  EXPECT_EQ(s.bodies[0].label, "body 1");
+  EXPECT_EQ(s.bodies[1].color, kCompanionPalette[0]);
+  EXPECT_EQ(s.bodies[1].label, "geodesic (s = 0)");
+  EXPECT_TRUE(s.bodies[1].geodesic);
+  // The HUD: the main body's lines as before, then one compact line per companion.
+  EXPECT_EQ(s.hud_lines.size(), preset_snapshot("spinning_rigid_sphere", 1.0, false).hud_lines.size() + 1);
+  EXPECT_EQ(s.hud_lines.back().rfind("geodesic (s = 0): spin = 0.0000  energy error = ", 0), 0u)
+      << s.hud_lines.back();
+}
+
+// The top-right corner, where the legend goes: 180 × 60 pixels, RGB.
+std::vector<Rgb> top_right(const std::uint8_t* rgba, const ViewOptions& view) {
+  std::vector<Rgb> corner;
+  for (int y = 0; y < 60; ++y)
+    for (int x = view.width - 180; x < view.width; ++x)
+      corner.push_back(pixel(rgba, view, {x + 0.5, y + 0.5}));
+  return corner;
+}
+
+int differing(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
+  int n = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) n += a[i].r != b[i].r || a[i].g != b[i].g || a[i].b != b[i].b;
+  return n;
+}
+
+TEST(Renderer, TheLegendAppearsOnlyWithMoreThanOneBody) {
+  for (const char* preset : {"spinning_rigid_sphere", "spin_vs_geodesic_sphere"}) {
+    SCOPED_TRACE(preset);
+    const Snapshot s = preset_snapshot(preset, 2.0, true);
+    ViewOptions view;
+    aim_camera_at_body(view, s);
+    view.layers = kSurface;
+    const std::vector<Rgb> bare =
+        top_right(renderer().render_rgba(build_scene(s, view), view.width, view.height), view);
+    view.layers = kSurface | kBody | kTrail;
+    const std::vector<Rgb> drawn =
+        top_right(renderer().render_rgba(build_scene(s, view), view.width, view.height), view);
+    if (s.bodies.size() == 1) {
+      EXPECT_EQ(differing(bare, drawn), 0);
+      continue;
+    }
+    EXPECT_GT(differing(bare, drawn), 2000);  // the legend's box
+    int dark = 0;                             // the labels' glyphs
+    bool swatch = false;                      // the companion's colour, opaque
+    const std::array<float, 3> c = s.bodies[1].color;
+    for (const Rgb& p : drawn) {
+      dark += p.r < 80 && p.g < 80 && p.b < 80;
+      swatch |=
+          std::abs(p.r - 255 * c[0]) < 8 && std::abs(p.g - 255 * c[1]) < 8 && std::abs(p.b - 255 * c[2]) < 8;
+    }
+    EXPECT_GT(dark, 100);
+    EXPECT_TRUE(swatch);
+  }
+}
+
 TEST(Renderer, SameSnapshotViewAndSizeGiveTheSameBytes) {
   const Snapshot s = preset_snapshot("spinning_rigid_sphere", 3.0, true);
   const ViewOptions view = looking_at(s, 0.0);
@@ -141,13 +244,14 @@ struct Golden {
   const char* name;
   const char* preset;
   ViewKind view;
+  double t = 3.0;  // [time]
 };
 
 class GoldenFrame : public ::testing::TestWithParam<Golden> {};
 
 TEST_P(GoldenFrame, MatchesThePinnedPng) {
   const Golden g = GetParam();
-  const Snapshot s = preset_snapshot(g.preset, 3.0, true);
+  const Snapshot s = preset_snapshot(g.preset, g.t, true);
   ViewOptions view;
   view.kind = g.view;
   aim_camera_at_body(view, s);
@@ -169,7 +273,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Golden{"hyperboloid", "spinning_rigid_pseudosphere", ViewKind::hyperboloid},
                       Golden{"disk", "spinning_rigid_pseudosphere", ViewKind::disk},
                       Golden{"stereographic", "breathing_ellipse_sphere", ViewKind::disk},
-                      Golden{"plane", "spinning_rigid_plane", ViewKind::plane}),
+                      Golden{"plane", "spinning_rigid_plane", ViewKind::plane},
+                      Golden{"spin_vs_geodesic_sphere", "spin_vs_geodesic_sphere", ViewKind::sphere, 2.0}),
     [](const auto& param) { return std::string(param.param.name); });
 
 }  // namespace

@@ -16,10 +16,11 @@ Snapshot body_at(SurfaceKind kind, double R, double r, double phi, double lambda
   Snapshot s;
   s.surface = {kind, R};
   const ChartPoint p = chart_point(s.surface, r, phi);
-  s.X = p.X;
-  s.e[0] = lambda * p.E1;
-  s.e[1] = mu * p.E2;
-  s.gram << lambda * lambda, 0.0, 0.0, mu * mu;
+  BodySnapshot& b = s.bodies.emplace_back();
+  b.X = p.X;
+  b.e[0] = lambda * p.E1;
+  b.e[1] = mu * p.E2;
+  b.gram << lambda * lambda, 0.0, 0.0, mu * mu;
   return s;
 }
 
@@ -33,19 +34,20 @@ TEST(SceneBuilder, EllipseLiesOnTheSurfaceCentredOnTheBodyWithTheAxesOfL) {
   for (SurfaceKind kind : {SurfaceKind::sphere, SurfaceKind::pseudosphere}) {
     const Snapshot s = body_at(kind, 2.0, 1.3, 0.4, 1.5, 0.5);
     const double scale = 0.2;
-    const std::vector<Vec3> points = ellipse_points(s, scale, 64);
+    const Vec3& X = s.bodies[0].X;
+    const std::vector<Vec3> points = ellipse_points(s.surface, s.bodies[0], scale, 64);
     for (const Vec3& P : points) EXPECT_NEAR(curvature(s.surface) * dot(s.surface, P, P), 1.0, 1e-12);
     // Opposite points are geodesically symmetric about the body: equal distances, and their sum
     // is parallel to X.
     for (int i = 0; i < 32; ++i) {
       const Vec3 sum = points[i] + points[i + 32];
-      EXPECT_LT(sum.cross(s.X).norm(), 1e-12 * sum.norm() * s.X.norm());
-      EXPECT_NEAR(geodesic_distance(s.surface, s.X, points[i]),
-                  geodesic_distance(s.surface, s.X, points[i + 32]), 1e-12);
+      EXPECT_LT(sum.cross(X).norm(), 1e-12 * sum.norm() * X.norm());
+      EXPECT_NEAR(geodesic_distance(s.surface, X, points[i]), geodesic_distance(s.surface, X, points[i + 32]),
+                  1e-12);
     }
     // Semi-axes: scale·λ along e₁ (θ = 0), scale·μ along e₂ (θ = π/2).
-    EXPECT_NEAR(geodesic_distance(s.surface, s.X, points[0]), scale * 1.5, 1e-12);
-    EXPECT_NEAR(geodesic_distance(s.surface, s.X, points[16]), scale * 0.5, 1e-12);
+    EXPECT_NEAR(geodesic_distance(s.surface, X, points[0]), scale * 1.5, 1e-12);
+    EXPECT_NEAR(geodesic_distance(s.surface, X, points[16]), scale * 0.5, 1e-12);
   }
 }
 
@@ -76,7 +78,7 @@ TEST(SceneBuilder, FarOutOnH2TheDiskViewDrawsNearTheRimWithoutOverflow) {
   const Snapshot s = body_at(SurfaceKind::pseudosphere, 1.0, 50.0, 0.3, 1.0, 1.0);
   ViewOptions view;
   view.kind = ViewKind::disk;
-  const glm::dvec3 w = world_position(s.surface, view.kind, s.X);
+  const glm::dvec3 w = world_position(s.surface, view.kind, s.bodies[0].X);
   EXPECT_TRUE(std::isfinite(w.x) && std::isfinite(w.y));
   EXPECT_LE(glm::length(w), 1.0);  // 1 − |p| = 2e^{−50}: the rim, to double precision
   EXPECT_GT(glm::length(w), 1.0 - 1e-9);
@@ -85,6 +87,52 @@ TEST(SceneBuilder, FarOutOnH2TheDiskViewDrawsNearTheRimWithoutOverflow) {
   ASSERT_FALSE(scene.fills.empty());
   for (const auto* list : {&scene.fills, &scene.lines})
     for (const Vertex& v : *list) EXPECT_TRUE(std::isfinite(v.position.x) && std::isfinite(v.position.y));
+}
+
+TEST(SceneBuilder, EachBodyIsDrawnAndALegendListsThemOnlyWhenThereAreSeveral) {
+  Snapshot s = body_at(SurfaceKind::sphere, 1.0, 1.0, 0.0, 1.0, 1.0);
+  ViewOptions view;
+  view.layers = kBody | kTrail;
+  const FrameScene one = build_scene(s, view);
+  EXPECT_TRUE(one.legend.empty());
+  BodySnapshot companion = body_at(SurfaceKind::sphere, 1.0, 1.2, 0.5, 1.0, 1.0).bodies[0];
+  companion.color = companion.trail_color = kCompanionPalette[0];
+  companion.label = "geodesic";
+  s.bodies.push_back(companion);
+  const FrameScene two = build_scene(s, view);
+  EXPECT_EQ(two.fills.size(), 2 * one.fills.size());
+  ASSERT_EQ(two.legend.size(), 2u);
+  EXPECT_EQ(two.legend[1].label, "geodesic");
+  EXPECT_EQ(two.legend[1].color, glm::vec4(0.00f, 0.42f, 0.75f, 1.0f));
+  view.layers = kGrid;  // nothing of the bodies drawn: nothing to tell apart
+  EXPECT_TRUE(build_scene(s, view).legend.empty());
+}
+
+// The total length of the segments of `color` [world units].
+double drawn_length(const FrameScene& scene, const glm::vec4& color) {
+  double length = 0.0;
+  for (std::size_t i = 0; i + 1 < scene.lines.size(); i += 2)
+    if (scene.lines[i].color == color)
+      length += glm::length(glm::dvec3(scene.lines[i + 1].position - scene.lines[i].position));
+  return length;
+}
+
+TEST(SceneBuilder, TheGeodesicCompanionsTrailIsDashed) {
+  Snapshot s;
+  s.surface = {SurfaceKind::sphere, 1.0};
+  for (bool geodesic : {false, true}) {
+    BodySnapshot& b = s.bodies.emplace_back(body_at(SurfaceKind::sphere, 1.0, 1.0, 1.0, 1.0, 1.0).bodies[0]);
+    for (int k = 0; k <= 100; ++k) b.trail.push_back(chart_point(s.surface, 1.0, 0.01 * k).X);
+    b.color = b.trail_color = kCompanionPalette[geodesic ? 1 : 0];
+    b.geodesic = geodesic;
+  }
+  ViewOptions view;
+  view.layers = kTrail;
+  const FrameScene scene = build_scene(s, view);
+  const double solid = drawn_length(scene, glm::vec4(0.00f, 0.42f, 0.75f, 1.0f));
+  const double dashed = drawn_length(scene, glm::vec4(0.80f, 0.10f, 0.55f, 1.0f));
+  EXPECT_NEAR(solid, std::sin(1.0), 0.01);                    // the parallel at r = 1 over φ ∈ [0, 1]
+  EXPECT_NEAR(dashed / solid, 0.045 / (0.045 + 0.03), 0.05);  // dash / (dash + gap)
 }
 
 TEST(SceneBuilder, ViewsMatchSurfaces) {
