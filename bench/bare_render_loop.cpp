@@ -32,7 +32,7 @@ void sink(png_structp png, png_bytep data, png_size_t n) {
   out->insert(out->end(), data, data + n);
 }
 
-std::vector<unsigned char> encode(const unsigned char* rgba, int w, int h) {
+std::vector<unsigned char> encode_with_libpng(const unsigned char* rgba, int w, int h) {
   std::vector<unsigned char> out, row(static_cast<std::size_t>(w) * 3);
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png_create_info_struct(png);
@@ -118,7 +118,7 @@ BareTimings bare_render_loop(int width, int height, const std::vector<float>& op
     glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(lines.size() / 7));
     glFinish();
     const auto t1 = std::chrono::steady_clock::now();
-    const std::vector<unsigned char> png = encode(buffer.data(), width, height);
+    const std::vector<unsigned char> png = encode_with_libpng(buffer.data(), width, height);
     const auto t2 = std::chrono::steady_clock::now();
     if (f >= 2) {  // the first frames compile the shaders
       render.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
@@ -130,6 +130,10 @@ BareTimings bare_render_loop(int width, int height, const std::vector<float>& op
   glDeleteProgram(program);
   OSMesaDestroyContext(context);
   return {median(render), median(enc)};
+}
+
+std::vector<unsigned char> bare_encode_png(const unsigned char* rgba, int width, int height) {
+  return encode_with_libpng(rgba, width, height);
 }
 
 }  // namespace spinfold::bench

@@ -16,6 +16,10 @@ struct BareTimings {
 // vertices in world coordinates through `view_projection` (column-major 4x4) with one
 // pass-through shader: the same pixels as the frame (colours precomputed, the surface's lighting
 // included), none of the frame's machinery (scene building, programs, uniforms, caches, overlay).
+// libpng + zlib at level 1, no filter: how frames were encoded before libdeflate (the baseline of
+// the encoder comparison in render_bench).
+std::vector<unsigned char> bare_encode_png(const unsigned char* rgba, int width, int height);
+
 BareTimings bare_render_loop(int width, int height, const std::vector<float>& opaque,
                              const std::vector<float>& translucent, const std::vector<float>& lines,
                              const float* view_projection, int frames);

@@ -147,6 +147,33 @@ int run_render_bench(int frames) {
                   bare.render_ms, bare.encode_ms, frame / (bare.render_ms + bare.encode_ms));
     }
   }
+  // The PNG encoder against libpng + zlib at the same level on the same frames, interleaved.
+  std::printf(
+      "\n| size | encode ms (libdeflate) | libpng ms | ratio | bytes | libpng bytes | ratio |\n"
+      "| --- | --- | --- | --- | --- | --- | --- |\n");
+  for (const Size& size : sizes) {
+    render::ViewOptions view;
+    view.width = size.w;
+    view.height = size.h;
+    render::aim_camera_at_body(view, snapshot);
+    const std::uint8_t* rgba =
+        renderer.render_rgba(render::build_scene(snapshot, view), view.width, view.height);
+    const std::vector<std::uint8_t> frame(rgba, rgba + static_cast<std::size_t>(size.w) * size.h * 4);
+    std::vector<double> ours, theirs;
+    std::size_t ours_bytes = 0, theirs_bytes = 0;
+    for (int f = 0; f < frames + 2; ++f) {
+      auto t = std::chrono::steady_clock::now();
+      ours_bytes = render::encode_png(frame.data(), size.w, size.h).size();
+      const double a = ms_since(t);
+      t = std::chrono::steady_clock::now();
+      theirs_bytes = bare_encode_png(frame.data(), size.w, size.h).size();
+      const double b = ms_since(t);
+      if (f >= 2) ours.push_back(a), theirs.push_back(b);
+    }
+    std::printf("| %dx%d | %.2f | %.2f | %.2f | %zu | %zu | %.2f |\n", size.w, size.h, median(ours),
+                median(theirs), median(ours) / median(theirs), ours_bytes, theirs_bytes,
+                static_cast<double>(ours_bytes) / static_cast<double>(theirs_bytes));
+  }
   // What the trail and the HUD cost, measured interleaved (one frame of each layer set in turn) so
   // that the machine's drift falls on all of them alike; also with a long trail, as a played
   // server session accumulates.

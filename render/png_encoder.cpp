@@ -1,51 +1,79 @@
 #include "render/png_encoder.h"
 
-#include <png.h>
+#include <libdeflate.h>
 
+#include <array>
+#include <cstring>
+#include <memory>
 #include <stdexcept>
+#include <string_view>
 
 namespace spinfold::render {
 
 namespace {
 
-void append(png_structp png, png_bytep data, png_size_t length) {
-  auto* out = static_cast<std::vector<std::uint8_t>*>(png_get_io_ptr(png));
-  out->insert(out->end(), data, data + length);
+struct CompressorFree {
+  void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
+};
+
+// One compressor per thread (render pool, server workers): allocating one costs more than a
+// small frame's compression.
+libdeflate_compressor* compressor() {
+  thread_local std::unique_ptr<libdeflate_compressor, CompressorFree> c(libdeflate_alloc_compressor(1));
+  if (!c) throw std::runtime_error("libdeflate: cannot allocate a compressor");
+  return c.get();
+}
+
+// Big-endian, as PNG writes every integer.
+void put32(std::uint8_t* at, std::uint32_t v) {
+  for (int k = 0; k < 4; ++k) at[k] = static_cast<std::uint8_t>(v >> (24 - 8 * k));
+}
+
+// A PNG chunk: length, type, data, CRC-32 of type and data (PNG spec §5.3).
+void chunk(std::vector<std::uint8_t>& out, std::string_view type, const std::uint8_t* data,
+           std::size_t size) {
+  const std::size_t at = out.size();
+  out.resize(at + 12 + size);
+  std::uint8_t* p = out.data() + at;
+  put32(p, static_cast<std::uint32_t>(size));
+  std::memcpy(p + 4, type.data(), 4);
+  if (size > 0) std::memcpy(p + 8, data, size);
+  put32(p + 8 + size, libdeflate_crc32(0, p + 4, 4 + size));
 }
 
 }  // namespace
 
 std::vector<std::uint8_t> encode_png(const std::uint8_t* rgba, int width, int height) {
-  std::vector<std::uint8_t> out;
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (!info) {
-    png_destroy_write_struct(&png, nullptr);
-    throw std::runtime_error("libpng: cannot create the write structures");
-  }
-  std::vector<std::uint8_t> row(static_cast<std::size_t>(width) * 3);
-  if (setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    throw std::runtime_error("libpng: encoding failed");
-  }
-  out.reserve(static_cast<std::size_t>(width) * height);
-  png_set_write_fn(png, &out, append, nullptr);
-  png_set_compression_level(png, 1);
-  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
-  png_set_IHDR(png, info, width, height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
-               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_write_info(png, info);
-  for (int y = 0; y < height; ++y) {
-    const std::uint8_t* src = rgba + static_cast<std::size_t>(y) * width * 4;
-    for (int x = 0; x < width; ++x) {
-      row[3 * x] = src[4 * x];
-      row[3 * x + 1] = src[4 * x + 1];
-      row[3 * x + 2] = src[4 * x + 2];
+  const std::size_t w = static_cast<std::size_t>(width), h = static_cast<std::size_t>(height);
+  // Scanlines: filter type 0 (none) and the RGB bytes.
+  std::vector<std::uint8_t> raw(h * (1 + 3 * w));
+  for (std::size_t y = 0; y < h; ++y) {
+    std::uint8_t* row = raw.data() + y * (1 + 3 * w);
+    const std::uint8_t* src = rgba + y * w * 4;
+    row[0] = 0;
+    for (std::size_t x = 0; x < w; ++x) {
+      row[1 + 3 * x] = src[4 * x];
+      row[2 + 3 * x] = src[4 * x + 1];
+      row[3 + 3 * x] = src[4 * x + 2];
     }
-    png_write_row(png, row.data());
   }
-  png_write_end(png, info);
-  png_destroy_write_struct(&png, &info);
+  libdeflate_compressor* c = compressor();
+  std::vector<std::uint8_t> idat(libdeflate_zlib_compress_bound(c, raw.size()));
+  const std::size_t compressed =
+      libdeflate_zlib_compress(c, raw.data(), raw.size(), idat.data(), idat.size());
+  if (compressed == 0) throw std::runtime_error("libdeflate: compression failed");
+
+  std::vector<std::uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  out.reserve(compressed + 64);
+  // IHDR: width, height, bit depth 8, colour type 2 (RGB), compression 0, filter 0, interlace 0.
+  std::array<std::uint8_t, 13> header{};
+  put32(header.data(), static_cast<std::uint32_t>(width));
+  put32(header.data() + 4, static_cast<std::uint32_t>(height));
+  header[8] = 8;
+  header[9] = 2;
+  chunk(out, "IHDR", header.data(), header.size());
+  chunk(out, "IDAT", idat.data(), compressed);
+  chunk(out, "IEND", nullptr, 0);
   return out;
 }
 
