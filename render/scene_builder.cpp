@@ -347,7 +347,7 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
     for (const BodySnapshot& body : snapshot.bodies) add_body(scene, surface, kind, view.scale, body);
   if (view.layers & kFrame)
     for (const BodySnapshot& body : snapshot.bodies) add_frame_arrows(scene, surface, kind, view.scale, body);
-  if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)))
+  if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)) && view.width >= kLegendMinWidth)
     for (const BodySnapshot& body : snapshot.bodies)
       scene.legend.push_back({body.label, rgba(body.color), rgba(body.trail_color), body.geodesic});
   if (view.layers & kHud) scene.hud_lines = snapshot.hud_lines;

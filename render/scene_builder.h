@@ -30,6 +30,9 @@ struct StaticGeometry {
 };
 const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view);
 
+// Frames narrower than this [pixels] (thumbnails) get no legend: it would cover the picture.
+inline constexpr int kLegendMinWidth = 320;
+
 // One line of the in-frame legend: a body's swatch (its trail, dashed for the geodesic companion,
 // and its fill) and label.
 struct LegendEntry {
@@ -46,6 +49,7 @@ struct FrameScene {
   std::vector<Vertex> lines;           // line segments (trail, outline, arrows)
   std::vector<std::string> hud_lines;  // empty when the HUD is off
   std::vector<LegendEntry> legend;     // one per body when there is more than one body to tell apart
+                                       // and the frame is at least kLegendMinWidth wide
   glm::mat4 view_projection{1.0f};
   bool depth_test = true;  // 3-D views hide what is behind the surface
   glm::vec4 surface_color{0.78f, 0.83f, 0.90f, 1.0f};

@@ -243,8 +243,21 @@ function buildControls() {
   for (const section of ["surface", "body", "initial", "integrator"]) {
     const set = document.createElement("fieldset");
     set.innerHTML = `<legend>${section}</legend>`;
-    for (const [key, spec] of Object.entries(props[section].properties))
-      set.append(fieldFor([section, key], spec, lookup(ui.current, [section, key])));
+    // A field the scene gave in its other form (the schema's dependentSchemas: spin instead of
+    // alpha_dot, speed and heading instead of r_dot and phi_dot) shows empty, not its default.
+    const replaced = new Set();
+    for (const [given, rule] of Object.entries(props[section].dependentSchemas ?? {}))
+      if (lookup(ui.current, [section, given]) !== undefined)
+        for (const alternative of rule.not?.anyOf ?? []) alternative.required.forEach((k) => replaced.add(k));
+    for (const [key, spec] of Object.entries(props[section].properties)) {
+      const field = fieldFor([section, key], spec, lookup(ui.current, [section, key]));
+      if (replaced.has(key)) {
+        const input = field.querySelector("input");
+        input.value = "";
+        input.placeholder = "from the physical form";
+      }
+      set.append(field);
+    }
     form.append(set);
   }
   const potential = document.createElement("fieldset");

@@ -106,6 +106,9 @@ TEST(SceneBuilder, EachBodyIsDrawnAndALegendListsThemOnlyWhenThereAreSeveral) {
   EXPECT_EQ(two.legend[1].color, glm::vec4(0.00f, 0.42f, 0.75f, 1.0f));
   view.layers = kGrid;  // nothing of the bodies drawn: nothing to tell apart
   EXPECT_TRUE(build_scene(s, view).legend.empty());
+  view.layers = kBody | kTrail;
+  view.width = kLegendMinWidth - 1;  // a thumbnail: the legend would cover the picture
+  EXPECT_TRUE(build_scene(s, view).legend.empty());
 }
 
 // The total length of the segments of `color` [world units].
