@@ -1,5 +1,7 @@
 #include "bench/render_bench.h"
 
+#include <turbojpeg.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -12,6 +14,7 @@
 #include "codec/scene_json.h"
 #include "engine/chart.h"
 #include "engine/simulation.h"
+#include "render/jpeg_encoder.h"
 #include "render/png_encoder.h"
 #include "render/renderer.h"
 
@@ -69,6 +72,32 @@ FanRun fan_run(int companions) {
   fan.trail.spacing = 20.0 / 512;
   advance_recording(fan.run, fan.trail, 20.0);
   return fan;
+}
+
+// The decoded JPEG against the RGBA frame it was made from (RGB channels).
+struct JpegError {
+  double psnr_db = 0.0;
+  double mean_abs = 0.0;  // [0, 255]
+};
+
+JpegError jpeg_error(const std::vector<std::uint8_t>& jpeg, const std::vector<std::uint8_t>& rgba, int width,
+                     int height) {
+  tjhandle handle = tjInitDecompress();
+  std::vector<std::uint8_t> decoded(static_cast<std::size_t>(width) * height * 4);
+  tjDecompress2(handle, jpeg.data(), jpeg.size(), decoded.data(), width, 0, height, TJPF_RGBX,
+                TJFLAG_ACCURATEDCT);
+  tjDestroy(handle);
+  double squared = 0.0, absolute = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < decoded.size(); ++i) {
+    if (i % 4 == 3) continue;
+    const double d = static_cast<double>(decoded[i]) - static_cast<double>(rgba[i]);
+    squared += d * d;
+    absolute += std::abs(d);
+    ++n;
+  }
+  const double mse = squared / static_cast<double>(n);
+  return {10.0 * std::log10(255.0 * 255.0 / std::max(mse, 1e-12)), absolute / static_cast<double>(n)};
 }
 
 }  // namespace
@@ -173,6 +202,34 @@ int run_render_bench(int frames) {
     std::printf("| %dx%d | %.2f | %.2f | %.2f | %zu | %zu | %.2f |\n", size.w, size.h, median(ours),
                 median(theirs), median(ours) / median(theirs), ours_bytes, theirs_bytes,
                 static_cast<double>(ours_bytes) / static_cast<double>(theirs_bytes));
+  }
+  // JPEG for motion frames: bytes against the (lossless) PNG of the same frame and the error of
+  // the decoded picture, per quality: the table render::kDefaultJpegQuality is chosen from.
+  std::printf(
+      "\n| size | quality | JPEG bytes | PNG bytes | JPEG / PNG | PSNR dB | mean abs error | encode ms |\n"
+      "| --- | --- | --- | --- | --- | --- | --- | --- |\n");
+  for (const Size& size : {sizes[0], sizes[1]}) {
+    render::ViewOptions view;
+    view.width = size.w;
+    view.height = size.h;
+    render::aim_camera_at_body(view, snapshot);
+    const std::uint8_t* rgba =
+        renderer.render_rgba(render::build_scene(snapshot, view), view.width, view.height);
+    const std::vector<std::uint8_t> frame(rgba, rgba + static_cast<std::size_t>(size.w) * size.h * 4);
+    const std::size_t png_bytes = render::encode_png(frame.data(), size.w, size.h).size();
+    for (const int quality : {50, 60, 70, 75, 80, 90}) {
+      std::vector<double> times;
+      std::vector<std::uint8_t> jpeg;
+      for (int f = 0; f < frames + 2; ++f) {
+        const auto t = std::chrono::steady_clock::now();
+        jpeg = render::encode_jpeg(frame.data(), size.w, size.h, quality);
+        if (f >= 2) times.push_back(ms_since(t));
+      }
+      const JpegError e = jpeg_error(jpeg, frame, size.w, size.h);
+      std::printf("| %dx%d | %d | %zu | %zu | %.2f | %.1f | %.2f | %.2f |\n", size.w, size.h, quality,
+                  jpeg.size(), png_bytes, static_cast<double>(jpeg.size()) / static_cast<double>(png_bytes),
+                  e.psnr_db, e.mean_abs, median(times));
+    }
   }
   // What the trail and the HUD cost, measured interleaved (one frame of each layer set in turn) so
   // that the machine's drift falls on all of them alike; also with a long trail, as a played

@@ -47,6 +47,8 @@ json bench_timeline(double until) {
 int run_share_link_bench(int repeats, double until) {
   server::ServerOptions options;
   options.port = 0;
+  options.limits.requests_per_second_per_client = 0.0;  // one client measuring, not a class
+  options.limits.max_sessions_per_client = static_cast<int>(options.limits.max_sessions);
   server::ApiServer api(options);
   const int port = api.bind();
   if (port < 0) {

@@ -1,5 +1,6 @@
 #include "render/renderer.h"
 
+#include "render/jpeg_encoder.h"
 #include "render/png_encoder.h"
 
 namespace spinfold::render {
@@ -29,6 +30,12 @@ const std::uint8_t* Renderer::render_rgba(const FrameScene& scene, int width, in
 std::vector<std::uint8_t> Renderer::render_png(const Snapshot& snapshot, const ViewOptions& view) {
   const FrameScene scene = build_scene(snapshot, view);
   return encode_png(render_rgba(scene, view.width, view.height), view.width, view.height);
+}
+
+std::vector<std::uint8_t> Renderer::render_jpeg(const Snapshot& snapshot, const ViewOptions& view,
+                                                int quality) {
+  const FrameScene scene = build_scene(snapshot, view);
+  return encode_jpeg(render_rgba(scene, view.width, view.height), view.width, view.height, quality);
 }
 
 }  // namespace spinfold::render

@@ -23,6 +23,8 @@ class Renderer {
   const std::uint8_t* render_rgba(const FrameScene& scene, int width, int height);
   // build_scene + render + encode_png.
   std::vector<std::uint8_t> render_png(const Snapshot& snapshot, const ViewOptions& view);
+  // build_scene + render + encode_jpeg at this quality (1..100).
+  std::vector<std::uint8_t> render_jpeg(const Snapshot& snapshot, const ViewOptions& view, int quality);
 
  private:
   OsmesaContext context_;

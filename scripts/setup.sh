@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git ca-certificates
   libeigen3-dev                                   # engine
   libosmesa6-dev libglm-dev libimgui-dev libpng-dev  # renderer
-  libdeflate-dev                                  # frames: PNG compression
+  libdeflate-dev libturbojpeg0-dev                # frames: PNG compression, JPEG
   libcpp-httplib-dev nlohmann-json3-dev           # server and JSON codec
   libsqlite3-dev                                  # the durable session store
   libcli11-dev                                    # command line

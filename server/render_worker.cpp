@@ -18,10 +18,12 @@ RenderWorker::~RenderWorker() {
 }
 
 std::future<std::vector<std::uint8_t>> RenderWorker::render(render::Snapshot snapshot,
-                                                            render::ViewOptions view) {
+                                                            render::ViewOptions view,
+                                                            std::optional<int> jpeg_quality) {
   std::packaged_task<std::vector<std::uint8_t>(render::Renderer&)> task(
-      [snapshot = std::move(snapshot), view](render::Renderer& renderer) {
-        return renderer.render_png(snapshot, view);
+      [snapshot = std::move(snapshot), view, jpeg_quality](render::Renderer& renderer) {
+        return jpeg_quality ? renderer.render_jpeg(snapshot, view, *jpeg_quality)
+                            : renderer.render_png(snapshot, view);
       });
   auto result = task.get_future();
   {

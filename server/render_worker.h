@@ -8,6 +8,7 @@
 #include <functional>
 #include <future>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -21,8 +22,9 @@ class RenderWorker {
  public:
   RenderWorker();
   ~RenderWorker();
-  // The PNG of a snapshot, rendered on the worker thread.
-  std::future<std::vector<std::uint8_t>> render(render::Snapshot snapshot, render::ViewOptions view);
+  // The PNG of a snapshot (or, with a JPEG quality, its JPEG), rendered on the worker thread.
+  std::future<std::vector<std::uint8_t>> render(render::Snapshot snapshot, render::ViewOptions view,
+                                                std::optional<int> jpeg_quality = std::nullopt);
 
  private:
   void loop();

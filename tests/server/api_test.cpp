@@ -4,7 +4,9 @@
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
+#include <png.h>
 #include <sys/socket.h>
+#include <turbojpeg.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -947,6 +949,70 @@ TEST_F(Api, CompanionsThroughPostPatchAndTimelineReplay) {
   EXPECT_EQ(r["state"]["companions"].size(), 3u);
   remove(id);
   remove(rebuilt["id"]);
+}
+
+}  // namespace
+}  // namespace spinfold::server
+
+namespace spinfold::server {
+namespace {
+
+// RGB pixels of an image: PNG through libpng's simplified API, JPEG through TurboJPEG.
+std::vector<std::uint8_t> png_pixels(const std::string& bytes, int& width, int& height) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_memory(&image, bytes.data(), bytes.size())) return {};
+  image.format = PNG_FORMAT_RGB;
+  std::vector<std::uint8_t> pixels(PNG_IMAGE_SIZE(image));
+  png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr);
+  width = static_cast<int>(image.width);
+  height = static_cast<int>(image.height);
+  return pixels;
+}
+
+std::vector<std::uint8_t> jpeg_pixels(const std::string& bytes, int width, int height) {
+  tjhandle handle = tjInitDecompress();
+  std::vector<std::uint8_t> pixels(static_cast<std::size_t>(width) * height * 3);
+  const int failed = tjDecompress2(handle, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(),
+                                   pixels.data(), width, 0, height, TJPF_RGB, TJFLAG_ACCURATEDCT);
+  tjDestroy(handle);
+  return failed ? std::vector<std::uint8_t>{} : pixels;
+}
+
+// frame.jpg is the same picture as frame.png within JPEG's error, in a third of the bytes; it has
+// its own ETag per quality, and the same state gives the same bytes.
+TEST_F(Api, JpegFrameIsThePngsPictureInAThirdOfTheBytes) {
+  auto c = client();
+  const std::string id = create(R"({"preset": "spin_vs_geodesic_sphere"})");
+  const std::string session = "/api/v1/sessions/" + id;
+  ASSERT_EQ(c.Post(session + "/advance", R"({"until": 2})", "application/json")->status, 200);
+  auto png = c.Get(session + "/frame.png");
+  auto jpeg = c.Get(session + "/frame.jpg");
+  ASSERT_EQ(png->status, 200);
+  ASSERT_EQ(jpeg->status, 200);
+  EXPECT_EQ(jpeg->get_header_value("Content-Type"), "image/jpeg");
+  EXPECT_LE(static_cast<double>(jpeg->body.size()), 0.35 * static_cast<double>(png->body.size()));
+  int width = 0, height = 0;
+  const std::vector<std::uint8_t> lossless = png_pixels(png->body, width, height);
+  ASSERT_EQ(width, 640);
+  const std::vector<std::uint8_t> lossy = jpeg_pixels(jpeg->body, width, height);
+  ASSERT_EQ(lossy.size(), lossless.size());
+  double error = 0.0;
+  for (std::size_t i = 0; i < lossy.size(); ++i) error += std::abs(int(lossy[i]) - int(lossless[i]));
+  EXPECT_LT(error / static_cast<double>(lossy.size()), 4.0);  // mean per channel, of 255 (measured ~3)
+
+  const std::string etag = jpeg->get_header_value("ETag");
+  EXPECT_NE(etag, png->get_header_value("ETag"));
+  EXPECT_NE(etag, c.Get(session + "/frame.jpg?quality=90")->get_header_value("ETag"));
+  auto again = c.Get(session + "/frame.jpg", {{"If-None-Match", etag}});
+  EXPECT_EQ(again->status, 304);
+  // Rendered anew (a quality not cached yet, then the default again after a change and back), the
+  // same state gives the same bytes.
+  auto other = c.Get(session + "/frame.jpg?quality=71");
+  auto other_again = c.Get(session + "/frame.jpg?quality=71", {{"If-None-Match", "\"x\""}});
+  EXPECT_TRUE(other->body == other_again->body);
+  EXPECT_EQ(c.Get(session + "/frame.jpg?quality=101")->status, 422);
+  remove(id);
 }
 
 }  // namespace
