@@ -176,18 +176,22 @@ int run_render_bench(int frames) {
                   bare.render_ms, bare.encode_ms, frame / (bare.render_ms + bare.encode_ms));
     }
   }
-  // The PNG encoder against libpng + zlib at the same level on the same frames, interleaved.
-  std::printf(
-      "\n| size | encode ms (libdeflate) | libpng ms | ratio | bytes | libpng bytes | ratio |\n"
-      "| --- | --- | --- | --- | --- | --- | --- |\n");
-  for (const Size& size : sizes) {
+  // The default frame's RGBA pixels at a size (all layers, the camera aimed at the body).
+  const auto rgba_frame = [&](const Size& size) {
     render::ViewOptions view;
     view.width = size.w;
     view.height = size.h;
     render::aim_camera_at_body(view, snapshot);
     const std::uint8_t* rgba =
         renderer.render_rgba(render::build_scene(snapshot, view), view.width, view.height);
-    const std::vector<std::uint8_t> frame(rgba, rgba + static_cast<std::size_t>(size.w) * size.h * 4);
+    return std::vector<std::uint8_t>(rgba, rgba + static_cast<std::size_t>(size.w) * size.h * 4);
+  };
+  // The PNG encoder against libpng + zlib at the same level on the same frames, interleaved.
+  std::printf(
+      "\n| size | encode ms (libdeflate) | libpng ms | ratio | bytes | libpng bytes | ratio |\n"
+      "| --- | --- | --- | --- | --- | --- | --- |\n");
+  for (const Size& size : sizes) {
+    const std::vector<std::uint8_t> frame = rgba_frame(size);
     std::vector<double> ours, theirs;
     std::size_t ours_bytes = 0, theirs_bytes = 0;
     for (int f = 0; f < frames + 2; ++f) {
@@ -209,13 +213,7 @@ int run_render_bench(int frames) {
       "\n| size | quality | JPEG bytes | PNG bytes | JPEG / PNG | PSNR dB | mean abs error | encode ms |\n"
       "| --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (const Size& size : {sizes[0], sizes[1]}) {
-    render::ViewOptions view;
-    view.width = size.w;
-    view.height = size.h;
-    render::aim_camera_at_body(view, snapshot);
-    const std::uint8_t* rgba =
-        renderer.render_rgba(render::build_scene(snapshot, view), view.width, view.height);
-    const std::vector<std::uint8_t> frame(rgba, rgba + static_cast<std::size_t>(size.w) * size.h * 4);
+    const std::vector<std::uint8_t> frame = rgba_frame(size);
     const std::size_t png_bytes = render::encode_png(frame.data(), size.w, size.h).size();
     for (const int quality : {50, 60, 70, 75, 80, 90}) {
       std::vector<double> times;
