@@ -27,6 +27,13 @@ const std::uint8_t* Renderer::render_rgba(const FrameScene& scene, int width, in
   return context_.pixels();
 }
 
+Image Renderer::render_image(const Snapshot& snapshot, const ViewOptions& view) {
+  const FrameScene scene = build_scene(snapshot, view);
+  const std::uint8_t* rgba = render_rgba(scene, view.width, view.height);
+  const std::size_t bytes = static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height) * 4;
+  return {view.width, view.height, std::vector<std::uint8_t>(rgba, rgba + bytes)};
+}
+
 std::vector<std::uint8_t> Renderer::render_png(const Snapshot& snapshot, const ViewOptions& view) {
   const FrameScene scene = build_scene(snapshot, view);
   return encode_png(render_rgba(scene, view.width, view.height), view.width, view.height);

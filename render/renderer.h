@@ -12,6 +12,12 @@
 
 namespace spinfold::render {
 
+// A rendered frame's pixels, owned: width·height·4 RGBA bytes, first row on top.
+struct Image {
+  int width = 0, height = 0;  // [pixels]
+  std::vector<std::uint8_t> rgba;
+};
+
 class Renderer {
  public:
   // Creates the context on the calling thread and warms it up (shader JIT costs the first frame
@@ -21,6 +27,8 @@ class Renderer {
 
   // Draws the scene; the returned pointer is width·height·4 RGBA bytes, valid until the next call.
   const std::uint8_t* render_rgba(const FrameScene& scene, int width, int height);
+  // build_scene + render, the pixels copied out (to be encoded on another thread).
+  Image render_image(const Snapshot& snapshot, const ViewOptions& view);
   // build_scene + render + encode_png.
   std::vector<std::uint8_t> render_png(const Snapshot& snapshot, const ViewOptions& view);
   // build_scene + render + encode_jpeg at this quality (1..100).

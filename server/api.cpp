@@ -52,7 +52,8 @@ struct ApiServer::State {
   int listen_socket = -1;  // remembered by the socket options, for bind() to raise its backlog
 
   explicit State(ServerOptions o)
-      : server(std::move(o)), player(server.sessions, server.options.limits.max_play_steps) {}
+      : server(std::move(o)),
+        player(server.sessions, server.options.limits.max_play_steps, [this] { server.changes.notify(); }) {}
 };
 
 ApiServer::ApiServer(ServerOptions options) : state_(std::make_unique<State>(std::move(options))) {
@@ -108,7 +109,8 @@ std::string ApiServer::create_session(const Scene& scene) {
 
 void ApiServer::stop() {
   if (!state_) return;
-  state_->server.stopping = true;  // ends the event streams, which would hold the pool open
+  state_->server.stopping = true;  // ends the event and live streams, which would hold the pool open
+  state_->server.changes.notify();
   state_->player.stop();
   state_->http.stop();
   state_->server.sessions.flush();  // the time of playing sessions

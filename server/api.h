@@ -21,11 +21,13 @@ struct Limits {
   std::size_t max_sessions = 64;
   std::chrono::seconds idle_expiry{1800};  // sessions unused this long are dropped
   long max_steps = 1000000;                // step attempts per advance request (and fixed steps)
-  long max_play_steps = 20000;             // step attempts per session per player tick (50 Hz)
+  long max_play_steps = 20000;             // step attempts per session per player tick (120 Hz)
   double max_advance_time = 1e6;           // simulated time per advance request
   int max_image_side = 4096;               // [pixels]
-  int max_streams = 64;                    // open event streams (each holds a worker thread)
-  double max_play_rate = 1000.0;           // simulated time per second while playing
+  // Open event and live streams (each holds a worker thread): 32 viewers with an event stream and
+  // a live stream each, and room for more.
+  int max_streams = 96;
+  double max_play_rate = 1000.0;  // simulated time per second while playing
 
   // Per client address (server/quota.h): the socket's peer, or X-Forwarded-For's first address when
   // the peer is ServerOptions::trusted_proxy. A whole classroom often shares one address (NAT), so
@@ -33,7 +35,7 @@ struct Limits {
   // and, while playing, one event stream) fit, while one address cannot take every session or stream
   // from the others (max_sessions, max_streams). Over a quota: 429 with Retry-After naming it.
   int max_sessions_per_client = 48;  // sessions created from one address and not yet deleted or expired
-  int max_streams_per_client = 48;   // event streams open from one address
+  int max_streams_per_client = 64;   // event and live streams open from one address
   // Requests from one address: a token bucket refilled at this rate [requests/s] holding at most
   // the burst [requests]. A playing tab asks about 20 frames and states a second (serialised behind
   // the one render thread, ~66 frames/s at 640x480 for everyone); a page load about 50 requests (its
@@ -53,9 +55,11 @@ struct ServerOptions {
   std::string host = "127.0.0.1";
   int port = 8080;  // 0: any free port
   // HTTP worker threads: one per open connection, idle or not (cpp-httplib 0.11), so the pool is sized
-  // for max_streams event streams plus as many idle, slow or busy connections again: 32 idle or
-  // trickling connections then leave the API answering at once (docs/performance.md).
-  int threads = 128;
+  // for max_streams streams plus 64 idle, slow or busy connections: 32 idle or trickling connections
+  // then leave the API answering at once (docs/performance.md).
+  int threads = 160;
+  // Render threads, each with its own GL context (server/render_pool.h); 0: one per core.
+  int render_threads = 0;
   // The address of a reverse proxy (the front, scripts/front.sh) whose X-Forwarded-For names the
   // client; "": never trust the header (the socket's peer is the client).
   std::string trusted_proxy;

@@ -24,6 +24,28 @@ std::shared_ptr<Session> find_session(ServerContext& server, const std::string& 
 
 namespace {
 
+// Releases a stream slot (and the client's, server/quota.h) when destroyed.
+struct StreamSlot {
+  std::atomic<int>& open;
+  std::shared_ptr<void> client;
+  StreamSlot(std::atomic<int>& counter, std::shared_ptr<void> client_slot)
+      : open(counter), client(std::move(client_slot)) {}
+  ~StreamSlot() { --open; }
+};
+
+}  // namespace
+
+std::shared_ptr<void> open_stream(ServerContext& server, const std::string& client) {
+  std::shared_ptr<void> client_slot = server.quotas.open_stream(client);  // 429 over the client's quota
+  if (++server.open_streams > server.options.limits.max_streams) {
+    --server.open_streams;
+    throw ApiError{429, "Too many streams", {{"", "", "the stream limit of the server is reached"}}, "10"};
+  }
+  return std::make_shared<StreamSlot>(server.open_streams, std::move(client_slot));
+}
+
+namespace {
+
 ApiError store_unavailable(const std::string& what) {
   return ApiError{503, "Store unavailable", {{"", "", what + " could not be stored; retry later"}}, "1"};
 }

@@ -1,16 +1,20 @@
-// What every handler shares: the server's state (sessions, the render thread, the frame cache,
-// the open event streams) and the few answers built the same way on every route.
+// What every handler shares: the server's state (sessions, the render pool, the frame cache, the
+// open streams and live viewers) and the few answers built the same way on every route.
 #pragma once
 
 #include <atomic>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "server/api.h"
+#include "server/change_signal.h"
 #include "server/frame_cache.h"
+#include "server/frames.h"
 #include "server/quota.h"
-#include "server/render_worker.h"
+#include "server/render_pool.h"
 #include "server/session_db.h"
 #include "server/sessions.h"
 
@@ -20,15 +24,25 @@ struct Response;
 
 namespace spinfold::server {
 
+// One live stream's picture (GET …/live), steered by PATCH …/live?viewer=.
+struct Viewer {
+  std::mutex mutex;  // guards the two below
+  FrameRequest request;
+  std::uint64_t generation = 0;  // bumped by every PATCH
+};
+
 struct ServerContext {
   ServerOptions options;
   std::unique_ptr<SessionDb> db;  // the durable store (options.data_dir), or none: memory only
   SessionStore sessions;
-  RenderWorker renderer;
-  FrameCache frames{64};
-  std::atomic<int> open_streams{0};     // event streams now open
-  ClientQuotas quotas{options.limits};  // per client address (server/quota.h)
-  std::atomic<bool> stopping{false};    // set by stop(): ends the event streams
+  RenderPool renderer{options.render_threads};
+  FrameCache frames{128};
+  ChangeSignal changes;              // bumped after every change of a session (live streams wait on it)
+  std::atomic<int> open_streams{0};  // event and live streams now open
+  std::mutex viewers_mutex;          // guards viewers
+  std::map<std::string, std::weak_ptr<Viewer>> viewers;  // by "session id/viewer"
+  ClientQuotas quotas{options.limits};                   // per client address (server/quota.h)
+  std::atomic<bool> stopping{false};                     // set by stop(): ends the event streams
 
   explicit ServerContext(ServerOptions o)
       : options(std::move(o)),
@@ -40,6 +54,10 @@ struct ServerContext {
 
 // The session with this id, or ApiError 404 (the same answer on every route).
 std::shared_ptr<Session> find_session(ServerContext& server, const std::string& id);
+
+// Holds one of the server's and the client's stream slots while alive, or ApiError 429 when
+// either limit is reached.
+std::shared_ptr<void> open_stream(ServerContext& server, const std::string& client);
 
 // Commits a change before it is acknowledged (the session's lock held): ApiError 409 when another
 // server changed the session meanwhile, 503 when the store cannot be written (nothing is kept).

@@ -1,7 +1,10 @@
-// The player: advances playing sessions in real time, 50 times a second, on its own thread.
+// The player: advances playing sessions in real time, 120 times a second (more often than a display
+// refreshes, so a live view has a new state for every frame it can show), on its own thread.
 #pragma once
 
 #include <atomic>
+#include <chrono>
+#include <functional>
 #include <thread>
 
 namespace spinfold::server {
@@ -10,8 +13,10 @@ class SessionStore;
 
 class Player {
  public:
+  static constexpr std::chrono::microseconds kTick{8333};
   // max_steps: step attempts per session per tick (a stiff scene falls behind real time).
-  Player(SessionStore& sessions, long max_steps);
+  // played: called after each tick that advanced a session.
+  Player(SessionStore& sessions, long max_steps, std::function<void()> played = {});
   ~Player();  // stops and joins
   void stop();
 
@@ -19,6 +24,7 @@ class Player {
   void loop();
   SessionStore& sessions_;
   long max_steps_;
+  std::function<void()> played_;
   std::atomic<bool> stopping_{false};
   std::thread thread_;
 };

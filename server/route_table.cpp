@@ -225,7 +225,8 @@ bool Call::has_body() const {
 std::vector<Route> route_table(const Limits& limits) {
   std::vector<Route> routes;
   for (auto part :
-       {catalog_routes(limits), session_routes(limits), frame_routes(limits), event_routes(limits)})
+       {catalog_routes(limits), session_routes(limits), frame_routes(limits), event_routes(limits),
+        live_routes(limits)})
     for (Route& r : part) routes.push_back(std::move(r));
   return routes;
 }
@@ -303,6 +304,7 @@ void register_routes(httplib::Server& http, ServerContext& server, const std::ve
     } catch (const ApiError& e) {
       send_error(res, e);
     }
+    if (route.method != "GET") server.changes.notify();  // wakes the live streams
   };
   const auto add = [&http, run](const std::string& method, const std::string& pattern, const Route& route) {
     if (method == "GET") {

@@ -14,26 +14,11 @@ namespace spinfold::server {
 
 namespace {
 
-// Releases an event-stream slot (and the client's, server/quota.h) when the last copy of its
-// stream's provider is gone.
-struct StreamSlot {
-  std::atomic<int>& open;
-  std::shared_ptr<void> client;
-  StreamSlot(std::atomic<int>& counter, std::shared_ptr<void> client_slot)
-      : open(counter), client(std::move(client_slot)) {}
-  ~StreamSlot() { --open; }
-};
-
 void get_events(ServerContext& server, const Call& call, httplib::Response& res) {
   const std::string id = call.id;
   find_session(server, id);
   const double hz = *call.query.number("rate");
-  std::shared_ptr<void> client_slot = server.quotas.open_stream(call.client);  // 429 over the client's quota
-  if (++server.open_streams > server.options.limits.max_streams) {
-    --server.open_streams;
-    throw ApiError{429, "Too many streams", {{"", "", "the event-stream limit is reached"}}, "10"};
-  }
-  auto slot = std::make_shared<StreamSlot>(server.open_streams, std::move(client_slot));
+  auto slot = open_stream(server, call.client);
   const auto interval = std::chrono::duration<double>(1.0 / hz);
   std::uint64_t sent = ~std::uint64_t{0};
   res.set_header("Cache-Control", "no-cache");

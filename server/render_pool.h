@@ -1,0 +1,49 @@
+// The render pool: N threads, each owning an OpenGL context (a context is bound to one thread, and
+// a dedicated thread costs ~30% less than binding it on whichever worker serves: platform-notes.md).
+// Threads only render; the caller encodes the pixels, so a render thread never waits on encoding
+// or on a client. Frames with the same key (a session) are rendered one at a time, in the order
+// they were asked for; frames of different keys run in parallel.
+#pragma once
+
+#include <condition_variable>
+#include <deque>
+#include <future>
+#include <mutex>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "render/renderer.h"
+#include "render/snapshot.h"
+#include "render/view.h"
+
+namespace spinfold::server {
+
+class RenderPool {
+ public:
+  // threads: 0 for one per core.
+  explicit RenderPool(int threads);
+  ~RenderPool();
+  RenderPool(const RenderPool&) = delete;
+  RenderPool& operator=(const RenderPool&) = delete;
+
+  int threads() const { return static_cast<int>(threads_.size()); }
+  // The frame's pixels. Without a GL context the future holds std::future_error (broken promise).
+  std::future<render::Image> render(std::string key, render::Snapshot snapshot, render::ViewOptions view);
+
+ private:
+  struct Task {
+    std::string key;
+    std::packaged_task<render::Image(render::Renderer&)> work;
+  };
+  void loop();
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<Task> queue_;
+  std::set<std::string> busy_;  // keys being rendered now
+  bool stopping_ = false;
+  std::vector<std::thread> threads_;
+};
+
+}  // namespace spinfold::server
