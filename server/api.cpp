@@ -43,6 +43,8 @@ httplib::Headers security_headers() {
           {"Referrer-Policy", "no-referrer"}};
 }
 
+constexpr int kSendBuffer = 128 * 1024;  // [bytes]: 4 motion frames, a 1280x720 PNG in two writes
+
 }  // namespace
 
 struct ApiServer::State {
@@ -70,9 +72,13 @@ ApiServer::ApiServer(ServerOptions options) : state_(std::make_unique<State>(std
   http.set_default_headers(security_headers());
   // The listening socket: SO_REUSEADDR (a restart binds at once) but not httplib's SO_REUSEPORT,
   // with which a second server on the same port silently takes part of the connections.
+  // Accepted sockets inherit a send buffer of kSendBuffer (Linux doubles it): a live stream whose
+  // client stops reading blocks after a few frames instead of queueing seconds of them in an
+  // auto-tuned buffer of up to 4 MB (tests/server/live_test.cpp), and then sends the newest state.
   http.set_socket_options([state = state_.get()](socket_t sock) {
     const int yes = 1;
     ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    ::setsockopt(sock, SOL_SOCKET, SO_SNDBUF, &kSendBuffer, sizeof kSendBuffer);
     state->listen_socket = sock;
   });
   register_routes(http, state_->server, route_table(state_->server.options.limits));

@@ -5,7 +5,7 @@
 
 namespace spinfold::server {
 
-RenderPool::RenderPool(int threads) {
+RenderPool::RenderPool(int threads, Observer observer) : observer_(std::move(observer)) {
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { loop(); });
 }
@@ -28,7 +28,7 @@ std::future<render::Image> RenderPool::render(std::string key, render::Snapshot 
   auto result = work.get_future();
   {
     const std::lock_guard lock(mutex_);
-    queue_.push_back({std::move(key), std::move(work)});
+    queue_.push_back({std::move(key), ++asked_, std::move(work)});
   }
   wake_.notify_one();
   return result;
@@ -59,7 +59,9 @@ void RenderPool::loop() {
       queue_.erase(next);
       busy_.insert(task.key);
     }
+    if (observer_) observer_(task.key, task.number, true);
     if (renderer) task.work(*renderer);
+    if (observer_) observer_(task.key, task.number, false);
     {
       const std::lock_guard lock(mutex_);
       busy_.erase(task.key);

@@ -7,6 +7,7 @@
 
 #include <condition_variable>
 #include <deque>
+#include <functional>
 #include <future>
 #include <mutex>
 #include <set>
@@ -22,8 +23,12 @@ namespace spinfold::server {
 
 class RenderPool {
  public:
+  // Told on the render thread when a frame starts and ends: its key and its number (frames are
+  // numbered from 1 in the order asked for). For tests and metrics.
+  using Observer = std::function<void(const std::string& key, std::uint64_t number, bool started)>;
+
   // threads: 0 for one per core.
-  explicit RenderPool(int threads);
+  explicit RenderPool(int threads, Observer observer = {});
   ~RenderPool();
   RenderPool(const RenderPool&) = delete;
   RenderPool& operator=(const RenderPool&) = delete;
@@ -35,6 +40,7 @@ class RenderPool {
  private:
   struct Task {
     std::string key;
+    std::uint64_t number = 0;
     std::packaged_task<render::Image(render::Renderer&)> work;
   };
   void loop();
@@ -43,6 +49,8 @@ class RenderPool {
   std::deque<Task> queue_;
   std::set<std::string> busy_;  // keys being rendered now
   bool stopping_ = false;
+  std::uint64_t asked_ = 0;  // frames asked for so far
+  Observer observer_;
   std::vector<std::thread> threads_;
 };
 

@@ -4,9 +4,7 @@
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
-#include <png.h>
 #include <sys/socket.h>
-#include <turbojpeg.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -15,6 +13,7 @@
 #include <thread>
 
 #include "bad_requests.h"
+#include "decoded_image.h"
 #include "server/route_table.h"
 
 // After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
@@ -956,28 +955,6 @@ TEST_F(Api, CompanionsThroughPostPatchAndTimelineReplay) {
 
 namespace spinfold::server {
 namespace {
-
-// RGB pixels of an image: PNG through libpng's simplified API, JPEG through TurboJPEG.
-std::vector<std::uint8_t> png_pixels(const std::string& bytes, int& width, int& height) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_memory(&image, bytes.data(), bytes.size())) return {};
-  image.format = PNG_FORMAT_RGB;
-  std::vector<std::uint8_t> pixels(PNG_IMAGE_SIZE(image));
-  png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr);
-  width = static_cast<int>(image.width);
-  height = static_cast<int>(image.height);
-  return pixels;
-}
-
-std::vector<std::uint8_t> jpeg_pixels(const std::string& bytes, int width, int height) {
-  tjhandle handle = tjInitDecompress();
-  std::vector<std::uint8_t> pixels(static_cast<std::size_t>(width) * height * 3);
-  const int failed = tjDecompress2(handle, reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(),
-                                   pixels.data(), width, 0, height, TJPF_RGB, TJFLAG_ACCURATEDCT);
-  tjDestroy(handle);
-  return failed ? std::vector<std::uint8_t>{} : pixels;
-}
 
 // frame.jpg is the same picture as frame.png within JPEG's error, in a third of the bytes; it has
 // its own ETag per quality, and the same state gives the same bytes.

@@ -1,0 +1,360 @@
+// The live stream (GET/PATCH …/live) and what it stands on: the render pool's order per session
+// and the frame cache's one render per frame. A real server in-process, real HTTP clients.
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "codec/presets.h"
+#include "codec/scene_json.h"
+#include "decoded_image.h"
+#include "render/snapshot.h"
+#include "server/api.h"
+#include "server/frame_cache.h"
+#include "server/render_pool.h"
+
+// After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
+#include <httplib.h>
+
+namespace spinfold::server {
+namespace {
+
+using nlohmann::json;
+using namespace std::chrono_literals;
+
+// One part of a multipart/x-mixed-replace stream.
+struct Part {
+  std::string type;
+  std::map<std::string, std::string> frame;  // X-Spinfold-Frame: seq, version, t, kind
+  std::string body;
+};
+
+// Parses the stream as it arrives.
+struct MultipartReader {
+  std::string buffer;
+  std::vector<Part> parts;
+  void feed(const char* data, std::size_t n) {
+    buffer.append(data, n);
+    for (;;) {
+      const std::size_t head_end = buffer.find("\r\n\r\n");
+      if (head_end == std::string::npos) return;
+      const std::string head = buffer.substr(0, head_end);
+      EXPECT_EQ(head.rfind("--spinfold-frame\r\n", 0), 0u) << head;
+      const auto header = [&](const std::string& name) {
+        const std::size_t at = head.find(name + ": ");
+        if (at == std::string::npos) return std::string();
+        const std::size_t from = at + name.size() + 2;
+        return head.substr(from, head.find("\r\n", from) - from);
+      };
+      const std::size_t length = std::stoul(header("Content-Length"));
+      if (buffer.size() < head_end + 4 + length + 2) return;
+      Part part{header("Content-Type"), {}, buffer.substr(head_end + 4, length)};
+      std::string fields = header("X-Spinfold-Frame");
+      for (std::size_t at = 0; at < fields.size();) {
+        const std::size_t end = std::min(fields.find("; ", at), fields.size());
+        const std::string item = fields.substr(at, end - at);
+        part.frame[item.substr(0, item.find('='))] = item.substr(item.find('=') + 1);
+        at = end + 2;
+      }
+      EXPECT_EQ(buffer.substr(head_end + 4 + length, 2), "\r\n");
+      parts.push_back(std::move(part));
+      buffer.erase(0, head_end + 4 + length + 2);
+    }
+  }
+  std::vector<Part> frames() const {
+    std::vector<Part> images;
+    for (const Part& p : parts)
+      if (p.type.rfind("image/", 0) == 0) images.push_back(p);
+    return images;
+  }
+};
+
+class Live : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    ServerOptions options;
+    options.port = 0;
+    options.threads = 16;
+    options.render_threads = 2;
+    options.limits.requests_per_second_per_client = 0.0;
+    server_ = new ApiServer(options);
+    port_ = server_->bind();
+    ASSERT_GT(port_, 0);
+    thread_ = new std::thread([] { server_->listen(); });
+  }
+  static void TearDownTestSuite() {
+    server_->stop();
+    thread_->join();
+    delete thread_;
+    delete server_;
+  }
+  static httplib::Client client() {
+    httplib::Client c("127.0.0.1", port_);
+    c.set_read_timeout(30, 0);
+    return c;
+  }
+  static std::string create() {
+    auto res = client().Post("/api/v1/sessions", "{}", "application/json");
+    EXPECT_EQ(res->status, 201);
+    return json::parse(res->body)["id"];
+  }
+  static int post(const std::string& path, const std::string& body = "{}") {
+    return client().Post(path, body, "application/json")->status;
+  }
+
+  // Reads a live stream on its own thread until stop() or `silence` without a byte.
+  struct Watch {
+    MultipartReader reader;
+    std::mutex mutex;
+    std::atomic<bool> stopping{false};
+    int status = 0;
+    std::thread thread;
+    Watch(const std::string& path, std::chrono::seconds silence) {
+      thread = std::thread([this, path, silence] {
+        httplib::Client c("127.0.0.1", port_);
+        c.set_read_timeout(silence);
+        auto res = c.Get(
+            path,
+            [this](const httplib::Response& r) {
+              status = r.status;
+              return true;
+            },
+            [this](const char* data, std::size_t n) {
+              const std::lock_guard lock(mutex);
+              reader.feed(data, n);
+              return !stopping.load();
+            });
+      });
+    }
+    std::vector<Part> frames() {
+      const std::lock_guard lock(mutex);
+      return reader.frames();
+    }
+    // Waits (up to 10 s) until `n` frames have arrived.
+    bool wait_for(std::size_t n) {
+      for (int i = 0; i < 1000 && frames().size() < n; ++i) std::this_thread::sleep_for(10ms);
+      return frames().size() >= n;
+    }
+    void stop() {
+      stopping = true;
+      thread.join();
+    }
+  };
+
+  static ApiServer* server_;
+  static std::thread* thread_;
+  static int port_;
+};
+
+ApiServer* Live::server_ = nullptr;
+std::thread* Live::thread_ = nullptr;
+int Live::port_ = 0;
+
+// A paused session: its still frame (a PNG) at once, then nothing at all.
+TEST_F(Live, PausedSessionSendsOneStillFrameThenNothing) {
+  const std::string id = create();
+  Watch watch("/api/v1/sessions/" + id + "/live?viewer=paused", 2s);  // ends after 2 s of silence
+  watch.thread.join();
+  EXPECT_EQ(watch.status, 200);
+  const auto frames = watch.reader.frames();
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_EQ(frames[0].type, "image/png");
+  EXPECT_EQ(frames[0].frame.at("kind"), "still");
+  EXPECT_EQ(frames[0].frame.at("seq"), "1");
+  EXPECT_EQ(frames[0].body, client().Get("/api/v1/sessions/" + id + "/frame.png")->body);
+}
+
+// Playing: motion frames (JPEG) in order; paused: one PNG of the last state, which is the motion
+// frame's picture within JPEG's error and frame.png's bytes.
+TEST_F(Live, MotionFramesInOrderThenTheStillFrame) {
+  const std::string id = create();
+  const std::string session = "/api/v1/sessions/" + id;
+  Watch watch(session + "/live?viewer=player&quality=80", 5s);
+  ASSERT_TRUE(watch.wait_for(1));
+  ASSERT_EQ(post(session + "/play", R"({"rate": 1})"), 200);
+  ASSERT_TRUE(watch.wait_for(6));
+  ASSERT_EQ(post(session + "/pause"), 200);
+  const double paused_t = json::parse(client().Get(session)->body)["state"]["t"];
+  // The still frame follows (the stream is then silent).
+  for (int i = 0; i < 500 && watch.frames().back().frame.at("kind") != "still"; ++i)
+    std::this_thread::sleep_for(10ms);
+  std::this_thread::sleep_for(300ms);
+  watch.stop();
+  const auto frames = watch.frames();
+  ASSERT_GE(frames.size(), 7u);
+  long seq = 0, version = 0;
+  for (std::size_t i = 1; i + 1 < frames.size(); ++i) {
+    EXPECT_EQ(frames[i].type, "image/jpeg") << i;
+    EXPECT_EQ(frames[i].frame.at("kind"), "motion") << i;
+  }
+  for (const Part& f : frames) {
+    EXPECT_EQ(std::stol(f.frame.at("seq")), seq + 1);
+    seq = std::stol(f.frame.at("seq"));
+    EXPECT_GE(std::stol(f.frame.at("version")), version);
+    version = std::stol(f.frame.at("version"));
+  }
+  const Part& still = frames.back();
+  const Part& motion = frames[frames.size() - 2];
+  EXPECT_EQ(still.type, "image/png");
+  EXPECT_EQ(still.frame.at("kind"), "still");
+  EXPECT_EQ(still.frame.at("version"), motion.frame.at("version"));
+  EXPECT_EQ(std::stod(still.frame.at("t")), paused_t);
+  EXPECT_EQ(still.body, client().Get(session + "/frame.png")->body);
+  int width = 0, height = 0;
+  const auto lossless = png_pixels(still.body, width, height);
+  EXPECT_EQ(width, 640);
+  EXPECT_LT(mean_difference(jpeg_pixels(motion.body, width, height), lossless), 3.0);  // of 255
+}
+
+// PATCH steers the stream: a new camera gives a motion frame then a still one; an unknown viewer
+// is 404, a bad one 422, a second stream with the same viewer 409.
+TEST_F(Live, PatchSteersTheStreamsCamera) {
+  const std::string id = create();
+  const std::string live = "/api/v1/sessions/" + id + "/live";
+  Watch watch(live + "?viewer=steer", 5s);
+  ASSERT_TRUE(watch.wait_for(1));
+  auto c = client();
+  EXPECT_EQ(c.Patch(live + "?viewer=steer&yaw=1.5&pitch=0.4", "", "text/plain")->status, 204);
+  ASSERT_TRUE(watch.wait_for(3));
+  const auto frames = watch.frames();
+  EXPECT_EQ(frames[1].frame.at("kind"), "motion");
+  EXPECT_EQ(frames[2].frame.at("kind"), "still");
+  EXPECT_EQ(frames[2].frame.at("version"), frames[0].frame.at("version"));  // same state, new camera
+  EXPECT_NE(frames[2].body, frames[0].body);
+  EXPECT_EQ(frames[2].body, c.Get("/api/v1/sessions/" + id + "/frame.png?yaw=1.5&pitch=0.4")->body);
+
+  EXPECT_EQ(c.Patch(live + "?viewer=nobody&yaw=1", "", "text/plain")->status, 404);
+  auto bad = c.Patch(live + "?viewer=no%20spaces&yaw=1", "", "text/plain");
+  EXPECT_EQ(bad->status, 422);
+  EXPECT_NE(bad->body.find("viewer"), std::string::npos);
+  EXPECT_EQ(c.Patch(live + "?viewer=steer&pitch=9", "", "text/plain")->status, 422);
+  EXPECT_EQ(c.Get(live + "?viewer=steer")->status, 409);
+  watch.stop();
+}
+
+// A client that stops reading while the session plays is sent fewer, newer frames: the server
+// renders a frame only when the previous one was taken, so nothing piles up for it.
+TEST_F(Live, ASlowReaderGetsFewerNewerFramesNotAQueue) {
+  const std::string id = create();
+  const std::string session = "/api/v1/sessions/" + id;
+  const int sock = ::socket(AF_INET, SOCK_STREAM, 0);
+  const int small = 16 * 1024;
+  ::setsockopt(sock, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port_));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::connect(sock, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+  const std::string request = "GET " + session + "/live?viewer=slow HTTP/1.1\r\nHost: x\r\n\r\n";
+  ASSERT_EQ(::send(sock, request.data(), request.size(), 0), static_cast<ssize_t>(request.size()));
+  ASSERT_EQ(post(session + "/play", R"({"rate": 1})"), 200);
+  std::this_thread::sleep_for(3s);  // ~360 states played; the client reads nothing
+  const double t_before = json::parse(client().Get(session)->body)["state"]["t"];
+  // Now read everything the server had sent (and goes on sending) for one second.
+  timeval timeout{0, 100000};
+  ::setsockopt(sock, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  std::string received;
+  const auto until = std::chrono::steady_clock::now() + 1s;
+  char chunk[65536];
+  while (std::chrono::steady_clock::now() < until) {
+    const ssize_t n = ::recv(sock, chunk, sizeof chunk, 0);
+    if (n > 0) received.append(chunk, static_cast<std::size_t>(n));
+  }
+  ::close(sock);
+  ASSERT_EQ(post(session + "/pause"), 200);
+  const std::size_t body = received.find("\r\n\r\n");
+  ASSERT_NE(body, std::string::npos);
+  // Dechunk the HTTP body and parse the parts.
+  MultipartReader reader;
+  for (std::size_t at = body + 4; at < received.size();) {
+    const std::size_t eol = received.find("\r\n", at);
+    if (eol == std::string::npos) break;
+    const std::size_t size = std::stoul(received.substr(at, eol - at), nullptr, 16);
+    if (size == 0 || eol + 2 + size > received.size()) break;
+    reader.feed(received.data() + eol + 2, size);
+    at = eol + 2 + size + 2;
+  }
+  const auto frames = reader.frames();
+  ASSERT_GE(frames.size(), 2u);
+  // Sent while the client was not reading: what fits in the socket buffers, not 3 s of frames.
+  std::size_t stale = 0;
+  for (const Part& f : frames) stale += std::stod(f.frame.at("t")) < t_before;
+  EXPECT_LE(stale, 16u) << frames.size() << " frames";
+  std::printf("slow reader: %zu stale frames of %zu\n", stale, frames.size());
+  // And after it read again, frames of the state now, not of the backlog.
+  EXPECT_GE(std::stod(frames.back().frame.at("t")), t_before);
+}
+
+// The render pool renders a session's frames one at a time in the order asked for, frames of
+// other sessions meanwhile.
+TEST(RenderPool, FramesOfOneKeyInOrderOneAtATime) {
+  std::mutex mutex;
+  std::vector<std::pair<std::string, std::uint64_t>> started;
+  std::map<std::string, int> running;
+  bool overlapped = false;
+  RenderPool pool(2, [&](const std::string& key, std::uint64_t number, bool start) {
+    const std::lock_guard lock(mutex);
+    if (start) {
+      started.emplace_back(key, number);
+      overlapped |= ++running[key] > 1;
+    } else {
+      --running[key];
+    }
+  });
+  const Scene scene = *parse_scene_text(find_preset("spin_vs_geodesic_sphere")->json).scene;
+  const Simulation run = start_simulation(scene);
+  render::ViewOptions view;
+  view.width = 64;
+  view.height = 48;
+  std::vector<std::future<render::Image>> frames;
+  for (int i = 0; i < 12; ++i) {
+    const Trail trail;
+    frames.push_back(pool.render(i % 3 == 0 ? "b" : "a", render::make_snapshot(run, trail, -1.0), view));
+  }
+  for (auto& f : frames) EXPECT_EQ(f.get().rgba.size(), 64u * 48u * 4u);
+  EXPECT_FALSE(overlapped);
+  std::map<std::string, std::uint64_t> last;
+  for (const auto& [key, number] : started) {
+    EXPECT_GT(number, last[key]) << key;
+    last[key] = number;
+  }
+  EXPECT_EQ(started.size(), 12u);
+}
+
+// Eight viewers asking for one frame at once: one render, eight answers; a failed render reaches
+// everyone waiting and is made again at the next ask.
+TEST(FrameCache, OneRenderPerFrameForEveryoneAsking) {
+  FrameCache cache(4);
+  std::atomic<int> made{0};
+  const auto make = [&] {
+    ++made;
+    std::this_thread::sleep_for(50ms);
+    return std::make_shared<const std::vector<std::uint8_t>>(3, 7);
+  };
+  std::vector<std::thread> viewers;
+  std::atomic<int> answers{0};
+  for (int i = 0; i < 8; ++i)
+    viewers.emplace_back([&] { answers += cache.get("\"frame\"", make)->size() == 3; });
+  for (auto& v : viewers) v.join();
+  EXPECT_EQ(made.load(), 1);
+  EXPECT_EQ(answers.load(), 8);
+  EXPECT_TRUE(cache.contains("\"frame\""));
+
+  EXPECT_THROW(cache.get("\"broken\"", []() -> FrameBytes { throw std::runtime_error("no context"); }),
+               std::runtime_error);
+  EXPECT_FALSE(cache.contains("\"broken\""));
+  EXPECT_EQ(cache.get("\"broken\"", make)->size(), 3u);
+  for (const char* etag : {"\"1\"", "\"2\"", "\"3\"", "\"4\""}) cache.get(etag, make);
+  EXPECT_FALSE(cache.contains("\"frame\""));  // least recently used, beyond the capacity
+}
+
+}  // namespace
+}  // namespace spinfold::server
