@@ -94,6 +94,7 @@ std::vector<Route> catalog_routes(const Limits&) {
   // The browser UI, embedded at build time.
   for (const auto& [path, summary] :
        {std::pair{"/", "The browser UI"}, std::pair{"/app.js", "The browser UI's script"},
+        std::pair{"/live.js", "The browser UI's live view (parses the live stream)"},
         std::pair{"/style.css", "The browser UI's style sheet"},
         std::pair{"/vendor/uPlot.esm.js", "uPlot, the UI's plotting library"},
         std::pair{"/vendor/uPlot.min.css", "uPlot's style sheet"}})

@@ -85,10 +85,12 @@ bool live_step(ServerContext& server, LiveStream& live, httplib::DataSink& sink)
   }
   std::uint64_t version;
   bool playing;
+  SurfaceKind surface;
   {
     const std::lock_guard lock(s->mutex);
     version = s->version;
     playing = s->playing;
+    surface = s->run.scene.surface.kind;
   }
   FrameRequest f;
   std::uint64_t camera;
@@ -97,6 +99,8 @@ bool live_step(ServerContext& server, LiveStream& live, httplib::DataSink& sink)
     f = live.viewer->request;
     camera = live.viewer->generation;
   }
+  // The session changed surface under the viewer: its own view until the viewer picks another.
+  if (render::view_unsupported_reason(f.view.kind, surface)) f.view.kind = render::default_view(surface);
   const auto now = Clock::now();
   const bool changed = version != live.sent_version || camera != live.sent_camera;
   const bool first = live.seq == 0;

@@ -1,6 +1,7 @@
 // Spinfold's browser UI: everything comes from the API (presets, schema, state, frames); no
 // physics here.
 import uPlot from "/vendor/uPlot.esm.js";
+import { LiveView } from "/live.js";
 
 const api = "/api/v1";
 // scene: the parameters at t = 0; current: those in force now; timeline: the changes since
@@ -8,7 +9,7 @@ const api = "/api/v1";
 const ui = {
   id: null, scene: null, current: null, timeline: [], schema: null, presets: [], version: -1, t: 0,
   view: { kind: null, layers: new Set(["surface", "grid", "body", "frame", "trail", "hud"]), yaw: null, pitch: null },
-  events: null, frameUrl: null, plots: null, series: [[], [], [], [], [], []],
+  events: null, live: null, plots: null, series: [[], [], [], [], [], []],
 };
 const $ = (id) => document.getElementById(id);
 
@@ -31,31 +32,22 @@ async function call(method, path, body) {
 
 function status(text) { $("status").textContent = text; }
 
-// ---- Frames: fetched only when the state or the view changed; the ETag answers 304 otherwise.
-function frameQuery(width = 640, height = 480) {
-  const q = new URLSearchParams({ width, height, view: ui.view.kind, layers: [...ui.view.layers].join(",") });
-  if (ui.view.yaw !== null) { q.set("yaw", ui.view.yaw.toFixed(4)); q.set("pitch", ui.view.pitch.toFixed(4)); }
-  return `${api}/sessions/${ui.id}/frame.png?${q}`;
+// ---- Frames: one live stream per page (web/live.js); a change of view or camera steers it.
+function viewParams(width = 640, height = 480) {
+  const q = { width, height, view: ui.view.kind, layers: [...ui.view.layers].join(",") };
+  if (ui.view.yaw !== null) Object.assign(q, { yaw: ui.view.yaw.toFixed(4), pitch: ui.view.pitch.toFixed(4) });
+  return q;
 }
 
-let frameBusy = false, framePending = false;
-async function refreshFrame() {
+function frameQuery(width = 640, height = 480) {
+  return `${api}/sessions/${ui.id}/frame.png?${new URLSearchParams(viewParams(width, height))}`;
+}
+
+function refreshFrame() {
   if (!ui.id) return;
-  if (frameBusy) { framePending = true; return; }
-  frameBusy = true;
-  try {
-    const res = await fetch(frameQuery(), { cache: "no-cache" });
-    if (res.status === 200) {
-      const url = URL.createObjectURL(await res.blob());
-      if (ui.frameUrl) URL.revokeObjectURL(ui.frameUrl);
-      ui.frameUrl = url;
-      $("frame").src = url;
-      $("frame").dataset.etag = res.headers.get("ETag") || "";
-    }
-  } finally {
-    frameBusy = false;
-    if (framePending) { framePending = false; refreshFrame(); }
-  }
+  const params = viewParams();
+  if (ui.view.yaw === null) params.aim = "body";
+  ui.live.steer(params);
   $("export-png").href = frameQuery();
 }
 
@@ -142,10 +134,7 @@ function makePlots() {
 function listen() {
   if (ui.events) ui.events.close();
   ui.events = new EventSource(`${api}/sessions/${ui.id}/events?rate=20`);
-  ui.events.addEventListener("state", (e) => {
-    showState(JSON.parse(e.data));
-    refreshFrame();
-  });
+  ui.events.addEventListener("state", (e) => showState(JSON.parse(e.data)));
 }
 
 // ---- Controls built from the scene's JSON Schema. A change is a PATCH; a refusal shows the
@@ -229,8 +218,7 @@ async function applyChange(patch, rebuild) {
   adopt(res);
   showState(res.state);
   if (res.change.kind !== "unchanged") status(res.change.reason);
-  if (rebuild || res.change.kind === "restarted") { buildControls(); buildViewControls(); }
-  refreshFrame();
+  if (rebuild || res.change.kind === "restarted") { buildControls(); buildViewControls(); refreshFrame(); }
   return res;
 }
 
@@ -318,7 +306,8 @@ async function openScene(scene, { until = 0, timeline = [] } = {}) {
   $("export-csv").href = `${api}/sessions/${ui.id}/trajectory?format=csv`;
   document.querySelectorAll(".preset").forEach((b) => b.classList.toggle("active", b.dataset.name === created.scene.name));
   listen();
-  await refreshFrame();
+  ui.live.open(ui.id, viewParams());
+  $("export-png").href = frameQuery();
   status(`session ${ui.id}`);
 }
 
@@ -376,7 +365,6 @@ function wire() {
     adopt(res);
     showState(res.state);
     buildControls();
-    refreshFrame();
   };
   $("speed").oninput = () => ($("speed-out").textContent = $("speed").value);
   $("speed").onchange = () => call("POST", `/sessions/${ui.id}/pause`, {}).then(() => $("play").onclick());
@@ -404,6 +392,7 @@ function wire() {
 }
 
 async function main() {
+  ui.live = new LiveView($("frame"));
   [ui.schema, ui.presets] = await Promise.all([call("GET", "/schema"), call("GET", "/scenes")]);
   wire();
   makePlots();

@@ -57,7 +57,7 @@ try {
     const response = await strict.goto(base);
     assert.match(response.headers()["content-security-policy"], /script-src 'self'/);
     await strict.waitForSelector("body[data-ready=true]", { timeout: 20000 });
-    await strict.waitForSelector('#frame[src^="blob:"]', { timeout: 10000 });
+    await strict.waitForSelector("#frame[data-painted]", { timeout: 10000 });
     await strict.waitForSelector('.preset img[src^="blob:"]', { timeout: 20000 });
     await strict.click("#play");
     await strict.waitForSelector('#readout:not([data-t="0"])', { timeout: 10000 });
@@ -72,7 +72,9 @@ try {
   await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });
 
   await test("the page loads a session and its frame", async () => {
-    await page.waitForFunction(() => document.querySelector("#frame").naturalWidth === 640);
+    await page.waitForFunction(() => Number(document.querySelector("#frame").dataset.painted) >= 1);
+    assert.equal(await page.$eval("#frame", (el) => el.width), 640);
+    assert.equal(await page.$eval("#frame", (el) => el.dataset.kind), "still");  // paused: the lossless frame
     assert.match(await page.textContent("#readout"), /integrator: exact/);
   });
 
@@ -82,12 +84,13 @@ try {
     assert.equal(await readoutT(page), 0);
   });
 
-  await test("play advances the state and the frame changes", async () => {
-    const before = await page.$eval("#frame", (el) => el.dataset.etag);
+  await test("play streams motion frames; pause ends with the lossless frame", async () => {
+    const before = await page.$eval("#frame", (el) => Number(el.dataset.version));
     await page.click("#play");
     await page.waitForFunction(() => Number(document.querySelector("#readout").dataset.t) > 0.5, null, { timeout: 10000 });
-    await page.waitForFunction((etag) => document.querySelector("#frame").dataset.etag !== etag, before, { timeout: 10000 });
+    await page.waitForFunction((v) => Number(document.querySelector("#frame").dataset.version) > v && document.querySelector("#frame").dataset.kind === "motion", before, { timeout: 10000 });
     await page.click("#pause");
+    await page.waitForFunction(() => document.querySelector("#frame").dataset.kind === "still", null, { timeout: 10000 });
   });
 
   await test("moving the speed slider changes how fast the state advances", async () => {
@@ -130,13 +133,14 @@ try {
 
   await test("dragging the frame orbits the camera: a new picture", async () => {
     await page.click("#pause");
-    const before = await page.$eval("#frame", (el) => el.dataset.etag);
+    await page.waitForFunction(() => document.querySelector("#frame").dataset.kind === "still", null, { timeout: 10000 });
+    const before = await page.$eval("#frame", (el) => el.dataset.seq);
     const box = await (await page.$("#frame")).boundingBox();
     await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
     await page.mouse.down();
     await page.mouse.move(box.x + box.width / 2 + 120, box.y + box.height / 2 + 40, { steps: 4 });
     await page.mouse.up();
-    await page.waitForFunction((etag) => document.querySelector("#frame").dataset.etag !== etag, before, { timeout: 10000 });
+    await page.waitForFunction((seq) => document.querySelector("#frame").dataset.seq !== seq, before, { timeout: 10000 });
   });
 
   await test("a parameter change continues the run: no teleport, the initial fields untouched", async () => {

@@ -1,0 +1,161 @@
+// The live view: one connection per viewer (GET …/live, multipart/x-mixed-replace), parsed here so
+// that only the newest frame is decoded and each decoded frame is painted once, at the display's
+// refresh. Camera and view changes steer the same stream (PATCH …/live?viewer=), one request in
+// flight and the latest waiting.
+const boundary = "--spinfold-frame\r\n";
+const decoder = new TextDecoder();
+
+function indexOf(bytes, pattern, from) {
+  outer: for (let i = from; i + pattern.length <= bytes.length; i++) {
+    for (let j = 0; j < pattern.length; j++) if (bytes[i + j] !== pattern[j]) continue outer;
+    return i;
+  }
+  return -1;
+}
+const headEnd = new TextEncoder().encode("\r\n\r\n");
+
+// Frames out of a multipart/x-mixed-replace body, as they complete: {type, info, bytes}.
+class MultipartParser {
+  constructor() { this.buffer = new Uint8Array(0); }
+  push(chunk) {
+    const joined = new Uint8Array(this.buffer.length + chunk.length);
+    joined.set(this.buffer);
+    joined.set(chunk, this.buffer.length);
+    this.buffer = joined;
+    const parts = [];
+    for (;;) {
+      const end = indexOf(this.buffer, headEnd, 0);
+      if (end < 0) break;
+      const head = decoder.decode(this.buffer.subarray(0, end));
+      if (!head.startsWith(boundary)) throw new Error("live stream: not a part: " + head.slice(0, 40));
+      const headers = {};
+      for (const line of head.slice(boundary.length).split("\r\n")) {
+        const colon = line.indexOf(":");
+        if (colon > 0) headers[line.slice(0, colon).toLowerCase()] = line.slice(colon + 1).trim();
+      }
+      const length = Number(headers["content-length"]);
+      if (this.buffer.length < end + 4 + length + 2) break;
+      const info = {};
+      for (const item of (headers["x-spinfold-frame"] || "").split("; ")) {
+        const eq = item.indexOf("=");
+        if (eq > 0) info[item.slice(0, eq)] = item.slice(eq + 1);
+      }
+      parts.push({ type: headers["content-type"], info, bytes: this.buffer.slice(end + 4, end + 4 + length) });
+      this.buffer = this.buffer.slice(end + 4 + length + 2);
+    }
+    return parts;
+  }
+}
+
+export class LiveView {
+  // canvas: where frames are painted; its width and height are the frames'.
+  constructor(canvas) {
+    this.canvas = canvas;
+    this.context = canvas.getContext("2d");
+    this.stats = { received: 0, decoded: 0, painted: 0, skipped: 0 };
+    this.onPaint = null;  // (info) after a frame is painted
+    this.abort = null;
+    this.session = null;
+    this.viewer = null;
+    this.decoding = false;
+    this.newest = null;  // the newest part not yet decoded
+    this.ready = null;   // {bitmap, info}: decoded, not yet painted
+    this.steering = false;
+    this.pendingSteer = null;
+    const paint = () => {
+      if (this.ready) {
+        const { bitmap, info } = this.ready;
+        this.ready = null;
+        this.context.drawImage(bitmap, 0, 0, this.canvas.width, this.canvas.height);
+        bitmap.close();
+        this.stats.painted++;
+        Object.assign(this.canvas.dataset, { seq: info.seq, version: info.version, t: info.t, kind: info.kind,
+                                             painted: this.stats.painted });
+        if (this.onPaint) this.onPaint(info);
+      }
+      requestAnimationFrame(paint);
+    };
+    requestAnimationFrame(paint);
+  }
+
+  // Opens the stream of a session with these frame parameters (URLSearchParams or object).
+  open(session, params) {
+    this.close();
+    this.session = session;
+    this.viewer = "v" + crypto.getRandomValues(new Uint32Array(2)).join("");
+    const q = new URLSearchParams(params);
+    q.set("viewer", this.viewer);
+    this.canvas.width = Number(q.get("width") || 640);
+    this.canvas.height = Number(q.get("height") || 480);
+    const abort = (this.abort = new AbortController());
+    this.read(`/api/v1/sessions/${session}/live?${q}`, abort).catch(() => {});
+  }
+
+  close() {
+    if (this.abort) this.abort.abort();
+    this.abort = null;
+    this.newest = null;
+  }
+
+  async read(url, abort) {
+    while (!abort.signal.aborted) {
+      try {
+        const res = await fetch(url, { signal: abort.signal, cache: "no-store" });
+        if (!res.ok) throw new Error(`live stream: ${res.status}`);
+        const parser = new MultipartParser();
+        const reader = res.body.getReader();
+        for (;;) {
+          const { value, done } = await reader.read();
+          if (done) break;
+          for (const part of parser.push(value)) {
+            if (!part.type.startsWith("image/")) continue;  // a heartbeat
+            this.stats.received++;
+            if (this.newest) this.stats.skipped++;  // never decoded: a newer one came first
+            this.newest = part;
+            this.decode();
+          }
+        }
+      } catch (e) {
+        if (abort.signal.aborted) return;
+      }
+      await new Promise((r) => setTimeout(r, 1000));  // the server went away: try again
+    }
+  }
+
+  async decode() {
+    if (this.decoding || !this.newest) return;
+    this.decoding = true;
+    const part = this.newest;
+    this.newest = null;
+    try {
+      const bitmap = await createImageBitmap(new Blob([part.bytes], { type: part.type }));
+      this.stats.decoded++;
+      if (this.ready) { this.ready.bitmap.close(); this.stats.skipped++; }
+      this.ready = { bitmap, info: part.info, bytes: part.bytes, type: part.type };
+      this.last = { bytes: part.bytes, type: part.type, info: part.info };
+    } finally {
+      this.decoding = false;
+      this.decode();
+    }
+  }
+
+  // Changes the stream's picture (frame parameters; aim: "body" puts the camera back on the body).
+  async steer(params) {
+    if (!this.session) return;
+    this.pendingSteer = { ...(this.pendingSteer || {}), ...params };
+    if (this.steering) return;
+    this.steering = true;
+    try {
+      while (this.pendingSteer) {
+        const q = new URLSearchParams(this.pendingSteer);
+        this.pendingSteer = null;
+        q.set("viewer", this.viewer);
+        if (q.has("width")) this.canvas.width = Number(q.get("width"));
+        if (q.has("height")) this.canvas.height = Number(q.get("height"));
+        await fetch(`/api/v1/sessions/${this.session}/live?${q}`, { method: "PATCH", body: "" });
+      }
+    } finally {
+      this.steering = false;
+    }
+  }
+}
