@@ -8,6 +8,8 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <deque>
+#include <future>
 #include <thread>
 
 #include "server/context.h"
@@ -41,19 +43,31 @@ std::string viewer_name(const Query& q) {
   return name;
 }
 
-// What a stream has sent and what it waits for.
+// A frame asked for: rendered and encoded on its own thread while the stream writes the one before.
+struct MadeFrame {
+  FrameBytes bytes;
+  FrameInfo info;
+  bool motion = false;
+};
+
+// Frames in flight per stream: the next one renders while the last one is encoded and written, so
+// one viewer gets render and encode in parallel (two cores), and the queue stays this short.
+constexpr std::size_t kInFlight = 2;
+
+// What a stream has asked for and sent, and what it waits for.
 struct LiveStream {
   std::string id;
   std::shared_ptr<Viewer> viewer;
   std::shared_ptr<void> slot;
   int motion_quality = 60;
   Clock::duration min_interval;  // 1/fps
-  std::uint64_t sent_version = ~std::uint64_t{0}, sent_camera = ~std::uint64_t{0};
-  bool still_due = false;  // the last frame sent was a motion frame
-  Clock::time_point last_change, last_frame, last_write;
-  std::uint64_t seq = 0;
-  ~LiveStream();
+  std::uint64_t asked_version = ~std::uint64_t{0}, asked_camera = ~std::uint64_t{0};
+  bool still_due = false;  // the last frame asked for was a motion frame
+  Clock::time_point last_change, last_ask, last_write;
+  std::deque<std::future<MadeFrame>> in_flight;  // in the order asked for
+  std::uint64_t seq = 0;                         // frames written
   ServerContext* server = nullptr;
+  ~LiveStream();
 };
 
 LiveStream::~LiveStream() {
@@ -74,7 +88,8 @@ bool write_part(httplib::DataSink& sink, const char* type, const std::string& he
          sink.write("\r\n", 2);
 }
 
-// One step of the stream: a frame, a heartbeat, or a wait for the next change. False: stop.
+// One step of the stream: ask for a frame, write one, a heartbeat, or wait for the next change.
+// False: stop.
 bool live_step(ServerContext& server, LiveStream& live, httplib::DataSink& sink) {
   if (server.stopping) return false;
   const std::uint64_t seen = server.changes.generation();
@@ -102,29 +117,44 @@ bool live_step(ServerContext& server, LiveStream& live, httplib::DataSink& sink)
   // The session changed surface under the viewer: its own view until the viewer picks another.
   if (render::view_unsupported_reason(f.view.kind, surface)) f.view.kind = render::default_view(surface);
   const auto now = Clock::now();
-  const bool changed = version != live.sent_version || camera != live.sent_camera;
-  const bool first = live.seq == 0;
-  if (changed && now < live.last_frame + live.min_interval) {
-    std::this_thread::sleep_until(live.last_frame + live.min_interval);  // paced to `fps`
-    return true;
-  }
-  if (changed || (live.still_due && now >= live.last_change + kStillDelay)) {
+  const bool first = live.asked_version == ~std::uint64_t{0};
+  const bool changed = version != live.asked_version || camera != live.asked_camera;
+  const auto next_ask = live.last_ask + live.min_interval;  // paced to `fps`
+  const bool still = !changed && live.still_due && now >= live.last_change + kStillDelay;
+  if (((changed && now >= next_ask) || still) && live.in_flight.size() < kInFlight) {
     if (changed) live.last_change = now;
-    // Motion frames while things move; a first frame of a paused session is its still frame.
+    // Motion frames while things move; the first frame of a paused session is its still frame.
     const bool motion = changed && !(first && !playing);
     if (motion) f.jpeg_quality = live.motion_quality;
-    std::string etag;
-    FrameInfo info;
-    const FrameBytes frame = session_frame(server, live.id, *s, f, etag, &info);
+    live.in_flight.push_back(std::async(std::launch::async, [&server, id = live.id, s, f, motion] {
+      MadeFrame made{nullptr, {}, motion};
+      std::string etag;
+      made.bytes = session_frame(server, id, *s, f, etag, &made.info);
+      return made;
+    }));
+    live.asked_version = version;
+    live.asked_camera = camera;
+    live.still_due = motion;
+    live.last_ask = now;
+    return true;
+  }
+  if (!live.in_flight.empty()) {
+    // The oldest frame, written when made; meanwhile, when the next one is due, ask for it first.
+    auto& oldest = live.in_flight.front();
+    const bool due = changed && live.in_flight.size() < kInFlight;
+    if (due && oldest.wait_until(next_ask) != std::future_status::ready) return true;
+    const MadeFrame made = oldest.get();  // a failed render ends the stream (the client reconnects)
+    live.in_flight.pop_front();
     char headers[256];
     std::snprintf(headers, sizeof headers, "X-Spinfold-Frame: seq=%llu; version=%llu; t=%.17g; kind=%s\r\n",
-                  static_cast<unsigned long long>(++live.seq), static_cast<unsigned long long>(info.version),
-                  info.t, motion ? "motion" : "still");
-    if (!write_part(sink, motion ? "image/jpeg" : "image/png", headers, *frame)) return false;
-    live.sent_version = info.version;
-    live.sent_camera = camera;
-    live.still_due = motion;
-    live.last_frame = live.last_write = Clock::now();
+                  static_cast<unsigned long long>(++live.seq), static_cast<unsigned long long>(made.info.version),
+                  made.info.t, made.motion ? "motion" : "still");
+    if (!write_part(sink, made.motion ? "image/jpeg" : "image/png", headers, *made.bytes)) return false;
+    live.last_write = Clock::now();
+    return true;
+  }
+  if (changed) {
+    std::this_thread::sleep_until(next_ask);
     return true;
   }
   if (now >= live.last_write + kHeartbeat) {
