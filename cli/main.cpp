@@ -204,6 +204,7 @@ int render_frame(const RenderOptions& opt) {
 int serve(const server::ServerOptions& options) {
   if (options.port < 0 || options.port > 65535) throw BadInput{"--port: must be 0..65535"};
   if (options.threads < 2 || options.threads > 256) throw BadInput{"--threads: must be 2..256"};
+  if (options.render_threads < 0 || options.render_threads > 64) throw BadInput{"--render-threads: must be 0..64"};
   sigset_t signals;
   sigemptyset(&signals);
   sigaddset(&signals, SIGTERM);
@@ -300,6 +301,10 @@ int main(int argc, char** argv) {
   serve_cmd->add_option("--host", serve_opt.host, "Address to bind")->capture_default_str();
   serve_cmd->add_option("--port", serve_opt.port, "Port (0: any free port)")->capture_default_str();
   serve_cmd->add_option("--threads", serve_opt.threads, "HTTP worker threads (one per open connection)")
+      ->capture_default_str();
+  serve_cmd
+      ->add_option("--render-threads", serve_opt.render_threads,
+                   "Render threads, each with its own GL context (0: one per core)")
       ->capture_default_str();
   serve_cmd
       ->add_option("--trusted-proxy", serve_opt.trusted_proxy,

@@ -37,10 +37,10 @@ struct Limits {
   int max_sessions_per_client = 48;  // sessions created from one address and not yet deleted or expired
   int max_streams_per_client = 64;   // event and live streams open from one address
   // Requests from one address: a token bucket refilled at this rate [requests/s] holding at most
-  // the burst [requests]. A playing tab asks about 20 frames and states a second (serialised behind
-  // the one render thread, ~66 frames/s at 640x480 for everyone); a page load about 50 requests (its
-  // files, the catalogs, 10 thumbnails of 4 requests each). So a class of 30 opening the page at once
-  // fits the burst plus a few seconds of refill, and playing stays far below the rate. 0: unlimited
+  // the burst [requests]. A playing tab's frames and states come over two streams (two requests); a
+  // drag steers its live stream once per round trip (one PATCH in flight, retried after a 429); a
+  // page load is about 50 requests (its files, the catalogs, 10 thumbnails of 4 requests each). So
+  // a class of 30 opening the page at once fits the burst plus a few seconds of refill. 0: unlimited
   // (benchmarks from one address: spinfold serve --requests-per-second 0).
   double requests_per_second_per_client = 300.0;
   double request_burst_per_client = 600.0;

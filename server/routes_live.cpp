@@ -26,7 +26,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr auto kStillDelay = std::chrono::milliseconds(100);  // motion stopped → lossless frame
+constexpr auto kStillDelay =
+    std::chrono::milliseconds(70);  // motion stopped → lossless frame (≤ 150 ms on screen)
 constexpr auto kHeartbeat = std::chrono::seconds(10);
 constexpr const char* kBoundary = "spinfold-frame";
 
@@ -147,8 +148,9 @@ bool live_step(ServerContext& server, LiveStream& live, httplib::DataSink& sink)
     live.in_flight.pop_front();
     char headers[256];
     std::snprintf(headers, sizeof headers, "X-Spinfold-Frame: seq=%llu; version=%llu; t=%.17g; kind=%s\r\n",
-                  static_cast<unsigned long long>(++live.seq), static_cast<unsigned long long>(made.info.version),
-                  made.info.t, made.motion ? "motion" : "still");
+                  static_cast<unsigned long long>(++live.seq),
+                  static_cast<unsigned long long>(made.info.version), made.info.t,
+                  made.motion ? "motion" : "still");
     if (!write_part(sink, made.motion ? "image/jpeg" : "image/png", headers, *made.bytes)) return false;
     live.last_write = Clock::now();
     return true;
@@ -251,7 +253,7 @@ std::vector<Route> live_routes(const Limits& limits) {
             .handler = get_live,
             .summary =
                 "A live stream of frames (multipart/x-mixed-replace): JPEG while the session plays or the "
-                "camera moves, a PNG 100 ms after the last change, nothing while nothing changes; part "
+                "camera moves, a PNG 70 ms after the last change, nothing while nothing changes; part "
                 "header X-Spinfold-Frame: seq, version, t, kind (motion|still)",
             .query = frame_params(limits),
             .responses = {{200, "multipart/x-mixed-replace"},

@@ -145,6 +145,7 @@ export class LiveView {
     this.pendingSteer = { ...(this.pendingSteer || {}), ...params };
     if (this.steering) return;
     this.steering = true;
+    let retries = 0;
     try {
       while (this.pendingSteer) {
         const q = new URLSearchParams(this.pendingSteer);
@@ -152,7 +153,13 @@ export class LiveView {
         q.set("viewer", this.viewer);
         if (q.has("width")) this.canvas.width = Number(q.get("width"));
         if (q.has("height")) this.canvas.height = Number(q.get("height"));
-        await fetch(`/api/v1/sessions/${this.session}/live?${q}`, { method: "PATCH", body: "" });
+        const res = await fetch(`/api/v1/sessions/${this.session}/live?${q}`, { method: "PATCH", body: "" });
+        if ((res.status === 429 || res.status === 404) && (retries += 1) <= 30) {
+          // Over the rate limit, or the stream is (re)connecting: the newest wish, a little later.
+          q.delete("viewer");
+          this.pendingSteer = { ...Object.fromEntries(q), ...(this.pendingSteer || {}) };
+          await new Promise((r) => setTimeout(r, 100));
+        }
       }
     } finally {
       this.steering = false;
