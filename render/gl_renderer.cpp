@@ -4,10 +4,14 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <glm/gtc/type_ptr.hpp>
 #include <stdexcept>
 #include <string>
 
+#include "render/osmesa_context.h"
 #include "render/shader_sources.h"
 
 namespace spinfold::render {
@@ -59,7 +63,7 @@ void upload(unsigned vao, unsigned vbo, const void* data, std::size_t bytes, boo
 
 }  // namespace
 
-GlRenderer::GlRenderer() {
+GlRenderer::GlRenderer(const Options& options) : options_(options) {
   lit_program_ = link("lit.vert", "lit.frag");
   flat_program_ = link("flat.vert", "flat.frag");
   glGenVertexArrays(1, &dynamic_.vao);
@@ -67,6 +71,7 @@ GlRenderer::GlRenderer() {
 }
 
 GlRenderer::~GlRenderer() {
+  drop_targets();
   for (auto* meshes : {&surfaces_, &grids_})
     for (auto& [key, mesh] : *meshes) {
       glDeleteBuffers(1, &mesh.vbo);
@@ -78,9 +83,99 @@ GlRenderer::~GlRenderer() {
   glDeleteProgram(flat_program_);
 }
 
+void GlRenderer::set_options(const Options& options) {
+  drop_targets();
+  options_ = options;
+}
+
+bool GlRenderer::BackgroundKey::operator==(const BackgroundKey& o) const {
+  // Bitwise on the floats: the same camera gives the same matrix bits, and only then may the
+  // cached pixels stand in for drawn ones.
+  return statics == o.statics && surface == o.surface && grid == o.grid && depth_test == o.depth_test &&
+         std::memcmp(&view_projection, &o.view_projection, sizeof view_projection) == 0 &&
+         std::memcmp(&surface_color, &o.surface_color, sizeof surface_color) == 0 &&
+         std::memcmp(&clear_color, &o.clear_color, sizeof clear_color) == 0 && width == o.width &&
+         height == o.height && samples == o.samples &&
+         std::memcmp(&grid_width, &o.grid_width, sizeof grid_width) == 0 &&
+         std::memcmp(&depth_bias, &o.depth_bias, sizeof depth_bias) == 0;
+}
+
+int GlRenderer::samples_for(int width, int height) const {
+  int samples = std::max(1, options_.samples);
+  while (samples > 1 && static_cast<std::int64_t>(width) * height * samples > kMaxSampleCount) samples /= 2;
+  return samples;
+}
+
+GlRenderer::Target GlRenderer::make_target(int width, int height, int samples) const {
+  Target t;
+  t.width = width;
+  t.height = height;
+  t.samples = samples;
+  glGenRenderbuffers(1, &t.color);
+  glBindRenderbuffer(GL_RENDERBUFFER, t.color);
+  // One sample is asked for as 0: Mesa rounds a request for 1 up to a multisampled buffer.
+  const int asked = samples > 1 ? samples : 0;
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, asked, GL_RGBA8, width, height);
+  glGenRenderbuffers(1, &t.depth);
+  glBindRenderbuffer(GL_RENDERBUFFER, t.depth);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, asked, GL_DEPTH_COMPONENT24, width, height);
+  glBindRenderbuffer(GL_RENDERBUFFER, 0);
+  glGenFramebuffers(1, &t.fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t.color);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t.depth);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("incomplete off-screen framebuffer (" + std::to_string(samples) + " samples)");
+  return t;
+}
+
+void GlRenderer::delete_target(Target& t) const {
+  glDeleteFramebuffers(1, &t.fbo);
+  glDeleteRenderbuffers(1, &t.color);
+  glDeleteRenderbuffers(1, &t.depth);
+  t = Target{};
+}
+
+void GlRenderer::drop_targets() {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  for (Working& w : working_) {
+    if (w.resolved.fbo != w.drawn.fbo) delete_target(w.resolved);
+    delete_target(w.drawn);
+  }
+  readback_ = nullptr;
+  for (CacheEntry& e : cache_) delete_target(e.target);
+  working_.clear();
+  cache_.clear();
+  recent_keys_.clear();
+  stats_.entries = 0;
+  stats_.bytes = 0;
+}
+
+const GlRenderer::Working& GlRenderer::working_target(int width, int height, int samples) {
+  const auto it = std::find_if(working_.begin(), working_.end(), [&](const Working& w) {
+    return w.drawn.width == width && w.drawn.height == height && w.drawn.samples == samples;
+  });
+  if (it != working_.end()) {
+    working_.splice(working_.begin(), working_, it);
+    return working_.front();
+  }
+  // Two sizes alternate when one thread serves a frame and its thumbnail: keep both.
+  if (working_.size() >= 2) {
+    Working& last = working_.back();
+    if (last.resolved.fbo != last.drawn.fbo) delete_target(last.resolved);
+    delete_target(last.drawn);
+    working_.pop_back();
+  }
+  Working w;
+  w.drawn = make_target(width, height, samples);
+  w.resolved = samples > 1 ? make_target(width, height, 1) : w.drawn;
+  working_.push_front(w);
+  return working_.front();
+}
+
 const GlRenderer::Mesh& GlRenderer::static_mesh(std::map<const StaticGeometry*, Mesh>& meshes,
-                                                 const StaticGeometry& g, const void* data, std::size_t count,
-                                                 bool lit) {
+                                                const StaticGeometry& g, const void* data, std::size_t count,
+                                                bool lit) {
   auto [it, fresh] = meshes.try_emplace(&g);
   if (fresh) {
     glGenVertexArrays(1, &it->second.vao);
@@ -106,12 +201,36 @@ void GlRenderer::draw_flat(const std::vector<Vertex>& vertices, unsigned mode) {
 }
 
 void GlRenderer::finish() {
-  glFinish();
+  glFinish();  // OSMesa copies the (unused) default framebuffer into its buffer here
+  if (!readback_) return;
+  int width = 0, height = 0;
+  std::uint8_t* pixels = current_color_buffer(width, height);
+  if (!pixels || width != readback_->width || height != readback_->height)
+    throw std::runtime_error("the current context's buffer does not match the frame");
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, readback_->fbo);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glPixelStorei(GL_PACK_INVERT_MESA, GL_TRUE);  // top row first, as the buffer holds them
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+  glPixelStorei(GL_PACK_INVERT_MESA, GL_FALSE);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  readback_ = nullptr;
 }
 
-void GlRenderer::draw(const FrameScene& scene, int width, int height) {
-  glViewport(0, 0, width, height);
+void GlRenderer::use_flat_program(const FrameScene& scene) {
+  glUseProgram(flat_program_);
+  glUniformMatrix4fv(glGetUniformLocation(flat_program_, "view_projection"), 1, GL_FALSE,
+                     glm::value_ptr(scene.view_projection));
+  // The camera: the point the projection sends to w = 0 (none in the 2-D views' orthographic one).
+  const glm::dvec4 eye = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
+  const bool perspective = std::abs(eye.w) > 1e-12;
+  const glm::vec3 eye_world = perspective ? glm::vec3(glm::dvec3(eye) / eye.w) : glm::vec3(0.0f);
+  glUniform3fv(glGetUniformLocation(flat_program_, "eye"), 1, glm::value_ptr(eye_world));
+  glUniform1f(glGetUniformLocation(flat_program_, "depth_bias"), perspective ? scene.depth_bias : 0.0f);
+}
+
+void GlRenderer::draw_background(const FrameScene& scene, float grid_width) {
   glClearColor(scene.clear_color.r, scene.clear_color.g, scene.clear_color.b, scene.clear_color.a);
+  glDepthMask(GL_TRUE);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   if (scene.depth_test)
     glEnable(GL_DEPTH_TEST);
@@ -120,8 +239,8 @@ void GlRenderer::draw(const FrameScene& scene, int width, int height) {
   glDepthFunc(GL_LEQUAL);
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
   const float* vp = glm::value_ptr(scene.view_projection);
-
   if (scene.statics && scene.draw_surface) {
     const Mesh& mesh = static_surface(*scene.statics);
     glUseProgram(lit_program_);
@@ -136,13 +255,25 @@ void GlRenderer::draw(const FrameScene& scene, int width, int height) {
     glBindVertexArray(mesh.vao);
     glDrawArrays(GL_TRIANGLES, 0, mesh.count);
   }
-  glUseProgram(flat_program_);
-  glUniformMatrix4fv(glGetUniformLocation(flat_program_, "view_projection"), 1, GL_FALSE, vp);
   if (scene.statics && scene.draw_grid) {
     const Mesh& mesh = static_grid(*scene.statics);
+    use_flat_program(scene);
+    glLineWidth(grid_width);
     glBindVertexArray(mesh.vao);
     glDrawArrays(GL_LINES, 0, mesh.count);
   }
+}
+
+void GlRenderer::draw_moving(const FrameScene& scene, float line_width) {
+  // The state the background left may come from the cache: set all of it again.
+  if (scene.depth_test)
+    glEnable(GL_DEPTH_TEST);
+  else
+    glDisable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_SCISSOR_TEST);
+  use_flat_program(scene);
   if (!scene.fills.empty()) {
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -151,8 +282,98 @@ void GlRenderer::draw(const FrameScene& scene, int width, int height) {
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
   }
+  glLineWidth(line_width);
   draw_flat(scene.lines, GL_LINES);
   glBindVertexArray(0);
+}
+
+void GlRenderer::background_into(const Target& target, const FrameScene& scene, float grid_width) {
+  const bool cacheable = options_.cache_background && scene.statics &&
+                         (scene.draw_surface || scene.draw_grid) &&
+                         target.bytes() * 2 <= options_.cache_bytes && options_.cache_entries > 0;
+  glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
+  glViewport(0, 0, target.width, target.height);
+  if (!cacheable) {
+    draw_background(scene, grid_width);
+    return;
+  }
+  BackgroundKey key;
+  key.statics = scene.statics;
+  key.surface = scene.draw_surface;
+  key.grid = scene.draw_grid;
+  key.depth_test = scene.depth_test;
+  key.view_projection = scene.view_projection;
+  key.surface_color = scene.surface_color;
+  key.clear_color = scene.clear_color;
+  key.width = target.width;
+  key.height = target.height;
+  key.samples = target.samples;
+  key.grid_width = grid_width;
+  key.depth_bias = scene.depth_bias;
+
+  auto hit = std::find_if(cache_.begin(), cache_.end(), [&](const CacheEntry& e) { return e.key == key; });
+  if (hit == cache_.end()) {
+    // A key met on one of the last frames again: the camera stands still, fill an entry. A camera
+    // aimed at a moving body gives a new key every frame and never pays for a fill.
+    const bool seen = std::find(recent_keys_.begin(), recent_keys_.end(), key) != recent_keys_.end();
+    recent_keys_.remove(key);
+    recent_keys_.push_front(key);
+    if (recent_keys_.size() > 4) recent_keys_.pop_back();
+    if (!seen) {
+      ++stats_.misses;
+      draw_background(scene, grid_width);
+      return;
+    }
+    while (!cache_.empty() && (static_cast<int>(cache_.size()) >= options_.cache_entries ||
+                               stats_.bytes + target.bytes() > options_.cache_bytes)) {
+      stats_.bytes -= cache_.back().target.bytes();
+      delete_target(cache_.back().target);
+      cache_.pop_back();
+    }
+    cache_.push_front({key, make_target(target.width, target.height, target.samples)});
+    stats_.bytes += target.bytes();
+    ++stats_.fills;
+    glBindFramebuffer(GL_FRAMEBUFFER, cache_.front().target.fbo);
+    draw_background(scene, grid_width);
+    hit = cache_.begin();
+  } else {
+    ++stats_.hits;
+    cache_.splice(cache_.begin(), cache_, hit);
+    hit = cache_.begin();
+  }
+  stats_.entries = static_cast<int>(cache_.size());
+  // Sample for sample: the same bytes the background drawn in place would have left.
+  const Target& from = hit->target;
+  glCopyImageSubData(from.color, GL_RENDERBUFFER, 0, 0, 0, 0, target.color, GL_RENDERBUFFER, 0, 0, 0, 0,
+                     target.width, target.height, 1);
+  if (scene.depth_test)  // the 2-D views never test depth
+    glCopyImageSubData(from.depth, GL_RENDERBUFFER, 0, 0, 0, 0, target.depth, GL_RENDERBUFFER, 0, 0, 0, 0,
+                       target.width, target.height, 1);
+  glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
+}
+
+void GlRenderer::draw(const FrameScene& scene, int width, int height) {
+  const LineWidths widths = options_.wide_lines ? line_widths(width, height) : LineWidths{1.0f, 1.0f};
+  const int samples = samples_for(width, height);
+  readback_ = nullptr;
+  if (samples == 1 && !options_.cache_background) {  // aliased, straight into the context's buffer
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, width, height);
+    draw_background(scene, widths.grid);
+    draw_moving(scene, widths.lines);
+    return;
+  }
+  const Working& target = working_target(width, height, samples);
+  background_into(target.drawn, scene, widths.grid);
+  draw_moving(scene, widths.lines);
+  if (target.resolved.fbo != target.drawn.fbo) {  // resolve: each pixel the mean of its samples
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, target.drawn.fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target.resolved.fbo);
+    glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, target.resolved.fbo);
+  glViewport(0, 0, width, height);
+  readback_ = &target.resolved;
 }
 
 }  // namespace spinfold::render

@@ -19,8 +19,13 @@ const glm::vec4 kArrowColors[2] = {{0.85f, 0.10f, 0.10f, 1.0f}, {0.10f, 0.60f, 0
 // The geodesic companion's trail: dashes and gaps of these lengths [world units, radii].
 constexpr double kDash = 0.045, kGap = 0.03;
 
-// Overlays sit this far (in radii) above the 3-D surfaces so that the depth test keeps them.
+// Overlays sit this far (in radii) above the hyperboloid so that the depth test keeps them. On the
+// sphere they lie on it exactly: its mesh is circumscribed (every face outside the unit sphere), so
+// nothing drawn on the sphere pokes out past the mesh's limb, and the depth bias (FrameScene) keeps
+// them in front of the faces.
 constexpr double kLift = 0.004;
+// FrameScene::depth_bias of the 3-D views: a fraction of the distance to the camera.
+constexpr float kSphereDepthBias = 0.01f, kHyperboloidDepthBias = 0.004f;
 // Extent of the hyperboloid mesh and of the H² grid [radii].
 constexpr double kHyperboloidExtent = 2.5;
 
@@ -56,7 +61,6 @@ glm::vec4 outline_color(const BodySnapshot& body) {
 
 // A world point lifted off the 3-D surfaces along the normal.
 glm::dvec3 lifted(ViewKind view, const glm::dvec3& w) {
-  if (view == ViewKind::sphere) return w * (1.0 + kLift);
   if (view == ViewKind::hyperboloid) {
     const glm::dvec3 n = glm::normalize(glm::dvec3(-w.x, -w.y, w.z + 1.0));
     return w + kLift * n;
@@ -150,6 +154,15 @@ StaticGeometry build_static(SurfaceKind kind, ViewKind view) {
         const double p0 = 2 * kPi * j / slices, p1 = 2 * kPi * (j + 1) / slices;
         add_quad(vertex(t0, p0), vertex(t1, p0), vertex(t1, p1), vertex(t0, p1));
       }
+    // Circumscribe: a face through three points of the unit sphere lies at distance n̂·a from the
+    // centre (its plane's); scaling every vertex by 1/min(n̂·a) puts all faces outside the sphere.
+    double inner = 1.0;
+    for (std::size_t i = 0; i + 2 < g.surface.size(); i += 3) {
+      const glm::dvec3 a(g.surface[i].position), b(g.surface[i + 1].position), c(g.surface[i + 2].position);
+      const glm::dvec3 n = glm::cross(b - a, c - a);
+      if (glm::length(n) > 1e-12) inner = std::min(inner, std::abs(glm::dot(glm::normalize(n), a)));
+    }
+    for (LitVertex& v : g.surface) v.position = to_float(glm::dvec3(v.position) * (1.0 / inner));
     for (int k = 1; k < 12; ++k)  // parallels every 15°
       grid_curve([&](double s) { return chart_point(unit, kPi * k / 12, 2 * kPi * s).X; }, 96);
     for (int k = 0; k < 12; ++k)  // meridians every 30°
@@ -289,6 +302,12 @@ const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view) {
   return it->second;
 }
 
+LineWidths line_widths(int width, int height) {
+  const double side = std::min(0.75 * width, static_cast<double>(height)) / 480.0;
+  const double lines = 1.5 * side;
+  return {static_cast<float>(std::max(1.0, lines)), static_cast<float>(std::max(1.0, lines * 2.0 / 3.0))};
+}
+
 Vec3 exponential_map(const Surface& surface, const Vec3& X, const Vec3& v, double length) {
   if (length == 0.0 || surface.kind == SurfaceKind::plane) return X + v;
   return polar_C(surface, length) * X + (polar_S(surface, length) / length) * v;
@@ -329,6 +348,9 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   if (scene.draw_surface || scene.draw_grid) scene.statics = &static_geometry(surface.kind, kind);
   scene.view_projection = camera(view);
   scene.depth_test = three_d(kind);
+  scene.depth_bias = kind == ViewKind::sphere        ? kSphereDepthBias
+                     : kind == ViewKind::hyperboloid ? kHyperboloidDepthBias
+                                                     : 0.0f;
   if (surface.kind == SurfaceKind::pseudosphere) scene.surface_color = {0.83f, 0.86f, 0.78f, 1.0f};
 
   // Trails first, then the bodies over them: every body's, main body first.

@@ -30,6 +30,16 @@ struct StaticGeometry {
 };
 const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view);
 
+// Line widths of a frame [pixels]. The outline, trail and arrows are 1.5 px at 640×480 and grow
+// with the frame's shorter side measured in 4:3 terms (min(width·3/4, height)/480), so that a frame
+// shown larger on a projector keeps the same weight; the grid, behind them, is two thirds as wide.
+// Neither is ever thinner than 1 px (thumbnails: 160×120 gets 1 px lines, anti-aliased).
+struct LineWidths {
+  float lines = 1.0f;  // outline, trail, arrows [pixels]
+  float grid = 1.0f;   // the surface's grid [pixels]
+};
+LineWidths line_widths(int width, int height);
+
 // Frames narrower than this [pixels] (thumbnails) get no legend: it would cover the picture.
 inline constexpr int kLegendMinWidth = 320;
 
@@ -52,6 +62,9 @@ struct FrameScene {
                                        // and the frame is at least kLegendMinWidth wide
   glm::mat4 view_projection{1.0f};
   bool depth_test = true;  // 3-D views hide what is behind the surface
+  // Grid, fills and lines are drawn this fraction of the way towards the camera (same pixels,
+  // nearer depth) so that the surface's faces hide none of a wide line's width.
+  float depth_bias = 0.0f;
   glm::vec4 surface_color{0.78f, 0.83f, 0.90f, 1.0f};
   glm::vec4 clear_color{0.97f, 0.97f, 0.96f, 1.0f};
 };
