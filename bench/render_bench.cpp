@@ -139,15 +139,19 @@ void anti_aliasing_and_cache_tables(int frames) {
   context.make_current(64, 64);
   render::HudOverlay hud;
   using Options = render::GlRenderer::Options;
-  Options aliased;
+  Options aliased;  // the previous renderer: one sample, 1 px lines, nothing cached
   aliased.samples = 1;
+  aliased.smooth_lines = false;
   aliased.wide_lines = false;
   aliased.cache_background = false;
-  Options smooth;
+  Options smooth;  // the default without the cache: coverage-blended lines and outline
   smooth.cache_background = false;
-  Options cached;  // the default: 4 samples, wide lines, cache on
+  Options msaa = smooth;  // 4 samples, resolved
+  msaa.samples = 4;
+  Options cached;  // the default
   GlUnderTest a{render::GlRenderer(aliased), hud};
   GlUnderTest b{render::GlRenderer(smooth), hud};
+  GlUnderTest m{render::GlRenderer(msaa), hud};
   GlUnderTest c{render::GlRenderer(cached), hud};
   const int n = frames + 2;
   const std::vector<render::Snapshot> sphere = moving_snapshots("spinning_rigid_sphere", 3.0, 0.02, n);
@@ -178,14 +182,18 @@ void anti_aliasing_and_cache_tables(int frames) {
   const Row sphere_aimed{"sphere, camera on the body", &sphere, render::ViewKind::sphere, true};
   const Row sphere_fixed{"sphere, explicit camera", &sphere, render::ViewKind::sphere, false};
   const Row disk_fixed{"disk (Poincaré)", &disk, render::ViewKind::disk, false};
+  // Each ratio against the aliased frames measured interleaved with it.
   std::printf(
-      "| size | view | aliased ms (1 sample, 1 px) | anti-aliased ms (4 samples, wide lines) | AA / aliased "
-      "|\n"
-      "| --- | --- | --- | --- | --- |\n");
+      "| size | view | aliased ms (1 px) | smooth ms (cache off) | smooth / aliased | default ms (smooth, "
+      "cache on) | default / aliased | 4x MSAA ms (cache off) | MSAA / aliased |\n"
+      "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (const auto& [w, h] : {std::pair{640, 480}, std::pair{1280, 720}, std::pair{1920, 1080}})
     for (const Row* row : {&sphere_aimed, &disk_fixed}) {
-      const auto [ma, mb] = pair(*row, w, h, a, b);
-      std::printf("| %dx%d | %s | %.2f | %.2f | %.2f |\n", w, h, row->name, ma, mb, mb / ma);
+      const auto [a1, sm] = pair(*row, w, h, a, b);
+      const auto [a2, df] = pair(*row, w, h, a, c);
+      const auto [a3, ms] = pair(*row, w, h, a, m);
+      std::printf("| %dx%d | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", w, h, row->name, a1,
+                  sm, sm / a1, df, df / a2, ms, ms / a3);
     }
   std::printf(
       "\n| size | view | full frame ms (cache off) | body-only frame ms (cached background) | cached / full "

@@ -247,21 +247,44 @@ void GlRenderer::draw_background(const FrameScene& scene, float grid_width) {
     glUniformMatrix4fv(glGetUniformLocation(lit_program_, "view_projection"), 1, GL_FALSE, vp);
     glUniform4fv(glGetUniformLocation(lit_program_, "color"), 1, glm::value_ptr(scene.surface_color));
     // Headlight from the camera's side (3-D), straight on (2-D).
-    const glm::mat4 inverse = glm::inverse(scene.view_projection);
-    glm::vec3 towards_camera = glm::normalize(glm::vec3(inverse * glm::vec4(0, 0, -1, 0)));
-    if (!scene.depth_test) towards_camera = {0, 0, 1};
+    const glm::vec3 towards_camera = headlight(scene);
     glUniform3fv(glGetUniformLocation(lit_program_, "light_direction"), 1, glm::value_ptr(towards_camera));
     glUniform1f(glGetUniformLocation(lit_program_, "ambient"), scene.depth_test ? 0.35f : 1.0f);
     glBindVertexArray(mesh.vao);
     glDrawArrays(GL_TRIANGLES, 0, mesh.count);
+    if (smooth_) {  // without multisampling, smooth the surface's outline with a line over it
+      use_flat_program(scene);
+      begin_lines(grid_width);
+      draw_flat(silhouette(*scene.statics, scene), GL_LINES);
+      end_lines();
+    }
   }
   if (scene.statics && scene.draw_grid) {
     const Mesh& mesh = static_grid(*scene.statics);
     use_flat_program(scene);
-    glLineWidth(grid_width);
+    begin_lines(grid_width);
     glBindVertexArray(mesh.vao);
     glDrawArrays(GL_LINES, 0, mesh.count);
+    end_lines();
   }
+}
+
+void GlRenderer::begin_lines(float width) {
+  glLineWidth(width);
+  if (!smooth_) return;
+  // Coverage-blended lines (llvmpipe's anti-aliased line stage): each line's fringe is blended
+  // over what is below; lines write no depth, so that one's fringe never hides another.
+  glEnable(GL_LINE_SMOOTH);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glDepthMask(GL_FALSE);
+}
+
+void GlRenderer::end_lines() {
+  if (!smooth_) return;
+  glDisable(GL_LINE_SMOOTH);
+  glDisable(GL_BLEND);
+  glDepthMask(GL_TRUE);
 }
 
 void GlRenderer::draw_moving(const FrameScene& scene, float line_width) {
@@ -282,8 +305,9 @@ void GlRenderer::draw_moving(const FrameScene& scene, float line_width) {
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
   }
-  glLineWidth(line_width);
+  begin_lines(line_width);
   draw_flat(scene.lines, GL_LINES);
+  end_lines();
   glBindVertexArray(0);
 }
 
@@ -356,7 +380,11 @@ void GlRenderer::draw(const FrameScene& scene, int width, int height) {
   const LineWidths widths = options_.wide_lines ? line_widths(width, height) : LineWidths{1.0f, 1.0f};
   const int samples = samples_for(width, height);
   readback_ = nullptr;
-  if (samples == 1 && !options_.cache_background) {  // aliased, straight into the context's buffer
+  smooth_ = samples == 1 && options_.smooth_lines;
+  // Aliased (the benchmarks' reference): straight into the context's buffer. Anything else goes
+  // through the off-screen target, cached background or not, so that both give the same bytes
+  // (the default framebuffer's depth buffer rounds differently from a renderbuffer's).
+  if (samples == 1 && !smooth_ && !options_.cache_background) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, width, height);
     draw_background(scene, widths.grid);

@@ -1,12 +1,17 @@
 // The one place that issues GL draw calls: a FrameScene in, pixels in the current context out.
 //
-// A frame is drawn into a multisampled off-screen target (4 samples: anti-aliased edges and lines
-// with a width in pixels, line_widths()) and resolved into a single-sample one, which is left bound
-// for the HUD; finish() reads it back into the context's buffer. (Resolving straight into OSMesa's
-// default framebuffer costs a full-screen shader pass on llvmpipe: 2.9 ms at 640×480 against
-// 0.3 ms for a resolve into a renderbuffer plus glReadPixels; docs/performance.md.) The background (clear,
-// surface, grid) of a fixed camera is kept as a multisampled colour + depth image and copied in, so that a
-// frame where only the bodies move draws only them.
+// A frame is drawn into an off-screen target, which is left bound for the HUD; finish() reads it
+// back into the context's buffer (glReadPixels, 0.04 ms at 640×480). Anti-aliasing, by default
+// without multisampling: lines are coverage-blended (GL_LINE_SMOOTH: llvmpipe widens each line by
+// a fringe whose alpha falls off with the distance to the line) with a width in pixels that grows
+// with the frame (line_widths()), and the surface's outline against the background is one such
+// line too (silhouette()). 4x multisampling is an option (samples = 4): on llvmpipe its resolve
+// is a full-screen shader pass, 2–3 ms at 640×480 and 20–30 ms at 1920×1080, which made a frame
+// 2.7–5.8× the aliased one against 1.3–2× for smooth lines (docs/performance.md).
+//
+// The background (clear, surface, outline, grid) of a camera seen on a recent frame is kept as a
+// colour + depth image and copied in, so that a frame where only the bodies move draws only them;
+// both paths draw the background the same way, so a cached frame has the bytes of a drawn one.
 #pragma once
 
 #include <cstddef>
@@ -22,7 +27,8 @@ namespace spinfold::render {
 class GlRenderer {
  public:
   struct Options {
-    int samples = 4;                       // samples per pixel (1: aliased); fewer on very large frames
+    int samples = 1;                       // samples per pixel (4: multisampled); fewer on very large frames
+    bool smooth_lines = true;              // with one sample: coverage-blended lines and surface outline
     bool wide_lines = true;                // lines as wide as line_widths() says; false: 1 px
     bool cache_background = true;          // keep the backgrounds of fixed cameras (a small LRU)
     int cache_entries = 4;                 // at most this many backgrounds
@@ -104,6 +110,9 @@ class GlRenderer {
   void draw_background(const FrameScene& scene, float grid_width);
   // Fills and lines into the bound framebuffer.
   void draw_moving(const FrameScene& scene, float line_width);
+  // The state for lines of this width [pixels], and back.
+  void begin_lines(float width);
+  void end_lines();
   // The background into `target`: from the cache, into a new cache entry, or drawn in place.
   void background_into(const Target& target, const FrameScene& scene, float grid_width);
   Target make_target(int width, int height, int samples) const;
@@ -117,6 +126,7 @@ class GlRenderer {
   Mesh dynamic_;
   std::map<const StaticGeometry*, Mesh> surfaces_, grids_;
   std::list<Working> working_;            // most recently used first, at most 2
+  bool smooth_ = false;                   // this frame's lines are coverage-blended
   const Target* readback_ = nullptr;      // the last frame's, until finish()
   std::list<CacheEntry> cache_;           // most recently used first
   std::list<BackgroundKey> recent_keys_;  // the backgrounds of the last few frames

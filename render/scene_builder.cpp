@@ -291,14 +291,79 @@ void add_frame_arrows(FrameScene& scene, const Surface& surface, ViewKind kind, 
   }
 }
 
+// Each edge of the surface's triangles once, with the normals of the faces it bounds. Vertices are
+// the same point when their coordinates agree to 1e-6 (the mesh repeats them per triangle, and the
+// sphere's seam at φ = 2π lands on φ = 0 only up to rounding).
+void add_edges(StaticGeometry& g) {
+  std::map<std::array<long, 3>, std::uint32_t> ids;
+  const auto id = [&](std::uint32_t i) {
+    const glm::vec3& p = g.surface[i].position;
+    const std::array<long, 3> key{std::lround(p.x * 1e6), std::lround(p.y * 1e6), std::lround(p.z * 1e6)};
+    return ids.try_emplace(key, static_cast<std::uint32_t>(ids.size())).first->second;
+  };
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> index;
+  for (std::uint32_t t = 0; t + 2 < g.surface.size(); t += 3) {
+    const glm::vec3 n = glm::cross(g.surface[t + 1].position - g.surface[t].position,
+                                   g.surface[t + 2].position - g.surface[t].position);
+    if (glm::length(n) == 0.0f) continue;  // the sphere's quads at the poles are triangles
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t + k, b = t + (k + 1) % 3;
+      const std::uint32_t ia = id(a), ib = id(b);
+      if (ia == ib) continue;
+      const auto [it, fresh] = index.try_emplace(std::minmax(ia, ib), g.edges.size());
+      if (fresh)
+        g.edges.push_back({a, b, {n, glm::vec3(0.0f)}, 1});
+      else if (g.edges[it->second].faces == 1)
+        g.edges[it->second].face[g.edges[it->second].faces++] = n;
+    }
+  }
+}
+
 }  // namespace
+
+glm::vec3 headlight(const FrameScene& scene) {
+  if (!scene.depth_test) return {0, 0, 1};
+  const glm::mat4 inverse = glm::inverse(scene.view_projection);
+  return glm::normalize(glm::vec3(inverse * glm::vec4(0, 0, -1, 0)));
+}
+
+std::vector<Vertex> silhouette(const StaticGeometry& g, const FrameScene& scene) {
+  std::vector<Vertex> lines;
+  // The camera: the point the projection sends to w = 0; for an orthographic projection a
+  // direction (the one that goes into the screen).
+  const glm::dvec4 h = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
+  const bool perspective = std::abs(h.w) > 1e-12;
+  const glm::dvec3 eye = perspective ? glm::dvec3(h) / h.w : glm::dvec3(0.0);
+  const glm::dvec3 towards_camera = perspective ? glm::dvec3(0.0) : -glm::dvec3(h);
+  const glm::vec3 light = headlight(scene);
+  const float ambient = scene.depth_test ? 0.35f : 1.0f;
+  const auto shaded = [&](const LitVertex& v) {  // lit.vert's colour
+    const float diffuse = std::abs(glm::dot(v.normal, light));
+    return glm::vec4(glm::vec3(scene.surface_color) * (ambient + (1.0f - ambient) * diffuse),
+                     scene.surface_color.a);
+  };
+  for (const SurfaceEdge& e : g.edges) {
+    const glm::dvec3 a(g.surface[e.a].position);
+    const glm::dvec3 view = perspective ? eye - a : towards_camera;
+    const bool outline = e.faces == 1 || (glm::dot(glm::dvec3(e.face[0]), view) > 0.0) !=
+                                             (glm::dot(glm::dvec3(e.face[1]), view) > 0.0);
+    if (!outline) continue;
+    lines.push_back({g.surface[e.a].position, shaded(g.surface[e.a])});
+    lines.push_back({g.surface[e.b].position, shaded(g.surface[e.b])});
+  }
+  return lines;
+}
 
 const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view) {
   static std::mutex mutex;
   static std::map<std::pair<SurfaceKind, ViewKind>, StaticGeometry> cache;
   const std::lock_guard lock(mutex);
   auto it = cache.find({surface, view});
-  if (it == cache.end()) it = cache.emplace(std::pair{surface, view}, build_static(surface, view)).first;
+  if (it == cache.end()) {
+    StaticGeometry g = build_static(surface, view);
+    add_edges(g);
+    it = cache.emplace(std::pair{surface, view}, std::move(g)).first;
+  }
   return it->second;
 }
 

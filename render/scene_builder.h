@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <optional>
 #include <string>
@@ -24,9 +25,18 @@ struct LitVertex {
 };
 
 // Geometry that depends only on the surface kind and the view: built once and reused.
+// An edge of the surface mesh with the normals of the faces on either side (one for the mesh's
+// boundary): what silhouette() needs.
+struct SurfaceEdge {
+  std::uint32_t a = 0, b = 0;  // indices into StaticGeometry::surface
+  glm::vec3 face[2]{};         // the faces' normals (unnormalised)
+  int faces = 0;               // 1 on the boundary, 2 inside
+};
+
 struct StaticGeometry {
   std::vector<LitVertex> surface;  // triangles, lit
   std::vector<Vertex> grid;        // line segments
+  std::vector<SurfaceEdge> edges;  // each edge of the surface once (degenerate faces left out)
 };
 const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view);
 
@@ -70,6 +80,16 @@ struct FrameScene {
 };
 
 FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view);
+
+// The direction the surface is lit from (lit.vert's light_direction): the camera's side in the 3-D
+// views, straight on in the 2-D ones.
+glm::vec3 headlight(const FrameScene& scene);
+
+// The surface's outline as seen by the scene's camera: the mesh's boundary edges and the edges
+// between a face turned towards the camera and one turned away, as line segments in the shaded
+// surface's colour at their ends. Drawn as anti-aliased lines over the surface they smooth its
+// silhouette against the background without multisampling.
+std::vector<Vertex> silhouette(const StaticGeometry& g, const FrameScene& scene);
 
 // The camera of the 3-D views placed to show the body: above it on the sphere (above the centre of
 // all the bodies' positions and trails when there are companions), across the bowl from it on the

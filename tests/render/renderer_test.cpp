@@ -247,26 +247,29 @@ struct BareGl {
 TEST(Renderer, CachedBackgroundsGiveTheBytesOfDrawnOnes) {
   const Snapshot a = preset_snapshot("spinning_rigid_sphere", 3.0, true);
   const Snapshot b = preset_snapshot("spinning_rigid_sphere", 3.2, true);  // the body moved
-  GlRenderer::Options uncached_options;
-  uncached_options.cache_background = false;
-  BareGl cached(GlRenderer::Options{}), uncached(uncached_options);
-  for (const ViewKind kind : {ViewKind::sphere, ViewKind::disk}) {
-    SCOPED_TRACE(std::string(view_name(kind)));
-    ViewOptions view;
-    view.kind = kind;  // an explicit (fixed) camera
-    const FrameScene sa = build_scene(a, view), sb = build_scene(b, view);
-    const auto want_a = uncached.frame(sa, view.width, view.height);
-    const auto want_b = uncached.frame(sb, view.width, view.height);
-    const GlRenderer::CacheStats before = cached.gl->cache_stats();
-    EXPECT_EQ(cached.frame(sa, view.width, view.height), want_a);  // cold: drawn in place
-    EXPECT_EQ(cached.frame(sb, view.width, view.height), want_b);  // seen again: filled, copied
-    EXPECT_EQ(cached.frame(sa, view.width, view.height), want_a);  // warm: copied
-    EXPECT_EQ(cached.frame(sb, view.width, view.height), want_b);
-    const GlRenderer::CacheStats after = cached.gl->cache_stats();
-    EXPECT_EQ(after.misses - before.misses, 1);
-    EXPECT_EQ(after.fills - before.fills, 1);
-    EXPECT_EQ(after.hits - before.hits, 2);
-  }
+  for (const int samples : {1, 4})
+    for (const ViewKind kind : {ViewKind::sphere, ViewKind::disk}) {
+      SCOPED_TRACE(std::string(view_name(kind)) + ", " + std::to_string(samples) + " samples");
+      GlRenderer::Options options;
+      options.samples = samples;
+      GlRenderer::Options uncached_options = options;
+      uncached_options.cache_background = false;
+      BareGl cached(options), uncached(uncached_options);
+      ViewOptions view;
+      view.kind = kind;  // an explicit (fixed) camera
+      const FrameScene sa = build_scene(a, view), sb = build_scene(b, view);
+      const auto want_a = uncached.frame(sa, view.width, view.height);
+      const auto want_b = uncached.frame(sb, view.width, view.height);
+      const GlRenderer::CacheStats before = cached.gl->cache_stats();
+      EXPECT_EQ(cached.frame(sa, view.width, view.height), want_a);  // cold: drawn in place
+      EXPECT_EQ(cached.frame(sb, view.width, view.height), want_b);  // seen again: filled, copied
+      EXPECT_EQ(cached.frame(sa, view.width, view.height), want_a);  // warm: copied
+      EXPECT_EQ(cached.frame(sb, view.width, view.height), want_b);
+      const GlRenderer::CacheStats after = cached.gl->cache_stats();
+      EXPECT_EQ(after.misses - before.misses, 1);
+      EXPECT_EQ(after.fills - before.fills, 1);
+      EXPECT_EQ(after.hits - before.hits, 2);
+    }
 }
 
 TEST(Renderer, TheBackgroundCacheFollowsEveryChangeOfSurfaceViewCameraAndSize) {
@@ -373,7 +376,10 @@ struct Golden {
   const char* name;
   const char* preset;
   ViewKind view;
-  double t = 3.0;  // [time]
+  double t = 3.0;    // [time]
+  int width = 640;   // [pixels]
+  int height = 480;  // [pixels]
+  unsigned layers = kAllLayers;
 };
 
 class GoldenFrame : public ::testing::TestWithParam<Golden> {};
@@ -383,6 +389,9 @@ TEST_P(GoldenFrame, MatchesThePinnedPng) {
   const Snapshot s = preset_snapshot(g.preset, g.t, true);
   ViewOptions view;
   view.kind = g.view;
+  view.width = g.width;
+  view.height = g.height;
+  view.layers = g.layers;
   aim_camera_at_body(view, s);
   const std::vector<std::uint8_t> png = renderer().render_png(s, view);
   const std::filesystem::path golden =
@@ -403,7 +412,11 @@ INSTANTIATE_TEST_SUITE_P(
                       Golden{"disk", "spinning_rigid_pseudosphere", ViewKind::disk},
                       Golden{"stereographic", "breathing_ellipse_sphere", ViewKind::disk},
                       Golden{"plane", "spinning_rigid_plane", ViewKind::plane},
-                      Golden{"spin_vs_geodesic_sphere", "spin_vs_geodesic_sphere", ViewKind::sphere, 2.0}),
+                      Golden{"spin_vs_geodesic_sphere", "spin_vs_geodesic_sphere", ViewKind::sphere, 2.0},
+                      // A thumbnail (1 px lines) and a projector-sized frame (3.4 px lines).
+                      Golden{"sphere_thumbnail", "spin_vs_geodesic_sphere", ViewKind::sphere, 2.0, 160, 120,
+                             kAllLayers & ~unsigned{kHud}},
+                      Golden{"sphere_1080p", "spin_vs_geodesic_sphere", ViewKind::sphere, 2.0, 1920, 1080}),
     [](const auto& param) { return std::string(param.param.name); });
 
 }  // namespace
