@@ -66,8 +66,10 @@ void upload(unsigned vao, unsigned vbo, const void* data, std::size_t bytes, boo
 GlRenderer::GlRenderer(const Options& options) : options_(options) {
   lit_program_ = link("lit.vert", "lit.frag");
   flat_program_ = link("flat.vert", "flat.frag");
+  line_program_ = link("line.vert", "line.frag");
   glGenVertexArrays(1, &dynamic_.vao);
   glGenBuffers(1, &dynamic_.vbo);
+  glGenVertexArrays(1, &line_vao_);
 }
 
 GlRenderer::~GlRenderer() {
@@ -81,6 +83,8 @@ GlRenderer::~GlRenderer() {
   glDeleteVertexArrays(1, &dynamic_.vao);
   glDeleteProgram(lit_program_);
   glDeleteProgram(flat_program_);
+  glDeleteProgram(line_program_);
+  glDeleteVertexArrays(1, &line_vao_);
 }
 
 void GlRenderer::set_options(const Options& options) {
@@ -216,16 +220,20 @@ void GlRenderer::finish() {
   readback_ = nullptr;
 }
 
+glm::vec4 GlRenderer::camera_of(const FrameScene& scene) {
+  // The camera: the point the projection sends to w = 0 (none in the 2-D views' orthographic one).
+  const glm::dvec4 eye = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
+  if (std::abs(eye.w) <= 1e-12) return glm::vec4(0.0f);
+  return glm::vec4(glm::vec3(glm::dvec3(eye) / eye.w), scene.depth_bias);
+}
+
 void GlRenderer::use_flat_program(const FrameScene& scene) {
   glUseProgram(flat_program_);
   glUniformMatrix4fv(glGetUniformLocation(flat_program_, "view_projection"), 1, GL_FALSE,
                      glm::value_ptr(scene.view_projection));
-  // The camera: the point the projection sends to w = 0 (none in the 2-D views' orthographic one).
-  const glm::dvec4 eye = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
-  const bool perspective = std::abs(eye.w) > 1e-12;
-  const glm::vec3 eye_world = perspective ? glm::vec3(glm::dvec3(eye) / eye.w) : glm::vec3(0.0f);
-  glUniform3fv(glGetUniformLocation(flat_program_, "eye"), 1, glm::value_ptr(eye_world));
-  glUniform1f(glGetUniformLocation(flat_program_, "depth_bias"), perspective ? scene.depth_bias : 0.0f);
+  const glm::vec4 eye = camera_of(scene);
+  glUniform3fv(glGetUniformLocation(flat_program_, "eye"), 1, glm::value_ptr(glm::vec3(eye)));
+  glUniform1f(glGetUniformLocation(flat_program_, "depth_bias"), eye.w);
 }
 
 void GlRenderer::draw_background(const FrameScene& scene, float grid_width) {
@@ -253,38 +261,59 @@ void GlRenderer::draw_background(const FrameScene& scene, float grid_width) {
     glBindVertexArray(mesh.vao);
     glDrawArrays(GL_TRIANGLES, 0, mesh.count);
     if (smooth_) {  // without multisampling, smooth the surface's outline with a line over it
-      use_flat_program(scene);
-      begin_lines(grid_width);
-      draw_flat(silhouette(*scene.statics, scene), GL_LINES);
-      end_lines();
+      const std::vector<Vertex> outline = silhouette(*scene.statics, scene);
+      if (!outline.empty()) {
+        upload(dynamic_.vao, dynamic_.vbo, outline.data(), outline.size() * sizeof(Vertex), false);
+        draw_lines(scene, dynamic_, static_cast<int>(outline.size()), grid_width);
+      }
     }
   }
   if (scene.statics && scene.draw_grid) {
     const Mesh& mesh = static_grid(*scene.statics);
-    use_flat_program(scene);
-    begin_lines(grid_width);
-    glBindVertexArray(mesh.vao);
-    glDrawArrays(GL_LINES, 0, mesh.count);
-    end_lines();
+    draw_lines(scene, mesh, mesh.count, grid_width);
   }
 }
 
-void GlRenderer::begin_lines(float width) {
-  glLineWidth(width);
-  if (!smooth_) return;
-  // Coverage-blended lines (llvmpipe's anti-aliased line stage): each line's fringe is blended
-  // over what is below; lines write no depth, so that one's fringe never hides another.
-  glEnable(GL_LINE_SMOOTH);
+void GlRenderer::draw_lines(const FrameScene& scene, const Mesh& mesh, int count, float width) {
+  if (!smooth_) {  // GL_LINES, aliased
+    use_flat_program(scene);
+    glLineWidth(width);
+    glBindVertexArray(mesh.vao);
+    glDrawArrays(GL_LINES, 0, count);
+    return;
+  }
+  // One instance per segment (line.vert): both ends' vertices from the GL_LINES array.
+  glUseProgram(line_program_);
+  glUniformMatrix4fv(glGetUniformLocation(line_program_, "view_projection"), 1, GL_FALSE,
+                     glm::value_ptr(scene.view_projection));
+  const glm::vec4 eye = camera_of(scene);
+  glUniform3fv(glGetUniformLocation(line_program_, "eye"), 1, glm::value_ptr(glm::vec3(eye)));
+  glUniform1f(glGetUniformLocation(line_program_, "depth_bias"), eye.w);
+  GLint viewport[4];
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  glUniform2f(glGetUniformLocation(line_program_, "viewport"), static_cast<float>(viewport[2]),
+              static_cast<float>(viewport[3]));
+  glUniform1f(glGetUniformLocation(line_program_, "half_width"), 0.5f * width);
+  glBindVertexArray(line_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, mesh.vbo);
+  const GLsizei stride = 2 * sizeof(Vertex);
+  for (int end = 0; end < 2; ++end) {
+    const std::size_t at = end * sizeof(Vertex);
+    glEnableVertexAttribArray(2 * end);
+    glVertexAttribPointer(2 * end, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(at));
+    glVertexAttribDivisor(2 * end, 1);
+    glEnableVertexAttribArray(2 * end + 1);
+    glVertexAttribPointer(2 * end + 1, 4, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<void*>(at + sizeof(glm::vec3)));
+    glVertexAttribDivisor(2 * end + 1, 1);
+  }
+  // Blended, and writing no depth, so that one line's fringe never hides another line.
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glDepthMask(GL_FALSE);
-}
-
-void GlRenderer::end_lines() {
-  if (!smooth_) return;
-  glDisable(GL_LINE_SMOOTH);
-  glDisable(GL_BLEND);
+  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count / 2);
   glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
 }
 
 void GlRenderer::draw_moving(const FrameScene& scene, float line_width) {
@@ -305,9 +334,10 @@ void GlRenderer::draw_moving(const FrameScene& scene, float line_width) {
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
   }
-  begin_lines(line_width);
-  draw_flat(scene.lines, GL_LINES);
-  end_lines();
+  if (!scene.lines.empty()) {
+    upload(dynamic_.vao, dynamic_.vbo, scene.lines.data(), scene.lines.size() * sizeof(Vertex), false);
+    draw_lines(scene, dynamic_, static_cast<int>(scene.lines.size()), line_width);
+  }
   glBindVertexArray(0);
 }
 

@@ -110,9 +110,11 @@ class GlRenderer {
   void draw_background(const FrameScene& scene, float grid_width);
   // Fills and lines into the bound framebuffer.
   void draw_moving(const FrameScene& scene, float line_width);
-  // The state for lines of this width [pixels], and back.
-  void begin_lines(float width);
-  void end_lines();
+  // `count` vertices of GL_LINES in mesh.vbo, `width` pixels wide: anti-aliased quads (line.vert)
+  // when smooth_, else GL_LINES.
+  void draw_lines(const FrameScene& scene, const Mesh& mesh, int count, float width);
+  // The camera's position (xyz) and the depth bias to use (w; 0 for orthographic projections).
+  static glm::vec4 camera_of(const FrameScene& scene);
   // The background into `target`: from the cache, into a new cache entry, or drawn in place.
   void background_into(const Target& target, const FrameScene& scene, float grid_width);
   Target make_target(int width, int height, int samples) const;
@@ -122,11 +124,12 @@ class GlRenderer {
 
   Options options_;
   CacheStats stats_;
-  unsigned lit_program_ = 0, flat_program_ = 0;
+  unsigned lit_program_ = 0, flat_program_ = 0, line_program_ = 0;
+  unsigned line_vao_ = 0;  // the line program's attributes, pointed at a mesh's buffer per draw
   Mesh dynamic_;
   std::map<const StaticGeometry*, Mesh> surfaces_, grids_;
   std::list<Working> working_;            // most recently used first, at most 2
-  bool smooth_ = false;                   // this frame's lines are coverage-blended
+  bool smooth_ = false;                   // this frame's lines are anti-aliased quads
   const Target* readback_ = nullptr;      // the last frame's, until finish()
   std::list<CacheEntry> cache_;           // most recently used first
   std::list<BackgroundKey> recent_keys_;  // the backgrounds of the last few frames
