@@ -2,12 +2,13 @@
 //
 // A frame is drawn into an off-screen target, which is left bound for the HUD; finish() reads it
 // back into the context's buffer (glReadPixels, 0.04 ms at 640×480). Anti-aliasing, by default
-// without multisampling: lines are coverage-blended (GL_LINE_SMOOTH: llvmpipe widens each line by
-// a fringe whose alpha falls off with the distance to the line) with a width in pixels that grows
-// with the frame (line_widths()), and the surface's outline against the background is one such
-// line too (silhouette()). 4x multisampling is an option (samples = 4): on llvmpipe its resolve
-// is a full-screen shader pass, 2–3 ms at 640×480 and 20–30 ms at 1920×1080, which made a frame
-// 2.7–5.8× the aliased one against 1.3–2× for smooth lines (docs/performance.md).
+// without multisampling: each line segment is an instanced screen-space quad (shaders/line.vert)
+// whose last half pixel fades out (line.frag), with a width in pixels that grows with the frame
+// (line_widths()), and the surface's outline against the background is drawn as such lines too
+// (silhouette()). 4x multisampling is an option (samples = 4): on llvmpipe its resolve is a
+// full-screen shader pass, 2–3 ms at 640×480 and 20–30 ms at 1920×1080, which made a frame
+// 2.4–6× the aliased one; GL_LINE_SMOOTH cost ~2 µs a segment in llvmpipe's line stage
+// (docs/performance.md).
 //
 // The background (clear, surface, outline, grid) of a camera seen on a recent frame is kept as a
 // colour + depth image and copied in, so that a frame where only the bodies move draws only them;
