@@ -70,6 +70,16 @@ GlRenderer::GlRenderer(const Options& options) : options_(options) {
   glGenVertexArrays(1, &dynamic_.vao);
   glGenBuffers(1, &dynamic_.vbo);
   glGenVertexArrays(1, &line_vao_);
+  // Warm-up: llvmpipe compiles a program's machine code for each state it is drawn in at the
+  // first such draw (tens of ms); draw a fill and lines off-screen now, in the 3-D views' state.
+  FrameScene warm;
+  const glm::vec4 c{0.5f, 0.5f, 0.5f, 0.5f};
+  warm.fills = {{{0, 0, 0}, c}, {{0.5f, 0, 0}, c}, {{0, 0.5f, 0}, c}};
+  warm.lines = {{{0, 0, 0}, c}, {{0.5f, 0.5f, 0}, c}};
+  draw(warm, 16, 16);
+  glFinish();
+  readback_ = nullptr;
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 GlRenderer::~GlRenderer() {
