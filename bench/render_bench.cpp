@@ -11,10 +11,14 @@
 #include <vector>
 
 #include "bench/bare_render_loop.h"
+#include "codec/presets.h"
 #include "codec/scene_json.h"
 #include "engine/chart.h"
 #include "engine/simulation.h"
+#include "render/gl_renderer.h"
 #include "render/jpeg_encoder.h"
+#include "render/osmesa_context.h"
+#include "render/overlay.h"
 #include "render/png_encoder.h"
 #include "render/renderer.h"
 
@@ -100,9 +104,116 @@ JpegError jpeg_error(const std::vector<std::uint8_t>& jpeg, const std::vector<st
   return {10.0 * std::log10(255.0 * 255.0 / std::max(mse, 1e-12)), absolute / static_cast<double>(n)};
 }
 
+// Snapshots of a preset's run at t0, t0 + dt, …: the body moves from one to the next (trail kept).
+std::vector<render::Snapshot> moving_snapshots(std::string_view preset, double t0, double dt, int count) {
+  Simulation run = start_simulation(*parse_scene_text(find_preset(preset)->json).scene);
+  Trail trail;
+  trail.spacing = t0 / 64;
+  std::vector<render::Snapshot> out;
+  for (int i = 0; i < count; ++i) {
+    advance_recording(run, trail, t0 + dt * i);
+    out.push_back(render::make_snapshot(run, trail, -1.0));
+  }
+  return out;
+}
+
+// One GL renderer with its options in a shared context, drawing what render::Renderer draws
+// (scene, HUD, glFinish) without encoding.
+struct GlUnderTest {
+  render::GlRenderer gl;
+  render::HudOverlay& hud;
+  double render_ms(render::OsmesaContext& context, const render::FrameScene& scene, int w, int h) {
+    const auto t = std::chrono::steady_clock::now();
+    context.make_current(w, h);
+    gl.draw(scene, w, h);
+    if (!scene.hud_lines.empty() || !scene.legend.empty()) hud.draw(scene.hud_lines, scene.legend, w, h);
+    gl.finish();
+    return ms_since(t);
+  }
+};
+
+// Anti-aliasing and the cached background (gl_renderer.h): each pair of variants measured
+// interleaved, frame by frame, in one context, so that the machine's drift falls on both.
+void anti_aliasing_and_cache_tables(int frames) {
+  render::OsmesaContext context;
+  context.make_current(64, 64);
+  render::HudOverlay hud;
+  using Options = render::GlRenderer::Options;
+  Options aliased;  // the previous renderer: one sample, 1 px lines, nothing cached
+  aliased.samples = 1;
+  aliased.smooth_lines = false;
+  aliased.wide_lines = false;
+  aliased.cache_background = false;
+  Options smooth;  // the default without the cache: coverage-blended lines and outline
+  smooth.cache_background = false;
+  Options msaa = smooth;  // 4 samples, resolved
+  msaa.samples = 4;
+  Options cached;  // the default
+  GlUnderTest a{render::GlRenderer(aliased), hud};
+  GlUnderTest b{render::GlRenderer(smooth), hud};
+  GlUnderTest m{render::GlRenderer(msaa), hud};
+  GlUnderTest c{render::GlRenderer(cached), hud};
+  const int n = frames + 2;
+  const std::vector<render::Snapshot> sphere = moving_snapshots("spinning_rigid_sphere", 3.0, 0.02, n);
+  const std::vector<render::Snapshot> disk = moving_snapshots("spinning_rigid_pseudosphere", 3.0, 0.02, n);
+  struct Row {
+    const char* name;
+    const std::vector<render::Snapshot>* snapshots;
+    render::ViewKind kind;
+    bool aim;  // the camera follows the body: a new view_projection every frame
+  };
+  // Two variants measured interleaved over frames that differ in the body's position only (and
+  // the camera, when it follows the body): medians [ms].
+  const auto pair = [&](const Row& row, int w, int h, GlUnderTest& x, GlUnderTest& y) {
+    std::vector<double> tx, ty;
+    for (int f = 0; f < n; ++f) {
+      const render::Snapshot& s = (*row.snapshots)[f];
+      render::ViewOptions view;
+      view.kind = row.kind;
+      view.width = w;
+      view.height = h;
+      if (row.aim) render::aim_camera_at_body(view, s);
+      const render::FrameScene scene = render::build_scene(s, view);
+      const double mx = x.render_ms(context, scene, w, h), my = y.render_ms(context, scene, w, h);
+      if (f >= 2) tx.push_back(mx), ty.push_back(my);
+    }
+    return std::pair{median(tx), median(ty)};
+  };
+  const Row sphere_aimed{"sphere, camera on the body", &sphere, render::ViewKind::sphere, true};
+  const Row sphere_fixed{"sphere, explicit camera", &sphere, render::ViewKind::sphere, false};
+  const Row disk_fixed{"disk (Poincaré)", &disk, render::ViewKind::disk, false};
+  // Each ratio against the aliased frames measured interleaved with it.
+  std::printf(
+      "| size | view | aliased ms (1 px) | smooth ms (cache off) | smooth / aliased | default ms (smooth, "
+      "cache on) | default / aliased | 4x MSAA ms (cache off) | MSAA / aliased |\n"
+      "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+  for (const auto& [w, h] : {std::pair{640, 480}, std::pair{1280, 720}, std::pair{1920, 1080}})
+    for (const Row* row : {&sphere_aimed, &disk_fixed}) {
+      const auto [a1, sm] = pair(*row, w, h, a, b);
+      const auto [a2, df] = pair(*row, w, h, a, c);
+      const auto [a3, ms] = pair(*row, w, h, a, m);
+      std::printf("| %dx%d | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", w, h, row->name, a1,
+                  sm, sm / a1, df, df / a2, ms, ms / a3);
+    }
+  std::printf(
+      "\n| size | view | full frame ms (cache off) | body-only frame ms (cached background) | cached / full "
+      "| "
+      "cache hits, fills, misses |\n| --- | --- | --- | --- | --- | --- |\n");
+  for (const auto& [w, h] : {std::pair{640, 480}, std::pair{1280, 720}})
+    for (const Row* row : {&sphere_fixed, &disk_fixed, &sphere_aimed}) {
+      const render::GlRenderer::CacheStats before = c.gl.cache_stats();
+      const auto [mb, mc] = pair(*row, w, h, b, c);
+      const render::GlRenderer::CacheStats after = c.gl.cache_stats();
+      std::printf("| %dx%d | %s | %.2f | %.2f | %.2f | %d, %d, %d |\n", w, h, row->name, mb, mc, mc / mb,
+                  after.hits - before.hits, after.fills - before.fills, after.misses - before.misses);
+    }
+  std::printf("\n");
+}
+
 }  // namespace
 
 int run_render_bench(int frames) {
+  anti_aliasing_and_cache_tables(frames);
   const render::Snapshot snapshot = bench_snapshot();
   render::Renderer renderer;
   struct Size {

@@ -41,4 +41,12 @@ void OsmesaContext::make_current(int width, int height) {
   OSMesaPixelStore(OSMESA_Y_UP, 0);  // top-down rows: PNG order at no cost
 }
 
+std::uint8_t* current_color_buffer(int& width, int& height) {
+  const OSMesaContext context = OSMesaGetCurrentContext();
+  int format = 0;
+  void* buffer = nullptr;
+  if (!context || !OSMesaGetColorBuffer(context, &width, &height, &format, &buffer)) return nullptr;
+  return static_cast<std::uint8_t*>(buffer);
+}
+
 }  // namespace spinfold::render

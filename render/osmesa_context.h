@@ -30,4 +30,9 @@ class OsmesaContext {
   int width_ = 0, height_ = 0;
 };
 
+// The colour buffer of the context current on this thread (as OsmesaContext::pixels(), rows
+// top-down) and its size, or null when none is current. For the GL renderer, which reads its
+// off-screen frame back into it (OSMesa's own copy of the default framebuffer happens at glFinish).
+std::uint8_t* current_color_buffer(int& width, int& height);
+
 }  // namespace spinfold::render

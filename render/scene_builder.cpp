@@ -19,8 +19,13 @@ const glm::vec4 kArrowColors[2] = {{0.85f, 0.10f, 0.10f, 1.0f}, {0.10f, 0.60f, 0
 // The geodesic companion's trail: dashes and gaps of these lengths [world units, radii].
 constexpr double kDash = 0.045, kGap = 0.03;
 
-// Overlays sit this far (in radii) above the 3-D surfaces so that the depth test keeps them.
+// Overlays sit this far (in radii) above the hyperboloid so that the depth test keeps them. On the
+// sphere they lie on it exactly: its mesh is circumscribed (every face outside the unit sphere), so
+// nothing drawn on the sphere pokes out past the mesh's limb, and the depth bias (FrameScene) keeps
+// them in front of the faces.
 constexpr double kLift = 0.004;
+// FrameScene::depth_bias of the 3-D views: a fraction of the distance to the camera.
+constexpr float kSphereDepthBias = 0.01f, kHyperboloidDepthBias = 0.004f;
 // Extent of the hyperboloid mesh and of the H² grid [radii].
 constexpr double kHyperboloidExtent = 2.5;
 
@@ -56,7 +61,6 @@ glm::vec4 outline_color(const BodySnapshot& body) {
 
 // A world point lifted off the 3-D surfaces along the normal.
 glm::dvec3 lifted(ViewKind view, const glm::dvec3& w) {
-  if (view == ViewKind::sphere) return w * (1.0 + kLift);
   if (view == ViewKind::hyperboloid) {
     const glm::dvec3 n = glm::normalize(glm::dvec3(-w.x, -w.y, w.z + 1.0));
     return w + kLift * n;
@@ -150,6 +154,15 @@ StaticGeometry build_static(SurfaceKind kind, ViewKind view) {
         const double p0 = 2 * kPi * j / slices, p1 = 2 * kPi * (j + 1) / slices;
         add_quad(vertex(t0, p0), vertex(t1, p0), vertex(t1, p1), vertex(t0, p1));
       }
+    // Circumscribe: a face through three points of the unit sphere lies at distance n̂·a from the
+    // centre (its plane's); scaling every vertex by 1/min(n̂·a) puts all faces outside the sphere.
+    double inner = 1.0;
+    for (std::size_t i = 0; i + 2 < g.surface.size(); i += 3) {
+      const glm::dvec3 a(g.surface[i].position), b(g.surface[i + 1].position), c(g.surface[i + 2].position);
+      const glm::dvec3 n = glm::cross(b - a, c - a);
+      if (glm::length(n) > 1e-12) inner = std::min(inner, std::abs(glm::dot(glm::normalize(n), a)));
+    }
+    for (LitVertex& v : g.surface) v.position = to_float(glm::dvec3(v.position) * (1.0 / inner));
     for (int k = 1; k < 12; ++k)  // parallels every 15°
       grid_curve([&](double s) { return chart_point(unit, kPi * k / 12, 2 * kPi * s).X; }, 96);
     for (int k = 0; k < 12; ++k)  // meridians every 30°
@@ -278,15 +291,86 @@ void add_frame_arrows(FrameScene& scene, const Surface& surface, ViewKind kind, 
   }
 }
 
+// Each edge of the surface's triangles once, with the normals of the faces it bounds. Vertices are
+// the same point when their coordinates agree to 1e-6 (the mesh repeats them per triangle, and the
+// sphere's seam at φ = 2π lands on φ = 0 only up to rounding).
+void add_edges(StaticGeometry& g) {
+  std::map<std::array<long, 3>, std::uint32_t> ids;
+  const auto id = [&](std::uint32_t i) {
+    const glm::vec3& p = g.surface[i].position;
+    const std::array<long, 3> key{std::lround(p.x * 1e6), std::lround(p.y * 1e6), std::lround(p.z * 1e6)};
+    return ids.try_emplace(key, static_cast<std::uint32_t>(ids.size())).first->second;
+  };
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> index;
+  for (std::uint32_t t = 0; t + 2 < g.surface.size(); t += 3) {
+    const glm::vec3 n = glm::cross(g.surface[t + 1].position - g.surface[t].position,
+                                   g.surface[t + 2].position - g.surface[t].position);
+    if (glm::length(n) == 0.0f) continue;  // the sphere's quads at the poles are triangles
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t + k, b = t + (k + 1) % 3;
+      const std::uint32_t ia = id(a), ib = id(b);
+      if (ia == ib) continue;
+      const auto [it, fresh] = index.try_emplace(std::minmax(ia, ib), g.edges.size());
+      if (fresh)
+        g.edges.push_back({a, b, {n, glm::vec3(0.0f)}, 1});
+      else if (g.edges[it->second].faces == 1)
+        g.edges[it->second].face[g.edges[it->second].faces++] = n;
+    }
+  }
+}
+
 }  // namespace
+
+glm::vec3 headlight(const FrameScene& scene) {
+  if (!scene.depth_test) return {0, 0, 1};
+  const glm::mat4 inverse = glm::inverse(scene.view_projection);
+  return glm::normalize(glm::vec3(inverse * glm::vec4(0, 0, -1, 0)));
+}
+
+std::vector<Vertex> silhouette(const StaticGeometry& g, const FrameScene& scene) {
+  std::vector<Vertex> lines;
+  // The camera: the point the projection sends to w = 0; for an orthographic projection a
+  // direction (the one that goes into the screen).
+  const glm::dvec4 h = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
+  const bool perspective = std::abs(h.w) > 1e-12;
+  const glm::dvec3 eye = perspective ? glm::dvec3(h) / h.w : glm::dvec3(0.0);
+  const glm::dvec3 towards_camera = perspective ? glm::dvec3(0.0) : -glm::dvec3(h);
+  const glm::vec3 light = headlight(scene);
+  const float ambient = scene.depth_test ? 0.35f : 1.0f;
+  const auto shaded = [&](const LitVertex& v) {  // lit.vert's colour
+    const float diffuse = std::abs(glm::dot(v.normal, light));
+    return glm::vec4(glm::vec3(scene.surface_color) * (ambient + (1.0f - ambient) * diffuse),
+                     scene.surface_color.a);
+  };
+  for (const SurfaceEdge& e : g.edges) {
+    const glm::dvec3 a(g.surface[e.a].position);
+    const glm::dvec3 view = perspective ? eye - a : towards_camera;
+    const bool outline = e.faces == 1 || (glm::dot(glm::dvec3(e.face[0]), view) > 0.0) !=
+                                             (glm::dot(glm::dvec3(e.face[1]), view) > 0.0);
+    if (!outline) continue;
+    lines.push_back({g.surface[e.a].position, shaded(g.surface[e.a])});
+    lines.push_back({g.surface[e.b].position, shaded(g.surface[e.b])});
+  }
+  return lines;
+}
 
 const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view) {
   static std::mutex mutex;
   static std::map<std::pair<SurfaceKind, ViewKind>, StaticGeometry> cache;
   const std::lock_guard lock(mutex);
   auto it = cache.find({surface, view});
-  if (it == cache.end()) it = cache.emplace(std::pair{surface, view}, build_static(surface, view)).first;
+  if (it == cache.end()) {
+    StaticGeometry g = build_static(surface, view);
+    add_edges(g);
+    it = cache.emplace(std::pair{surface, view}, std::move(g)).first;
+  }
   return it->second;
+}
+
+LineWidths line_widths(int width, int height) {
+  const double side = std::min(0.75 * width, static_cast<double>(height)) / 480.0;
+  const double lines = 1.5 * side;
+  return {static_cast<float>(std::max(1.0, lines)), static_cast<float>(std::max(1.0, lines * 2.0 / 3.0))};
 }
 
 Vec3 exponential_map(const Surface& surface, const Vec3& X, const Vec3& v, double length) {
@@ -329,6 +413,9 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   if (scene.draw_surface || scene.draw_grid) scene.statics = &static_geometry(surface.kind, kind);
   scene.view_projection = camera(view);
   scene.depth_test = three_d(kind);
+  scene.depth_bias = kind == ViewKind::sphere        ? kSphereDepthBias
+                     : kind == ViewKind::hyperboloid ? kHyperboloidDepthBias
+                                                     : 0.0f;
   if (surface.kind == SurfaceKind::pseudosphere) scene.surface_color = {0.83f, 0.86f, 0.78f, 1.0f};
 
   // Trails first, then the bodies over them: every body's, main body first.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <optional>
 #include <string>
@@ -24,11 +25,30 @@ struct LitVertex {
 };
 
 // Geometry that depends only on the surface kind and the view: built once and reused.
+// An edge of the surface mesh with the normals of the faces on either side (one for the mesh's
+// boundary): what silhouette() needs.
+struct SurfaceEdge {
+  std::uint32_t a = 0, b = 0;  // indices into StaticGeometry::surface
+  glm::vec3 face[2]{};         // the faces' normals (unnormalised)
+  int faces = 0;               // 1 on the boundary, 2 inside
+};
+
 struct StaticGeometry {
   std::vector<LitVertex> surface;  // triangles, lit
   std::vector<Vertex> grid;        // line segments
+  std::vector<SurfaceEdge> edges;  // each edge of the surface once (degenerate faces left out)
 };
 const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view);
+
+// Line widths of a frame [pixels]. The outline, trail and arrows are 1.5 px at 640×480 and grow
+// with the frame's shorter side measured in 4:3 terms (min(width·3/4, height)/480), so that a frame
+// shown larger on a projector keeps the same weight; the grid, behind them, is two thirds as wide.
+// Neither is ever thinner than 1 px (thumbnails: 160×120 gets 1 px lines, anti-aliased).
+struct LineWidths {
+  float lines = 1.0f;  // outline, trail, arrows [pixels]
+  float grid = 1.0f;   // the surface's grid [pixels]
+};
+LineWidths line_widths(int width, int height);
 
 // Frames narrower than this [pixels] (thumbnails) get no legend: it would cover the picture.
 inline constexpr int kLegendMinWidth = 320;
@@ -52,11 +72,24 @@ struct FrameScene {
                                        // and the frame is at least kLegendMinWidth wide
   glm::mat4 view_projection{1.0f};
   bool depth_test = true;  // 3-D views hide what is behind the surface
+  // Grid, fills and lines are drawn this fraction of the way towards the camera (same pixels,
+  // nearer depth) so that the surface's faces hide none of a wide line's width.
+  float depth_bias = 0.0f;
   glm::vec4 surface_color{0.78f, 0.83f, 0.90f, 1.0f};
   glm::vec4 clear_color{0.97f, 0.97f, 0.96f, 1.0f};
 };
 
 FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view);
+
+// The direction the surface is lit from (lit.vert's light_direction): the camera's side in the 3-D
+// views, straight on in the 2-D ones.
+glm::vec3 headlight(const FrameScene& scene);
+
+// The surface's outline as seen by the scene's camera: the mesh's boundary edges and the edges
+// between a face turned towards the camera and one turned away, as line segments in the shaded
+// surface's colour at their ends. Drawn as anti-aliased lines over the surface they smooth its
+// silhouette against the background without multisampling.
+std::vector<Vertex> silhouette(const StaticGeometry& g, const FrameScene& scene);
 
 // The camera of the 3-D views placed to show the body: above it on the sphere (above the centre of
 // all the bodies' positions and trails when there are companions), across the bowl from it on the

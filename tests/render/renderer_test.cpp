@@ -15,6 +15,8 @@
 #include "codec/presets.h"
 #include "codec/scene_json.h"
 #include "engine/chart.h"
+#include "render/gl_renderer.h"
+#include "render/osmesa_context.h"
 #include "render/snapshot.h"
 
 namespace spinfold::render {
@@ -222,6 +224,136 @@ TEST(Renderer, TheLegendAppearsOnlyWithMoreThanOneBody) {
   }
 }
 
+// A GL renderer with its own context, without the HUD: frames of a scene with these options.
+struct BareGl {
+  OsmesaContext context;
+  std::unique_ptr<GlRenderer> gl;
+  explicit BareGl(const GlRenderer::Options& options) {
+    context.make_current(64, 64);
+    gl = std::make_unique<GlRenderer>(options);
+  }
+  ~BareGl() {
+    context.make_current(64, 64);
+    gl.reset();
+  }
+  std::vector<std::uint8_t> frame(const FrameScene& scene, int width, int height) {
+    context.make_current(width, height);
+    gl->draw(scene, width, height);
+    gl->finish();
+    return {context.pixels(), context.pixels() + static_cast<std::size_t>(width) * height * 4};
+  }
+};
+
+TEST(Renderer, CachedBackgroundsGiveTheBytesOfDrawnOnes) {
+  const Snapshot a = preset_snapshot("spinning_rigid_sphere", 3.0, true);
+  const Snapshot b = preset_snapshot("spinning_rigid_sphere", 3.2, true);  // the body moved
+  for (const int samples : {1, 4})
+    for (const ViewKind kind : {ViewKind::sphere, ViewKind::disk}) {
+      SCOPED_TRACE(std::string(view_name(kind)) + ", " + std::to_string(samples) + " samples");
+      GlRenderer::Options options;
+      options.samples = samples;
+      GlRenderer::Options uncached_options = options;
+      uncached_options.cache_background = false;
+      BareGl cached(options), uncached(uncached_options);
+      ViewOptions view;
+      view.kind = kind;  // an explicit (fixed) camera
+      const FrameScene sa = build_scene(a, view), sb = build_scene(b, view);
+      const auto want_a = uncached.frame(sa, view.width, view.height);
+      const auto want_b = uncached.frame(sb, view.width, view.height);
+      const GlRenderer::CacheStats before = cached.gl->cache_stats();
+      EXPECT_EQ(cached.frame(sa, view.width, view.height), want_a);  // cold: drawn in place
+      EXPECT_EQ(cached.frame(sb, view.width, view.height), want_b);  // seen again: filled, copied
+      EXPECT_EQ(cached.frame(sa, view.width, view.height), want_a);  // warm: copied
+      EXPECT_EQ(cached.frame(sb, view.width, view.height), want_b);
+      const GlRenderer::CacheStats after = cached.gl->cache_stats();
+      EXPECT_EQ(after.misses - before.misses, 1);
+      EXPECT_EQ(after.fills - before.fills, 1);
+      EXPECT_EQ(after.hits - before.hits, 2);
+    }
+}
+
+TEST(Renderer, TheBackgroundCacheFollowsEveryChangeOfSurfaceViewCameraAndSize) {
+  const Snapshot sphere = preset_snapshot("spinning_rigid_sphere", 3.0, true);
+  const Snapshot pseudo = preset_snapshot("spinning_rigid_pseudosphere", 3.0, true);
+  ViewOptions base;
+  struct Case {
+    const char* what;
+    const Snapshot* snapshot;
+    ViewOptions view;
+  };
+  std::vector<Case> cases;
+  ViewOptions v = base;
+  cases.push_back({"base", &sphere, v});
+  v.kind = ViewKind::disk;  // stereographic
+  cases.push_back({"view", &sphere, v});
+  cases.push_back({"surface", &pseudo, v});  // Poincaré disk
+  v = base;
+  v.yaw += 0.3;
+  cases.push_back({"camera", &sphere, v});
+  v = base;
+  v.width = 320;
+  v.height = 240;
+  cases.push_back({"size", &sphere, v});
+  v = base;
+  v.layers &= ~unsigned{kGrid};
+  cases.push_back({"layers", &sphere, v});
+  for (std::size_t i = 1; i < cases.size(); ++i) {
+    SCOPED_TRACE(cases[i].what);
+    const FrameScene first = build_scene(*cases[0].snapshot, cases[0].view);
+    const FrameScene then = build_scene(*cases[i].snapshot, cases[i].view);
+    BareGl warm(GlRenderer::Options{});
+    for (int k = 0; k < 3; ++k) warm.frame(first, cases[0].view.width, cases[0].view.height);  // cached
+    const auto got = warm.frame(then, cases[i].view.width, cases[i].view.height);
+    BareGl fresh(GlRenderer::Options{});
+    EXPECT_EQ(got, fresh.frame(then, cases[i].view.width, cases[i].view.height));
+    EXPECT_NE(got, fresh.frame(first, cases[0].view.width, cases[0].view.height));
+  }
+}
+
+TEST(Renderer, ACameraThatMovesEveryFrameNeverFillsTheCache) {
+  const Snapshot s = preset_snapshot("spinning_rigid_sphere", 3.0, true);
+  BareGl r(GlRenderer::Options{});
+  for (int k = 0; k < 6; ++k) {
+    ViewOptions view;
+    view.yaw += 0.01 * k;
+    r.frame(build_scene(s, view), view.width, view.height);
+  }
+  EXPECT_EQ(r.gl->cache_stats().fills, 0);
+  EXPECT_EQ(r.gl->cache_stats().misses, 6);
+  EXPECT_EQ(r.gl->cache_stats().entries, 0);
+}
+
+TEST(Renderer, LineWidthsGrowWithTheFrameAndNeverFallBelowAPixel) {
+  EXPECT_FLOAT_EQ(line_widths(640, 480).lines, 1.5f);
+  EXPECT_FLOAT_EQ(line_widths(160, 120).lines, 1.0f);
+  EXPECT_FLOAT_EQ(line_widths(160, 120).grid, 1.0f);
+  EXPECT_GT(line_widths(1280, 720).lines, line_widths(640, 480).lines);
+  EXPECT_GT(line_widths(1920, 1080).lines, line_widths(1280, 720).lines);
+  EXPECT_FLOAT_EQ(line_widths(1920, 1080).lines, 1.5f * 1080 / 480);
+  // In pixels: the trail's colour covers more of a frame twice the size than twice the pixels of
+  // the smaller one would (lines twice as long and wider).
+  const Snapshot s = preset_snapshot("spinning_rigid_pseudosphere", 3.0, true);
+  const auto trail_pixels = [&](int w, int h) {
+    ViewOptions view;
+    view.kind = ViewKind::disk;
+    view.width = w;
+    view.height = h;
+    view.layers = kTrail;
+    const std::uint8_t* p = renderer().render_rgba(build_scene(s, view), w, h);
+    const std::array<float, 3> c = s.bodies[0].trail_color;
+    double ink = 0.0;  // coverage: how far each pixel went from the background to the trail colour
+    const glm::vec4 clear = FrameScene{}.clear_color;
+    for (int i = 0; i < w * h; ++i) {
+      const double t = (clear.r * 255.0 - p[4 * i]) / (clear.r * 255.0 - 255.0 * c[0]);
+      ink += std::clamp(t, 0.0, 1.0);
+    }
+    return ink;
+  };
+  const double small = trail_pixels(640, 480), large = trail_pixels(1280, 960);
+  EXPECT_GT(small, 0.0);
+  EXPECT_GT(large / small, 2.0 * 1.5);  // twice as long, at least 1.5× as wide (2× here)
+}
+
 TEST(Renderer, SameSnapshotViewAndSizeGiveTheSameBytes) {
   const Snapshot s = preset_snapshot("spinning_rigid_sphere", 3.0, true);
   const ViewOptions view = looking_at(s, 0.0);
@@ -244,7 +376,10 @@ struct Golden {
   const char* name;
   const char* preset;
   ViewKind view;
-  double t = 3.0;  // [time]
+  double t = 3.0;    // [time]
+  int width = 640;   // [pixels]
+  int height = 480;  // [pixels]
+  unsigned layers = kAllLayers;
 };
 
 class GoldenFrame : public ::testing::TestWithParam<Golden> {};
@@ -254,6 +389,9 @@ TEST_P(GoldenFrame, MatchesThePinnedPng) {
   const Snapshot s = preset_snapshot(g.preset, g.t, true);
   ViewOptions view;
   view.kind = g.view;
+  view.width = g.width;
+  view.height = g.height;
+  view.layers = g.layers;
   aim_camera_at_body(view, s);
   const std::vector<std::uint8_t> png = renderer().render_png(s, view);
   const std::filesystem::path golden =
@@ -274,7 +412,11 @@ INSTANTIATE_TEST_SUITE_P(
                       Golden{"disk", "spinning_rigid_pseudosphere", ViewKind::disk},
                       Golden{"stereographic", "breathing_ellipse_sphere", ViewKind::disk},
                       Golden{"plane", "spinning_rigid_plane", ViewKind::plane},
-                      Golden{"spin_vs_geodesic_sphere", "spin_vs_geodesic_sphere", ViewKind::sphere, 2.0}),
+                      Golden{"spin_vs_geodesic_sphere", "spin_vs_geodesic_sphere", ViewKind::sphere, 2.0},
+                      // A thumbnail (1 px lines) and a projector-sized frame (3.4 px lines).
+                      Golden{"sphere_thumbnail", "spin_vs_geodesic_sphere", ViewKind::sphere, 2.0, 160, 120,
+                             kAllLayers & ~unsigned{kHud}},
+                      Golden{"sphere_1080p", "spin_vs_geodesic_sphere", ViewKind::sphere, 2.0, 1920, 1080}),
     [](const auto& param) { return std::string(param.param.name); });
 
 }  // namespace

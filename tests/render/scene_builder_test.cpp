@@ -149,5 +149,26 @@ TEST(SceneBuilder, ViewsMatchSurfaces) {
   EXPECT_EQ(unknown, "sparkles");
 }
 
+TEST(SceneBuilder, TheSilhouetteIsTheSpheresLimbAndTheDisksRim) {
+  const Snapshot s = body_at(SurfaceKind::sphere, 1.0, 1.0, 0.0, 1.0, 1.0);
+  ViewOptions view;  // camera at distance 3.4 from the centre
+  const FrameScene scene = build_scene(s, view);
+  const std::vector<Vertex> limb = silhouette(*scene.statics, scene);
+  ASSERT_GT(limb.size(), 100u);
+  // Seen from distance d, the limb is the circle where the sight line is tangent: x·ê = 1/d.
+  const glm::dvec3 eye_dir(std::cos(view.pitch) * std::cos(view.yaw),
+                           std::cos(view.pitch) * std::sin(view.yaw), std::sin(view.pitch));
+  for (const Vertex& v : limb)
+    EXPECT_NEAR(glm::dot(glm::normalize(glm::dvec3(v.position)), eye_dir), 1.0 / view.distance,
+                0.1);  // within a face (~0.1 rad) of it
+  // The 2-D views: only the mesh's boundary (the Poincaré disk's rim, 128 segments).
+  const Snapshot h = body_at(SurfaceKind::pseudosphere, 1.0, 1.0, 0.0, 1.0, 1.0);
+  view.kind = ViewKind::disk;
+  const FrameScene disk = build_scene(h, view);
+  const std::vector<Vertex> rim = silhouette(*disk.statics, disk);
+  EXPECT_EQ(rim.size(), 2u * 128u);
+  for (const Vertex& v : rim) EXPECT_NEAR(glm::length(v.position), 1.0f, 1e-6f);
+}
+
 }  // namespace
 }  // namespace spinfold::render
