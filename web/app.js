@@ -318,7 +318,7 @@ function makePlots() {
   const width = Math.max(260, Math.min(420, ($("side").clientWidth || 360) - 8));
   const axisStyle = { stroke: "#778", grid: { stroke: "rgba(128,128,128,0.25)" }, ticks: { stroke: "rgba(128,128,128,0.4)" } };
   ui.plots = {
-    energy: new uPlot({ width, height: 170, title: "relative energy error |ΔH/H₀| (H₀: at the last change)", plugins: [changeMarks],
+    energy: new uPlot({ width, height: 170, title: "energy error |ΔH/H₀| (from the last change)", plugins: [changeMarks],
                         scales: { x: { time: false }, y: { distr: 3, log: 10, range: energyRange } },
                         axes: [{ ...axisStyle, label: "time" },
                                { ...axisStyle, size: 56, splits: energySplits, values: energyLabels }],

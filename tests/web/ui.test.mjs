@@ -447,6 +447,7 @@ try {
       await shot.waitForTimeout(2500);
       await shot.click("#pause");
       await shot.waitForTimeout(800);
+      await shot.evaluate(() => window.scrollTo(0, 0));
       await shot.screenshot({ path: path.join(screenshots, `${name}.png`) });
       if (name === "390x844") await shot.screenshot({ path: path.join(screenshots, `${name}-full.png`), fullPage: true });
       if (name === "1366x900") {
