@@ -166,13 +166,13 @@ async function pause() {
 
 async function step() {
   if (ui.playing) await pause();
-  showState((await call("POST", `/sessions/${ui.id}/advance`, { steps: 10 })).state);
+  showState((await call("POST", `/sessions/${ui.id}/advance`, { steps: 10 })).state, { from: "answer" });
 }
 
 async function reset() {
   const res = await call("POST", `/sessions/${ui.id}/reset`, {});
   adopt(res);
-  showState(res.state);
+  showState(res.state, { restart: true, from: "answer" });
   ui.start = res.state;
   buildControls();
   status("Back to t = 0 with the parameters in force.");
@@ -181,7 +181,13 @@ async function reset() {
 // ---- State, readouts and plots.
 const num = (v) => (v === null || v === undefined ? "—" : Number(v).toPrecision(6));
 let announced = 0;
-function showState(state) {
+// A state from the event stream, or from an answer (from: "answer"). The stream's states come in
+// order, so one back in time is a restart or reset; an answer can arrive after the stream has
+// already gone past its time (playing), and then it is older news, not a restart.
+function showState(state, { restart = false, from = "stream" } = {}) {
+  const s = ui.series;
+  const last = s[0].length ? s[0][s[0].length - 1] : -Infinity;
+  if (from === "answer" && !restart && state.t < last) return;
   ui.state = state;
   ui.t = state.t;
   $("readout").textContent =
@@ -202,11 +208,9 @@ function showState(state) {
     if (ui.playing) setPlaying(false);
   }
   setPlaying(ui.playing);
-  const s = ui.series;
   // Back in time: a restart or reset (a change at the current time keeps the history; the plots
   // mark it). The same time again: the sample after a change replaces the one before it.
-  const last = s[0].length ? s[0][s[0].length - 1] : -Infinity;
-  if (state.t < last) s.forEach((a) => (a.length = 0));
+  if (restart || state.t < last) s.forEach((a) => (a.length = 0));
   else if (state.t === last) s.forEach((a) => a.pop());
   // A long lesson: past 20,000 samples every other one is dropped (the plot keeps its span).
   if (s[0].length >= 20000) s.forEach((a, i) => (s[i] = a.filter((_, k) => k % 2 === 0)));
@@ -294,9 +298,10 @@ function energyRange(u, lo, hi) {
 
 // Decades between the range's ends, every 1, 2, 4 or 8th so that labels do not crowd.
 // The labels drawn (the browser tests read them from data-ticks).
+// (uPlot's default filter for log axes drops some splits as null; ours keeps every one we made.)
 function energyLabels(u, splits) {
-  const labels = splits.map(decadeLabel);
-  $("plot-energy").dataset.ticks = labels.join(" ");
+  const labels = splits.map((v) => (v === null ? "" : decadeLabel(v)));
+  $("plot-energy").dataset.ticks = labels.filter(Boolean).join(" ");
   return labels;
 }
 
@@ -321,7 +326,7 @@ function makePlots() {
     energy: new uPlot({ width, height: 170, title: "energy error |ΔH/H₀| (from the last change)", plugins: [changeMarks],
                         scales: { x: { time: false }, y: { distr: 3, log: 10, range: energyRange } },
                         axes: [{ ...axisStyle, label: "time" },
-                               { ...axisStyle, size: 56, splits: energySplits, values: energyLabels }],
+                               { ...axisStyle, size: 56, splits: energySplits, filter: (u, splits) => splits, values: energyLabels }],
                         series: [{ label: "t" }, { label: "|ΔH/H₀|", stroke: "#c40", width: 1.5 }] }, [[], []], $("plot-energy")),
     invariants: new uPlot({ width, height: 200, title: "conserved quantities", plugins: [changeMarks],
                             scales: { x: { time: false }, am: {}, en: {} },
@@ -612,7 +617,7 @@ async function applyChange(patch, rebuild = false) {
   document.querySelectorAll(".error").forEach((e) => (e.textContent = ""));
   if (res.change.kind !== "unchanged") ui.modified = true;
   adopt(res);
-  showState(res.state);
+  showState(res.state, { restart: res.change.kind === "restarted", from: "answer" });
   if (res.change.kind === "restarted") {
     ui.start = res.state;
     status(`Restarted at t = 0: ${res.change.reason}`);
@@ -671,8 +676,18 @@ function physicalRows() {
   return rows;
 }
 
+// Rebuilt when the rows change (another body model or potential); otherwise the values are
+// updated in place, so that focus and a slider being dragged stay where they are.
 function buildPhysical() {
   const form = $("physical");
+  const rows = physicalRows();
+  const keys = rows.map((r) => r.key).join(",");
+  if (form.dataset.keys === keys) {
+    for (const row of rows) form.querySelector(`[data-key="${row.key}"]`).update(row);
+    form.querySelector("#phys-surface").value = ui.current.surface.kind;
+    return;
+  }
+  form.dataset.keys = keys;
   form.textContent = "";
   const legend = document.createElement("h2");
   legend.textContent = "Physics";
@@ -680,12 +695,13 @@ function buildPhysical() {
   note.className = "note";
   note.textContent = "↺: changing it restarts the run at t = 0. The others change the run from now on.";
   form.append(legend, note, surfaceKindRow());
-  for (const row of physicalRows()) form.append(physicalRow(row));
+  for (const row of rows) form.append(physicalRow(row));
 }
 
 function physicalRow(spec) {
   const row = document.createElement("div");
   row.className = "phys";
+  row.dataset.key = spec.key;
   const id = `phys-${spec.key}`;
   const label = document.createElement("label");
   label.htmlFor = id;
@@ -717,6 +733,12 @@ function physicalRow(spec) {
     range.value = known ? v : (spec.min + spec.max) / 2;
   };
   show(spec.value);
+  // The same row with the parameters now in force (its closures read spec).
+  row.update = (next) => {
+    spec = next;
+    if (document.activeElement !== number) show(spec.value);
+    help.textContent = spec.help;
+  };
   const apply = async (v) => {
     if (!Number.isFinite(v)) { error.textContent = "a number, please"; return; }
     if (spec.view) {
