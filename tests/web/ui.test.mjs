@@ -312,6 +312,50 @@ try {
     await page.waitForFunction(() => !document.fullscreenElement);
   });
 
+  await test("comparisons: a fan of spins adds companions, Clear removes them", async () => {
+    await page.fill("#fan-from", "0");
+    await page.fill("#fan-to", "1.5");
+    await page.fill("#fan-count", "4");
+    await page.click("#fan");
+    await page.waitForFunction(() => /companions changed|vary/.test(document.querySelector("#status").textContent));
+    let session = await (await fetch(await page.$eval("#export-state", (a) => a.href))).json();
+    assert.deepEqual(session.current.vary, { field: "initial.spin", values: [0, 0.5, 1, 1.5] });
+    assert.equal(session.state.companions.length, 4);
+    await page.click("#fan-clear");
+    await page.waitForFunction(() => document.querySelector("#geodesic").getAttribute("aria-pressed") === "false");
+    await page.waitForTimeout(200);
+    session = await (await fetch(await page.$eval("#export-state", (a) => a.href))).json();
+    assert.equal(session.current.vary, undefined);
+  });
+
+  await test("gallery: teaching order, the open card marked modified after an edit, a surface switch clears it", async () => {
+    const order = await page.$$eval(".preset", (cards) => cards.map((c) => c.dataset.name));
+    assert.equal(order[0], "spinning_rigid_sphere");
+    assert.ok(order.indexOf("spin_vs_geodesic_sphere") < order.indexOf("breathing_ellipse_sphere"));
+    assert.ok(order.indexOf("breathing_ellipse_sphere") < order.indexOf("pole_crossing_sphere"));
+    await page.click('.preset[data-name="spinning_rigid_sphere"]');
+    await page.waitForFunction(() => document.querySelector(".preset.active .mark")?.textContent === "selected");
+    await page.fill("#phys-spin", "0.5");
+    await page.dispatchEvent("#phys-spin", "change");
+    await page.waitForFunction(() => document.querySelector(".preset.active .mark")?.textContent === "modified");
+    assert.match(await page.textContent("#status"), /Restarted at t = 0/);
+    await page.selectOption("#phys-surface", "pseudosphere");
+    await page.waitForFunction(() => !document.querySelector(".preset.active"));
+    assert.match(await page.textContent("#explanation"), /hyperbolic plane/);
+  });
+
+  await test("PNG export at a chosen size", async () => {
+    await page.fill("#png-width", "1000");
+    await page.fill("#png-height", "600");
+    await page.dispatchEvent("#png-height", "change");
+    const bytes = new Uint8Array(await (await fetch(await page.$eval("#export-png-sized", (a) => a.href))).arrayBuffer());
+    const view = new DataView(bytes.buffer);
+    assert.deepEqual([view.getUint32(16), view.getUint32(20)], [1000, 600]);  // the PNG's IHDR
+    const shown = await page.$eval("#frame", (c) => [c.width, c.height]);
+    const asShown = new DataView(await (await fetch(await page.$eval("#export-png", (a) => a.href))).arrayBuffer());
+    assert.deepEqual([asShown.getUint32(16), asShown.getUint32(20)], shown);
+  });
+
   await test("the frame is asked at its shown size × devicePixelRatio, and again after a resize", async () => {
     const hi = await browser.newPage({ bypassCSP: true, viewport: { width: 1366, height: 900 }, deviceScaleFactor: 2 });
     watchConsole(hi, "dpr page");
