@@ -54,6 +54,7 @@ export class LiveView {
     this.context = canvas.getContext("2d");
     this.stats = { received: 0, decoded: 0, painted: 0, skipped: 0 };
     this.onPaint = null;  // (info) after a frame is painted
+    this.onGone = null;   // () when the server no longer knows the session (404)
     this.abort = null;
     this.session = null;
     this.viewer = null;
@@ -66,6 +67,10 @@ export class LiveView {
       if (this.ready) {
         const { bitmap, info } = this.ready;
         this.ready = null;
+        // The canvas takes the size of the frame it shows (a steer to a new size changes it when
+        // that frame arrives, so the picture never goes blank in between).
+        if (this.canvas.width !== bitmap.width) this.canvas.width = bitmap.width;
+        if (this.canvas.height !== bitmap.height) this.canvas.height = bitmap.height;
         this.context.drawImage(bitmap, 0, 0, this.canvas.width, this.canvas.height);
         bitmap.close();
         this.stats.painted++;
@@ -85,8 +90,6 @@ export class LiveView {
     this.viewer = "v" + crypto.getRandomValues(new Uint32Array(2)).join("");
     const q = new URLSearchParams(params);
     q.set("viewer", this.viewer);
-    this.canvas.width = Number(q.get("width") || 640);
-    this.canvas.height = Number(q.get("height") || 480);
     const abort = (this.abort = new AbortController());
     this.read(`/api/v1/sessions/${session}/live?${q}`, abort).catch(() => {});
   }
@@ -101,6 +104,7 @@ export class LiveView {
     while (!abort.signal.aborted) {
       try {
         const res = await fetch(url, { signal: abort.signal, cache: "no-store" });
+        if (res.status === 404 && this.onGone) { this.onGone(); return; }
         if (!res.ok) throw new Error(`live stream: ${res.status}`);
         const parser = new MultipartParser();
         const reader = res.body.getReader();
@@ -151,8 +155,6 @@ export class LiveView {
         const q = new URLSearchParams(this.pendingSteer);
         this.pendingSteer = null;
         q.set("viewer", this.viewer);
-        if (q.has("width")) this.canvas.width = Number(q.get("width"));
-        if (q.has("height")) this.canvas.height = Number(q.get("height"));
         const res = await fetch(`/api/v1/sessions/${this.session}/live?${q}`, { method: "PATCH", body: "" });
         if ((res.status === 429 || res.status === 404) && (retries += 1) <= 30) {
           // Over the rate limit, or the stream is (re)connecting: the newest wish, a little later.

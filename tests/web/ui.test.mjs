@@ -1,8 +1,11 @@
 // Browser tests of the web UI in real headless Chromium (Debian's, driven by playwright-core):
 // load, pick a preset, play and see the frame change, change a field and see the state change,
-// an invalid value shows the server's message and changes nothing, the deformation kind switches,
-// dragging orbits the camera, a share URL reproduces the
-// state, the exports answer. Usage: node ui.test.mjs SPINFOLD_BINARY [SCREENSHOT_DIR]
+// an invalid value shows the server's message and changes nothing (and is cleared by the next
+// good edit), the deformation kind switches, dragging orbits the camera, a share URL reproduces
+// the state, the exports answer; the energy plot under a growing error, the keyboard, the play
+// state, the session lifecycle (reloads, expiry, a full server), the frame's size, embed mode,
+// phone layouts, a keyboard-only walk-through, a console free of errors.
+// Usage: node ui.test.mjs SPINFOLD_BINARY [SCREENSHOT_DIR]
 import { spawn } from "node:child_process";
 import { createRequire } from "node:module";
 import assert from "node:assert/strict";
@@ -14,7 +17,7 @@ const { chromium } = require("playwright-core");
 
 const [binary, screenshots] = process.argv.slice(2);
 const port = 18000 + (process.pid % 1000);
-const server = spawn(binary, ["serve", "--port", String(port)], { stdio: ["ignore", "pipe", "inherit"] });
+const server = spawn(binary, ["serve", "--port", String(port), "--no-store"], { stdio: ["ignore", "pipe", "inherit"] });
 const base = `http://127.0.0.1:${port}/`;
 let failed = false;
 
@@ -37,6 +40,18 @@ async function test(name, body) {
 }
 
 const readoutT = (page) => page.$eval("#readout", (el) => Number(el.dataset.t));
+const health = async () => (await (await fetch(base + "api/v1/health")).json()).sessions;
+const sessionId = (page) => page.$eval("#export-state", (a) => new URL(a.href).pathname.split("/").pop());
+const openAdvanced = (page) => page.$eval("#advanced", (d) => (d.open = true));
+// Console errors and page errors of a page, collected for a final check.
+const consoleErrors = [];
+// The browser logs every refused request as an error; the tests that send invalid values on
+// purpose (422) are the only ones allowed.
+function watchConsole(page, name, allowed = /status of 422/) {
+  page.on("console", (m) => { if (m.type() === "error" && !allowed.test(m.text())) consoleErrors.push(`${name}: ${m.text()}`); });
+  page.on("response", (r) => { if (r.status() >= 400 && r.status() !== 422) console.log(`     (${name}: ${r.status()} ${r.request().method()} ${r.url().slice(0, 100)})`); });
+  page.on("pageerror", (e) => consoleErrors.push(`${name}: ${e.message}`));
+}
 
 try {
   await waitForServer();
@@ -51,6 +66,7 @@ try {
   // (fixed upstream: microsoft/playwright#36986).
   await test("the UI runs under its Content-Security-Policy", async () => {
     const strict = await browser.newPage();
+    watchConsole(strict, "strict page");
     const violations = [];
     strict.on("console", (m) => { if (/Content.Security.Policy/i.test(m.text())) violations.push(m.text()); });
     strict.on("pageerror", (e) => violations.push(e.message));
@@ -68,12 +84,13 @@ try {
 
   const page = await browser.newPage({ viewport: { width: 1280, height: 900 }, bypassCSP: true });
   page.on("pageerror", (e) => { failed = true; console.log(`page error: ${e.stack}`); });
+  watchConsole(page, "main page");
   await page.goto(base);
   await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });
 
   await test("the page loads a session and its frame", async () => {
     await page.waitForFunction(() => Number(document.querySelector("#frame").dataset.painted) >= 1);
-    assert.equal(await page.$eval("#frame", (el) => el.width), 640);
+    assert.ok(await page.$eval("#frame", (el) => el.width) > 300);
     assert.equal(await page.$eval("#frame", (el) => el.dataset.kind), "still");  // paused: the lossless frame
     assert.match(await page.textContent("#readout"), /integrator: exact/);
   });
@@ -93,15 +110,22 @@ try {
     await page.waitForFunction(() => document.querySelector("#frame").dataset.kind === "still", null, { timeout: 10000 });
   });
 
-  await test("moving the speed slider changes how fast the state advances", async () => {
+  await test("the speed slider does not start a paused run; Play runs at the new speed", async () => {
     await page.click("#reset");
     await page.$eval("#speed", (el) => { el.value = "5"; el.dispatchEvent(new Event("input")); el.dispatchEvent(new Event("change")); });
+    await page.waitForTimeout(400);
+    assert.equal(await readoutT(page), 0);
+    assert.equal(await page.$eval("body", (b) => b.dataset.playing), "false");
+    assert.match(await page.textContent("#state-badge"), /paused/);
+    await page.click("#play");
+    await page.waitForFunction(() => /playing at 5×/.test(document.querySelector("#state-badge").textContent));
     await page.waitForFunction(() => Number(document.querySelector("#readout").dataset.t) > 2.5, null, { timeout: 10000 });
     await page.click("#pause");
     assert.equal(await page.textContent("#speed-out"), "5");
   });
 
   await test("changing a field changes the state", async () => {
+    await openAdvanced(page);
     await page.fill('[name="initial.r"]', "0.9");
     await page.dispatchEvent('[name="initial.r"]', "change");
     await page.waitForFunction(() => /r = 0\.900000/.test(document.querySelector("#readout").textContent));
@@ -168,7 +192,7 @@ try {
     await page.click("#share");
     const url = page.url();
     assert.match(url, /#scene=/);
-    const other = await browser.newPage();
+    const other = await browser.newPage({ bypassCSP: true });
     await other.goto(url);
     await other.waitForSelector("body[data-ready=true]", { timeout: 20000 });
     assert.equal(await readoutT(other), t);
@@ -196,11 +220,302 @@ try {
     assert.match(csv.split("\n")[0], /^t,r,phi/);
   });
 
-  if (screenshots) {
-    await page.screenshot({ path: path.join(screenshots, "desktop.png") });
-    await page.setViewportSize({ width: 390, height: 844 });
+
+  await test("a refused value's message is cleared by the next good edit", async () => {
+    await openAdvanced(page);
+    await page.fill('[name="body.mass"]', "-3");
+    await page.dispatchEvent('[name="body.mass"]', "change");
+    await page.waitForFunction(() => [...document.querySelectorAll(".error")].some((e) => e.textContent.includes("must be > 0")));
+    await page.fill('[name="potential.radial.gamma"]', "0.01");
+    await page.dispatchEvent('[name="potential.radial.gamma"]', "change");
+    await page.waitForFunction(() => [...document.querySelectorAll(".error")].every((e) => e.textContent === ""));
+  });
+
+  await test("the energy plot: labelled decades, zeros on the floor, a growing rk4 error, history across a change", async () => {
+    await page.click('.preset[data-name="spinning_rigid_sphere"]');
+    await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "spinning_rigid_sphere");
+    // The closed form: an error of 0 or round-off sits on the floor, the axis still has ticks.
+    await page.waitForFunction(() => (document.querySelector("#plot-energy").dataset.ticks || "").includes("≤10⁻¹⁶"));
+    await page.click('.preset[data-name="breathing_ellipse_sphere"]');
+    await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "breathing_ellipse_sphere");
+    await openAdvanced(page);
+    await page.selectOption('[name="integrator.name"]', "rk4");
+    await page.waitForFunction(() => /continuing/.test(document.querySelector("#status").textContent));
+    await page.fill('[name="integrator.dt"]', "0.05");
+    await page.dispatchEvent('[name="integrator.dt"]', "change");
+    await page.fill('[name="potential.deformation.C"]', "3");
+    await page.dispatchEvent('[name="potential.deformation.C"]', "change");
+    await page.waitForFunction(() => /rk4/.test(document.querySelector("#readout").textContent));
+    await page.$eval("#speed", (el) => { el.value = "5"; el.dispatchEvent(new Event("change")); });
+    await page.click("#play");
+    await page.waitForFunction(() => Number(document.querySelector("#readout").dataset.t) > 4, null, { timeout: 15000 });
+    // A change while playing keeps the history (the answer can come after later streamed states).
+    const from = Number(await page.$eval("#plot-energy", (el) => el.dataset.from));
+    await page.fill('[name="potential.radial.gamma"]', "0.02");
+    await page.dispatchEvent('[name="potential.radial.gamma"]', "change");
+    await page.waitForFunction(() => /continuing/.test(document.querySelector("#status").textContent));
     await page.waitForTimeout(300);
-    await page.screenshot({ path: path.join(screenshots, "phone.png"), fullPage: true });
+    assert.equal(Number(await page.$eval("#plot-energy", (el) => el.dataset.from)), from);
+    await page.waitForFunction(() => Number(document.querySelector("#readout").dataset.t) > 8, null, { timeout: 15000 });
+    await page.click("#pause");
+    const ticks = (await page.$eval("#plot-energy", (el) => el.dataset.ticks)).split(" ");
+    assert.equal(ticks[0], "≤10⁻¹⁶");
+    assert.ok(ticks.length >= 3 && new Set(ticks).size === ticks.length, ticks.join(" "));  // distinct decades
+    assert.ok(["10⁻³", "10⁻²", "10⁻¹", "10⁰"].includes(ticks.at(-1)), ticks.join(" "));
+    const error = await page.evaluate(() => Math.abs(Number(/energy error = (\S+)/.exec(document.querySelector("#readout").textContent)[1])));
+    assert.ok(error > 1e-4 && error < 1e-1, String(error));
+    // A change keeps the plotted history and marks it.
+    const t = await readoutT(page);
+    await page.fill('[name="body.mass"]', "1.2");
+    await page.dispatchEvent('[name="body.mass"]', "change");
+    await page.waitForFunction(() => /continuing/.test(document.querySelector("#status").textContent));
+    assert.ok(Number(await page.$eval("#plot-energy", (el) => el.dataset.from)) < t);
+  });
+
+  await test("the invariants plot has a legend with units", async () => {
+    const legend = await page.textContent("#plot-invariants .u-legend");
+    assert.match(legend, /spin s \(mass·length²\/time\)/);
+    assert.match(legend, /C_x \(mass·length²\/time²\)/);
+  });
+
+  await test("keys: Space plays and pauses without scrolling, → steps, R resets, G adds the geodesic companion, F full screen", async () => {
+    await page.click('.preset[data-name="spinning_rigid_sphere"]');
+    await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "spinning_rigid_sphere");
+    await page.evaluate(() => { document.activeElement?.blur(); window.scrollTo(0, 200); });
+    const scrolled = await page.evaluate(() => window.scrollY);
+    await page.keyboard.press("Space");
+    await page.waitForFunction(() => document.body.dataset.playing === "true");
+    assert.equal(await page.textContent("#play-state"), "▶");
+    await page.keyboard.press("Space");
+    await page.waitForFunction(() => document.body.dataset.playing === "false");
+    assert.equal(await page.evaluate(() => window.scrollY), scrolled);
+    await page.keyboard.press("r");
+    await page.waitForFunction(() => Number(document.querySelector("#readout").dataset.t) === 0);
+    await page.keyboard.press("ArrowRight");
+    await page.waitForFunction(() => Number(document.querySelector("#readout").dataset.t) > 0);
+    await page.keyboard.press("g");
+    await page.waitForFunction(() => document.querySelector("#geodesic").getAttribute("aria-pressed") === "true");
+    const session = await (await fetch(await page.$eval("#export-state", (a) => a.href))).json();
+    assert.ok(session.current.companions.some((c) => c.geodesic));
+    assert.equal(session.state.companions.length, 1);
+    await page.keyboard.press("g");
+    await page.waitForFunction(() => document.querySelector("#geodesic").getAttribute("aria-pressed") === "false");
+    // The focused picture: arrows orbit the camera (a new picture), + zooms.
+    await page.focus("#frame");
+    const seq = await page.$eval("#frame", (el) => el.dataset.seq);
+    await page.keyboard.press("ArrowLeft");
+    await page.keyboard.press("+");
+    await page.waitForFunction((s) => document.querySelector("#frame").dataset.seq !== s, seq, { timeout: 10000 });
+    await page.keyboard.press("f");
+    await page.waitForFunction(() => document.fullscreenElement?.id === "frame-box");
+    await page.keyboard.press("f");
+    await page.waitForFunction(() => !document.fullscreenElement);
+  });
+
+  await test("comparisons: a fan of spins adds companions, Clear removes them", async () => {
+    await page.fill("#fan-from", "0");
+    await page.fill("#fan-to", "1.5");
+    await page.fill("#fan-count", "4");
+    await page.click("#fan");
+    await page.waitForFunction(() => /companions changed|vary/.test(document.querySelector("#status").textContent));
+    let session = await (await fetch(await page.$eval("#export-state", (a) => a.href))).json();
+    assert.deepEqual(session.current.vary, { field: "initial.spin", values: [0, 0.5, 1, 1.5] });
+    assert.equal(session.state.companions.length, 4);
+    await page.click("#fan-clear");
+    await page.waitForFunction(() => document.querySelector("#geodesic").getAttribute("aria-pressed") === "false");
+    await page.waitForTimeout(200);
+    session = await (await fetch(await page.$eval("#export-state", (a) => a.href))).json();
+    assert.equal(session.current.vary, undefined);
+  });
+
+  await test("gallery: teaching order, the open card marked modified after an edit, a surface switch clears it", async () => {
+    const order = await page.$$eval(".preset", (cards) => cards.map((c) => c.dataset.name));
+    assert.equal(order[0], "spinning_rigid_sphere");
+    assert.ok(order.indexOf("spin_vs_geodesic_sphere") < order.indexOf("breathing_ellipse_sphere"));
+    assert.ok(order.indexOf("breathing_ellipse_sphere") < order.indexOf("pole_crossing_sphere"));
+    await page.click('.preset[data-name="spinning_rigid_sphere"]');
+    await page.waitForFunction(() => document.querySelector(".preset.active .mark")?.textContent === "selected");
+    await page.fill("#phys-spin", "0.5");
+    await page.dispatchEvent("#phys-spin", "change");
+    await page.waitForFunction(() => document.querySelector(".preset.active .mark")?.textContent === "modified");
+    assert.match(await page.textContent("#status"), /Restarted at t = 0/);
+    await page.selectOption("#phys-surface", "pseudosphere");
+    await page.waitForFunction(() => !document.querySelector(".preset.active"));
+    assert.match(await page.textContent("#explanation"), /hyperbolic plane/);
+  });
+
+  await test("PNG export at a chosen size", async () => {
+    await page.fill("#png-width", "1000");
+    await page.fill("#png-height", "600");
+    await page.dispatchEvent("#png-height", "change");
+    const bytes = new Uint8Array(await (await fetch(await page.$eval("#export-png-sized", (a) => a.href))).arrayBuffer());
+    const view = new DataView(bytes.buffer);
+    assert.deepEqual([view.getUint32(16), view.getUint32(20)], [1000, 600]);  // the PNG's IHDR
+    const shown = await page.$eval("#frame", (c) => [c.width, c.height]);
+    const asShown = new DataView(await (await fetch(await page.$eval("#export-png", (a) => a.href))).arrayBuffer());
+    assert.deepEqual([asShown.getUint32(16), asShown.getUint32(20)], shown);
+  });
+
+  await test("the frame is asked at its shown size × devicePixelRatio, and again after a resize", async () => {
+    const hi = await browser.newPage({ bypassCSP: true, viewport: { width: 1366, height: 900 }, deviceScaleFactor: 2 });
+    watchConsole(hi, "dpr page");
+    await hi.goto(base);
+    await hi.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+    const check = async () => hi.waitForFunction(() => {
+      const c = document.querySelector("#frame"), box = c.getBoundingClientRect();
+      let w = Math.round(box.width * 2), h = Math.round(box.height * 2);
+      const k = Math.min(1, 1920 / w, 1080 / h);
+      w = Math.round(w * k); h = Math.round(h * k);
+      return Math.abs(c.width - w) <= 1 && Math.abs(c.height - h) <= 1 && Number(c.dataset.painted) > 0;
+    }, null, { timeout: 10000 });
+    await check();
+    await hi.setViewportSize({ width: 800, height: 700 });
+    await check();
+    await hi.close();
+  });
+
+  await test("five reloads leave at most one session; a deleted session is rebuilt in place", async () => {
+    const tab = await browser.newPage({ bypassCSP: true, viewport: { width: 1366, height: 900 } });
+    watchConsole(tab, "reload page", /status of 404/);  // the session deleted behind its back
+    await tab.goto(base);
+    await tab.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+    await tab.waitForFunction(() => [...document.querySelectorAll(".preset img")].every((i) => i.src), null, { timeout: 60000 });
+    await tab.waitForTimeout(300);
+    const baseline = await health();
+    for (let i = 0; i < 5; i++) {
+      await tab.reload();
+      await tab.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+    }
+    await tab.waitForFunction(() => [...document.querySelectorAll(".preset img")].every((i) => i.src), null, { timeout: 60000 });
+    await tab.waitForTimeout(500);
+    assert.ok(await health() <= baseline, `${await health()} sessions, ${baseline} before the reloads`);
+    // Deleted behind its back (as expiry does): the page rebuilds it at the same time and goes on.
+    await tab.click("#step");
+    await tab.waitForFunction(() => Number(document.querySelector("#readout").dataset.t) > 0);
+    const t = await readoutT(tab);
+    const id = await sessionId(tab);
+    await fetch(`${base}api/v1/sessions/${id}`, { method: "DELETE" });
+    await tab.waitForFunction((old) => !document.querySelector("#export-state").href.includes(old), id, { timeout: 15000 });
+    await tab.waitForFunction(() => /rebuilt/.test(document.querySelector("#status").textContent));
+    assert.equal(await readoutT(tab), t);
+    await tab.click("#step");
+    await tab.waitForFunction((t0) => Number(document.querySelector("#readout").dataset.t) > t0, t);
+    await tab.close();
+    await new Promise((r) => setTimeout(r, 500));
+    assert.ok(await health() <= baseline - 1, "closing the tab deleted its session");
+  });
+
+  await test("a full server is shown plainly and the page gets its session when there is room", async () => {
+    const ids = [];
+    for (;;) {
+      const res = await fetch(base + "api/v1/sessions", { method: "POST", headers: { "Content-Type": "application/json" }, body: '{"preset": "geodesic_rigid_sphere"}' });
+      if (res.status !== 201) { assert.ok(res.status === 429 || res.status === 503, String(res.status)); break; }
+      ids.push((await res.json()).id);
+    }
+    const full = await browser.newPage({ bypassCSP: true });
+    watchConsole(full, "full-server page", /status of (429|503)/);  // the refused POSTs themselves
+    try {
+      await full.goto(base);
+      await full.waitForSelector("#busy:not([hidden])", { timeout: 10000 });
+      assert.match(await full.textContent("#busy"), /server is full/);
+    } finally {
+      for (const id of ids) await fetch(`${base}api/v1/sessions/${id}`, { method: "DELETE" });
+    }
+    await full.click("#busy-retry");
+    await full.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+    assert.equal(await full.$eval("#busy", (el) => el.hidden), true);
+    await full.close();
+  });
+
+  await test("embed mode shows the frame and the minimal controls only", async () => {
+    const e = await browser.newPage({ bypassCSP: true, viewport: { width: 800, height: 600 } });
+    watchConsole(e, "embed page");
+    await e.goto(base + "?embed=1");
+    await e.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+    for (const hidden of ["header", "#gallery", "#side", "#exports"]) assert.equal(await e.isVisible(hidden), false, hidden);
+    for (const shown of ["#frame", "#play", "#pause", "#reset"]) assert.equal(await e.isVisible(shown), true, shown);
+    const box = await (await e.$("#frame")).boundingBox();
+    assert.ok(box.y + box.height <= 600 && box.x + box.width <= 800);
+    await e.close();
+  });
+
+  await test("phone layouts: the frame fully visible, touch targets at least 44 px", async () => {
+    for (const viewport of [{ width: 390, height: 844 }, { width: 844, height: 390 }]) {
+      const phone = await browser.newPage({ bypassCSP: true, viewport, deviceScaleFactor: 3, isMobile: true, hasTouch: true });
+      watchConsole(phone, `phone ${viewport.width}`);
+      await phone.goto(base);
+      await phone.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+      await phone.$eval("#frame", (el) => el.scrollIntoView({ block: "start" }));
+      const box = await (await phone.$("#frame")).boundingBox();
+      assert.ok(box.x >= 0 && box.y >= -1 && box.x + box.width <= viewport.width + 1 && box.y + box.height <= viewport.height + 1,
+                `${JSON.stringify(box)} in ${JSON.stringify(viewport)}`);
+      for (const id of ["play", "pause", "step", "reset", "fullscreen", "geodesic"]) {
+        const b = await (await phone.$(`#${id}`)).boundingBox();
+        assert.ok(b.height >= 44 && b.width >= 44, `${id}: ${b.width}×${b.height}`);
+      }
+      await phone.close();
+    }
+  });
+
+  await test("keyboard only: Tab reaches the picture, the controls and the gallery; Enter opens a preset", async () => {
+    const k = await browser.newPage({ bypassCSP: true, viewport: { width: 1366, height: 900 } });
+    watchConsole(k, "keyboard page");
+    await k.goto(base);
+    await k.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+    const seen = new Set();
+    for (let i = 0; i < 60; i++) {
+      await k.keyboard.press("Tab");
+      const id = await k.evaluate(() => document.activeElement.id || document.activeElement.dataset?.name || document.activeElement.tagName);
+      seen.add(id);
+      if (id === "geodesic_rigid_sphere") {
+        await k.keyboard.press("Enter");
+        await k.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "geodesic_rigid_sphere");
+      }
+    }
+    for (const id of ["frame", "play", "speed", "geodesic", "geodesic_rigid_sphere", "theme"]) assert.ok(seen.has(id), `${id} not reached: ${[...seen]}`);
+    await k.focus("#frame");
+    await k.keyboard.press("Space");
+    await k.waitForFunction(() => document.body.dataset.playing === "true");
+    await k.keyboard.press("Space");
+    await k.waitForFunction(() => document.body.dataset.playing === "false");
+    // The readout is announced to screen readers, at most once a second.
+    assert.ok((await k.textContent("#announce")).includes("time"));
+    await k.close();
+  });
+
+  await test("the console stayed free of errors", async () => {
+    assert.deepEqual(consoleErrors, []);
+  });
+
+  if (screenshots) {
+    for (const [name, viewport, options] of [["1366x900", { width: 1366, height: 900 }, {}], ["1920x1080", { width: 1920, height: 1080 }, {}],
+                                             ["390x844", { width: 390, height: 844 }, { isMobile: true, hasTouch: true, deviceScaleFactor: 2 }],
+                                             ["844x390", { width: 844, height: 390 }, { isMobile: true, hasTouch: true, deviceScaleFactor: 2 }]]) {
+      const shot = await browser.newPage({ bypassCSP: true, viewport, ...options });
+      await shot.goto(base);
+      await shot.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+      await shot.click('.preset[data-name="spin_vs_geodesic_sphere"]');
+      await shot.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "spin_vs_geodesic_sphere");
+      await shot.click("#play");
+      await shot.waitForTimeout(2500);
+      await shot.click("#pause");
+      await shot.waitForTimeout(800);
+      await shot.evaluate(() => window.scrollTo(0, 0));
+      await shot.screenshot({ path: path.join(screenshots, `${name}.png`) });
+      if (name === "390x844") await shot.screenshot({ path: path.join(screenshots, `${name}-full.png`), fullPage: true });
+      if (name === "1366x900") {
+        await shot.evaluate(() => document.querySelector("#theme").click());
+        await shot.waitForTimeout(300);
+        await shot.screenshot({ path: path.join(screenshots, `${name}-dark.png`), fullPage: true });
+      }
+      await shot.close();
+    }
+    const e = await browser.newPage({ bypassCSP: true, viewport: { width: 1366, height: 900 } });
+    await e.goto(base + "?embed=1");
+    await e.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+    await e.waitForTimeout(800);
+    await e.screenshot({ path: path.join(screenshots, "embed.png") });
+    await e.close();
   }
   await browser.close();
 } catch (e) {
