@@ -86,6 +86,8 @@ nlohmann::ordered_json session_json(const std::string& id, const Session& s) {
   j["scene"] = scene_to_json(s.scene);        // the parameters at t = 0
   j["timeline"] = s.timeline;                 // the changes since: [{"t", "patch"}]
   j["current"] = scene_to_json(s.run.scene);  // the parameters in force now
+  j["playing"] = s.playing;                   // advanced in real time by the player
+  j["rate"] = s.rate;                         // simulated time per second while playing
   return j;
 }
 

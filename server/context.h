@@ -69,7 +69,7 @@ void remove_session(ServerContext& server, const std::string& id);
 // X-Spinfold-Provenance: "version=…; integrator=…; tolerance=…" (numbers in shortest form).
 std::string provenance(const Session& s);
 
-// {"id", "state", "scene", "timeline", "current"} of a session (its lock held).
+// {"id", "state", "scene", "timeline", "current", "playing", "rate"} of a session (its lock held).
 nlohmann::ordered_json session_json(const std::string& id, const Session& s);
 
 // A JSON answer.

@@ -136,8 +136,8 @@ function watchFrameSize() {
   }).observe($("frame"));
 }
 
-// ---- Play state: what the UI asked last (the server's session has no "playing" field); a run
-// that stops (status not ok) is shown stopped.
+// ---- Play state: the session's "playing" and "rate" in every session answer, and what the UI
+// asked since; a run that stops (status not ok) is shown stopped.
 function setPlaying(playing) {
   ui.playing = playing;
   document.body.dataset.playing = String(playing);
@@ -244,6 +244,10 @@ function adopt(session) {
   ui.scene = session.scene;
   ui.current = session.current;
   ui.timeline = session.timeline;
+  if (typeof session.playing === "boolean") {
+    ui.rate = session.rate ?? ui.rate;
+    setPlaying(session.playing);
+  }
   if (ui.plots) { ui.plots.energy.redraw(); ui.plots.invariants.redraw(); }
   showComparisons();
   markGallery();

@@ -180,8 +180,10 @@ TEST_F(Live, MotionFramesInOrderThenTheStillFrame) {
   Watch watch(session + "/live?viewer=player&quality=80", 5s);
   ASSERT_TRUE(watch.wait_for(1));
   ASSERT_EQ(post(session + "/play", R"({"rate": 1})"), 200);
+  EXPECT_EQ(json::parse(client().Get(session)->body)["playing"], true);
   ASSERT_TRUE(watch.wait_for(6));
   ASSERT_EQ(post(session + "/pause"), 200);
+  EXPECT_EQ(json::parse(client().Get(session)->body)["playing"], false);
   const double paused_t = json::parse(client().Get(session)->body)["state"]["t"];
   // The still frame follows (the stream is then silent).
   for (int i = 0; i < 500 && watch.frames().back().frame.at("kind") != "still"; ++i)
