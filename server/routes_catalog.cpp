@@ -20,7 +20,10 @@ using nlohmann::json;
 using nlohmann::ordered_json;
 
 void get_health(ServerContext& server, const Call&, httplib::Response& res) {
-  send_json(res, {{"status", "ok"}, {"version", server_version()}, {"sessions", server.sessions.size()}});
+  send_json(res, {{"status", "ok"},
+                  {"version", server_version()},
+                  {"sessions", server.sessions.size()},
+                  {"streams", server.open_streams.load()}});
 }
 
 void get_scenes(ServerContext&, const Call&, httplib::Response& res) {
@@ -68,8 +71,8 @@ std::vector<Route> catalog_routes(const Limits&) {
       {.method = "GET",
        .path = "/api/v1/health",
        .handler = get_health,
-       .summary = "Liveness, version and session count",
-       .responses = {{200, "{\"status\": \"ok\", \"version\", \"sessions\"}"}}},
+       .summary = "Liveness, version, session count and open event and live streams",
+       .responses = {{200, "{\"status\": \"ok\", \"version\", \"sessions\", \"streams\"}"}}},
       {.method = "GET",
        .path = "/api/v1/scenes",
        .handler = get_scenes,

@@ -2,7 +2,8 @@
 // an <img> shows it as is; the UI parses it to count and time frames). While the session plays or
 // the viewer's camera moves, frames are JPEG (motion frames, a third of the bytes); kStillDelay after
 // the last change a lossless PNG of the same state replaces the last one. Nothing is sent while
-// nothing changes (a heartbeat part every kHeartbeat finds clients that left). A frame is rendered
+// nothing changes (a heartbeat part every kHeartbeat finds clients that left: the second write to a closed
+// connection fails). A frame is rendered
 // only when the client has taken the previous one, so a slow client gets fewer, newer frames and
 // the server holds one frame per viewer at most.
 #include <chrono>
@@ -28,7 +29,7 @@ using Clock = std::chrono::steady_clock;
 
 constexpr auto kStillDelay =
     std::chrono::milliseconds(70);  // motion stopped → lossless frame (≤ 150 ms on screen)
-constexpr auto kHeartbeat = std::chrono::seconds(10);
+constexpr auto kHeartbeat = std::chrono::seconds(5);  // a client gone is found within two
 constexpr const char* kBoundary = "spinfold-frame";
 
 // A viewer name: 1..64 of [A-Za-z0-9_-] (the client picks a random one).

@@ -221,9 +221,11 @@ TEST_F(Live, MotionFramesInOrderThenTheStillFrame) {
 TEST_F(Live, PatchSteersTheStreamsCamera) {
   const std::string id = create();
   const std::string live = "/api/v1/sessions/" + id + "/live";
+  auto c = client();
+  const int streams = json::parse(c.Get("/api/v1/health")->body)["streams"];
   Watch watch(live + "?viewer=steer", 5s);
   ASSERT_TRUE(watch.wait_for(1));
-  auto c = client();
+  EXPECT_EQ(json::parse(c.Get("/api/v1/health")->body)["streams"], streams + 1);
   EXPECT_EQ(c.Patch(live + "?viewer=steer&yaw=1.5&pitch=0.4", "", "text/plain")->status, 204);
   ASSERT_TRUE(watch.wait_for(3));
   const auto frames = watch.frames();

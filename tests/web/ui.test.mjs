@@ -374,6 +374,24 @@ try {
     await hi.close();
   });
 
+  await test("a page holds one event stream and one live stream", async () => {
+    const tab = await browser.newPage({ bypassCSP: true, viewport: { width: 1366, height: 900 } });
+    const open = new Set();  // stream requests not finished: their responses are still coming
+    const stream = (r) => /\/(events|live)\?/.test(r.url()) && r.method() === "GET";
+    tab.on("request", (r) => { if (stream(r)) open.add(r); });
+    tab.on("requestfinished", (r) => open.delete(r));
+    tab.on("requestfailed", (r) => open.delete(r));
+    await tab.goto(base);
+    await tab.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+    await tab.waitForSelector("#frame[data-painted]", { timeout: 10000 });
+    await tab.click("#play");
+    await tab.waitForTimeout(1000);
+    await tab.click("#pause");
+    const kinds = [...open].map((r) => new URL(r.url()).pathname.split("/").pop()).sort();
+    assert.deepEqual(kinds, ["events", "live"]);
+    await tab.close();
+  });
+
   await test("five reloads leave at most one session; a deleted session is rebuilt in place", async () => {
     const tab = await browser.newPage({ bypassCSP: true, viewport: { width: 1366, height: 900 } });
     watchConsole(tab, "reload page", /status of 404/);  // the session deleted behind its back
