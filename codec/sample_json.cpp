@@ -68,6 +68,8 @@ json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_event
   j["energy_orbital"] = number(r.energy_orbital);
   j["energy_deformation"] = number(r.energy_deformation);
   j["spin"] = number(r.spin);
+  j["speed"] = number(r.speed);
+  j["heading"] = number(r.heading);
   j["vorticity"] = number(r.vorticity);
   if (r.separated) {
     j["C_x"] = number(r.separated->C_x);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "engine/scene_fields.h"
 
@@ -30,6 +31,15 @@ Readout readout(const Simulation& run) {
   r.energy_orbital = orbital_energy(scene, state);
   r.energy_deformation = deformation_energy(scene, state);
   r.spin = r.coordinates.p_alpha;
+  // The scene's physical start (engine/initial_rates.h), read off the state at any time.
+  const double S = polar_S(scene.surface, r.coordinates.r);
+  const auto& [r_dot, phi_dot] = std::pair(r.coordinates.r_dot, r.coordinates.phi_dot);
+  if (r_dot && phi_dot) {
+    r.speed = std::hypot(*r_dot, S * *phi_dot);
+    r.heading = std::atan2(S * *phi_dot, *r_dot);
+  } else if (r_dot) {
+    r.speed = std::abs(*r_dot);  // at a pole S = 0: all of the motion is radial
+  }
   r.vorticity = r.coordinates.p_beta;
   r.det_L = r.coordinates.det_L;
   r.separated = separated_energies(scene, state);

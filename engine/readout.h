@@ -24,8 +24,10 @@ struct Readout {
   double energy_orbital = 0.0;      // E_orb = m⟨V,V⟩/2 + V_r [energy]
   double energy_deformation = 0.0;  // E_def = H − E_orb [energy]
   double spin = 0.0;                // s = p_α [mass·length²/time]
-  double vorticity = 0.0;           // p_β = −tr((Lε)ᵀP) [mass·length²/time]
-  double det_L = 0.0;               // det L, frame-independent [1]
+  std::optional<double> speed;  // v = √(ṙ² + S(r)²φ̇²) [length/time]; none where ṙ is undefined
+  std::optional<double> heading;  // h = atan2(S(r)φ̇, ṙ), from E₁ = ∂/∂r towards E₂ [rad]; none at a pole
+  double vorticity = 0.0;                      // p_β = −tr((Lε)ᵀP) [mass·length²/time]
+  double det_L = 0.0;                          // det L, frame-independent [1]
   std::optional<SeparatedEnergies> separated;  // C_x, C_y [energy] (abc or no deformation, affine)
   std::optional<Vec3> momentum_map;            // M (physics.md §6), when defined
   std::optional<double> casimir;               // MᵀηM, on S² and H² when M is defined

@@ -29,7 +29,7 @@ TEST(SampleJson, KeysInTheirDocumentedOrder) {
   EXPECT_EQ(keys,
             "t r phi alpha beta theta lambda mu r_dot phi_dot alpha_dot beta_dot theta_dot lambda_dot mu_dot "
             "p_r p_phi p_alpha p_beta p_lambda p_mu X L det_L energy energy_error energy_reference_t energy_orbital "
-            "energy_deformation spin vorticity C_x C_y M casimir undefined events status status_detail "
+            "energy_deformation spin speed heading vorticity C_x C_y M casimir undefined events status status_detail "
             "integrator steps ");
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/initial_rates.h"
 #include "engine/invariants.h"
 #include "engine/scene_fields.h"
 
@@ -32,6 +33,29 @@ std::string format(const char* pattern, double v) {
   char text[64];
   std::snprintf(text, sizeof text, pattern, v);
   return text;
+}
+
+// The speed and heading read off the state at t = 0 are the scene's start, given as rates or in the
+// physical form; and a speed is conserved by a free geodesic motion (no potentials, no spin).
+TEST(Readout, SpeedAndHeadingAreTheScenesPhysicalStart) {
+  for (const SurfaceKind kind : {SurfaceKind::sphere, SurfaceKind::pseudosphere, SurfaceKind::plane}) {
+    const Scene rates = deforming(kind);
+    const Readout r = readout(start_simulation(rates));
+    ASSERT_TRUE(r.speed && r.heading);
+    EXPECT_NEAR(*r.speed, speed_of(rates), 1e-12);
+    EXPECT_NEAR(*r.heading, heading_of(rates), 1e-12);
+    EXPECT_GT(*r.speed, 0.5);
+
+    Scene physical = rates;
+    physical.initial.r_dot = physical.initial.phi_dot = 0.0;
+    physical.initial.speed = 0.8;
+    physical.initial.heading = -2.0;
+    ASSERT_TRUE(resolve_initial_rates(physical).empty());
+    const Readout p = readout(start_simulation(physical));
+    ASSERT_TRUE(p.speed && p.heading);
+    EXPECT_NEAR(*p.speed, 0.8, 1e-12);
+    EXPECT_NEAR(*p.heading, -2.0, 1e-12);
+  }
 }
 
 TEST(Readout, EqualsTheEngineQueriesOfTheCurrentState) {
