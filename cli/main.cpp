@@ -204,7 +204,10 @@ int render_frame(const RenderOptions& opt) {
 int serve(const server::ServerOptions& options) {
   if (options.port < 0 || options.port > 65535) throw BadInput{"--port: must be 0..65535"};
   if (options.threads < 2 || options.threads > 256) throw BadInput{"--threads: must be 2..256"};
-  if (options.render_threads < 0 || options.render_threads > 64) throw BadInput{"--render-threads: must be 0..64"};
+  if (options.frame_ancestors.empty() || options.frame_ancestors.find_first_of(";,\r\n") != std::string::npos)
+    throw BadInput{"--frame-ancestors: 'none' or space-separated origins (no ';', ',' or line breaks)"};
+  if (options.render_threads < 0 || options.render_threads > 64)
+    throw BadInput{"--render-threads: must be 0..64"};
   sigset_t signals;
   sigemptyset(&signals);
   sigaddset(&signals, SIGTERM);
@@ -305,6 +308,10 @@ int main(int argc, char** argv) {
   serve_cmd
       ->add_option("--render-threads", serve_opt.render_threads,
                    "Render threads, each with its own GL context (0: one per core)")
+      ->capture_default_str();
+  serve_cmd
+      ->add_option("--frame-ancestors", serve_opt.frame_ancestors,
+                   "Origins that may show the UI in an iframe (?embed=1), space-separated; 'none': nobody")
       ->capture_default_str();
   serve_cmd
       ->add_option("--trusted-proxy", serve_opt.trusted_proxy,

@@ -33,12 +33,14 @@ ApiError unrouted(const httplib::Request& req, int status) {
 
 // On every response (the UI page and its files above all; harmless on the API): the page runs only
 // its own scripts and styles, shows its own images and the frames it fetched (blob: URLs), talks
-// only to this origin (fetch, EventSource), and cannot be framed; no MIME sniffing, no Referer
+// only to this origin (fetch, EventSource), and is framed only by ServerOptions::frame_ancestors
+// (nobody by default); no MIME sniffing, no Referer
 // (a share link's scene and timeline stay out of other sites' logs).
-httplib::Headers security_headers() {
+httplib::Headers security_headers(const std::string& frame_ancestors) {
   return {{"Content-Security-Policy",
            "default-src 'none'; script-src 'self'; style-src 'self'; img-src 'self' blob:; "
-           "connect-src 'self'; base-uri 'none'; form-action 'none'; frame-ancestors 'none'"},
+           "connect-src 'self'; base-uri 'none'; form-action 'none'; frame-ancestors " +
+               frame_ancestors},
           {"X-Content-Type-Options", "nosniff"},
           {"Referrer-Policy", "no-referrer"}};
 }
@@ -69,7 +71,7 @@ ApiServer::ApiServer(ServerOptions options) : state_(std::make_unique<State>(std
   http.set_read_timeout(limits.read_timeout);
   http.set_keep_alive_timeout(limits.keep_alive_timeout.count());
   http.set_keep_alive_max_count(static_cast<std::size_t>(limits.keep_alive_max_requests));
-  http.set_default_headers(security_headers());
+  http.set_default_headers(security_headers(state_->server.options.frame_ancestors));
   // The listening socket: SO_REUSEADDR (a restart binds at once) but not httplib's SO_REUSEPORT,
   // with which a second server on the same port silently takes part of the connections.
   // Accepted sockets inherit a send buffer of kSendBuffer (Linux doubles it): a live stream whose

@@ -63,6 +63,9 @@ struct ServerOptions {
   // The address of a reverse proxy (the front, scripts/front.sh) whose X-Forwarded-For names the
   // client; "": never trust the header (the socket's peer is the client).
   std::string trusted_proxy;
+  // Who may show the UI in an iframe (CSP frame-ancestors): "'none'" (default), or origins such as
+  // "https://lms.example.edu https://slides.example.org" for `?embed=1` in slides or an LMS.
+  std::string frame_ancestors = "'none'";
   std::string data_dir;  // the durable session store (DIR/sessions.db, SQLite); "": memory only
   Limits limits;
 };

@@ -295,7 +295,23 @@ TEST_F(Hardening, SecurityHeadersOnTheUiAndItsFiles) {
     EXPECT_NE(csp.find("connect-src 'self'"), std::string::npos) << csp;
     EXPECT_EQ(res->get_header_value("X-Content-Type-Options"), "nosniff") << path;
     EXPECT_EQ(res->get_header_value("Referrer-Policy"), "no-referrer") << path;
+    EXPECT_NE(csp.find("frame-ancestors 'none'"), std::string::npos) << csp;  // nobody frames it
   }
+}
+
+// --frame-ancestors: the origins that may show the UI in an iframe (?embed=1 in slides or an LMS).
+TEST(HardeningEmbed, FrameAncestorsAreTheConfiguredOrigins) {
+  ServerOptions options;
+  options.port = 0;
+  options.frame_ancestors = "https://lms.example.edu https://slides.example.org";
+  const TestServer server(options);
+  auto res = server.client().Get("/?embed=1");
+  ASSERT_TRUE(res);
+  const std::string csp = res->get_header_value("Content-Security-Policy");
+  EXPECT_NE(csp.find("frame-ancestors https://lms.example.edu https://slides.example.org"), std::string::npos)
+      << csp;
+  EXPECT_EQ(csp.find("'none'; "), csp.find("default-src 'none'; ") + 12)
+      << csp;  // only default-src is 'none'
 }
 
 // ---- Idle and slow connections.
