@@ -42,6 +42,7 @@ void RenderPool::loop() {
     renderer = std::make_unique<render::Renderer>();
   } catch (const std::exception&) {
   }
+  ++started_;
   for (;;) {
     Task task;
     {

@@ -5,6 +5,7 @@
 // they were asked for; frames of different keys run in parallel.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <deque>
 #include <functional>
@@ -34,6 +35,9 @@ class RenderPool {
   RenderPool& operator=(const RenderPool&) = delete;
 
   int threads() const { return static_cast<int>(threads_.size()); }
+  // Threads past their start: the context made and its shaders compiled (or failed). Until then a
+  // thread takes a core compiling (tens of ms, seconds under sanitizers).
+  int started() const { return started_.load(); }
   // The frame's pixels. Without a GL context the future holds std::future_error (broken promise).
   std::future<render::Image> render(std::string key, render::Snapshot snapshot, render::ViewOptions view);
 
@@ -50,6 +54,7 @@ class RenderPool {
   std::set<std::string> busy_;  // keys being rendered now
   bool stopping_ = false;
   std::uint64_t asked_ = 0;  // frames asked for so far
+  std::atomic<int> started_{0};
   Observer observer_;
   std::vector<std::thread> threads_;
 };

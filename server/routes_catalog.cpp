@@ -23,7 +23,9 @@ void get_health(ServerContext& server, const Call&, httplib::Response& res) {
   send_json(res, {{"status", "ok"},
                   {"version", server_version()},
                   {"sessions", server.sessions.size()},
-                  {"streams", server.open_streams.load()}});
+                  {"streams", server.open_streams.load()},
+                  {"render_threads", server.renderer.threads()},
+                  {"render_threads_started", server.renderer.started()}});
 }
 
 void get_scenes(ServerContext&, const Call&, httplib::Response& res) {
@@ -72,7 +74,9 @@ std::vector<Route> catalog_routes(const Limits&) {
        .path = "/api/v1/health",
        .handler = get_health,
        .summary = "Liveness, version, session count and open event and live streams",
-       .responses = {{200, "{\"status\": \"ok\", \"version\", \"sessions\", \"streams\"}"}}},
+       .responses = {{200,
+                      "{\"status\": \"ok\", \"version\", \"sessions\", \"streams\", \"render_threads\", "
+                      "\"render_threads_started\"}"}}},
       {.method = "GET",
        .path = "/api/v1/scenes",
        .handler = get_scenes,
