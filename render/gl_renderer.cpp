@@ -237,13 +237,17 @@ glm::vec4 GlRenderer::camera_of(const FrameScene& scene) {
   return glm::vec4(glm::vec3(glm::dvec3(eye) / eye.w), scene.depth_bias);
 }
 
-void GlRenderer::use_flat_program(const FrameScene& scene) {
-  glUseProgram(flat_program_);
-  glUniformMatrix4fv(glGetUniformLocation(flat_program_, "view_projection"), 1, GL_FALSE,
+void GlRenderer::use_program_with_camera(unsigned program, const FrameScene& scene) {
+  glUseProgram(program);
+  glUniformMatrix4fv(glGetUniformLocation(program, "view_projection"), 1, GL_FALSE,
                      glm::value_ptr(scene.view_projection));
   const glm::vec4 eye = camera_of(scene);
-  glUniform3fv(glGetUniformLocation(flat_program_, "eye"), 1, glm::value_ptr(glm::vec3(eye)));
-  glUniform1f(glGetUniformLocation(flat_program_, "depth_bias"), eye.w);
+  glUniform3fv(glGetUniformLocation(program, "eye"), 1, glm::value_ptr(glm::vec3(eye)));
+  glUniform1f(glGetUniformLocation(program, "depth_bias"), eye.w);
+}
+
+void GlRenderer::use_flat_program(const FrameScene& scene) {
+  use_program_with_camera(flat_program_, scene);
 }
 
 void GlRenderer::draw_background(const FrameScene& scene, float grid_width) {
@@ -293,12 +297,7 @@ void GlRenderer::draw_lines(const FrameScene& scene, const Mesh& mesh, int count
     return;
   }
   // One instance per segment (line.vert): both ends' vertices from the GL_LINES array.
-  glUseProgram(line_program_);
-  glUniformMatrix4fv(glGetUniformLocation(line_program_, "view_projection"), 1, GL_FALSE,
-                     glm::value_ptr(scene.view_projection));
-  const glm::vec4 eye = camera_of(scene);
-  glUniform3fv(glGetUniformLocation(line_program_, "eye"), 1, glm::value_ptr(glm::vec3(eye)));
-  glUniform1f(glGetUniformLocation(line_program_, "depth_bias"), eye.w);
+  use_program_with_camera(line_program_, scene);
   GLint viewport[4];
   glGetIntegerv(GL_VIEWPORT, viewport);
   glUniform2f(glGetUniformLocation(line_program_, "viewport"), static_cast<float>(viewport[2]),

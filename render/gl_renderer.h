@@ -105,6 +105,9 @@ class GlRenderer {
                           const void* data, std::size_t count, bool lit);
   void draw_flat(const std::vector<Vertex>& vertices, unsigned mode);
 
+  // Binds the program and sets the camera uniforms the flat and line shaders share
+  // (view_projection, eye, depth_bias).
+  void use_program_with_camera(unsigned program, const FrameScene& scene);
   // The flat shader with the scene's camera and depth bias.
   void use_flat_program(const FrameScene& scene);
   // Clear, surface and grid into the bound framebuffer.
