@@ -126,7 +126,8 @@ struct GlUnderTest {
     const auto t = std::chrono::steady_clock::now();
     context.make_current(w, h);
     gl.draw(scene, w, h);
-    if (!scene.hud_lines.empty() || !scene.legend.empty()) hud.draw(scene.hud_lines, scene.legend, w, h);
+    if (!scene.hud_lines.empty() || !scene.legend.empty())
+      hud.draw(scene.hud_lines, scene.legend, scene.hud, w, h);
     gl.finish();
     return ms_since(t);
   }

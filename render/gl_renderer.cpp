@@ -263,7 +263,7 @@ void GlRenderer::draw_background(const FrameScene& scene, float grid_width) {
   glDisable(GL_BLEND);
   glDisable(GL_SCISSOR_TEST);
   const float* vp = glm::value_ptr(scene.view_projection);
-  if (scene.statics && scene.draw_surface) {
+  if (scene.statics && scene.draw_surface && !scene.statics->surface.empty()) {
     const Mesh& mesh = static_surface(*scene.statics);
     glUseProgram(lit_program_);
     glUniformMatrix4fv(glGetUniformLocation(lit_program_, "view_projection"), 1, GL_FALSE, vp);
@@ -284,7 +284,14 @@ void GlRenderer::draw_background(const FrameScene& scene, float grid_width) {
   }
   if (scene.statics && scene.draw_grid) {
     const Mesh& mesh = static_grid(*scene.statics);
-    draw_lines(scene, mesh, mesh.count, grid_width);
+    if (mesh.count > 0) draw_lines(scene, mesh, mesh.count, grid_width);
+  }
+  // The plane's grid follows the camera: a function of the view_projection and the frame's size,
+  // which the background cache's key holds.
+  if (scene.draw_grid && !scene.grid_lines.empty()) {
+    upload(dynamic_.vao, dynamic_.vbo, scene.grid_lines.data(), scene.grid_lines.size() * sizeof(Vertex),
+           false);
+    draw_lines(scene, dynamic_, static_cast<int>(scene.grid_lines.size()), grid_width);
   }
 }
 

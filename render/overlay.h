@@ -18,9 +18,10 @@ class HudOverlay {
   HudOverlay& operator=(const HudOverlay&) = delete;
 
   // Draws the lines in a box at the top-left corner and the legend (when not empty) in a box at the
-  // top-right corner; deterministic (one pass, fixed sizes).
-  void draw(const std::vector<std::string>& lines, const std::vector<LegendEntry>& legend, int width,
-            int height);
+  // top-right corner, where and as large as `layout` (hud_layout()) says; deterministic (one pass,
+  // fixed sizes).
+  void draw(const std::vector<std::string>& lines, const std::vector<LegendEntry>& legend,
+            const HudLayout& layout, int width, int height);
 
  private:
   void* context_ = nullptr;  // ImGuiContext

@@ -21,7 +21,7 @@ const std::uint8_t* Renderer::render_rgba(const FrameScene& scene, int width, in
   gl_->draw(scene, width, height);
   if (!scene.hud_lines.empty() || !scene.legend.empty()) {
     if (!hud_) hud_ = std::make_unique<HudOverlay>();
-    hud_->draw(scene.hud_lines, scene.legend, width, height);
+    hud_->draw(scene.hud_lines, scene.legend, scene.hud, width, height);
   }
   gl_->finish();
   return context_.pixels();

@@ -1,7 +1,10 @@
 #include "render/scene_builder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <initializer_list>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <numbers>
@@ -27,7 +30,9 @@ constexpr double kLift = 0.004;
 // FrameScene::depth_bias of the 3-D views: a fraction of the distance to the camera.
 constexpr float kSphereDepthBias = 0.01f, kHyperboloidDepthBias = 0.004f;
 // Extent of the hyperboloid mesh and of the H² grid [radii].
-constexpr double kHyperboloidExtent = 2.5;
+constexpr double kHyperboloidExtent = 7.0;
+// The 3-D views' vertical field of view [degrees].
+constexpr double kFovY = 35.0;
 
 bool three_d(ViewKind view) {
   return view == ViewKind::sphere || view == ViewKind::hyperboloid;
@@ -170,7 +175,7 @@ StaticGeometry build_static(SurfaceKind kind, ViewKind view) {
     return g;
   }
   if (view == ViewKind::hyperboloid) {
-    const int rings = 24, slices = 64;
+    const int rings = 56, slices = 64;
     const auto vertex = [&](double r, double phi) {
       const Vec3 X = chart_point(unit, r, phi).X;
       const glm::dvec3 w = world_position(unit, view, X);
@@ -213,31 +218,60 @@ StaticGeometry build_static(SurfaceKind kind, ViewKind view) {
       }
     }
   }
-  if (view == ViewKind::plane) {
-    add_quad({{-4, -4, 0}, {0, 0, 1}}, {{4, -4, 0}, {0, 0, 1}}, {{4, 4, 0}, {0, 0, 1}},
-             {{-4, 4, 0}, {0, 0, 1}});
-    for (int k = -8; k <= 8; ++k) {
-      add_segment(g.grid, {0.5 * k, -4, 0}, {0.5 * k, 4, 0}, kGridColor);
-      add_segment(g.grid, {-4, 0.5 * k, 0}, {4, 0.5 * k, 0}, kGridColor);
-    }
-  }
+  // The plane has no static geometry: it is the whole frame (build_scene clears to its colour) and
+  // its grid follows the camera (FrameScene::grid_lines).
   return g;
+}
+
+// The centre and half-extents of the 2-D views' orthographic frame [world units].
+struct Window2d {
+  glm::dvec2 centre{0.0};
+  double hx = 1.0, hy = 1.0;
+};
+Window2d window_2d(const ViewOptions& view) {
+  const double aspect = static_cast<double>(view.width) / view.height;
+  const double half = view.kind == ViewKind::disk ? 1.08 : kPlaneHalfHeight;  // the unit disk, or the plane's
+  Window2d w;
+  w.hx = aspect >= 1 ? half * aspect : half;
+  w.hy = aspect >= 1 ? half : half / aspect;
+  if (view.kind == ViewKind::plane && view.target) w.centre = {(*view.target)[0], (*view.target)[1]};
+  return w;
 }
 
 glm::mat4 camera(const ViewOptions& view) {
   const double aspect = static_cast<double>(view.width) / view.height;
   if (three_d(view.kind)) {
-    const glm::dvec3 target = view.kind == ViewKind::hyperboloid ? glm::dvec3(0, 0, 1.6) : glm::dvec3(0);
+    const glm::dvec3 target = view.target
+                                  ? glm::dvec3((*view.target)[0], (*view.target)[1], (*view.target)[2])
+                              : view.kind == ViewKind::hyperboloid ? glm::dvec3(0, 0, 1.6)
+                                                                   : glm::dvec3(0);
     const glm::dvec3 dir(std::cos(view.pitch) * std::cos(view.yaw), std::cos(view.pitch) * std::sin(view.yaw),
                          std::sin(view.pitch));
     const glm::dvec3 eye = target + view.distance * dir;
     const glm::dvec3 up = std::abs(dir.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
-    return glm::mat4(glm::perspective(glm::radians(35.0), aspect, 0.05, 100.0) *
+    // Near and far planes grow with a camera drawn back to frame a body far out on H².
+    const double reach = std::max(1.0, view.distance / 5.0);
+    return glm::mat4(glm::perspective(glm::radians(kFovY), aspect, 0.05 * reach, 100.0 * reach) *
                      glm::lookAt(eye, target, up));
   }
-  const double half = view.kind == ViewKind::disk ? 1.08 : 4.0;  // the unit disk, or the plane's ±4
-  const double hx = aspect >= 1 ? half * aspect : half, hy = aspect >= 1 ? half : half / aspect;
-  return glm::mat4(glm::ortho(-hx, hx, -hy, hy, -1.0, 1.0));
+  const Window2d w = window_2d(view);
+  return glm::mat4(
+      glm::ortho(w.centre.x - w.hx, w.centre.x + w.hx, w.centre.y - w.hy, w.centre.y + w.hy, -1.0, 1.0));
+}
+
+// The plane's grid across the frame: lines at whole multiples of kPlaneGridSpacing, so that the
+// grid stays put in the world while the frame follows the body.
+std::vector<Vertex> plane_grid(const ViewOptions& view) {
+  const Window2d w = window_2d(view);
+  const double x0 = w.centre.x - w.hx, x1 = w.centre.x + w.hx, y0 = w.centre.y - w.hy, y1 = w.centre.y + w.hy;
+  std::vector<Vertex> lines;
+  for (double k = std::floor(x0 / kPlaneGridSpacing); k <= std::ceil(x1 / kPlaneGridSpacing); ++k)
+    add_segment(lines, {k * kPlaneGridSpacing, y0 - 1.0, 0}, {k * kPlaneGridSpacing, y1 + 1.0, 0},
+                kGridColor);
+  for (double k = std::floor(y0 / kPlaneGridSpacing); k <= std::ceil(y1 / kPlaneGridSpacing); ++k)
+    add_segment(lines, {x0 - 1.0, k * kPlaneGridSpacing, 0}, {x1 + 1.0, k * kPlaneGridSpacing, 0},
+                kGridColor);
+  return lines;
 }
 
 // A body's ellipse: a translucent fill following the surface and its outline.
@@ -373,6 +407,38 @@ LineWidths line_widths(int width, int height) {
   return {static_cast<float>(std::max(1.0, lines)), static_cast<float>(std::max(1.0, lines * 2.0 / 3.0))};
 }
 
+HudLayout hud_layout(const std::vector<std::string>& lines, const std::vector<std::string>& legend_labels,
+                     int width, int height) {
+  HudLayout h;
+  const double side = std::min(0.75 * width, static_cast<double>(height)) / 540.0;
+  h.scale = std::max(1.0, std::round(2.0 * side) / 2.0);
+  h.font_size = 13.0 * h.scale;
+  // ImGui snaps the default font's advance to whole pixels (ImFontConfig::PixelSnapH).
+  h.advance = std::floor(7.0 * h.scale + 0.5);
+  h.line = h.font_size + 2.0 * h.scale;
+  h.padding = 5.0 * h.scale;
+  h.swatch = 30.0 * h.scale;
+  const double margin = 6.0 * h.scale;
+  // Glyphs, not bytes: a UTF-8 continuation byte starts none.
+  const auto glyphs = [](const std::string& text) {
+    return static_cast<double>(
+        std::count_if(text.begin(), text.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+  };
+  const auto box_height = [&](std::size_t n) { return n * h.line - 2.0 * h.scale + 2.0 * h.padding; };
+  if (!lines.empty()) {
+    double longest = 0.0;
+    for (const std::string& line : lines) longest = std::max(longest, glyphs(line));
+    h.hud = {margin, margin, longest * h.advance + 2.0 * h.padding, box_height(lines.size())};
+  }
+  if (!legend_labels.empty()) {
+    double longest = 0.0;
+    for (const std::string& label : legend_labels) longest = std::max(longest, glyphs(label));
+    const double w = h.swatch + h.advance + longest * h.advance + 2.0 * h.padding;
+    h.legend = {width - margin - w, margin, w, box_height(legend_labels.size())};
+  }
+  return h;
+}
+
 Vec3 exponential_map(const Surface& surface, const Vec3& X, const Vec3& v, double length) {
   if (length == 0.0 || surface.kind == SurfaceKind::plane) return X + v;
   return polar_C(surface, length) * X + (polar_S(surface, length) / length) * v;
@@ -417,6 +483,10 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
                      : kind == ViewKind::hyperboloid ? kHyperboloidDepthBias
                                                      : 0.0f;
   if (surface.kind == SurfaceKind::pseudosphere) scene.surface_color = {0.83f, 0.86f, 0.78f, 1.0f};
+  if (kind == ViewKind::plane) {
+    if (scene.draw_surface) scene.clear_color = scene.surface_color;  // the plane fills the frame
+    if (scene.draw_grid) scene.grid_lines = plane_grid(view);
+  }
 
   // Trails first, then the bodies over them: every body's, main body first.
   if (view.layers & kTrail)
@@ -438,6 +508,9 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
     for (const BodySnapshot& body : snapshot.bodies)
       scene.legend.push_back({body.label, rgba(body.color), rgba(body.trail_color), body.geodesic});
   if (view.layers & kHud) scene.hud_lines = snapshot.hud_lines;
+  std::vector<std::string> labels;
+  for (const LegendEntry& entry : scene.legend) labels.push_back(entry.label);
+  scene.hud = hud_layout(scene.hud_lines, labels, view.width, view.height);
   return scene;
 }
 
@@ -466,17 +539,140 @@ Vec3 drawn_centre(const Snapshot& snapshot) {
 
 }  // namespace
 
+namespace {
+
+// The HUD's and legend's boxes the frame of this snapshot will have (as build_scene lays them out).
+HudLayout layout_for(const Snapshot& snapshot, const ViewOptions& view) {
+  std::vector<std::string> labels;
+  if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)) && view.width >= kLegendMinWidth)
+    for (const BodySnapshot& body : snapshot.bodies) labels.push_back(body.label);
+  return hud_layout(view.layers & kHud ? snapshot.hud_lines : std::vector<std::string>{}, labels, view.width,
+                    view.height);
+}
+
+// What a camera must show [world units] and how much each counts: the main body's centre above
+// all (1000), each companion's (50), each body's outline (5 a point) and its trail (10 in all).
+struct Sight {
+  glm::dvec3 at;
+  double weight;
+};
+
+std::vector<Sight> sights(const Snapshot& snapshot, const ViewOptions& view, bool recent_only) {
+  const Surface& surface = snapshot.surface;
+  std::vector<Sight> out;
+  for (const BodySnapshot& body : snapshot.bodies) {
+    const double weight = &body == &snapshot.bodies.front() ? 1000.0 : 50.0;
+    out.push_back({world_position(surface, view.kind, body.X), weight});
+    for (const Vec3& P : ellipse_points(surface, body, view.scale, 8))
+      out.push_back({world_position(surface, view.kind, P), 5.0});
+  }
+  for (const BodySnapshot& body : snapshot.bodies) {
+    const std::size_t stride = body.trail.size() / 96 + 1;
+    const double weight = 10.0 * static_cast<double>(stride) / static_cast<double>(body.trail.size());
+    for (std::size_t i = 0; i < body.trail.size(); i += stride) {
+      const Vec3& P = body.trail[i];
+      if (recent_only) {  // the trail's last stretch: within 3 radii (intrinsic) of its body
+        const double R = surface.radius, c = -dot(surface, P, body.X) / (R * R);
+        if (R * std::acosh(std::max(1.0, c)) > 3.0 * R) continue;
+      }
+      out.push_back({world_position(surface, view.kind, P), weight});
+    }
+  }
+  return out;
+}
+
+// How badly a camera shows the sights: the weight of those behind the sphere or the camera, out of
+// the frame (less a margin) or under the HUD's or legend's box (grown by the margin).
+double badness(const ViewOptions& view, const std::vector<Sight>& points, const HudLayout& hud) {
+  FrameScene scene;
+  scene.view_projection = camera(view);
+  const double margin = 0.04 * std::min(view.width, view.height),
+               edge = 0.01 * std::min(view.width, view.height);
+  const auto grown = [&](const PixelBox& b) {
+    return b.w > 0.0 ? PixelBox{b.x - margin, b.y - margin, b.w + 2 * margin, b.h + 2 * margin} : b;
+  };
+  const PixelBox hud_box = grown(hud.hud), legend_box = grown(hud.legend);
+  const glm::dvec4 h = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
+  const glm::dvec3 eye = glm::dvec3(h) / h.w;
+  double bad = 0.0;
+  for (const Sight& p : points) {
+    // Beyond the limb, or so near it (more than 60° from the camera's direction) that it is seen edge-on.
+    const bool hidden = view.kind == ViewKind::sphere && glm::dot(p.at, glm::normalize(eye)) < 0.5;
+    const std::optional<glm::dvec2> px = pixel_position(scene, view, p.at);
+    if (hidden || !px || px->x < edge || px->y < edge || px->x > view.width - edge ||
+        px->y > view.height - edge || hud_box.contains(*px) || legend_box.contains(*px))
+      bad += p.weight;
+  }
+  return bad;
+}
+
+// Tries the camera turned by each (Δyaw, Δpitch) and drawn back by each factor, in this order,
+// and keeps the first that shows the sights best.
+void clear_the_boxes(ViewOptions& view, const std::vector<Sight>& points, const HudLayout& hud,
+                     std::initializer_list<double> pulls) {
+  constexpr double kTurns[][2] = {{0, 0},    {0, 0.1},    {0, 0.2},     {0.1, 0.1},  {-0.1, 0.1},
+                                  {0, 0.3},  {0.15, 0.2}, {-0.15, 0.2}, {0.2, 0.3},  {-0.2, 0.3},
+                                  {0, 0.45}, {0.3, 0.3},  {-0.3, 0.3},  {0.3, 0.45}, {-0.3, 0.45},
+                                  {0.15, 0}, {-0.15, 0},  {0.3, 0},     {-0.3, 0}};
+  const ViewOptions start = view;
+  double best = std::numeric_limits<double>::infinity();
+  for (const double pull : pulls)
+    for (const auto& turn : kTurns) {
+      ViewOptions v = start;
+      v.yaw = start.yaw + turn[0];
+      v.pitch = std::clamp(start.pitch + turn[1], -1.3, 1.3);
+      v.distance = start.distance * pull;
+      const double bad = badness(v, points, hud);
+      if (bad < best) best = bad, view = v;
+      if (best == 0.0) return;
+    }
+}
+
+}  // namespace
+
 void aim_camera_at_body(ViewOptions& view, const Snapshot& snapshot) {
+  if (snapshot.bodies.empty()) return;
+  const HudLayout hud = layout_for(snapshot, view);
   if (view.kind == ViewKind::sphere) {
     const Vec3 n =
         snapshot.bodies.size() > 1 ? drawn_centre(snapshot) : snapshot.bodies.front().X.normalized();
     view.yaw = std::atan2(n.y(), n.x());
     view.pitch = std::clamp(std::asin(n.z()), -1.3, 1.3);
+    view.target.reset();
+    const std::vector<Sight> points = sights(snapshot, view, false);
+    clear_the_boxes(view, points, hud, {1.0, 1.2});
+    if (badness(view, points, hud) >= points.front().weight) {  // the main body lost: start from it
+      const Vec3 m = snapshot.bodies.front().X.normalized();
+      view.yaw = std::atan2(m.y(), m.x());
+      view.pitch = std::clamp(std::asin(m.z()), -1.3, 1.3);
+      clear_the_boxes(view, points, hud, {1.0, 1.2});
+    }
   } else if (view.kind == ViewKind::hyperboloid) {
-    view.distance = 15.0;
+    // Orbit the centre of the bounding box of the bodies and their recent trails, from across the
+    // bowl (the side away from the axis would see the surface edge-on), at the distance at which
+    // a sphere round all of them fills 85% of the narrower field of view.
+    const std::vector<Sight> points = sights(snapshot, view, true);
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (const Sight& p : points) lo = glm::min(lo, p.at), hi = glm::max(hi, p.at);
+    const glm::dvec3 centre = 0.5 * (lo + hi);
+    double radius = 1.5;  // at least the vertex's neighbourhood
+    for (const Sight& p : points) radius = std::max(radius, glm::length(p.at - centre));
+    const double aspect = static_cast<double>(view.width) / view.height;
+    const double half_fov = std::atan(std::tan(glm::radians(kFovY) / 2) * std::min(1.0, aspect));
+    view.target = std::array<double, 3>{centre.x, centre.y, centre.z};
+    view.distance = radius / std::sin(0.85 * half_fov);
     view.pitch = 0.55;
-    const Vec3& X = snapshot.bodies.front().X;
-    if (X.head<2>().norm() > 0.0) view.yaw = std::atan2(X.y(), X.x()) + kPi;
+    if (glm::length(glm::dvec2(centre)) > 1e-9) view.yaw = std::atan2(centre.y, centre.x) + kPi;
+    clear_the_boxes(view, points, hud, {1.0, 1.25, 1.6});
+  } else if (view.kind == ViewKind::plane) {
+    // The centre of the bodies' bounding box.
+    glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (const BodySnapshot& body : snapshot.bodies) {
+      const glm::dvec3 w = world_position(snapshot.surface, view.kind, body.X);
+      lo = glm::min(lo, glm::dvec2(w)), hi = glm::max(hi, glm::dvec2(w));
+    }
+    const glm::dvec2 c = 0.5 * (lo + hi);
+    view.target = std::array<double, 3>{c.x, c.y, 0.0};
   }
 }
 

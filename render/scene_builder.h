@@ -50,6 +50,9 @@ struct LineWidths {
 };
 LineWidths line_widths(int width, int height);
 
+// The plane view: the grid's spacing and the half-height of the frame [world units, radii].
+inline constexpr double kPlaneGridSpacing = 0.5, kPlaneHalfHeight = 3.0;
+
 // Frames narrower than this [pixels] (thumbnails) get no legend: it would cover the picture.
 inline constexpr int kLegendMinWidth = 320;
 
@@ -62,6 +65,32 @@ struct LegendEntry {
   bool dashed = false;    // the geodesic companion's trail
 };
 
+// A rectangle of the frame [pixels, x right, y down from the top-left corner]; empty when w = 0.
+struct PixelBox {
+  double x = 0.0, y = 0.0, w = 0.0, h = 0.0;
+  bool contains(const glm::dvec2& p) const {
+    return w > 0.0 && p.x >= x && p.x < x + w && p.y >= y && p.y < y + h;
+  }
+};
+
+// Where the HUD (top-left) and the legend (top-right) go and how large their text is. The text is
+// Dear ImGui's built-in font (ProggyClean: 13 px, 7 px advance, ASCII) at `scale` times its size;
+// the scale grows with the frame's shorter side in 4:3 terms, min(width·3/4, height)/540, in half
+// steps and never below 1: unchanged up to 640×480 (and in thumbnails), 1.5× at 1280×720, 2× at
+// 1920×1080, so that a frame shown on a projector stays legible. Plain arithmetic, no ImGui: the
+// overlay draws exactly these boxes, and the cameras keep the bodies out of them.
+struct HudLayout {
+  double scale = 1.0;     // of the font and of every length below
+  double font_size = 13;  // [pixels]
+  double advance = 7;     // of a glyph [pixels]
+  double line = 15;       // from one line of text to the next [pixels]
+  double padding = 5;     // inside a box [pixels]
+  double swatch = 30;     // the legend's swatch width [pixels]
+  PixelBox hud, legend;   // empty when not drawn
+};
+HudLayout hud_layout(const std::vector<std::string>& lines, const std::vector<std::string>& legend_labels,
+                     int width, int height);
+
 struct FrameScene {
   const StaticGeometry* statics = nullptr;  // null when neither surface nor grid is drawn
   bool draw_surface = false, draw_grid = false;
@@ -70,6 +99,10 @@ struct FrameScene {
   std::vector<std::string> hud_lines;  // empty when the HUD is off
   std::vector<LegendEntry> legend;     // one per body when there is more than one body to tell apart
                                        // and the frame is at least kLegendMinWidth wide
+  HudLayout hud;                       // the boxes of hud_lines and legend
+  // The plane view's grid, which follows its camera (lines every kPlaneGridSpacing across the
+  // frame); drawn with the background.
+  std::vector<Vertex> grid_lines;
   glm::mat4 view_projection{1.0f};
   bool depth_test = true;  // 3-D views hide what is behind the surface
   // Grid, fills and lines are drawn this fraction of the way towards the camera (same pixels,
@@ -91,9 +124,12 @@ glm::vec3 headlight(const FrameScene& scene);
 // silhouette against the background without multisampling.
 std::vector<Vertex> silhouette(const StaticGeometry& g, const FrameScene& scene);
 
-// The camera of the 3-D views placed to show the body: above it on the sphere (above the centre of
-// all the bodies' positions and trails when there are companions), across the bowl from it on the
-// hyperboloid (whose default distance and pitch frame the grid's extent).
+// The camera placed to show the bodies and their trails, clear of the HUD's and legend's boxes:
+// on the sphere, looking at the centre of everything drawn of the bodies, turned and tilted (a
+// few candidates tried in a fixed order) until every body and as much of every trail as can be
+// are in the frame and out of the boxes; on the hyperboloid, orbiting the centre of the bodies and
+// their trails' last stretch (up to 3 radii from a body) from across the bowl, as far away as
+// they need (the same search then clears the boxes); on the plane, centred on the bodies.
 void aim_camera_at_body(ViewOptions& view, const Snapshot& snapshot);
 
 // Points of a body's ellipse on the surface: exp_X(scale·(cos θ e₁ + sin θ e₂)), embedding

@@ -1,6 +1,7 @@
 // What a frame shows and how: the view, the layers and the camera. Plain data, no GL.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -36,6 +37,10 @@ struct ViewOptions {
   double pitch = 0.45;    // camera elevation [rad] (3-D views)
   double distance = 3.4;  // camera distance [surface radii] (3-D views)
   double scale = 0.25;    // display scale: the ellipse is the image of scale·(unit circle) under e_A
+  // The point the 3-D camera orbits and the plane view centres on [world units], set by
+  // aim_camera_at_body; nullopt: the view's own (the sphere's centre, a point above the
+  // hyperboloid's vertex, the plane's origin). The disk view ignores it.
+  std::optional<std::array<double, 3>> target;
 };
 
 inline constexpr int kMaxImageSide = 4096;

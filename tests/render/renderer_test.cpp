@@ -11,6 +11,7 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <string>
 
 #include "codec/presets.h"
 #include "codec/scene_json.h"
@@ -150,7 +151,8 @@ TEST(Renderer, EachCompanionsColourAppearsAtItsProjectedPosition) {
     const std::uint8_t* rgba = renderer().render_rgba(scene, view.width, view.height);
     for (std::size_t i = 0; i < s.bodies.size(); ++i) {
       SCOPED_TRACE(s.bodies[i].label);
-      const auto at = pixel_position(scene, view, inside_ellipse(s, view.kind, i, view.scale));
+      // No arrows drawn: a point nearer the centre, clear of an outline seen obliquely.
+      const auto at = pixel_position(scene, view, inside_ellipse(s, view.kind, i, 0.5 * view.scale));
       ASSERT_TRUE(at);
       ASSERT_TRUE(at->x >= 0 && at->x < view.width && at->y >= 0 && at->y < view.height);
       const Rgb got = pixel(rgba, view, *at);
@@ -352,6 +354,71 @@ TEST(Renderer, LineWidthsGrowWithTheFrameAndNeverFallBelowAPixel) {
   const double small = trail_pixels(640, 480), large = trail_pixels(1280, 960);
   EXPECT_GT(small, 0.0);
   EXPECT_GT(large / small, 2.0 * 1.5);  // twice as long, at least 1.5× as wide (2× here)
+}
+
+// The sphere's automatic camera with companions, at the sizes the browser asks for: every body
+// in the frame, in front of the sphere and out of the HUD's and legend's boxes (while the bodies
+// are less than 120° apart: no camera shows both sides of a sphere; then the main body is).
+TEST(Renderer, TheSpheresCameraShowsEveryBodyOutOfTheHud) {
+  for (const std::string_view preset :
+       {"spin_vs_geodesic_sphere", "spin_fan_sphere", "opposite_spins_sphere"})
+    for (const double t : {1.0, 2.0, 4.0, 8.0})
+      for (const auto& [w, h] : {std::pair{640, 480}, {960, 600}, {1280, 720}, {1920, 1080}}) {
+        const Snapshot s = preset_snapshot(preset, t, true);
+        ViewOptions view;
+        view.width = w;
+        view.height = h;
+        aim_camera_at_body(view, s);
+        const FrameScene scene = build_scene(s, view);
+        const glm::dvec4 e = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
+        const glm::dvec3 eye = glm::dvec3(e) / e.w;
+        double spread = 0.0;
+        for (const BodySnapshot& a : s.bodies)
+          for (const BodySnapshot& b : s.bodies)
+            spread =
+                std::max(spread, std::acos(std::clamp(a.X.normalized().dot(b.X.normalized()), -1.0, 1.0)));
+        for (const BodySnapshot& b : s.bodies) {
+          if (spread > 2.0 * std::numbers::pi / 3.0 && &b != &s.bodies.front()) continue;
+          const glm::dvec3 world = world_position(s.surface, view.kind, b.X);
+          const std::optional<glm::dvec2> p = pixel_position(scene, view, world);
+          const std::string where = std::string(preset) + " t = " + std::to_string(t) + " " +
+                                    std::to_string(w) + "x" + std::to_string(h) + " " + b.label;
+          ASSERT_TRUE(p) << where;
+          EXPECT_GT(glm::dot(world, eye), 1.0) << where;  // on the near side
+          EXPECT_TRUE(p->x > 0 && p->x < w && p->y > 0 && p->y < h) << where;
+          EXPECT_FALSE(scene.hud.hud.contains(*p)) << where;
+          EXPECT_FALSE(scene.hud.legend.contains(*p)) << where;
+        }
+      }
+}
+
+// The HUD's box is drawn where hud_layout() says: its translucent grey inside, the background
+// just outside, at every scale.
+TEST(Renderer, TheHudBoxIsDrawnWhereTheLayoutSays) {
+  const Snapshot s = preset_snapshot("spinning_rigid_plane", 1.0, false);
+  for (const auto& [w, h] : {std::pair{640, 480}, {1280, 720}, {1920, 1080}}) {
+    ViewOptions view;
+    view.kind = ViewKind::plane;
+    view.width = w;
+    view.height = h;
+    view.layers = kSurface | kHud;
+    const FrameScene scene = build_scene(s, view);
+    const std::vector<std::uint8_t> rgba = renderer().render_image(s, view).rgba;
+    const PixelBox& box = scene.hud.hud;
+    const Rgb plane = pixel(rgba.data(), view, {0.5 * w, 0.9 * h});
+    const Rgb inside = pixel(rgba.data(), view, {box.x + box.w - 3, box.y + box.h - 3});
+    const Rgb outside = pixel(rgba.data(), view, {box.x + box.w + 3, box.y + box.h + 3});
+    EXPECT_NE(inside.r + inside.g + inside.b, plane.r + plane.g + plane.b) << w << "x" << h;
+    EXPECT_EQ(outside.r + outside.g + outside.b, plane.r + plane.g + plane.b) << w << "x" << h;
+    // The last line's glyphs reach into the box's last text line: dark pixels there.
+    int dark = 0;
+    for (double x = box.x; x < box.x + box.w; ++x)
+      for (double y = box.y + box.h - scene.hud.padding - scene.hud.font_size; y < box.y + box.h; ++y) {
+        const Rgb c = pixel(rgba.data(), view, {x, y});
+        dark += c.r + c.g + c.b < 200;
+      }
+    EXPECT_GT(dark, 20 * scene.hud.scale * scene.hud.scale) << w << "x" << h;
+  }
 }
 
 TEST(Renderer, SameSnapshotViewAndSizeGiveTheSameBytes) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <tuple>
 
 #include "engine/chart.h"
 
@@ -168,6 +169,108 @@ TEST(SceneBuilder, TheSilhouetteIsTheSpheresLimbAndTheDisksRim) {
   const std::vector<Vertex> rim = silhouette(*disk.statics, disk);
   EXPECT_EQ(rim.size(), 2u * 128u);
   for (const Vertex& v : rim) EXPECT_NEAR(glm::length(v.position), 1.0f, 1e-6f);
+}
+
+// The HUD of a run (as make_snapshot writes it): six lines, the longest 37 characters.
+std::vector<std::string> hud_of_a_run() {
+  return {"t = 12.000",          "energy error = 1.23e-12", "integrator: exact",
+          "pseudosphere  R = 1", "m = 1  J = 0.5  rigid",   "spin = 1.0000  det L = 1.0000 (x)"};
+}
+
+TEST(SceneBuilder, HudTextGrowsWithTheFrameAndKeepsItsSizeInSmallOnes) {
+  const std::vector<std::string> lines = hud_of_a_run();
+  const HudLayout small = hud_layout(lines, {}, 640, 480), thumb = hud_layout(lines, {}, 160, 120);
+  const HudLayout hd = hud_layout(lines, {}, 1280, 720), full = hud_layout(lines, {}, 1920, 1080);
+  EXPECT_EQ(small.font_size, 13.0);  // unchanged at 480 px high
+  EXPECT_EQ(thumb.font_size, 13.0);
+  EXPECT_EQ(hd.font_size, 19.5);
+  EXPECT_EQ(full.font_size, 26.0);                              // 2× at 1080
+  EXPECT_EQ(hud_layout(lines, {}, 1920, 600).font_size, 13.0);  // the shorter side counts
+  EXPECT_NEAR(full.hud.h / small.hud.h, 2.0, 1e-9);
+  EXPECT_NEAR(full.hud.w / small.hud.w, 2.0, 1e-9);
+  // Compact: the box of six lines keeps to the same share of the frame at every size.
+  for (const auto& [l, w, h] : {std::tuple{small, 640, 480}, {hd, 1280, 720}, {full, 1920, 1080}}) {
+    EXPECT_LT(l.hud.h, 0.22 * h);
+    EXPECT_LT(l.hud.w, 0.4 * w);
+  }
+  const HudLayout with_legend = hud_layout(lines, {"body 1", "geodesic (s = 0)"}, 1920, 1080);
+  EXPECT_NEAR(with_legend.legend.x + with_legend.legend.w, 1920 - 12.0, 1e-9);  // top-right corner
+  EXPECT_FALSE(hud_layout({}, {}, 640, 480).hud.w > 0.0);
+}
+
+// A body r out from the vertex along φ with its trail from the vertex, the HUD of a run on.
+Snapshot out_on_h2(double r) {
+  Snapshot s = body_at(SurfaceKind::pseudosphere, 1.0, r, 0.8, 1.0, 1.0);
+  for (int k = 0; k <= 64; ++k) s.bodies[0].trail.push_back(chart_point(s.surface, r * k / 64, 0.8).X);
+  s.hud_lines = hud_of_a_run();
+  return s;
+}
+
+TEST(SceneBuilder, TheHyperboloidsCameraKeepsTheBodyInTheFrameAndOutOfTheHudFarOut) {
+  for (const double r : {0.0, 1.0, 3.0, 6.0})
+    for (const auto& [w, h] : {std::pair{640, 480}, {960, 600}, {1920, 1080}}) {
+      const Snapshot s = out_on_h2(r);
+      ViewOptions view;
+      view.kind = ViewKind::hyperboloid;
+      view.width = w;
+      view.height = h;
+      aim_camera_at_body(view, s);
+      const FrameScene scene = build_scene(s, view);
+      const auto at = [&](const Vec3& X) {
+        return pixel_position(scene, view, world_position(s.surface, view.kind, X));
+      };
+      const std::optional<glm::dvec2> body = at(s.bodies[0].X);
+      ASSERT_TRUE(body) << "r = " << r;
+      EXPECT_GT(body->x, 0.05 * w) << "r = " << r << ", " << w << "x" << h;
+      EXPECT_LT(body->x, 0.95 * w) << "r = " << r << ", " << w << "x" << h;
+      EXPECT_GT(body->y, 0.05 * h) << "r = " << r << ", " << w << "x" << h;
+      EXPECT_LT(body->y, 0.95 * h) << "r = " << r << ", " << w << "x" << h;
+      EXPECT_FALSE(scene.hud.hud.contains(*body)) << "r = " << r << ", " << w << "x" << h;
+      // The whole ellipse and the trail's last stretch (up to 3 radii back) are in the frame.
+      std::vector<Vec3> points = ellipse_points(s.surface, s.bodies[0], view.scale, 16);
+      for (int k = 0; k <= 64; ++k)
+        if (r * (64 - k) / 64 <= 3.0) points.push_back(s.bodies[0].trail[k]);
+      for (const Vec3& P : points) {
+        const std::optional<glm::dvec2> p = at(P);
+        ASSERT_TRUE(p);
+        EXPECT_TRUE(p->x >= 0 && p->x <= w && p->y >= 0 && p->y <= h) << "r = " << r << ", " << w << "x" << h;
+      }
+    }
+}
+
+TEST(SceneBuilder, ThePlanesGridIsCentredOnTheBodyFillsTheFrameAndStaysPutInTheWorld) {
+  Snapshot s = body_at(SurfaceKind::plane, 1.0, 5.3, -2.2, 1.0, 1.0);
+  s.hud_lines = hud_of_a_run();
+  for (const auto& [w, h] : {std::pair{640, 480}, {1366, 600}, {400, 700}}) {
+    ViewOptions view;
+    view.kind = ViewKind::plane;
+    view.width = w;
+    view.height = h;
+    aim_camera_at_body(view, s);
+    const FrameScene scene = build_scene(s, view);
+    const glm::dvec3 world = world_position(s.surface, view.kind, s.bodies[0].X);
+    const std::optional<glm::dvec2> body = pixel_position(scene, view, world);
+    ASSERT_TRUE(body);
+    EXPECT_NEAR(body->x, 0.5 * w, 1e-3);
+    EXPECT_NEAR(body->y, 0.5 * h, 1e-3);
+    ASSERT_FALSE(scene.grid_lines.empty());
+    EXPECT_EQ(scene.clear_color, scene.surface_color);  // the plane fills the frame
+    glm::dvec2 lo(1e300), hi(-1e300);
+    for (std::size_t i = 0; i + 1 < scene.grid_lines.size(); i += 2) {
+      const glm::dvec3 a(scene.grid_lines[i].position), b(scene.grid_lines[i + 1].position);
+      const bool vertical = a.x == b.x;
+      const double c = vertical ? a.x : a.y;  // a whole multiple of the spacing, wherever the body is
+      EXPECT_NEAR(c / kPlaneGridSpacing, std::round(c / kPlaneGridSpacing), 1e-5);
+      for (const glm::dvec3& p : {a, b}) {
+        const glm::dvec2 px = *pixel_position(scene, view, p);
+        lo = glm::min(lo, px), hi = glm::max(hi, px);
+      }
+    }
+    EXPECT_LE(lo.x, 0.0);
+    EXPECT_LE(lo.y, 0.0);
+    EXPECT_GE(hi.x, w);
+    EXPECT_GE(hi.y, h);
+  }
 }
 
 }  // namespace
