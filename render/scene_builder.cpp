@@ -640,12 +640,16 @@ void aim_camera_at_body(ViewOptions& view, const Snapshot& snapshot) {
     view.pitch = std::clamp(std::asin(n.z()), -1.3, 1.3);
     view.target.reset();
     const std::vector<Sight> points = sights(snapshot, view, false);
-    clear_the_boxes(view, points, hud, {1.0, 1.2});
+    // Drawn back as far as 1.75× when nearer cameras cannot clear the boxes: bodies far apart
+    // (one near the pole, one on the equator, with the HUD across the top of a 640×480 frame)
+    // otherwise end with the camera tilted over one of them and the other beside the limb, its
+    // ellipse seen edge-on.
+    clear_the_boxes(view, points, hud, {1.0, 1.2, 1.45, 1.75});
     if (badness(view, points, hud) >= points.front().weight) {  // the main body lost: start from it
       const Vec3 m = snapshot.bodies.front().X.normalized();
       view.yaw = std::atan2(m.y(), m.x());
       view.pitch = std::clamp(std::asin(m.z()), -1.3, 1.3);
-      clear_the_boxes(view, points, hud, {1.0, 1.2});
+      clear_the_boxes(view, points, hud, {1.0, 1.2, 1.45, 1.75});
     }
   } else if (view.kind == ViewKind::hyperboloid) {
     // Orbit the centre of the bounding box of the bodies and their recent trails, from across the

@@ -151,8 +151,7 @@ TEST(Renderer, EachCompanionsColourAppearsAtItsProjectedPosition) {
     const std::uint8_t* rgba = renderer().render_rgba(scene, view.width, view.height);
     for (std::size_t i = 0; i < s.bodies.size(); ++i) {
       SCOPED_TRACE(s.bodies[i].label);
-      // No arrows drawn: a point nearer the centre, clear of an outline seen obliquely.
-      const auto at = pixel_position(scene, view, inside_ellipse(s, view.kind, i, 0.5 * view.scale));
+      const auto at = pixel_position(scene, view, inside_ellipse(s, view.kind, i, view.scale));
       ASSERT_TRUE(at);
       ASSERT_TRUE(at->x >= 0 && at->x < view.width && at->y >= 0 && at->y < view.height);
       const Rgb got = pixel(rgba, view, *at);
