@@ -123,17 +123,45 @@ function measureFrame() {
   const shrink = Math.min(1, 1920 / width, 1080 / height);
   width = Math.max(16, Math.round(width * shrink));
   height = Math.max(16, Math.round(height * shrink));
-  if (width === ui.size.width && height === ui.size.height) return false;
+  const hudChanged = defaultHud(box.width, box.height);
+  if (width === ui.size.width && height === ui.size.height) return hudChanged;
   ui.size = { width, height };
   return true;
+}
+
+// A frame shown smaller than kSmallFrame CSS pixels (a phone, upright or on its side) has no room
+// for legible overlay text: it would cover a third of the picture or be a few pixels high, and the
+// readout below the frame says the same. Off by default there, on elsewhere; once the teacher
+// ticks or unticks "hud", theirs is the choice.
+const kSmallFrame = { width: 520, height: 360 };
+function defaultHud(shownWidth, shownHeight) {
+  if (ui.view.hudChosen) return false;
+  const want = shownWidth >= kSmallFrame.width && shownHeight >= kSmallFrame.height;
+  if (want === ui.view.layers.has("hud")) return false;
+  want ? ui.view.layers.add("hud") : ui.view.layers.delete("hud");
+  const box = document.querySelector("#layers input[name=layer-hud]");
+  if (box) box.checked = want;
+  return true;
+}
+
+// The frame and the playback bar below it fit the window at load: the frame is never taller than
+// the room between its top and the window's bottom less the toolbar (at least 240 px).
+function fitFrameToWindow() {
+  const top = $("frame-box").getBoundingClientRect().top + window.scrollY;
+  const room = Math.max(240, window.innerHeight - top - $("toolbar").offsetHeight - 20);
+  document.documentElement.style.setProperty("--frame-room", `${Math.round(room)}px`);
 }
 
 let resizeTimer = null;
 function watchFrameSize() {
   new ResizeObserver(() => {
     clearTimeout(resizeTimer);
-    resizeTimer = setTimeout(() => { if (measureFrame() && ui.id) ui.live.steer({ width: ui.size.width, height: ui.size.height }); updateExports(); }, 120);
+    resizeTimer = setTimeout(() => { if (measureFrame() && ui.id) refreshFrame(); }, 120);
   }).observe($("frame"));
+  const refit = new ResizeObserver(fitFrameToWindow);
+  for (const id of ["gallery", "toolbar", "busy"]) refit.observe($(id));
+  refit.observe(document.querySelector("header"));
+  addEventListener("resize", fitFrameToWindow);
 }
 
 // ---- Play state: the session's "playing" and "rate" in every session answer, and what the UI
@@ -816,7 +844,7 @@ async function toggleGeodesic() {
                              : [...companions, { geodesic: true, label: "geodesic (s = 0)" }];
   try {
     await applyChange({ companions: next.length ? next : null }, true);
-    if (!ui.view.layers.has("hud")) { ui.view.layers.add("hud"); buildViewControls(true); refreshFrame(); }
+    if (!ui.view.layers.has("hud")) { ui.view.layers.add("hud"); ui.view.hudChosen = true; buildViewControls(true); refreshFrame(); }
   } catch (e) { status(e.message); }
 }
 
@@ -852,6 +880,7 @@ function buildViewControls(force = false) {
       label.innerHTML = `<input type="checkbox" name="layer-${layer}" ${ui.view.layers.has(layer) ? "checked" : ""}> ${layer}`;
       label.firstChild.addEventListener("change", (e) => {
         e.target.checked ? ui.view.layers.add(layer) : ui.view.layers.delete(layer);
+        if (layer === "hud") ui.view.hudChosen = true;
         refreshFrame();
       });
       layers.append(label);
@@ -1081,6 +1110,7 @@ async function main() {
   [ui.schema, ui.presets] = await withRetry("Loading", () => Promise.all([request("GET", "/schema"), request("GET", "/scenes")]));
   wire();
   makePlots();
+  fitFrameToWindow();
   measureFrame();
   watchFrameSize();
   await firstSession();

@@ -63,6 +63,7 @@ export class LiveView {
     this.ready = null;   // {bitmap, info}: decoded, not yet painted
     this.steering = false;
     this.pendingSteer = null;
+    this.connected = false;  // the server has answered the stream's request: the viewer exists
     const paint = () => {
       if (this.ready) {
         const { bitmap, info } = this.ready;
@@ -86,6 +87,7 @@ export class LiveView {
   // Opens the stream of a session with these frame parameters (URLSearchParams or object).
   open(session, params) {
     this.close();
+    this.pendingSteer = null;  // the stream opens with the current parameters
     this.session = session;
     this.viewer = "v" + crypto.getRandomValues(new Uint32Array(2)).join("");
     const q = new URLSearchParams(params);
@@ -95,6 +97,7 @@ export class LiveView {
   }
 
   close() {
+    this.connected = false;
     if (this.abort) this.abort.abort();
     this.abort = null;
     this.newest = null;
@@ -106,6 +109,8 @@ export class LiveView {
         const res = await fetch(url, { signal: abort.signal, cache: "no-store" });
         if (res.status === 404 && this.onGone) { this.onGone(); return; }
         if (!res.ok) throw new Error(`live stream: ${res.status}`);
+        this.connected = true;
+        if (this.pendingSteer) this.steer({});  // asked while the stream was connecting
         const parser = new MultipartParser();
         const reader = res.body.getReader();
         for (;;) {
@@ -122,6 +127,7 @@ export class LiveView {
       } catch (e) {
         if (abort.signal.aborted) return;
       }
+      this.connected = false;
       await new Promise((r) => setTimeout(r, 1000));  // the server went away: try again
     }
   }
@@ -147,7 +153,8 @@ export class LiveView {
   async steer(params) {
     if (!this.session) return;
     this.pendingSteer = { ...(this.pendingSteer || {}), ...params };
-    if (this.steering) return;
+    // Until the stream is connected there is no viewer to steer: its answer sends what is pending.
+    if (this.steering || !this.connected) return;
     this.steering = true;
     let retries = 0;
     try {
