@@ -339,9 +339,27 @@ try {
     await page.dispatchEvent("#phys-spin", "change");
     await page.waitForFunction(() => document.querySelector(".preset.active .mark")?.textContent === "modified");
     assert.match(await page.textContent("#status"), /Restarted at t = 0/);
+    // Pixels of the trail alone (no surface, grid, body or text) that differ from the background.
+    const trailPixels = async () => page.evaluate(async (id) => {
+      const res = await fetch(`/api/v1/sessions/${id}/frame.png?width=320&height=240&layers=trail`);
+      const bitmap = await createImageBitmap(await res.blob());
+      const canvas = new OffscreenCanvas(bitmap.width, bitmap.height), g = canvas.getContext("2d");
+      g.drawImage(bitmap, 0, 0);
+      const px = g.getImageData(0, 0, bitmap.width, bitmap.height).data;
+      let n = 0;
+      for (let i = 0; i < px.length; i += 4)
+        if (Math.abs(px[i] - px[0]) + Math.abs(px[i + 1] - px[1]) + Math.abs(px[i + 2] - px[2]) > 30) n++;
+      return n;
+    }, await sessionId(page));
+    for (let i = 0; i < 3; i++) await page.click("#step");
+    await page.waitForFunction(() => Number(document.querySelector("#readout").dataset.t) > 0.2);
+    assert.ok(await trailPixels() > 20, "the sphere's trail is drawn before the switch");
     await page.selectOption("#phys-surface", "pseudosphere");
     await page.waitForFunction(() => !document.querySelector(".preset.active"));
     assert.match(await page.textContent("#explanation"), /hyperbolic plane/);
+    // The switch restarts the run: no trail left over from the sphere, in or out of the disk.
+    await page.waitForFunction(() => Number(document.querySelector("#readout").dataset.t) === 0);
+    assert.equal(await trailPixels(), 0);
   });
 
   await test("PNG export at a chosen size", async () => {
