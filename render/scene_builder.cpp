@@ -31,11 +31,34 @@ constexpr double kLift = 0.004;
 constexpr float kSphereDepthBias = 0.01f, kHyperboloidDepthBias = 0.004f;
 // Extent of the hyperboloid mesh and of the H² grid [radii].
 constexpr double kHyperboloidExtent = 7.0;
+// The tractricoid: ρ = R sech u, z = R(u − tanh u) for 0 ≤ u ≤ kTractricoidExtent (its rim at
+// u = 0); the seam where the strip's edges meet is drawn in kSeamColor.
+constexpr double kTractricoidExtent = 5.0;
+const glm::vec4 kSeamColor{0.80f, 0.35f, 0.55f, 1.0f};
 // The 3-D views' vertical field of view [degrees].
 constexpr double kFovY = 35.0;
 
 bool three_d(ViewKind view) {
-  return view == ViewKind::sphere || view == ViewKind::hyperboloid;
+  return view_info(view).three_d;
+}
+
+// The tractricoid's outward unit normal at a world point (ρ cos θ, ρ sin θ, z), ρ = sech u:
+// (tanh u cos θ, tanh u sin θ, sech u).
+glm::dvec3 tractricoid_normal(const glm::dvec3& w) {
+  const double rho = std::min(1.0, glm::length(glm::dvec2(w)));
+  const double t = std::sqrt(std::max(0.0, 1.0 - rho * rho));  // tanh u
+  const glm::dvec2 radial = rho > 0.0 ? glm::dvec2(w) / rho : glm::dvec2(1.0, 0.0);
+  return {t * radial.x, t * radial.y, rho};
+}
+
+// The surface normal a 3-D view lifts overlays along and tilts arrowheads in; +z in the 2-D views.
+glm::dvec3 view_normal(ViewKind view, const glm::dvec3& w) {
+  switch (view) {
+    case ViewKind::sphere: return glm::normalize(w);
+    case ViewKind::hyperboloid: return glm::normalize(glm::dvec3(-w.x, -w.y, w.z + 1.0));
+    case ViewKind::tractricoid: return tractricoid_normal(w);
+    default: return {0, 0, 1};
+  }
 }
 
 // The body-frame vector a e₁ + b e₂ and its intrinsic length from the Gram matrix.
@@ -66,10 +89,7 @@ glm::vec4 outline_color(const BodySnapshot& body) {
 
 // A world point lifted off the 3-D surfaces along the normal.
 glm::dvec3 lifted(ViewKind view, const glm::dvec3& w) {
-  if (view == ViewKind::hyperboloid) {
-    const glm::dvec3 n = glm::normalize(glm::dvec3(-w.x, -w.y, w.z + 1.0));
-    return w + kLift * n;
-  }
+  if (view == ViewKind::hyperboloid || view == ViewKind::tractricoid) return w + kLift * view_normal(view, w);
   return w;
 }
 
@@ -89,6 +109,7 @@ void add_polyline(std::vector<Vertex>& lines, const Surface& surface, ViewKind v
   for (std::size_t i = 0; i + 1 < points.size() + (closed ? 1 : 0); ++i) {
     const Vec3& a = points[i];
     const Vec3& b = points[(i + 1) % points.size()];
+    if (!on_view(surface, view, a) || !on_view(surface, view, b)) continue;
     add_segment(lines, lifted(view, world_position(surface, view, a)),
                 lifted(view, world_position(surface, view, b)), color);
   }
@@ -100,6 +121,7 @@ void add_dashed_polyline(std::vector<Vertex>& lines, const Surface& surface, Vie
                          const std::vector<Vec3>& points, const glm::vec4& color) {
   double phase = 0.0;  // distance into the current dash + gap period
   for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+    if (!on_view(surface, view, points[i]) || !on_view(surface, view, points[i + 1])) continue;
     const glm::dvec3 a = lifted(view, world_position(surface, view, points[i]));
     const glm::dvec3 b = lifted(view, world_position(surface, view, points[i + 1]));
     const double length = glm::length(b - a);
@@ -188,13 +210,65 @@ StaticGeometry build_static(SurfaceKind kind, ViewKind view) {
         add_quad(vertex(r0, p0), vertex(r1, p0), vertex(r1, p1), vertex(r0, p1));
       }
   }
-  if (view == ViewKind::hyperboloid || (view == ViewKind::disk && kind == SurfaceKind::pseudosphere)) {
+  if (view == ViewKind::tractricoid) {
+    // The surface of revolution, with its meridians (geodesics) every 30° and its parallels
+    // (horocycles) every 0.5 in u; the seam and the rim (u = 0, where the surface ends) marked.
+    const int rings = 80, slices = 72;
+    const auto at = [](double u, double theta) {
+      const double rho = 1.0 / std::cosh(u);
+      return glm::dvec3(rho * std::cos(theta), rho * std::sin(theta), u - std::tanh(u));
+    };
+    const auto vertex = [&](double u, double theta) {
+      const glm::dvec3 w = at(u, theta);
+      return LitVertex{to_float(w), to_float(tractricoid_normal(w))};
+    };
+    const auto u_of = [](int i) { return kTractricoidExtent * std::pow(static_cast<double>(i) / rings, 1.5); };
+    for (int i = 0; i < rings; ++i)
+      for (int j = 0; j < slices; ++j) {
+        const double t0 = 2 * kPi * j / slices, t1 = 2 * kPi * (j + 1) / slices;
+        add_quad(vertex(u_of(i), t0), vertex(u_of(i + 1), t0), vertex(u_of(i + 1), t1), vertex(u_of(i), t1));
+      }
+    const auto curve = [&](auto point_at, int segments, const glm::vec4& color) {
+      for (int i = 0; i < segments; ++i)
+        add_segment(g.grid, lifted(view, point_at(static_cast<double>(i) / segments)),
+                    lifted(view, point_at(static_cast<double>(i + 1) / segments)), color);
+    };
+    for (int k = 0; k < 12; ++k) {
+      const double theta = 2 * kPi * k / 12;
+      curve([&](double s) { return at(kTractricoidExtent * s * s, theta); }, 64, k == 6 ? kSeamColor : kGridColor);
+    }
+    for (double u = 0.0; u <= 3.0 + 1e-9; u += 0.5)
+      curve([&](double s) { return at(u, 2 * kPi * s); }, 128, u == 0.0 ? kSeamColor : kGridColor);
+    return g;
+  }
+  if (view == ViewKind::klein || view == ViewKind::halfplane) {
+    if (view == ViewKind::klein) {  // the disk and its rim
+      const int slices = 128;
+      for (int j = 0; j < slices; ++j) {
+        const double p0 = 2 * kPi * j / slices, p1 = 2 * kPi * (j + 1) / slices;
+        g.surface.push_back({{0, 0, 0}, {0, 0, 1}});
+        g.surface.push_back({glm::vec3(std::cos(p0), std::sin(p0), 0), {0, 0, 1}});
+        g.surface.push_back({glm::vec3(std::cos(p1), std::sin(p1), 0), {0, 0, 1}});
+        add_segment(g.grid, {std::cos(p0), std::sin(p0), 0}, {std::cos(p1), std::sin(p1), 0}, kGridColor);
+      }
+    } else {  // y > 0, and its boundary y = 0
+      constexpr float far = 1e4f;
+      for (const glm::vec2 c : {glm::vec2(-far, 0), glm::vec2(far, 0), glm::vec2(far, far), glm::vec2(-far, 0),
+                                glm::vec2(far, far), glm::vec2(-far, far)})
+        g.surface.push_back({glm::vec3(c, 0.0f), {0, 0, 1}});
+      add_segment(g.grid, {-far, 0, 0}, {far, 0, 0}, kGridColor);
+    }
+  }
+  if (view == ViewKind::hyperboloid || view == ViewKind::klein || view == ViewKind::halfplane ||
+      (view == ViewKind::disk && kind == SurfaceKind::pseudosphere)) {
     // Geodesic polar grid: circles r = 0.5, 1, … and radial geodesics every 30°.
     const double extent = view == ViewKind::hyperboloid ? kHyperboloidExtent : 6.0;
+    // The half-plane magnifies by e^r towards one side: its circles need more points.
+    const int around = view == ViewKind::halfplane ? 512 : 128, out = view == ViewKind::halfplane ? 256 : 64;
     for (double r = 0.5; r <= extent + 1e-9; r += 0.5)
-      grid_curve([&](double s) { return chart_point(unit, r, 2 * kPi * s).X; }, 128);
+      grid_curve([&](double s) { return chart_point(unit, r, 2 * kPi * s).X; }, around);
     for (int k = 0; k < 12; ++k)
-      grid_curve([&](double s) { return chart_point(unit, extent * s, 2 * kPi * k / 12).X; }, 64);
+      grid_curve([&](double s) { return chart_point(unit, extent * s, 2 * kPi * k / 12).X; }, out);
   }
   if (view == ViewKind::disk) {
     const double radius = kind == SurfaceKind::pseudosphere ? 1.0 : 3.0;
@@ -230,8 +304,15 @@ struct Window2d {
 };
 Window2d window_2d(const ViewOptions& view) {
   const double aspect = static_cast<double>(view.width) / view.height;
-  const double half = view.kind == ViewKind::disk ? 1.08 : kPlaneHalfHeight;  // the unit disk, or the plane's
+  // The unit disk, the plane's window, or the half-plane's from just below y = 0 to twice the
+  // centre's height (a window that scales with the height is the same picture at any height).
+  double half = kPlaneHalfHeight;
   Window2d w;
+  if (view.kind == ViewKind::disk || view.kind == ViewKind::klein) half = 1.08;
+  if (view.kind == ViewKind::halfplane) {
+    w.centre = view.target ? glm::dvec2((*view.target)[0], (*view.target)[1]) : glm::dvec2(0.0, 1.0);
+    half = 1.08 * w.centre.y;
+  }
   w.hx = aspect >= 1 ? half * aspect : half;
   w.hy = aspect >= 1 ? half : half / aspect;
   if (view.kind == ViewKind::plane && view.target) w.centre = {(*view.target)[0], (*view.target)[1]};
@@ -244,6 +325,7 @@ glm::mat4 camera(const ViewOptions& view) {
     const glm::dvec3 target = view.target
                                   ? glm::dvec3((*view.target)[0], (*view.target)[1], (*view.target)[2])
                               : view.kind == ViewKind::hyperboloid ? glm::dvec3(0, 0, 1.6)
+                              : view.kind == ViewKind::tractricoid ? glm::dvec3(0, 0, 0.8)
                                                                    : glm::dvec3(0);
     const glm::dvec3 dir(std::cos(view.pitch) * std::cos(view.yaw), std::cos(view.pitch) * std::sin(view.yaw),
                          std::sin(view.pitch));
@@ -314,10 +396,7 @@ void add_frame_arrows(FrameScene& scene, const Surface& surface, ViewKind kind, 
     const glm::dvec3 before = lifted(kind, world_position(surface, kind, shaft[12]));
     const glm::dvec3 back = before - tip;
     if (glm::length(back) > 0.0) {
-      const glm::dvec3 normal = kind == ViewKind::sphere ? glm::normalize(tip)
-                                : kind == ViewKind::hyperboloid
-                                    ? glm::normalize(glm::dvec3(-tip.x, -tip.y, tip.z + 1.0))
-                                    : glm::dvec3(0, 0, 1);
+      const glm::dvec3 normal = view_normal(kind, tip);
       const glm::dvec3 side = 0.45 * glm::length(back) * glm::normalize(glm::cross(normal, back));
       add_segment(scene.lines, tip, before + side, kArrowColors[a]);
       add_segment(scene.lines, tip, before - side, kArrowColors[a]);
@@ -456,8 +535,26 @@ glm::dvec3 world_position(const Surface& surface, ViewKind view, const Vec3& X) 
       return glm::dvec3(X.x() / d, X.y() / d, 0.0);
     }
     case ViewKind::plane: return glm::dvec3(X.x() / R, X.y() / R, 0.0);
+    case ViewKind::klein: return glm::dvec3(X.x() / X.z(), X.y() / X.z(), 0.0);
+    case ViewKind::halfplane: return glm::dvec3(half_plane_point(surface, X), 0.0);
+    case ViewKind::tractricoid: {
+      const glm::dvec2 h = kTractricoidDilation * half_plane_point(surface, X);
+      const double rho = 1.0 / h.y;
+      const double z = h.y >= 1.0 ? std::acosh(h.y) - std::sqrt(1.0 - rho * rho) : 0.0;
+      return {rho * std::cos(h.x), rho * std::sin(h.x), z};
+    }
   }
   return {};
+}
+
+glm::dvec2 half_plane_point(const Surface& surface, const Vec3& X) {
+  const double R = surface.radius;
+  const double k = (X.z() + X.x()) / (R * R + X.y() * X.y());
+  return {-X.y() * k, R * k};
+}
+
+bool on_view(const Surface& surface, ViewKind view, const Vec3& X) {
+  return view != ViewKind::tractricoid || kTractricoidDilation * half_plane_point(surface, X).y >= 1.0;
 }
 
 std::vector<Vec3> ellipse_points(const Surface& surface, const BodySnapshot& body, double scale, int count) {
@@ -469,6 +566,16 @@ std::vector<Vec3> ellipse_points(const Surface& surface, const BodySnapshot& bod
   }
   return points;
 }
+
+namespace {
+// The snapshot's HUD lines, and on the tractricoid a line when the main body is off the surface.
+std::vector<std::string> hud_lines(const Snapshot& snapshot, ViewKind view) {
+  std::vector<std::string> lines = snapshot.hud_lines;
+  if (!snapshot.bodies.empty() && !on_view(snapshot.surface, view, snapshot.bodies.front().X))
+    lines.push_back("body 1 is beyond the rim: off the part of H2 this surface shows");
+  return lines;
+}
+}  // namespace
 
 FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   FrameScene scene;
@@ -501,13 +608,15 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
         add_polyline(scene.lines, surface, kind, path, rgba(body.trail_color), false);
     }
   if (view.layers & kBody)
-    for (const BodySnapshot& body : snapshot.bodies) add_body(scene, surface, kind, view.scale, body);
+    for (const BodySnapshot& body : snapshot.bodies)
+      if (on_view(surface, kind, body.X)) add_body(scene, surface, kind, view.scale, body);
   if (view.layers & kFrame)
-    for (const BodySnapshot& body : snapshot.bodies) add_frame_arrows(scene, surface, kind, view.scale, body);
+    for (const BodySnapshot& body : snapshot.bodies)
+      if (on_view(surface, kind, body.X)) add_frame_arrows(scene, surface, kind, view.scale, body);
   if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)) && view.width >= kLegendMinWidth)
     for (const BodySnapshot& body : snapshot.bodies)
       scene.legend.push_back({body.label, rgba(body.color), rgba(body.trail_color), body.geodesic});
-  if (view.layers & kHud) scene.hud_lines = snapshot.hud_lines;
+  if (view.layers & kHud) scene.hud_lines = hud_lines(snapshot, kind);
   std::vector<std::string> labels;
   for (const LegendEntry& entry : scene.legend) labels.push_back(entry.label);
   scene.hud = hud_layout(scene.hud_lines, labels, view.width, view.height);
@@ -546,8 +655,8 @@ HudLayout layout_for(const Snapshot& snapshot, const ViewOptions& view) {
   std::vector<std::string> labels;
   if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)) && view.width >= kLegendMinWidth)
     for (const BodySnapshot& body : snapshot.bodies) labels.push_back(body.label);
-  return hud_layout(view.layers & kHud ? snapshot.hud_lines : std::vector<std::string>{}, labels, view.width,
-                    view.height);
+  return hud_layout(view.layers & kHud ? hud_lines(snapshot, view.kind) : std::vector<std::string>{}, labels,
+                    view.width, view.height);
 }
 
 // What a camera must show [world units] and how much each counts: the main body's centre above
@@ -561,16 +670,18 @@ std::vector<Sight> sights(const Snapshot& snapshot, const ViewOptions& view, boo
   const Surface& surface = snapshot.surface;
   std::vector<Sight> out;
   for (const BodySnapshot& body : snapshot.bodies) {
+    if (!on_view(surface, view.kind, body.X)) continue;
     const double weight = &body == &snapshot.bodies.front() ? 1000.0 : 50.0;
     out.push_back({world_position(surface, view.kind, body.X), weight});
     for (const Vec3& P : ellipse_points(surface, body, view.scale, 8))
-      out.push_back({world_position(surface, view.kind, P), 5.0});
+      if (on_view(surface, view.kind, P)) out.push_back({world_position(surface, view.kind, P), 5.0});
   }
   for (const BodySnapshot& body : snapshot.bodies) {
     const std::size_t stride = body.trail.size() / 96 + 1;
     const double weight = 10.0 * static_cast<double>(stride) / static_cast<double>(body.trail.size());
     for (std::size_t i = 0; i < body.trail.size(); i += stride) {
       const Vec3& P = body.trail[i];
+      if (!on_view(surface, view.kind, P)) continue;
       if (recent_only) {  // the trail's last stretch: within 3 radii (intrinsic) of its body
         const double R = surface.radius, c = -dot(surface, P, body.X) / (R * R);
         if (R * std::acosh(std::max(1.0, c)) > 3.0 * R) continue;
@@ -651,22 +762,25 @@ void aim_camera_at_body(ViewOptions& view, const Snapshot& snapshot) {
       view.pitch = std::clamp(std::asin(m.z()), -1.3, 1.3);
       clear_the_boxes(view, points, hud, {1.0, 1.2, 1.45, 1.75});
     }
-  } else if (view.kind == ViewKind::hyperboloid) {
-    // Orbit the centre of the bounding box of the bodies and their recent trails, from across the
-    // bowl (the side away from the axis would see the surface edge-on), at the distance at which
-    // a sphere round all of them fills 85% of the narrower field of view.
+  } else if (view.kind == ViewKind::hyperboloid || view.kind == ViewKind::tractricoid) {
+    // Orbit the centre of the bounding box of the bodies and their recent trails, at the distance
+    // at which a sphere round all of them fills 85% of the narrower field of view: from across
+    // the hyperboloid's bowl (the near side would see the surface edge-on), from the bodies' own
+    // side of the tractricoid (its far side faces away).
     const std::vector<Sight> points = sights(snapshot, view, true);
+    if (points.empty()) return;  // every body beyond the tractricoid's rim: the default camera
     glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
     for (const Sight& p : points) lo = glm::min(lo, p.at), hi = glm::max(hi, p.at);
     const glm::dvec3 centre = 0.5 * (lo + hi);
-    double radius = 1.5;  // at least the vertex's neighbourhood
+    const bool bowl = view.kind == ViewKind::hyperboloid;
+    double radius = bowl ? 1.5 : 0.9;  // at least the vertex's or the rim's neighbourhood
     for (const Sight& p : points) radius = std::max(radius, glm::length(p.at - centre));
     const double aspect = static_cast<double>(view.width) / view.height;
     const double half_fov = std::atan(std::tan(glm::radians(kFovY) / 2) * std::min(1.0, aspect));
     view.target = std::array<double, 3>{centre.x, centre.y, centre.z};
     view.distance = radius / std::sin(0.85 * half_fov);
-    view.pitch = 0.55;
-    if (glm::length(glm::dvec2(centre)) > 1e-9) view.yaw = std::atan2(centre.y, centre.x) + kPi;
+    view.pitch = bowl ? 0.55 : 0.35;
+    if (glm::length(glm::dvec2(centre)) > 1e-9) view.yaw = std::atan2(centre.y, centre.x) + (bowl ? kPi : 0.0);
     clear_the_boxes(view, points, hud, {1.0, 1.25, 1.6});
   } else if (view.kind == ViewKind::plane) {
     // The centre of the bodies' bounding box.
@@ -677,6 +791,18 @@ void aim_camera_at_body(ViewOptions& view, const Snapshot& snapshot) {
     }
     const glm::dvec2 c = 0.5 * (lo + hi);
     view.target = std::array<double, 3>{c.x, c.y, 0.0};
+  } else if (view.kind == ViewKind::halfplane) {
+    // Centred across the bodies and their recent trails, at a height that keeps the highest of
+    // them and the widest spread in the window (which spans y ∈ (−0.08, 2.16)·centre height), and
+    // never below the main body's (which is then drawn as large as at the centre, or smaller).
+    const std::vector<Sight> points = sights(snapshot, view, true);
+    const double main = points.front().at.y;
+    double lo = points.front().at.x, hi = lo, top = main;
+    for (const Sight& p : points) lo = std::min(lo, p.at.x), hi = std::max(hi, p.at.x), top = std::max(top, p.at.y);
+    const double aspect = static_cast<double>(view.width) / view.height;
+    const double height =
+        std::max({main, top / 1.9, (hi - lo) / (2.0 * 0.9 * 1.08 * std::max(1.0, aspect))});
+    view.target = std::array<double, 3>{0.5 * (lo + hi), height, 0.0};
   }
 }
 

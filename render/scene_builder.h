@@ -141,7 +141,25 @@ std::vector<Vec3> ellipse_points(const Surface& surface, const BodySnapshot& bod
 Vec3 exponential_map(const Surface& surface, const Vec3& X, const Vec3& v, double length);
 
 // Where an embedded point lands in the view's world coordinates.
+//   klein:       (X₁, X₂)/X₃, the Beltrami–Klein disk (geodesics are chords);
+//   halfplane:   the upper half-plane (half_plane_point);
+//   tractricoid: the covering map of the horocyclic strip y' = kTractricoidDilation·y ≥ 1 of the
+//                half-plane: θ = x', ρ = R/y', z = R(arcosh y' − √(1 − 1/y'²)), i.e. ρ = R sech u,
+//                z = R(u − tanh u) with y' = cosh u; points with y' < 1 (off the surface, see
+//                on_view) land in the rim's plane at ρ = R/y' and are not drawn.
 glm::dvec3 world_position(const Surface& surface, ViewKind view, const Vec3& X);
+
+// The Poincaré upper half-plane's (x, y) of a point of H² (the Cayley transform of the disk, the
+// centre X = (0, 0, R) at (0, 1)): y = R/(X₃ − X₁), x = −X₂/(X₃ − X₁), computed as
+// (X₃ + X₁)/(R² + X₂²) so that nothing cancels far out.
+glm::dvec2 half_plane_point(const Surface& surface, const Vec3& X);
+
+// The tractricoid shows the strip y ≥ 1/kTractricoidDilation of the half-plane, the centre at
+// u = arcosh 2 above the rim; its θ = kTractricoidDilation·x wraps round every 2π/k in x.
+inline constexpr double kTractricoidDilation = 2.0;
+
+// Whether the view shows this point: false only for points of H² off the tractricoid's strip.
+bool on_view(const Surface& surface, ViewKind view, const Vec3& X);
 
 // Its pixel position (x right, y down) and whether it is in front of the camera.
 std::optional<glm::dvec2> pixel_position(const FrameScene& scene, const ViewOptions& view,

@@ -7,10 +7,20 @@ namespace spinfold::render {
 
 namespace {
 
-constexpr std::array<std::pair<std::string_view, ViewKind>, 4> kViews{{{"sphere", ViewKind::sphere},
-                                                                       {"hyperboloid", ViewKind::hyperboloid},
-                                                                       {"disk", ViewKind::disk},
-                                                                       {"plane", ViewKind::plane}}};
+constexpr std::array<ViewInfo, 7> kViews{{
+    {"sphere", ViewKind::sphere, true, true, false, false, "3-D sphere", "the sphere in space, seen by an orbiting camera"},
+    {"disk", ViewKind::disk, false, true, true, false, "disk (flat map)",
+     "the Poincaré disk (H²) or the stereographic plane (S²): angles true, geodesics circular arcs"},
+    {"hyperboloid", ViewKind::hyperboloid, true, false, true, false, "3-D hyperboloid",
+     "H² as the upper sheet of the hyperboloid x₃² − x₁² − x₂² = R² in Minkowski space"},
+    {"klein", ViewKind::klein, false, false, true, false, "Klein disk (straight geodesics)",
+     "the Beltrami–Klein disk: geodesics are straight chords, angles and shapes are not true"},
+    {"halfplane", ViewKind::halfplane, false, false, true, false, "upper half-plane",
+     "the Poincaré upper half-plane: angles true, geodesics semicircles on the boundary or vertical lines"},
+    {"tractricoid", ViewKind::tractricoid, true, false, true, false, "3-D pseudosphere (tractricoid)",
+     "Beltrami's surface of curvature −1/R² in space: a strip of H² wrapped round its axis, ending at its rim"},
+    {"plane", ViewKind::plane, false, false, false, true, "flat plane", "the Euclidean plane, following the body"},
+}};
 constexpr std::array<std::pair<std::string_view, unsigned>, 6> kLayers{{{"surface", kSurface},
                                                                         {"grid", kGrid},
                                                                         {"body", kBody},
@@ -29,31 +39,46 @@ ViewKind default_view(SurfaceKind surface) {
   return ViewKind::sphere;
 }
 
-std::optional<std::string> view_unsupported_reason(ViewKind view, SurfaceKind surface) {
-  const bool ok = (view == ViewKind::sphere && surface == SurfaceKind::sphere) ||
-                  (view == ViewKind::hyperboloid && surface == SurfaceKind::pseudosphere) ||
-                  (view == ViewKind::disk && surface != SurfaceKind::plane) ||
-                  (view == ViewKind::plane && surface == SurfaceKind::plane);
-  if (ok) return std::nullopt;
+std::span<const ViewInfo> views() {
+  return kViews;
+}
+
+const ViewInfo& view_info(ViewKind view) {
+  for (const ViewInfo& v : kViews)
+    if (v.kind == view) return v;
+  return kViews.front();
+}
+
+namespace {
+bool shows(const ViewInfo& v, SurfaceKind surface) {
   switch (surface) {
-    case SurfaceKind::sphere: return "the sphere is shown in the sphere or disk (stereographic) view";
-    case SurfaceKind::pseudosphere:
-      return "the pseudosphere is shown in the hyperboloid or disk (Poincare) view";
-    case SurfaceKind::plane: return "the plane is shown in the plane view";
+    case SurfaceKind::sphere: return v.sphere;
+    case SurfaceKind::pseudosphere: return v.pseudosphere;
+    case SurfaceKind::plane: return v.plane;
   }
-  return "unsupported view";
+  return false;
+}
+}  // namespace
+
+std::optional<std::string> view_unsupported_reason(ViewKind view, SurfaceKind surface) {
+  if (shows(view_info(view), surface)) return std::nullopt;
+  std::string names;
+  for (const ViewInfo& v : kViews)
+    if (shows(v, surface)) names += (names.empty() ? "" : ", ") + std::string(v.name);
+  const char* what = surface == SurfaceKind::sphere         ? "the sphere"
+                     : surface == SurfaceKind::pseudosphere ? "the pseudosphere"
+                                                            : "the plane";
+  return std::string(what) + " is shown in these views: " + names;
 }
 
 std::optional<ViewKind> parse_view(std::string_view name) {
-  for (const auto& [n, v] : kViews)
-    if (n == name) return v;
+  for (const ViewInfo& v : kViews)
+    if (v.name == name) return v.kind;
   return std::nullopt;
 }
 
 std::string_view view_name(ViewKind view) {
-  for (const auto& [n, v] : kViews)
-    if (v == view) return n;
-  return "sphere";
+  return view_info(view).name;
 }
 
 std::optional<unsigned> parse_layers(std::string_view list, std::string* unknown) {

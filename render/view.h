@@ -3,6 +3,7 @@
 
 #include <array>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -15,7 +16,23 @@ enum class ViewKind {
   hyperboloid,  // the upper sheet of the hyperboloid model of H², orbiting camera
   disk,         // Poincaré disk (H²) or stereographic plane (S²), 2-D
   plane,        // the flat plane, 2-D
+  klein,        // Beltrami–Klein disk (H²): geodesics are straight chords, 2-D
+  halfplane,    // Poincaré upper half-plane (H²), 2-D, following the body
+  tractricoid,  // Beltrami's pseudosphere in ℝ³ (a horocyclic strip of H² wrapped round its axis)
 };
+
+// The one table of views: the name the API, the CLI and the UI use, the surfaces each shows, and
+// how the UI titles and explains it.
+struct ViewInfo {
+  std::string_view name;
+  ViewKind kind;
+  bool three_d;                       // an orbiting camera (else orthographic, 2-D)
+  bool sphere, pseudosphere, plane;   // the surfaces it can show
+  std::string_view title;             // a short label for a menu
+  std::string_view description;       // one line for a reader
+};
+std::span<const ViewInfo> views();
+const ViewInfo& view_info(ViewKind view);
 
 // Layers, each on or off per frame; an unselected layer costs nothing.
 enum Layer : unsigned {

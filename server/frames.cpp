@@ -16,9 +16,7 @@ namespace {
 
 std::vector<std::string> view_names() {
   std::vector<std::string> names;
-  for (const auto kind : {render::ViewKind::sphere, render::ViewKind::hyperboloid, render::ViewKind::disk,
-                          render::ViewKind::plane})
-    names.emplace_back(render::view_name(kind));
+  for (const render::ViewInfo& v : render::views()) names.emplace_back(v.name);
   return names;
 }
 
@@ -63,8 +61,8 @@ std::vector<QueryParam> frame_params(const Limits& limits) {
           {.name = "view",
            .type = ParamType::enumeration,
            .values = view_names(),
-           .description = "the picture: the 3-D sphere or hyperboloid, the Poincaré disk (or "
-                          "stereographic plane) or the flat plane; default: the surface's own"},
+           .description = "the picture (GET /api/v1/views lists each with the surfaces it shows); "
+                          "default: the surface's own"},
           {.name = "layers",
            .type = ParamType::list,
            .values = {"surface", "grid", "body", "frame", "trail", "hud"},

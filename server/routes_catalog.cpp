@@ -3,6 +3,7 @@
 #include "codec/presets.h"
 #include "codec/scene_json.h"
 #include "codec/scene_schema.h"
+#include "render/view.h"
 #include "engine/integrator.h"
 #include "server/context.h"
 #include "server/problem.h"
@@ -51,6 +52,22 @@ void get_integrators(ServerContext&, const Call&, httplib::Response& res) {
   send_json(res, list);
 }
 
+void get_views(ServerContext&, const Call&, httplib::Response& res) {
+  ordered_json list = ordered_json::array();
+  for (const render::ViewInfo& v : render::views()) {
+    ordered_json surfaces = ordered_json::array();
+    if (v.sphere) surfaces.push_back("sphere");
+    if (v.pseudosphere) surfaces.push_back("pseudosphere");
+    if (v.plane) surfaces.push_back("plane");
+    list.push_back({{"name", std::string(v.name)},
+                    {"title", std::string(v.title)},
+                    {"surfaces", surfaces},
+                    {"three_d", v.three_d},
+                    {"description", std::string(v.description)}});
+  }
+  send_json(res, list);
+}
+
 void get_schema(ServerContext&, const Call&, httplib::Response& res) {
   send_json(res, scene_schema());
 }
@@ -87,6 +104,11 @@ std::vector<Route> catalog_routes(const Limits&) {
        .handler = get_integrators,
        .summary = "The integrator catalog",
        .responses = {{200, "name, order, symplectic, adaptive, exact, summary"}}},
+      {.method = "GET",
+       .path = "/api/v1/views",
+       .handler = get_views,
+       .summary = "The views a frame can be drawn in, the surfaces each shows, in the UI's order",
+       .responses = {{200, "name, title, surfaces, three_d, description"}}},
       {.method = "GET",
        .path = "/api/v1/schema",
        .handler = get_schema,

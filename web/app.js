@@ -863,11 +863,15 @@ async function clearComparisons() {
 
 // ---- Views and layers.
 function buildViewControls(force = false) {
-  const kinds = { sphere: ["sphere", "disk"], pseudosphere: ["disk", "hyperboloid"], plane: ["plane"] }[ui.current.surface.kind];
-  const names = { sphere: "3-D sphere", disk: "disk (flat map)", hyperboloid: "3-D hyperboloid", plane: "flat plane" };
+  const shown = ui.views.filter((v) => v.surfaces.includes(ui.current.surface.kind));  // the server's table, in its order
+  const kinds = shown.map((v) => v.name);
   const select = $("view");
   select.textContent = "";
-  kinds.forEach((k) => select.add(new Option(names[k], k)));
+  for (const v of shown) {
+    const option = new Option(v.title, v.name);
+    option.title = v.description;
+    select.add(option);
+  }
   if (!kinds.includes(ui.view.kind)) ui.view.kind = kinds[0];
   select.value = ui.view.kind;
   const layers = $("layers");
@@ -887,7 +891,7 @@ function buildViewControls(force = false) {
     }
 }
 
-const is3d = () => ui.view.kind === "sphere" || ui.view.kind === "hyperboloid";
+const is3d = () => Boolean(ui.views.find((v) => v.name === ui.view.kind)?.three_d);
 function orbit(dYaw, dPitch) {
   if (!is3d()) { status("Orbiting works in the 3-D views; pick one under View."); return; }
   ui.view.yaw = (ui.view.yaw ?? 0.7) + dYaw;
@@ -1107,7 +1111,8 @@ async function main() {
   setTheme(dark);
   ui.live = new LiveView($("frame"));
   ui.live.onGone = () => checkSession();
-  [ui.schema, ui.presets] = await withRetry("Loading", () => Promise.all([request("GET", "/schema"), request("GET", "/scenes")]));
+  [ui.schema, ui.presets, ui.views] = await withRetry("Loading", () =>
+    Promise.all([request("GET", "/schema"), request("GET", "/scenes"), request("GET", "/views")]));
   wire();
   makePlots();
   fitFrameToWindow();

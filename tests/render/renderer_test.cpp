@@ -482,7 +482,11 @@ INSTANTIATE_TEST_SUITE_P(
                       // A thumbnail (1 px lines) and a projector-sized frame (3.4 px lines).
                       Golden{"sphere_thumbnail", "spin_vs_geodesic_sphere", ViewKind::sphere, 2.0, 160, 120,
                              kAllLayers & ~unsigned{kHud}},
-                      Golden{"sphere_1080p", "spin_vs_geodesic_sphere", ViewKind::sphere, 2.0, 1920, 1080}),
+                      Golden{"sphere_1080p", "spin_vs_geodesic_sphere", ViewKind::sphere, 2.0, 1920, 1080},
+                      // The other pictures of H².
+                      Golden{"klein", "spin_vs_geodesic_pseudosphere", ViewKind::klein, 6.0},
+                      Golden{"halfplane", "spin_vs_geodesic_pseudosphere", ViewKind::halfplane, 6.0},
+                      Golden{"tractricoid", "spin_vs_geodesic_pseudosphere", ViewKind::tractricoid, 6.0}),
     [](const auto& param) { return std::string(param.param.name); });
 
 }  // namespace

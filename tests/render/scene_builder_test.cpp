@@ -144,6 +144,14 @@ TEST(SceneBuilder, ViewsMatchSurfaces) {
   EXPECT_FALSE(view_unsupported_reason(ViewKind::disk, SurfaceKind::pseudosphere));
   EXPECT_TRUE(view_unsupported_reason(ViewKind::hyperboloid, SurfaceKind::sphere));
   EXPECT_TRUE(view_unsupported_reason(ViewKind::sphere, SurfaceKind::plane));
+  for (const ViewKind h2 : {ViewKind::klein, ViewKind::halfplane, ViewKind::tractricoid}) {
+    EXPECT_FALSE(view_unsupported_reason(h2, SurfaceKind::pseudosphere));
+    EXPECT_TRUE(view_unsupported_reason(h2, SurfaceKind::sphere));
+    EXPECT_TRUE(view_unsupported_reason(h2, SurfaceKind::plane));
+    EXPECT_EQ(parse_view(view_name(h2)), h2);
+  }
+  EXPECT_EQ(*view_unsupported_reason(ViewKind::sphere, SurfaceKind::pseudosphere),
+            "the pseudosphere is shown in these views: disk, hyperboloid, klein, halfplane, tractricoid");
   std::string unknown;
   EXPECT_EQ(parse_layers("body,trail", &unknown), kBody | kTrail);
   EXPECT_FALSE(parse_layers("body,sparkles", &unknown));
@@ -270,6 +278,175 @@ TEST(SceneBuilder, ThePlanesGridIsCentredOnTheBodyFillsTheFrameAndStaysPutInTheW
     EXPECT_LE(lo.y, 0.0);
     EXPECT_GE(hi.x, w);
     EXPECT_GE(hi.y, h);
+  }
+}
+
+// ---- The pictures of H²: Klein, the upper half-plane, the tractricoid.
+
+// Points of the H² geodesic through the chart point (r, φ) in the direction of E₁ cos a + E₂ sin a,
+// at arc lengths from −reach to reach [radii].
+std::vector<Vec3> h2_geodesic(const Surface& h2, double r, double phi, double a, double reach, int count) {
+  const ChartPoint p = chart_point(h2, r, phi);
+  const Vec3 u = std::cos(a) * p.E1 + std::sin(a) * p.E2;  // a unit tangent
+  std::vector<Vec3> points;
+  for (int i = 0; i <= count; ++i) {
+    const double s = h2.radius * reach * (2.0 * i / count - 1.0);
+    points.push_back(exponential_map(h2, p.X, s * u, std::abs(s)));
+  }
+  return points;
+}
+
+// The H² point at half-plane coordinates (x, y): the inverse of half_plane_point.
+Vec3 from_half_plane(const Surface& h2, double x, double y) {
+  const double R = h2.radius, minus = R / y, plus = R * (x * x + y * y) / y;  // X₃ − X₁, X₃ + X₁
+  return {0.5 * (plus - minus), -x * R / y, 0.5 * (plus + minus)};
+}
+
+TEST(HyperbolicPictures, KleinGeodesicsAreStraightChords) {
+  const Surface h2{SurfaceKind::pseudosphere, 1.5};
+  for (const auto& [r, phi, a] : {std::tuple{0.0, 0.0, 0.3}, {0.7, 0.3, 1.1}, {2.5, -2.0, 2.9}, {4.0, 1.0, -0.4}}) {
+    const std::vector<Vec3> points = h2_geodesic(h2, r, phi, a, 5.0, 200);
+    const glm::dvec2 p0(world_position(h2, ViewKind::klein, points.front()));
+    const glm::dvec2 chord = glm::dvec2(world_position(h2, ViewKind::klein, points.back())) - p0;
+    for (const Vec3& P : points) {
+      const glm::dvec2 q = glm::dvec2(world_position(h2, ViewKind::klein, P)) - p0;
+      EXPECT_LT(std::abs(chord.x * q.y - chord.y * q.x) / glm::length(chord), 1e-12) << r << " " << phi << " " << a;
+      EXPECT_LT(glm::length(glm::dvec2(world_position(h2, ViewKind::klein, P))), 1.0);
+    }
+  }
+  // Not a map of the disk: the Poincaré picture of the same geodesic bends.
+  const std::vector<Vec3> points = h2_geodesic(h2, 0.7, 0.3, 1.1, 3.0, 2);
+  const glm::dvec2 a(world_position(h2, ViewKind::disk, points[0])), b(world_position(h2, ViewKind::disk, points[1])),
+      c(world_position(h2, ViewKind::disk, points[2]));
+  EXPECT_GT(std::abs((c - a).x * (b - a).y - (c - a).y * (b - a).x), 1e-3);
+}
+
+TEST(HyperbolicPictures, HalfPlaneGeodesicsAreSemicirclesOnTheBoundaryOrVerticalLines) {
+  const Surface h2{SurfaceKind::pseudosphere, 0.8};
+  EXPECT_NEAR(half_plane_point(h2, chart_point(h2, 0.0, 0.0).X).x, 0.0, 1e-15);
+  EXPECT_NEAR(half_plane_point(h2, chart_point(h2, 0.0, 0.0).X).y, 1.0, 1e-15);
+  for (const auto& [r, phi, a] : {std::tuple{0.7, 0.3, 1.1}, {2.5, -2.0, 2.9}, {1.0, 2.0, 0.2}, {3.0, 0.5, 1.9}}) {
+    std::vector<glm::dvec2> q;
+    for (const Vec3& P : h2_geodesic(h2, r, phi, a, 4.0, 100)) q.push_back(half_plane_point(h2, P));
+    // The centre on y = 0 equidistant from the two ends; every point at that distance.
+    const glm::dvec2 p = q.front(), e = q.back();
+    const double c = (glm::dot(e, e) - glm::dot(p, p)) / (2.0 * (e.x - p.x));
+    const double radius = glm::length(p - glm::dvec2(c, 0.0));
+    for (const glm::dvec2& x : q) {
+      EXPECT_GT(x.y, 0.0);
+      EXPECT_NEAR(glm::length(x - glm::dvec2(c, 0.0)), radius, 1e-11 * std::max(1.0, radius)) << r << " " << phi;
+    }
+  }
+  // The geodesic through the centre along X₁ is the vertical line x = 0, from 0 up to infinity.
+  const Surface unit{SurfaceKind::pseudosphere, 1.0};
+  double last = 0.0;
+  for (const Vec3& P : h2_geodesic(unit, 0.0, 0.0, 0.0, 6.0, 60)) {
+    const glm::dvec2 x = half_plane_point(unit, P);
+    EXPECT_NEAR(x.x, 0.0, 1e-12);
+    EXPECT_GT(x.y, last);
+    last = x.y;
+  }
+  // Conformal: the picture of a small circle round a point is a circle (its widths agree).
+  const Vec3 X = chart_point(h2, 1.7, 0.9).X;
+  const ChartPoint p = chart_point(h2, 1.7, 0.9);
+  std::vector<double> widths;
+  for (const double a : {0.0, 0.5, 1.0, 1.5}) {
+    const Vec3 u = std::cos(a) * p.E1 + std::sin(a) * p.E2;
+    widths.push_back(glm::length(half_plane_point(h2, exponential_map(h2, X, 1e-4 * u, 1e-4)) -
+                                 half_plane_point(h2, exponential_map(h2, X, -1e-4 * u, 1e-4))));
+  }
+  for (const double w : widths) EXPECT_NEAR(w / widths[0], 1.0, 1e-6);
+}
+
+TEST(HyperbolicPictures, TheTractricoidIsTheSurfaceAndItsDistancesAreThoseOfH2) {
+  const Surface h2{SurfaceKind::pseudosphere, 1.3};
+  // On the surface ρ = sech u, z = u − tanh u (world units of R) for points of the strip.
+  for (double x = -3.0; x <= 3.0; x += 0.37)
+    for (double y = 0.55; y < 40.0; y *= 1.7) {
+      const Vec3 P = from_half_plane(h2, x, y);
+      const glm::dvec2 back = half_plane_point(h2, P);
+      EXPECT_NEAR(back.x, x, 1e-12 * std::max(1.0, y));
+      EXPECT_NEAR(back.y, y, 1e-12 * y);
+      ASSERT_TRUE(on_view(h2, ViewKind::tractricoid, P));
+      const glm::dvec3 w = world_position(h2, ViewKind::tractricoid, P);
+      const double rho = glm::length(glm::dvec2(w)), u = std::acosh(1.0 / rho);
+      EXPECT_NEAR(w.z, u - std::tanh(u), 1e-12);
+      EXPECT_NEAR(std::atan2(w.y, w.x), std::remainder(kTractricoidDilation * x, 2 * std::numbers::pi), 1e-12);
+    }
+  // Lengths along the surface are H² lengths: a geodesic arc of 1.5 radii inside the strip,
+  // measured as a fine polygon in space (the chord error falls as 1/n²).
+  for (const auto& [r, phi, a] : {std::tuple{0.3, 0.0, 0.4}, {0.8, 1.0, 2.0}, {0.5, -0.5, -1.2}}) {
+    const std::vector<Vec3> points = h2_geodesic(h2, r, phi, a, 0.75, 4000);
+    double length = 0.0;
+    for (std::size_t i = 1; i < points.size(); ++i) {
+      ASSERT_TRUE(on_view(h2, ViewKind::tractricoid, points[i]));
+      length += h2.radius * glm::length(world_position(h2, ViewKind::tractricoid, points[i]) -
+                                        world_position(h2, ViewKind::tractricoid, points[i - 1]));
+    }
+    EXPECT_NEAR(length / (1.5 * h2.radius), 1.0, 1e-6) << r << " " << phi << " " << a;
+  }
+}
+
+TEST(HyperbolicPictures, TheCoveringMapWrapsTheStripRoundTheSeamAndEndsAtTheRim) {
+  const Surface h2{SurfaceKind::pseudosphere, 2.0};
+  const double period = 2.0 * std::numbers::pi / kTractricoidDilation;  // in x
+  for (const double x : {-1.0, 0.2, 1.5})
+    for (const double y : {0.6, 2.0, 9.0}) {
+      const glm::dvec3 a = world_position(h2, ViewKind::tractricoid, from_half_plane(h2, x, y));
+      const glm::dvec3 b = world_position(h2, ViewKind::tractricoid, from_half_plane(h2, x + period, y));
+      EXPECT_LT(glm::length(a - b), 1e-12) << x << " " << y;  // one point of the surface, two of H²
+      const glm::dvec3 c = world_position(h2, ViewKind::tractricoid, from_half_plane(h2, x + 0.5 * period, y));
+      EXPECT_GT(glm::length(a - c), 0.1);  // half a turn away: another point
+    }
+  // Across the seam (x = ±period/2) the picture is continuous.
+  const glm::dvec3 left = world_position(h2, ViewKind::tractricoid, from_half_plane(h2, 0.5 * period - 1e-9, 1.0));
+  const glm::dvec3 right = world_position(h2, ViewKind::tractricoid, from_half_plane(h2, 0.5 * period + 1e-9, 1.0));
+  EXPECT_LT(glm::length(left - right), 1e-8);
+  // The rim: y = 1/k is u = 0 (ρ = R, z = 0); below it the point is off the surface.
+  const Vec3 rim = from_half_plane(h2, 0.3, 1.0 / kTractricoidDilation);
+  EXPECT_NEAR(glm::length(glm::dvec2(world_position(h2, ViewKind::tractricoid, rim))), 1.0, 1e-12);
+  EXPECT_FALSE(on_view(h2, ViewKind::tractricoid, from_half_plane(h2, 0.3, 0.99 / kTractricoidDilation)));
+  EXPECT_TRUE(on_view(h2, ViewKind::disk, from_half_plane(h2, 0.3, 0.01)));
+}
+
+TEST(HyperbolicPictures, ABodyBeyondTheRimIsNotDrawnAndTheHudSaysSo) {
+  Snapshot s = body_at(SurfaceKind::pseudosphere, 1.0, 0.0, 0.0, 1.0, 1.0);
+  ViewOptions view;
+  view.kind = ViewKind::tractricoid;
+  const FrameScene on = build_scene(s, view);
+  EXPECT_FALSE(on.fills.empty());
+  // Far out along −X₁ the half-plane's y falls below 1/k: off the strip.
+  s = body_at(SurfaceKind::pseudosphere, 1.0, 2.0, std::numbers::pi, 1.0, 1.0);
+  s.hud_lines = {"t = 0"};
+  ASSERT_FALSE(on_view(s.surface, ViewKind::tractricoid, s.bodies[0].X));
+  aim_camera_at_body(view, s);  // no sight of it: the default camera
+  const FrameScene off = build_scene(s, view);
+  EXPECT_TRUE(off.fills.empty());
+  ASSERT_EQ(off.hud_lines.size(), 2u);
+  EXPECT_NE(off.hud_lines[1].find("beyond the rim"), std::string::npos);
+  view.kind = ViewKind::disk;
+  EXPECT_EQ(build_scene(s, view).hud_lines.size(), 1u);
+}
+
+TEST(HyperbolicPictures, TheHalfPlaneFollowsTheBodyAtEveryHeight) {
+  for (const auto& [r, phi] : {std::pair{0.0, 0.0}, {3.0, 0.0}, {3.0, std::numbers::pi}, {5.0, 2.0}, {6.0, -1.0}}) {
+    const Snapshot s = body_at(SurfaceKind::pseudosphere, 1.0, r, phi, 1.0, 1.0);
+    ViewOptions view;
+    view.kind = ViewKind::halfplane;
+    aim_camera_at_body(view, s);
+    const FrameScene scene = build_scene(s, view);
+    for (const Vec3& P : ellipse_points(s.surface, s.bodies[0], view.scale, 16)) {
+      const std::optional<glm::dvec2> p = pixel_position(scene, view, world_position(s.surface, view.kind, P));
+      ASSERT_TRUE(p);
+      EXPECT_TRUE(p->x > 0.1 * view.width && p->x < 0.9 * view.width && p->y > 0.1 * view.height &&
+                  p->y < 0.9 * view.height)
+          << r << " " << phi << ": " << p->x << ", " << p->y;
+    }
+    // The boundary y = 0 stays in the picture, just above its lower edge.
+    const std::optional<glm::dvec2> ground = pixel_position(scene, view, {(*view.target)[0], 0.0, 0.0});
+    ASSERT_TRUE(ground);
+    EXPECT_GT(ground->y, 0.9 * view.height);
+    EXPECT_LT(ground->y, view.height);
   }
 }
 

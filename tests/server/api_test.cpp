@@ -119,6 +119,32 @@ TEST_F(Api, EveryOpenApiOperationIsRouted) {
   EXPECT_EQ(json::parse(schema->body)["title"], "Spinfold scene");
 }
 
+// The views the UI offers come from the server's one table; each H² view draws a pseudosphere.
+TEST_F(Api, ViewsListTheSurfacesEachShowsAndEachH2ViewDraws) {
+  auto c = client();
+  auto res = c.Get("/api/v1/views");
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200);
+  std::vector<std::string> h2;
+  for (const auto& v : json::parse(res->body)) {
+    EXPECT_FALSE(v["title"].get<std::string>().empty());
+    for (const auto& surface : v["surfaces"])
+      if (surface == "pseudosphere") h2.push_back(v["name"]);
+  }
+  EXPECT_EQ(h2, (std::vector<std::string>{"disk", "hyperboloid", "klein", "halfplane", "tractricoid"}));
+  const std::string id = create(R"({"preset": "spinning_rigid_pseudosphere"})");
+  std::set<std::string> bodies;
+  for (const std::string& view : h2) {
+    auto frame = c.Get("/api/v1/sessions/" + id + "/frame.png?width=160&height=120&view=" + view);
+    ASSERT_TRUE(frame);
+    EXPECT_EQ(frame->status, 200) << view << ": " << frame->body;
+    EXPECT_EQ(frame->get_header_value("Content-Type"), "image/png");
+    bodies.insert(frame->body);
+  }
+  EXPECT_EQ(bodies.size(), h2.size());  // five different pictures
+  remove(id);
+}
+
 TEST_F(Api, SessionLifecycle) {
   auto c = client();
   auto created = c.Post("/api/v1/sessions", R"({"preset": "separable_radial_abc"})", "application/json");
@@ -606,7 +632,9 @@ TEST_F(Api, QueryValuesOutOfRangeOrOfTheWrongTypeNameTheValue) {
       {frame + "width=5000", "width: must be a whole number from 16 to 4096 [pixels] (got 5000)"},
       {frame + "height=2.5", "height: must be a whole number from 16 to 4096 [pixels] (got 2.5)"},
       {frame + "yaw=nan", "yaw: must be a number from -100 to 100 [rad] (got nan)"},
-      {frame + "view=cube", "view: must be sphere, hyperboloid, disk or plane (got cube)"},
+      {frame + "view=cube",
+       "view: must be sphere, disk, hyperboloid, klein, halfplane, tractricoid or plane (got cube)"},
+      {frame + "view=klein", "view: the sphere is shown in these views: sphere, disk (got klein)"},
       {frame + "layers=body,glitter",
        "layers: 'glitter' is not one of surface, grid, body, frame, trail, hud (got body,glitter)"},
       {"/api/v1/sessions/" + id + "/events?rate=1000",

@@ -362,6 +362,19 @@ try {
     assert.equal(await trailPixels(), 0);
   });
 
+  await test("a pseudosphere is offered its five pictures, from the server's table, and each is drawn", async () => {
+    await page.click('.preset[data-name="spinning_rigid_pseudosphere"]');
+    await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "spinning_rigid_pseudosphere");
+    const offered = await page.$$eval("#view option", (options) => options.map((o) => o.value));
+    assert.deepEqual(offered, ["disk", "hyperboloid", "klein", "halfplane", "tractricoid"]);
+    for (const view of ["klein", "halfplane", "tractricoid", "disk"]) {
+      const before = Number(await page.$eval("#frame", (c) => c.dataset.painted));
+      await page.selectOption("#view", view);
+      await page.waitForFunction((n) => Number(document.querySelector("#frame").dataset.painted) > n, before, { timeout: 10000 });
+      assert.match(await page.$eval("#export-png", (a) => a.href), new RegExp(`view=${view}`));
+    }
+  });
+
   await test("PNG export at a chosen size", async () => {
     await page.fill("#png-width", "1000");
     await page.fill("#png-height", "600");
