@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# The small picture of each view in the README (docs/views/), drawn by `spinfold render`.
+# Usage: scripts/view_pictures.sh [BUILD_DIR]   (default: build)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+spinfold="${1:-build}/spinfold"
+out=docs/views
+mkdir -p "$out"
+render() {  # name preset view time
+  "$spinfold" render --scene "$2" --view "$3" --t "$4" --width 320 --height 240 \
+    --layers surface,grid,body,frame,trail --out "$out/$1.png"
+}
+render sphere spin_vs_geodesic_sphere sphere 2
+render stereographic spin_vs_geodesic_sphere disk 2
+render disk spin_vs_geodesic_pseudosphere disk 6
+render hyperboloid spin_vs_geodesic_pseudosphere hyperboloid 6
+render klein spin_vs_geodesic_pseudosphere klein 6
+render halfplane spin_vs_geodesic_pseudosphere halfplane 6
+render tractricoid spin_vs_geodesic_pseudosphere tractricoid 6
+render plane spinning_rigid_plane plane 6
+echo "view_pictures: wrote $(ls "$out" | wc -l) pictures to $out"
