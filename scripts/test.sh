@@ -24,8 +24,19 @@ ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions="$PWD/tests/lsan.supp" \
 cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSPINFOLD_WERROR=ON \
   -DSPINFOLD_TSAN=ON > /dev/null
 cmake --build build-tsan -j "$jobs" --target server_tests
-TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$PWD/tests/tsan.supp" \
-  build-tsan/tests/server_tests
+# Two shards side by side (one per core), then the timing tests alone, as ctest runs them.
+export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$PWD/tests/tsan.supp"
+GTEST_TOTAL_SHARDS=2 GTEST_SHARD_INDEX=0 build-tsan/tests/server_tests --gtest_filter=-HardeningIdle.* \
+  > build-tsan/server_tests_0.log 2>&1 & shard0=$!
+GTEST_TOTAL_SHARDS=2 GTEST_SHARD_INDEX=1 build-tsan/tests/server_tests --gtest_filter=-HardeningIdle.* \
+  > build-tsan/server_tests_1.log 2>&1 & shard1=$!
+tsan_failed=0
+wait "$shard0" || tsan_failed=1
+wait "$shard1" || tsan_failed=1
+tail -n 3 build-tsan/server_tests_0.log build-tsan/server_tests_1.log
+if ((tsan_failed)); then cat build-tsan/server_tests_0.log build-tsan/server_tests_1.log; exit 1; fi
+build-tsan/tests/server_tests --gtest_filter=HardeningIdle.*
+unset TSAN_OPTIONS
 CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Release -DSPINFOLD_WERROR=ON \
   -DSPINFOLD_FUZZ=ON > /dev/null
 cmake --build build-fuzz -j "$jobs"
