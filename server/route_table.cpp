@@ -225,7 +225,7 @@ bool Call::has_body() const {
 std::vector<Route> route_table(const Limits& limits) {
   std::vector<Route> routes;
   for (auto part : {catalog_routes(limits), session_routes(limits), frame_routes(limits),
-                    event_routes(limits), live_routes(limits)})
+                    event_routes(limits), live_routes(limits), recording_routes(limits)})
     for (Route& r : part) routes.push_back(std::move(r));
   return routes;
 }
