@@ -138,12 +138,12 @@ bool Recordings::cancel_or_delete(const std::string& id) {
       throw bad(404, "Unknown recording", "id", id, "no recording with this id (it may have expired)");
     entry = it->second;
     if (entry->active()) {
+      // Cancelled now: a queued job never starts, a running one stops at its next frame and
+      // removes its file (whatever it was about to become).
       entry->cancel = true;
-      if (entry->state.status == RecordingStatus::queued) {  // never started: cancelled now
-        std::erase(queue_, entry);
-        entry->state.status = RecordingStatus::cancelled;
-        entry->finished = std::chrono::steady_clock::now();
-      }
+      std::erase(queue_, entry);
+      entry->state.status = RecordingStatus::cancelled;
+      entry->finished = std::chrono::steady_clock::now();
       return true;
     }
     entries_.erase(it);
@@ -222,15 +222,16 @@ void Recordings::run(Entry& entry) {
     status = entry.cancel ? RecordingStatus::cancelled : RecordingStatus::failed;
     reason = e.what();
   }
+  if (entry.cancel) status = RecordingStatus::cancelled;  // a cancel is final, even one at the end
   std::error_code error;
   const auto size = status == RecordingStatus::done ? std::filesystem::file_size(entry.path, error) : 0;
   if (status != RecordingStatus::done) std::filesystem::remove(entry.path, error);
   const std::lock_guard lock(mutex_);
   entry.state.status = status;
-  entry.state.reason = reason;
+  entry.state.reason = status == RecordingStatus::failed ? reason : "";
   entry.state.bytes = status == RecordingStatus::done ? size : 0;
   if (status == RecordingStatus::done) entry.state.progress = 1.0;
-  entry.finished = std::chrono::steady_clock::now();
+  if (status != RecordingStatus::cancelled) entry.finished = std::chrono::steady_clock::now();
 }
 
 }  // namespace spinfold::server

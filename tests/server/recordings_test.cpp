@@ -180,14 +180,21 @@ TEST_F(Recording, CancelStopsItAndTheFileIsNeverThere) {
   auto res = post(id, {{"t_end", 4.0}, {"fps", 25}, {"width", 128}, {"height", 96}, {"format", "webm"}});
   ASSERT_EQ(res->status, 202) << res->body;
   const std::string url = json::parse(res->body)["url"];
+  for (int i = 0; i < 2000 && json::parse(client().Get(url)->body)["status"] == "queued"; ++i)
+    std::this_thread::sleep_for(5ms);
+  EXPECT_EQ(json::parse(client().Get(url)->body)["status"], "running");  // 100 frames: it runs a while
   auto cancelled = client().Delete(url);
   ASSERT_EQ(cancelled->status, 200) << cancelled->body;
   EXPECT_EQ(json::parse(cancelled->body)["status"], "cancelled");
-  EXPECT_EQ(follow(url).back().first, "cancelled");  // a running one stops at its next frame
+  EXPECT_EQ(follow(url).back().first, "cancelled");
   auto file = client().Get(url + "/file");
   EXPECT_EQ(file->status, 409);
   EXPECT_EQ(field(problem(file)), "status");
   EXPECT_EQ(client().Delete(url)->status, 204);
+  // The recording thread moved on: the next recording is done.
+  auto next = post(id, {{"t_end", 0.2}, {"fps", 10}, {"width", 64}, {"height", 48}, {"format", "webm"}});
+  ASSERT_EQ(next->status, 202) << next->body;
+  EXPECT_EQ(follow(json::parse(next->body)["url"]).back().first, "done");
 }
 
 TEST_F(Recording, AFailureSaysWhy) {
