@@ -157,7 +157,7 @@ void Recordings::prune_locked() {
   const auto now = std::chrono::steady_clock::now();
   for (auto it = entries_.begin(); it != entries_.end();) {
     const Entry& e = *it->second;
-    if (!e.active() && now - e.finished > limits_.recording_max_age) {
+    if (!e.active() && now - e.finished >= limits_.recording_max_age) {
       std::error_code ignored;
       std::filesystem::remove(e.path, ignored);
       it = entries_.erase(it);

@@ -11,6 +11,7 @@
 
 #include "codec/presets.h"
 #include "codec/scene_json.h"
+#include "server/problem.h"
 #include "server/render_pool.h"
 #include "server/route_table.h"
 
@@ -67,6 +68,47 @@ TEST(RenderPool, LiveFramesGoBeforeBackgroundOnes) {
     for (auto& f : frames) EXPECT_EQ(f.get().rgba.size(), 32u * 24u * 4u);
     EXPECT_EQ(started, (std::vector<std::string>{"hold", "live", "recording"})) << threads << " threads";
   }
+}
+
+// The disk allowance and the age limit, on the jobs alone (no HTTP).
+TEST(Recordings, PassingTheDiskAllowanceFailsWithTheReasonAndOldOnesAreDeleted) {
+  RenderPool pool(1);
+  RecordingJob job{.client = "test", .clip = {0.0, 1.0, 10.0, 1.0}, .format = record::Format::png_zip};
+  job.frames.scene = *parse_scene_text(find_preset("spin_vs_geodesic_sphere")->json).scene;
+  job.frames.view.width = 64;
+  job.frames.view.height = 48;
+  const auto finished = [](Recordings& recordings, const std::string& id) {
+    for (int i = 0; i < 4000; ++i) {
+      const RecordingState state = recordings.state(id);
+      if (state.status != RecordingStatus::queued && state.status != RecordingStatus::running) return state;
+      std::this_thread::sleep_for(5ms);
+    }
+    return recordings.state(id);
+  };
+  Limits limits;
+  limits.max_recording_disk_bytes = 2000;  // less than two 64×48 PNGs
+  {
+    Recordings recordings(limits, pool);
+    const RecordingState state = finished(recordings, recordings.start(job));
+    EXPECT_EQ(state.status, RecordingStatus::failed);
+    EXPECT_NE(state.reason.find("limits.max_recording_disk_bytes"), std::string::npos) << state.reason;
+  }
+  limits = Limits{};
+  limits.recording_max_age = std::chrono::seconds(0);  // deleted as soon as it is finished
+  Recordings recordings(limits, pool);
+  job.clip = {0.0, 0.1, 10.0, 1.0};  // one frame
+  const std::string id = recordings.start(job);
+  bool deleted = false;
+  for (int i = 0; i < 4000 && !deleted; ++i) {
+    try {
+      EXPECT_NE(recordings.state(id).status, RecordingStatus::done) << "a finished one outlived its age";
+    } catch (const ApiError& e) {
+      EXPECT_EQ(e.status, 404);
+      deleted = true;
+    }
+    std::this_thread::sleep_for(5ms);
+  }
+  EXPECT_TRUE(deleted);
 }
 
 class Recording : public ::testing::Test {
