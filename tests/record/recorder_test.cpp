@@ -36,9 +36,16 @@ std::vector<std::uint8_t> frame(int k) {
 }
 
 fs::path temp_file(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("spinfold-record-test-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+  // One directory per process, removed with its files when the process ends.
+  static const struct Dir {
+    fs::path path = fs::temp_directory_path() / ("spinfold-record-test-" + std::to_string(::getpid()));
+    Dir() { fs::create_directories(path); }
+    ~Dir() {
+      std::error_code ignored;
+      fs::remove_all(path, ignored);
+    }
+  } dir;
+  return dir.path / name;
 }
 
 void write(Format format, const fs::path& path, int frames, double fps, bool samples = true) {
