@@ -177,7 +177,7 @@ int Recording::port_ = 0;
 // is done, its progress never going back; the file comes with its type and a download name.
 TEST_F(Recording, QueuedRunningDoneWithMonotoneProgressThenTheFile) {
   const std::string id = session();
-  auto first = post(id, {{"t_end", 4.0}, {"fps", 25}, {"width", 128}, {"height", 96}, {"format", "png-zip"}});
+  auto first = post(id, {{"t_end", 1.6}, {"fps", 25}, {"width", 128}, {"height", 96}, {"format", "png-zip"}});
   ASSERT_EQ(first->status, 202) << first->body;
   auto second = post(
       id, {{"t_start", 0.5}, {"t_end", 1.0}, {"fps", 10}, {"width", 64}, {"height", 48}, {"format", "gif"}});
