@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bench/companions_bench.h"
+#include "bench/record_bench.h"
 #include "bench/render_bench.h"
 #include "bench/share_link_bench.h"
 #include "bench/soak.h"
@@ -49,7 +50,17 @@ int main(int argc, char** argv) {
   companions_cmd->add_option("--repeats", companions_repeats, "Measurements per case (median)")
       ->capture_default_str();
   companions_cmd->add_option("--until", companions_until, "Simulated time")->capture_default_str();
+  spinfold::bench::RecordBenchOptions record;
+  CLI::App* record_cmd = app.add_subcommand(
+      "record", "A clip in every format (wall time, size), and the live frame rate during a recording");
+  record_cmd->add_option("--seconds", record.seconds, "Clip length [s]")->capture_default_str();
+  record_cmd->add_option("--fps", record.fps, "Frames per second")->capture_default_str();
+  record_cmd
+      ->add_option("--live-seconds", record.live_seconds, "Live-rate measurement without a recording [s]")
+      ->capture_default_str();
+  record_cmd->add_option("--out", record.out_dir, "Where the clips are written")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  if (record_cmd->parsed()) return spinfold::bench::run_record_bench(record);
   if (companions_cmd->parsed())
     return spinfold::bench::run_companions_bench(companions_repeats, companions_until);
   if (soak_cmd->parsed()) return spinfold::bench::run_soak(soak);

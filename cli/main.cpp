@@ -1,10 +1,13 @@
-// spinfold: the command line. `simulate` prints JSON Lines samples of a run; `scenes` lists the
-// presets; `integrators` prints the catalog. Bad input: a message on stderr and exit code 2.
+// spinfold: the command line. `simulate` prints JSON Lines samples of a run; `render` draws one
+// frame; `record` a time window as a GIF, WebM, MP4 or zip of PNGs; `scenes` lists the presets;
+// `integrators` prints the catalog. Bad input: a message on stderr and exit code 2.
 #include <pthread.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -24,6 +27,8 @@
 #include "engine/chart.h"
 #include "engine/integrator.h"
 #include "engine/simulation.h"
+#include "record/clip.h"
+#include "record/recorder.h"
 #include "render/renderer.h"
 #include "render/snapshot.h"
 #include "render/view.h"
@@ -201,6 +206,75 @@ int render_frame(const RenderOptions& opt) {
   return 0;
 }
 
+struct RecordOptions {
+  RenderOptions render;  // the scene, view, size, layers, camera, scale, trail and --out
+  record::Clip clip;
+  std::string format;
+  bool quiet = false;
+};
+
+// "[#######.............]  120/300 frames  45.2 frames/s  4 s left", redrawn in place on stderr.
+void draw_progress(long long done, long long total, double seconds) {
+  constexpr int kBar = 30;
+  const int filled = static_cast<int>(kBar * done / std::max(1LL, total));
+  const double rate = seconds > 0 ? static_cast<double>(done) / seconds : 0.0;
+  const double left = rate > 0 ? static_cast<double>(total - done) / rate : 0.0;
+  std::fprintf(stderr, "\r[%s%s] %lld/%lld frames  %.1f frames/s  %.0f s left ",
+               std::string(filled, '#').c_str(), std::string(kBar - filled, '.').c_str(), done, total, rate,
+               left);
+  if (done == total) std::fputc('\n', stderr);
+}
+
+// Frames at t_start + k·speed/fps drawn like `render` (its own renderer, this thread), encoded.
+int record_window(const RecordOptions& opt) {
+  const auto flag = [](const std::string& field) {
+    std::string name = "--" + field;
+    std::replace(name.begin(), name.end(), '_', '-');
+    return name;
+  };
+  for (const FieldError& e : record::clip_errors(opt.clip))
+    throw BadInput{flag(e.field) + ": " + e.reason + " (got " + e.value + ")"};
+  const auto format = record::parse_format(opt.format);
+  if (!format) throw BadInput{"--format: must be gif, webm, mp4 or png-zip (got '" + opt.format + "')"};
+  if (opt.render.out.empty()) throw BadInput{"--out: the file to write is required"};
+  const auto& trail = opt.render.trail;
+  if (trail && (!std::isfinite(*trail) || *trail < 0.0)) throw BadInput{"--trail: must be >= 0"};
+  const Scene scene = load_scene(opt.render.scene);
+  record::ClipFrames frames{.scene = scene, .view = view_options(opt.render, scene), .trail_span = trail};
+  if (const auto why = record::size_unsupported_reason(*format, frames.view.width, frames.view.height))
+    throw BadInput{"--width/--height: " + *why};
+  if (!opt.render.camera.empty()) {
+    frames.yaw = frames.view.yaw;
+    frames.pitch = frames.view.pitch;
+    frames.distance = frames.view.distance;
+  }
+  const record::RecordingSpec spec{frames.view.width, frames.view.height, opt.clip.fps};
+  std::unique_ptr<record::Recorder> recorder;
+  try {
+    recorder = record::open_recorder(*format, opt.render.out, spec);
+  } catch (const record::RecordError& e) {
+    throw BadInput{std::string("--out: ") + e.what()};
+  }
+  render::Renderer renderer;
+  const bool show = !opt.quiet && isatty(fileno(stderr));
+  const auto start = std::chrono::steady_clock::now();
+  auto last_drawn = start - std::chrono::seconds(1);
+  record::record_clip(
+      opt.clip, frames, *recorder,
+      [&](render::Snapshot snapshot, const render::ViewOptions& view) {
+        return renderer.render_image(snapshot, view);
+      },
+      [&](long long done, long long total) {
+        const auto now = std::chrono::steady_clock::now();
+        if (show && (now - last_drawn > std::chrono::milliseconds(100) || done == total)) {
+          draw_progress(done, total, std::chrono::duration<double>(now - start).count());
+          last_drawn = now;
+        }
+        return true;
+      });
+  return 0;
+}
+
 // Serves until SIGTERM or SIGINT: a thread waits for them (sigwait; blocked in every thread, so
 // no handler runs in the middle of anything) and stops the server, which ends the event streams and
 // stores the time of playing sessions.
@@ -303,6 +377,32 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--trail", ren.trail, "Time span of the trail (default: the whole run)");
   render_cmd->add_option("--out", ren.out, "PNG file to write");
   render_cmd->add_option("--integrator", ren.scene.integrator, "Override the scene's integrator name");
+  RecordOptions rec;
+  CLI::App* record_cmd =
+      app.add_subcommand("record", "Record a time window as a GIF, WebM, MP4 or a zip of PNGs");
+  record_cmd->add_option("scene_file", rec.render.scene.scene_file,
+                         "Scene JSON file (default: the default preset)");
+  record_cmd->add_option("--scene", rec.render.scene.preset, "Record an embedded preset by name");
+  record_cmd->add_option("--t-start", rec.clip.t_start, "Simulated time of the first frame")
+      ->capture_default_str();
+  record_cmd->add_option("--t-end", rec.clip.t_end, "End of the window (excluded) [time]")->required();
+  record_cmd->add_option("--fps", rec.clip.fps, "Frames per second of the file")->capture_default_str();
+  record_cmd->add_option("--speed", rec.clip.speed, "Simulated time per second of the file")
+      ->capture_default_str();
+  record_cmd->add_option("--format", rec.format, "gif | webm | mp4 | png-zip")->required();
+  record_cmd->add_option("--out", rec.render.out, "File to write")->required();
+  record_cmd->add_option("--view", rec.render.view,
+                         "sphere | hyperboloid | disk | plane (default: by surface)");
+  record_cmd->add_option("--width", rec.render.width, "Frame width [pixels]")->capture_default_str();
+  record_cmd->add_option("--height", rec.render.height, "Frame height [pixels]")->capture_default_str();
+  record_cmd->add_option("--layers", rec.render.layers, "Comma-separated layers")->capture_default_str();
+  record_cmd->add_option("--camera", rec.render.camera,
+                         "yaw,pitch,distance (3-D views; default: aimed at the body in every frame)");
+  record_cmd->add_option("--scale", rec.render.scale, "Ellipse display scale [surface radii]")
+      ->capture_default_str();
+  record_cmd->add_option("--trail", rec.render.trail, "Time span of the trail (default: the whole run)");
+  record_cmd->add_option("--integrator", rec.render.scene.integrator, "Override the scene's integrator name");
+  record_cmd->add_flag("--quiet", rec.quiet, "No progress bar (there is none when stderr is not a terminal)");
   server::ServerOptions serve_opt;
   CLI::App* serve_cmd = app.add_subcommand("serve", "Serve the HTTP API with a session on the default scene");
   serve_cmd->add_option("--host", serve_opt.host, "Address to bind")->capture_default_str();
@@ -349,6 +449,7 @@ int main(int argc, char** argv) {
   try {
     if (simulate_cmd->parsed()) return simulate(sim);
     if (render_cmd->parsed()) return render_frame(ren);
+    if (record_cmd->parsed()) return record_window(rec);
     if (serve_cmd->parsed()) {
       if (no_store) serve_opt.data_dir.clear();
       return serve(serve_opt);
@@ -358,7 +459,7 @@ int main(int argc, char** argv) {
   } catch (const BadInput& e) {
     std::cerr << "spinfold: " << e.message << (e.message.ends_with('\n') ? "" : "\n");
     return kExitBadInput;
-  } catch (const std::runtime_error& e) {
+  } catch (const std::runtime_error& e) {  // record::RecordError among them
     std::cerr << "spinfold: " << e.what() << "\n";
     return 1;
   }

@@ -10,6 +10,9 @@ packages=(
   libdeflate-dev libturbojpeg0-dev                # frames: PNG compression, JPEG
   libcpp-httplib-dev nlohmann-json3-dev           # server and JSON codec
   libsqlite3-dev                                  # the durable session store
+  libgif-dev libzip-dev                           # recordings: GIF (giflib), a zip of PNGs (libzip)
+  libavformat-dev libavcodec-dev libavutil-dev libswscale-dev  # recordings: WebM/VP9 and MP4/H.264
+                                                  # (FFmpeg; its libavcodec brings libvpx and libx264)
   libcli11-dev                                    # command line
   libgtest-dev libgmock-dev libbenchmark-dev      # tests and benchmarks
   clang libclang-rt-14-dev                        # fuzzing (libFuzzer) and sanitizer runtimes

@@ -45,6 +45,16 @@ struct Limits {
   double requests_per_second_per_client = 300.0;
   double request_burst_per_client = 600.0;
 
+  // Recordings (POST …/recordings; server/recordings.h). A refused size or length is 422 naming the
+  // field; a refused job over a count or the disk space is 429 naming the limit.
+  long long max_recording_frames = 3600;           // frames per recording (2 min at 30 frames/s)
+  long long max_recording_pixels = 1920 * 1080;    // width × height of a recording's frames [pixels]
+  int max_recordings_per_client = 2;               // queued or running recordings of one address
+  int max_recordings = 32;                         // recordings kept (any status), all clients
+  long long max_recording_disk_bytes = 1LL << 30;  // the files of every recording kept [bytes]
+  std::chrono::seconds recording_max_age{3600};    // a finished recording is deleted after this
+  int recording_threads = 1;                       // recordings encoded at once (the rest wait, queued)
+
   // Slow and idle connections (each holds a worker thread while open; ServerOptions::threads).
   std::chrono::seconds read_timeout{3};        // the longest wait for the next bytes of a request
   std::chrono::seconds keep_alive_timeout{3};  // an idle keep-alive connection is closed after this

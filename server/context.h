@@ -14,6 +14,7 @@
 #include "server/frame_cache.h"
 #include "server/frames.h"
 #include "server/quota.h"
+#include "server/recordings.h"
 #include "server/render_pool.h"
 #include "server/session_db.h"
 #include "server/sessions.h"
@@ -37,6 +38,7 @@ struct ServerContext {
   SessionStore sessions;
   RenderPool renderer{options.render_threads};
   FrameCache frames{128};
+  Recordings recordings{options.limits, renderer};  // after the pool: its jobs render there
   ChangeSignal changes;              // bumped after every change of a session (live streams wait on it)
   std::atomic<int> open_streams{0};  // event and live streams now open
   std::mutex viewers_mutex;          // guards viewers

@@ -2,7 +2,9 @@
 // a dedicated thread costs ~30% less than binding it on whichever worker serves: platform-notes.md).
 // Threads only render; the caller encodes the pixels, so a render thread never waits on encoding
 // or on a client. Frames with the same key (a session) are rendered one at a time, in the order
-// they were asked for; frames of different keys run in parallel.
+// they were asked for; frames of different keys run in parallel. Background frames (recordings)
+// wait while a live frame is waiting, and take at most threads − 1 threads (with more than one),
+// so that live viewers always have a thread.
 #pragma once
 
 #include <atomic>
@@ -22,6 +24,9 @@
 
 namespace spinfold::server {
 
+// Live frames (frame.png, the live stream) go before background ones (recordings).
+enum class RenderPriority { live, background };
+
 class RenderPool {
  public:
   // Told on the render thread when a frame starts and ends: its key and its number (frames are
@@ -39,12 +44,14 @@ class RenderPool {
   // thread takes a core compiling (tens of ms, seconds under sanitizers).
   int started() const { return started_.load(); }
   // The frame's pixels. Without a GL context the future holds std::future_error (broken promise).
-  std::future<render::Image> render(std::string key, render::Snapshot snapshot, render::ViewOptions view);
+  std::future<render::Image> render(std::string key, render::Snapshot snapshot, render::ViewOptions view,
+                                    RenderPriority priority = RenderPriority::live);
 
  private:
   struct Task {
     std::string key;
     std::uint64_t number = 0;
+    RenderPriority priority = RenderPriority::live;
     std::packaged_task<render::Image(render::Renderer&)> work;
   };
   void loop();
@@ -52,6 +59,8 @@ class RenderPool {
   std::condition_variable wake_;
   std::deque<Task> queue_;
   std::set<std::string> busy_;  // keys being rendered now
+  int background_busy_ = 0;     // background frames being rendered now
+  int thread_count_ = 0;
   bool stopping_ = false;
   std::uint64_t asked_ = 0;  // frames asked for so far
   std::atomic<int> started_{0};

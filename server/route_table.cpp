@@ -225,7 +225,7 @@ bool Call::has_body() const {
 std::vector<Route> route_table(const Limits& limits) {
   std::vector<Route> routes;
   for (auto part : {catalog_routes(limits), session_routes(limits), frame_routes(limits),
-                    event_routes(limits), live_routes(limits)})
+                    event_routes(limits), live_routes(limits), recording_routes(limits)})
     for (Route& r : part) routes.push_back(std::move(r));
   return routes;
 }
@@ -364,7 +364,8 @@ ordered_json openapi_document(const std::vector<Route>& routes) {
       add(413, "body over the size limit");
       add(415, "Content-Type not " + joined(route.body->content_types, " or "));
     }
-    if (has_id) add(404, "unknown session");
+    if (has_id)
+      add(404, route.path.starts_with("/api/v1/recordings/") ? "unknown recording" : "unknown session");
     add(422, "an invalid value or an unknown query parameter (problem+json names them)");
     add(429, "over this client's request rate (limits.requests_per_second_per_client); Retry-After");
     std::sort(responses.begin(), responses.end());
@@ -378,7 +379,8 @@ ordered_json openapi_document(const std::vector<Route>& routes) {
           {{"name", "id"},
            {"in", "path"},
            {"required", true},
-           {"description", "the session's id"},
+           {"description",
+            route.path.starts_with("/api/v1/recordings/") ? "the recording's id" : "the session's id"},
            {"schema", {{"type", "string"}, {"pattern", std::string("^") + kIdPattern + "$"}}}});
     for (const QueryParam& p : route.query)
       parameters.push_back({{"name", p.name},

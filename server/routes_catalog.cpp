@@ -124,6 +124,8 @@ std::vector<Route> catalog_routes(const Limits&) {
   for (const auto& [path, summary] :
        {std::pair{"/", "The browser UI"}, std::pair{"/app.js", "The browser UI's script"},
         std::pair{"/live.js", "The browser UI's live view (parses the live stream)"},
+        std::pair{"/record.js", "The browser UI's Record panel"},
+        std::pair{"/record.css", "The Record panel's style sheet"},
         std::pair{"/style.css", "The browser UI's style sheet"},
         std::pair{"/vendor/uPlot.esm.js", "uPlot, the UI's plotting library"},
         std::pair{"/vendor/uPlot.min.css", "uPlot's style sheet"}})

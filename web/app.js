@@ -2,6 +2,7 @@
 // physics here.
 import uPlot from "/vendor/uPlot.esm.js";
 import { LiveView } from "/live.js";
+import { setupRecording } from "/record.js";
 
 const api = "/api/v1";
 const embed = new URLSearchParams(location.search).get("embed") === "1";
@@ -1114,6 +1115,8 @@ async function main() {
   [ui.schema, ui.presets, ui.views] = await withRetry("Loading", () =>
     Promise.all([request("GET", "/schema"), request("GET", "/scenes"), request("GET", "/views")]));
   wire();
+  // Recording (web/record.js): the Record panel, given the session, its time and the view.
+  setupRecording($("record-panel"), { session: () => ui.id, time: () => ui.t, view: viewParams });
   makePlots();
   fitFrameToWindow();
   measureFrame();

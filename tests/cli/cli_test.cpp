@@ -211,4 +211,33 @@ INSTANTIATE_TEST_SUITE_P(
         BadArgs{"render --scene spinning_rigid_sphere --t -1 --out /tmp/x.png", "--t"},
         BadArgs{"render --scene spinning_rigid_sphere", "--out"}));
 
+// Not a terminal: no progress bar, nothing on stderr; the zip holds one PNG per frame (its
+// central directory lists them: "frame-000000.png" … at 10 frames/s over [0.5, 0.8) = 3 frames).
+TEST(CliRecord, WritesTheFramesQuietlyWhenStderrIsNoTerminal) {
+  const std::string out =
+      std::filesystem::temp_directory_path() / ("spinfold_clip_" + std::to_string(getpid()) + ".zip");
+  const Result r = spinfold(
+      "record --scene spin_vs_geodesic_sphere --t-start 0.5 --t-end 0.8 --fps 10 "
+      "--width 64 --height 48 --format png-zip --out " +
+      out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(r.out, "");
+  std::ifstream in(out, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(bytes.substr(0, 2), "PK");
+  EXPECT_NE(bytes.find("frame-000002.png"), std::string::npos);
+  EXPECT_EQ(bytes.find("frame-000003.png"), std::string::npos);
+  std::filesystem::remove(out);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Record, CliRenderBadInput,
+    ::testing::Values(BadArgs{"record --t-end 1 --format avi --out /tmp/x.avi", "--format"},
+                      BadArgs{"record --t-end 1 --fps 0 --format gif --out /tmp/x.gif", "--fps"},
+                      BadArgs{"record --t-start 2 --t-end 1 --format gif --out /tmp/x.gif", "--t-end"},
+                      BadArgs{"record --t-end 1 --width 65 --format webm --out /tmp/x.webm", "even"},
+                      BadArgs{"record --t-end 1 --format gif --out /nonexistent/x.gif", "--out"},
+                      BadArgs{"record --format gif --out /tmp/x.gif", "--t-end"}));
+
 }  // namespace

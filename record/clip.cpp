@@ -1,0 +1,115 @@
+#include "record/clip.h"
+
+#include <cmath>
+
+#include "engine/number_text.h"
+#include "render/scene_builder.h"
+
+namespace spinfold::record {
+
+std::vector<FieldError> clip_errors(const Clip& c) {
+  std::vector<FieldError> errors;
+  const auto refuse = [&](const char* field, double value, const char* reason) {
+    errors.push_back({field, shortest(value), reason});
+  };
+  if (!std::isfinite(c.t_start) || c.t_start < 0.0)
+    refuse("t_start", c.t_start, "must be a finite number >= 0");
+  if (!std::isfinite(c.t_end) || !(c.t_end > c.t_start))
+    refuse("t_end", c.t_end, "must be a finite number > t_start");
+  if (!std::isfinite(c.fps) || !(c.fps > 0.0) || c.fps > kMaxFps)
+    refuse("fps", c.fps, "must be a number in (0, 120] [frames/s]");
+  if (!std::isfinite(c.speed) || !(c.speed > 0.0))
+    refuse("speed", c.speed, "must be a finite number > 0 [simulated time per second]");
+  return errors;
+}
+
+long long frame_count(const Clip& c) {
+  // The 1e-9 keeps a window of a whole number of frames from gaining one to rounding.
+  const double n = std::ceil((c.t_end - c.t_start) * c.fps / c.speed - 1e-9);
+  return n < 1.0 ? 1 : static_cast<long long>(n);
+}
+
+double frame_time(const Clip& c, long long k) {
+  return c.t_start + static_cast<double>(k) * c.speed / c.fps;
+}
+
+TimelineReplay::TimelineReplay(const Scene& scene, std::vector<ParameterChange> changes, Trail trail)
+    : changes_(std::move(changes)), run_(start_simulation(scene)), trail_(std::move(trail)) {
+  trail_.points.clear();
+  trail_.companions.clear();
+  record_if_due(trail_, run_);
+}
+
+bool TimelineReplay::advance_to(double t, std::uint64_t max_attempts) {
+  // As replay() (engine/timeline.h): advance to each change, retune, advance on.
+  for (; next_ < changes_.size() && changes_[next_].t <= t; ++next_) {
+    if (!advance_recording(run_, trail_, changes_[next_].t, max_attempts) ||
+        run_.state.t != changes_[next_].t)
+      return false;
+    retune(run_, changes_[next_].scene);
+  }
+  return advance_recording(run_, trail_, t, max_attempts) && run_.state.status == Status::ok;
+}
+
+namespace {
+
+render::Image draw(const ClipFrames& f, const TimelineReplay& replay, const RenderFrame& render) {
+  static const Trail kNoTrail;  // trails are copied only when drawn
+  render::Snapshot snapshot = render::make_snapshot(
+      replay.run(), f.view.layers & render::kTrail ? replay.trail() : kNoTrail, f.trail_span.value_or(-1.0));
+  render::ViewOptions view = f.view;
+  render::aim_camera_at_body(view, snapshot);
+  if (f.yaw) view.yaw = *f.yaw;
+  if (f.pitch) view.pitch = *f.pitch;
+  if (f.distance) view.distance = *f.distance;
+  render::Image image = render(std::move(snapshot), view);
+  if (image.width != f.view.width || image.height != f.view.height ||
+      image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4)
+    throw RecordError("the renderer returned no frame");
+  return image;
+}
+
+[[noreturn]] void stopped(const TimelineReplay& replay, double t) {
+  const Simulation& run = replay.run();
+  throw RecordError("the run stopped at t = " + shortest(run.state.t) +
+                    " before the frame at t = " + shortest(t) + ": " +
+                    (run.state.status == Status::ok ? std::string("the step limit per frame ran out")
+                                                    : std::string(status_description(run.state.status))));
+}
+
+}  // namespace
+
+bool record_clip(const Clip& clip, const ClipFrames& f, Recorder& recorder, const RenderFrame& render,
+                 const Progress& progress) {
+  const long long n = frame_count(clip);
+  // Palette samples (GIF): frames spread evenly over the clip, first and last included.
+  std::vector<long long> samples;
+  const int wanted = recorder.palette_samples();
+  for (int j = 0; j < wanted; ++j) {
+    const long long k = wanted == 1 ? 0 : (n - 1) * j / (wanted - 1);
+    if (samples.empty() || samples.back() != k) samples.push_back(k);
+  }
+  const long long total = static_cast<long long>(samples.size()) + n;
+  long long done = 0;
+  const auto step = [&] { return !progress || progress(++done, total); };
+  if (!samples.empty()) {
+    TimelineReplay replay(f.scene, f.changes, f.trail);
+    for (const long long k : samples) {
+      const double t = frame_time(clip, k);
+      if (!replay.advance_to(t, f.max_attempts)) stopped(replay, t);
+      recorder.add_palette_sample(draw(f, replay, render).rgba.data());
+      if (!step()) return false;
+    }
+  }
+  TimelineReplay replay(f.scene, f.changes, f.trail);
+  for (long long k = 0; k < n; ++k) {
+    const double t = frame_time(clip, k);
+    if (!replay.advance_to(t, f.max_attempts)) stopped(replay, t);
+    recorder.add(draw(f, replay, render).rgba.data());
+    if (!step()) return false;
+  }
+  recorder.finish();
+  return true;
+}
+
+}  // namespace spinfold::record

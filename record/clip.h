@@ -1,0 +1,78 @@
+// A clip: the frames of a recording and what each shows. Frame k shows simulated time
+// t_k = t_start + k·speed/fps, for k = 0 … n−1 with t_k < t_end, so n = ⌈(t_end − t_start)·fps/speed⌉
+// frames play for n/fps seconds. The run is replayed in a copy from t = 0 through the timeline's
+// parameter changes (the same run, bit for bit, as the session or `spinfold render`), and each
+// frame is drawn like a frame of the session: every body, legend, HUD and trail.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "engine/timeline.h"
+#include "engine/trail.h"
+#include "engine/validation.h"
+#include "record/recorder.h"
+#include "render/renderer.h"
+#include "render/snapshot.h"
+#include "render/view.h"
+
+namespace spinfold::record {
+
+struct Clip {
+  double t_start = 0.0;  // [time] the first frame's simulated time, ≥ 0
+  double t_end = 10.0;   // [time] the window's end (excluded), > t_start
+  double fps = 30.0;     // frames per second of the file, in (0, 120]
+  double speed = 1.0;    // simulated time per second of the file, > 0
+};
+
+inline constexpr double kMaxFps = 120.0;
+
+// Refusals of a clip, each naming the field ("t_start", "t_end", "fps", "speed"), value and reason.
+std::vector<FieldError> clip_errors(const Clip& clip);
+// n = ⌈(t_end − t_start)·fps/speed⌉ (at least 1); only for a clip without errors.
+long long frame_count(const Clip& clip);
+// t_k = t_start + k·speed/fps [time].
+double frame_time(const Clip& clip, long long k);
+
+// Replays a timeline in a copy: the run and its trail as they stand at each time asked for.
+class TimelineReplay {
+ public:
+  TimelineReplay(const Scene& scene, std::vector<ParameterChange> changes, Trail trail = {});
+  // Advances to `t` (not before the current time) through the changes up to it, recording the
+  // trail; false when the run stopped (status) or `max_attempts` ran out on the way.
+  bool advance_to(double t, std::uint64_t max_attempts = kNoStepLimit);
+  const Simulation& run() const { return run_; }
+  const Trail& trail() const { return trail_; }
+
+ private:
+  std::vector<ParameterChange> changes_;
+  std::size_t next_ = 0;  // the first change not yet applied
+  Simulation run_;
+  Trail trail_;
+};
+
+// What every frame of a clip shows, and how.
+struct ClipFrames {
+  Scene scene{};                                     // the parameters at t = 0
+  std::vector<ParameterChange> changes{};            // the timeline after t = 0
+  Trail trail{};                                     // the trail's spacing and cap (empty of points)
+  render::ViewOptions view{};                        // kind, size, layers, scale [length]
+  std::optional<double> yaw{}, pitch{}, distance{};  // absent: aimed at the body in every frame
+  std::optional<double> trail_span{};                // [time] the trail's span; absent: the whole run
+  std::uint64_t max_attempts = kNoStepLimit;         // step attempts per frame
+};
+
+// Draws a snapshot in a view: the caller's renderer (its own, or the server's render pool).
+using RenderFrame = std::function<render::Image(render::Snapshot, const render::ViewOptions&)>;
+// Told after each frame drawn (palette samples included): frames done, frames in all. Returns false
+// to cancel.
+using Progress = std::function<bool(long long done, long long total)>;
+
+// Records the clip into `recorder` and finishes it; false when cancelled (the file is then
+// incomplete). RecordError with the reason when the run stops before the end, or the writer fails.
+bool record_clip(const Clip& clip, const ClipFrames& frames, Recorder& recorder, const RenderFrame& render,
+                 const Progress& progress = {});
+
+}  // namespace spinfold::record

@@ -1,0 +1,171 @@
+// Clips: which frames at which times, the replay of a timeline in a copy, and a recorded frame
+// against the frame the renderer draws of the same time.
+#include "record/clip.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "codec/presets.h"
+#include "codec/scene_json.h"
+#include "media.h"
+
+namespace spinfold::record {
+namespace {
+
+namespace fs = std::filesystem;
+
+Scene preset(std::string_view name) {
+  return *parse_scene_text(find_preset(name)->json).scene;
+}
+
+TEST(Clip, FramesAndTheirTimes) {
+  EXPECT_EQ(frame_count({0.0, 10.0, 30.0, 1.0}), 300);  // 10 s at 30 frames/s
+  EXPECT_EQ(frame_count({2.0, 3.0, 10.0, 2.0}), 5);     // 1 unit of time at 2 units/s
+  EXPECT_EQ(frame_count({0.0, 0.01, 30.0, 1.0}), 1);
+  EXPECT_EQ(frame_count({0.0, 1.0, 3.0, 1.0}), 3);  // 0, 1/3, 2/3 (not 1: the end is excluded)
+  EXPECT_DOUBLE_EQ(frame_time({2.0, 3.0, 10.0, 2.0}, 3), 2.6);
+}
+
+TEST(Clip, RefusalsNameTheField) {
+  const auto fields = [](const Clip& c) {
+    std::string names;
+    for (const FieldError& e : clip_errors(c)) names += e.field + " ";
+    return names;
+  };
+  EXPECT_EQ(fields({0.0, 1.0, 30.0, 1.0}), "");
+  EXPECT_EQ(fields({-1.0, 1.0, 30.0, 1.0}), "t_start ");
+  EXPECT_EQ(fields({2.0, 1.0, 30.0, 1.0}), "t_end ");
+  EXPECT_EQ(fields({0.0, 1.0, 0.0, 1.0}), "fps ");
+  EXPECT_EQ(fields({0.0, 1.0, 121.0, 1.0}), "fps ");
+  EXPECT_EQ(fields({0.0, 1.0, 30.0, -1.0}), "speed ");
+}
+
+// Frame by frame through parameter changes, the copy ends where replay() (the session's rebuild)
+// ends, bit for bit, trail included.
+TEST(Clip, ReplayFrameByFrameIsTheTimelinesRun) {
+  const Scene start = preset("spin_vs_geodesic_sphere");
+  Scene later = start;
+  later.body.mass *= 1.5;
+  const std::vector<ParameterChange> changes{{0.35, later}};
+  TimelineReplay replay(start, changes);
+  for (const double t : {0.1, 0.3, 0.35, 0.5, 0.8}) ASSERT_TRUE(replay.advance_to(t));
+  Simulation run = start_simulation(start);
+  Trail trail;
+  record_if_due(trail, run);
+  ASSERT_TRUE(spinfold::replay(start, changes, 0.8, run, trail));
+  const State& a = replay.run().state;
+  EXPECT_EQ(a.t, run.state.t);
+  ASSERT_EQ(a.y.size(), run.state.y.size());
+  EXPECT_EQ(std::memcmp(a.y.data(), run.state.y.data(), sizeof(double) * a.y.size()), 0);
+  EXPECT_TRUE(a.chart.A == run.state.chart.A && a.chart.b == run.state.chart.b);
+  ASSERT_EQ(replay.trail().points.size(), trail.points.size());
+  EXPECT_EQ(replay.trail().points.back().X, trail.points.back().X);
+  EXPECT_EQ(replay.run().scene.body.mass, later.body.mass);
+}
+
+class RecordingFixture : public ::testing::Test {
+ protected:
+  static render::Renderer& renderer() {
+    static render::Renderer r;
+    return r;
+  }
+  static RenderFrame drawer(std::vector<std::vector<std::uint8_t>>* seen = nullptr) {
+    return [seen](render::Snapshot s, const render::ViewOptions& v) {
+      render::Image image = renderer().render_image(s, v);
+      if (seen) seen->push_back(image.rgba);
+      return image;
+    };
+  }
+  static ClipFrames frames(int width, int height) {
+    ClipFrames f{.scene = preset("spin_vs_geodesic_sphere")};
+    f.view.width = width;
+    f.view.height = height;
+    return f;
+  }
+  static fs::path temp_file(const std::string& name) {
+    // One directory per process, removed with its files when the process ends.
+    static const struct Dir {
+      fs::path path = fs::temp_directory_path() / ("spinfold-clip-test-" + std::to_string(::getpid()));
+      Dir() { fs::create_directories(path); }
+      ~Dir() {
+        std::error_code ignored;
+        fs::remove_all(path, ignored);
+      }
+    } dir;
+    return dir.path / name;
+  }
+};
+
+// A decoded frame of each video is close to what the renderer draws for that time from an
+// independent run (the same pipeline as the session's frame.png).
+TEST_F(RecordingFixture, DecodedVideoFrameIsCloseToTheRenderedFrame) {
+  const Clip clip{0.5, 1.0, 10.0, 1.0};  // 5 frames, t = 0.5 … 0.9
+  const ClipFrames f = frames(160, 120);
+  Simulation run = start_simulation(f.scene);
+  Trail trail;
+  record_if_due(trail, run);
+  advance_recording(run, trail, frame_time(clip, 3));
+  render::ViewOptions view = f.view;
+  render::Snapshot snapshot = render::make_snapshot(run, trail, -1.0);
+  render::aim_camera_at_body(view, snapshot);
+  const render::Image expected = renderer().render_image(snapshot, view);
+  for (const Format format : {Format::mp4, Format::webm}) {
+    const fs::path path = temp_file(std::string("clip.") + std::string(file_extension(format)));
+    auto recorder = open_recorder(format, path, {160, 120, clip.fps});
+    std::vector<std::vector<std::uint8_t>> seen;
+    ASSERT_TRUE(record_clip(clip, f, *recorder, drawer(&seen)));
+    ASSERT_EQ(seen.size(), 5u);
+    EXPECT_EQ(seen[3], expected.rgba) << "the frame given to the encoder is the renderer's frame of t_3";
+    const testing::VideoInfo video = testing::read_video(path, 3);
+    EXPECT_EQ(video.pts.size(), 5u);
+    const double psnr = testing::psnr_rgb(video.rgba, expected.rgba);
+    std::printf("%s: frame 3 against the rendered frame: PSNR %.1f dB\n",
+                std::string(format_name(format)).c_str(), psnr);
+    EXPECT_GT(psnr, 28.0) << format_name(format);
+    // And not close to a frame of another time: the bound could fail.
+    EXPECT_GT(psnr, testing::psnr_rgb(video.rgba, seen[0]) + 1.0) << format_name(format);
+  }
+}
+
+TEST_F(RecordingFixture, GifOfAClipHasItsFramesAndSamplesCountInProgress) {
+  const Clip clip{0.0, 0.6, 10.0, 1.0};  // 6 frames
+  const fs::path path = temp_file("clip.gif");
+  auto recorder = open_recorder(Format::gif, path, {64, 48, clip.fps});
+  std::vector<long long> done;
+  long long total = 0;
+  ASSERT_TRUE(record_clip(clip, frames(64, 48), *recorder, drawer(), [&](long long d, long long t) {
+    done.push_back(d);
+    total = t;
+    return true;
+  }));
+  EXPECT_EQ(total, 6 + 6);  // 8 palette samples spread over 6 frames: 6 distinct
+  ASSERT_EQ(done.size(), 12u);
+  for (std::size_t i = 0; i < done.size(); ++i) EXPECT_EQ(done[i], static_cast<long long>(i) + 1);
+  const testing::GifInfo gif = testing::read_gif(path);
+  EXPECT_EQ(gif.images, 6);
+  for (const int delay : gif.delays) EXPECT_EQ(delay, 10);
+}
+
+TEST_F(RecordingFixture, CancelStopsAtTheFrameAndARunThatStopsIsAReason) {
+  const Clip clip{0.0, 1.0, 10.0, 1.0};
+  auto recorder = open_recorder(Format::png_zip, temp_file("cancel.zip"), {64, 48, clip.fps});
+  int calls = 0;
+  EXPECT_FALSE(record_clip(clip, frames(64, 48), *recorder, drawer(),
+                           [&](long long, long long) { return ++calls < 3; }));
+  EXPECT_EQ(calls, 3);
+  ClipFrames limited = frames(64, 48);
+  limited.max_attempts = 1;  // not enough steps for one frame interval
+  auto other = open_recorder(Format::png_zip, temp_file("stopped.zip"), {64, 48, clip.fps});
+  try {
+    record_clip(clip, limited, *other, drawer());
+    FAIL() << "expected RecordError";
+  } catch (const RecordError& e) {
+    EXPECT_NE(std::string(e.what()).find("the run stopped at t = "), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace spinfold::record

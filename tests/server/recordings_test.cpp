@@ -1,0 +1,316 @@
+// Recordings through the API in-process (tiny frames: this file runs under the sanitizers too): the
+// job's life, cancelling, a failure's reason, the limits, and the live session left as it was. And
+// the render pool's priorities, which keep recordings from taking render time from live viewers.
+#include "server/recordings.h"
+
+#include <gtest/gtest.h>
+
+#include <condition_variable>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "codec/presets.h"
+#include "codec/scene_json.h"
+#include "server/problem.h"
+#include "server/render_pool.h"
+#include "server/route_table.h"
+
+// After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
+#include <httplib.h>
+
+namespace spinfold::server {
+namespace {
+
+using nlohmann::json;
+using namespace std::chrono_literals;
+
+// With one thread, a live frame asked after a background one is drawn first; with two, background
+// frames never take both threads, so a live frame starts while a background one is drawn.
+TEST(RenderPool, LiveFramesGoBeforeBackgroundOnes) {
+  const Scene scene = *parse_scene_text(find_preset("spin_vs_geodesic_sphere")->json).scene;
+  const Simulation run = start_simulation(scene);
+  render::ViewOptions view;
+  view.width = 32;
+  view.height = 24;
+  const auto snapshot = [&] { return render::make_snapshot(run, Trail{}, -1.0); };
+  for (const int threads : {1, 2}) {
+    std::mutex mutex;
+    std::condition_variable changed;
+    bool release = false;
+    std::vector<std::string> started;
+    RenderPool pool(threads, [&](const std::string& key, std::uint64_t, bool start) {
+      std::unique_lock lock(mutex);
+      if (!start) return;
+      started.push_back(key);
+      changed.notify_all();
+      if (key == "hold") changed.wait(lock, [&] { return release; });  // holds this thread
+    });
+    std::vector<std::future<render::Image>> frames;
+    const auto priority = threads == 1 ? RenderPriority::live : RenderPriority::background;
+    frames.push_back(pool.render("hold", snapshot(), view, priority));
+    {
+      std::unique_lock lock(mutex);
+      changed.wait(lock, [&] { return !started.empty(); });
+    }
+    frames.push_back(pool.render("recording", snapshot(), view, RenderPriority::background));
+    frames.push_back(pool.render("live", snapshot(), view, RenderPriority::live));
+    if (threads == 2) {  // the live frame gets the free thread; the background one waits for "hold"
+      std::unique_lock lock(mutex);
+      ASSERT_TRUE(changed.wait_for(lock, 20s, [&] { return started.size() == 2; }));
+      std::this_thread::sleep_for(50ms);  // the background frame would have started by now
+      EXPECT_EQ(started, (std::vector<std::string>{"hold", "live"}));
+    }
+    {
+      const std::lock_guard lock(mutex);
+      release = true;
+    }
+    changed.notify_all();
+    for (auto& f : frames) EXPECT_EQ(f.get().rgba.size(), 32u * 24u * 4u);
+    EXPECT_EQ(started, (std::vector<std::string>{"hold", "live", "recording"})) << threads << " threads";
+  }
+}
+
+// The disk allowance and the age limit, on the jobs alone (no HTTP).
+TEST(Recordings, PassingTheDiskAllowanceFailsWithTheReasonAndOldOnesAreDeleted) {
+  RenderPool pool(1);
+  RecordingJob job{.client = "test", .clip = {0.0, 1.0, 10.0, 1.0}, .format = record::Format::png_zip};
+  job.frames.scene = *parse_scene_text(find_preset("spin_vs_geodesic_sphere")->json).scene;
+  job.frames.view.width = 64;
+  job.frames.view.height = 48;
+  const auto finished = [](Recordings& recordings, const std::string& id) {
+    for (int i = 0; i < 4000; ++i) {
+      const RecordingState state = recordings.state(id);
+      if (state.status != RecordingStatus::queued && state.status != RecordingStatus::running) return state;
+      std::this_thread::sleep_for(5ms);
+    }
+    return recordings.state(id);
+  };
+  Limits limits;
+  limits.max_recording_disk_bytes = 2000;  // less than two 64×48 PNGs
+  {
+    Recordings recordings(limits, pool);
+    const RecordingState state = finished(recordings, recordings.start(job));
+    EXPECT_EQ(state.status, RecordingStatus::failed);
+    EXPECT_NE(state.reason.find("limits.max_recording_disk_bytes"), std::string::npos) << state.reason;
+  }
+  limits = Limits{};
+  limits.recording_max_age = std::chrono::seconds(0);  // deleted as soon as it is finished
+  Recordings recordings(limits, pool);
+  job.clip = {0.0, 0.1, 10.0, 1.0};  // one frame
+  const std::string id = recordings.start(job);
+  bool deleted = false;
+  for (int i = 0; i < 4000 && !deleted; ++i) {
+    try {
+      EXPECT_NE(recordings.state(id).status, RecordingStatus::done) << "a finished one outlived its age";
+    } catch (const ApiError& e) {
+      EXPECT_EQ(e.status, 404);
+      deleted = true;
+    }
+    std::this_thread::sleep_for(5ms);
+  }
+  EXPECT_TRUE(deleted);
+}
+
+class Recording : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    ServerOptions options;
+    options.port = 0;
+    options.threads = 8;
+    options.render_threads = 2;
+    options.limits.requests_per_second_per_client = 0.0;
+    options.limits.max_steps = 3000;
+    options.limits.max_recording_frames = 120;
+    options.limits.max_recording_pixels = 128 * 96;
+    options.limits.max_recordings_per_client = 2;
+    server_ = new ApiServer(options);
+    port_ = server_->bind();
+    ASSERT_GT(port_, 0);
+    thread_ = new std::thread([] { server_->listen(); });
+  }
+  static void TearDownTestSuite() {
+    server_->stop();
+    thread_->join();
+    delete thread_;
+    delete server_;
+  }
+  static httplib::Client client() {
+    httplib::Client c("127.0.0.1", port_);
+    c.set_read_timeout(60, 0);
+    return c;
+  }
+  static std::string session() {
+    auto res =
+        client().Post("/api/v1/sessions", R"({"preset": "spin_vs_geodesic_sphere"})", "application/json");
+    EXPECT_EQ(res->status, 201);
+    return json::parse(res->body)["id"];
+  }
+  static httplib::Result post(const std::string& session, const json& body) {
+    return client().Post("/api/v1/sessions/" + session + "/recordings", body.dump(), "application/json");
+  }
+  // Polls until the recording is finished; every status and progress seen, in order.
+  static std::vector<std::pair<std::string, double>> follow(const std::string& url) {
+    std::vector<std::pair<std::string, double>> seen;
+    for (int i = 0; i < 6000; ++i) {
+      auto res = client().Get(url);
+      EXPECT_EQ(res->status, 200) << res->body;
+      const json r = json::parse(res->body);
+      seen.emplace_back(r["status"], r["progress"]);
+      if (r["status"] != "queued" && r["status"] != "running") break;
+      std::this_thread::sleep_for(5ms);
+    }
+    return seen;
+  }
+  static json problem(const httplib::Result& res) { return json::parse(res->body); }
+  static std::string field(const json& problem) { return problem["errors"][0]["field"]; }
+
+  static ApiServer* server_;
+  static std::thread* thread_;
+  static int port_;
+};
+
+ApiServer* Recording::server_ = nullptr;
+std::thread* Recording::thread_ = nullptr;
+int Recording::port_ = 0;
+
+// A long recording keeps the recording thread busy, so the next one is queued; it then runs and
+// is done, its progress never going back; the file comes with its type and a download name.
+TEST_F(Recording, QueuedRunningDoneWithMonotoneProgressThenTheFile) {
+  const std::string id = session();
+  auto first = post(id, {{"t_end", 1.6}, {"fps", 25}, {"width", 128}, {"height", 96}, {"format", "png-zip"}});
+  ASSERT_EQ(first->status, 202) << first->body;
+  auto second = post(
+      id, {{"t_start", 0.5}, {"t_end", 1.0}, {"fps", 10}, {"width", 64}, {"height", 48}, {"format", "gif"}});
+  ASSERT_EQ(second->status, 202) << second->body;
+  const json created = json::parse(second->body);
+  EXPECT_EQ(created["status"], "queued");
+  EXPECT_EQ(created["progress"], 0.0);
+  EXPECT_EQ(created["frames"], 5);
+  EXPECT_EQ(second->get_header_value("Location"), created["url"]);
+  const auto seen = follow(created["url"]);
+  ASSERT_FALSE(seen.empty());
+  EXPECT_EQ(seen.back().first, "done");
+  EXPECT_EQ(seen.back().second, 1.0);
+  const std::vector<std::string> order{"queued", "running", "done"};
+  std::size_t at = 0;
+  double progress = 0;
+  bool saw_running = false;
+  for (const auto& [status, p] : seen) {
+    while (at < order.size() && order[at] != status) ++at;
+    ASSERT_LT(at, order.size()) << "status went back to " << status;
+    EXPECT_GE(p, progress) << status;
+    progress = p;
+    saw_running |= status == "running";
+  }
+  EXPECT_TRUE(saw_running) << "the first recording ran for longer than one poll";
+  auto file = client().Get(created["file"].get<std::string>());
+  ASSERT_EQ(file->status, 200);
+  EXPECT_EQ(file->get_header_value("Content-Type"), "image/gif");
+  EXPECT_EQ(file->body.substr(0, 6), "GIF89a");
+  EXPECT_NE(file->get_header_value("Content-Disposition").find("attachment; filename=\"spinfold-"),
+            std::string::npos);
+  EXPECT_NE(file->get_header_value("Content-Disposition").find("-t0.5-1.gif\""), std::string::npos);
+  EXPECT_EQ(json::parse(client().Get(created["url"].get<std::string>())->body)["bytes"], file->body.size());
+  EXPECT_EQ(follow(json::parse(first->body)["url"]).back().first, "done");
+  EXPECT_EQ(client().Delete(created["url"].get<std::string>())->status, 204);  // deleted with its file
+  EXPECT_EQ(client().Get(created["url"].get<std::string>())->status, 404);
+  EXPECT_EQ(client().Get(created["file"].get<std::string>())->status, 404);
+}
+
+TEST_F(Recording, CancelStopsItAndTheFileIsNeverThere) {
+  const std::string id = session();
+  auto res = post(id, {{"t_end", 4.0}, {"fps", 25}, {"width", 128}, {"height", 96}, {"format", "webm"}});
+  ASSERT_EQ(res->status, 202) << res->body;
+  const std::string url = json::parse(res->body)["url"];
+  for (int i = 0; i < 2000 && json::parse(client().Get(url)->body)["status"] == "queued"; ++i)
+    std::this_thread::sleep_for(5ms);
+  EXPECT_EQ(json::parse(client().Get(url)->body)["status"], "running");  // 100 frames: it runs a while
+  auto cancelled = client().Delete(url);
+  ASSERT_EQ(cancelled->status, 200) << cancelled->body;
+  EXPECT_EQ(json::parse(cancelled->body)["status"], "cancelled");
+  EXPECT_EQ(follow(url).back().first, "cancelled");
+  auto file = client().Get(url + "/file");
+  EXPECT_EQ(file->status, 409);
+  EXPECT_EQ(field(problem(file)), "status");
+  EXPECT_EQ(client().Delete(url)->status, 204);
+  // The recording thread moved on: the next recording is done.
+  auto next = post(id, {{"t_end", 0.2}, {"fps", 10}, {"width", 64}, {"height", 48}, {"format", "webm"}});
+  ASSERT_EQ(next->status, 202) << next->body;
+  EXPECT_EQ(follow(json::parse(next->body)["url"]).back().first, "done");
+}
+
+TEST_F(Recording, AFailureSaysWhy) {
+  // Reaching t = 50 takes more step attempts than limits.max_steps (3000) allows per frame.
+  auto res = post(
+      session(),
+      {{"t_start", 50}, {"t_end", 51}, {"fps", 2}, {"width", 64}, {"height", 48}, {"format", "png-zip"}});
+  ASSERT_EQ(res->status, 202) << res->body;
+  const std::string url = json::parse(res->body)["url"];
+  EXPECT_EQ(follow(url).back().first, "failed");
+  const json r = json::parse(client().Get(url)->body);
+  EXPECT_NE(r["reason"].get<std::string>().find("the run stopped at t = "), std::string::npos) << r;
+  EXPECT_NE(r["reason"].get<std::string>().find("step limit"), std::string::npos) << r;
+  EXPECT_NE(client().Get(url + "/file")->body.find("the recording failed"), std::string::npos);
+}
+
+TEST_F(Recording, LimitsAndBadFieldsAreRefusedByName) {
+  const std::string id = session();
+  const json ok{{"t_end", 1.0}, {"width", 64}, {"height", 48}, {"format", "gif"}};
+  const auto refused = [&](json patch, int status, const std::string& name) {
+    json body = ok;
+    body.merge_patch(patch);
+    auto res = post(id, body);
+    ASSERT_EQ(res->status, status) << body << " " << res->body;
+    EXPECT_EQ(res->get_header_value("Content-Type"), "application/problem+json");
+    EXPECT_EQ(field(problem(res)), name) << res->body;
+  };
+  refused({{"t_end", 10.0}, {"fps", 30}}, 422, "t_end");      // 300 frames > 120
+  refused({{"width", 256}, {"height", 192}}, 422, "width");   // over 128 × 96 pixels
+  refused({{"width", 65}, {"format", "mp4"}}, 422, "width");  // 4:2:0 needs even sides
+  refused({{"format", "avi"}}, 422, "format");
+  refused({{"fps", 0}}, 422, "fps");
+  refused({{"t_start", 2.0}}, 422, "t_end");
+  refused({{"view", "disk"}, {"layers", "surface,sparkles"}}, 422, "layers");
+  refused({{"colour", "red"}}, 422, "colour");
+  json no_end = ok;
+  no_end.erase("t_end");
+  auto missing = post(id, no_end);
+  EXPECT_EQ(missing->status, 422);
+  EXPECT_EQ(field(problem(missing)), "t_end");
+  EXPECT_EQ(post("nosuchsession", ok)->status, 404);
+  // Two at once per client (limits.max_recordings_per_client); the third waits its turn: 429.
+  std::vector<std::string> urls;
+  for (int i = 0; i < 2; ++i) {
+    auto res = post(id, {{"t_end", 4.0}, {"fps", 25}, {"width", 128}, {"height", 96}, {"format", "png-zip"}});
+    ASSERT_EQ(res->status, 202) << res->body;
+    urls.push_back(json::parse(res->body)["url"]);
+  }
+  auto third = post(id, ok);
+  ASSERT_EQ(third->status, 429) << third->body;
+  EXPECT_EQ(field(problem(third)), "limits.max_recordings_per_client");
+  EXPECT_FALSE(third->get_header_value("Retry-After").empty());
+  for (const std::string& url : urls) client().Delete(url);
+  EXPECT_EQ(client().Get("/api/v1/recordings/nosuchrecording")->status, 404);
+}
+
+// The recording replays a copy: the session's state, timeline, version and frame are as they were.
+TEST_F(Recording, TheLiveSessionIsUnchangedByARecordingOfIt) {
+  const std::string id = session();
+  auto c = client();
+  c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 0.5})", "application/json");
+  ASSERT_EQ(c.Patch("/api/v1/sessions/" + id, R"({"body": {"mass": 2}})", "application/json")->status, 200);
+  c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 0.8})", "application/json");
+  const std::string before = c.Get("/api/v1/sessions/" + id)->body;
+  const std::string etag =
+      c.Get("/api/v1/sessions/" + id + "/frame.png?width=64&height=48")->get_header_value("ETag");
+  auto res = post(
+      id, {{"t_start", 0.2}, {"t_end", 1.4}, {"fps", 5}, {"width", 64}, {"height", 48}, {"format", "gif"}});
+  ASSERT_EQ(res->status, 202) << res->body;
+  EXPECT_EQ(follow(json::parse(res->body)["url"]).back().first, "done");  // through the change, past now
+  EXPECT_EQ(c.Get("/api/v1/sessions/" + id)->body, before);
+  EXPECT_EQ(c.Get("/api/v1/sessions/" + id + "/frame.png?width=64&height=48")->get_header_value("ETag"),
+            etag);
+}
+
+}  // namespace
+}  // namespace spinfold::server
