@@ -4,6 +4,7 @@
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
+#include "engine/inertia.h"
 #include "engine/invariants.h"
 
 namespace spinfold {
@@ -354,8 +355,8 @@ void retune(Simulation& run, const Scene& next) {
   const Surface& before = run.scene.surface;
   if (before.kind != SurfaceKind::plane && next.surface.radius != before.radius)
     body.X *= next.surface.radius / before.radius;  // the same place on the surface
-  // Velocities and frame rates are kept; the spin follows from the new inertia (s = J tr((εL)ᵀM)).
-  body.spin = next.body.inertia * (epsilon() * body.L).cwiseProduct(body.M).sum();
+  // Velocities and frame rates are kept; the spin follows from the new inertia (s = tr((εL)ᵀMJ)).
+  body.spin = spin_from_rate(inertia_of(next.body), body.L, body.M);
   here.y = chart_coords(next, body);
   if (!chart_well_conditioned(next.surface, here.y[coord::r])) recentre(next, here);
 

@@ -136,6 +136,35 @@ void check_initial(const Scene& scene, Checker& c) {
               " * radius on the pseudosphere (farther out its global coordinates overflow)");
 }
 
+// body.inertia as a matrix: finite, symmetric and positive definite (physics.md §13).
+void check_inertia_matrix(const Scene& scene, Checker& c) {
+  if (!scene.body.inertia_matrix) return;
+  const InertiaMatrix& J = *scene.body.inertia_matrix;
+  const std::string field = "body." + std::string(kInertiaKey);
+  const std::string text = "[[" + shortest(J.J11) + ", " + shortest(J.J12) + "], [" + shortest(J.J21) + ", " +
+                           shortest(J.J22) + "]]";
+  for (const double v : {J.J11, J.J12, J.J21, J.J22})
+    if (!std::isfinite(v) || std::abs(v) > kMaxSceneMagnitude) {
+      c.add_text(
+          field, text,
+          "every entry must be a finite number of magnitude at most " + bound_text(kMaxSceneMagnitude));
+      return;
+    }
+  if (J.J12 != J.J21) {
+    c.add_text(field, text, "must be symmetric (J12 = J21)");
+    return;
+  }
+  // Positive definite: J11 > 0 and det J > 0; the diagonal at least kMinScenePositive like a number J.
+  const double det = J.J11 * J.J22 - J.J12 * J.J21;
+  if (!(J.J11 > 0.0 && J.J22 > 0.0 && det > 0.0))
+    c.add_text(field, text,
+               "must be positive definite (J11 > 0 and J11 J22 - J12^2 > 0; det = " + shortest(det) + ")");
+  else if (J.J11 < kMinScenePositive || J.J22 < kMinScenePositive || !std::isfinite(det))
+    c.add_text(
+        field, text,
+        "its diagonal must be at least " + bound_text(kMinScenePositive) + " and its determinant finite");
+}
+
 void check_rigid(const Scene& scene, Checker& c) {
   if (scene.body.model != BodyModel::rigid) return;
   const InitialState& q = scene.initial;
@@ -218,6 +247,7 @@ std::vector<FieldError> validate_scene(const Scene& scene) {
   Checker c;
   check_fields(c, "", scene);
   check_initial(scene, c);
+  check_inertia_matrix(scene, c);
   check_rigid(scene, c);
   check_potentials(scene, c);
   const IntegratorSettings& in = scene.integrator;
