@@ -80,7 +80,8 @@ TEST(Presets, DeformationCarriesSpinThatBendsThePathOnH2) {
   const Vec3 V1 = global_embedding(scene, run.state).V;
   const Vec3 a = tangential(scene.surface, b0.X, (V1 - b0.V) / h);
   const double kappa = dot(scene.surface, a, rotate_quarter(scene.surface, b0.X, b0.V)) / (v * v * v);
-  EXPECT_NEAR(kappa, curvature(scene.surface) * s / (scene.body.mass * v), 1e-2 * std::abs(kappa));  // O(h) difference
+  EXPECT_NEAR(kappa, curvature(scene.surface) * s / (scene.body.mass * v),
+              1e-2 * std::abs(kappa));  // O(h) difference
 }
 
 TEST(Presets, OnThePlaneTheSpinningBodyGoesStraight) {
@@ -114,6 +115,31 @@ TEST(Presets, BreathingEllipseHasTheIsotonicFrequency) {
   EXPECT_GT(std::abs(x2() - x2_start), 0.1);  // it does breathe
   advance_to(run, period);
   EXPECT_NEAR(x2(), x2_start, 1e-9);
+}
+
+TEST(Presets, AnisotropicBodyKeepsItsSpinWhileItsVorticityOscillates) {
+  const Scene scene = preset("anisotropic_tumbling_sphere");
+  ASSERT_TRUE(scene.body.inertia_matrix.has_value());
+  Simulation run = start_simulation(scene);
+  const double s0 = spin(scene, run.state), b0 = vorticity(scene, run.state);
+  double ds = 0.0, b_min = b0, b_max = b0;
+  for (int k = 1; k <= 40; ++k) {
+    advance_to(run, 0.5 * k);
+    ASSERT_EQ(run.state.status, Status::ok);
+    ds = std::max(ds, std::abs(spin(scene, run.state) - s0));
+    b_min = std::min(b_min, vorticity(scene, run.state));
+    b_max = std::max(b_max, vorticity(scene, run.state));
+  }
+  EXPECT_LT(ds, 1e-9 * std::abs(s0));
+  EXPECT_GT(b_max - b_min, 0.1 * std::abs(b0)) << b_min << " .. " << b_max;
+  // The isotropic body with the same trace keeps its vorticity.
+  Scene iso = scene;
+  iso.body.inertia_matrix.reset();
+  iso.body.inertia = 0.2;
+  Simulation r = start_simulation(iso);
+  const double c0 = vorticity(iso, r.state);
+  advance_to(r, 20.0);
+  EXPECT_NEAR(vorticity(iso, r.state), c0, 1e-9 * std::abs(c0));
 }
 
 TEST(Presets, SeparableSceneIsW5) {
