@@ -43,6 +43,10 @@ Readout readout(const Simulation& run) {
   r.vorticity = r.coordinates.p_beta;
   r.det_L = r.coordinates.det_L;
   r.separated = separated_energies(scene, state);
+  if (const auto why = actions_unsupported_reason(scene))
+    r.actions_unsupported = *why;
+  else
+    r.actions = action_variables(scene, state);
   r.momentum_map = momentum_map(scene, state);
   if (r.momentum_map && scene.surface.kind != SurfaceKind::plane)
     r.casimir = casimir(scene.surface, *r.momentum_map);

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "codec/scene_json.h"
+#include "engine/actions.h"
 #include "engine/chart.h"
 #include "engine/invariants.h"
 #include "engine/paper_coordinates.h"
@@ -140,6 +141,27 @@ TEST(Presets, AnisotropicBodyKeepsItsSpinWhileItsVorticityOscillates) {
   const double c0 = vorticity(iso, r.state);
   advance_to(r, 20.0);
   EXPECT_NEAR(vorticity(iso, r.state), c0, 1e-9 * std::abs(c0));
+}
+
+TEST(Presets, ActionVariablesAreConstantAndTheFrequenciesArePeriods) {
+  const Scene scene = preset("action_variables_sphere");
+  Simulation run = start_simulation(scene);  // auto: the closed form
+  const ActionVariables a0 = action_variables(scene, run.state);
+  ASSERT_TRUE(a0.undefined.empty());
+  const PaperCoordinates c0 = paper_coordinates(scene, run.state);
+  const double T_r = 1.0 / *a0.nu_r, T_x = 1.0 / *a0.nu_x;
+  const auto x2 = [&] { return deformation_invariants(paper_coordinates(scene, run.state).L.value()).a; };
+  const double x2_0 = x2();
+  advance_to(run, 3.0 * T_x);
+  EXPECT_NEAR(x2(), x2_0, 1e-9);
+  advance_to(run, 5.0 * T_r);
+  const PaperCoordinates c = paper_coordinates(scene, run.state);
+  EXPECT_NEAR(c.r, c0.r, 1e-9);
+  EXPECT_NEAR(c.r_dot.value(), c0.r_dot.value(), 1e-9);
+  const ActionVariables a = action_variables(scene, run.state);
+  EXPECT_NEAR(*a.J_r, *a0.J_r, 1e-9);
+  EXPECT_NEAR(*a.J_x, *a0.J_x, 1e-9);
+  EXPECT_NEAR(*a.J_y, *a0.J_y, 1e-9);
 }
 
 TEST(Presets, SeparableSceneIsW5) {
