@@ -46,6 +46,9 @@ std::optional<std::string> actions_unsupported_reason(const Scene& scene) {
     return "the polar deformation potential: its actions (physics.md §8.10) are not computed here";
   if (scene.body.model == BodyModel::affine && !isotropic_inertia(scene.body))
     return "with anisotropic inertia the motion does not separate (physics.md §13)";
+  if (scene.body.model == BodyModel::incompressible)
+    return "the incompressible body's internal motion (det L fixed) does not separate into x and y "
+           "(physics.md §15)";
   return std::nullopt;
 }
 

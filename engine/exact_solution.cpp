@@ -133,6 +133,9 @@ std::pair<Mat2, Mat2> internal_motion(double J, const AbcPotential& abc, const M
 // out of `abc`: exact_unsupported_reason refuses it, the splitting kicks it).
 std::pair<Mat2, Mat2> internal_flow(const Scene& scene, const AbcPotential& abc, const Mat2& L, const Mat2& M,
                                     double t) {
+  // The incompressible body's internal motion is the splitting's RATTLE step (splitting.cpp), not part
+  // of this flow: here the body only turns with the frame (physics.md §15).
+  if (scene.body.model == BodyModel::incompressible) return {L, M};
   const Inertia inertia = inertia_of(scene.body);
   if (inertia.isotropic) return internal_motion(inertia.J, abc, L, M, t);
   return {L + t * M, M};
@@ -233,6 +236,9 @@ std::pair<Vec2, Vec2> plane_motion_at(const PlaneMotion& m, double t) {
 std::optional<std::string> exact_unsupported_reason(const Scene& scene) {
   if (std::holds_alternative<PolarPotential>(scene.potential.deformation))
     return "the polar deformation potential has no closed form in time (physics.md §8.7): use an integrator";
+  if (scene.body.model == BodyModel::incompressible)
+    return "the incompressible body (det L fixed) has no closed form here: use split4 or split6 (physics.md "
+           "§15)";
   if (scene.body.model == BodyModel::affine && !isotropic_inertia(scene.body) &&
       has_deformation_potential(scene.potential))
     return "with anisotropic inertia the abc internal motion has no closed form here (x² and y² are harmonic "

@@ -65,7 +65,7 @@ double deformation_energy(const Scene& scene, const State& state) {
   double E = inertia.isotropic || scene.body.model == BodyModel::rigid
                  ? 0.5 * inertia.J * in.M.squaredNorm()
                  : 0.5 * (in.M * inertia.matrix).cwiseProduct(in.M).sum();
-  if (scene.body.model == BodyModel::affine) {
+  if (scene.body.model != BodyModel::rigid) {
     const DeformationInvariants inv = deformation_invariants(in.L);
     E += deformation_potential(scene.potential.deformation, inv.a, inv.b).value;
   }
@@ -89,7 +89,7 @@ double angular_momentum(const Scene& scene, const State& state) {
 }
 
 std::optional<SeparatedEnergies> separated_energies(const Scene& scene, const State& state) {
-  // C_x and C_y separate only for isotropic J (physics.md §13).
+  // C_x and C_y separate only for isotropic J (physics.md §13), and not under det L = c (§15).
   if (scene.body.model != BodyModel::affine || !isotropic_inertia(scene.body)) return std::nullopt;
   AbcPotential abc;
   if (const auto* p = std::get_if<AbcPotential>(&scene.potential.deformation))

@@ -15,6 +15,9 @@ namespace spinfold {
 enum class BodyModel {
   affine,  // the internal matrix L is free: 4 deformation degrees of freedom (physics.md §2)
   rigid,   // gyroscope: L = λ₀ U(θ), only the angle θ is integrated (physics.md §8.8)
+  // det L held at its initial value λμ: 3 internal degrees of freedom, integrated by RATTLE on the
+  // level set inside split4/split6 (physics.md §15)
+  incompressible,
 };
 
 // J^{AB} in the body frame (the e_A indices), row-major as the scene gives it [mass·length²].

@@ -15,6 +15,8 @@ double det_L(const Scene& scene, const State& state) {
 
 std::string_view resolve_integrator(const Scene& scene) {
   if (scene.integrator.name != kAutoIntegrator) return scene.integrator.name;
+  // The incompressible body runs only under the RATTLE compositions (physics.md §15).
+  if (scene.body.model == BodyModel::incompressible) return split6_info.name;
   if (!exact_unsupported_reason(scene)) return exact_info.name;
   return dop853_info.name;
 }

@@ -164,6 +164,25 @@ TEST(Presets, ActionVariablesAreConstantAndTheFrequenciesArePeriods) {
   EXPECT_NEAR(*a.J_y, *a0.J_y, 1e-9);
 }
 
+TEST(Presets, IncompressibleEllipseBreathesAtConstantArea) {
+  const Scene scene = preset("incompressible_breathing_ellipse");
+  ASSERT_EQ(scene.body.model, BodyModel::incompressible);
+  Simulation run = start_simulation(scene);
+  EXPECT_EQ(std::string(run.info->name), "split6");  // auto: the RATTLE composition
+  const double area = scene.initial.lambda * scene.initial.mu;
+  double x2_min = 1e300, x2_max = 0.0;
+  for (int k = 1; k <= 40; ++k) {
+    advance_to(run, 0.5 * k);
+    ASSERT_EQ(run.state.status, Status::ok);
+    const PaperCoordinates c = paper_coordinates(scene, run.state);
+    EXPECT_NEAR(c.det_L, area, 1e-14);
+    const double x2 = deformation_invariants(c.L.value()).a;
+    x2_min = std::min(x2_min, x2);
+    x2_max = std::max(x2_max, x2);
+  }
+  EXPECT_GT(x2_max - x2_min, 0.05);  // it breathes
+}
+
 TEST(Presets, SeparableSceneIsW5) {
   const Scene scene = preset("separable_radial_abc");
   Simulation run = start_simulation(scene);
