@@ -68,7 +68,8 @@ std::vector<BenchScene> work_precision_scenes() {
   Scene free_aniso = deforming(SurfaceKind::sphere);
   free_aniso.potential.deformation = std::monostate{};
   free_aniso.body.inertia_matrix = InertiaMatrix{0.3, 0.08, 0.08, 0.15};
-  scenes.push_back({"sphere_anisotropic_free", "S², free deforming body with anisotropic inertia", free_aniso});
+  scenes.push_back(
+      {"sphere_anisotropic_free", "S², free deforming body with anisotropic inertia", free_aniso});
   return scenes;
 }
 
