@@ -384,7 +384,8 @@ Coords radial_exact_coords(const ExactSolution& sol, double t) {
     const auto [L_int, M_int] = internal_flow(scene, sol.internal, sol.initial.L, sol.initial.M, t);
     const Mat2 U = rotation2(-orbit.drive);
     const Mat2 L = U * L_int;
-    const Mat2 P = momentum_from_rate(inertia, U * M_int);
+    // Isotropic: J(UM) as an Eigen product with the scalar folded in, the bits of the scalar code.
+    const Mat2 P = inertia.isotropic ? Mat2(J * (U * M_int)) : momentum_from_rate(inertia, U * M_int);
     y.resize(coord::affine_size);
     y.segment<4>(coord::L) << L(0, 0), L(0, 1), L(1, 0), L(1, 1);
     y.segment<4>(coord::P) << P(0, 0), P(0, 1), P(1, 0), P(1, 1);
