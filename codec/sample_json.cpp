@@ -89,7 +89,8 @@ json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_event
     const ActionVariables& a = *r.actions;
     j["actions"] = {{"J_r", number(a.J_r)},       {"J_phi", number(a.J_phi)}, {"J_alpha", number(a.J_alpha)},
                     {"J_beta", number(a.J_beta)}, {"J_x", number(a.J_x)},     {"J_y", number(a.J_y)}};
-    j["frequencies"] = {{"r", number(a.nu_r)}, {"x", number(a.nu_x)}, {"y", number(a.nu_y)}};
+    j["frequencies"] = {
+        {"r", number(a.nu_r)}, {"phi", number(a.nu_phi)}, {"x", number(a.nu_x)}, {"y", number(a.nu_y)}};
     for (const UndefinedValue& u : a.undefined)
       undefined[u.field.starts_with("nu_") ? "frequencies." + u.field.substr(3) : "actions." + u.field] =
           u.reason;

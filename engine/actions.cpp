@@ -63,22 +63,36 @@ ActionVariables action_variables(const Scene& scene, const State& state) {
   const double radial = 8.0 * pi * pi * m * R * R * E_orb;  // 8π²mR²E′
   a.J_phi = J_phi;
   a.J_alpha = J_alpha;
+  if (half_plus == 0.0 || half_minus == 0.0)
+    a.undefined.push_back(
+        {"nu_phi", "the orbit passes through a pole (no barrier, p_phi = +-s): phi jumps there"});
   if (scene.surface.kind == SurfaceKind::sphere) {
     const double root = std::sqrt(radial + J_alpha * J_alpha);
     a.J_r = root - half_plus - half_minus;
     a.nu_r = root / (4.0 * pi * pi * m * R * R);
+    // E′ = (Q² − J_α²)/(8π²mR²), Q = J_r + h₊ + h₋, ∂h±/∂J_φ = (J_φ ± J_α)/(4h±).
+    if (half_plus > 0.0 && half_minus > 0.0)
+      a.nu_phi = 2.0 * root *
+                 ((J_phi + J_alpha) / (4.0 * half_plus) + (J_phi - J_alpha) / (4.0 * half_minus)) /
+                 (8.0 * pi * pi * m * R * R);
   } else {
     const double q = J_alpha * J_alpha - radial;  // ∝ Λ of physics.md §8.2: > 0 iff u = cosh(r/R) oscillates
     if (q > 0.0) {
       const double root = std::sqrt(q);
       a.J_r = -root + half_plus - half_minus;
       a.nu_r = root / (4.0 * pi * pi * m * R * R);
+      // E′ = (J_α² − Q²)/(8π²mR²), Q = h₊ − h₋ − J_r.
+      if (half_plus > 0.0 && half_minus > 0.0)
+        a.nu_phi = -2.0 * root *
+                   ((J_phi + J_alpha) / (4.0 * half_plus) - (J_phi - J_alpha) / (4.0 * half_minus)) /
+                   (8.0 * pi * pi * m * R * R);
     } else {
       const std::string why = q == 0.0
                                   ? "a separatrix on H² (s² = 2mR²E_orb): r(t) never returns"
                                   : "the orbit is unbounded on H² (s² < 2mR²E_orb): r(t) does not oscillate";
       a.undefined.push_back({"J_r", why});
       a.undefined.push_back({"nu_r", why});
+      a.undefined.push_back({"nu_phi", why});
     }
   }
 

@@ -20,6 +20,8 @@ namespace spinfold {
 struct ActionVariables {
   std::optional<double> J_r, J_phi, J_alpha, J_beta, J_x, J_y;  // [mass·length²/time]
   std::optional<double> nu_r, nu_x, nu_y;                       // [1/time]
+  // ∂E/∂J_φ [1/time]: φ advances by 2πν_φ/ν_r per period of r (the mean precession of the orbit)
+  std::optional<double> nu_phi;
   std::vector<UndefinedValue> undefined;
 };
 
@@ -32,7 +34,8 @@ std::optional<std::string> actions_unsupported_reason(const Scene& scene);
 //   S²: J_r = √(8π²mR²E′ + J_α²) − ½√(k + (J_φ+J_α)²) − ½√(k + (J_φ−J_α)²),
 //   H² (bounded, J_α² > 8π²mR²E′): J_r = −√(J_α² − 8π²mR²E′) + ½√(k + (J_φ+J_α)²) − ½√(k + (J_φ−J_α)²),
 //   abc with C > 0: J_x = πC_x√(J/2C) − π√(2JA + p_γ²), J_y = πC_y√(J/2C) − π√(2JB + p_δ²),
-//   ν_r = √|8π²mR²E′ ± J_α²|/(4π²mR²), ν_x = ν_y = √(2C/J)/π.
+//   ν_r = √|8π²mR²E′ ± J_α²|/(4π²mR²), ν_x = ν_y = √(2C/J)/π, and ν_φ = ∂E/∂J_φ from J_r's
+//   dependence on J_φ at fixed J_r (physics.md §14).
 ActionVariables action_variables(const Scene& scene, const State& state);
 
 // H recomputed from the actions (the inverse of the formulas above): E_orb(J_r, J_φ, J_α) +

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <functional>
+#include <numbers>
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
@@ -168,6 +169,22 @@ TEST(Actions, FrequenciesPredictTheMeasuredPeriods) {
     EXPECT_NEAR(measured_period(scene, r, T_r, 20) / T_r, 1.0, 1e-8) << "r, T " << T_r;
     EXPECT_NEAR(measured_period(scene, x, T_x, 40) / T_x, 1.0, 1e-8) << "x^2, T " << T_x;
     EXPECT_NEAR(measured_period(scene, y, T_y, 40) / T_y, 1.0, 1e-8) << "y^2, T " << T_y;
+  }
+}
+
+// φ advances by 2πν_φ/ν_r per period of r: measured over 20 periods in the scene's chart (which
+// these runs never leave, so φ is continuous).
+TEST(Actions, PrecessionFrequencyPredictsTheAdvanceOfPhi) {
+  for (const Scene& scene : {w5_scene(), bounded_h2_scene()}) {
+    Simulation run = start_simulation(scene);
+    const ActionVariables a = action_variables(scene, run.state);
+    ASSERT_TRUE(a.nu_phi && a.nu_r);
+    const double phi0 = run.state.y[coord::phi], periods = 20.0;
+    advance_to(run, periods / *a.nu_r);
+    ASSERT_TRUE(run.state.chart.global);
+    const double advance = run.state.y[coord::phi] - phi0,
+                 predicted = 2.0 * std::numbers::pi * periods * *a.nu_phi / *a.nu_r;
+    EXPECT_NEAR(advance / predicted, 1.0, 1e-8) << advance << " vs " << predicted;
   }
 }
 
