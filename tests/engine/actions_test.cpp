@@ -118,30 +118,35 @@ State flow(const Scene& scene, const State& from, double h) {
   return s;
 }
 
-// The mean period of g's downward zero crossings over `cycles` cycles, located by bisection.
+// The mean period of g's downward zero crossings over `cycles` cycles: the first and the last
+// crossing located by bisection (the ones between are only counted).
 double measured_period(const Scene& scene, const std::function<double(const State&)>& g, double expected,
                        int cycles) {
   Simulation run = start_simulation(scene);
   const double dt = expected / 16.0;
-  std::vector<double> crossings;
+  int count = 0;
+  double first = 0.0, last = 0.0;
   double g_prev = g(run.state);
-  while (static_cast<int>(crossings.size()) <= cycles) {
+  while (count <= cycles) {
     const State before = run.state;
     advance_to(run, run.state.t + dt);
     EXPECT_EQ(run.state.status, Status::ok);
     if (run.state.status != Status::ok) return 0.0;
     const double g_now = g(run.state);
     if (g_prev > 0.0 && g_now <= 0.0) {
-      double lo = 0.0, hi = run.state.t - before.t;
-      for (int i = 0; i < 60 && hi - lo > 1e-15 * run.state.t; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (g(flow(scene, before, mid)) > 0.0 ? lo : hi) = mid;
+      if (count == 0 || count == cycles) {
+        double lo = 0.0, hi = run.state.t - before.t;
+        for (int i = 0; i < 60 && hi - lo > 1e-15 * run.state.t; ++i) {
+          const double mid = 0.5 * (lo + hi);
+          (g(flow(scene, before, mid)) > 0.0 ? lo : hi) = mid;
+        }
+        (count == 0 ? first : last) = before.t + 0.5 * (lo + hi);
       }
-      crossings.push_back(before.t + 0.5 * (lo + hi));
+      ++count;
     }
     g_prev = g_now;
   }
-  return (crossings.back() - crossings.front()) / cycles;
+  return (last - first) / cycles;
 }
 
 double r_rate(const Scene& scene, const State& s) {
