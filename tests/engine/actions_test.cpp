@@ -171,9 +171,9 @@ TEST(Actions, FrequenciesPredictTheMeasuredPeriods) {
     const auto r = [&](const State& s) { return r_rate(scene, s); };
     const auto x = [&](const State& s) { return x2_rate(scene, s); };
     const auto y = [&](const State& s) { return y2_rate(scene, s); };
-    EXPECT_NEAR(measured_period(scene, r, T_r, 20) / T_r, 1.0, 1e-8) << "r, T " << T_r;
-    EXPECT_NEAR(measured_period(scene, x, T_x, 40) / T_x, 1.0, 1e-8) << "x^2, T " << T_x;
-    EXPECT_NEAR(measured_period(scene, y, T_y, 40) / T_y, 1.0, 1e-8) << "y^2, T " << T_y;
+    EXPECT_NEAR(measured_period(scene, r, T_r, 10) / T_r, 1.0, 1e-8) << "r, T " << T_r;
+    EXPECT_NEAR(measured_period(scene, x, T_x, 20) / T_x, 1.0, 1e-8) << "x^2, T " << T_x;
+    EXPECT_NEAR(measured_period(scene, y, T_y, 20) / T_y, 1.0, 1e-8) << "y^2, T " << T_y;
   }
 }
 
