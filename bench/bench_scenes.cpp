@@ -59,6 +59,17 @@ std::vector<BenchScene> work_precision_scenes() {
   polar.potential.deformation = PolarPotential{0.05, -1.0, PolarForm::cot2};
   polar.initial.r = 1.3;
   scenes.push_back({"sphere_polar", "S², polar deformation potential, numerical reference", polar});
+  // Anisotropic inertia (physics.md §13): W5 with J = [[0.3, 0.08], [0.08, 0.15]] (no closed form),
+  // and the free deforming body with the same J (closed form: the free internal drift is J-independent).
+  Scene w5_aniso = w5;
+  w5_aniso.body.inertia_matrix = InertiaMatrix{0.3, 0.08, 0.08, 0.15};
+  scenes.push_back(
+      {"sphere_anisotropic_abc", "S², W5 with anisotropic inertia, numerical reference", w5_aniso});
+  Scene free_aniso = deforming(SurfaceKind::sphere);
+  free_aniso.potential.deformation = std::monostate{};
+  free_aniso.body.inertia_matrix = InertiaMatrix{0.3, 0.08, 0.08, 0.15};
+  scenes.push_back(
+      {"sphere_anisotropic_free", "S², free deforming body with anisotropic inertia", free_aniso});
   return scenes;
 }
 

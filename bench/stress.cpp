@@ -9,6 +9,7 @@
 
 #include "bench/bench_scenes.h"
 #include "engine/chart.h"
+#include "engine/dynamics.h"
 #include "engine/exact_solution.h"
 #include "engine/invariants.h"
 #include "engine/paper_coordinates.h"
@@ -297,6 +298,67 @@ StressResult long_runs(double size) {
   return r;
 }
 
+// The models of issue 16 over long runs (physics.md §13, §15): an incompressible body under split6
+// (det L residual, energy, spin) and an anisotropic one under split6 (energy, spin; the vorticity
+// moves).
+StressResult whole_model(double size) {
+  Scene scene;
+  scene.surface = {SurfaceKind::sphere, 1.5};
+  scene.body = {1.0, 0.4, BodyModel::incompressible};
+  scene.potential.radial = RadialPotential{0.05};
+  scene.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
+  scene.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.3, 0.0};
+  scene.initial.mu_dot = -scene.initial.lambda_dot * scene.initial.mu / scene.initial.lambda;
+  const long steps = std::max(10000L, std::lround(1e6 * size));
+  const double dt = 0.02;
+  scene.integrator = {"split6", dt, 1e-10};
+  Scene aniso = scene;
+  aniso.body.model = BodyModel::affine;
+  aniso.body.inertia_matrix = InertiaMatrix{0.3, 0.08, 0.08, 0.15};
+  aniso.initial.mu_dot = 0.05;
+  const double c = scene.initial.lambda * scene.initial.mu;
+  const int samples = 1000;
+  struct Track {
+    double det = 0.0, spin = 0.0, first = 0.0, last = 0.0, vort_min = 1e300, vort_max = -1e300;
+  };
+  const auto track = [&](const Scene& sc, bool constrained) {
+    Simulation run = start_simulation(sc);
+    const double H0 = energy(sc, run.state), s0 = spin(sc, run.state);
+    Track t;
+    for (int k = 1; k <= samples; ++k) {
+      advance_to(run, dt * static_cast<double>(steps) * k / samples);
+      if (run.state.status != Status::ok) return Track{1e300, 1e300, 1e300, 1e300, 0.0, 0.0};
+      const double dH = std::abs(energy(sc, run.state) - H0) / std::abs(H0);
+      if (k <= samples / 10) t.first = std::max(t.first, dH);
+      if (k > samples * 9 / 10) t.last = std::max(t.last, dH);
+      t.spin = std::max(t.spin, std::abs(spin(sc, run.state) - s0));
+      if (constrained) t.det = std::max(t.det, std::abs(internal_state(sc, run.state.y).L.determinant() - c));
+      t.vort_min = std::min(t.vort_min, vorticity(sc, run.state));
+      t.vort_max = std::max(t.vort_max, vorticity(sc, run.state));
+    }
+    return t;
+  };
+  const Track in = track(scene, true), an = track(aniso, false);
+  StressResult r;
+  r.criterion =
+      "split6 at dt = 0.02: incompressible |det L - c| <= 1e-13 and spin <= 1e-11 throughout, energy error "
+      "of "
+      "the last tenth <= 2x the first + 1e-14; anisotropic: the same energy and spin criteria, and the "
+      "vorticity range >= 1e-3";
+  r.passed = in.det <= 1e-13 && in.spin <= 1e-11 && in.last <= 2.0 * in.first + 1e-14 && an.spin <= 1e-11 &&
+             an.last <= 2.0 * an.first + 1e-14 && an.vort_max - an.vort_min >= 1e-3;
+  r.figures = {{"steps per run", static_cast<double>(steps)},
+               {"incompressible: max |det L - c|", in.det},
+               {"incompressible: spin error", in.spin},
+               {"incompressible: energy error, first tenth", in.first},
+               {"incompressible: energy error, last tenth", in.last},
+               {"anisotropic: spin error", an.spin},
+               {"anisotropic: energy error, first tenth", an.first},
+               {"anisotropic: energy error, last tenth", an.last},
+               {"anisotropic: vorticity range", an.vort_max - an.vort_min}};
+  return r;
+}
+
 StressResult extremes(double size) {
   StressResult r;
   double worst = 0.0;
@@ -343,6 +405,8 @@ const StressCase kCases[] = {
      &stiff_and_multiscale},
     {"long_runs", "1e7 split6 steps: bounded energy; Brouwer's law of round-off", &long_runs},
     {"extremes", "large spin, tiny R, huge R", &extremes},
+    {"whole_model", "1e6 split6 steps each: an incompressible body (det L) and an anisotropic one",
+     &whole_model},
 };
 
 }  // namespace

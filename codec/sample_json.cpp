@@ -83,6 +83,22 @@ json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_event
 
   json undefined = json::object();
   for (const UndefinedValue& u : c.undefined) undefined[u.field] = u.reason;
+  // Action variables J = ∮p dq and frequencies ν = ∂E/∂J [1/time] (engine/actions.h): null where
+  // undefined, with the reason under undefined ("actions.J_r", "frequencies.r", or "actions").
+  if (r.actions) {
+    const ActionVariables& a = *r.actions;
+    j["actions"] = {{"J_r", number(a.J_r)},       {"J_phi", number(a.J_phi)}, {"J_alpha", number(a.J_alpha)},
+                    {"J_beta", number(a.J_beta)}, {"J_x", number(a.J_x)},     {"J_y", number(a.J_y)}};
+    j["frequencies"] = {
+        {"r", number(a.nu_r)}, {"phi", number(a.nu_phi)}, {"x", number(a.nu_x)}, {"y", number(a.nu_y)}};
+    for (const UndefinedValue& u : a.undefined)
+      undefined[u.field.starts_with("nu_") ? "frequencies." + u.field.substr(3) : "actions." + u.field] =
+          u.reason;
+  } else {
+    j["actions"] = nullptr;
+    j["frequencies"] = nullptr;
+    undefined["actions"] = r.actions_unsupported;
+  }
   j["undefined"] = undefined;
   json events = json::array();
   for (const DegenerateEvent& e : new_events) events.push_back({{"kind", "det_L_zero"}, {"t", number(e.t)}});

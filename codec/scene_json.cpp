@@ -139,9 +139,28 @@ void read_deformation(Reader& in, const json& j, const std::string& path, Deform
   if (!known) in.error(path + ".kind", kind != j.end() ? *kind : json(nullptr), "must be one of: " + allowed);
 }
 
+// body.inertia as a matrix [[J11, J12], [J21, J22]] (engine/scene.h InertiaMatrix): read into
+// inertia_matrix; true when `j` holds one (well-formed or not), so that the number reader skips it.
+bool read_inertia_matrix(Reader& in, const json& j, const std::string& path, Body& out) {
+  const auto it = j.find(kInertiaKey);
+  if (it == j.end() || !it->is_array()) return false;
+  const json& m = *it;
+  const auto row = [](const json& r) {
+    return r.is_array() && r.size() == 2 && r[0].is_number() && r[1].is_number();
+  };
+  if (m.size() != 2 || !row(m[0]) || !row(m[1])) {
+    in.error(Reader::join(path, kInertiaKey), m,
+             "must be a number (isotropic) or a 2x2 matrix [[J11, J12], [J21, J22]] of numbers");
+    return true;
+  }
+  out.inertia_matrix = InertiaMatrix{m[0][0].get<double>(), m[0][1].get<double>(), m[1][0].get<double>(),
+                                     m[1][1].get<double>()};
+  return true;
+}
+
 // Reads every field of the table of S that `j` (an object) holds; absent ones keep their value.
 template <typename S>
-void read_fields(Reader& in, const json& j, const std::string& path, S& out) {
+void read_table(Reader& in, const json& j, const std::string& path, S& out) {
   for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
     using T = typename std::remove_cvref_t<decltype(field)>::Value;
     T& value = out.*field.member;
@@ -169,6 +188,22 @@ void read_fields(Reader& in, const json& j, const std::string& path, S& out) {
     }
   });
   refuse_both_forms<S>(in, j, path);
+}
+
+// read_table, with body.inertia either a number or a matrix.
+template <typename S>
+void read_fields(Reader& in, const json& j, const std::string& path, S& out) {
+  if constexpr (std::is_same_v<S, Body>) {
+    const auto it = j.find(kInertiaKey);
+    if (it != j.end() && it->is_number()) out.inertia_matrix.reset();  // a number: isotropic
+    if (read_inertia_matrix(in, j, path, out)) {
+      json rest = j;
+      rest.erase(std::string(kInertiaKey));
+      read_table(in, rest, path, out);
+      return;
+    }
+  }
+  read_table(in, j, path, out);
 }
 
 // An optional number given in the same block as a field it stands in for (spin with alpha_dot):
@@ -239,6 +274,11 @@ json write_fields(const S& in) {
           value);
     }
   });
+  if constexpr (std::is_same_v<S, Body>) {
+    if (const auto& m = in.inertia_matrix)
+      j[std::string(kInertiaKey)] =
+          json::array({json::array({m->J11, m->J12}), json::array({m->J21, m->J22})});
+  }
   return j;
 }
 

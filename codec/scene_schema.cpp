@@ -101,7 +101,21 @@ json scene_schema() {
       {"title", "Spinfold scene"},
       {"description", "An affinely-rigid body on a surface of constant curvature (docs/physics.md)."},
   };
-  const json top = section<Scene>();
+  json top = section<Scene>();
+  // body.inertia: a number (isotropic) or a symmetric positive-definite 2x2 matrix (physics.md §13).
+  json& inertia = top["properties"]["body"]["properties"][std::string(kInertiaKey)];
+  json number = inertia;
+  const json row = {{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 2}, {"maxItems", 2}};
+  inertia = {{"description", number["description"]},
+             {"x-unit", number["x-unit"]},
+             {"default", number["default"]},
+             {"oneOf",
+              {number,
+               {{"type", "array"},
+                {"items", row},
+                {"minItems", 2},
+                {"maxItems", 2},
+                {"description", "J^{AB} in the body frame: symmetric, positive definite"}}}}};
   for (auto it = top.begin(); it != top.end(); ++it) schema[it.key()] = it.value();
   // Companions (codec/scene_json.h): merge patches over the main body's blocks.
   const json& main = schema["properties"];

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "engine/dynamics.h"
+#include "engine/inertia.h"
 
 namespace spinfold {
 
@@ -32,7 +33,7 @@ BodyKinematics chart_kinematics(const Scene& scene, const Coords& y) {
 
 Coords chart_coords(const Scene& scene, const BodyKinematics& body) {
   const Surface& surface = scene.surface;
-  const double m = scene.body.mass, J = scene.body.inertia;
+  const double m = scene.body.mass;
   const PolarCoordinates pc = polar_coordinates(surface, body.X);
   const ChartPoint p = chart_point(surface, pc.r, pc.phi);
   // F₁ = cos ψ E₁ + sin ψ E₂ ⇒ components in (E₁, E₂) are U(ψ) times those in (F₁, F₂).
@@ -48,7 +49,7 @@ Coords chart_coords(const Scene& scene, const BodyKinematics& body) {
     y[coord::spin] = body.spin;
   } else {
     y.resize(coord::affine_size);
-    const Mat2 P = J * M;
+    const Mat2 P = momentum_from_rate(inertia_of(scene.body), M);  // P = MJ (physics.md §13)
     y.segment<4>(coord::L) << L(0, 0), L(0, 1), L(1, 0), L(1, 1);
     y.segment<4>(coord::P) << P(0, 0), P(0, 1), P(1, 0), P(1, 1);
   }
@@ -70,7 +71,7 @@ BodyKinematics initial_kinematics(const Scene& scene) {
   const Mat2 L_dot = q.alpha_dot * eps * L - q.beta_dot * L * eps +
                      Ua * Eigen::Vector2d(q.lambda_dot, q.mu_dot).asDiagonal() * Ub.transpose();
   const Mat2 M = L_dot + C * q.phi_dot * eps * L;
-  const double spin = scene.body.inertia * (eps * L).cwiseProduct(M).sum();
+  const double spin = spin_from_rate(inertia_of(scene.body), L, M);  // s = tr((εL)ᵀMJ)
   return {p.X, q.r_dot * p.E1 + S * q.phi_dot * p.E2, p.E1, L, M, spin};
 }
 
@@ -184,7 +185,7 @@ State initial_state(const Scene& scene) {
     return state;
   }
   // The scene's own chart: canonical values straight from the initial ones (physics.md §3).
-  const double m = scene.body.mass, J = scene.body.inertia;
+  const double m = scene.body.mass;
   const double S = polar_S(scene.surface, q.r), C = polar_C(scene.surface, q.r);
   Coords& y = state.y;
   if (scene.body.model == BodyModel::rigid) {
@@ -193,7 +194,7 @@ State initial_state(const Scene& scene) {
     y[coord::spin] = body.spin;
   } else {
     y.resize(coord::affine_size);
-    const Mat2 P = J * body.M;
+    const Mat2 P = momentum_from_rate(inertia_of(scene.body), body.M);
     y.segment<4>(coord::L) << body.L(0, 0), body.L(0, 1), body.L(1, 0), body.L(1, 1);
     y.segment<4>(coord::P) << P(0, 0), P(0, 1), P(1, 0), P(1, 1);
   }

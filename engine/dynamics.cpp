@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "engine/inertia.h"
 #include "engine/potentials.h"
 
 namespace spinfold {
@@ -45,10 +46,10 @@ InternalState internal_state(const Scene& scene, const Coords& y) {
     Mat2 L;
     L << std::cos(th), -std::sin(th), std::sin(th), std::cos(th);
     L *= l0;
-    const double omega = y[coord::spin] / (2.0 * scene.body.inertia * l0 * l0);
+    const double omega = y[coord::spin] / (2.0 * rigid_inertia(inertia_of(scene.body)) * l0 * l0);
     return {L, omega * eps_times(L)};
   }
-  return {block(y, coord::L), block(y, coord::P) / scene.body.inertia};
+  return {block(y, coord::L), rate_from_momentum(inertia_of(scene.body), block(y, coord::P))};
 }
 
 RadialTerms radial_terms(const Scene& scene, const Chart& chart, double r, double phi) {
@@ -73,7 +74,8 @@ RadialTerms radial_terms(const Scene& scene, const Chart& chart, double r, doubl
 }
 
 EnergyParts energy_parts(const Scene& scene, const Chart& chart, const Coords& y) {
-  const double m = scene.body.mass, J = scene.body.inertia;
+  const Inertia inertia = inertia_of(scene.body);
+  const double m = scene.body.mass, J = rigid_inertia(inertia);
   const double r = y[coord::r], S = polar_S(scene.surface, r), C = polar_C(scene.surface, r);
   const double s = spin_of(scene, y);
   const double Pi = y[coord::p_phi] - C * s;
@@ -87,7 +89,7 @@ EnergyParts energy_parts(const Scene& scene, const Chart& chart, const Coords& y
   }
   const Mat2 L = block(y, coord::L), P = block(y, coord::P);
   const DeformationInvariants inv = deformation_invariants(L);
-  e.kinetic += P.squaredNorm() / (2.0 * J);
+  e.kinetic += internal_kinetic_energy(inertia, P);  // ½ tr(P J⁻¹ Pᵀ) (physics.md §13)
   e.potential += deformation_potential(scene.potential.deformation, inv.a, inv.b).value;
   return e;
 }
@@ -98,7 +100,8 @@ double hamiltonian(const Scene& scene, const Chart& chart, const Coords& y) {
 }
 
 void vector_field(const Scene& scene, const Chart& chart, const Coords& y, Coords& dydt) {
-  const double m = scene.body.mass, J = scene.body.inertia, K = curvature(scene.surface);
+  const Inertia inertia = inertia_of(scene.body);
+  const double m = scene.body.mass, J = rigid_inertia(inertia), K = curvature(scene.surface);
   const double r = y[coord::r], S = polar_S(scene.surface, r), C = polar_C(scene.surface, r);
   const double s = spin_of(scene, y);
   const double Pi = y[coord::p_phi] - C * s;
@@ -119,7 +122,7 @@ void vector_field(const Scene& scene, const Chart& chart, const Coords& y, Coord
     return;
   }
   const Mat2 L = block(y, coord::L), P = block(y, coord::P);
-  const Mat2 L_dot = P / J - drive * eps_times(L);
+  const Mat2 L_dot = rate_from_momentum(inertia, P) - drive * eps_times(L);  // PJ⁻¹ − Cφ̇εL (§13)
   Mat2 P_dot = -drive * eps_times(P);
   if (has_deformation_potential(scene.potential)) {
     const DeformationInvariants inv = deformation_invariants(L);

@@ -7,6 +7,7 @@
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
+#include "engine/inertia.h"
 #include "engine/integrator.h"
 #include "engine/invariants.h"
 #include "engine/potentials.h"
@@ -127,6 +128,19 @@ std::pair<Mat2, Mat2> internal_motion(double J, const AbcPotential& abc, const M
   return {assemble(uv, pq), assemble(uv_dot, pq_dot)};
 }
 
+// The internal motion at a fixed point without drive: §8.3 for isotropic J; for anisotropic J only
+// the free motion, Ṗ = 0 ⇒ Ṁ = 0, L(t) = L + tM (physics.md §13; callers keep the abc potential
+// out of `abc`: exact_unsupported_reason refuses it, the splitting kicks it).
+std::pair<Mat2, Mat2> internal_flow(const Scene& scene, const AbcPotential& abc, const Mat2& L, const Mat2& M,
+                                    double t) {
+  // The incompressible body's internal motion is the splitting's RATTLE step (splitting.cpp), not part
+  // of this flow: here the body only turns with the frame (physics.md §15).
+  if (scene.body.model == BodyModel::incompressible) return {L, M};
+  const Inertia inertia = inertia_of(scene.body);
+  if (inertia.isotropic) return internal_motion(inertia.J, abc, L, M, t);
+  return {L + t * M, M};
+}
+
 struct OrbitPoint {
   double r, r_dot, phi, drive;  // drive D(t) = ∫₀ᵗ Cφ̇ dt′
 };
@@ -222,6 +236,14 @@ std::pair<Vec2, Vec2> plane_motion_at(const PlaneMotion& m, double t) {
 std::optional<std::string> exact_unsupported_reason(const Scene& scene) {
   if (std::holds_alternative<PolarPotential>(scene.potential.deformation))
     return "the polar deformation potential has no closed form in time (physics.md §8.7): use an integrator";
+  if (scene.body.model == BodyModel::incompressible)
+    return "the incompressible body (det L fixed) has no closed form here: use split4 or split6 (physics.md "
+           "§15)";
+  if (scene.body.model == BodyModel::affine && !isotropic_inertia(scene.body) &&
+      has_deformation_potential(scene.potential))
+    return "with anisotropic inertia the abc internal motion has no closed form here (x² and y² are harmonic "
+           "only for isotropic J, physics.md §8.3, §13): use an integrator (split4 and split6 keep the orbit "
+           "exact)";
   return std::nullopt;
 }
 
@@ -302,11 +324,11 @@ std::pair<Mat2, Mat2> frame_flow(const Scene& scene, const AbcPotential& interna
       -curvature_sign(surface) * start.spin * t / (scene.body.mass * surface.radius * surface.radius);
   if (scene.body.model == BodyModel::rigid) {
     const double l0 = scene.initial.lambda;
-    const double omega = start.spin / (2.0 * scene.body.inertia * l0 * l0);
+    const double omega = start.spin / (2.0 * rigid_inertia(inertia_of(scene.body)) * l0 * l0);
     const Mat2 L = rotation2(theta_s + omega * t) * start.L;
     return {L, omega * epsilon() * L};
   }
-  const auto [L, M] = internal_motion(scene.body.inertia, internal, start.L, start.M, t);
+  const auto [L, M] = internal_flow(scene, internal, start.L, start.M, t);
   const Mat2 U = rotation2(theta_s);
   return {U * L, U * M};
 }
@@ -349,7 +371,8 @@ namespace {
 Coords radial_exact_coords(const ExactSolution& sol, double t) {
   const Scene& scene = sol.scene;
   const RadialOrbit& o = *sol.radial;
-  const double m = scene.body.mass, J = scene.body.inertia;
+  const Inertia inertia = inertia_of(scene.body);
+  const double m = scene.body.mass, J = rigid_inertia(inertia);
   const OrbitPoint orbit = radial_orbit_at(scene.surface, m, o, t);
   Coords y;
   if (scene.body.model == BodyModel::rigid) {
@@ -358,10 +381,11 @@ Coords radial_exact_coords(const ExactSolution& sol, double t) {
     y[coord::theta] = sol.theta0 + o.spin * t / (2.0 * J * l0 * l0) - orbit.drive;
     y[coord::spin] = o.spin;
   } else {
-    const auto [L_int, M_int] = internal_motion(J, sol.internal, sol.initial.L, sol.initial.M, t);
+    const auto [L_int, M_int] = internal_flow(scene, sol.internal, sol.initial.L, sol.initial.M, t);
     const Mat2 U = rotation2(-orbit.drive);
     const Mat2 L = U * L_int;
-    const Mat2 P = J * (U * M_int);
+    // Isotropic: J(UM) as an Eigen product with the scalar folded in, the bits of the scalar code.
+    const Mat2 P = inertia.isotropic ? Mat2(J * (U * M_int)) : momentum_from_rate(inertia, U * M_int);
     y.resize(coord::affine_size);
     y.segment<4>(coord::L) << L(0, 0), L(0, 1), L(1, 0), L(1, 1);
     y.segment<4>(coord::P) << P(0, 0), P(0, 1), P(1, 0), P(1, 1);

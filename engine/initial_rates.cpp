@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "engine/inertia.h"
 #include "engine/number_text.h"
 #include "engine/surface.h"
 
@@ -26,6 +27,27 @@ bool at_pole(const Surface& surface, double r) {
 bool along_E1(double heading) {
   const double eps = std::numeric_limits<double>::epsilon();
   return std::abs(std::sin(heading)) <= 4.0 * eps * std::max(1.0, std::abs(heading));
+}
+
+// With anisotropic J the spin s = tr((εL)ᵀMJ) (physics.md §13) is linear in χ = α̇ + Cφ̇:
+// s = a χ + b with a = tr(LᵀLJ) and b = tr((εL)ᵀ(U(α)diag(λ̇, μ̇)U(β)ᵀ − β̇Lε)J), because
+// M = χεL − β̇Lε + U(α)diag(λ̇, μ̇)U(β)ᵀ and (εL)ᵀεL = LᵀL.
+struct SpinLine {
+  double a, b;
+};
+SpinLine spin_line(const InitialState& q, const Mat2& J) {
+  const auto rot = [](double t) {
+    Mat2 U;
+    U << std::cos(t), -std::sin(t), std::sin(t), std::cos(t);
+    return U;
+  };
+  Mat2 eps;
+  eps << 0.0, -1.0, 1.0, 0.0;
+  const Mat2 Ua = rot(q.alpha), Ub = rot(q.beta);
+  const Mat2 L = Ua * Eigen::Vector2d(q.lambda, q.mu).asDiagonal() * Ub.transpose();
+  const Mat2 rest =
+      Ua * Eigen::Vector2d(q.lambda_dot, q.mu_dot).asDiagonal() * Ub.transpose() - q.beta_dot * L * eps;
+  return {(L.transpose() * L).cwiseProduct(J).sum(), (eps * L).cwiseProduct(rest * J).sum()};
 }
 
 }  // namespace
@@ -61,11 +83,17 @@ std::vector<FieldError> resolve_initial_rates(Scene& scene) {
   }
 
   // Spin: s = J[(λ² + μ²)(α̇ + Cφ̇) − 2λμβ̇] solved for α̇ (physics.md §3), with the φ̇ above.
-  if (q.spin && finite(*q.spin) && finite(scene.body.inertia) && scene.body.inertia > 0.0 &&
-      finite(q.lambda) && finite(q.mu) && finite(q.beta_dot) && finite(phi_dot) && finite(q.r)) {
-    const double J = scene.body.inertia, l = q.lambda, m = q.mu;
+  const Inertia inertia = inertia_of(scene.body);
+  if (q.spin && finite(*q.spin) && finite(inertia.J) && inertia.J > 0.0 && finite(q.lambda) && finite(q.mu) &&
+      finite(q.beta_dot) && finite(phi_dot) && finite(q.r)) {
+    const double J = inertia.J, l = q.lambda, m = q.mu;
     const double C = polar_C(scene.surface, q.r);
-    alpha_dot = (*q.spin / J + 2.0 * l * m * q.beta_dot) / (l * l + m * m) - C * phi_dot;
+    if (inertia.isotropic || scene.body.model == BodyModel::rigid) {
+      alpha_dot = (*q.spin / J + 2.0 * l * m * q.beta_dot) / (l * l + m * m) - C * phi_dot;
+    } else {
+      const SpinLine line = spin_line(q, inertia.matrix);
+      alpha_dot = (*q.spin - line.b) / line.a - C * phi_dot;
+    }
     if (!finite(alpha_dot))
       errors.push_back(
           {"initial.spin", shortest(*q.spin),
@@ -82,8 +110,12 @@ std::vector<FieldError> resolve_initial_rates(Scene& scene) {
 double spin_of(const Scene& scene) {
   const InitialState& q = scene.initial;
   const double chi = q.alpha_dot + polar_C(scene.surface, q.r) * q.phi_dot;  // χ = α̇ + Cφ̇
-  return scene.body.inertia *
-         ((q.lambda * q.lambda + q.mu * q.mu) * chi - 2.0 * q.lambda * q.mu * q.beta_dot);
+  const Inertia inertia = inertia_of(scene.body);
+  if (!inertia.isotropic && scene.body.model == BodyModel::affine) {
+    const SpinLine line = spin_line(q, inertia.matrix);
+    return line.a * chi + line.b;
+  }
+  return inertia.J * ((q.lambda * q.lambda + q.mu * q.mu) * chi - 2.0 * q.lambda * q.mu * q.beta_dot);
 }
 
 double speed_of(const Scene& scene) {

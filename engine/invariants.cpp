@@ -4,6 +4,7 @@
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
+#include "engine/inertia.h"
 #include "engine/potentials.h"
 
 namespace spinfold {
@@ -58,10 +59,13 @@ double orbital_energy(const Scene& scene, const State& state) {
 }
 
 double deformation_energy(const Scene& scene, const State& state) {
-  const double J = scene.body.inertia;
+  const Inertia inertia = inertia_of(scene.body);
   const InternalState in = internal_state(scene, state.y);
-  double E = 0.5 * J * in.M.squaredNorm();
-  if (scene.body.model == BodyModel::affine) {
+  // ½ tr(M J Mᵀ) (physics.md §13); the rigid body is the isotropic one with J = tr(J)/2.
+  double E = inertia.isotropic || scene.body.model == BodyModel::rigid
+                 ? 0.5 * inertia.J * in.M.squaredNorm()
+                 : 0.5 * (in.M * inertia.matrix).cwiseProduct(in.M).sum();
+  if (scene.body.model != BodyModel::rigid) {
     const DeformationInvariants inv = deformation_invariants(in.L);
     E += deformation_potential(scene.potential.deformation, inv.a, inv.b).value;
   }
@@ -74,8 +78,7 @@ double spin(const Scene& scene, const State& state) {
 
 double vorticity(const Scene& scene, const State& state) {
   const InternalState in = internal_state(scene, state.y);
-  const Mat2 L_eps = in.L * epsilon();
-  return -scene.body.inertia * L_eps.cwiseProduct(in.M).sum();
+  return vorticity_from_rate(inertia_of(scene.body), in.L, in.M);
 }
 
 double angular_momentum(const Scene& scene, const State& state) {
@@ -86,13 +89,14 @@ double angular_momentum(const Scene& scene, const State& state) {
 }
 
 std::optional<SeparatedEnergies> separated_energies(const Scene& scene, const State& state) {
-  if (scene.body.model != BodyModel::affine) return std::nullopt;
+  // C_x and C_y separate only for isotropic J (physics.md §13), and not under det L = c (§15).
+  if (scene.body.model != BodyModel::affine || !isotropic_inertia(scene.body)) return std::nullopt;
   AbcPotential abc;
   if (const auto* p = std::get_if<AbcPotential>(&scene.potential.deformation))
     abc = *p;
   else if (has_deformation_potential(scene.potential))
     return std::nullopt;
-  const double J = scene.body.inertia;
+  const double J = inertia_of(scene.body).J;
   const InternalState in = internal_state(scene, state.y);
   const DeformationInvariants inv = deformation_invariants(in.L);
   const DeformationInvariants rate = deformation_invariants(in.M);  // 2(u_M² + v_M²), 2(p_M² + q_M²)

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "engine/chart.h"
+#include "engine/inertia.h"
 #include "engine/invariants.h"
 
 namespace spinfold {
@@ -39,7 +41,8 @@ double wrap(double angle) {
 
 PaperCoordinates paper_coordinates(const Scene& scene, const State& state) {
   const GlobalBody g = global_body(scene, state);
-  const double J = scene.body.inertia, m = scene.body.mass;
+  const Inertia inertia = inertia_of(scene.body);
+  const double J = inertia.J, m = scene.body.mass;
   PaperCoordinates out;
   out.r = g.r;
   out.X = g.X;
@@ -67,6 +70,22 @@ PaperCoordinates paper_coordinates(const Scene& scene, const State& state) {
   out.mu_dot = (y.magnitude_dot - x.magnitude_dot) / std::numbers::sqrt2;
   out.p_lambda = J * out.lambda_dot;
   out.p_mu = J * out.mu_dot;
+  if (!inertia.isotropic && scene.body.model == BodyModel::affine) {
+    if (x.angle_defined && y.angle_defined) {
+      // p_λ = tr((∂L/∂λ)ᵀP) = (U(α)ᵀ P U(β))₁₁, p_μ = (…)₂₂ with P = MJ (physics.md §13); the same in
+      // any frame (a frame rotation turns L and P alike and shifts only α).
+      const Mat2 P = momentum_from_rate(inertia, g.M);
+      const Mat2 D =
+          rotation2(0.5 * (x.angle + y.angle)).transpose() * P * rotation2(0.5 * (x.angle - y.angle));
+      out.p_lambda = D(0, 0);
+      out.p_mu = D(1, 1);
+    } else {
+      for (const char* f : {"p_lambda", "p_mu"})
+        out.undefined.push_back(
+            {f,
+             "with anisotropic inertia p_lambda and p_mu need alpha and beta, undefined at lambda = +-mu"});
+    }
+  }
 
   if (g.at_pole) {
     const std::string why = "the body is at a pole of the scene's chart, where phi and E1 are undefined";

@@ -43,6 +43,10 @@ Readout readout(const Simulation& run) {
   r.vorticity = r.coordinates.p_beta;
   r.det_L = r.coordinates.det_L;
   r.separated = separated_energies(scene, state);
+  if (const auto why = actions_unsupported_reason(scene))
+    r.actions_unsupported = *why;
+  else
+    r.actions = action_variables(scene, state);
   r.momentum_map = momentum_map(scene, state);
   if (r.momentum_map && scene.surface.kind != SurfaceKind::plane)
     r.casimir = casimir(scene.surface, *r.momentum_map);
@@ -54,13 +58,24 @@ Readout readout(const Simulation& run) {
   return r;
 }
 
+namespace {
+
+// "J = 0.1" or "J = [[0.2, 0.05], [0.05, 0.1]]".
+std::string inertia_text(const Body& body) {
+  if (!body.inertia_matrix) return format("J = %g", body.inertia);
+  const InertiaMatrix& J = *body.inertia_matrix;
+  return format("J = [[%g, %g], ", J.J11, J.J12) + format("[%g, %g]]", J.J21, J.J22);
+}
+
+}  // namespace
+
 std::vector<std::string> readout_lines(const Scene& scene, const Readout& readout) {
   return {
       format("t = %.3f", readout.t),
       format("energy error = %.2e", readout.energy_error),
       "integrator: " + std::string(readout.integrator) + (readout.status == Status::ok ? "" : "  [stopped]"),
       std::string(enum_name(scene.surface.kind)) + format("  R = %g", scene.surface.radius),
-      format("m = %g  J = %g  ", scene.body.mass, scene.body.inertia) +
+      format("m = %g  ", scene.body.mass) + inertia_text(scene.body) + "  " +
           std::string(enum_name(scene.body.model)),
       format("spin = %.4f  det L = %.4f", readout.spin, readout.det_L),
   };

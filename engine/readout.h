@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/actions.h"
 #include "engine/invariants.h"
 #include "engine/paper_coordinates.h"
 #include "engine/simulation.h"
@@ -31,6 +32,10 @@ struct Readout {
   std::optional<SeparatedEnergies> separated;  // C_x, C_y [energy] (abc or no deformation, affine)
   std::optional<Vec3> momentum_map;            // M (physics.md §6), when defined
   std::optional<double> casimir;               // MᵀηM, on S² and H² when M is defined
+  // Action variables and frequencies of the separable scenes (engine/actions.h); none with the
+  // reason in actions_unsupported otherwise.
+  std::optional<ActionVariables> actions;
+  std::string actions_unsupported;
   Status status = Status::ok;
   std::string_view status_name;    // status_name(status), e.g. "ok"
   std::string_view status_detail;  // status_description(status): one sentence

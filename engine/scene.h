@@ -15,12 +15,24 @@ namespace spinfold {
 enum class BodyModel {
   affine,  // the internal matrix L is free: 4 deformation degrees of freedom (physics.md §2)
   rigid,   // gyroscope: L = λ₀ U(θ), only the angle θ is integrated (physics.md §8.8)
+  // det L held at its initial value λμ: 3 internal degrees of freedom, integrated by RATTLE on the
+  // level set inside split4/split6 (physics.md §15)
+  incompressible,
+};
+
+// J^{AB} in the body frame (the e_A indices), row-major as the scene gives it [mass·length²].
+// Valid when symmetric (J12 = J21) and positive definite (J11 > 0, J11 J22 − J12² > 0).
+struct InertiaMatrix {
+  double J11 = 0.1, J12 = 0.0, J21 = 0.0, J22 = 0.1;  // [mass·length²]
 };
 
 struct Body {
   double mass = 1.0;     // m [mass]
-  double inertia = 0.1;  // J [mass·length²]: isotropic J^{AB} = J δ^{AB}
+  double inertia = 0.1;  // J [mass·length²]: isotropic J^{AB} = J δ^{AB} (when inertia_matrix is absent)
   BodyModel model = BodyModel::affine;
+  // Anisotropic J^{AB} (physics.md §13); when set it is the inertia and `inertia` is unused. The
+  // scene format writes both as body.inertia: a number or [[J11, J12], [J21, J22]].
+  std::optional<InertiaMatrix> inertia_matrix = std::nullopt;
 };
 
 // V_r = g/sin²(r/R) on S², g/(R² sinh²(r/R)) on H², g/r² on the plane (physics.md §5, paper's

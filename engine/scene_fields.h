@@ -42,6 +42,8 @@ inline constexpr EnumName<SurfaceKind> kSurfaceKindNames[] = {
 inline constexpr EnumName<BodyModel> kBodyModelNames[] = {
     {"affine", BodyModel::affine, "L free: 4 internal degrees of freedom"},
     {"rigid", BodyModel::rigid, "gyroscope L = λ U(θ): needs mu = lambda and no deformation"},
+    {"incompressible", BodyModel::incompressible,
+     "det L fixed at lambda*mu: 3 internal degrees of freedom (split4, split6: RATTLE on the level set)"},
 };
 inline constexpr EnumName<PolarForm> kPolarFormNames[] = {
     {"cot2", PolarForm::cot2, "W = ĝ cot²(2ε): the paper's action variable"},
@@ -172,10 +174,18 @@ inline constexpr std::tuple kSurfaceFields{
     number_field("radius", &Surface::radius, "length", kPositive, "R (the plane's length scale)"),
 };
 
+// body.inertia: the number below (isotropic J), or a symmetric positive-definite matrix
+// [[J11, J12], [J21, J22]] in the body frame held in Body::inertia_matrix. The JSON reader, writer,
+// schema and validator handle that second form by this key (physics.md §13).
+inline constexpr std::string_view kInertiaKey = "inertia";
+
 inline constexpr std::tuple kBodyFields{
     number_field("mass", &Body::mass, "mass", kPositive, "m"),
-    number_field("inertia", &Body::inertia, "mass length^2", kPositive, "J (isotropic)"),
-    value_field("model", &Body::model, "affine (L free) or rigid (gyroscope)"),
+    number_field(
+        kInertiaKey, &Body::inertia, "mass length^2", kPositive,
+        "J: a number (isotropic) or a symmetric positive-definite 2x2 matrix [[J11, J12], [J12, J22]] "
+        "in the body frame"),
+    value_field("model", &Body::model, "affine (L free), rigid (gyroscope) or incompressible (det L fixed)"),
 };
 
 inline constexpr std::tuple kRadialPotentialFields{

@@ -4,6 +4,7 @@
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
+#include "engine/inertia.h"
 #include "engine/invariants.h"
 
 namespace spinfold {
@@ -14,6 +15,8 @@ double det_L(const Scene& scene, const State& state) {
 
 std::string_view resolve_integrator(const Scene& scene) {
   if (scene.integrator.name != kAutoIntegrator) return scene.integrator.name;
+  // The incompressible body runs only under the RATTLE compositions (physics.md §15).
+  if (scene.body.model == BodyModel::incompressible) return split6_info.name;
   if (!exact_unsupported_reason(scene)) return exact_info.name;
   return dop853_info.name;
 }
@@ -354,8 +357,8 @@ void retune(Simulation& run, const Scene& next) {
   const Surface& before = run.scene.surface;
   if (before.kind != SurfaceKind::plane && next.surface.radius != before.radius)
     body.X *= next.surface.radius / before.radius;  // the same place on the surface
-  // Velocities and frame rates are kept; the spin follows from the new inertia (s = J tr((εL)ᵀM)).
-  body.spin = next.body.inertia * (epsilon() * body.L).cwiseProduct(body.M).sum();
+  // Velocities and frame rates are kept; the spin follows from the new inertia (s = tr((εL)ᵀMJ)).
+  body.spin = spin_from_rate(inertia_of(next.body), body.L, body.M);
   here.y = chart_coords(next, body);
   if (!chart_well_conditioned(next.surface, here.y[coord::r])) recentre(next, here);
 

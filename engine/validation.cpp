@@ -136,6 +136,59 @@ void check_initial(const Scene& scene, Checker& c) {
               " * radius on the pseudosphere (farther out its global coordinates overflow)");
 }
 
+// body.inertia as a matrix: finite, symmetric and positive definite (physics.md §13).
+void check_inertia_matrix(const Scene& scene, Checker& c) {
+  if (!scene.body.inertia_matrix) return;
+  const InertiaMatrix& J = *scene.body.inertia_matrix;
+  const std::string field = "body." + std::string(kInertiaKey);
+  const std::string text = "[[" + shortest(J.J11) + ", " + shortest(J.J12) + "], [" + shortest(J.J21) + ", " +
+                           shortest(J.J22) + "]]";
+  for (const double v : {J.J11, J.J12, J.J21, J.J22})
+    if (!std::isfinite(v) || std::abs(v) > kMaxSceneMagnitude) {
+      c.add_text(
+          field, text,
+          "every entry must be a finite number of magnitude at most " + bound_text(kMaxSceneMagnitude));
+      return;
+    }
+  if (J.J12 != J.J21) {
+    c.add_text(field, text, "must be symmetric (J12 = J21)");
+    return;
+  }
+  // Positive definite: J11 > 0 and det J > 0; the diagonal at least kMinScenePositive like a number J.
+  const double det = J.J11 * J.J22 - J.J12 * J.J21;
+  if (!(J.J11 > 0.0 && J.J22 > 0.0 && det > 0.0))
+    c.add_text(field, text,
+               "must be positive definite (J11 > 0 and J11 J22 - J12^2 > 0; det = " + shortest(det) + ")");
+  else if (J.J11 < kMinScenePositive || J.J22 < kMinScenePositive || !std::isfinite(det))
+    c.add_text(
+        field, text,
+        "its diagonal must be at least " + bound_text(kMinScenePositive) + " and its determinant finite");
+}
+
+// det L = λμ > 0 held fixed: the start must lie on the level set with a tangent velocity, and the
+// integrator must keep the constraint (physics.md §15).
+void check_incompressible(const Scene& scene, Checker& c) {
+  if (scene.body.model != BodyModel::incompressible) return;
+  const InitialState& q = scene.initial;
+  if (!(q.lambda * q.mu > 0.0))
+    c.add("initial.mu", q.mu, "an incompressible body needs det L = lambda*mu > 0 at the start");
+  // d(det L)/dt = λ̇μ + λμ̇ must vanish (α̇, β̇ only rotate L).
+  const double rate = q.lambda_dot * q.mu + q.lambda * q.mu_dot;
+  if (std::isfinite(rate) &&
+      std::abs(rate) > 1e-12 * (std::abs(q.lambda_dot * q.mu) + std::abs(q.lambda * q.mu_dot)))
+    c.add(
+        "initial.mu_dot", q.mu_dot,
+        "an incompressible body keeps det L = lambda*mu: needs lambda_dot*mu + lambda*mu_dot = 0 (mu_dot = " +
+            shortest(-q.lambda_dot * q.mu / q.lambda) + ")");
+  const std::string& name = scene.integrator.name;
+  if (name != kAutoIntegrator && name != split4_info.name && name != split6_info.name &&
+      find_integrator(name))
+    c.add_text(
+        "integrator.name", name,
+        "does not keep det L fixed for an incompressible body: use split4 or split6 (RATTLE on det L = "
+        "lambda*mu, composed to order 4 or 6) or auto");
+}
+
 void check_rigid(const Scene& scene, Checker& c) {
   if (scene.body.model != BodyModel::rigid) return;
   const InitialState& q = scene.initial;
@@ -218,10 +271,12 @@ std::vector<FieldError> validate_scene(const Scene& scene) {
   Checker c;
   check_fields(c, "", scene);
   check_initial(scene, c);
+  check_inertia_matrix(scene, c);
   check_rigid(scene, c);
+  check_incompressible(scene, c);
   check_potentials(scene, c);
   const IntegratorSettings& in = scene.integrator;
-  if (in.name == exact_info.name)
+  if (in.name == exact_info.name && scene.body.model != BodyModel::incompressible)
     if (const auto why = exact_unsupported_reason(scene)) c.add_text("integrator.name", in.name, *why);
   if (c.errors.empty()) check_finite_start(scene, c);
   // Each companion as the scene it runs (its errors named under companions[i]).

@@ -17,6 +17,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev      # tests and benchmarks
   clang libclang-rt-14-dev                        # fuzzing (libFuzzer) and sanitizer runtimes
   libboost-dev gnuplot-nox                        # reference integrators (Boost.Odeint), plots
+  python3-sympy                                   # docs/physics_inertia_check.py (a ctest)
   wrk curl                                        # HTTP load benchmark
   chromium                                        # browser tests of the web UI (playwright-core)
   nginx                                           # the front of the shared server (scripts/front.sh)

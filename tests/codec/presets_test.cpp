@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "codec/scene_json.h"
+#include "engine/actions.h"
 #include "engine/chart.h"
 #include "engine/invariants.h"
 #include "engine/paper_coordinates.h"
@@ -80,7 +81,8 @@ TEST(Presets, DeformationCarriesSpinThatBendsThePathOnH2) {
   const Vec3 V1 = global_embedding(scene, run.state).V;
   const Vec3 a = tangential(scene.surface, b0.X, (V1 - b0.V) / h);
   const double kappa = dot(scene.surface, a, rotate_quarter(scene.surface, b0.X, b0.V)) / (v * v * v);
-  EXPECT_NEAR(kappa, curvature(scene.surface) * s / (scene.body.mass * v), 1e-2 * std::abs(kappa));  // O(h) difference
+  EXPECT_NEAR(kappa, curvature(scene.surface) * s / (scene.body.mass * v),
+              1e-2 * std::abs(kappa));  // O(h) difference
 }
 
 TEST(Presets, OnThePlaneTheSpinningBodyGoesStraight) {
@@ -114,6 +116,71 @@ TEST(Presets, BreathingEllipseHasTheIsotonicFrequency) {
   EXPECT_GT(std::abs(x2() - x2_start), 0.1);  // it does breathe
   advance_to(run, period);
   EXPECT_NEAR(x2(), x2_start, 1e-9);
+}
+
+TEST(Presets, AnisotropicBodyKeepsItsSpinWhileItsVorticityOscillates) {
+  const Scene scene = preset("anisotropic_tumbling_sphere");
+  ASSERT_TRUE(scene.body.inertia_matrix.has_value());
+  Simulation run = start_simulation(scene);
+  const double s0 = spin(scene, run.state), b0 = vorticity(scene, run.state);
+  double ds = 0.0, b_min = b0, b_max = b0;
+  for (int k = 1; k <= 40; ++k) {
+    advance_to(run, 0.5 * k);
+    ASSERT_EQ(run.state.status, Status::ok);
+    ds = std::max(ds, std::abs(spin(scene, run.state) - s0));
+    b_min = std::min(b_min, vorticity(scene, run.state));
+    b_max = std::max(b_max, vorticity(scene, run.state));
+  }
+  EXPECT_LT(ds, 1e-9 * std::abs(s0));
+  EXPECT_GT(b_max - b_min, 0.1 * std::abs(b0)) << b_min << " .. " << b_max;
+  // The isotropic body with the same trace keeps its vorticity.
+  Scene iso = scene;
+  iso.body.inertia_matrix.reset();
+  iso.body.inertia = 0.2;
+  Simulation r = start_simulation(iso);
+  const double c0 = vorticity(iso, r.state);
+  advance_to(r, 20.0);
+  EXPECT_NEAR(vorticity(iso, r.state), c0, 1e-9 * std::abs(c0));
+}
+
+TEST(Presets, ActionVariablesAreConstantAndTheFrequenciesArePeriods) {
+  const Scene scene = preset("action_variables_sphere");
+  Simulation run = start_simulation(scene);  // auto: the closed form
+  const ActionVariables a0 = action_variables(scene, run.state);
+  ASSERT_TRUE(a0.undefined.empty());
+  const PaperCoordinates c0 = paper_coordinates(scene, run.state);
+  const double T_r = 1.0 / *a0.nu_r, T_x = 1.0 / *a0.nu_x;
+  const auto x2 = [&] { return deformation_invariants(paper_coordinates(scene, run.state).L.value()).a; };
+  const double x2_0 = x2();
+  advance_to(run, 3.0 * T_x);
+  EXPECT_NEAR(x2(), x2_0, 1e-9);
+  advance_to(run, 5.0 * T_r);
+  const PaperCoordinates c = paper_coordinates(scene, run.state);
+  EXPECT_NEAR(c.r, c0.r, 1e-9);
+  EXPECT_NEAR(c.r_dot.value(), c0.r_dot.value(), 1e-9);
+  const ActionVariables a = action_variables(scene, run.state);
+  EXPECT_NEAR(*a.J_r, *a0.J_r, 1e-9);
+  EXPECT_NEAR(*a.J_x, *a0.J_x, 1e-9);
+  EXPECT_NEAR(*a.J_y, *a0.J_y, 1e-9);
+}
+
+TEST(Presets, IncompressibleEllipseBreathesAtConstantArea) {
+  const Scene scene = preset("incompressible_breathing_ellipse");
+  ASSERT_EQ(scene.body.model, BodyModel::incompressible);
+  Simulation run = start_simulation(scene);
+  EXPECT_EQ(std::string(run.info->name), "split6");  // auto: the RATTLE composition
+  const double area = scene.initial.lambda * scene.initial.mu;
+  double x2_min = 1e300, x2_max = 0.0;
+  for (int k = 1; k <= 40; ++k) {
+    advance_to(run, 0.5 * k);
+    ASSERT_EQ(run.state.status, Status::ok);
+    const PaperCoordinates c = paper_coordinates(scene, run.state);
+    EXPECT_NEAR(c.det_L, area, 1e-14);
+    const double x2 = deformation_invariants(c.L.value()).a;
+    x2_min = std::min(x2_min, x2);
+    x2_max = std::max(x2_max, x2);
+  }
+  EXPECT_GT(x2_max - x2_min, 0.05);  // it breathes
 }
 
 TEST(Presets, SeparableSceneIsW5) {

@@ -28,9 +28,38 @@ TEST(SampleJson, KeysInTheirDocumentedOrder) {
   for (const auto& [key, value] : sample.items()) keys += key + " ";
   EXPECT_EQ(keys,
             "t r phi alpha beta theta lambda mu r_dot phi_dot alpha_dot beta_dot theta_dot lambda_dot mu_dot "
-            "p_r p_phi p_alpha p_beta p_lambda p_mu X L det_L energy energy_error energy_reference_t energy_orbital "
-            "energy_deformation spin speed heading vorticity C_x C_y M casimir undefined events status status_detail "
+            "p_r p_phi p_alpha p_beta p_lambda p_mu X L det_L energy energy_error energy_reference_t "
+            "energy_orbital "
+            "energy_deformation spin speed heading vorticity C_x C_y M casimir actions frequencies undefined "
+            "events status "
+            "status_detail "
             "integrator steps ");
+}
+
+TEST(SampleJson, ActionsAndFrequenciesWithTheirReasons) {
+  // Separable, bounded (isotonic C > 0 on S²): every action and frequency is a number, and the
+  // frequencies are the read-out's.
+  const SceneParse good = parse_scene_text(R"({"potential": {"deformation": {"kind": "abc", "C": 0.5}},
+                                               "initial": {"phi_dot": 0.3, "alpha_dot": 0.2, "mu": 0.7}})");
+  ASSERT_TRUE(good.errors.empty()) << describe_errors(good.errors);
+  Simulation run = start_simulation(*good.scene);
+  const nlohmann::ordered_json sample = sample_to_json(run, -1.0);
+  for (const char* key : {"J_r", "J_phi", "J_alpha", "J_beta", "J_x", "J_y"})
+    EXPECT_TRUE(sample["actions"][key].is_number()) << key;
+  EXPECT_EQ(sample["frequencies"]["x"].get<double>(), *readout(run).actions->nu_x);
+  EXPECT_FALSE(sample["undefined"].contains("actions.J_x"));
+  // No deformation potential: J_x null, the reason under undefined.
+  const SceneParse free = parse_scene_text(R"({"initial": {"phi_dot": 0.3}})");
+  const nlohmann::ordered_json free_sample = sample_to_json(start_simulation(*free.scene), -1.0);
+  EXPECT_TRUE(free_sample["actions"]["J_x"].is_null());
+  EXPECT_TRUE(free_sample["frequencies"]["y"].is_null());
+  EXPECT_TRUE(free_sample["undefined"]["actions.J_x"].is_string());
+  EXPECT_TRUE(free_sample["undefined"]["frequencies.y"].is_string());
+  // Not separable: both null, one reason.
+  const SceneParse aniso = parse_scene_text(R"({"body": {"inertia": [[0.2, 0.05], [0.05, 0.1]]}})");
+  const nlohmann::ordered_json aniso_sample = sample_to_json(start_simulation(*aniso.scene), -1.0);
+  EXPECT_TRUE(aniso_sample["actions"].is_null());
+  EXPECT_NE(aniso_sample["undefined"]["actions"].get<std::string>().find("anisotropic"), std::string::npos);
 }
 
 TEST(SampleJson, SampleAndHudComeFromTheSameReadout) {

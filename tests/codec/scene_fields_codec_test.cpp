@@ -2,6 +2,8 @@
 // table's unit, range, default and description. The tests walk the tables, so they cannot drift.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "codec/scene_json.h"
 #include "codec/scene_schema.h"
 #include "engine/integrator.h"
@@ -130,7 +132,11 @@ TEST(SceneFieldsCodec, EveryFieldWithAWrongTypeIsNamed) {
     EXPECT_EQ(parsed.errors[0].field, path);
     EXPECT_EQ(parsed.errors[0].value, "[]");
     if constexpr (std::is_same_v<T, double> || OptionalNumber<T>) {
-      EXPECT_EQ(parsed.errors[0].reason, "must be a number");
+      if (path == "body.inertia")  // a number or a 2x2 matrix (physics.md §13)
+        EXPECT_EQ(parsed.errors[0].reason,
+                  "must be a number (isotropic) or a 2x2 matrix [[J11, J12], [J21, J22]] of numbers");
+      else
+        EXPECT_EQ(parsed.errors[0].reason, "must be a number");
     } else if constexpr (std::is_same_v<T, std::string>) {
       EXPECT_EQ(parsed.errors[0].reason, "must be a string");
     } else {
@@ -171,8 +177,12 @@ TEST(SceneFieldsCodec, EveryFieldIsInTheSchemaAsInItsTable) {
   int described = 0;
   for_each_scene_field([&](const std::string& path, std::string_view kind, const auto& field, auto) {
     using T = typename std::remove_cvref_t<decltype(field)>::Value;
-    const nlohmann::ordered_json p = schema_property(path, kind);
+    nlohmann::ordered_json p = schema_property(path, kind);
     ASSERT_FALSE(p.is_null()) << path;
+    if (path == "body.inertia") {  // {oneOf: [the number, the 2x2 matrix]} (physics.md §13)
+      ASSERT_EQ(p["oneOf"].size(), 2u);
+      p = p["oneOf"][0];
+    }
     ++described;
     if constexpr (std::is_same_v<T, double> || OptionalNumber<T>) {
       EXPECT_EQ(p["type"], "number") << path;
@@ -221,7 +231,12 @@ TEST(SceneFieldsCodec, EveryFieldIsInTheSchemaAsInItsTable) {
     for (const auto& [key, property] : node["properties"].items()) {
       if (&node == &schema && (key == "companions" || key == "vary")) continue;
       if (property.contains("const")) continue;  // a deformation's kind
-      if (property.contains("properties") || property.contains("oneOf"))
+      // A oneOf of sections (the deformation) is walked; a oneOf of plain values (body.inertia: a
+      // number or a matrix) is one leaf.
+      const bool sections =
+          property.contains("oneOf") && std::any_of(property["oneOf"].begin(), property["oneOf"].end(),
+                                                    [](const auto& a) { return a.contains("properties"); });
+      if (property.contains("properties") || sections)
         self(self, property);
       else
         ++leaves;

@@ -91,6 +91,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{R"({"surface": {"radius": 1, "colour": "red"}})", "surface.colour"},
         BadScene{R"({"body": {"mass": 0}})", "body.mass"},
         BadScene{R"({"body": {"inertia": -1}})", "body.inertia"},
+        BadScene{R"({"body": {"inertia": [[0.3, 0.1], [0.2, 0.2]]}})", "body.inertia"},  // not symmetric
+        BadScene{R"({"body": {"inertia": [[0.1, 0.3], [0.3, 0.1]]}})", "body.inertia"},  // indefinite
+        BadScene{R"({"body": {"inertia": [[0.1, 0], [0, -0.1]]}})", "body.inertia"},
+        BadScene{R"({"body": {"inertia": [[0.1, 0, 0], [0, 0.1]]}})", "body.inertia"},  // not 2x2
+        BadScene{R"({"body": {"inertia": [[0.1, "0"], [0, 0.1]]}})", "body.inertia"},
+        BadScene{R"({"body": {"inertia": [0.1, 0.1]}})", "body.inertia"},
         BadScene{R"({"body": {"model": "elastic"}})", "body.model"},
         BadScene{R"({"body": {"mass": true}})", "body.mass"},
         BadScene{R"({"initial": {"lambda": 0}})", "initial.lambda"},
@@ -155,6 +161,38 @@ TEST(SceneJson, DeepNestingIsRejectedBeforeItIsBuilt) {
   const SceneParse p = parse_scene_text(deep);
   ASSERT_EQ(p.errors.size(), 1u);
   EXPECT_NE(p.errors[0].reason.find("nested"), std::string::npos);
+}
+
+// body.inertia as a matrix (physics.md §13): read, written back as a matrix, the reason names the rule.
+TEST(SceneJson, InertiaMatrixRoundTripsAndIsValidated) {
+  const SceneParse p = parse_scene_text(R"({"body": {"mass": 2, "inertia": [[0.3, 0.05], [0.05, 0.1]]}})");
+  ASSERT_TRUE(p.errors.empty()) << describe_errors(p.errors);
+  ASSERT_TRUE(p.scene->body.inertia_matrix.has_value());
+  EXPECT_EQ(p.scene->body.inertia_matrix->J12, 0.05);
+  EXPECT_EQ(p.scene->body.inertia_matrix->J22, 0.1);
+  const nlohmann::json written = scene_to_json(*p.scene);
+  EXPECT_EQ(written["body"]["inertia"], nlohmann::json::parse("[[0.3, 0.05], [0.05, 0.1]]"));
+  const SceneParse again = parse_scene(written);
+  ASSERT_TRUE(again.errors.empty()) << describe_errors(again.errors);
+  EXPECT_EQ(scene_to_json(*again.scene), written);
+  // A number replaces the matrix.
+  const SceneParse number = parse_scene_text(R"({"body": {"inertia": 0.2}})");
+  ASSERT_TRUE(number.errors.empty());
+  EXPECT_FALSE(number.scene->body.inertia_matrix.has_value());
+  EXPECT_EQ(scene_to_json(*number.scene)["body"]["inertia"], 0.2);
+
+  const SceneParse bad = parse_scene_text(R"({"body": {"inertia": [[0.1, 0.3], [0.3, 0.1]]}})");
+  ASSERT_EQ(bad.errors.size(), 1u) << describe_errors(bad.errors);
+  EXPECT_EQ(bad.errors[0].field, "body.inertia");
+  EXPECT_EQ(bad.errors[0].value, "[[0.1, 0.3], [0.3, 0.1]]");
+  EXPECT_NE(bad.errors[0].reason.find("positive definite"), std::string::npos);
+  // A companion's merge patch may give the matrix too.
+  const SceneParse fan = parse_scene_text(
+      R"({"body": {"inertia": 0.2}, "companions": [{"body": {"inertia": [[0.3, 0], [0, 0.1]]}}]})");
+  ASSERT_TRUE(fan.errors.empty()) << describe_errors(fan.errors);
+  ASSERT_EQ(fan.scene->companions.size(), 1u);
+  EXPECT_TRUE(fan.scene->companions[0].body.inertia_matrix.has_value());
+  EXPECT_FALSE(fan.scene->body.inertia_matrix.has_value());
 }
 
 TEST(SceneJson, ErrorsNameTheValueAndTheReason) {

@@ -48,5 +48,17 @@ TEST(SceneSchema, EveryDescribedPropertyIsAccepted) {
   }
 }
 
+TEST(SceneSchema, InertiaIsANumberOrAMatrix) {
+  const json schema = scene_schema();
+  const json& inertia = schema["properties"]["body"]["properties"]["inertia"];
+  ASSERT_EQ(inertia["oneOf"].size(), 2u);
+  EXPECT_EQ(inertia["oneOf"][0]["type"], "number");
+  EXPECT_EQ(inertia["oneOf"][1]["type"], "array");
+  EXPECT_EQ(inertia["oneOf"][1]["items"]["maxItems"], 2);
+  EXPECT_EQ(inertia["default"], Body{}.inertia);
+  EXPECT_EQ(schema["properties"]["companions"]["items"]["properties"]["body"]["properties"]["inertia"],
+            inertia);
+}
+
 }  // namespace
 }  // namespace spinfold
