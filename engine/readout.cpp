@@ -81,6 +81,18 @@ std::vector<std::string> readout_lines(const Scene& scene, const Readout& readou
   };
 }
 
+std::vector<std::string> action_lines(const Readout& readout) {
+  if (!readout.actions) return {"no action variables: " + readout.actions_unsupported};
+  const ActionVariables& a = *readout.actions;
+  const auto value = [](const char* name, const std::optional<double>& v) {
+    return std::string(name) + " = " + (v ? format("%.6g", *v) : std::string("-"));
+  };
+  return {value("J_r", a.J_r) + "  " + value("J_phi", a.J_phi) + "  " + value("J_alpha", a.J_alpha),
+          value("J_beta", a.J_beta) + "  " + value("J_x", a.J_x) + "  " + value("J_y", a.J_y),
+          value("nu_r", a.nu_r) + "  " + value("nu_phi", a.nu_phi) + "  " + value("nu_x", a.nu_x) + "  " +
+              value("nu_y", a.nu_y)};
+}
+
 std::string companion_readout_line(std::string_view label, const Readout& readout) {
   std::string line =
       std::string(label) + format(": spin = %.4f  energy error = %.2e", readout.spin, readout.energy_error);

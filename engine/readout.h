@@ -50,6 +50,10 @@ Readout readout(const Simulation& run);
 // the surface and body of `scene` (the run's), spin and det L.
 std::vector<std::string> readout_lines(const Scene& scene, const Readout& readout);
 
+// The action variables and frequencies as HUD lines ("J_r = …", "nu_r = …"; "-" where undefined),
+// or one line saying why the scene has none.
+std::vector<std::string> action_lines(const Readout& readout);
+
 // A companion's read-out as one compact HUD line: "label: spin = …  energy error = …", with
 // "[stopped: status]" when it stopped.
 std::string companion_readout_line(std::string_view label, const Readout& readout);

@@ -568,10 +568,13 @@ std::vector<Vec3> ellipse_points(const Surface& surface, const BodySnapshot& bod
 }
 
 namespace {
-// The snapshot's HUD lines, and on the tractricoid a line when the main body is off the surface.
-std::vector<std::string> hud_lines(const Snapshot& snapshot, ViewKind view) {
+// The HUD's lines: the snapshot's, the action variables' with that layer, and on the tractricoid a
+// line when the main body is off the surface.
+std::vector<std::string> hud_lines(const Snapshot& snapshot, const ViewOptions& view) {
+  if (!(view.layers & kHud)) return {};
   std::vector<std::string> lines = snapshot.hud_lines;
-  if (!snapshot.bodies.empty() && !on_view(snapshot.surface, view, snapshot.bodies.front().X))
+  if (view.layers & kActions) lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
+  if (!snapshot.bodies.empty() && !on_view(snapshot.surface, view.kind, snapshot.bodies.front().X))
     lines.push_back("body 1 is beyond the rim: off the part of H2 this surface shows");
   return lines;
 }
@@ -616,7 +619,7 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)) && view.width >= kLegendMinWidth)
     for (const BodySnapshot& body : snapshot.bodies)
       scene.legend.push_back({body.label, rgba(body.color), rgba(body.trail_color), body.geodesic});
-  if (view.layers & kHud) scene.hud_lines = hud_lines(snapshot, kind);
+  scene.hud_lines = hud_lines(snapshot, view);
   std::vector<std::string> labels;
   for (const LegendEntry& entry : scene.legend) labels.push_back(entry.label);
   scene.hud = hud_layout(scene.hud_lines, labels, view.width, view.height);
@@ -655,8 +658,7 @@ HudLayout layout_for(const Snapshot& snapshot, const ViewOptions& view) {
   std::vector<std::string> labels;
   if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)) && view.width >= kLegendMinWidth)
     for (const BodySnapshot& body : snapshot.bodies) labels.push_back(body.label);
-  return hud_layout(view.layers & kHud ? hud_lines(snapshot, view.kind) : std::vector<std::string>{}, labels,
-                    view.width, view.height);
+  return hud_layout(hud_lines(snapshot, view), labels, view.width, view.height);
 }
 
 // What a camera must show [world units] and how much each counts: the main body's centre above

@@ -40,7 +40,9 @@ Snapshot make_snapshot(const Simulation& run, const Trail& trail, double span) {
   s.bodies.reserve(1 + run.companions.size());
   s.bodies.push_back(body_snapshot(run, &trail, span));
   s.bodies.front().label = "body 1";
-  s.hud_lines = readout_lines(scene, readout(run));
+  const Readout main = readout(run);
+  s.hud_lines = readout_lines(scene, main);
+  s.action_lines = action_lines(main);
   for (std::size_t i = 0; i < run.companions.size() && i < scene.companions.size(); ++i) {
     const Trail* own = i < trail.companions.size() ? &trail.companions[i] : nullptr;
     BodySnapshot b = body_snapshot(run.companions[i], own, span);

@@ -21,12 +21,18 @@ constexpr std::array<ViewInfo, 7> kViews{{
      "Beltrami's surface of curvature −1/R² in space: a strip of H² wrapped round its axis, ending at its rim"},
     {"plane", ViewKind::plane, false, false, false, true, "flat plane", "the Euclidean plane, following the body"},
 }};
-constexpr std::array<std::pair<std::string_view, unsigned>, 6> kLayers{{{"surface", kSurface},
+constexpr std::array<std::pair<std::string_view, unsigned>, 7> kLayers{{{"surface", kSurface},
                                                                         {"grid", kGrid},
                                                                         {"body", kBody},
                                                                         {"frame", kFrame},
                                                                         {"trail", kTrail},
-                                                                        {"hud", kHud}}};
+                                                                        {"hud", kHud},
+                                                                        {"actions", kActions}}};
+constexpr auto kLayerNames = [] {
+  std::array<std::string_view, kLayers.size()> names{};
+  for (std::size_t i = 0; i < kLayers.size(); ++i) names[i] = kLayers[i].first;
+  return names;
+}();
 
 }  // namespace
 
@@ -37,6 +43,10 @@ ViewKind default_view(SurfaceKind surface) {
     case SurfaceKind::plane: return ViewKind::plane;
   }
   return ViewKind::sphere;
+}
+
+std::span<const std::string_view> layer_names() {
+  return kLayerNames;
 }
 
 std::span<const ViewInfo> views() {

@@ -42,14 +42,18 @@ enum Layer : unsigned {
   kFrame = 1u << 3,    // the frame arrows e₁, e₂
   kTrail = 1u << 4,    // the path on the surface
   kHud = 1u << 5,      // text overlay (Dear ImGui)
-  kAllLayers = 63u,
+  kActions = 1u << 6,  // the action variables and frequencies, added to the text overlay
+  kDefaultLayers = 63u,  // every layer but the action variables
 };
+
+// The one table of layer names ("surface", "grid", …, "actions"), in this order.
+std::span<const std::string_view> layer_names();
 
 struct ViewOptions {
   ViewKind kind = ViewKind::sphere;
   int width = 640;   // [pixels]
   int height = 480;  // [pixels]
-  unsigned layers = kAllLayers;
+  unsigned layers = kDefaultLayers;
   double yaw = 0.7;       // camera azimuth [rad] (3-D views)
   double pitch = 0.45;    // camera elevation [rad] (3-D views)
   double distance = 3.4;  // camera distance [surface radii] (3-D views)

@@ -14,6 +14,12 @@ namespace spinfold::server {
 
 namespace {
 
+std::vector<std::string> layer_names() {
+  std::vector<std::string> names;
+  for (const std::string_view name : render::layer_names()) names.emplace_back(name);
+  return names;
+}
+
 std::vector<std::string> view_names() {
   std::vector<std::string> names;
   for (const render::ViewInfo& v : render::views()) names.emplace_back(v.name);
@@ -65,10 +71,11 @@ std::vector<QueryParam> frame_params(const Limits& limits) {
                           "default: the surface's own"},
           {.name = "layers",
            .type = ParamType::list,
-           .values = {"surface", "grid", "body", "frame", "trail", "hud"},
+           .values = layer_names(),
            .default_value = "surface,grid,body,frame,trail,hud",
            .description = "what is drawn: the shaded surface, its geodesic grid, the body's "
-                          "ellipse, the frame arrows, the trail, the text overlay"},
+                          "ellipse, the frame arrows, the trail, the text overlay, and (not by "
+                          "default) the action variables and frequencies in the text overlay"},
           {.name = "scale",
            .type = ParamType::number,
            .minimum = 0.0,

@@ -207,6 +207,30 @@ async function reset() {
   status("Back to t = 0 with the parameters in force.");
 }
 
+// ---- The action variables J = ∮p dq and frequencies ν = ∂E/∂J of separable scenes (a table;
+// "—" with the server's reason on hover where one is undefined, one line where there are none).
+const kActions = [["J_r", "J_r", "radial"], ["J_phi", "J_φ", "angular (2π p_φ)"], ["J_alpha", "J_α", "spin (2π s)"],
+                  ["J_beta", "J_β", "vorticity (2π p_β)"], ["J_x", "J_x", "deformation x"], ["J_y", "J_y", "deformation y"]];
+const kFrequencies = [["r", "ν_r", "of r(t)"], ["phi", "ν_φ", "precession of the orbit"], ["x", "ν_x", "of x²(t)"], ["y", "ν_y", "of y²(t)"]];
+function showActions(state) {
+  const box = $("actions");
+  if (!box || !("actions" in state)) return;
+  const undefinedWhy = state.undefined ?? {};
+  if (!state.actions) {
+    box.innerHTML = "";
+    box.append(Object.assign(document.createElement("p"), { className: "note", textContent: `No action variables: ${undefinedWhy.actions ?? "not a separable scene"}.` }));
+    return;
+  }
+  const cell = (group, key, label, what, unit) => {
+    const v = state[group]?.[key];
+    const why = undefinedWhy[`${group}.${key}`];
+    return `<tr title="${why ? why.replace(/"/g, "&quot;") : what}"><th scope="row">${label}</th><td>${v === null || v === undefined ? "—" : Number(v).toPrecision(6)}</td><td>${unit}</td></tr>`;
+  };
+  box.innerHTML = `<table><caption>Action variables and frequencies</caption><tbody>` +
+    kActions.map(([k, l, w]) => cell("actions", k, l, w, "mass·length²/time")).join("") +
+    kFrequencies.map(([k, l, w]) => cell("frequencies", k, l, w, "cycles/time")).join("") + `</tbody></table>`;
+}
+
 // ---- State, readouts and plots.
 const num = (v) => (v === null || v === undefined ? "—" : Number(v).toPrecision(6));
 let announced = 0;
@@ -224,6 +248,7 @@ function showState(state, { restart = false, from = "stream" } = {}) {
     `energy = ${num(state.energy)}   energy error = ${num(state.energy_error)}   spin = ${num(state.spin)}   ` +
     `p_phi = ${num(state.p_phi)}   det L = ${num(state.det_L)}   integrator: ${state.integrator}   status: ${state.status}`;
   $("readout").dataset.t = state.t;
+  showActions(state);
   // Screen readers hear a short summary, at most once a second.
   const now = performance.now();
   if (now - announced >= 1000) {
@@ -531,6 +556,12 @@ function fieldFor(path, spec, value) {
     input = document.createElement("select");
     for (const option of spec.enum) input.add(new Option(option, option));
     input.value = value ?? spec.default;
+  } else if (matrixOrNumber(spec)) {
+    // A number or a matrix (body.inertia: isotropic J, or [[J11, J12], [J12, J22]]), as text.
+    input = document.createElement("input");
+    input.type = "text";
+    input.value = JSON.stringify(value ?? spec.default);
+    input.placeholder = "0.5 or [[0.6, 0.1], [0.1, 0.3]]";
   } else {
     input = document.createElement("input");
     input.type = "number";
@@ -548,19 +579,27 @@ function fieldFor(path, spec, value) {
     const patch = {};
     let node = patch;
     path.slice(0, -1).forEach((key) => (node = node[key] = {}));
-    node[path[path.length - 1]] = spec.enum ? input.value : Number(input.value);
+    try {
+      node[path[path.length - 1]] = spec.enum ? input.value : matrixOrNumber(spec) ? JSON.parse(input.value) : Number(input.value);
+    } catch (e) {
+      error.textContent = `${path.join(".")}: write a number or a matrix such as [[0.6, 0.1], [0.1, 0.3]] (got ${input.value})`;
+      return;
+    }
     // A deformation field needs its kind: the scene's, or abc when there is none yet.
     if (path[1] === "deformation") node.kind = lookup(ui.current, ["potential", "deformation", "kind"]) ?? "abc";
     try {
       await applyChange(patch, path[0] === "surface" || path[1] === "deformation");
     } catch (e) {
       error.textContent = e.message;
-      input.value = lookup(ui.current, path) ?? spec.default;
+      const kept = lookup(ui.current, path) ?? spec.default;
+      input.value = matrixOrNumber(spec) ? JSON.stringify(kept) : kept;
     }
   });
   row.append(label, input, error);
   return row;
 }
+
+const matrixOrNumber = (spec) => Boolean(spec.oneOf?.some((branch) => branch.type === "array"));
 
 // The deformation potential's kind: none or one of the schema's. A switch is one merge patch that
 // sets the new kind and removes the old kind's fields (null), so the server sees one whole object.
@@ -878,10 +917,11 @@ function buildViewControls(force = false) {
   const layers = $("layers");
   if (force) layers.textContent = "";
   if (!layers.childElementCount)
-    for (const layer of ["surface", "grid", "body", "frame", "trail", "hud"]) {
+    for (const layer of ["surface", "grid", "body", "frame", "trail", "hud", "actions"]) {
       const label = document.createElement("label");
       label.title = { surface: "the shaded surface", grid: "its geodesic grid", body: "the body's ellipse", frame: "the frame arrows",
-                      trail: "the path so far", hud: "the text overlay and the legend of the bodies" }[layer];
+                      trail: "the path so far", hud: "the text overlay and the legend of the bodies",
+                      actions: "the action variables and their frequencies, in the text overlay" }[layer];
       label.innerHTML = `<input type="checkbox" name="layer-${layer}" ${ui.view.layers.has(layer) ? "checked" : ""}> ${layer}`;
       label.firstChild.addEventListener("change", (e) => {
         e.target.checked ? ui.view.layers.add(layer) : ui.view.layers.delete(layer);

@@ -445,7 +445,7 @@ struct Golden {
   double t = 3.0;    // [time]
   int width = 640;   // [pixels]
   int height = 480;  // [pixels]
-  unsigned layers = kAllLayers;
+  unsigned layers = kDefaultLayers;
 };
 
 class GoldenFrame : public ::testing::TestWithParam<Golden> {};
@@ -481,7 +481,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Golden{"spin_vs_geodesic_sphere", "spin_vs_geodesic_sphere", ViewKind::sphere, 2.0},
                       // A thumbnail (1 px lines) and a projector-sized frame (3.4 px lines).
                       Golden{"sphere_thumbnail", "spin_vs_geodesic_sphere", ViewKind::sphere, 2.0, 160, 120,
-                             kAllLayers & ~unsigned{kHud}},
+                             kDefaultLayers & ~unsigned{kHud}},
                       Golden{"sphere_1080p", "spin_vs_geodesic_sphere", ViewKind::sphere, 2.0, 1920, 1080},
                       // The other pictures of H².
                       Golden{"klein", "spin_vs_geodesic_pseudosphere", ViewKind::klein, 6.0},

@@ -428,6 +428,23 @@ TEST(HyperbolicPictures, ABodyBeyondTheRimIsNotDrawnAndTheHudSaysSo) {
   EXPECT_EQ(build_scene(s, view).hud_lines.size(), 1u);
 }
 
+TEST(SceneBuilder, TheActionsLayerAddsTheActionLinesToTheHudAndIsOffByDefault) {
+  Snapshot s = body_at(SurfaceKind::sphere, 1.0, 1.0, 0.0, 1.0, 1.0);
+  s.hud_lines = {"t = 1.000"};
+  s.action_lines = {"J_r = 0.5  J_phi = 1  J_alpha = 2", "nu_r = 0.3"};
+  ViewOptions view;
+  EXPECT_EQ(build_scene(s, view).hud_lines, s.hud_lines);
+  view.layers = kDefaultLayers | kActions;
+  const FrameScene with = build_scene(s, view);
+  ASSERT_EQ(with.hud_lines.size(), 3u);
+  EXPECT_EQ(with.hud_lines[1], s.action_lines[0]);
+  EXPECT_GT(with.hud.hud.h, build_scene(s, ViewOptions{}).hud.hud.h);  // the box grows to hold them
+  view.layers = kActions;  // without the HUD there is no text
+  EXPECT_TRUE(build_scene(s, view).hud_lines.empty());
+  EXPECT_EQ(parse_layers("hud,actions"), kHud | kActions);
+  EXPECT_EQ(layer_names().back(), "actions");
+}
+
 TEST(HyperbolicPictures, TheHalfPlaneFollowsTheBodyAtEveryHeight) {
   for (const auto& [r, phi] : {std::pair{0.0, 0.0}, {3.0, 0.0}, {3.0, std::numbers::pi}, {5.0, 2.0}, {6.0, -1.0}}) {
     const Snapshot s = body_at(SurfaceKind::pseudosphere, 1.0, r, phi, 1.0, 1.0);

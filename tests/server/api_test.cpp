@@ -145,6 +145,22 @@ TEST_F(Api, ViewsListTheSurfacesEachShowsAndEachH2ViewDraws) {
   remove(id);
 }
 
+// The actions layer writes the action variables into the overlay: a taller text box, other bytes.
+TEST_F(Api, TheActionsLayerAddsToTheOverlay) {
+  auto c = client();
+  const std::string id = create(R"({"preset": "action_variables_sphere"})");
+  const std::string frame = "/api/v1/sessions/" + id + "/frame.png?width=320&height=240&layers=hud";
+  auto plain = c.Get(frame);
+  auto with = c.Get(frame + ",actions");
+  ASSERT_TRUE(plain && with);
+  EXPECT_EQ(with->status, 200);
+  EXPECT_NE(plain->body, with->body);
+  auto state = c.Get("/api/v1/sessions/" + id);
+  ASSERT_TRUE(state);
+  EXPECT_TRUE(json::parse(state->body)["state"]["actions"]["J_r"].is_number()) << state->body;
+  remove(id);
+}
+
 TEST_F(Api, SessionLifecycle) {
   auto c = client();
   auto created = c.Post("/api/v1/sessions", R"({"preset": "separable_radial_abc"})", "application/json");
@@ -636,7 +652,7 @@ TEST_F(Api, QueryValuesOutOfRangeOrOfTheWrongTypeNameTheValue) {
        "view: must be sphere, disk, hyperboloid, klein, halfplane, tractricoid or plane (got cube)"},
       {frame + "view=klein", "view: the sphere is shown in these views: sphere, disk (got klein)"},
       {frame + "layers=body,glitter",
-       "layers: 'glitter' is not one of surface, grid, body, frame, trail, hud (got body,glitter)"},
+       "layers: 'glitter' is not one of surface, grid, body, frame, trail, hud, actions (got body,glitter)"},
       {"/api/v1/sessions/" + id + "/events?rate=1000",
        "rate: must be a number from 0.5 to 60 [Hz] (got 1000)"},
       {"/api/v1/sessions/" + id + "/trajectory?format=xml", "format: must be json or csv (got xml)"},

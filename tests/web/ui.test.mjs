@@ -375,6 +375,35 @@ try {
     }
   });
 
+  await test("the action variables panel: numbers for a separable scene, the reason for one that is not", async () => {
+    await page.click('.preset[data-name="action_variables_sphere"]');
+    await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "action_variables_sphere");
+    await page.waitForFunction(() => /J_r/.test(document.querySelector("#actions")?.textContent ?? ""));
+    const rows = await page.$$eval("#actions tr", (trs) => Object.fromEntries(trs.map((tr) => [tr.cells[0]?.textContent ?? tr.querySelector("th").textContent, tr.querySelector("td").textContent])));
+    assert.ok(Number(rows["J_r"]) > 0 && Number(rows["ν_r"]) > 0, JSON.stringify(rows));
+    await page.click('.preset[data-name="anisotropic_tumbling_sphere"]');
+    await page.waitForFunction(() => /No action variables: /.test(document.querySelector("#actions").textContent));
+  });
+
+  await test("an inertia matrix is shown and edited as a matrix; a non-symmetric one is refused by the server", async () => {
+    await page.click('.preset[data-name="anisotropic_tumbling_sphere"]');
+    await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "anisotropic_tumbling_sphere");
+    await openAdvanced(page);
+    const shown = JSON.parse(await page.inputValue("#field-body-inertia"));
+    assert.ok(Array.isArray(shown) && shown.length === 2 && shown[0].length === 2, JSON.stringify(shown));
+    await page.fill("#field-body-inertia", "[[0.7, 0.1], [0.1, 0.3]]");
+    await page.dispatchEvent("#field-body-inertia", "change");
+    await page.waitForFunction(async () => {
+      const id = new URL(document.querySelector("#export-state").href).pathname.split("/")[4];
+      const scene = (await (await fetch(`/api/v1/sessions/${id}`)).json()).scene;
+      return JSON.stringify(scene.body.inertia) === "[[0.7,0.1],[0.1,0.3]]";
+    });
+    await page.fill("#field-body-inertia", "[[0.7, 0.2], [0.1, 0.3]]");
+    await page.dispatchEvent("#field-body-inertia", "change");
+    await page.waitForFunction(() => /inertia/.test(document.querySelector("#field-body-inertia-error").textContent));
+    assert.equal(await page.inputValue("#field-body-inertia"), "[[0.7,0.1],[0.1,0.3]]");
+  });
+
   await test("PNG export at a chosen size", async () => {
     await page.fill("#png-width", "1000");
     await page.fill("#png-height", "600");
