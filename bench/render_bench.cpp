@@ -226,7 +226,7 @@ int run_render_bench(int frames) {
   };
   const Size sizes[] = {{640, 480}, {1024, 768}, {1920, 1080}};
   const LayerSet sets[] = {
-      {"all layers", render::kAllLayers},
+      {"all layers", render::kDefaultLayers},
       {"no trail, no HUD", render::kSurface | render::kGrid | render::kBody | render::kFrame},
       {"body only", render::kBody},
       {"surface only", render::kSurface},
@@ -349,10 +349,10 @@ int run_render_bench(int frames) {
       "HUD ms "
       "| all / no trail, no HUD |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   const render::Snapshot long_trail = bench_snapshot(10001);
-  const unsigned without_trail = render::kAllLayers & ~unsigned{render::kTrail};
-  const unsigned without_hud = render::kAllLayers & ~unsigned{render::kHud};
+  const unsigned without_trail = render::kDefaultLayers & ~unsigned{render::kTrail};
+  const unsigned without_hud = render::kDefaultLayers & ~unsigned{render::kHud};
   const unsigned without_both = without_trail & without_hud;
-  const unsigned interleaved[] = {unsigned{render::kAllLayers}, without_trail, without_hud, without_both};
+  const unsigned interleaved[] = {unsigned{render::kDefaultLayers}, without_trail, without_hud, without_both};
   for (const auto& [size, trail_snapshot] :
        {std::pair{sizes[0], &snapshot}, std::pair{sizes[1], &snapshot}, std::pair{sizes[2], &snapshot},
         std::pair{sizes[0], &long_trail}}) {
