@@ -50,6 +50,10 @@ std::string restart_reason(const json& patch, const Scene& before, const Scene& 
     return "the companions changed: the run starts over at t = 0";
   if (before.surface.kind != after.surface.kind)
     return "the surface changed kind: the run starts over at t = 0 on the new surface";
+  // The incompressible body holds det L at the start's λμ: joining or leaving that constraint
+  // mid-run would snap the shape to it (or leave its multiplier's momentum behind).
+  if ((before.body.model == BodyModel::incompressible) != (after.body.model == BodyModel::incompressible))
+    return "the body became or stopped being incompressible (its area is the start's): the run starts over at t = 0";
   return "";
 }
 

@@ -119,6 +119,32 @@ TEST_F(Api, EveryOpenApiOperationIsRouted) {
   EXPECT_EQ(json::parse(schema->body)["title"], "Spinfold scene");
 }
 
+// Becoming incompressible mid-run restarts: the constraint holds the start's area, so continuing
+// would snap the body's shape (det L 0.86 → 0.91 in one step, as it did).
+TEST_F(Api, BecomingIncompressibleRestartsTheRunInsteadOfSnappingTheShape) {
+  auto c = client();
+  const std::string id = create(R"({"preset": "breathing_ellipse_sphere"})");
+  const std::string session = "/api/v1/sessions/" + id;
+  auto moved = c.Post(session + "/advance", R"({"until": 1.3})", "application/json");
+  ASSERT_TRUE(moved);
+  const json state = json::parse(moved->body)["state"];
+  const double start_area = state["det_L"].get<double>();
+  auto patched = c.Patch(session, R"({"body": {"model": "incompressible"}, "integrator": {"name": "split6"}})",
+                         "application/merge-patch+json");
+  ASSERT_TRUE(patched);
+  ASSERT_EQ(patched->status, 200) << patched->body;
+  const json after = json::parse(patched->body);
+  EXPECT_EQ(after["change"]["kind"], "restarted");
+  EXPECT_NE(after["change"]["reason"].get<std::string>().find("incompressible"), std::string::npos);
+  EXPECT_EQ(after["state"]["t"], 0.0);
+  const double area = after["state"]["det_L"].get<double>();
+  EXPECT_GT(std::abs(area - start_area), 1e-3);  // the start's area, not the one at t = 1.3
+  auto stepped = c.Post(session + "/advance", R"({"until": 0.5})", "application/json");
+  ASSERT_TRUE(stepped);
+  EXPECT_NEAR(json::parse(stepped->body)["state"]["det_L"].get<double>(), area, 1e-14);
+  remove(id);
+}
+
 // The views the UI offers come from the server's one table; each H² view draws a pseudosphere.
 TEST_F(Api, ViewsListTheSurfacesEachShowsAndEachH2ViewDraws) {
   auto c = client();
