@@ -366,8 +366,9 @@ int main(int argc, char** argv) {
   render_cmd->add_option("scene_file", ren.scene.scene_file, "Scene JSON file (default: the default preset)");
   render_cmd->add_option("--scene", ren.scene.preset, "Render an embedded preset by name");
   render_cmd->add_option("--t", ren.t, "Time of the frame")->capture_default_str();
-  render_cmd->add_option("--view", ren.view,
-                         "sphere | hyperboloid | disk | plane | klein | halfplane | tractricoid (default: by surface)");
+  render_cmd->add_option(
+      "--view", ren.view,
+      "sphere | hyperboloid | disk | plane | klein | halfplane | tractricoid (default: by surface)");
   render_cmd->add_option("--width", ren.width, "Image width [pixels]")->capture_default_str();
   render_cmd->add_option("--height", ren.height, "Image height [pixels]")->capture_default_str();
   render_cmd->add_option("--layers", ren.layers, "Comma-separated layers")->capture_default_str();

@@ -222,7 +222,9 @@ StaticGeometry build_static(SurfaceKind kind, ViewKind view) {
       const glm::dvec3 w = at(u, theta);
       return LitVertex{to_float(w), to_float(tractricoid_normal(w))};
     };
-    const auto u_of = [](int i) { return kTractricoidExtent * std::pow(static_cast<double>(i) / rings, 1.5); };
+    const auto u_of = [](int i) {
+      return kTractricoidExtent * std::pow(static_cast<double>(i) / rings, 1.5);
+    };
     for (int i = 0; i < rings; ++i)
       for (int j = 0; j < slices; ++j) {
         const double t0 = 2 * kPi * j / slices, t1 = 2 * kPi * (j + 1) / slices;
@@ -235,7 +237,8 @@ StaticGeometry build_static(SurfaceKind kind, ViewKind view) {
     };
     for (int k = 0; k < 12; ++k) {
       const double theta = 2 * kPi * k / 12;
-      curve([&](double s) { return at(kTractricoidExtent * s * s, theta); }, 64, k == 6 ? kSeamColor : kGridColor);
+      curve([&](double s) { return at(kTractricoidExtent * s * s, theta); }, 64,
+            k == 6 ? kSeamColor : kGridColor);
     }
     for (double u = 0.0; u <= 3.0 + 1e-9; u += 0.5)
       curve([&](double s) { return at(u, 2 * kPi * s); }, 128, u == 0.0 ? kSeamColor : kGridColor);
@@ -253,8 +256,8 @@ StaticGeometry build_static(SurfaceKind kind, ViewKind view) {
       }
     } else {  // y > 0, and its boundary y = 0
       constexpr float far = 1e4f;
-      for (const glm::vec2 c : {glm::vec2(-far, 0), glm::vec2(far, 0), glm::vec2(far, far), glm::vec2(-far, 0),
-                                glm::vec2(far, far), glm::vec2(-far, far)})
+      for (const glm::vec2 c : {glm::vec2(-far, 0), glm::vec2(far, 0), glm::vec2(far, far),
+                                glm::vec2(-far, 0), glm::vec2(far, far), glm::vec2(-far, far)})
         g.surface.push_back({glm::vec3(c, 0.0f), {0, 0, 1}});
       add_segment(g.grid, {-far, 0, 0}, {far, 0, 0}, kGridColor);
     }
@@ -573,7 +576,8 @@ namespace {
 std::vector<std::string> hud_lines(const Snapshot& snapshot, const ViewOptions& view) {
   if (!(view.layers & kHud)) return {};
   std::vector<std::string> lines = snapshot.hud_lines;
-  if (view.layers & kActions) lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
+  if (view.layers & kActions)
+    lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
   if (!snapshot.bodies.empty() && !on_view(snapshot.surface, view.kind, snapshot.bodies.front().X))
     lines.push_back("body 1 is beyond the rim: off the part of H2 this surface shows");
   return lines;
@@ -782,7 +786,8 @@ void aim_camera_at_body(ViewOptions& view, const Snapshot& snapshot) {
     view.target = std::array<double, 3>{centre.x, centre.y, centre.z};
     view.distance = radius / std::sin(0.85 * half_fov);
     view.pitch = bowl ? 0.55 : 0.35;
-    if (glm::length(glm::dvec2(centre)) > 1e-9) view.yaw = std::atan2(centre.y, centre.x) + (bowl ? kPi : 0.0);
+    if (glm::length(glm::dvec2(centre)) > 1e-9)
+      view.yaw = std::atan2(centre.y, centre.x) + (bowl ? kPi : 0.0);
     clear_the_boxes(view, points, hud, {1.0, 1.25, 1.6});
   } else if (view.kind == ViewKind::plane) {
     // The centre of the bodies' bounding box.
@@ -800,10 +805,10 @@ void aim_camera_at_body(ViewOptions& view, const Snapshot& snapshot) {
     const std::vector<Sight> points = sights(snapshot, view, true);
     const double main = points.front().at.y;
     double lo = points.front().at.x, hi = lo, top = main;
-    for (const Sight& p : points) lo = std::min(lo, p.at.x), hi = std::max(hi, p.at.x), top = std::max(top, p.at.y);
+    for (const Sight& p : points)
+      lo = std::min(lo, p.at.x), hi = std::max(hi, p.at.x), top = std::max(top, p.at.y);
     const double aspect = static_cast<double>(view.width) / view.height;
-    const double height =
-        std::max({main, top / 1.9, (hi - lo) / (2.0 * 0.9 * 1.08 * std::max(1.0, aspect))});
+    const double height = std::max({main, top / 1.9, (hi - lo) / (2.0 * 0.9 * 1.08 * std::max(1.0, aspect))});
     view.target = std::array<double, 3>{0.5 * (lo + hi), height, 0.0};
   }
 }

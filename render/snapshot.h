@@ -45,8 +45,8 @@ struct BodySnapshot {
 
 struct Snapshot {
   Surface surface;
-  std::vector<BodySnapshot> bodies;    // the main body first, then the companions in scene order
-  std::vector<std::string> hud_lines;  // readout_lines of the run, then one compact line per companion
+  std::vector<BodySnapshot> bodies;       // the main body first, then the companions in scene order
+  std::vector<std::string> hud_lines;     // readout_lines of the run, then one compact line per companion
   std::vector<std::string> action_lines;  // action_lines of the run (drawn with the actions layer)
 };
 

@@ -8,7 +8,8 @@ namespace spinfold::render {
 namespace {
 
 constexpr std::array<ViewInfo, 7> kViews{{
-    {"sphere", ViewKind::sphere, true, true, false, false, "3-D sphere", "the sphere in space, seen by an orbiting camera"},
+    {"sphere", ViewKind::sphere, true, true, false, false, "3-D sphere",
+     "the sphere in space, seen by an orbiting camera"},
     {"disk", ViewKind::disk, false, true, true, false, "disk (flat map)",
      "the Poincaré disk (H²) or the stereographic plane (S²): angles true, geodesics circular arcs"},
     {"hyperboloid", ViewKind::hyperboloid, true, false, true, false, "3-D hyperboloid",
@@ -18,8 +19,10 @@ constexpr std::array<ViewInfo, 7> kViews{{
     {"halfplane", ViewKind::halfplane, false, false, true, false, "upper half-plane",
      "the Poincaré upper half-plane: angles true, geodesics semicircles on the boundary or vertical lines"},
     {"tractricoid", ViewKind::tractricoid, true, false, true, false, "3-D pseudosphere (tractricoid)",
-     "Beltrami's surface of curvature −1/R² in space: a strip of H² wrapped round its axis, ending at its rim"},
-    {"plane", ViewKind::plane, false, false, false, true, "flat plane", "the Euclidean plane, following the body"},
+     "Beltrami's surface of curvature −1/R² in space: a strip of H² wrapped round its axis, ending at its "
+     "rim"},
+    {"plane", ViewKind::plane, false, false, false, true, "flat plane",
+     "the Euclidean plane, following the body"},
 }};
 constexpr std::array<std::pair<std::string_view, unsigned>, 7> kLayers{{{"surface", kSurface},
                                                                         {"grid", kGrid},

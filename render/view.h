@@ -26,23 +26,23 @@ enum class ViewKind {
 struct ViewInfo {
   std::string_view name;
   ViewKind kind;
-  bool three_d;                       // an orbiting camera (else orthographic, 2-D)
-  bool sphere, pseudosphere, plane;   // the surfaces it can show
-  std::string_view title;             // a short label for a menu
-  std::string_view description;       // one line for a reader
+  bool three_d;                      // an orbiting camera (else orthographic, 2-D)
+  bool sphere, pseudosphere, plane;  // the surfaces it can show
+  std::string_view title;            // a short label for a menu
+  std::string_view description;      // one line for a reader
 };
 std::span<const ViewInfo> views();
 const ViewInfo& view_info(ViewKind view);
 
 // Layers, each on or off per frame; an unselected layer costs nothing.
 enum Layer : unsigned {
-  kSurface = 1u << 0,  // shaded surface
-  kGrid = 1u << 1,     // geodesic grid
-  kBody = 1u << 2,     // the deformed-frame ellipse
-  kFrame = 1u << 3,    // the frame arrows e₁, e₂
-  kTrail = 1u << 4,    // the path on the surface
-  kHud = 1u << 5,      // text overlay (Dear ImGui)
-  kActions = 1u << 6,  // the action variables and frequencies, added to the text overlay
+  kSurface = 1u << 0,    // shaded surface
+  kGrid = 1u << 1,       // geodesic grid
+  kBody = 1u << 2,       // the deformed-frame ellipse
+  kFrame = 1u << 3,      // the frame arrows e₁, e₂
+  kTrail = 1u << 4,      // the path on the surface
+  kHud = 1u << 5,        // text overlay (Dear ImGui)
+  kActions = 1u << 6,    // the action variables and frequencies, added to the text overlay
   kDefaultLayers = 63u,  // every layer but the action variables
 };
 

@@ -53,7 +53,8 @@ std::string restart_reason(const json& patch, const Scene& before, const Scene& 
   // The incompressible body holds det L at the start's λμ: joining or leaving that constraint
   // mid-run would snap the shape to it (or leave its multiplier's momentum behind).
   if ((before.body.model == BodyModel::incompressible) != (after.body.model == BodyModel::incompressible))
-    return "the body became or stopped being incompressible (its area is the start's): the run starts over at t = 0";
+    return "the body became or stopped being incompressible (its area is the start's): the run starts over "
+           "at t = 0";
   return "";
 }
 

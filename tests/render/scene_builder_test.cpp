@@ -304,20 +304,22 @@ Vec3 from_half_plane(const Surface& h2, double x, double y) {
 
 TEST(HyperbolicPictures, KleinGeodesicsAreStraightChords) {
   const Surface h2{SurfaceKind::pseudosphere, 1.5};
-  for (const auto& [r, phi, a] : {std::tuple{0.0, 0.0, 0.3}, {0.7, 0.3, 1.1}, {2.5, -2.0, 2.9}, {4.0, 1.0, -0.4}}) {
+  for (const auto& [r, phi, a] :
+       {std::tuple{0.0, 0.0, 0.3}, {0.7, 0.3, 1.1}, {2.5, -2.0, 2.9}, {4.0, 1.0, -0.4}}) {
     const std::vector<Vec3> points = h2_geodesic(h2, r, phi, a, 5.0, 200);
     const glm::dvec2 p0(world_position(h2, ViewKind::klein, points.front()));
     const glm::dvec2 chord = glm::dvec2(world_position(h2, ViewKind::klein, points.back())) - p0;
     for (const Vec3& P : points) {
       const glm::dvec2 q = glm::dvec2(world_position(h2, ViewKind::klein, P)) - p0;
-      EXPECT_LT(std::abs(chord.x * q.y - chord.y * q.x) / glm::length(chord), 1e-12) << r << " " << phi << " " << a;
+      EXPECT_LT(std::abs(chord.x * q.y - chord.y * q.x) / glm::length(chord), 1e-12)
+          << r << " " << phi << " " << a;
       EXPECT_LT(glm::length(glm::dvec2(world_position(h2, ViewKind::klein, P))), 1.0);
     }
   }
   // Not a map of the disk: the Poincaré picture of the same geodesic bends.
   const std::vector<Vec3> points = h2_geodesic(h2, 0.7, 0.3, 1.1, 3.0, 2);
-  const glm::dvec2 a(world_position(h2, ViewKind::disk, points[0])), b(world_position(h2, ViewKind::disk, points[1])),
-      c(world_position(h2, ViewKind::disk, points[2]));
+  const glm::dvec2 a(world_position(h2, ViewKind::disk, points[0])),
+      b(world_position(h2, ViewKind::disk, points[1])), c(world_position(h2, ViewKind::disk, points[2]));
   EXPECT_GT(std::abs((c - a).x * (b - a).y - (c - a).y * (b - a).x), 1e-3);
 }
 
@@ -325,7 +327,8 @@ TEST(HyperbolicPictures, HalfPlaneGeodesicsAreSemicirclesOnTheBoundaryOrVertical
   const Surface h2{SurfaceKind::pseudosphere, 0.8};
   EXPECT_NEAR(half_plane_point(h2, chart_point(h2, 0.0, 0.0).X).x, 0.0, 1e-15);
   EXPECT_NEAR(half_plane_point(h2, chart_point(h2, 0.0, 0.0).X).y, 1.0, 1e-15);
-  for (const auto& [r, phi, a] : {std::tuple{0.7, 0.3, 1.1}, {2.5, -2.0, 2.9}, {1.0, 2.0, 0.2}, {3.0, 0.5, 1.9}}) {
+  for (const auto& [r, phi, a] :
+       {std::tuple{0.7, 0.3, 1.1}, {2.5, -2.0, 2.9}, {1.0, 2.0, 0.2}, {3.0, 0.5, 1.9}}) {
     std::vector<glm::dvec2> q;
     for (const Vec3& P : h2_geodesic(h2, r, phi, a, 4.0, 100)) q.push_back(half_plane_point(h2, P));
     // The centre on y = 0 equidistant from the two ends; every point at that distance.
@@ -334,7 +337,8 @@ TEST(HyperbolicPictures, HalfPlaneGeodesicsAreSemicirclesOnTheBoundaryOrVertical
     const double radius = glm::length(p - glm::dvec2(c, 0.0));
     for (const glm::dvec2& x : q) {
       EXPECT_GT(x.y, 0.0);
-      EXPECT_NEAR(glm::length(x - glm::dvec2(c, 0.0)), radius, 1e-11 * std::max(1.0, radius)) << r << " " << phi;
+      EXPECT_NEAR(glm::length(x - glm::dvec2(c, 0.0)), radius, 1e-11 * std::max(1.0, radius))
+          << r << " " << phi;
     }
   }
   // The geodesic through the centre along X₁ is the vertical line x = 0, from 0 up to infinity.
@@ -371,7 +375,8 @@ TEST(HyperbolicPictures, TheTractricoidIsTheSurfaceAndItsDistancesAreThoseOfH2) 
       const glm::dvec3 w = world_position(h2, ViewKind::tractricoid, P);
       const double rho = glm::length(glm::dvec2(w)), u = std::acosh(1.0 / rho);
       EXPECT_NEAR(w.z, u - std::tanh(u), 1e-12);
-      EXPECT_NEAR(std::atan2(w.y, w.x), std::remainder(kTractricoidDilation * x, 2 * std::numbers::pi), 1e-12);
+      EXPECT_NEAR(std::atan2(w.y, w.x), std::remainder(kTractricoidDilation * x, 2 * std::numbers::pi),
+                  1e-12);
     }
   // Lengths along the surface are H² lengths: a geodesic arc of 1.5 radii inside the strip,
   // measured as a fine polygon in space (the chord error falls as 1/n²).
@@ -395,12 +400,15 @@ TEST(HyperbolicPictures, TheCoveringMapWrapsTheStripRoundTheSeamAndEndsAtTheRim)
       const glm::dvec3 a = world_position(h2, ViewKind::tractricoid, from_half_plane(h2, x, y));
       const glm::dvec3 b = world_position(h2, ViewKind::tractricoid, from_half_plane(h2, x + period, y));
       EXPECT_LT(glm::length(a - b), 1e-12) << x << " " << y;  // one point of the surface, two of H²
-      const glm::dvec3 c = world_position(h2, ViewKind::tractricoid, from_half_plane(h2, x + 0.5 * period, y));
+      const glm::dvec3 c =
+          world_position(h2, ViewKind::tractricoid, from_half_plane(h2, x + 0.5 * period, y));
       EXPECT_GT(glm::length(a - c), 0.1);  // half a turn away: another point
     }
   // Across the seam (x = ±period/2) the picture is continuous.
-  const glm::dvec3 left = world_position(h2, ViewKind::tractricoid, from_half_plane(h2, 0.5 * period - 1e-9, 1.0));
-  const glm::dvec3 right = world_position(h2, ViewKind::tractricoid, from_half_plane(h2, 0.5 * period + 1e-9, 1.0));
+  const glm::dvec3 left =
+      world_position(h2, ViewKind::tractricoid, from_half_plane(h2, 0.5 * period - 1e-9, 1.0));
+  const glm::dvec3 right =
+      world_position(h2, ViewKind::tractricoid, from_half_plane(h2, 0.5 * period + 1e-9, 1.0));
   EXPECT_LT(glm::length(left - right), 1e-8);
   // The rim: y = 1/k is u = 0 (ρ = R, z = 0); below it the point is off the surface.
   const Vec3 rim = from_half_plane(h2, 0.3, 1.0 / kTractricoidDilation);
@@ -439,21 +447,23 @@ TEST(SceneBuilder, TheActionsLayerAddsTheActionLinesToTheHudAndIsOffByDefault) {
   ASSERT_EQ(with.hud_lines.size(), 3u);
   EXPECT_EQ(with.hud_lines[1], s.action_lines[0]);
   EXPECT_GT(with.hud.hud.h, build_scene(s, ViewOptions{}).hud.hud.h);  // the box grows to hold them
-  view.layers = kActions;  // without the HUD there is no text
+  view.layers = kActions;                                              // without the HUD there is no text
   EXPECT_TRUE(build_scene(s, view).hud_lines.empty());
   EXPECT_EQ(parse_layers("hud,actions"), kHud | kActions);
   EXPECT_EQ(layer_names().back(), "actions");
 }
 
 TEST(HyperbolicPictures, TheHalfPlaneFollowsTheBodyAtEveryHeight) {
-  for (const auto& [r, phi] : {std::pair{0.0, 0.0}, {3.0, 0.0}, {3.0, std::numbers::pi}, {5.0, 2.0}, {6.0, -1.0}}) {
+  for (const auto& [r, phi] :
+       {std::pair{0.0, 0.0}, {3.0, 0.0}, {3.0, std::numbers::pi}, {5.0, 2.0}, {6.0, -1.0}}) {
     const Snapshot s = body_at(SurfaceKind::pseudosphere, 1.0, r, phi, 1.0, 1.0);
     ViewOptions view;
     view.kind = ViewKind::halfplane;
     aim_camera_at_body(view, s);
     const FrameScene scene = build_scene(s, view);
     for (const Vec3& P : ellipse_points(s.surface, s.bodies[0], view.scale, 16)) {
-      const std::optional<glm::dvec2> p = pixel_position(scene, view, world_position(s.surface, view.kind, P));
+      const std::optional<glm::dvec2> p =
+          pixel_position(scene, view, world_position(s.surface, view.kind, P));
       ASSERT_TRUE(p);
       EXPECT_TRUE(p->x > 0.1 * view.width && p->x < 0.9 * view.width && p->y > 0.1 * view.height &&
                   p->y < 0.9 * view.height)

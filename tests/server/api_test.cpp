@@ -129,8 +129,9 @@ TEST_F(Api, BecomingIncompressibleRestartsTheRunInsteadOfSnappingTheShape) {
   ASSERT_TRUE(moved);
   const json state = json::parse(moved->body)["state"];
   const double start_area = state["det_L"].get<double>();
-  auto patched = c.Patch(session, R"({"body": {"model": "incompressible"}, "integrator": {"name": "split6"}})",
-                         "application/merge-patch+json");
+  auto patched =
+      c.Patch(session, R"({"body": {"model": "incompressible"}, "integrator": {"name": "split6"}})",
+              "application/merge-patch+json");
   ASSERT_TRUE(patched);
   ASSERT_EQ(patched->status, 200) << patched->body;
   const json after = json::parse(patched->body);
