@@ -139,11 +139,8 @@ render::ViewOptions view_options(const RenderOptions& opt, const Scene& scene) {
   view.kind = default_view(scene.surface.kind);
   if (!opt.view.empty()) {
     const auto kind = parse_view(opt.view);
-    if (!kind) {
-      std::string names;
-      for (const ViewInfo& v : views()) names += (names.empty() ? "" : ", ") + std::string(v.name);
-      throw BadInput{"--view: must be one of " + names + " (got '" + opt.view + "')"};
-    }
+    if (!kind)
+      throw BadInput{"--view: must be one of " + joined_view_names(", ") + " (got '" + opt.view + "')"};
     view.kind = *kind;
   }
   if (const auto why = view_unsupported_reason(view.kind, scene.surface.kind))
@@ -366,9 +363,7 @@ int main(int argc, char** argv) {
   render_cmd->add_option("scene_file", ren.scene.scene_file, "Scene JSON file (default: the default preset)");
   render_cmd->add_option("--scene", ren.scene.preset, "Render an embedded preset by name");
   render_cmd->add_option("--t", ren.t, "Time of the frame")->capture_default_str();
-  render_cmd->add_option(
-      "--view", ren.view,
-      "sphere | hyperboloid | disk | plane | klein | halfplane | tractricoid (default: by surface)");
+  render_cmd->add_option("--view", ren.view, render::joined_view_names(" | ") + " (default: by surface)");
   render_cmd->add_option("--width", ren.width, "Image width [pixels]")->capture_default_str();
   render_cmd->add_option("--height", ren.height, "Image height [pixels]")->capture_default_str();
   render_cmd->add_option("--layers", ren.layers, "Comma-separated layers")->capture_default_str();
@@ -393,7 +388,7 @@ int main(int argc, char** argv) {
   record_cmd->add_option("--format", rec.format, "gif | webm | mp4 | png-zip")->required();
   record_cmd->add_option("--out", rec.render.out, "File to write")->required();
   record_cmd->add_option("--view", rec.render.view,
-                         "sphere | hyperboloid | disk | plane (default: by surface)");
+                         render::joined_view_names(" | ") + " (default: by surface)");
   record_cmd->add_option("--width", rec.render.width, "Frame width [pixels]")->capture_default_str();
   record_cmd->add_option("--height", rec.render.height, "Frame height [pixels]")->capture_default_str();
   record_cmd->add_option("--layers", rec.render.layers, "Comma-separated layers")->capture_default_str();

@@ -56,6 +56,13 @@ std::span<const ViewInfo> views() {
   return kViews;
 }
 
+std::string joined_view_names(std::string_view separator) {
+  std::string names;
+  for (const ViewInfo& v : kViews)
+    names += (names.empty() ? "" : std::string(separator)) + std::string(v.name);
+  return names;
+}
+
 const ViewInfo& view_info(ViewKind view) {
   for (const ViewInfo& v : kViews)
     if (v.kind == view) return v;

@@ -32,6 +32,8 @@ struct ViewInfo {
   std::string_view description;      // one line for a reader
 };
 std::span<const ViewInfo> views();
+// The views' names in the table's order joined by `separator` ("sphere | disk | …" for a help text).
+std::string joined_view_names(std::string_view separator);
 const ViewInfo& view_info(ViewKind view);
 
 // Layers, each on or off per frame; an unselected layer costs nothing.

@@ -87,7 +87,7 @@ RecordingJob recording_job(ServerContext& server, const Call& call, Session& s) 
                         std::to_string(view.width % 2 ? view.width : view.height), *why});
   const auto view_name = text("view");
   if (view_name && !render::parse_view(*view_name))
-    errors.push_back({"view", *view_name, "must be sphere, hyperboloid, disk or plane"});
+    errors.push_back({"view", *view_name, "must be one of " + render::joined_view_names(", ")});
   if (const auto layers = text("layers")) {
     std::string unknown;
     if (const auto mask = render::parse_layers(*layers, &unknown))
@@ -192,6 +192,8 @@ void delete_recording(ServerContext& server, const Call& call, httplib::Response
 
 std::vector<Route> recording_routes(const Limits& limits) {
   const ordered_json number{{"type", "number"}};
+  ordered_json view_names = ordered_json::array();
+  for (const render::ViewInfo& v : render::views()) view_names.push_back(std::string(v.name));
   const ordered_json body_schema{
       {"type", "object"},
       {"required", {"t_end", "format"}},
@@ -209,7 +211,7 @@ std::vector<Route> recording_routes(const Limits& limits) {
          {{"type", "integer"}, {"minimum", 16}, {"maximum", limits.max_image_side}, {"default", 640}}},
         {"height",
          {{"type", "integer"}, {"minimum", 16}, {"maximum", limits.max_image_side}, {"default", 480}}},
-        {"view", {{"type", "string"}, {"enum", {"sphere", "hyperboloid", "disk", "plane"}}}},
+        {"view", {{"type", "string"}, {"enum", view_names}}},
         {"layers", {{"type", "string"}, {"default", "surface,grid,body,frame,trail,hud"}}},
         {"format", {{"type", "string"}, {"enum", {"gif", "webm", "mp4", "png-zip"}}}},
         {"trail", {{"type", "number"}, {"minimum", 0}, {"x-unit", "time"}}},
