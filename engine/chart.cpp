@@ -180,6 +180,25 @@ State initial_state(const Scene& scene) {
   State state;
   const BodyKinematics body = initial_kinematics(scene);
   const InitialState& q = scene.initial;
+  if (scene.surface.kind == SurfaceKind::pseudosphere && q.r > recentre_distance(scene.surface) &&
+      !chart_well_conditioned(scene.surface, q.r)) {
+    // Far out on H² the global embedding is ~R e^{r/R}/2 and ⟨X, X⟩ = −R² drowns in its round-off
+    // (from r ≈ 8R on), so a chart is not built from X: first a chart whose pole lies on the
+    // body's radial geodesic at distance d₀ before it (an isometry along that geodesic: E₁, E₂
+    // and so L, M keep their meaning), then the usual re-centring from there.
+    const double d0 = recentre_distance(scene.surface);
+    const ChartPoint pole = chart_point(scene.surface, q.r - d0, q.phi);
+    const ChartPoint here = chart_point(scene.surface, d0, 0.0);
+    state.chart.A.col(0) = pole.E1;
+    state.chart.A.col(1) = pole.E2;
+    state.chart.A.col(2) = unit_normal(scene.surface, pole.X);
+    state.chart.global = false;
+    const double S = polar_S(scene.surface, q.r);
+    const BodyKinematics radial{here.X, q.r_dot * here.E1 + S * q.phi_dot * here.E2, here.E1, body.L, body.M,
+                                body.spin};
+    recentre(scene, radial, state.chart, state.y);
+    return state;
+  }
   if (!chart_well_conditioned(scene.surface, q.r)) {
     recentre(scene, body, state.chart, state.y);
     return state;
