@@ -255,7 +255,7 @@ json write_fields(const S& in) {
     } else if constexpr (std::is_same_v<T, std::string>) {
       if (field.text_rule != TextRule::any || !value.empty()) j[key] = value;
     } else if constexpr (Enumerated<T>) {
-      j[key] = enum_name(value);
+      if (std::find(replaced.begin(), replaced.end(), field.name) == replaced.end()) j[key] = enum_name(value);
     } else if constexpr (HasFields<T>) {
       j[key] = write_fields(value);
     } else if constexpr (OptionalSection<T>) {
@@ -516,6 +516,7 @@ SceneParse parse_scene(const json& document) {
   keys.insert(keys.end(), {"companions", "vary"});
   if (!in.object(document, "", keys)) return result;
   read_fields(in, document, "", scene);
+  resolve_curvature(scene.surface);
 
   // The rates from spin, speed and heading; then value errors too, except for fields already named
   // (whose structure was wrong, or which could not be converted).

@@ -1,5 +1,6 @@
 #include "engine/chart.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -77,13 +78,27 @@ BodyKinematics initial_kinematics(const Scene& scene) {
 
 namespace {
 
-// Lower bound of |S(r)|/R on S² and of r/R on H² and the plane, and the upper bound of r/R there.
+// The length that the chart bands are measured in: R, but at most kMaxChartScale on a nearly flat
+// sphere or H² (a small curvature dialled towards 0), whose polar charts would otherwise put the pole
+// ~R away and leave the body's motion to the last digits of coordinates of size R. The plane's
+// radius is its scale.
+constexpr double kMaxChartScale = 100.0;  // [length]
+double chart_scale(const Surface& surface) {
+  return surface.kind == SurfaceKind::plane ? surface.radius : std::min(surface.radius, kMaxChartScale);
+}
+
+// Bounds of |S(r)|/ℓ (away from the pole, and on S² from its antipode) and of r/ℓ, ℓ the chart scale.
 struct Band {
   double low, high;
 };
 
 bool in_band(const Surface& surface, double r, Band band) {
-  const double x = r / surface.radius;
+  const double R = surface.radius, l = chart_scale(surface), x = r / R;
+  if (l != R) {  // a nearly flat S² or H²: as on the plane, and clear of S²'s antipode
+    const bool clear = surface.kind != SurfaceKind::sphere ||
+                       (x > 0.0 && x < std::numbers::pi && R * std::sin(x) >= band.low * l);
+    return clear && r >= band.low * l && r <= band.high * l;
+  }
   if (surface.kind == SurfaceKind::sphere) return x > 0.0 && x < std::numbers::pi && std::sin(x) >= band.low;
   return x >= band.low && x <= band.high;
 }
@@ -102,7 +117,8 @@ namespace {
 
 // Distance of the body from a new chart's pole: the middle of the well-conditioned band.
 double recentre_distance(const Surface& surface) {
-  return surface.kind == SurfaceKind::sphere ? 0.5 * std::numbers::pi * surface.radius : surface.radius;
+  const double l = chart_scale(surface);
+  return surface.kind == SurfaceKind::sphere && l == surface.radius ? 0.5 * std::numbers::pi * l : l;
 }
 
 }  // namespace
@@ -176,33 +192,44 @@ EmbeddedBody global_embedding(const Scene& scene, const State& state) {
   return out;
 }
 
-State initial_state(const Scene& scene) {
+State place_body(const Scene& scene, const PlacedBody& p) {
   State state;
-  const BodyKinematics body = initial_kinematics(scene);
-  const InitialState& q = scene.initial;
-  if (scene.surface.kind == SurfaceKind::pseudosphere && q.r > recentre_distance(scene.surface) &&
-      !chart_well_conditioned(scene.surface, q.r)) {
+  const Surface& surface = scene.surface;
+  if (surface.kind == SurfaceKind::pseudosphere && p.r > recentre_distance(surface) &&
+      !chart_well_conditioned(surface, p.r)) {
     // Far out on H² the global embedding is ~R e^{r/R}/2 and ⟨X, X⟩ = −R² drowns in its round-off
     // (from r ≈ 8R on), so a chart is not built from X: first a chart whose pole lies on the
     // body's radial geodesic at distance d₀ before it (an isometry along that geodesic: E₁, E₂
     // and so L, M keep their meaning), then the usual re-centring from there.
-    const double d0 = recentre_distance(scene.surface);
-    const ChartPoint pole = chart_point(scene.surface, q.r - d0, q.phi);
-    const ChartPoint here = chart_point(scene.surface, d0, 0.0);
+    const double d0 = recentre_distance(surface);
+    const ChartPoint pole = chart_point(surface, p.r - d0, p.phi);
+    const ChartPoint here = chart_point(surface, d0, 0.0);
     state.chart.A.col(0) = pole.E1;
     state.chart.A.col(1) = pole.E2;
-    state.chart.A.col(2) = unit_normal(scene.surface, pole.X);
+    state.chart.A.col(2) = unit_normal(surface, pole.X);
     state.chart.global = false;
-    const double S = polar_S(scene.surface, q.r);
-    const BodyKinematics radial{here.X, q.r_dot * here.E1 + S * q.phi_dot * here.E2, here.E1, body.L, body.M,
-                                body.spin};
+    const BodyKinematics radial{here.X, p.v_r * here.E1 + p.v_phi * here.E2, here.E1, p.L, p.M, p.spin};
     recentre(scene, radial, state.chart, state.y);
     return state;
   }
-  if (!chart_well_conditioned(scene.surface, q.r)) {
+  const ChartPoint here = chart_point(surface, p.r, p.phi);
+  const BodyKinematics body{here.X, p.v_r * here.E1 + p.v_phi * here.E2, here.E1, p.L, p.M, p.spin};
+  if (!chart_well_conditioned(surface, p.r))
     recentre(scene, body, state.chart, state.y);
-    return state;
+  else
+    state.y = chart_coords(scene, body);
+  return state;
+}
+
+State initial_state(const Scene& scene) {
+  const InitialState& q = scene.initial;
+  if (!chart_well_conditioned(scene.surface, q.r)) {
+    const BodyKinematics body = initial_kinematics(scene);
+    const double v_phi = polar_S(scene.surface, q.r) * q.phi_dot;
+    return place_body(scene, {q.r, q.phi, q.r_dot, v_phi, body.L, body.M, body.spin});
   }
+  State state;
+  const BodyKinematics body = initial_kinematics(scene);
   // The scene's own chart: canonical values straight from the initial ones (physics.md §3).
   const double m = scene.body.mass;
   const double S = polar_S(scene.surface, q.r), C = polar_C(scene.surface, q.r);

@@ -30,6 +30,17 @@ BodyKinematics initial_kinematics(const Scene& scene);
 // The state at t = 0, in a chart where the body is far from the chart's pole.
 State initial_state(const Scene& scene);
 
+// A body given in the scene's polar frame: at (r, φ), velocity v_r E₁ + v_φ E₂, L and M in (E₁, E₂).
+struct PlacedBody {
+  double r, phi;     // [length], [rad]
+  double v_r, v_phi;  // [length/time]
+  Mat2 L, M;          // internal matrix, covariant rate [1/time]
+  double spin;        // s [angular momentum]
+};
+// Its state (t = 0, status ok) in a well-conditioned chart, built without the global embedding far
+// out on H² (valid for any r the scene allows).
+State place_body(const Scene& scene, const PlacedBody& body);
+
 // True while the chart coordinate r keeps the polar chart accurate: away from its pole(s) and,
 // on H², not so far out that φ loses precision. A chart is left when this turns false.
 bool chart_well_conditioned(const Surface& surface, double r);

@@ -172,6 +172,10 @@ constexpr Field<S, T> value_field(std::string_view name, T S::*member, std::stri
 inline constexpr std::tuple kSurfaceFields{
     value_field("kind", &Surface::kind, "the surface: sphere, pseudosphere or plane"),
     number_field("radius", &Surface::radius, "length", kPositive, "R (the plane's length scale)"),
+    optional_number_field("curvature", &Surface::curvature_given, "1/length^2", kAnyNumber,
+                          "K instead of kind and radius: > 0 sphere of radius 1/sqrt(K), 0 plane, < 0 "
+                          "pseudosphere of radius 1/sqrt(-K); changed mid-run it continues through 0",
+                          {"kind", "radius"}),
 };
 
 // body.inertia: the number below (isotropic J), or a symmetric positive-definite matrix

@@ -346,6 +346,20 @@ bool advance_to(Simulation& run, double t_end, std::uint64_t max_attempts) {
   return advance_within(run, t_end, max_attempts);
 }
 
+bool dialled(const Surface& before, const Surface& after) {
+  return before.curvature_given && after.curvature_given &&
+         (before.kind != after.kind || before.radius != after.radius);
+}
+
+Vec3 carried_position(const Surface& before, const Surface& after, const Vec3& X) {
+  if (dialled(before, after)) {
+    const PolarCoordinates pc = polar_coordinates(before, X);
+    return chart_point(after, pc.r, pc.phi).X;
+  }
+  if (before.kind != SurfaceKind::plane && after.radius != before.radius) return X * (after.radius / before.radius);
+  return X;
+}
+
 void retune(Simulation& run, const Scene& next) {
   for (std::size_t i = 0; i < run.companions.size() && i < next.companions.size(); ++i)
     retune(run.companions[i], companion_scene(next, i));
@@ -353,14 +367,31 @@ void retune(Simulation& run, const Scene& next) {
   // parameters may cure what stopped the run (a step beyond stability): it continues.
   State here = run.state;
   here.status = Status::ok;
-  BodyKinematics body = chart_kinematics(run.scene, here.y);
   const Surface& before = run.scene.surface;
-  if (before.kind != SurfaceKind::plane && next.surface.radius != before.radius)
-    body.X *= next.surface.radius / before.radius;  // the same place on the surface
-  // Velocities and frame rates are kept; the spin follows from the new inertia (s = tr((εL)ᵀMJ)).
-  body.spin = spin_from_rate(inertia_of(next.body), body.L, body.M);
-  here.y = chart_coords(next, body);
-  if (!chart_well_conditioned(next.surface, here.y[coord::r])) recentre(next, here);
+  if (dialled(before, next.surface)) {
+    // The same geodesic polar place (r, φ), velocity and frame in (E₁, E₂) on the new surface.
+    const GlobalBody g = global_body(run.scene, here);
+    PlacedBody p{g.r, g.phi, g.r_dot, g.S * g.phi_dot, g.L, g.M, 0.0};
+    if (g.at_pole) {  // the frame L and M refer to (the chart's F₁ carried to O) stands in for E₁
+      const BodyKinematics body = chart_kinematics(run.scene, here.y);
+      const Vec3 F1 = here.chart.A * body.F1, F2 = rotate_quarter(before, g.X, F1);
+      p.phi = std::atan2(F1.y(), F1.x());
+      p.v_r = dot(before, g.V, F1);
+      p.v_phi = dot(before, g.V, F2);
+    }
+    p.spin = spin_from_rate(inertia_of(next.body), p.L, p.M);
+    const State placed = place_body(next, p);
+    here.chart = placed.chart;
+    here.y = placed.y;
+  } else {
+    BodyKinematics body = chart_kinematics(run.scene, here.y);
+    if (before.kind != SurfaceKind::plane && next.surface.radius != before.radius)
+      body.X *= next.surface.radius / before.radius;  // the same place on the surface
+    // Velocities and frame rates are kept; the spin follows from the new inertia (s = tr((εL)ᵀMJ)).
+    body.spin = spin_from_rate(inertia_of(next.body), body.L, body.M);
+    here.y = chart_coords(next, body);
+    if (!chart_well_conditioned(next.surface, here.y[coord::r])) recentre(next, here);
+  }
 
   const bool same_method = resolve_integrator(next) == run.info->name &&
                            next.integrator.tolerance == run.scene.integrator.tolerance;

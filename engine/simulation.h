@@ -85,7 +85,17 @@ bool advance_within(Simulation& run, double t_end, std::uint64_t& attempts);
 // integrator act from here on; energy errors are measured from here. `next` must have passed
 // validate_scene and have the same surface kind (a different surface is a different run) and as
 // many companions: each companion is retuned to its new scene the same way.
+//
+// A curvature dial (both scenes give surface.curvature, and it changed: `dialled`) may change the
+// surface's kind: the body keeps its geodesic polar place (r, φ) about O, its velocity and frame in
+// (E₁, E₂), so the motion continues through K = 0 (physics.md §16).
 void retune(Simulation& run, const Scene& next);
+
+// True when `after` is `before` with another given curvature (retune continues through it).
+bool dialled(const Surface& before, const Surface& after);
+// Where a point of the scene's embedding on `before` goes on `after` as retune carries the body:
+// the same (r, φ) after a dial, the same place in units of R after a radius change [length].
+Vec3 carried_position(const Surface& before, const Surface& after, const Vec3& X);
 
 // The det L = 0 crossings up to the current state that come after time `after` [time], oldest
 // first: those of the step sequence and those between it and the state (each once).

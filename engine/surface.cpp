@@ -13,6 +13,19 @@ double curvature_sign(const Surface& surface) {
   return 0.0;
 }
 
+void resolve_curvature(Surface& surface) {
+  if (!surface.curvature_given) return;
+  const double K = *surface.curvature_given;
+  if (!std::isfinite(K)) return;  // refused by validate_scene, naming surface.curvature
+  if (std::abs(K) < kFlatCurvature) {
+    surface.kind = SurfaceKind::plane;
+    surface.radius = 1.0;
+    return;
+  }
+  surface.kind = K > 0.0 ? SurfaceKind::sphere : SurfaceKind::pseudosphere;
+  surface.radius = 1.0 / std::sqrt(std::abs(K));
+}
+
 double curvature(const Surface& surface) {
   return curvature_sign(surface) / (surface.radius * surface.radius);
 }

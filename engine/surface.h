@@ -1,6 +1,8 @@
 // Surfaces of constant curvature and their polar chart (physics.md §1).
 #pragma once
 
+#include <optional>
+
 #include <Eigen/Dense>
 
 namespace spinfold {
@@ -18,9 +20,26 @@ enum class SurfaceKind { sphere, pseudosphere, plane };
 inline constexpr double kMaxHyperbolicDistance = 250.0;
 
 struct Surface {
+  Surface() = default;
+  Surface(SurfaceKind kind_, double radius_) : kind(kind_), radius(radius_) {}
+
   SurfaceKind kind = SurfaceKind::sphere;
   double radius = 1.0;  // R [length]; on the plane only the length scale for charts and display
+  // K [1/length²] when the scene gave the curvature instead of kind and radius (a dial through 0):
+  // resolve_curvature sets kind and radius from it; kept to write the scene back as given.
+  std::optional<double> curvature_given;
 };
+
+// Below this |K| [1/length²] a given curvature is the plane: R > 1e12, and over any distance r up to
+// 1e4 lengths K r² < 1e-16 is below double round-off (the plane and the surface are one picture).
+inline constexpr double kFlatCurvature = 1e-24;
+
+// Sets kind and radius from surface.curvature_given when it is set (else leaves the surface as it
+// is): K > 0 the sphere of radius 1/√K, K < 0 H² of radius 1/√−K, |K| < kFlatCurvature the plane
+// (length scale 1). The formulas of every kind are then used as they are: R sin(r/R), cos(r/R),
+// R sinh(r/R), … are accurate to round-off for R up to 1e12 (no division by a vanishing K, no
+// series needed), so a run at K = ±1e-12 agrees with the plane's (tests/codec/curvature_dial_test).
+void resolve_curvature(Surface& surface);
 
 // σ: +1 sphere, −1 pseudosphere, 0 plane.
 double curvature_sign(const Surface& surface);

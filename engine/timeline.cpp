@@ -7,7 +7,7 @@ bool replay(const Scene& scene, std::span<const ParameterChange> changes, double
   run = start_simulation(scene);
   for (const ParameterChange& change : changes) {
     if (!advance_recording(run, trail, change.t, max_attempts) || run.state.t != change.t) return false;
-    retune(run, change.scene);
+    retune_recording(run, trail, change.scene);
   }
   return advance_recording(run, trail, until, max_attempts);
 }

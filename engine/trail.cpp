@@ -64,4 +64,19 @@ std::vector<Vec3> trail_positions(const Trail& trail, double t, double span) {
   return out;
 }
 
+namespace {
+
+void carry(Trail& trail, const Surface& before, const Surface& after) {
+  for (TrailPoint& p : trail.points) p.X = carried_position(before, after, p.X);
+  for (Trail& companion : trail.companions) carry(companion, before, after);
+}
+
+}  // namespace
+
+void retune_recording(Simulation& run, Trail& trail, const Scene& next) {
+  const Surface before = run.scene.surface;
+  retune(run, next);
+  carry(trail, before, next.surface);
+}
+
 }  // namespace spinfold

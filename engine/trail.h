@@ -36,6 +36,11 @@ void record_if_due(Trail& trail, const Simulation& run);
 bool advance_recording(Simulation& run, Trail& trail, double t_end,
                        std::uint64_t max_attempts = kNoStepLimit);
 
+// retune (engine/simulation.h) that carries the trail along: after a curvature dial or a radius
+// change each recorded point moves as the body does (the same (r, φ), or the same place in units
+// of R), so the path drawn stays on the surface shown.
+void retune_recording(Simulation& run, Trail& trail, const Scene& next);
+
 // The points within the last `span` [time] before `t` (all of them for span < 0).
 std::vector<Vec3> trail_positions(const Trail& trail, double t, double span);
 

@@ -46,7 +46,7 @@ bool TimelineReplay::advance_to(double t, std::uint64_t max_attempts) {
     if (!advance_recording(run_, trail_, changes_[next_].t, max_attempts) ||
         run_.state.t != changes_[next_].t)
       return false;
-    retune(run_, changes_[next_].scene);
+    retune_recording(run_, trail_, changes_[next_].scene);
   }
   return advance_recording(run_, trail_, t, max_attempts) && run_.state.status == Status::ok;
 }

@@ -48,8 +48,9 @@ std::string restart_reason(const json& patch, const Scene& before, const Scene& 
   if (patch.contains("companions") || patch.contains("vary") ||
       before.companions.size() != after.companions.size())
     return "the companions changed: the run starts over at t = 0";
-  if (before.surface.kind != after.surface.kind)
-    return "the surface changed kind: the run starts over at t = 0 on the new surface";
+  if (before.surface.kind != after.surface.kind && !dialled(before.surface, after.surface))
+    return "the surface changed kind: the run starts over at t = 0 on the new surface (give surface.curvature "
+           "to dial through 0 without a restart)";
   // The incompressible body holds det L at the start's λμ: joining or leaving that constraint
   // mid-run would snap the shape to it (or leave its multiplier's momentum behind).
   if ((before.body.model == BodyModel::incompressible) != (after.body.model == BodyModel::incompressible))
@@ -86,7 +87,7 @@ ChangeOutcome change(Session& session, const json& patch) {
     out.reason = "new parameters from t = 0";
     return out;
   }
-  retune(session.run, *parsed.scene);
+  retune_recording(session.run, session.trail, *parsed.scene);
   session.timeline.push_back({{"t", t}, {"patch", patch}});
   session.changes.push_back({t, *parsed.scene});
   record_if_due(session.trail, session.run);

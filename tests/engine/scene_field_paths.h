@@ -77,15 +77,19 @@ double other_number(const Field<S, std::optional<double>>& field) {
 }
 
 // Sets the partner of an optional number (speed for heading) in `scene.initial`, the struct that
-// holds them, to `value`; nothing for a field without one.
+// holds them, to `value`; nothing for a field without one (surface.curvature).
 template <typename S>
 void set_partner(Scene& scene, const Field<S, std::optional<double>>& field, double value) {
-  static_assert(std::is_same_v<S, InitialState>, "optional numbers live in InitialState");
-  for_each_field(kInitialStateFields, [&](const auto& other) {
+  if constexpr (!std::is_same_v<S, InitialState>) {
+    EXPECT_TRUE(field.partner.empty()) << field.name << ": partners are looked up in InitialState only";
+    return;
+  } else {
+    for_each_field(kInitialStateFields, [&](const auto& other) {
     using U = typename std::remove_cvref_t<decltype(other)>::Value;
     if constexpr (OptionalNumber<U>)
       if (!field.partner.empty() && other.name == field.partner) scene.initial.*other.member = value;
   });
+  }
 }
 
 }  // namespace spinfold::testing_support

@@ -64,7 +64,7 @@ TEST_P(Replay, RebuiltRunEqualsTheLiveOneBitForBit) {
   for (double t = 0.1; t <= 5.0 + 1e-9; t += 0.1) {
     if (next < changes.size() && changes[next].t <= t) {
       advance_recording(live, live_trail, changes[next].t);
-      retune(live, changes[next].scene);
+      retune_recording(live, live_trail, changes[next].scene);
       ++next;
     }
     advance_recording(live, live_trail, t);
