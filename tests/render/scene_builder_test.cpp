@@ -617,5 +617,28 @@ TEST(ConformalView, AtZeroCurvatureTheGridIsThePlanesAndH2AddsItsBoundaryWhereTh
   EXPECT_EQ(boundary_segments(big), 0);
 }
 
+TEST(ConformalView, NearTheSpheresAntipodeAndFarOutOnH2TheFrameStaysFiniteAndSmall) {
+  // The window follows the body wherever its image goes: out towards infinity by the antipode, up
+  // to the disk's boundary on H². Nothing drawn is NaN, and the grid stays a few thousand segments.
+  const double pi = std::numbers::pi;
+  for (const auto& [kind, r] : {std::pair{SurfaceKind::sphere, pi - 1e-3},
+                                {SurfaceKind::sphere, pi - 1e-9},
+                                {SurfaceKind::sphere, pi},
+                                {SurfaceKind::pseudosphere, 20.0},
+                                {SurfaceKind::pseudosphere, 200.0}}) {
+    Snapshot s = body_at(kind, 1.0, r, 0.8, 1.0, 1.0);
+    for (int i = 0; i <= 16; ++i)
+      s.bodies[0].trail.push_back(chart_point(s.surface, r - 0.5 + i / 32.0, 0.8 - 0.2 + i / 40.0).X);
+    ViewOptions view;
+    view.kind = ViewKind::conformal;
+    aim_camera_at_body(view, s);
+    const FrameScene scene = build_scene(s, view);
+    EXPECT_LT(scene.grid_lines.size(), 20000u) << r;
+    for (const std::vector<Vertex>* list : {&scene.lines, &scene.fills, &scene.grid_lines, &scene.backdrop})
+      for (const Vertex& v : *list)
+        ASSERT_TRUE(std::isfinite(v.position.x) && std::isfinite(v.position.y)) << r;
+  }
+}
+
 }  // namespace
 }  // namespace spinfold::render
