@@ -282,6 +282,10 @@ void GlRenderer::draw_background(const FrameScene& scene, float grid_width) {
       }
     }
   }
+  if (scene.draw_surface && !scene.backdrop.empty()) {  // not cached: build_scene leaves statics null
+    use_flat_program(scene);
+    draw_flat(scene.backdrop, GL_TRIANGLES);
+  }
   if (scene.statics && scene.draw_grid) {
     const Mesh& mesh = static_grid(*scene.statics);
     if (mesh.count > 0) draw_lines(scene, mesh, mesh.count, grid_width);

@@ -103,27 +103,45 @@ void add_segment(std::vector<Vertex>& lines, const glm::dvec3& a, const glm::dve
   lines.push_back({to_float(b), color});
 }
 
-// A polyline through embedded points, mapped and lifted.
+// The centre and half-extents of the 2-D views' orthographic frame [world units].
+struct Window2d {
+  glm::dvec2 centre{0.0};
+  double hx = 1.0, hy = 1.0;
+  // Whether a world point is within the window grown by its own size on every side. The conformal
+  // view draws a segment only when both its ends are: near the sphere's antipode (at infinity) the
+  // images of neighbouring points lie far apart on opposite sides, and their chord would cross the
+  // frame.
+  bool near(const glm::dvec2& w) const {
+    return std::abs(w.x - centre.x) <= 3.0 * hx && std::abs(w.y - centre.y) <= 3.0 * hy;
+  }
+};
+
+// A polyline through embedded points, mapped and lifted; with `clip`, only its segments near it.
 void add_polyline(std::vector<Vertex>& lines, const Surface& surface, ViewKind view,
-                  const std::vector<Vec3>& points, const glm::vec4& color, bool closed) {
+                  const std::vector<Vec3>& points, const glm::vec4& color, bool closed,
+                  const Window2d* clip = nullptr) {
   for (std::size_t i = 0; i + 1 < points.size() + (closed ? 1 : 0); ++i) {
     const Vec3& a = points[i];
     const Vec3& b = points[(i + 1) % points.size()];
     if (!on_view(surface, view, a) || !on_view(surface, view, b)) continue;
-    add_segment(lines, lifted(view, world_position(surface, view, a)),
-                lifted(view, world_position(surface, view, b)), color);
+    const glm::dvec3 wa = lifted(view, world_position(surface, view, a)),
+                     wb = lifted(view, world_position(surface, view, b));
+    if (clip && !(clip->near(glm::dvec2(wa)) && clip->near(glm::dvec2(wb)))) continue;
+    add_segment(lines, wa, wb, color);
   }
 }
 
 // The same polyline dashed: kDash on, kGap off, measured along the drawn (world) path, so that the
 // dashes keep their length however densely the path is sampled.
 void add_dashed_polyline(std::vector<Vertex>& lines, const Surface& surface, ViewKind view,
-                         const std::vector<Vec3>& points, const glm::vec4& color) {
+                         const std::vector<Vec3>& points, const glm::vec4& color,
+                         const Window2d* clip = nullptr) {
   double phase = 0.0;  // distance into the current dash + gap period
   for (std::size_t i = 0; i + 1 < points.size(); ++i) {
     if (!on_view(surface, view, points[i]) || !on_view(surface, view, points[i + 1])) continue;
     const glm::dvec3 a = lifted(view, world_position(surface, view, points[i]));
     const glm::dvec3 b = lifted(view, world_position(surface, view, points[i + 1]));
+    if (clip && !(clip->near(glm::dvec2(a)) && clip->near(glm::dvec2(b)))) continue;
     const double length = glm::length(b - a);
     double done = 0.0;
     while (done < length) {
@@ -300,11 +318,6 @@ StaticGeometry build_static(SurfaceKind kind, ViewKind view) {
   return g;
 }
 
-// The centre and half-extents of the 2-D views' orthographic frame [world units].
-struct Window2d {
-  glm::dvec2 centre{0.0};
-  double hx = 1.0, hy = 1.0;
-};
 Window2d window_2d(const ViewOptions& view) {
   const double aspect = static_cast<double>(view.width) / view.height;
   // The unit disk, the plane's window, or the half-plane's from just below y = 0 to twice the
@@ -318,7 +331,8 @@ Window2d window_2d(const ViewOptions& view) {
   }
   w.hx = aspect >= 1 ? half * aspect : half;
   w.hy = aspect >= 1 ? half : half / aspect;
-  if (view.kind == ViewKind::plane && view.target) w.centre = {(*view.target)[0], (*view.target)[1]};
+  if ((view.kind == ViewKind::plane || view.kind == ViewKind::conformal) && view.target)
+    w.centre = {(*view.target)[0], (*view.target)[1]};
   return w;
 }
 
@@ -357,6 +371,224 @@ std::vector<Vertex> plane_grid(const ViewOptions& view) {
     add_segment(lines, {x0 - 1.0, k * kPlaneGridSpacing, 0}, {x1 + 1.0, k * kPlaneGridSpacing, 0},
                 kGridColor);
   return lines;
+}
+
+// ---- The conformal view (conformal_radius).
+
+// The image of normal coordinates p = r(cos φ, sin φ) about the pole: w = T_K(|p|) p/|p|.
+glm::dvec2 conformal_image(double K, const glm::dvec2& p) {
+  const double r = glm::length(p);
+  return r > 0.0 ? (conformal_radius(K, r) / r) * p : p;
+}
+
+// Points of a circle |w| = rho about the origin at angles a0 + (a1 − a0)k/n, n chosen so that the
+// chords stray from the circle by less than `tolerance` [length] (at most 65536 of them).
+std::vector<glm::dvec2> arc(double rho, double a0, double a1, double tolerance) {
+  const double step = 2.0 * std::sqrt(std::max(1e-300, 2.0 * tolerance / rho));  // sagitta ≈ ρ step²/8
+  const int n = static_cast<int>(std::clamp(std::ceil((a1 - a0) / step), 16.0, 65536.0));
+  std::vector<glm::dvec2> points;
+  for (int k = 0; k <= n; ++k) {
+    const double a = a0 + (a1 - a0) * k / n;
+    points.push_back(rho * glm::dvec2(std::cos(a), std::sin(a)));
+  }
+  return points;
+}
+
+// The directions [rad] in which the window lies as seen from the origin: the whole turn when it
+// holds the origin, else the range of its corners' directions about its centre's.
+std::pair<double, double> window_directions(const Window2d& w) {
+  if (std::abs(w.centre.x) <= w.hx && std::abs(w.centre.y) <= w.hy) return {-kPi, kPi};
+  const double mid = std::atan2(w.centre.y, w.centre.x);
+  double lo = 0.0, hi = 0.0;
+  for (const double sx : {-1.0, 1.0})
+    for (const double sy : {-1.0, 1.0}) {
+      const double a =
+          std::remainder(std::atan2(w.centre.y + sy * w.hy, w.centre.x + sx * w.hx) - mid, 2 * kPi);
+      lo = std::min(lo, a), hi = std::max(hi, a);
+    }
+  return {mid + lo, mid + hi};
+}
+
+// Distances from the origin to the window's nearest and farthest points.
+std::pair<double, double> window_distances(const Window2d& w) {
+  const glm::dvec2 lo = w.centre - glm::dvec2(w.hx, w.hy), hi = w.centre + glm::dvec2(w.hx, w.hy);
+  const glm::dvec2 nearest = glm::clamp(glm::dvec2(0.0), lo, hi);
+  const glm::dvec2 farthest(std::max(std::abs(lo.x), std::abs(hi.x)),
+                            std::max(std::abs(lo.y), std::abs(hi.y)));
+  return {glm::length(nearest), glm::length(farthest)};
+}
+
+// The conformal view's grid: the plane view's grid (lines at whole multiples of kPlaneGridSpacing)
+// laid out in normal coordinates p about the pole and mapped, so that at K = 0 it is the plane
+// view's grid; on H² also the ideal boundary |w| = 2R where the frame shows it. Only the part of
+// the grid whose image falls in the frame is laid out: its normal coordinates' bounding box is
+// that of the window's boundary mapped back (the preimage's boundary), taken no farther out than
+// just short of the sphere's antipode or of H²'s boundary.
+std::vector<Vertex> conformal_grid(const ViewOptions& view, double K) {
+  const Window2d win = window_2d(view);
+  const double tolerance = 1e-3 * win.hy;  // of the drawn curves [length], ~¼ px
+  const double R = K != 0.0 ? 1.0 / std::sqrt(std::abs(K)) : std::numeric_limits<double>::infinity();
+  const double reach = K > 0.0   ? kPi * R
+                       : K < 0.0 ? conformal_distance(K, std::max(0.0, 2.0 * R - tolerance))
+                                 : std::numeric_limits<double>::infinity();
+  glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  constexpr int kSamples = 256;  // per side of the window
+  for (int side = 0; side < 4; ++side)
+    for (int i = 0; i <= kSamples; ++i) {
+      const double s = 2.0 * i / kSamples - 1.0;
+      const glm::dvec2 w = win.centre + glm::dvec2(side < 2 ? (side == 0 ? -win.hx : win.hx) : s * win.hx,
+                                                   side < 2 ? s * win.hy : (side == 2 ? -win.hy : win.hy));
+      const double t = glm::length(w);
+      const double r = std::min(conformal_distance(K, t), reach);
+      const glm::dvec2 p = t > 0.0 ? (r / t) * w : w;
+      lo = glm::min(lo, p), hi = glm::max(hi, p);
+    }
+  lo -= kPlaneGridSpacing, hi += kPlaneGridSpacing;
+  std::vector<Vertex> lines;
+  // A grid line's image as runs of points (a run ends where the line leaves the drawn part), each
+  // drawn with as few chords as stay within the tolerance of its points: straight lines (K = 0, or
+  // nearly) as one segment like the plane view's, with no joints to show.
+  std::vector<glm::dvec2> run;
+  const auto flush = [&] {
+    for (std::size_t i = 0; i + 1 < run.size();) {
+      std::size_t j = i + 1;
+      const auto straight = [&](std::size_t end) {
+        const glm::dvec2 d = run[end] - run[i];
+        const double length = glm::length(d);
+        for (std::size_t k = i + 1; k < end; ++k) {
+          const glm::dvec2 q = run[k] - run[i];
+          if (std::abs(q.x * d.y - q.y * d.x) > tolerance * length) return false;
+        }
+        return true;
+      };
+      while (j + 1 < run.size() && straight(j + 1)) ++j;
+      add_segment(lines, glm::dvec3(run[i], 0.0), glm::dvec3(run[j], 0.0), kGridColor);
+      i = j;
+    }
+    run.clear();
+  };
+  // Pieces a quarter spacing long, each halved until the image of its middle is within the
+  // tolerance of its chord's.
+  const auto add_piece = [&](const auto& self, const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& wa,
+                             const glm::dvec2& wb, int depth) -> void {
+    if (glm::length(a) >= reach || glm::length(b) >= reach || !win.near(wa) || !win.near(wb)) {
+      flush();
+      return;
+    }
+    const glm::dvec2 m = 0.5 * (a + b), wm = conformal_image(K, m);
+    if (depth < 10 && glm::length(wm - 0.5 * (wa + wb)) > tolerance) {
+      self(self, a, m, wa, wm, depth + 1);
+      self(self, m, b, wm, wb, depth + 1);
+      return;
+    }
+    if (run.empty()) run.push_back(wa);
+    run.push_back(wb);
+  };
+  // Pieces end on multiples of a quarter spacing along the line, wherever the box's edges fall, so
+  // that nearby curvatures cut a line alike (and draw the same pixels).
+  const double quarter = 0.25 * kPlaneGridSpacing;
+  const auto add_line = [&](const glm::dvec2& origin, const glm::dvec2& along, double from, double to) {
+    const double k0 = std::floor(from / quarter), k1 = std::min(std::ceil(to / quarter), k0 + 16384.0);
+    glm::dvec2 p0 = origin + k0 * quarter * along, w0 = conformal_image(K, p0);
+    for (double k = k0 + 1.0; k <= k1; ++k) {
+      const glm::dvec2 p1 = origin + k * quarter * along, w1 = conformal_image(K, p1);
+      add_piece(add_piece, p0, p1, w0, w1, 0);
+      p0 = p1, w0 = w1;
+    }
+    flush();
+  };
+  const auto first = [](double x) { return std::ceil(x / kPlaneGridSpacing); };
+  for (double k = first(lo.x), n = 0; k * kPlaneGridSpacing <= hi.x && n < 2000; ++k, ++n)
+    add_line({k * kPlaneGridSpacing, 0.0}, {0.0, 1.0}, lo.y, hi.y);
+  for (double k = first(lo.y), n = 0; k * kPlaneGridSpacing <= hi.y && n < 2000; ++k, ++n)
+    add_line({0.0, k * kPlaneGridSpacing}, {1.0, 0.0}, lo.x, hi.x);
+  if (K < 0.0) {  // the ideal boundary, where the frame crosses it
+    const auto [nearest, farthest] = window_distances(win);
+    if (nearest < 2.0 * R && 2.0 * R < farthest) {
+      const auto [a0, a1] = window_directions(win);
+      const std::vector<glm::dvec2> rim = arc(2.0 * R, a0, a1, tolerance);
+      for (std::size_t i = 0; i + 1 < rim.size(); ++i)
+        add_segment(lines, glm::dvec3(rim[i], 0.0), glm::dvec3(rim[i + 1], 0.0), kSeamColor);
+    }
+  }
+  return lines;
+}
+
+// The Poincaré disk |w| < 2R as a fan about the origin over the directions the window lies in:
+// empty when it covers the window (the frame is cleared to the surface's colour instead) or
+// misses it.
+std::vector<Vertex> conformal_disk(const ViewOptions& view, double K, const glm::vec4& color) {
+  const Window2d win = window_2d(view);
+  const double rho = 2.0 / std::sqrt(-K);
+  const auto [nearest, farthest] = window_distances(win);
+  if (!(nearest < rho && rho < farthest)) return {};
+  const auto [a0, a1] = window_directions(win);
+  const std::vector<glm::dvec2> rim = arc(rho, a0, a1, 1e-3 * win.hy);
+  std::vector<Vertex> fan;
+  for (std::size_t i = 0; i + 1 < rim.size(); ++i)
+    fan.insert(fan.end(), {{glm::vec3(0.0f), color},
+                           {glm::vec3(glm::dvec3(rim[i], 0.0)), color},
+                           {glm::vec3(glm::dvec3(rim[i + 1], 0.0)), color}});
+  return fan;
+}
+
+// A body's position and frame in the conformal view: w and the images of e₁, e₂ there, to first
+// order (the body is infinitesimal): a tangent vector c₁E₁ + c₂E₂ goes to (1 + K|w|²/4)(c₁ ŵ + c₂ ŵ⊥),
+// ŵ = (cos φ, sin φ) the radial direction and ŵ⊥ it turned by 90° (E₂ = jE₁). The components
+// cᵢ = ⟨e_A, Eᵢ⟩ are rescaled to the Gram matrix's lengths (far out on H² the embedded
+// components are ~e^{r/R} and their η-products lose digits).
+struct ConformalFrame {
+  glm::dvec2 w;     // [length]
+  glm::dvec2 e[2];  // the images of e₁, e₂ [length]
+};
+ConformalFrame conformal_frame(const Surface& surface, const BodySnapshot& body) {
+  ConformalFrame f;
+  f.w = conformal_point(surface, body.X);
+  const PolarCoordinates p = polar_coordinates(surface, body.X);
+  const double phi = p.rho > 0.0 ? p.phi : 0.0;
+  const ChartPoint c = chart_point(surface, p.r, phi);
+  const glm::dvec2 radial(std::cos(phi), std::sin(phi)), angular(-radial.y, radial.x);
+  const double factor = conformal_factor(curvature(surface), f.w);
+  for (int a = 0; a < 2; ++a) {
+    glm::dvec2 comp(dot(surface, body.e[a], c.E1), dot(surface, body.e[a], c.E2));
+    const double length = std::sqrt(std::max(0.0, body.gram(a, a))), got = glm::length(comp);
+    if (got > 0.0) comp *= length / got;
+    f.e[a] = factor * (comp.x * radial + comp.y * angular);
+  }
+  return f;
+}
+
+// A body's ellipse in the conformal view: the image of scale·(unit circle) under e_A, mapped to
+// first order (conformal_frame): a translucent fill and its outline.
+void add_conformal_body(FrameScene& scene, const ConformalFrame& f, double scale, const BodySnapshot& body) {
+  const glm::vec4 fill = rgba(body.color, kFillAlpha);
+  constexpr int kPoints = 64;
+  const auto at = [&](double radius, int i) {
+    const double theta = 2 * kPi * (i % kPoints) / kPoints;
+    return glm::dvec3(f.w + radius * (std::cos(theta) * f.e[0] + std::sin(theta) * f.e[1]), 0.0);
+  };
+  for (int i = 0; i < kPoints; ++i)
+    scene.fills.insert(
+        scene.fills.end(),
+        {{to_float(at(0.0, i)), fill}, {to_float(at(scale, i)), fill}, {to_float(at(scale, i + 1)), fill}});
+  for (int i = 0; i < kPoints; ++i)
+    add_segment(scene.lines, at(scale, i), at(scale, i + 1), outline_color(body));
+}
+
+// A body's frame arrows e₁ (red) and e₂ (green) in the conformal view: straight, to first order.
+void add_conformal_arrows(FrameScene& scene, const ConformalFrame& f, double scale) {
+  for (int a = 0; a < 2; ++a) {
+    const glm::dvec3 base(f.w, 0.0), tip(f.w + 1.3 * scale * f.e[a], 0.0);
+    const glm::dvec3 before(f.w + 1.3 * scale * 0.75 * f.e[a], 0.0);
+    add_segment(scene.lines, base, tip, kArrowColors[a]);
+    const glm::dvec3 back = before - tip;
+    if (glm::length(back) > 0.0) {
+      const glm::dvec3 side =
+          0.45 * glm::length(back) * glm::normalize(glm::cross(glm::dvec3(0, 0, 1), back));
+      add_segment(scene.lines, tip, before + side, kArrowColors[a]);
+      add_segment(scene.lines, tip, before - side, kArrowColors[a]);
+    }
+  }
 }
 
 // A body's ellipse: a translucent fill following the surface and its outline.
@@ -546,8 +778,36 @@ glm::dvec3 world_position(const Surface& surface, ViewKind view, const Vec3& X) 
       const double z = h.y >= 1.0 ? std::acosh(h.y) - std::sqrt(1.0 - rho * rho) : 0.0;
       return {rho * std::cos(h.x), rho * std::sin(h.x), z};
     }
+    case ViewKind::conformal: return glm::dvec3(conformal_point(surface, X), 0.0);
   }
   return {};
+}
+
+double conformal_radius(double curvature, double r) {
+  if (curvature == 0.0) return r;
+  const double R = 1.0 / std::sqrt(std::abs(curvature));
+  return curvature > 0.0 ? 2.0 * R * std::tan(r / (2.0 * R)) : 2.0 * R * std::tanh(r / (2.0 * R));
+}
+
+double conformal_distance(double curvature, double t) {
+  if (curvature == 0.0) return t;
+  const double R = 1.0 / std::sqrt(std::abs(curvature));
+  if (curvature > 0.0) return 2.0 * R * std::atan(t / (2.0 * R));
+  return t < 2.0 * R ? 2.0 * R * std::atanh(t / (2.0 * R)) : std::numeric_limits<double>::infinity();
+}
+
+double conformal_factor(double curvature, const glm::dvec2& w) {
+  return 1.0 + 0.25 * curvature * glm::dot(w, w);
+}
+
+glm::dvec2 conformal_point(const Surface& surface, const Vec3& X) {
+  if (surface.kind == SurfaceKind::plane) return {X.x(), X.y()};
+  const PolarCoordinates p = polar_coordinates(surface, X);
+  if (p.rho == 0.0)  // the pole, or the sphere's antipode (at infinity: as far as double goes)
+    return {
+        surface.kind == SurfaceKind::sphere && X.z() < 0.0 ? conformal_radius(curvature(surface), p.r) : 0.0,
+        0.0};
+  return conformal_radius(curvature(surface), p.r) / p.rho * glm::dvec2(X.x(), X.y());
 }
 
 glm::dvec2 half_plane_point(const Surface& surface, const Vec3& X) {
@@ -557,6 +817,8 @@ glm::dvec2 half_plane_point(const Surface& surface, const Vec3& X) {
 }
 
 bool on_view(const Surface& surface, ViewKind view, const Vec3& X) {
+  // (The conformal view shows every point but the sphere's antipode, which its segments' clipping
+  // leaves out.)
   return view != ViewKind::tractricoid || kTractricoidDilation * half_plane_point(surface, X).y >= 1.0;
 }
 
@@ -590,7 +852,11 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   const ViewKind kind = view.kind;
   scene.draw_surface = (view.layers & kSurface) != 0;
   scene.draw_grid = (view.layers & kGrid) != 0;
-  if (scene.draw_surface || scene.draw_grid) scene.statics = &static_geometry(surface.kind, kind);
+  const bool conformal = kind == ViewKind::conformal;
+  // The conformal view's background depends on K, which no static geometry (nor the background
+  // cache's key) holds: it is drawn from grid_lines and backdrop every frame.
+  if ((scene.draw_surface || scene.draw_grid) && !conformal)
+    scene.statics = &static_geometry(surface.kind, kind);
   scene.view_projection = camera(view);
   scene.depth_test = three_d(kind);
   scene.depth_bias = kind == ViewKind::sphere        ? kSphereDepthBias
@@ -601,6 +867,20 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
     if (scene.draw_surface) scene.clear_color = scene.surface_color;  // the plane fills the frame
     if (scene.draw_grid) scene.grid_lines = plane_grid(view);
   }
+  const Window2d window = window_2d(view);
+  const Window2d* clip = conformal ? &window : nullptr;
+  if (conformal) {
+    // The plane's colour on every surface, so that nothing changes as K passes through 0; the
+    // map fills the frame but for what lies beyond H²'s boundary.
+    const double K = curvature(surface);
+    scene.surface_color = FrameScene{}.surface_color;
+    if (scene.draw_surface) {
+      if (K < 0.0) scene.backdrop = conformal_disk(view, K, scene.surface_color);
+      if (K >= 0.0 || window_distances(window).second <= 2.0 / std::sqrt(-K))
+        scene.clear_color = scene.surface_color;
+    }
+    if (scene.draw_grid) scene.grid_lines = conformal_grid(view, K);
+  }
 
   // Trails first, then the bodies over them: every body's, main body first.
   if (view.layers & kTrail)
@@ -610,16 +890,28 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
       for (std::size_t i = 1; i < body.trail.size(); ++i)
         append_path(path, surface, body.trail[i - 1], body.trail[i]);
       if (body.geodesic)
-        add_dashed_polyline(scene.lines, surface, kind, path, rgba(body.trail_color));
+        add_dashed_polyline(scene.lines, surface, kind, path, rgba(body.trail_color), clip);
       else
-        add_polyline(scene.lines, surface, kind, path, rgba(body.trail_color), false);
+        add_polyline(scene.lines, surface, kind, path, rgba(body.trail_color), false, clip);
     }
-  if (view.layers & kBody)
-    for (const BodySnapshot& body : snapshot.bodies)
-      if (on_view(surface, kind, body.X)) add_body(scene, surface, kind, view.scale, body);
-  if (view.layers & kFrame)
-    for (const BodySnapshot& body : snapshot.bodies)
-      if (on_view(surface, kind, body.X)) add_frame_arrows(scene, surface, kind, view.scale, body);
+  if (conformal) {  // bodies near the frame only (one by the sphere's antipode would cover it)
+    std::vector<std::pair<ConformalFrame, const BodySnapshot*>> frames;
+    for (const BodySnapshot& body : snapshot.bodies) {
+      const ConformalFrame f = conformal_frame(surface, body);
+      if (window.near(f.w)) frames.emplace_back(f, &body);
+    }
+    if (view.layers & kBody)
+      for (const auto& [f, body] : frames) add_conformal_body(scene, f, view.scale, *body);
+    if (view.layers & kFrame)
+      for (const auto& [f, body] : frames) add_conformal_arrows(scene, f, view.scale);
+  } else {
+    if (view.layers & kBody)
+      for (const BodySnapshot& body : snapshot.bodies)
+        if (on_view(surface, kind, body.X)) add_body(scene, surface, kind, view.scale, body);
+    if (view.layers & kFrame)
+      for (const BodySnapshot& body : snapshot.bodies)
+        if (on_view(surface, kind, body.X)) add_frame_arrows(scene, surface, kind, view.scale, body);
+  }
   if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)) && view.width >= kLegendMinWidth)
     for (const BodySnapshot& body : snapshot.bodies)
       scene.legend.push_back({body.label, rgba(body.color), rgba(body.trail_color), body.geodesic});
@@ -789,7 +1081,7 @@ void aim_camera_at_body(ViewOptions& view, const Snapshot& snapshot) {
     if (glm::length(glm::dvec2(centre)) > 1e-9)
       view.yaw = std::atan2(centre.y, centre.x) + (bowl ? kPi : 0.0);
     clear_the_boxes(view, points, hud, {1.0, 1.25, 1.6});
-  } else if (view.kind == ViewKind::plane) {
+  } else if (view.kind == ViewKind::plane || view.kind == ViewKind::conformal) {
     // The centre of the bodies' bounding box.
     glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
     for (const BodySnapshot& body : snapshot.bodies) {

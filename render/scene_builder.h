@@ -101,8 +101,12 @@ struct FrameScene {
                                        // and the frame is at least kLegendMinWidth wide
   HudLayout hud;                       // the boxes of hud_lines and legend
   // The plane view's grid, which follows its camera (lines every kPlaneGridSpacing across the
-  // frame); drawn with the background.
+  // frame), and the conformal view's (that grid's image, and the ideal boundary of H²); drawn with
+  // the background.
   std::vector<Vertex> grid_lines;
+  // Opaque triangles drawn with the surface layer before the grid (the conformal view's Poincaré
+  // disk when it does not cover the frame).
+  std::vector<Vertex> backdrop;
   glm::mat4 view_projection{1.0f};
   bool depth_test = true;  // 3-D views hide what is behind the surface
   // Grid, fills and lines are drawn this fraction of the way towards the camera (same pixels,
@@ -146,8 +150,27 @@ Vec3 exponential_map(const Surface& surface, const Vec3& X, const Vec3& v, doubl
 //   tractricoid: the covering map of the horocyclic strip y' = kTractricoidDilation·y ≥ 1 of the
 //                half-plane: θ = x', ρ = R/y', z = R(arcosh y' − √(1 − 1/y'²)), i.e. ρ = R sech u,
 //                z = R(u − tanh u) with y' = cosh u; points with y' < 1 (off the surface, see
-//                on_view) land in the rim's plane at ρ = R/y' and are not drawn.
+//                on_view) land in the rim's plane at ρ = R/y' and are not drawn;
+//   conformal:   conformal_point, in lengths (not radii).
 glm::dvec3 world_position(const Surface& surface, ViewKind view, const Vec3& X);
+
+// ---- The conformal view: one flat map for every curvature K [1/length²], continuous in K.
+// A point at geodesic polar coordinates (r, φ) about the pole goes to w = T_K(r)(cos φ, sin φ)
+// [length], with T_K(r) = 2R tan(r/2R) for K = 1/R² > 0 (stereographic projection from the
+// antipode, scaled to the sphere's size: the antipode goes to infinity), r for K = 0 and
+// 2R tanh(r/2R) for K = −1/R² < 0 (the Poincaré disk |w| < 2R). Written with R = 1/√|K|, finite
+// whenever K ≠ 0, nothing divides by a vanishing K; T_K(r) = r(1 + Kr²/12 + O(K²r⁴)).
+// The pulled-back metric is ds² = |dw|²/(1 + K|w|²/4)²: a tangent vector of length ℓ at w is
+// drawn with length ℓ·(1 + K|w|²/4), at its angle to the radial (E₁) and angular (E₂) directions.
+
+// T_K(r) [length] for r ≥ 0 [length].
+double conformal_radius(double curvature, double r);
+// Its inverse: the distance r whose image lies at |w| = t; +∞ at and beyond H²'s boundary t ≥ 2R.
+double conformal_distance(double curvature, double t);
+// 1 + K|w|²/4: drawn length over intrinsic length at w (|dw|/ds).
+double conformal_factor(double curvature, const glm::dvec2& w);
+// w of an embedded point of the surface [length].
+glm::dvec2 conformal_point(const Surface& surface, const Vec3& X);
 
 // The Poincaré upper half-plane's (x, y) of a point of H² (the Cayley transform of the disk, the
 // centre X = (0, 0, R) at (0, 1)): y = R/(X₃ − X₁), x = −X₂/(X₃ − X₁), computed as

@@ -7,7 +7,7 @@ namespace spinfold::render {
 
 namespace {
 
-constexpr std::array<ViewInfo, 7> kViews{{
+constexpr std::array<ViewInfo, 8> kViews{{
     {"sphere", ViewKind::sphere, true, true, false, false, "3-D sphere",
      "the sphere in space, seen by an orbiting camera"},
     {"disk", ViewKind::disk, false, true, true, false, "disk (flat map)",
@@ -23,6 +23,9 @@ constexpr std::array<ViewInfo, 7> kViews{{
      "rim"},
     {"plane", ViewKind::plane, false, false, false, true, "flat plane",
      "the Euclidean plane, following the body"},
+    {"conformal", ViewKind::conformal, false, true, true, true, "conformal (continuous in K)",
+     "any curvature K in one flat map, angles true: stereographic (K > 0), the plane itself (K = 0), the "
+     "Poincaré disk (K < 0), in lengths and following the body, so the picture changes continuously with K"},
 }};
 constexpr std::array<std::pair<std::string_view, unsigned>, 7> kLayers{{{"surface", kSurface},
                                                                         {"grid", kGrid},

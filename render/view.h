@@ -19,6 +19,7 @@ enum class ViewKind {
   klein,        // Beltrami–Klein disk (H²): geodesics are straight chords, 2-D
   halfplane,    // Poincaré upper half-plane (H²), 2-D, following the body
   tractricoid,  // Beltrami's pseudosphere in ℝ³ (a horocyclic strip of H² wrapped round its axis)
+  conformal,    // every surface: stereographic (S²), identity (plane), Poincaré (H²), continuous in K, 2-D
 };
 
 // The one table of views: the name the API, the CLI and the UI use, the surfaces each shows, and
@@ -60,8 +61,8 @@ struct ViewOptions {
   double pitch = 0.45;    // camera elevation [rad] (3-D views)
   double distance = 3.4;  // camera distance [surface radii] (3-D views)
   double scale = 0.25;    // display scale: the ellipse is the image of scale·(unit circle) under e_A
-  // The point the 3-D camera orbits and the plane view centres on [world units], set by
-  // aim_camera_at_body; nullopt: the view's own (the sphere's centre, a point above the
+  // The point the 3-D camera orbits and the plane and conformal views centre on [world units], set
+  // by aim_camera_at_body; nullopt: the view's own (the sphere's centre, a point above the
   // hyperboloid's vertex, the plane's origin). The disk view ignores it.
   std::optional<std::array<double, 3>> target;
 };

@@ -18,4 +18,6 @@ render klein spin_vs_geodesic_pseudosphere klein 6
 render halfplane spin_vs_geodesic_pseudosphere halfplane 6
 render tractricoid spin_vs_geodesic_pseudosphere tractricoid 6
 render plane spinning_rigid_plane plane 6
+render conformal_sphere spin_vs_geodesic_sphere conformal 2
+render conformal_pseudosphere spin_vs_geodesic_pseudosphere conformal 6
 echo "view_pictures: wrote $(ls "$out" | wc -l) pictures to $out"

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -426,6 +427,44 @@ TEST(Renderer, SameSnapshotViewAndSizeGiveTheSameBytes) {
   EXPECT_EQ(renderer().render_png(s, view), renderer().render_png(s, view));
 }
 
+// The preset's scene moved onto another surface (the same initial state), run to t with its trail.
+Snapshot on_surface(std::string_view preset, const Surface& surface, double t) {
+  Scene scene = *parse_scene_text(find_preset(preset)->json).scene;
+  scene.surface = surface;
+  Simulation run = start_simulation(scene);
+  Trail trail;
+  trail.spacing = t / 64;
+  advance_recording(run, trail, t);
+  return make_snapshot(run, trail, -1.0);
+}
+
+// The pixels in which two frames of one size differ.
+int differing_pixels(const Image& a, const Image& b) {
+  int n = 0;
+  for (std::size_t i = 0; i < a.rgba.size(); i += 4) n += std::memcmp(&a.rgba[i], &b.rgba[i], 4) != 0;
+  return n;
+}
+
+TEST(Renderer, TheConformalFrameIsContinuousInTheCurvatureAndChangesWithIt) {
+  // The plane's preset on the plane, on a sphere and H² of radius 1e6 (K = ±1e-12) and of radius
+  // 1 (K = ±1); no HUD, whose text names the surface. Measured: the three near K = 0 are
+  // byte-identical; at K = ±1 over a third of the pixels differ from the plane's.
+  const auto frame = [](const Surface& surface) {
+    const Snapshot s = on_surface("spinning_rigid_plane", surface, 3.0);
+    ViewOptions view;
+    view.kind = ViewKind::conformal;
+    view.layers = kDefaultLayers & ~unsigned{kHud};
+    aim_camera_at_body(view, s);
+    return renderer().render_image(s, view);
+  };
+  const Image flat = frame({SurfaceKind::plane, 1.0});
+  const int pixels = flat.width * flat.height;
+  EXPECT_LE(differing_pixels(flat, frame({SurfaceKind::sphere, 1e6})), 0);
+  EXPECT_LE(differing_pixels(flat, frame({SurfaceKind::pseudosphere, 1e6})), 0);
+  EXPECT_GT(differing_pixels(flat, frame({SurfaceKind::sphere, 1.0})), pixels / 10);
+  EXPECT_GT(differing_pixels(flat, frame({SurfaceKind::pseudosphere, 1.0})), pixels / 10);
+}
+
 // FNV-1a, 64 bit.
 std::uint64_t hash_of(const std::vector<std::uint8_t>& bytes) {
   std::uint64_t h = 1469598103934665603ull;
@@ -486,7 +525,11 @@ INSTANTIATE_TEST_SUITE_P(
                       // The other pictures of H².
                       Golden{"klein", "spin_vs_geodesic_pseudosphere", ViewKind::klein, 6.0},
                       Golden{"halfplane", "spin_vs_geodesic_pseudosphere", ViewKind::halfplane, 6.0},
-                      Golden{"tractricoid", "spin_vs_geodesic_pseudosphere", ViewKind::tractricoid, 6.0}),
+                      Golden{"tractricoid", "spin_vs_geodesic_pseudosphere", ViewKind::tractricoid, 6.0},
+                      // One flat map for every curvature.
+                      Golden{"conformal_sphere", "spin_vs_geodesic_sphere", ViewKind::conformal, 2.0},
+                      Golden{"conformal_pseudosphere", "spin_vs_geodesic_pseudosphere", ViewKind::conformal,
+                             6.0}),
     [](const auto& param) { return std::string(param.param.name); });
 
 }  // namespace

@@ -151,7 +151,11 @@ TEST(SceneBuilder, ViewsMatchSurfaces) {
     EXPECT_EQ(parse_view(view_name(h2)), h2);
   }
   EXPECT_EQ(*view_unsupported_reason(ViewKind::sphere, SurfaceKind::pseudosphere),
-            "the pseudosphere is shown in these views: disk, hyperboloid, klein, halfplane, tractricoid");
+            "the pseudosphere is shown in these views: disk, hyperboloid, klein, halfplane, tractricoid, "
+            "conformal");
+  for (const SurfaceKind kind : {SurfaceKind::sphere, SurfaceKind::plane, SurfaceKind::pseudosphere})
+    EXPECT_FALSE(view_unsupported_reason(ViewKind::conformal, kind));
+  EXPECT_EQ(parse_view("conformal"), ViewKind::conformal);
   std::string unknown;
   EXPECT_EQ(parse_layers("body,trail", &unknown), kBody | kTrail);
   EXPECT_FALSE(parse_layers("body,sparkles", &unknown));
@@ -474,6 +478,165 @@ TEST(HyperbolicPictures, TheHalfPlaneFollowsTheBodyAtEveryHeight) {
     ASSERT_TRUE(ground);
     EXPECT_GT(ground->y, 0.9 * view.height);
     EXPECT_LT(ground->y, view.height);
+  }
+}
+
+// ---- The conformal view: one flat map for every curvature, continuous in K.
+
+TEST(ConformalView, TheMapIsContinuousInKThroughZero) {
+  for (const double K : {1e-12, -1e-12, 1e-300, -1e-300})
+    for (double r = 0.0; r <= 10.0; r += 0.25) {
+      const double T = conformal_radius(K, r);
+      // T_K(r) = r(1 + Kr²/12 + …): within 1e-12 of r relative where |K|r²/12 is below it, and
+      // within that first term (≤ 8.4e-12 at r = 10) everywhere.
+      EXPECT_LE(std::abs(T - r), (std::abs(K) * r * r / 12.0 * 1.001 + 1e-15) * r) << K << " " << r;
+      if (r <= 3.0) {
+        EXPECT_LE(std::abs(T - r), 1e-12 * r);
+      }
+      EXPECT_NEAR(conformal_distance(K, T), r, 1e-14 * std::max(1.0, r));
+    }
+  EXPECT_EQ(conformal_radius(0.0, 7.25), 7.25);
+  // And the points of surfaces of radius 1e6 land where the plane's do.
+  const Surface plane{SurfaceKind::plane, 1.0};
+  for (const Surface surface : {Surface{SurfaceKind::sphere, 1e6}, Surface{SurfaceKind::pseudosphere, 1e6}})
+    for (const auto& [r, phi] : {std::pair{0.0, 0.0}, {0.7, 2.0}, {3.0, -1.0}, {10.0, 3.1}}) {
+      const glm::dvec2 w = conformal_point(surface, chart_point(surface, r, phi).X);
+      const glm::dvec2 flat = conformal_point(plane, chart_point(plane, r, phi).X);
+      EXPECT_LE(glm::length(w - flat), 1e-10 * std::max(1.0, r));
+    }
+}
+
+TEST(ConformalView, AVectorIsDrawnLongerByTheConformalFactorAtItsOwnAngle) {
+  // Central differences of w along geodesics from a few points in a few directions: |dw|/ds is
+  // 1 + K|w|²/4, and dw makes the angle with the radial direction that the tangent makes with E₁.
+  for (const double K : {1.0, -1.0, 0.25, -0.25}) {
+    const Surface surface{K > 0 ? SurfaceKind::sphere : SurfaceKind::pseudosphere,
+                          1.0 / std::sqrt(std::abs(K))};
+    for (const auto& [r, phi] : {std::pair{0.3, 0.4}, {1.2, -2.0}, {2.5, 2.8}})
+      for (const double a : {0.0, 0.9, 2.0, -1.3}) {
+        const ChartPoint p = chart_point(surface, r, phi);
+        const Vec3 u = std::cos(a) * p.E1 + std::sin(a) * p.E2;
+        const double h = 1e-5;
+        const glm::dvec2 w = conformal_point(surface, p.X);
+        const glm::dvec2 dw = (conformal_point(surface, exponential_map(surface, p.X, h * u, h)) -
+                               conformal_point(surface, exponential_map(surface, p.X, -h * u, h))) /
+                              (2.0 * h);
+        EXPECT_NEAR(glm::length(dw), conformal_factor(K, w), 1e-8 * conformal_factor(K, w)) << K << " " << r;
+        EXPECT_NEAR(std::remainder(std::atan2(dw.y, dw.x) - phi - a, 2 * std::numbers::pi), 0.0, 1e-8);
+      }
+  }
+}
+
+TEST(ConformalView, TheSpheresAntipodeGoesToInfinityAndH2StaysInsideItsDisk) {
+  const Surface sphere{SurfaceKind::sphere, 2.0}, h2{SurfaceKind::pseudosphere, 2.0};
+  double last = 0.0;
+  for (const double gap : {1.0, 1e-1, 1e-2, 1e-3, 1e-4, 1e-6}) {  // distance to the antipode [length]
+    const double w =
+        glm::length(conformal_point(sphere, chart_point(sphere, std::numbers::pi * 2.0 - gap, 0.5).X));
+    EXPECT_GT(w, last);
+    EXPECT_NEAR(w * gap, 4.0 * 2.0 * 2.0, 0.1 * 16.0);  // |w| ≈ 4R²/gap
+    last = w;
+  }
+  EXPECT_GT(last, 1e7);
+  for (const double r : {0.5, 5.0, 20.0, 60.0, 400.0}) {
+    const glm::dvec2 w = conformal_point(h2, chart_point(h2, r, 1.0).X);
+    EXPECT_TRUE(std::isfinite(w.x) && std::isfinite(w.y));
+    EXPECT_LE(glm::length(w), 4.0);  // 2R, reached in double from r ≈ 37R on
+    if (r <= 20.0) {
+      EXPECT_LT(glm::length(w), 4.0);
+    }
+  }
+}
+
+TEST(ConformalView, TheBodyIsTheFirstOrderImageOfItsFrame) {
+  // L = diag(λ, μ) in the paper's frame: the ellipse's outline is w + f·scale·(λ cos θ ŵ + μ sin θ ŵ⊥)
+  // with f = 1 + K|w|²/4, and the arrow e₁ ends at w + 1.3 f·scale·λ ŵ.
+  for (const auto& [kind, R] : {std::pair{SurfaceKind::sphere, 1.0},
+                                {SurfaceKind::pseudosphere, 1.0},
+                                {SurfaceKind::plane, 1.0},
+                                {SurfaceKind::pseudosphere, 0.5}}) {
+    const double r = 1.1, phi = 0.6, lambda = 1.4, mu = 0.7;
+    const Snapshot s = body_at(kind, R, r, phi, lambda, mu);
+    ViewOptions view;
+    view.kind = ViewKind::conformal;
+    view.layers = kBody | kFrame;
+    const FrameScene scene = build_scene(s, view);
+    const double K = curvature(s.surface);
+    const glm::dvec2 w = conformal_radius(K, r) * glm::dvec2(std::cos(phi), std::sin(phi));
+    const glm::dvec2 radial = glm::normalize(w), angular(-radial.y, radial.x);
+    const double f = conformal_factor(K, w) * view.scale;
+    EXPECT_NEAR(glm::length(glm::dvec2(world_position(s.surface, view.kind, s.bodies[0].X)) - w), 0.0, 1e-12);
+    // The outline: 64 segments, the first from θ = 0.
+    ASSERT_GE(scene.lines.size(), 128u);
+    for (int i = 0; i < 64; ++i) {
+      const double theta = 2 * std::numbers::pi * i / 64;
+      const glm::dvec2 expected =
+          w + f * (lambda * std::cos(theta) * radial + mu * std::sin(theta) * angular);
+      EXPECT_NEAR(glm::length(glm::dvec2(scene.lines[2 * i].position) - expected), 0.0, 1e-5);
+    }
+    const glm::dvec2 tip(scene.lines[129].position);  // the e₁ shaft's far end
+    EXPECT_NEAR(glm::length(tip - (w + 1.3 * f * lambda * radial)), 0.0, 1e-5);
+  }
+}
+
+TEST(ConformalView, AtZeroCurvatureTheGridIsThePlanesAndH2AddsItsBoundaryWhereTheFrameShowsIt) {
+  Snapshot s = body_at(SurfaceKind::plane, 1.0, 1.3, 0.4, 1.0, 1.0);
+  ViewOptions view;
+  view.kind = ViewKind::conformal;
+  aim_camera_at_body(view, s);
+  const FrameScene flat = build_scene(s, view);
+  ASSERT_FALSE(flat.grid_lines.empty());
+  EXPECT_EQ(flat.clear_color, flat.surface_color);
+  EXPECT_TRUE(flat.backdrop.empty());
+  for (std::size_t i = 0; i + 1 < flat.grid_lines.size(); i += 2) {  // on the plane's lines
+    const glm::dvec3 a(flat.grid_lines[i].position), b(flat.grid_lines[i + 1].position);
+    const double c = a.x == b.x ? a.x : a.y;
+    ASSERT_TRUE(a.x == b.x || a.y == b.y);
+    EXPECT_NEAR(c / kPlaneGridSpacing, std::round(c / kPlaneGridSpacing), 1e-5);
+  }
+  const auto boundary_segments = [](const FrameScene& scene) {
+    int n = 0;
+    for (const Vertex& v : scene.grid_lines) n += v.color != scene.grid_lines.front().color;
+    return n;
+  };
+  EXPECT_EQ(boundary_segments(flat), 0);
+  // H² of radius 1: the disk |w| < 2 lies in the frame: drawn on the background, with its rim.
+  s = body_at(SurfaceKind::pseudosphere, 1.0, 1.3, 0.4, 1.0, 1.0);
+  aim_camera_at_body(view, s);
+  const FrameScene h2 = build_scene(s, view);
+  EXPECT_NE(h2.clear_color, h2.surface_color);
+  EXPECT_FALSE(h2.backdrop.empty());
+  EXPECT_GT(boundary_segments(h2), 100);
+  for (const Vertex& v : h2.backdrop) EXPECT_LE(glm::length(v.position), 2.0 + 1e-6);
+  // H² of radius 100: the frame lies inside the disk.
+  s = body_at(SurfaceKind::pseudosphere, 100.0, 1.3, 0.4, 1.0, 1.0);
+  aim_camera_at_body(view, s);
+  const FrameScene big = build_scene(s, view);
+  EXPECT_EQ(big.clear_color, big.surface_color);
+  EXPECT_TRUE(big.backdrop.empty());
+  EXPECT_EQ(boundary_segments(big), 0);
+}
+
+TEST(ConformalView, NearTheSpheresAntipodeAndFarOutOnH2TheFrameStaysFiniteAndSmall) {
+  // The window follows the body wherever its image goes: out towards infinity by the antipode, up
+  // to the disk's boundary on H². Nothing drawn is NaN, and the grid stays a few thousand segments.
+  const double pi = std::numbers::pi;
+  for (const auto& [kind, r] : {std::pair{SurfaceKind::sphere, pi - 1e-3},
+                                {SurfaceKind::sphere, pi - 1e-9},
+                                {SurfaceKind::sphere, pi},
+                                {SurfaceKind::pseudosphere, 20.0},
+                                {SurfaceKind::pseudosphere, 200.0}}) {
+    Snapshot s = body_at(kind, 1.0, r, 0.8, 1.0, 1.0);
+    for (int i = 0; i <= 16; ++i)
+      s.bodies[0].trail.push_back(chart_point(s.surface, r - 0.5 + i / 32.0, 0.8 - 0.2 + i / 40.0).X);
+    ViewOptions view;
+    view.kind = ViewKind::conformal;
+    aim_camera_at_body(view, s);
+    const FrameScene scene = build_scene(s, view);
+    EXPECT_LT(scene.grid_lines.size(), 20000u) << r;
+    for (const std::vector<Vertex>* list : {&scene.lines, &scene.fills, &scene.grid_lines, &scene.backdrop})
+      for (const Vertex& v : *list)
+        ASSERT_TRUE(std::isfinite(v.position.x) && std::isfinite(v.position.y)) << r;
   }
 }
 

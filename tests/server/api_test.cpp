@@ -158,7 +158,8 @@ TEST_F(Api, ViewsListTheSurfacesEachShowsAndEachH2ViewDraws) {
     for (const auto& surface : v["surfaces"])
       if (surface == "pseudosphere") h2.push_back(v["name"]);
   }
-  EXPECT_EQ(h2, (std::vector<std::string>{"disk", "hyperboloid", "klein", "halfplane", "tractricoid"}));
+  EXPECT_EQ(h2, (std::vector<std::string>{"disk", "hyperboloid", "klein", "halfplane", "tractricoid",
+                                          "conformal"}));
   const std::string id = create(R"({"preset": "spinning_rigid_pseudosphere"})");
   std::set<std::string> bodies;
   for (const std::string& view : h2) {
@@ -676,8 +677,9 @@ TEST_F(Api, QueryValuesOutOfRangeOrOfTheWrongTypeNameTheValue) {
       {frame + "height=2.5", "height: must be a whole number from 16 to 4096 [pixels] (got 2.5)"},
       {frame + "yaw=nan", "yaw: must be a number from -100 to 100 [rad] (got nan)"},
       {frame + "view=cube",
-       "view: must be sphere, disk, hyperboloid, klein, halfplane, tractricoid or plane (got cube)"},
-      {frame + "view=klein", "view: the sphere is shown in these views: sphere, disk (got klein)"},
+       "view: must be sphere, disk, hyperboloid, klein, halfplane, tractricoid, plane or conformal (got "
+       "cube)"},
+      {frame + "view=klein", "view: the sphere is shown in these views: sphere, disk, conformal (got klein)"},
       {frame + "layers=body,glitter",
        "layers: 'glitter' is not one of surface, grid, body, frame, trail, hud, actions (got body,glitter)"},
       {"/api/v1/sessions/" + id + "/events?rate=1000",

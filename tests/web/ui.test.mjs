@@ -362,12 +362,12 @@ try {
     assert.equal(await trailPixels(), 0);
   });
 
-  await test("a pseudosphere is offered its five pictures, from the server's table, and each is drawn", async () => {
+  await test("a pseudosphere is offered its six pictures, from the server's table, and each is drawn", async () => {
     await page.click('.preset[data-name="spinning_rigid_pseudosphere"]');
     await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "spinning_rigid_pseudosphere");
     const offered = await page.$$eval("#view option", (options) => options.map((o) => o.value));
-    assert.deepEqual(offered, ["disk", "hyperboloid", "klein", "halfplane", "tractricoid"]);
-    for (const view of ["klein", "halfplane", "tractricoid", "disk"]) {
+    assert.deepEqual(offered, ["disk", "hyperboloid", "klein", "halfplane", "tractricoid", "conformal"]);
+    for (const view of ["klein", "halfplane", "tractricoid", "conformal", "disk"]) {
       const before = Number(await page.$eval("#frame", (c) => c.dataset.painted));
       await page.selectOption("#view", view);
       await page.waitForFunction((n) => Number(document.querySelector("#frame").dataset.painted) > n, before, { timeout: 10000 });
