@@ -155,7 +155,7 @@ render::ViewOptions view_options(const RenderOptions& opt, const Scene& scene) {
     throw BadInput{"--layers: unknown layer '" + unknown + "' (surface, grid, body, frame, trail, hud)"};
   view.layers = *layers;
   if (!std::isfinite(opt.scale) || !(opt.scale > 0.0)) throw BadInput{"--scale: must be a finite number > 0"};
-  view.scale = opt.scale * scene.surface.radius;
+  view.scale = opt.scale * render::body_scale_length(view.kind, scene.surface);
   if (!opt.camera.empty()) {
     double yaw = 0, pitch = 0, distance = 0;
     char extra = 0;

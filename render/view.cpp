@@ -122,4 +122,8 @@ std::optional<unsigned> parse_layers(std::string_view list, std::string* unknown
   return mask;
 }
 
+double body_scale_length(ViewKind view, const Surface& surface) {
+  return view == ViewKind::conformal ? 1.0 : surface.radius;
+}
+
 }  // namespace spinfold::render

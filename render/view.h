@@ -49,6 +49,11 @@ enum Layer : unsigned {
   kDefaultLayers = 63u,  // every layer but the action variables
 };
 
+// The length that the display scale (ViewOptions::scale, "body size") is given in: R, so that a
+// body looks the same on any sphere; lengths in the conformal view, whose picture must not change
+// with K (the dial) — a sphere of R = 1e6 would otherwise draw a body the size of a continent.
+double body_scale_length(ViewKind view, const Surface& surface);
+
 // The one table of layer names ("surface", "grid", …, "actions"), in this order.
 std::span<const std::string_view> layer_names();
 

@@ -38,7 +38,7 @@ FrameJob frame_job(ServerContext& server, const std::string& id, Session& s, con
   const std::lock_guard lock(s.mutex);
   FrameJob job{frame_etag(id, s.version, f), {s.version, s.run.state.t}, std::nullopt, f.view};
   if (!server.frames.contains(job.etag)) {
-    job.view.scale = f.scale * s.run.scene.surface.radius;
+    job.view.scale = f.scale * render::body_scale_length(f.view.kind, s.run.scene.surface);
     static const Trail kNoTrail;  // trails are copied only when drawn
     job.snapshot = render::make_snapshot(s.run, f.view.layers & render::kTrail ? s.trail : kNoTrail,
                                          f.trail.value_or(-1.0));

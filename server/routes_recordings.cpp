@@ -117,7 +117,7 @@ RecordingJob recording_job(ServerContext& server, const Call& call, Session& s) 
   view.kind = view_name ? *render::parse_view(*view_name) : render::default_view(s.run.scene.surface.kind);
   if (const auto why = render::view_unsupported_reason(view.kind, s.run.scene.surface.kind))
     throw bad(422, "Invalid value", "view", std::string(render::view_name(view.kind)), *why);
-  view.scale = scale * s.run.scene.surface.radius;
+  view.scale = scale * render::body_scale_length(view.kind, s.run.scene.surface);
   job.frames.scene = s.scene;
   job.frames.changes = s.changes;
   job.frames.max_attempts = static_cast<std::uint64_t>(limits.max_steps);
