@@ -347,8 +347,7 @@ bool advance_to(Simulation& run, double t_end, std::uint64_t max_attempts) {
 }
 
 bool dialled(const Surface& before, const Surface& after) {
-  return before.curvature_given && after.curvature_given &&
-         (before.kind != after.kind || before.radius != after.radius);
+  return after.curvature_given && (before.kind != after.kind || before.radius != after.radius);
 }
 
 Vec3 carried_position(const Surface& before, const Surface& after, const Vec3& X) {

@@ -86,12 +86,12 @@ bool advance_within(Simulation& run, double t_end, std::uint64_t& attempts);
 // validate_scene and have the same surface kind (a different surface is a different run) and as
 // many companions: each companion is retuned to its new scene the same way.
 //
-// A curvature dial (both scenes give surface.curvature, and it changed: `dialled`) may change the
+// A curvature dial (the new scene gives surface.curvature, and the surface changed: `dialled`) may change the
 // surface's kind: the body keeps its geodesic polar place (r, φ) about O, its velocity and frame in
 // (E₁, E₂), so the motion continues through K = 0 (physics.md §16).
 void retune(Simulation& run, const Scene& next);
 
-// True when `after` is `before` with another given curvature (retune continues through it).
+// True when `after` gives its curvature and differs from `before` (retune continues through it).
 bool dialled(const Surface& before, const Surface& after);
 // Where a point of the scene's embedding on `before` goes on `after` as retune carries the body:
 // the same (r, φ) after a dial, the same place in units of R after a radius change [length].
