@@ -256,8 +256,9 @@ bool step_toward(Simulation& run, StepPoint& p, double t_end, Mode mode, std::ui
 // Stops the run on `trouble` at the last good state: the later of the state asked for before
 // (checked when it was reached) and the sequence's last good point.
 void stop_at_last_good(Simulation& run, const State& before, Status trouble) {
-  if (run.grid.state.status == Status::ok && health(run, run.grid.state) != Status::ok)
-    run.grid = run.checked;
+  // The sequence's point may be unchecked whatever stopped it (a non-finite step after a step that
+  // blew the state up to 1e131, whose energy is already inf − inf): check it now.
+  if (health(run, run.grid.state) != Status::ok) run.grid = run.checked;
   run.grid.state.status = trouble;
   run.state = before.t > run.grid.state.t ? before : run.grid.state;
   run.state.status = trouble;

@@ -67,6 +67,10 @@ Scene scene_from(FuzzedDataProvider& in) {
   Scene s;
   s.surface.kind = in.PickValueInArray({SurfaceKind::sphere, SurfaceKind::pseudosphere, SurfaceKind::plane});
   s.surface.radius = pick(in);
+  if (in.ConsumeBool()) {  // the curvature dial's form
+    s.surface.curvature_given = pick(in);
+    resolve_curvature(s.surface);
+  }
   s.body.model = in.ConsumeBool() ? BodyModel::rigid : BodyModel::affine;
   s.body.mass = pick(in);
   s.body.inertia = pick(in);
