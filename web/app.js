@@ -857,7 +857,8 @@ function physicalRow(spec) {
   // A live row (the curvature dial) sends while it is dragged, at most one change in flight and
   // one every kLiveInterval ms, the latest value winning; the slider is not moved under the
   // pointer by the answers meanwhile.
-  let sending = false, pending = null;
+  // (The release's change event repeats the last input's value: not sent again while in force.)
+  let sending = false, pending = null, sent;
   const live = async (v) => {
     pending = v;
     if (sending) return;
@@ -865,6 +866,8 @@ function physicalRow(spec) {
     while (pending !== null) {
       const next = pending;
       pending = null;
+      if (next === sent && next === spec.value) continue;
+      sent = next;
       const started = performance.now();
       await apply(next);
       await sleep(Math.max(0, kLiveInterval - (performance.now() - started)));
