@@ -786,7 +786,8 @@ function physicalRows() {
     rows.push({ key: "C", label: "Shape spring C", unit: "energy/length²", min: 0, max: 5, step: 0.05,
                 help: "Pulls the ellipse back towards its rest size (V = C(x² + y²)): the body breathes.",
                 value: deformation?.C ?? 0, patch: (v) => ({ potential: { deformation: { kind: "abc", C: v } } }) });
-  rows.push({ key: "scale", label: "Body size on screen", unit: "surface radii", min: 0.05, max: 1, step: 0.01, view: true,
+  // (In the conformal view the size is in lengths, so the picture does not change with K.)
+  rows.push({ key: "scale", label: "Body size on screen", unit: ui.view.kind === "conformal" ? "lengths" : "surface radii", min: 0.05, max: 1, step: 0.01, view: true,
               help: "Only the picture: how large the body's ellipse is drawn (+ and − keys in 2-D views).",
               value: ui.view.scale, patch: null });
   return rows;
@@ -880,6 +881,7 @@ function physicalRow(spec) {
     spec = next;
     if (document.activeElement !== number && !sending) show(spec.value);
     help.textContent = spec.help;
+    unit.textContent = spec.unit;
     for (const input of [range, number]) input.title = spec.help;
     enable();
   };
@@ -924,6 +926,7 @@ function showConformal() {
   ui.view.yaw = ui.view.pitch = ui.view.distance = null;
   $("view").value = "conformal";
   refreshFrame();
+  buildPhysical();  // the body size's unit: lengths in this view
   saveSession(true);
 }
 
@@ -1191,7 +1194,12 @@ function wire() {
     else setPlaying(false);
     saveSession(true);
   };
-  $("view").onchange = () => { ui.view.kind = $("view").value; ui.view.yaw = ui.view.pitch = ui.view.distance = null; refreshFrame(); };
+  $("view").onchange = () => {
+    ui.view.kind = $("view").value;
+    ui.view.yaw = ui.view.pitch = ui.view.distance = null;
+    refreshFrame();
+    buildPhysical();  // the body size's unit follows the view
+  };
   $("geodesic").onclick = () => toggleGeodesic();
   $("fan").onclick = () => addFan();
   $("fan-clear").onclick = () => clearComparisons();

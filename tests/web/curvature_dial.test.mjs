@@ -153,6 +153,8 @@ try {
     assert.equal(Number(await page.inputValue("#phys-radius")), 1);
     assert.equal(await page.$eval("#phys-radius", (el) => el.disabled), true);
     assert.match(await page.textContent("#explanation"), /hyperbolic plane/);
+    // In the conformal view the body's drawn size is in lengths.
+    assert.equal(await page.textContent('[data-key="scale"] .unit'), "lengths");
   });
 
   await test("a drag from +1 through 0 to −1 sends a few changes, not one per step, and ends on −1", async () => {
