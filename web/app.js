@@ -587,6 +587,10 @@ function fieldFor(path, spec, value) {
     }
     // A deformation field needs its kind: the scene's, or abc when there is none yet.
     if (path[1] === "deformation") node.kind = lookup(ui.current, ["potential", "deformation", "kind"]) ?? "abc";
+    // The surface is given either by K or by kind and radius: setting one form removes the other.
+    if (path[0] === "surface" && path[1] === "curvature") Object.assign(node, { kind: null, radius: null });
+    else if (path[0] === "surface" && curvatureForm())
+      Object.assign(node, { kind: node.kind ?? surfaceKind(), radius: node.radius ?? radiusOf() ?? 1, curvature: null });
     try {
       await applyChange(patch, path[0] === "surface" || path[1] === "deformation");
     } catch (e) {
@@ -635,6 +639,27 @@ function deformationKindField(branches, deformation) {
 
 function lookup(object, path) { return path.reduce((node, key) => (node ? node[key] : undefined), object); }
 
+// ---- The surface in either of its forms: {kind, radius} or {curvature: K} (K > 0 the sphere of
+// radius 1/√K, 0 the plane, K < 0 the hyperbolic plane of radius 1/√−K; |K| below the server's
+// 1e-24 is the plane).
+const kFlatCurvature = 1e-24;
+const kindOfCurvature = (K) => (Math.abs(K) < kFlatCurvature ? "plane" : K > 0 ? "sphere" : "pseudosphere");
+const curvatureForm = (surface = ui.current.surface) => typeof surface?.curvature === "number";
+function surfaceKind(surface = ui.current.surface) {
+  if (curvatureForm(surface)) return kindOfCurvature(surface.curvature);
+  return surface?.kind ?? "sphere";
+}
+function curvatureOf(surface = ui.current.surface) {
+  if (curvatureForm(surface)) return surface.curvature;
+  const R = surface.radius ?? 1;
+  return { sphere: 1, plane: 0, pseudosphere: -1 }[surfaceKind(surface)] / (R * R);
+}
+// The radius the surface has now (derived from K in the curvature form; none on the plane there).
+function radiusOf(surface = ui.current.surface) {
+  if (!curvatureForm(surface)) return surface.radius ?? 1;
+  return surfaceKind(surface) === "plane" ? undefined : 1 / Math.sqrt(Math.abs(surface.curvature));
+}
+
 function buildControls() {
   buildPhysical();
   const form = $("controls");
@@ -652,7 +677,7 @@ function buildControls() {
     for (const [key, spec] of Object.entries(props[section].properties)) {
       const field = fieldFor([section, key], spec, lookup(ui.current, [section, key]));
       if (replaced.has(key)) {
-        const input = field.querySelector("input");
+        const input = field.querySelector("input, select");
         input.value = "";
         input.placeholder = "from the physical form";
       }
@@ -684,7 +709,7 @@ function buildControls() {
 // t = 0 when the start, the surface or the comparisons changed; the server says which, and so
 // does the status line. A good edit clears every refusal still shown.
 async function applyChange(patch, rebuild = false) {
-  const before = ui.current.surface.kind;
+  const before = surfaceKind();
   const res = await call("PATCH", `/sessions/${ui.id}`, patch);
   document.querySelectorAll(".error").forEach((e) => (e.textContent = ""));
   if (res.change.kind !== "unchanged") ui.modified = true;
@@ -696,9 +721,18 @@ async function applyChange(patch, rebuild = false) {
   } else if (res.change.kind === "continued") {
     status(`Changed at t = ${num(res.change.t)}, continuing: ${res.change.reason}`);
   }
-  if (res.current.surface.kind !== before) showExplanation();
+  const kindChanged = surfaceKind(res.current.surface) !== before;
+  if (kindChanged) showExplanation();
   if (rebuild || res.change.kind === "restarted") { buildControls(); buildViewControls(); refreshFrame(); }
-  else buildPhysical();
+  else {
+    buildPhysical();
+    // The curvature dial crossed K = 0 (the run continues): the views offered follow the surface.
+    if (kindChanged) {
+      const was = ui.view.kind;
+      buildViewControls();
+      if (ui.view.kind !== was) refreshFrame();
+    }
+  }
   return res;
 }
 
@@ -709,7 +743,7 @@ function physicalRows() {
   const initial = ui.current.initial, start = ui.start ?? {};
   const rigid = ui.current.body.model === "rigid";
   const deformation = ui.current.potential?.deformation;
-  const kind = ui.current.surface.kind;
+  const kind = surfaceKind();
   const speedHeading = (speed, heading) => ({ initial: { speed, heading } });
   const rows = [
     { key: "spin", label: "Spin s", unit: "mass·length²/time", min: -3, max: 3, step: 0.05, restarts: true,
@@ -730,11 +764,21 @@ function physicalRows() {
     rows.push({ key: "mu", label: "Stretch μ", unit: "× rest size", min: 0.2, max: 3, step: 0.05, restarts: true,
                 help: "Length of the ellipse's second axis relative to the body at rest.",
                 value: initial.mu ?? start.mu, patch: (v) => ({ initial: { mu: v } }) });
+  // The curvature dial: one slider from the sphere through the plane to the hyperbolic plane. The
+  // run continues through K = 0 (the body keeps its place, velocity and frame); the picture
+  // switches to the conformal view, the one view that exists on every surface and is continuous in K.
+  const byK = curvatureForm();
   rows.push(
-    { key: "radius", label: "Surface radius R", unit: "length", min: 0.25, max: 5, step: 0.05,
-      help: kind === "plane" ? "On the flat plane only a length scale (no curvature)."
-                             : `Curvature K = ${kind === "sphere" ? "+" : "−"}1/R²: a larger radius is a flatter surface.`,
-      value: ui.current.surface.radius ?? 1, patch: (v) => ({ surface: { radius: v } }) },
+    { key: "curvature", label: "Curvature K", unit: "1/length²", min: -2, max: 2, step: 0.01, live: true,
+      help: "K > 0 a sphere, 0 the flat plane, K < 0 the hyperbolic plane; changes live, the run continues through 0.",
+      value: curvatureOf(), before: showConformal,
+      patch: (v) => ({ surface: { curvature: v, kind: null, radius: null } }) },
+    { key: "radius", label: "Surface radius R", unit: "length", min: 0.25, max: 5, step: 0.05, disabled: byK,
+      help: byK ? (kind === "plane" ? "From the curvature: K = 0 is the flat plane, which has no radius."
+                                    : `From the curvature: R = 1/√|K|. To set R, pick the surface above.`)
+        : kind === "plane" ? "On the flat plane only a length scale (no curvature)."
+                           : `Curvature K = ${kind === "sphere" ? "+" : "−"}1/R²: a larger radius is a flatter surface.`,
+      value: radiusOf(), placeholder: "none", patch: (v) => ({ surface: { radius: v } }) },
     { key: "gamma", label: "Push from the pole g", unit: "energy × length²", min: 0, max: 1, step: 0.01,
       help: "Radial potential V = g / sin²(r/R): keeps the body away from the pole. 0: none.",
       value: ui.current.potential?.radial?.gamma ?? 0, patch: (v) => ({ potential: { radial: { gamma: v } } }) });
@@ -742,7 +786,8 @@ function physicalRows() {
     rows.push({ key: "C", label: "Shape spring C", unit: "energy/length²", min: 0, max: 5, step: 0.05,
                 help: "Pulls the ellipse back towards its rest size (V = C(x² + y²)): the body breathes.",
                 value: deformation?.C ?? 0, patch: (v) => ({ potential: { deformation: { kind: "abc", C: v } } }) });
-  rows.push({ key: "scale", label: "Body size on screen", unit: "surface radii", min: 0.05, max: 1, step: 0.01, view: true,
+  // (In the conformal view the size is in lengths, so the picture does not change with K.)
+  rows.push({ key: "scale", label: "Body size on screen", unit: ui.view.kind === "conformal" ? "lengths" : "surface radii", min: 0.05, max: 1, step: 0.01, view: true,
               help: "Only the picture: how large the body's ellipse is drawn (+ and − keys in 2-D views).",
               value: ui.view.scale, patch: null });
   return rows;
@@ -756,7 +801,7 @@ function buildPhysical() {
   const keys = rows.map((r) => r.key).join(",");
   if (form.dataset.keys === keys) {
     for (const row of rows) form.querySelector(`[data-key="${row.key}"]`).update(row);
-    form.querySelector("#phys-surface").value = ui.current.surface.kind;
+    form.querySelector("#phys-surface").value = surfaceKind();
     return;
   }
   form.dataset.keys = keys;
@@ -801,18 +846,48 @@ function physicalRow(spec) {
   const show = (v) => {
     const known = v !== undefined && v !== null && Number.isFinite(Number(v));
     number.value = known ? Number(Number(v).toPrecision(6)) : "";
-    number.placeholder = known ? "" : "from the rates";
+    number.placeholder = known ? "" : spec.placeholder ?? "from the rates";
     range.value = known ? v : (spec.min + spec.max) / 2;
   };
+  const enable = () => {
+    range.disabled = number.disabled = Boolean(spec.disabled);
+    row.classList.toggle("derived", Boolean(spec.disabled));
+  };
   show(spec.value);
+  enable();
+  // A live row (the curvature dial) sends while it is dragged, at most one change in flight and
+  // one every kLiveInterval ms, the latest value winning; the slider is not moved under the
+  // pointer by the answers meanwhile.
+  // (The release's change event repeats the last input's value: not sent again while in force.)
+  let sending = false, pending = null, sent;
+  const live = async (v) => {
+    pending = v;
+    if (sending) return;
+    sending = true;
+    while (pending !== null) {
+      const next = pending;
+      pending = null;
+      if (next === sent && next === spec.value) continue;
+      sent = next;
+      const started = performance.now();
+      await apply(next);
+      await sleep(Math.max(0, kLiveInterval - (performance.now() - started)));
+    }
+    sending = false;
+    if (document.activeElement !== number) show(spec.value);
+  };
   // The same row with the parameters now in force (its closures read spec).
   row.update = (next) => {
     spec = next;
-    if (document.activeElement !== number) show(spec.value);
+    if (document.activeElement !== number && !sending) show(spec.value);
     help.textContent = spec.help;
+    unit.textContent = spec.unit;
+    for (const input of [range, number]) input.title = spec.help;
+    enable();
   };
   const apply = async (v) => {
     if (!Number.isFinite(v)) { error.textContent = "a number, please"; return; }
+    if (spec.before) spec.before();
     if (spec.view) {
       ui.view.scale = v;
       show(v);
@@ -828,11 +903,31 @@ function physicalRow(spec) {
       error.textContent = e.message;
     }
   };
-  range.addEventListener("input", () => (number.value = range.value));
-  range.addEventListener("change", () => apply(Number(range.value)));
-  number.addEventListener("change", () => apply(number.value === "" ? NaN : Number(number.value)));
+  // The slider's value on its grid of steps (−2 + 200 × 0.01 is 0, not 1e-16).
+  const stepped = () => Number(Number(range.value).toFixed(6));
+  const typed = () => (number.value === "" ? NaN : Number(number.value));
+  range.addEventListener("input", () => {
+    number.value = stepped();
+    if (spec.live) live(stepped());
+  });
+  range.addEventListener("change", () => (spec.live ? live(stepped()) : apply(stepped())));
+  number.addEventListener("change", () => (spec.live && Number.isFinite(typed()) ? live(typed()) : apply(typed())));
   row.append(label, range, number, unit, help, error);
   return row;
+}
+
+const kLiveInterval = 120;  // ms between two changes sent by a dragged live slider
+
+// The curvature dial shows the conformal view (the sphere's 3-D view and the Poincaré disk do not
+// exist on every side of K = 0); the view menu says so.
+function showConformal() {
+  if (ui.view.kind === "conformal" || !ui.views.some((v) => v.name === "conformal")) return;
+  ui.view.kind = "conformal";
+  ui.view.yaw = ui.view.pitch = ui.view.distance = null;
+  $("view").value = "conformal";
+  refreshFrame();
+  buildPhysical();  // the body size's unit: lengths in this view
+  saveSession(true);
 }
 
 function surfaceKindRow() {
@@ -846,7 +941,7 @@ function surfaceKindRow() {
   select.name = "phys.surface";
   for (const [value, text] of [["sphere", "sphere (positive curvature)"], ["pseudosphere", "hyperbolic plane (negative curvature)"], ["plane", "flat plane (no curvature)"]])
     select.add(new Option(text, value));
-  select.value = ui.current.surface.kind;
+  select.value = surfaceKind();
   const help = document.createElement("small");
   help.className = "help";
   help.id = "phys-surface-help";
@@ -857,10 +952,12 @@ function surfaceKindRow() {
   error.className = "error";
   select.addEventListener("change", async () => {
     try {
-      await applyChange({ surface: { kind: select.value } }, true);
+      // From the curvature form: that form goes, the radius it implied stays (1 from the plane).
+      const surface = curvatureForm() ? { kind: select.value, radius: radiusOf() ?? 1, curvature: null } : { kind: select.value };
+      await applyChange({ surface }, true);
     } catch (e) {
       error.textContent = e.message;
-      select.value = ui.current.surface.kind;
+      select.value = surfaceKind();
     }
   });
   row.append(label, select, help, error);
@@ -903,7 +1000,7 @@ async function clearComparisons() {
 
 // ---- Views and layers.
 function buildViewControls(force = false) {
-  const shown = ui.views.filter((v) => v.surfaces.includes(ui.current.surface.kind));  // the server's table, in its order
+  const shown = ui.views.filter((v) => v.surfaces.includes(surfaceKind()));  // the server's table, in its order
   const kinds = shown.map((v) => v.name);
   const select = $("view");
   select.textContent = "";
@@ -969,11 +1066,11 @@ function markGallery() {
 
 function showExplanation() {
   const preset = ui.presets.find((p) => p.name === ui.preset);
-  const sameSurface = preset && preset.scene.surface?.kind === ui.current.surface.kind;
+  const sameSurface = preset && surfaceKind(preset.scene.surface ?? {}) === surfaceKind();
   // A switch of surface makes the preset's text wrong: say what is shown instead.
   if (preset && !sameSurface) { ui.preset = null; markGallery(); }
   $("explanation").textContent = preset && sameSurface ? preset.description
-    : `Your own scene on the ${{ sphere: "sphere", pseudosphere: "hyperbolic plane", plane: "flat plane" }[ui.current.surface.kind]}.`;
+    : `Your own scene on the ${{ sphere: "sphere", pseudosphere: "hyperbolic plane", plane: "flat plane" }[surfaceKind()]}.`;
 }
 
 async function buildGallery() {
@@ -1097,7 +1194,12 @@ function wire() {
     else setPlaying(false);
     saveSession(true);
   };
-  $("view").onchange = () => { ui.view.kind = $("view").value; ui.view.yaw = ui.view.pitch = ui.view.distance = null; refreshFrame(); };
+  $("view").onchange = () => {
+    ui.view.kind = $("view").value;
+    ui.view.yaw = ui.view.pitch = ui.view.distance = null;
+    refreshFrame();
+    buildPhysical();  // the body size's unit follows the view
+  };
   $("geodesic").onclick = () => toggleGeodesic();
   $("fan").onclick = () => addFan();
   $("fan-clear").onclick = () => clearComparisons();
