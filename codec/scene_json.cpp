@@ -255,7 +255,8 @@ json write_fields(const S& in) {
     } else if constexpr (std::is_same_v<T, std::string>) {
       if (field.text_rule != TextRule::any || !value.empty()) j[key] = value;
     } else if constexpr (Enumerated<T>) {
-      if (std::find(replaced.begin(), replaced.end(), field.name) == replaced.end()) j[key] = enum_name(value);
+      if (std::find(replaced.begin(), replaced.end(), field.name) == replaced.end())
+        j[key] = enum_name(value);
     } else if constexpr (HasFields<T>) {
       j[key] = write_fields(value);
     } else if constexpr (OptionalSection<T>) {

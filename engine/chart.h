@@ -32,7 +32,7 @@ State initial_state(const Scene& scene);
 
 // A body given in the scene's polar frame: at (r, φ), velocity v_r E₁ + v_φ E₂, L and M in (E₁, E₂).
 struct PlacedBody {
-  double r, phi;     // [length], [rad]
+  double r, phi;      // [length], [rad]
   double v_r, v_phi;  // [length/time]
   Mat2 L, M;          // internal matrix, covariant rate [1/time]
   double spin;        // s [angular momentum]

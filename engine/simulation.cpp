@@ -356,7 +356,8 @@ Vec3 carried_position(const Surface& before, const Surface& after, const Vec3& X
     const PolarCoordinates pc = polar_coordinates(before, X);
     return chart_point(after, pc.r, pc.phi).X;
   }
-  if (before.kind != SurfaceKind::plane && after.radius != before.radius) return X * (after.radius / before.radius);
+  if (before.kind != SurfaceKind::plane && after.radius != before.radius)
+    return X * (after.radius / before.radius);
   return X;
 }
 

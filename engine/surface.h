@@ -1,9 +1,8 @@
 // Surfaces of constant curvature and their polar chart (physics.md §1).
 #pragma once
 
-#include <optional>
-
 #include <Eigen/Dense>
+#include <optional>
 
 namespace spinfold {
 

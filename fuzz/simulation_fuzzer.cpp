@@ -54,12 +54,9 @@ double pick(FuzzedDataProvider& in) {
                                         std::numeric_limits<double>::infinity(),
                                         std::numeric_limits<double>::quiet_NaN()};
   switch (in.ConsumeIntegralInRange(0, 3)) {
-    case 0:
-      return in.PickValueInArray(kNotable);
-    case 1:
-      return in.ConsumeFloatingPoint<double>();
-    default:
-      return in.ConsumeFloatingPointInRange(-10.0, 10.0);
+    case 0: return in.PickValueInArray(kNotable);
+    case 1: return in.ConsumeFloatingPoint<double>();
+    default: return in.ConsumeFloatingPointInRange(-10.0, 10.0);
   }
 }
 
@@ -76,15 +73,12 @@ Scene scene_from(FuzzedDataProvider& in) {
   s.body.inertia = pick(in);
   if (in.ConsumeBool()) s.potential.radial = RadialPotential{pick(in)};
   switch (in.ConsumeIntegralInRange(0, 2)) {
-    case 1:
-      s.potential.deformation = AbcPotential{pick(in), pick(in), pick(in)};
-      break;
+    case 1: s.potential.deformation = AbcPotential{pick(in), pick(in), pick(in)}; break;
     case 2:
       s.potential.deformation =
           PolarPotential{pick(in), pick(in), in.ConsumeBool() ? PolarForm::cot2 : PolarForm::literal};
       break;
-    default:
-      break;
+    default: break;
   }
   InitialState& q = s.initial;
   for (double* field : {&q.r, &q.phi, &q.alpha, &q.beta, &q.lambda, &q.mu, &q.r_dot, &q.phi_dot, &q.alpha_dot,
@@ -109,11 +103,11 @@ void check_outputs(const Scene& scene, const State& state) {
   if (!state.y.allFinite()) violated("a non-finite state", scene);
   if (!std::isfinite(energy(scene, state))) violated("a non-finite energy", scene);
   const PaperCoordinates c = paper_coordinates(scene, state);
-  for (double v : {c.r, c.lambda, c.mu, c.lambda_dot, c.mu_dot, c.p_phi, c.p_alpha, c.p_beta, c.p_lambda, c.p_mu,
-                   c.det_L})
+  for (double v : {c.r, c.lambda, c.mu, c.lambda_dot, c.mu_dot, c.p_phi, c.p_alpha, c.p_beta, c.p_lambda,
+                   c.p_mu, c.det_L})
     if (!std::isfinite(v)) violated("a non-finite paper coordinate", scene);
-  for (const auto& v : {c.phi, c.alpha, c.beta, c.theta, c.r_dot, c.phi_dot, c.alpha_dot, c.beta_dot, c.theta_dot,
-                        c.p_r})
+  for (const auto& v :
+       {c.phi, c.alpha, c.beta, c.theta, c.r_dot, c.phi_dot, c.alpha_dot, c.beta_dot, c.theta_dot, c.p_r})
     if (!finite(v)) violated("a non-finite defined paper coordinate", scene);
   if (!c.X.allFinite()) violated("a non-finite position", scene);
 }
@@ -135,7 +129,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const nlohmann::json written = scene_to_json(scene);
   const SceneParse reread = parse_scene(written);
   if (!reread.scene) violated("the scene's own JSON is rejected", scene);
-  if (scene_to_json(*reread.scene) != written) violated("the scene's JSON does not read back to itself", scene);
+  if (scene_to_json(*reread.scene) != written)
+    violated("the scene's JSON does not read back to itself", scene);
 
   Simulation run = start_simulation(scene);
   check_outputs(scene, run.state);

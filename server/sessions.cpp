@@ -49,7 +49,8 @@ std::string restart_reason(const json& patch, const Scene& before, const Scene& 
       before.companions.size() != after.companions.size())
     return "the companions changed: the run starts over at t = 0";
   if (before.surface.kind != after.surface.kind && !dialled(before.surface, after.surface))
-    return "the surface changed kind: the run starts over at t = 0 on the new surface (give surface.curvature "
+    return "the surface changed kind: the run starts over at t = 0 on the new surface (give "
+           "surface.curvature "
            "to dial through 0 without a restart)";
   // The incompressible body holds det L at the start's λμ: joining or leaving that constraint
   // mid-run would snap the shape to it (or leave its multiplier's momentum behind).

@@ -23,10 +23,12 @@ Scene spinning(double K, const std::string& integrator = "auto", double dt = 0.0
                            R"(}, "body": {"mass": 1, "inertia": 0.5, "model": "rigid"},
       "initial": {"r": 0.5, "phi": 0.3, "lambda": 1, "mu": 1, "speed": 0.5, "heading": 1.5707963267948966,
                   "spin": 1},
-      "integrator": {"name": ")" + integrator + R"(", "dt": )" + std::to_string(dt) +
-                           R"(, "tolerance": 1e-12}})";
+      "integrator": {"name": ")" +
+                           integrator + R"(", "dt": )" + std::to_string(dt) + R"(, "tolerance": 1e-12}})";
   SceneParse parsed = parse_scene_text(text);
-  EXPECT_TRUE(parsed.scene) << (parsed.errors.empty() ? "" : parsed.errors[0].field + ": " + parsed.errors[0].reason);
+  EXPECT_TRUE(parsed.scene) << (parsed.errors.empty()
+                                    ? ""
+                                    : parsed.errors[0].field + ": " + parsed.errors[0].reason);
   Scene scene = *parsed.scene;
   scene.surface.curvature_given = K;  // exactly K (the text above rounds it to 6 digits)
   resolve_curvature(scene.surface);
@@ -59,7 +61,9 @@ double geodesic_curvature_at(const Scene& scene, double t) {
 TEST(CurvatureDial, SurfaceFromCurvatureWrittenBackAsGiven) {
   for (const double K : {4.0, 0.25, 1e-12, 0.0, -1e-12, -0.25, -4.0}) {
     Scene s = spinning(K);
-    const SurfaceKind kind = K > 0 ? SurfaceKind::sphere : K < 0 ? SurfaceKind::pseudosphere : SurfaceKind::plane;
+    const SurfaceKind kind = K > 0   ? SurfaceKind::sphere
+                             : K < 0 ? SurfaceKind::pseudosphere
+                                     : SurfaceKind::plane;
     EXPECT_EQ(s.surface.kind, kind) << K;
     if (K != 0.0) {
       EXPECT_DOUBLE_EQ(s.surface.radius, 1.0 / std::sqrt(std::abs(K))) << K;
@@ -113,11 +117,13 @@ TEST(CurvatureDial, RunsAtTinyCurvatureAgreeWithThePlane) {
       ASSERT_EQ(run.state.status, Status::ok);
       const GlobalBody g = global_body(run.scene, run.state);
       EXPECT_NEAR(g.r, p.r, 1e-9) << integrator << " K = " << K;
-      EXPECT_NEAR(std::remainder(g.phi - p.phi, 2 * std::numbers::pi), 0.0, 1e-9) << integrator << " K = " << K;
+      EXPECT_NEAR(std::remainder(g.phi - p.phi, 2 * std::numbers::pi), 0.0, 1e-9)
+          << integrator << " K = " << K;
       EXPECT_NEAR(g.r_dot, p.r_dot, 1e-9) << integrator << " K = " << K;
       EXPECT_NEAR(g.phi_dot, p.phi_dot, 1e-9) << integrator << " K = " << K;
       EXPECT_LT((g.L - p.L).norm(), 1e-9) << integrator << " K = " << K;
-      EXPECT_NEAR(energy(run.scene, run.state), energy(plane.scene, plane.state), 1e-12) << integrator << " K = " << K;
+      EXPECT_NEAR(energy(run.scene, run.state), energy(plane.scene, plane.state), 1e-12)
+          << integrator << " K = " << K;
     }
   }
 }
@@ -163,7 +169,8 @@ TEST(CurvatureDial, ALiveDialContinuesThroughZero) {
   ASSERT_TRUE(replay(start, changes, 3.5, rebuilt, rebuilt_trail));
   EXPECT_EQ(rebuilt.state.y, live.state.y);
   ASSERT_EQ(rebuilt_trail.points.size(), trail.points.size());
-  for (std::size_t i = 0; i < trail.points.size(); ++i) EXPECT_EQ(rebuilt_trail.points[i].X, trail.points[i].X);
+  for (std::size_t i = 0; i < trail.points.size(); ++i)
+    EXPECT_EQ(rebuilt_trail.points[i].X, trail.points[i].X);
 }
 
 }  // namespace

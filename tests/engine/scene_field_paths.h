@@ -85,10 +85,10 @@ void set_partner(Scene& scene, const Field<S, std::optional<double>>& field, dou
     return;
   } else {
     for_each_field(kInitialStateFields, [&](const auto& other) {
-    using U = typename std::remove_cvref_t<decltype(other)>::Value;
-    if constexpr (OptionalNumber<U>)
-      if (!field.partner.empty() && other.name == field.partner) scene.initial.*other.member = value;
-  });
+      using U = typename std::remove_cvref_t<decltype(other)>::Value;
+      if constexpr (OptionalNumber<U>)
+        if (!field.partner.empty() && other.name == field.partner) scene.initial.*other.member = value;
+    });
   }
 }
 

@@ -47,9 +47,9 @@ TEST(SceneFields, EveryTableNamesEachFieldOnceAndDescribesIt) {
     EXPECT_FALSE(field.description.empty()) << path;
     ++count;
   });
-  // surface 2 + 1 optional (curvature), body 3, radial 1, abc 3, polar 3, initial 12 + 3 optional (spin, speed, heading),
-  // integrator 3, name, description, on_degenerate. A field added to a struct of engine/scene.h
-  // goes into its table and this count.
+  // surface 2 + 1 optional (curvature), body 3, radial 1, abc 3, polar 3, initial 12 + 3 optional (spin,
+  // speed, heading), integrator 3, name, description, on_degenerate. A field added to a struct of
+  // engine/scene.h goes into its table and this count.
   EXPECT_EQ(count, 34);
 }
 
