@@ -8,11 +8,14 @@ cd "$(dirname "$0")/.."
 
 bash scripts/setup.sh
 jobs=$(nproc)
+started=$SECONDS
+stage() { echo "test.sh: $1 at +$((SECONDS - started)) s"; }  # where CI's time goes
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DSPINFOLD_WERROR=ON > /dev/null
 cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs"
 
+stage "AddressSanitizer + UBSan build"
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DSPINFOLD_WERROR=ON \
   -DSPINFOLD_SANITIZE=ON > /dev/null
 cmake --build build-sanitize -j "$jobs"
@@ -21,6 +24,7 @@ ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:prin
   ctest --test-dir build-sanitize --output-on-failure -j "$jobs"
 # ThreadSanitizer over the server tests: HTTP workers, the player and the render thread share
 # sessions (the other tests are single-threaded).
+stage "ThreadSanitizer build"
 cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSPINFOLD_WERROR=ON \
   -DSPINFOLD_TSAN=ON > /dev/null
 cmake --build build-tsan -j "$jobs" --target server_tests
@@ -37,8 +41,10 @@ tail -n 3 build-tsan/server_tests_0.log build-tsan/server_tests_1.log
 if ((tsan_failed)); then cat build-tsan/server_tests_0.log build-tsan/server_tests_1.log; exit 1; fi
 build-tsan/tests/server_tests --gtest_filter=HardeningIdle.*
 unset TSAN_OPTIONS
+stage "fuzz build"
 CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Release -DSPINFOLD_WERROR=ON \
   -DSPINFOLD_FUZZ=ON > /dev/null
 cmake --build build-fuzz -j "$jobs"
 ctest --test-dir build-fuzz --output-on-failure -j "$jobs"
+stage "done"
 echo "test.sh: all tests passed"

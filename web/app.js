@@ -18,6 +18,7 @@ const ui = {
   size: { width: 640, height: 480 },  // the frame asked of the stream: shown size × devicePixelRatio
   events: null, live: null, plots: null, series: [[], [], [], [], [], []],
   preset: null,  // the preset the session started from (its card is highlighted)
+  opening: null,  // the promise of a scene being opened (a new session replacing this one)
 };
 const $ = (id) => document.getElementById(id);
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
@@ -48,6 +49,14 @@ async function request(method, path, body) {
 // idle, deleted, or the server restarted without its store) the session is rebuilt from its
 // scene, timeline and time, and the call made again on the new one.
 async function call(method, path, body) {
+  // A scene being opened replaces the session: a call made meanwhile (an edit a moment after a
+  // preset's click) goes to the new one, not to the old one being deleted (whose 404 would
+  // rebuild the old scene over the new).
+  if (ui.opening) {
+    const was = ui.id;
+    await ui.opening.catch(() => {});
+    if (was && ui.id !== was) path = path.replace(`/sessions/${was}`, `/sessions/${ui.id}`);
+  }
   try {
     return await request(method, path, body);
   } catch (e) {
@@ -494,7 +503,16 @@ function recover() {
 }
 
 // A scene from t = 0, or (a share link, a reload) a scene with its timeline rebuilt up to `until`.
-async function openScene(scene, { until = 0, timeline = [], preset = null } = {}) {
+async function openScene(scene, options = {}) {
+  const opening = openSceneNow(scene, options);
+  ui.opening = opening;
+  try {
+    await opening;
+  } finally {
+    if (ui.opening === opening) ui.opening = null;
+  }
+}
+async function openSceneNow(scene, { until = 0, timeline = [], preset = null } = {}) {
   const old = ui.id;
   const body = until > 0 || timeline.length ? { scene, timeline, until } : scene;
   const created = await withRetry("Opening the scene", () => request("POST", "/sessions", body));

@@ -386,7 +386,10 @@ try {
   });
 
   await test("an inertia matrix is shown and edited as a matrix; a non-symmetric one is refused by the server", async () => {
+    // The preset is open already (the last test): wait for the new session, not for the card.
+    const before = await sessionId(page);
     await page.click('.preset[data-name="anisotropic_tumbling_sphere"]');
+    await page.waitForFunction((old) => new URL(document.querySelector("#export-state").href).pathname.split("/").pop() !== old, before);
     await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "anisotropic_tumbling_sphere");
     await openAdvanced(page);
     const shown = JSON.parse(await page.inputValue("#field-body-inertia"));
