@@ -5,38 +5,13 @@
 // console stays clean. A drag of the slider through many values sends few changes.
 // Usage: node curvature_dial.test.mjs SPINFOLD_BINARY [SCREENSHOT_DIR]
 // (with SCREENSHOT_DIR: pictures at K = 1, 0 and −1 at 1366×900 and the row on a 390×844 phone)
-import { spawn } from "node:child_process";
-import { createRequire } from "node:module";
 import assert from "node:assert/strict";
 import path from "node:path";
-import { fileURLToPath } from "node:url";
 
-const require = createRequire(path.join(path.dirname(fileURLToPath(import.meta.url)), "../../web/package.json"));
-const { chromium } = require("playwright-core");
+import { launchBrowser, results, startServer, test } from "./harness.mjs";
 
 const [binary, screenshots] = process.argv.slice(2);
-const port = 20000 + (process.pid % 1000);
-const server = spawn(binary, ["serve", "--port", String(port), "--no-store"], { stdio: ["ignore", "pipe", "inherit"] });
-const base = `http://127.0.0.1:${port}/`;
-let failed = false;
-
-async function waitForServer() {
-  for (let i = 0; i < 100; ++i) {
-    try { if ((await fetch(base + "api/v1/health")).ok) return; } catch (e) { /* not yet */ }
-    await new Promise((r) => setTimeout(r, 100));
-  }
-  throw new Error("server did not start");
-}
-
-async function test(name, body) {
-  try {
-    await body();
-    console.log(`ok   ${name}`);
-  } catch (e) {
-    failed = true;
-    console.log(`FAIL ${name}\n${e.stack}`);
-  }
-}
+const { server, base, ready } = startServer(binary, 20000);
 
 const readoutT = (page) => page.$eval("#readout", (el) => Number(el.dataset.t));
 const sessionHref = (page) => page.$eval("#export-state", (a) => a.href);
@@ -82,12 +57,8 @@ async function settled(page, patches, K) {
 }
 
 try {
-  await waitForServer();
-  const browser = await chromium.launch({
-    executablePath: "/usr/bin/chromium",
-    args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-           "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-  });
+  await ready();
+  const browser = await launchBrowser();
   // bypassCSP: playwright-core 1.49's waitForFunction evaluates strings in the page (see ui.test.mjs).
   const page = await browser.newPage({ viewport: { width: 1366, height: 900 }, bypassCSP: true });
   watchConsole(page, "dial page");
@@ -211,9 +182,9 @@ try {
   });
   await browser.close();
 } catch (e) {
-  failed = true;
+  results.failed = true;
   console.log(e.stack);
 } finally {
   server.kill();
 }
-process.exit(failed ? 1 : 0);
+process.exit(results.failed ? 1 : 0);

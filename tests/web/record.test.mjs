@@ -2,42 +2,18 @@
 // page's Content-Security-Policy, "GIF for slides" sets its preset, a from–to window is recorded
 // with a progress bar, and the download link gives the GIF; a bad window shows the server's reason.
 // Usage: node record.test.mjs SPINFOLD_BINARY [SCREENSHOT_DIR]
-import { spawn } from "node:child_process";
-import { createRequire } from "node:module";
 import assert from "node:assert/strict";
 import fs from "node:fs";
 import path from "node:path";
-import { fileURLToPath } from "node:url";
 
-const require = createRequire(path.join(path.dirname(fileURLToPath(import.meta.url)), "../../web/package.json"));
-const { chromium } = require("playwright-core");
+import { launchBrowser, results, startServer, test } from "./harness.mjs";
 
 const [binary, screenshots] = process.argv.slice(2);
-const port = 19000 + (process.pid % 1000);
-const server = spawn(binary, ["serve", "--port", String(port), "--no-store"], { stdio: ["ignore", "pipe", "inherit"] });
-const base = `http://127.0.0.1:${port}/`;
-let failed = false;
-
-async function test(name, body) {
-  try {
-    await body();
-    console.log(`ok   ${name}`);
-  } catch (e) {
-    failed = true;
-    console.log(`FAIL ${name}\n${e.stack}`);
-  }
-}
+const { server, base, ready } = startServer(binary, 19000);
 
 try {
-  for (let i = 0; i < 100; ++i) {
-    try { if ((await fetch(base + "api/v1/health")).ok) break; } catch (e) { /* not yet */ }
-    await new Promise((r) => setTimeout(r, 100));
-  }
-  const browser = await chromium.launch({
-    executablePath: "/usr/bin/chromium",
-    args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-           "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-  });
+  await ready();
+  const browser = await launchBrowser();
   // Under the page's own policy (no bypassCSP): waits use selectors, not evaluated strings.
   const context = await browser.newContext({ acceptDownloads: true, viewport: { width: 1280, height: 1000 } });
   const page = await context.newPage();
@@ -92,9 +68,9 @@ try {
   await test("no page or console errors", async () => assert.deepEqual(errors, []));
   await browser.close();
 } catch (e) {
-  failed = true;
+  results.failed = true;
   console.log(e.stack);
 } finally {
   server.kill();
 }
-process.exit(failed ? 1 : 0);
+process.exit(results.failed ? 1 : 0);

@@ -6,38 +6,13 @@
 // state, the session lifecycle (reloads, expiry, a full server), the frame's size, embed mode,
 // phone layouts, a keyboard-only walk-through, a console free of errors.
 // Usage: node ui.test.mjs SPINFOLD_BINARY [SCREENSHOT_DIR]
-import { spawn } from "node:child_process";
-import { createRequire } from "node:module";
 import assert from "node:assert/strict";
 import path from "node:path";
-import { fileURLToPath } from "node:url";
 
-const require = createRequire(path.join(path.dirname(fileURLToPath(import.meta.url)), "../../web/package.json"));
-const { chromium } = require("playwright-core");
+import { launchBrowser, results, startServer, test } from "./harness.mjs";
 
 const [binary, screenshots] = process.argv.slice(2);
-const port = 18000 + (process.pid % 1000);
-const server = spawn(binary, ["serve", "--port", String(port), "--no-store"], { stdio: ["ignore", "pipe", "inherit"] });
-const base = `http://127.0.0.1:${port}/`;
-let failed = false;
-
-async function waitForServer() {
-  for (let i = 0; i < 100; ++i) {
-    try { if ((await fetch(base + "api/v1/health")).ok) return; } catch (e) { /* not yet */ }
-    await new Promise((r) => setTimeout(r, 100));
-  }
-  throw new Error("server did not start");
-}
-
-async function test(name, body) {
-  try {
-    await body();
-    console.log(`ok   ${name}`);
-  } catch (e) {
-    failed = true;
-    console.log(`FAIL ${name}\n${e.stack}`);
-  }
-}
+const { server, base, ready } = startServer(binary, 18000);
 
 const readoutT = (page) => page.$eval("#readout", (el) => Number(el.dataset.t));
 const health = async () => (await (await fetch(base + "api/v1/health")).json()).sessions;
@@ -54,12 +29,8 @@ function watchConsole(page, name, allowed = /status of 422/) {
 }
 
 try {
-  await waitForServer();
-  const browser = await chromium.launch({
-    executablePath: "/usr/bin/chromium",
-    args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-           "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-  });
+  await ready();
+  const browser = await launchBrowser();
   // The UI under its Content-Security-Policy: it loads, shows its thumbnails and frame (blob: URLs)
   // and plays (EventSource) without a violation. The page driven below bypasses the policy, because
   // playwright-core 1.49's waitForFunction evaluates strings in the page, which the policy forbids
@@ -83,7 +54,7 @@ try {
   });
 
   const page = await browser.newPage({ viewport: { width: 1280, height: 900 }, bypassCSP: true });
-  page.on("pageerror", (e) => { failed = true; console.log(`page error: ${e.stack}`); });
+  page.on("pageerror", (e) => { results.failed = true; console.log(`page error: ${e.stack}`); });
   watchConsole(page, "main page");
   await page.goto(base);
   await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });
@@ -219,7 +190,6 @@ try {
     const csv = await (await fetch(await page.$eval("#export-csv", (a) => a.href))).text();
     assert.match(csv.split("\n")[0], /^t,r,phi/);
   });
-
 
   await test("a refused value's message is cleared by the next good edit", async () => {
     await openAdvanced(page);
@@ -674,9 +644,9 @@ try {
   }
   await browser.close();
 } catch (e) {
-  failed = true;
+  results.failed = true;
   console.log(e.stack);
 } finally {
   server.kill();
 }
-process.exit(failed ? 1 : 0);
+process.exit(results.failed ? 1 : 0);
