@@ -53,7 +53,7 @@ template <typename Field>
 json property(const Field& field) {
   using T = typename Field::Value;
   if constexpr (std::is_same_v<T, double> || OptionalNumber<T>) {
-    json n{{"type", "number"}};
+    json n{{"type", "number"}, {"title", field.label}};
     if constexpr (std::is_same_v<T, double>) n["default"] = field.fallback();  // an optional one has none
     n["description"] = field.description;
     n["x-unit"] = field.unit;
@@ -106,7 +106,8 @@ json scene_schema() {
   json& inertia = top["properties"]["body"]["properties"][std::string(kInertiaKey)];
   json number = inertia;
   const json row = {{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 2}, {"maxItems", 2}};
-  inertia = {{"description", number["description"]},
+  inertia = {{"title", number["title"]},
+             {"description", number["description"]},
              {"x-unit", number["x-unit"]},
              {"default", number["default"]},
              {"oneOf",

@@ -1,7 +1,8 @@
 // The scene's vocabulary, named once: for every parameter struct of engine/scene.h one table of its
-// fields (JSON key, member, unit, allowed range, one-line description; the default is the struct's
-// own in-class default), and for every enumerated field one table of its names. The JSON reader and
-// writer, the JSON Schema and the validator all iterate these tables. Plain data, no JSON.
+// fields (JSON key, member, label, unit, allowed range, one-line description; the default is the
+// struct's own in-class default), and for every enumerated field one table of its names. The JSON reader and
+// writer, the JSON Schema and the validator all iterate these tables, and the browser UI takes its
+// labels, units and help text from the schema. Plain data, no JSON.
 //
 // A table is a std::tuple of Field<Struct, Value>, so that each field keeps its value type; walk
 // one with for_each_field. The rules that tie several fields together (a rigid body needs
@@ -131,11 +132,14 @@ template <typename S, typename T>
 struct Field {
   using Struct = S;
   using Value = T;
-  std::string_view name;         // the key in the scene JSON
-  T S::*member;                  // where the value lives
-  std::string_view unit;         // numbers: the unit ("1": a pure number); the schema's x-unit
+  std::string_view name;  // the key in the scene JSON
+  T S::*member;           // where the value lives
+  // numbers: the unit, the schema's x-unit, in the dimensions mass, length, time ("energy" is
+  // mass·length²/time²; "1": a pure number; the stretches λ, μ are pure numbers, so J is a moment
+  // of inertia and the deformation potentials' coefficients are energies: physics.md §3, §5)
+  std::string_view unit;
   Range range;                   // numbers: the allowed values
-  std::string_view description;  // one line
+  std::string_view description;  // one line: what it does in words, then its formula
   std::string_view range_note;   // numbers: why the range, appended to its message ("" for none)
   TextRule text_rule = TextRule::any;
   // Optional numbers: the fields of S that this one stands in for when set (a scene gives one or
@@ -143,23 +147,27 @@ struct Field {
   // none: given alone).
   std::array<std::string_view, 2> replaces{};
   std::string_view partner{};
+  std::string_view label{};  // numbers: a short name for people, the schema's title ("Spin s")
 
   // The default: the struct's own in-class default.
   T fallback() const { return S{}.*member; }
 };
 
 template <typename S>
-constexpr Field<S, double> number_field(std::string_view name, double S::*member, std::string_view unit,
-                                        Range range, std::string_view description,
+constexpr Field<S, double> number_field(std::string_view name, double S::*member, std::string_view label,
+                                        std::string_view unit, Range range, std::string_view description,
                                         std::string_view range_note = {}) {
-  return {name, member, unit, range, description, range_note};
+  return {name, member, unit, range, description, range_note, TextRule::any, {}, {}, label};
 }
 // An optional number in place of the fields `replaces` (see Field), given together with `partner`.
 template <typename S>
-constexpr Field<S, std::optional<double>> optional_number_field(
-    std::string_view name, std::optional<double> S::*member, std::string_view unit, Range range,
-    std::string_view description, std::array<std::string_view, 2> replaces, std::string_view partner = {}) {
-  return {name, member, unit, range, description, {}, TextRule::any, replaces, partner};
+constexpr Field<S, std::optional<double>> optional_number_field(std::string_view name,
+                                                                std::optional<double> S::*member,
+                                                                std::string_view label, std::string_view unit,
+                                                                Range range, std::string_view description,
+                                                                std::array<std::string_view, 2> replaces,
+                                                                std::string_view partner = {}) {
+  return {name, member, unit, range, description, {}, TextRule::any, replaces, partner, label};
 }
 template <typename S, typename T>
 constexpr Field<S, T> value_field(std::string_view name, T S::*member, std::string_view description,
@@ -171,11 +179,14 @@ constexpr Field<S, T> value_field(std::string_view name, T S::*member, std::stri
 
 inline constexpr std::tuple kSurfaceFields{
     value_field("kind", &Surface::kind, "the surface: sphere, pseudosphere or plane"),
-    number_field("radius", &Surface::radius, "length", kPositive, "R (the plane's length scale)"),
-    optional_number_field("curvature", &Surface::curvature_given, "1/length^2", kAnyNumber,
-                          "K instead of kind and radius: > 0 sphere of radius 1/sqrt(K), 0 plane, < 0 "
-                          "pseudosphere of radius 1/sqrt(-K); changed mid-run it continues through 0",
-                          {"kind", "radius"}),
+    number_field("radius", &Surface::radius, "Surface radius R", "length", kPositive,
+                 "the size of the surface: curvature K = +1/R² on the sphere, −1/R² on the pseudosphere; a "
+                 "larger radius is a flatter surface (on the plane only a length scale)"),
+    optional_number_field(
+        "curvature", &Surface::curvature_given, "Curvature K", "1/length²", kAnyNumber,
+        "K instead of kind and radius: K > 0 a sphere of radius 1/√K, 0 the flat plane, K < 0 "
+        "the pseudosphere of radius 1/√−K; changed mid-run it continues through 0",
+        {"kind", "radius"}),
 };
 
 // body.inertia: the number below (isotropic J), or a symmetric positive-definite matrix
@@ -184,31 +195,39 @@ inline constexpr std::tuple kSurfaceFields{
 inline constexpr std::string_view kInertiaKey = "inertia";
 
 inline constexpr std::tuple kBodyFields{
-    number_field("mass", &Body::mass, "mass", kPositive, "m"),
+    number_field("mass", &Body::mass, "Mass m", "mass", kPositive, "the body's mass m"),
     number_field(
-        kInertiaKey, &Body::inertia, "mass length^2", kPositive,
+        kInertiaKey, &Body::inertia, "Inertia J", "mass·length²", kPositive,
         "J: a number (isotropic) or a symmetric positive-definite 2x2 matrix [[J11, J12], [J12, J22]] "
-        "in the body frame"),
+        "in the body frame; the kinetic energy of deformation is J/2 ‖L̇‖² with L a pure number"),
     value_field("model", &Body::model, "affine (L free), rigid (gyroscope) or incompressible (det L fixed)"),
 };
 
+// g's unit depends on the surface: the paper's normalisations (physics.md §5, §9.7) divide g by the
+// pure number sin²(r/R) on S² but by the area R² sinh²(r/R) on H² and r² on the plane.
 inline constexpr std::tuple kRadialPotentialFields{
-    number_field("gamma", &RadialPotential::gamma, "energy", kNonNegative,
-                 "g: V_r = g/sin^2(r/R) (S2), g/(R^2 sinh^2(r/R)) (H2), g/r^2 (plane)",
+    number_field("gamma", &RadialPotential::gamma, "Push from the pole g",
+                 "energy (sphere); energy·length² (pseudosphere, plane)", kNonNegative,
+                 "keeps the body away from the pole, 0: none. V_r = g/sin²(r/R) on the sphere, "
+                 "g/(R² sinh²(r/R)) on the pseudosphere, g/r² on the plane",
                  "a negative g lets the body fall into a pole, which is not supported"),
 };
 
 inline constexpr std::tuple kAbcPotentialFields{
-    number_field("A", &AbcPotential::A, "energy", kNonNegative, "A/x^2 barrier at lambda = mu"),
-    number_field("B", &AbcPotential::B, "energy", kNonNegative, "B/y^2 barrier at lambda = -mu"),
-    number_field("C", &AbcPotential::C, "energy", kAnyNumber, "isotonic C (x^2 + y^2)"),
+    number_field("A", &AbcPotential::A, "Barrier A", "energy", kNonNegative,
+                 "A/x²: a barrier at x = 0, where λ = μ (the body a scaled rotation)"),
+    number_field("B", &AbcPotential::B, "Barrier B", "energy", kNonNegative,
+                 "B/y²: a barrier at y = 0, where λ = −μ"),
+    number_field("C", &AbcPotential::C, "Shape spring C", "energy", kAnyNumber,
+                 "pulls the ellipse back towards its reference size, so the body breathes: C(x² + y²) = "
+                 "C(λ² + μ²)"),
 };
 
 inline constexpr std::tuple kPolarPotentialFields{
-    number_field("ghat", &PolarPotential::ghat, "energy", kAnyNumber,
-                 "angular coefficient g-hat of W(epsilon)"),
-    number_field("gtilde", &PolarPotential::gtilde, "energy", kAnyNumber,
-                 "radial coefficient g-tilde / varsigma"),
+    number_field("ghat", &PolarPotential::ghat, "Angular coefficient ĝ", "energy", kAnyNumber,
+                 "the angular part W(ε)/ς² of the polar potential: W = ĝ cot²(2ε) (cot2)"),
+    number_field("gtilde", &PolarPotential::gtilde, "Radial coefficient g̃", "energy", kAnyNumber,
+                 "the radial part g̃/ς of the polar potential, ς² = λ² + μ²"),
     value_field("form", &PolarPotential::form, "W(epsilon): cot2 (the paper's action variable) or literal"),
 };
 
@@ -219,40 +238,48 @@ inline constexpr std::tuple kPotentialsFields{
 };
 
 inline constexpr std::tuple kInitialStateFields{
-    number_field("r", &InitialState::r, "length", kNonNegative,
+    number_field("r", &InitialState::r, "Distance r", "length", kNonNegative,
                  "geodesic distance from the pole (<= pi R on the sphere)",
                  "geodesic distance from the pole"),
-    number_field("phi", &InitialState::phi, "rad", kAnyNumber, "polar angle"),
-    number_field("alpha", &InitialState::alpha, "rad", kAnyNumber,
-                 "left rotation angle of L = U(alpha) diag(lambda, mu) U(beta)^T"),
-    number_field("beta", &InitialState::beta, "rad", kAnyNumber, "right rotation angle"),
-    number_field("lambda", &InitialState::lambda, "1", kPositive, "first stretch (the rigid body's scale)"),
-    number_field("mu", &InitialState::mu, "1", kPositive, "second stretch (= lambda for a rigid body)"),
-    number_field("r_dot", &InitialState::r_dot, "length/time", kAnyNumber, "rate of r"),
-    number_field("phi_dot", &InitialState::phi_dot, "rad/time", kAnyNumber, "rate of phi"),
-    number_field("alpha_dot", &InitialState::alpha_dot, "rad/time", kAnyNumber, "rate of alpha"),
-    number_field("beta_dot", &InitialState::beta_dot, "rad/time", kAnyNumber, "rate of beta"),
-    number_field("lambda_dot", &InitialState::lambda_dot, "1/time", kAnyNumber,
+    number_field("phi", &InitialState::phi, "Polar angle φ", "rad", kAnyNumber, "polar angle"),
+    number_field("alpha", &InitialState::alpha, "Rotation α", "rad", kAnyNumber,
+                 "left rotation angle of L = U(α) diag(λ, μ) U(β)ᵀ"),
+    number_field("beta", &InitialState::beta, "Rotation β", "rad", kAnyNumber, "right rotation angle"),
+    number_field("lambda", &InitialState::lambda, "Stretch λ", "1", kPositive,
+                 "the ellipse's first axis relative to the reference body (L = U(α) diag(λ, μ) U(β)ᵀ); "
+                 "a rigid body's size"),
+    number_field("mu", &InitialState::mu, "Stretch μ", "1", kPositive,
+                 "the ellipse's second axis relative to the reference body (= λ for a rigid body)"),
+    number_field("r_dot", &InitialState::r_dot, "Rate ṙ", "length/time", kAnyNumber, "rate of r"),
+    number_field("phi_dot", &InitialState::phi_dot, "Rate φ̇", "rad/time", kAnyNumber, "rate of phi"),
+    number_field("alpha_dot", &InitialState::alpha_dot, "Rate α̇", "rad/time", kAnyNumber, "rate of alpha"),
+    number_field("beta_dot", &InitialState::beta_dot, "Rate β̇", "rad/time", kAnyNumber, "rate of beta"),
+    number_field("lambda_dot", &InitialState::lambda_dot, "Rate λ̇", "1/time", kAnyNumber,
                  "rate of lambda (0 for a rigid body)"),
-    number_field("mu_dot", &InitialState::mu_dot, "1/time", kAnyNumber, "rate of mu (0 for a rigid body)"),
-    optional_number_field("spin", &InitialState::spin, "mass length^2/time", kAnyNumber,
-                          "s = p_alpha = J[(lambda^2 + mu^2)(alpha_dot + C phi_dot) - 2 lambda mu beta_dot], "
-                          "instead of alpha_dot",
+    number_field("mu_dot", &InitialState::mu_dot, "Rate μ̇", "1/time", kAnyNumber,
+                 "rate of mu (0 for a rigid body)"),
+    optional_number_field("spin", &InitialState::spin, "Spin s", "mass·length²/time", kAnyNumber,
+                          "how fast the body turns about itself, measured against parallel transport (0: a "
+                          "geodesic without potentials): s = J[(λ² + μ²)(α̇ + C(r) φ̇) − 2λμ β̇], instead of "
+                          "alpha_dot",
                           {"alpha_dot"}),
-    optional_number_field("speed", &InitialState::speed, "length/time", kNonNegative,
-                          "v = sqrt(r_dot^2 + S^2 phi_dot^2), with heading instead of r_dot and phi_dot",
+    optional_number_field("speed", &InitialState::speed, "Speed v", "length/time", kNonNegative,
+                          "how fast the body moves along the surface at the start: v = √(ṙ² + S² φ̇²), with "
+                          "heading instead of r_dot and phi_dot",
                           {"r_dot", "phi_dot"}, "heading"),
-    optional_number_field("heading", &InitialState::heading, "rad", kAnyNumber,
-                          "angle of the velocity from d/dr towards (1/S) d/dphi, with speed",
+    optional_number_field("heading", &InitialState::heading, "Heading", "rad", kAnyNumber,
+                          "the start velocity's direction: 0 straight away from the pole, π/2 sideways "
+                          "(increasing φ); with speed",
                           {"r_dot", "phi_dot"}, "speed"),
 };
 
 inline constexpr std::tuple kIntegratorSettingsFields{
     value_field("name", &IntegratorSettings::name, "a catalog name, or auto: the engine chooses",
                 TextRule::integrator_name),
-    number_field("dt", &IntegratorSettings::dt, "time", kPositive, "step (fixed-step) or first trial step"),
-    number_field("tolerance", &IntegratorSettings::tolerance, "1", Range{.min = 1e-15, .max = 1e-2},
-                 "error per step (adaptive)"),
+    number_field("dt", &IntegratorSettings::dt, "Step dt", "time", kPositive,
+                 "step (fixed-step) or first trial step"),
+    number_field("tolerance", &IntegratorSettings::tolerance, "Tolerance", "1",
+                 Range{.min = 1e-15, .max = 1e-2}, "error per step (adaptive)"),
 };
 
 inline constexpr std::tuple kSceneFields{

@@ -39,10 +39,15 @@ else
   echo "setup: all packages present"
 fi
 
-# The web UI's npm packages (uPlot, served to the browser; playwright-core, for the browser tests),
-# from the npm registry, pinned by web/package-lock.json.
+# The web UI's npm packages (uPlot, served to the browser; playwright-core and @axe-core/playwright,
+# for the browser tests; @seriousme/openapi-schema-validator and ajv, for the OpenAPI check), from
+# the npm registry, pinned by web/package-lock.json. Installed again when any of them is missing.
 root=$(cd "$(dirname "$0")/.." && pwd)
-if [[ ! -d "$root/web/node_modules/uplot" || ! -d "$root/web/node_modules/playwright-core" ]]; then
-  echo "setup: installing the web UI's npm packages"
+missing=""
+for package in uplot playwright-core @axe-core/playwright @seriousme/openapi-schema-validator ajv; do
+  [[ -d "$root/web/node_modules/$package" ]] || missing="$missing $package"
+done
+if [[ -n "$missing" ]]; then
+  echo "setup: installing the web UI's npm packages (missing:$missing)"
   (cd "$root/web" && npm ci --no-audit --no-fund)
 fi

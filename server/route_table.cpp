@@ -125,11 +125,11 @@ ordered_json parameter_schema(const QueryParam& p) {
   if (p.type == ParamType::enumeration) schema["enum"] = p.values;
   if (p.type == ParamType::list)
     schema["pattern"] = "^(" + joined(p.values, "|") + "|)(,(" + joined(p.values, "|") + "|))*$";
-  if (p.type == ParamType::number && p.exclusive_minimum && p.minimum) schema["exclusiveMinimum"] = true;
   const auto bound = [&](double x) {
     return p.type == ParamType::integer ? ordered_json(static_cast<long long>(x)) : ordered_json(x);
   };
-  if (p.minimum) schema["minimum"] = bound(*p.minimum);
+  // JSON Schema 2020-12 (OpenAPI 3.1): an exclusive bound is a number, not a flag on minimum.
+  if (p.minimum) schema[p.exclusive_minimum ? "exclusiveMinimum" : "minimum"] = bound(*p.minimum);
   if (p.maximum) schema["maximum"] = bound(*p.maximum);
   if (p.default_value) std::visit([&](const auto& v) { schema["default"] = v; }, *p.default_value);
   if (!p.unit.empty()) schema["x-unit"] = p.unit;
@@ -350,6 +350,9 @@ void register_routes(httplib::Server& http, ServerContext& server, const std::ve
 // ---- The OpenAPI document.
 
 ordered_json openapi_document(const std::vector<Route>& routes) {
+  const ordered_json problem_ref{{"$ref", "#/components/schemas/Problem"}};
+  const ordered_json retry_after{{"description", "seconds to wait before trying again"},
+                                 {"schema", {{"type", "integer"}, {"minimum", 0}}}};
   ordered_json paths = ordered_json::object();
   for (const Route& route : routes) {
     const bool has_id = route.path.find("{id}") != std::string::npos;
@@ -370,9 +373,14 @@ ordered_json openapi_document(const std::vector<Route>& routes) {
     add(429, "over this client's request rate (limits.requests_per_second_per_client); Retry-After");
     std::sort(responses.begin(), responses.end());
     ordered_json answers = ordered_json::object();
-    for (const auto& [status, description] : responses)
-      answers[std::to_string(status)] = {{"description", description}};
-    ordered_json operation{{"summary", route.summary}};
+    for (const auto& [status, description] : responses) {
+      ordered_json answer{{"description", description}};
+      // Every error is written by send_error (server/problem.cpp): RFC 9457 problem+json.
+      if (status >= 400) answer["content"] = {{"application/problem+json", {{"schema", problem_ref}}}};
+      if (status == 429 || status == 503) answer["headers"] = {{"Retry-After", retry_after}};
+      answers[std::to_string(status)] = answer;
+    }
+    ordered_json operation{{"operationId", route.operation_id}, {"summary", route.summary}};
     ordered_json parameters = ordered_json::array();
     if (has_id)
       parameters.push_back(
@@ -402,20 +410,42 @@ ordered_json openapi_document(const std::vector<Route>& routes) {
                    [](unsigned char c) { return std::tolower(c); });
     paths[route.path][method] = operation;
   }
-  const ordered_json text{{"type", "string"}};
-  const ordered_json field_error{{"type", "object"},
-                                 {"properties", {{"field", text}, {"value", text}, {"reason", text}}}};
-  const ordered_json problem{{"type", "object"},
-                             {"properties",
-                              {{"type", text},
-                               {"title", text},
-                               {"status", {{"type", "integer"}}},
-                               {"detail", text},
-                               {"errors", {{"type", "array"}, {"items", field_error}}}}}};
+  // What send_error writes (server/problem.cpp), every member always present.
+  const ordered_json field_error{
+      {"type", "object"},
+      {"required", {"field", "value", "reason"}},
+      {"properties",
+       {{"field",
+         {{"type", "string"},
+          {"description", "the field, parameter or header refused (\"\" for the whole request)"}}},
+        {"value", {{"type", "string"}, {"description", "the value given, as text (\"\" when none)"}}},
+        {"reason", {{"type", "string"}, {"description", "why it is refused"}}}}}};
+  const ordered_json problem{
+      {"type", "object"},
+      {"description", "An error (RFC 9457 problem details) naming each field, value and reason"},
+      {"required", {"type", "title", "status", "detail", "errors"}},
+      {"properties",
+       {{"type", {{"type", "string"}, {"const", "about:blank"}}},
+        {"title", {{"type", "string"}, {"description", "the kind of error, e.g. Invalid value"}}},
+        {"status", {{"type", "integer"}, {"minimum", 400}, {"maximum", 599}}},
+        {"detail",
+         {{"type", "string"},
+          {"description", "each error as \"field: reason (got value)\", joined by \"; \""}}},
+        {"errors", {{"type", "array"}, {"items", field_error}}}}}};
   const ordered_json components{{"schemas", {{"Scene", scene_schema()}, {"Problem", problem}}}};
-  return {{"openapi", "3.0.3"},
-          {"info", {{"title", "Spinfold API"}, {"version", "1"}}},
+  return {{"openapi", "3.1.0"},
+          {"jsonSchemaDialect", "https://json-schema.org/draft/2020-12/schema"},
+          {"info",
+           {{"title", "Spinfold API"},
+            {"version", "1"},
+            {"description",
+             "Simulate an affinely-rigid body on a surface of constant curvature and draw it. There is "
+             "no authentication: session and recording ids (22 characters of base64url, 128 random "
+             "bits) are capabilities. They cannot be guessed, and whoever holds one can read, change "
+             "and delete what it names, so share an id only with those who may. Errors are "
+             "application/problem+json (RFC 9457)."}}},
           {"servers", {{{"url", "/"}}}},
+          {"security", ordered_json::array()},
           {"paths", paths},
           {"components", components}};
 }

@@ -91,6 +91,9 @@ using Handler = void (*)(ServerContext& server, const Call& call, httplib::Respo
 struct Route {
   std::string method{};  // "GET", "POST", "PATCH" or "DELETE"
   std::string path{};    // OpenAPI style: "/api/v1/sessions/{id}/frame.png"
+  // The OpenAPI operationId: a snake_case verb and noun (create_session, get_frame), unique and
+  // stable (generated clients name their methods by it). The web assets' ids are made from their paths.
+  std::string operation_id{};
   Handler handler = nullptr;
   std::string summary{};               // one line, for the OpenAPI document
   std::vector<QueryParam> query{};     // every query parameter the route takes
@@ -123,7 +126,8 @@ void register_routes(httplib::Server& http, ServerContext& server, const std::ve
 // type or out of range are ApiError 422 naming the parameter, the value and the reason.
 Query parse_query(const Route& route, const httplib::Request& req);
 
-// The OpenAPI 3 document of the table: every operation with its query parameters and schemas.
+// The OpenAPI 3.1 document of the table: every operation (its operationId, query parameters, body
+// schema, answers; every error as application/problem+json of the shared Problem schema).
 nlohmann::ordered_json openapi_document(const std::vector<Route>& routes);
 
 }  // namespace spinfold::server

@@ -1,5 +1,8 @@
 // What the API describes about itself: health, the presets, the integrators, the scene schema,
 // this API (OpenAPI), and the browser UI's files.
+#include <cctype>
+#include <string_view>
+
 #include "codec/presets.h"
 #include "codec/scene_json.h"
 #include "codec/scene_schema.h"
@@ -83,12 +86,21 @@ void get_web_asset(ServerContext&, const Call& call, httplib::Response& res) {
   res.set_header("Content-Type", std::string(asset->content_type));
 }
 
+// "/" → get_web_index, "/vendor/uPlot.esm.js" → get_web_vendor_uplot_esm_js.
+std::string asset_operation_id(std::string_view path) {
+  std::string id = "get_web";
+  for (const char c : path == "/" ? std::string_view("/index") : path)
+    id += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '_';
+  return id;
+}
+
 }  // namespace
 
 std::vector<Route> catalog_routes(const Limits&) {
   std::vector<Route> routes = {
       {.method = "GET",
        .path = "/api/v1/health",
+       .operation_id = "get_health",
        .handler = get_health,
        .summary = "Liveness, version, session count and open event and live streams",
        .responses = {{200,
@@ -96,29 +108,34 @@ std::vector<Route> catalog_routes(const Limits&) {
                       "\"render_threads_started\"}"}}},
       {.method = "GET",
        .path = "/api/v1/scenes",
+       .operation_id = "list_scenes",
        .handler = get_scenes,
        .summary = "The preset scenes",
        .responses = {{200, "name, description, scene"}}},
       {.method = "GET",
        .path = "/api/v1/integrators",
+       .operation_id = "list_integrators",
        .handler = get_integrators,
        .summary = "The integrator catalog",
        .responses = {{200, "name, order, symplectic, adaptive, exact, summary"}}},
       {.method = "GET",
        .path = "/api/v1/views",
+       .operation_id = "list_views",
        .handler = get_views,
        .summary = "The views a frame can be drawn in, the surfaces each shows, in the UI's order",
        .responses = {{200, "name, title, surfaces, three_d, description"}}},
       {.method = "GET",
        .path = "/api/v1/schema",
+       .operation_id = "get_scene_schema",
        .handler = get_schema,
        .summary = "The scene format as JSON Schema (defaults, units, limits)",
        .responses = {{200, "JSON Schema"}}},
       {.method = "GET",
        .path = "/api/v1/openapi.json",
+       .operation_id = "get_openapi_document",
        .handler = get_openapi,
        .summary = "This document",
-       .responses = {{200, "OpenAPI 3"}}},
+       .responses = {{200, "OpenAPI 3.1"}}},
   };
   // The browser UI, embedded at build time.
   for (const auto& [path, summary] :
@@ -131,6 +148,7 @@ std::vector<Route> catalog_routes(const Limits&) {
         std::pair{"/vendor/uPlot.min.css", "uPlot's style sheet"}})
     routes.push_back({.method = "GET",
                       .path = path,
+                      .operation_id = asset_operation_id(path),
                       .handler = get_web_asset,
                       .summary = summary,
                       .ignores_unknown_query = true,

@@ -50,6 +50,7 @@ std::vector<Route> event_routes(const Limits& limits) {
   return {
       {.method = "GET",
        .path = "/api/v1/sessions/{id}/events",
+       .operation_id = "stream_events",
        .handler = get_events,
        .summary = "Server-Sent Events: `event: state` with the state whenever it changed; at most " +
                   std::to_string(limits.max_streams) + " open streams",

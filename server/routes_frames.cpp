@@ -48,6 +48,7 @@ void get_frame_jpeg(ServerContext& server, const Call& call, httplib::Response& 
 std::vector<Route> frame_routes(const Limits& limits) {
   Route png{.method = "GET",
             .path = "/api/v1/sessions/{id}/frame.png",
+            .operation_id = "get_frame",
             .handler = get_frame,
             .summary = "A PNG frame of the session's state; ETag, If-None-Match → 304",
             .query = frame_params(limits),
@@ -57,6 +58,7 @@ std::vector<Route> frame_routes(const Limits& limits) {
                           {503, "rendering unavailable; Retry-After"}}};
   Route jpeg = png;
   jpeg.path = "/api/v1/sessions/{id}/frame.jpg";
+  jpeg.operation_id = "get_frame_jpeg";
   jpeg.handler = get_frame_jpeg;
   jpeg.summary =
       "The same frame as a JPEG (motion frames: a third of the PNG's bytes); ETag, If-None-Match → 304";

@@ -251,6 +251,7 @@ std::vector<Route> live_routes(const Limits& limits) {
                               "…/live?viewer= steers this stream"};
   Route get{.method = "GET",
             .path = "/api/v1/sessions/{id}/live",
+            .operation_id = "stream_live",
             .handler = get_live,
             .summary =
                 "A live stream of frames (multipart/x-mixed-replace): JPEG while the session plays or the "
@@ -274,6 +275,7 @@ std::vector<Route> live_routes(const Limits& limits) {
 
   Route patch{.method = "PATCH",
               .path = "/api/v1/sessions/{id}/live",
+              .operation_id = "steer_live",
               .handler = patch_live,
               .summary =
                   "Steers a live stream: the frame parameters given replace the stream's (the others "

@@ -222,6 +222,7 @@ std::vector<Route> recording_routes(const Limits& limits) {
   return {
       {.method = "POST",
        .path = "/api/v1/sessions/{id}/recordings",
+       .operation_id = "create_recording",
        .handler = create_recording,
        .summary = "Record a time window of the session (a copy of its timeline; the session is not "
                   "changed) as GIF, WebM, MP4 or a zip of PNGs: 202 and the recording",
@@ -231,12 +232,14 @@ std::vector<Route> recording_routes(const Limits& limits) {
                      {429, "over max_recordings_per_client, max_recordings or max_recording_disk_bytes"}}},
       {.method = "GET",
        .path = kRecordings + "/{id}",
+       .operation_id = "get_recording",
        .handler = get_recording,
        .summary = "A recording's status (queued, running, done, failed with a reason, cancelled) and "
                   "progress 0…1",
        .responses = {{200, "the recording"}, {404, "unknown recording"}}},
       {.method = "GET",
        .path = kRecordings + "/{id}/file",
+       .operation_id = "get_recording_file",
        .handler = get_recording_file,
        .summary = "The recorded file, with its content type and a download file name",
        .responses = {{200, "image/gif, video/webm, video/mp4 or application/zip"},
@@ -244,6 +247,7 @@ std::vector<Route> recording_routes(const Limits& limits) {
                      {409, "not done yet, or failed"}}},
       {.method = "DELETE",
        .path = kRecordings + "/{id}",
+       .operation_id = "delete_recording",
        .handler = delete_recording,
        .summary = "Cancels a queued or running recording (200, status cancelled), or deletes a "
                   "finished one and its file (204)",

@@ -756,7 +756,30 @@ async function applyChange(patch, rebuild = false) {
 
 // ---- Physical controls first: each a slider and a number, its unit in words, a one-line
 // explanation shown on hover and focus. The paper's coordinates are in the advanced panel.
+// Label, unit and explanation come from the scene's JSON Schema (title, x-unit, description: the
+// engine's field table, engine/scene_fields.h), never from a table of the UI's own.
 const degree = Math.PI / 180;
+
+// A scene field's schema by its path ("potential.deformation.C": the abc branch's).
+function schemaField(path) {
+  const [section, ...rest] = path.split(".");
+  let spec = ui.schema.properties[section];
+  for (const key of rest) {
+    if (key !== "deformation" && spec.oneOf) spec = spec.oneOf.find((b) => b.properties?.kind?.const === "abc");
+    spec = spec.properties[key];
+  }
+  return spec;
+}
+
+// How a schema unit is shown: a pure number ("1") says so; an angle the UI shows in degrees.
+const displayUnit = (unit) => ({ "1": "pure number", rad: "degrees" })[unit] ?? unit;
+
+// The label, unit and help of a physical row from the schema.
+function described(path) {
+  const spec = schemaField(path);
+  return { field: path, label: spec.title, unit: displayUnit(spec["x-unit"]), help: spec.description };
+}
+
 function physicalRows() {
   const initial = ui.current.initial, start = ui.start ?? {};
   const rigid = ui.current.body.model === "rigid";
@@ -764,45 +787,36 @@ function physicalRows() {
   const kind = surfaceKind();
   const speedHeading = (speed, heading) => ({ initial: { speed, heading } });
   const rows = [
-    { key: "spin", label: "Spin s", unit: "mass·length²/time", min: -3, max: 3, step: 0.05, restarts: true,
-      help: "How fast the body turns about itself, measured against parallel transport. 0: no spin (a geodesic without potentials).",
+    { key: "spin", ...described("initial.spin"), min: -3, max: 3, step: 0.05, restarts: true,
       value: initial.spin ?? start.spin, patch: (v) => ({ initial: { spin: v } }) },
-    { key: "speed", label: "Speed v", unit: "length/time", min: 0, max: 3, step: 0.05, restarts: true,
-      help: "How fast the body moves along the surface at the start.",
+    { key: "speed", ...described("initial.speed"), min: 0, max: 3, step: 0.05, restarts: true,
       value: initial.speed ?? start.speed, patch: (v) => speedHeading(v, initial.heading ?? start.heading ?? Math.PI / 2) },
-    { key: "heading", label: "Heading", unit: "degrees", min: -180, max: 180, step: 1, restarts: true,
-      help: "Direction of the start velocity: 0° straight away from the pole, 90° sideways (increasing φ).",
+    { key: "heading", ...described("initial.heading"), min: -180, max: 180, step: 1, restarts: true,
       value: (initial.heading ?? start.heading ?? undefined) === undefined ? undefined : (initial.heading ?? start.heading) / degree,
       patch: (v) => speedHeading(initial.speed ?? start.speed ?? 0.5, v * degree) },
-    { key: "lambda", label: rigid ? "Size λ (= μ, rigid)" : "Stretch λ", unit: "× rest size", min: 0.2, max: 3, step: 0.05, restarts: true,
-      help: rigid ? "The rigid body's size: both axes of the ellipse scale together." : "Length of the ellipse's first axis relative to the body at rest.",
+    { key: "lambda", ...described("initial.lambda"), min: 0.2, max: 3, step: 0.05, restarts: true,
       value: initial.lambda ?? start.lambda, patch: (v) => ({ initial: rigid ? { lambda: v, mu: v } : { lambda: v } }) },
   ];
   if (!rigid)
-    rows.push({ key: "mu", label: "Stretch μ", unit: "× rest size", min: 0.2, max: 3, step: 0.05, restarts: true,
-                help: "Length of the ellipse's second axis relative to the body at rest.",
+    rows.push({ key: "mu", ...described("initial.mu"), min: 0.2, max: 3, step: 0.05, restarts: true,
                 value: initial.mu ?? start.mu, patch: (v) => ({ initial: { mu: v } }) });
   // The curvature dial: one slider from the sphere through the plane to the hyperbolic plane. The
   // run continues through K = 0 (the body keeps its place, velocity and frame); the picture
   // switches to the conformal view, the one view that exists on every surface and is continuous in K.
   const byK = curvatureForm();
   rows.push(
-    { key: "curvature", label: "Curvature K", unit: "1/length²", min: -2, max: 2, step: 0.01, live: true,
-      help: "K > 0 a sphere, 0 the flat plane, K < 0 the hyperbolic plane; changes live, the run continues through 0.",
+    { key: "curvature", ...described("surface.curvature"), min: -2, max: 2, step: 0.01, live: true,
       value: curvatureOf(), before: showConformal,
       patch: (v) => ({ surface: { curvature: v, kind: null, radius: null } }) },
-    { key: "radius", label: "Surface radius R", unit: "length", min: 0.25, max: 5, step: 0.05, disabled: byK,
-      help: byK ? (kind === "plane" ? "From the curvature: K = 0 is the flat plane, which has no radius."
-                                    : `From the curvature: R = 1/√|K|. To set R, pick the surface above.`)
-        : kind === "plane" ? "On the flat plane only a length scale (no curvature)."
-                           : `Curvature K = ${kind === "sphere" ? "+" : "−"}1/R²: a larger radius is a flatter surface.`,
+    { key: "radius", ...described("surface.radius"), min: 0.25, max: 5, step: 0.05, disabled: byK,
+      // Derived from K, the row says so before the field's own description.
+      note: byK ? (kind === "plane" ? "From the curvature: K = 0 is the flat plane, which has no radius."
+                                    : "From the curvature: R = 1/√|K|. To set R, pick the surface above.") : "",
       value: radiusOf(), placeholder: "none", patch: (v) => ({ surface: { radius: v } }) },
-    { key: "gamma", label: "Push from the pole g", unit: "energy × length²", min: 0, max: 1, step: 0.01,
-      help: "Radial potential V = g / sin²(r/R): keeps the body away from the pole. 0: none.",
+    { key: "gamma", ...described("potential.radial.gamma"), min: 0, max: 1, step: 0.01,
       value: ui.current.potential?.radial?.gamma ?? 0, patch: (v) => ({ potential: { radial: { gamma: v } } }) });
   if (!rigid && (!deformation || deformation.kind === "abc"))
-    rows.push({ key: "C", label: "Shape spring C", unit: "energy/length²", min: 0, max: 5, step: 0.05,
-                help: "Pulls the ellipse back towards its rest size (V = C(x² + y²)): the body breathes.",
+    rows.push({ key: "C", ...described("potential.deformation.C"), min: 0, max: 5, step: 0.05,
                 value: deformation?.C ?? 0, patch: (v) => ({ potential: { deformation: { kind: "abc", C: v } } }) });
   // (In the conformal view the size is in lengths, so the picture does not change with K.)
   rows.push({ key: "scale", label: "Body size on screen", unit: ui.view.kind === "conformal" ? "lengths" : "surface radii", min: 0.05, max: 1, step: 0.01, view: true,
@@ -837,6 +851,7 @@ function physicalRow(spec) {
   const row = document.createElement("div");
   row.className = "phys";
   row.dataset.key = spec.key;
+  if (spec.field) row.dataset.field = spec.field;  // the scene field it sets (its schema describes it)
   const id = `phys-${spec.key}`;
   const label = document.createElement("label");
   label.htmlFor = id;
@@ -852,14 +867,15 @@ function physicalRow(spec) {
   const help = document.createElement("small");
   help.className = "help";
   help.id = `${id}-help`;
-  help.textContent = spec.help;
+  const helpText = () => (spec.note ? `${spec.note} ` : "") + spec.help;
+  help.textContent = helpText();
   const error = document.createElement("span");
   error.className = "error";
   error.id = `${id}-error`;
   error.setAttribute("role", "alert");
   for (const input of [range, number]) {
     input.setAttribute("aria-describedby", `${help.id} ${error.id}`);
-    input.title = spec.help;
+    input.title = helpText();
   }
   const show = (v) => {
     const known = v !== undefined && v !== null && Number.isFinite(Number(v));
@@ -898,9 +914,9 @@ function physicalRow(spec) {
   row.update = (next) => {
     spec = next;
     if (document.activeElement !== number && !sending) show(spec.value);
-    help.textContent = spec.help;
+    help.textContent = helpText();
     unit.textContent = spec.unit;
-    for (const input of [range, number]) input.title = spec.help;
+    for (const input of [range, number]) input.title = helpText();
     enable();
   };
   const apply = async (v) => {

@@ -193,6 +193,7 @@ TEST(SceneFieldsCodec, EveryFieldIsInTheSchemaAsInItsTable) {
       }
       EXPECT_EQ(p["x-unit"], std::string(field.unit)) << path;
       EXPECT_EQ(p["description"], std::string(field.description)) << path;
+      EXPECT_EQ(p["title"], std::string(field.label)) << path;
       const Range& r = field.range;
       const char* min_key = r.min_open ? "exclusiveMinimum" : "minimum";
       const char* max_key = r.max_open ? "exclusiveMaximum" : "maximum";

@@ -4,9 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <set>
+#include <string_view>
+#include <utility>
 
 #include "engine/integrator.h"
 #include "engine/validation.h"
@@ -51,6 +54,116 @@ TEST(SceneFields, EveryTableNamesEachFieldOnceAndDescribesIt) {
   // speed, heading), integrator 3, name, description, on_degenerate. A field added to a struct of
   // engine/scene.h goes into its table and this count.
   EXPECT_EQ(count, 34);
+}
+
+// ---- Units: the table's units obey the formulas of physics.md, checked by dimension.
+
+// Exponents of mass, length and time.
+using Dim = std::array<int, 3>;
+constexpr Dim kEnergy{1, 2, -2};
+
+Dim times(Dim a, Dim b, int power = 1) {
+  for (int i = 0; i < 3; ++i) a[i] += power * b[i];
+  return a;
+}
+
+// "mass·length²/time" → {1, 2, -1}. The vocabulary: mass, length, time, energy, rad and 1 (pure
+// numbers), with ² and ³, multiplied by · and divided by one /.
+Dim parse_unit(std::string_view unit) {
+  Dim d{0, 0, 0};
+  int sign = 1;
+  while (!unit.empty()) {
+    if (unit.starts_with("/")) {
+      sign = -1;
+      unit.remove_prefix(1);
+    } else if (unit.starts_with("·")) {
+      unit.remove_prefix(std::string_view("·").size());
+    }
+    Dim base{0, 0, 0};
+    bool known = false;
+    for (const auto& [name, dim] : {std::pair<std::string_view, Dim>{"mass", {1, 0, 0}},
+                                    {"length", {0, 1, 0}},
+                                    {"time", {0, 0, 1}},
+                                    {"energy", kEnergy},
+                                    {"rad", {0, 0, 0}},
+                                    {"1", {0, 0, 0}}})
+      if (unit.starts_with(name)) {
+        base = dim;
+        unit.remove_prefix(name.size());
+        known = true;
+        break;
+      }
+    if (!known) ADD_FAILURE() << "unknown unit at: " << unit;
+    if (!known) return d;
+    int power = 1;
+    if (unit.starts_with("²")) power = 2, unit.remove_prefix(std::string_view("²").size());
+    if (unit.starts_with("³")) power = 3, unit.remove_prefix(std::string_view("³").size());
+    d = times(d, base, sign * power);
+  }
+  return d;
+}
+
+// The unit of a number field of a table, by key.
+template <typename Table>
+Dim unit_of(const Table& table, std::string_view key) {
+  std::string_view unit;
+  for_each_field(table, [&](const auto& field) {
+    if (field.name == key) unit = field.unit;
+  });
+  EXPECT_FALSE(unit.empty()) << key;
+  return parse_unit(unit);
+}
+
+TEST(SceneFields, EveryNumberHasALabelAndAUnitOfTheVocabulary) {
+  for_each_scene_field([&](const std::string& path, std::string_view, const auto& field, auto) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    if constexpr (std::is_same_v<T, double> || OptionalNumber<T>) {
+      EXPECT_FALSE(field.label.empty()) << path;
+      if (path != "potential.radial.gamma") parse_unit(field.unit);  // fails on a word outside it
+    }
+  });
+}
+
+TEST(SceneFields, UnitsAgreeWithThePhysics) {
+  const auto& initial = kInitialStateFields;
+  const Dim lambda = unit_of(initial, "lambda"), time = unit_of(kIntegratorSettingsFields, "dt");
+  const Dim length = unit_of(kSurfaceFields, "radius"), mass = unit_of(kBodyFields, "mass");
+  const Dim J = unit_of(kBodyFields, "inertia");
+  EXPECT_EQ(length, (Dim{0, 1, 0}));
+  EXPECT_EQ(time, (Dim{0, 0, 1}));
+  EXPECT_EQ(mass, (Dim{1, 0, 0}));
+  // §1: K = ±1/R².
+  EXPECT_EQ(unit_of(kSurfaceFields, "curvature"), times({0, 0, 0}, length, -2));
+  // Rates are their coordinate per time.
+  for (const auto& [rate, coordinate] :
+       {std::pair{"r_dot", "r"}, std::pair{"phi_dot", "phi"}, std::pair{"alpha_dot", "alpha"},
+        std::pair{"beta_dot", "beta"}, std::pair{"lambda_dot", "lambda"}, std::pair{"mu_dot", "mu"}})
+    EXPECT_EQ(unit_of(initial, rate), times(unit_of(initial, coordinate), time, -1)) << rate;
+  EXPECT_EQ(unit_of(initial, "lambda"), unit_of(initial, "mu"));
+  // §3: T = m/2 ṙ² + J/2 ‖L̇‖²: both energies.
+  EXPECT_EQ(times(mass, unit_of(initial, "speed"), 2), kEnergy);
+  EXPECT_EQ(times(J, unit_of(initial, "lambda_dot"), 2), kEnergy);
+  // §3: s = J (λ² + μ²) χ, χ = α̇ + C φ̇.
+  EXPECT_EQ(unit_of(initial, "spin"), times(times(J, lambda, 2), unit_of(initial, "alpha_dot")));
+  // §4: the spin–curvature force K s j(v) is a force, m Dv/Dt.
+  EXPECT_EQ(
+      times(times(unit_of(kSurfaceFields, "curvature"), unit_of(initial, "spin")), unit_of(initial, "speed")),
+      times(mass, times(length, time, -2)));
+  // §5: V = A/x² + B/y² + C(x² + y²) with x, y of the unit of λ; V = g̃/ς + W(ε)/ς², ς² = x² + y².
+  EXPECT_EQ(times(unit_of(kAbcPotentialFields, "A"), lambda, -2), kEnergy);
+  EXPECT_EQ(times(unit_of(kAbcPotentialFields, "B"), lambda, -2), kEnergy);
+  EXPECT_EQ(times(unit_of(kAbcPotentialFields, "C"), lambda, 2), kEnergy);
+  EXPECT_EQ(times(unit_of(kPolarPotentialFields, "gtilde"), lambda, -1), kEnergy);
+  EXPECT_EQ(times(unit_of(kPolarPotentialFields, "ghat"), lambda, -2), kEnergy);
+  // §5: V_r = g/sin²(r/R) on S² (sin² a pure number); g/(R² sinh²(r/R)) on H², g/r² on the plane.
+  const std::string_view gamma = std::get<0>(kRadialPotentialFields).unit;
+  const std::size_t split = gamma.find("; ");
+  ASSERT_NE(split, std::string_view::npos) << gamma;
+  const std::string_view sphere = gamma.substr(0, split), others = gamma.substr(split + 2);
+  EXPECT_EQ(sphere.substr(sphere.find(" (")), " (sphere)");
+  EXPECT_EQ(others.substr(others.find(" (")), " (pseudosphere, plane)");
+  EXPECT_EQ(parse_unit(sphere.substr(0, sphere.find(" ("))), kEnergy);
+  EXPECT_EQ(times(parse_unit(others.substr(0, others.find(" ("))), length, -2), kEnergy);
 }
 
 TEST(SceneFields, EveryDefaultIsAllowedByItsOwnRange) {

@@ -536,6 +536,28 @@ std::string lower(std::string text) {
   return text;
 }
 
+// operationIds name the methods of generated clients: each a snake_case verb and noun, unique.
+TEST(RouteTable, EveryOperationHasAUniqueSnakeCaseVerbId) {
+  const std::vector<Route> table = route_table(ServerOptions{}.limits);
+  const std::set<std::string> verbs = {"get",  "list",  "create", "update", "delete", "advance",
+                                       "play", "pause", "reset",  "stream", "steer"};
+  std::set<std::string> ids;
+  for (const Route& route : table) {
+    const std::string& id = route.operation_id;
+    EXPECT_TRUE(ids.insert(id).second) << "duplicate " << id;
+    EXPECT_FALSE(id.empty()) << route.method << " " << route.path;
+    EXPECT_TRUE(verbs.contains(id.substr(0, id.find('_')))) << id;
+    bool snake = !id.empty() && id.front() != '_' && id.back() != '_' && id.find("__") == std::string::npos;
+    for (const char c : id) snake = snake && ((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_');
+    EXPECT_TRUE(snake) << id;
+  }
+  // The names clients already use for the main operations.
+  for (const char* id :
+       {"create_session", "get_session", "update_session", "delete_session", "advance_session", "get_frame",
+        "create_recording", "get_scene_schema", "get_openapi_document"})
+    EXPECT_TRUE(ids.contains(id)) << id;
+}
+
 // Every row of the table is an operation of openapi.json, with each of its query parameters and
 // their schemas (the test iterates the table itself, so it cannot drift).
 TEST_F(Api, OpenApiDocumentsEveryRouteAndQueryParameterOfTheTable) {
@@ -550,6 +572,7 @@ TEST_F(Api, OpenApiDocumentsEveryRouteAndQueryParameterOfTheTable) {
     ASSERT_TRUE(paths[route.path].contains(lower(route.method))) << route.method << " " << route.path;
     const json operation = paths[route.path][lower(route.method)];
     EXPECT_EQ(operation["summary"], route.summary);
+    EXPECT_EQ(operation["operationId"], route.operation_id);
     EXPECT_EQ(operation.contains("requestBody"), route.body.has_value()) << route.path;
     if (route.body) {
       for (const std::string& type : route.body->content_types)
@@ -569,8 +592,9 @@ TEST_F(Api, OpenApiDocumentsEveryRouteAndQueryParameterOfTheTable) {
                                 : p.type == ParamType::number ? "number"
                                                               : "string")
           << p.name;
-      if (p.minimum) {
-        EXPECT_EQ(schema["minimum"], *p.minimum) << p.name;
+      if (p.minimum) {  // JSON Schema 2020-12: an exclusive bound is a number of its own keyword
+        EXPECT_EQ(schema[p.exclusive_minimum ? "exclusiveMinimum" : "minimum"], *p.minimum) << p.name;
+        EXPECT_FALSE(schema.contains(p.exclusive_minimum ? "minimum" : "exclusiveMinimum")) << p.name;
       }
       if (p.maximum) {
         EXPECT_EQ(schema["maximum"], *p.maximum) << p.name;
