@@ -15,6 +15,13 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DSPINFOLD_WERROR=ON > /
 cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs"
 
+# The golden frames again with llvmpipe compiling for other CPUs (AVX without AVX2, and SSE4.1):
+# proves their tolerance holds on machines other than this one (docs/performance.md, "Across CPUs").
+stage "golden frames with other CPUs' shader code"
+for caps in avx sse4.1; do
+  GALLIUM_OVERRIDE_CPU_CAPS=$caps build/tests/render_tests --gtest_filter='Views/GoldenFrame.*' --gtest_brief=1
+done
+
 stage "AddressSanitizer + UBSan build"
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DSPINFOLD_WERROR=ON \
   -DSPINFOLD_SANITIZE=ON > /dev/null
