@@ -33,8 +33,8 @@ unsigned long long libm_fingerprint() {
   unsigned long long h = 1469598103934665603ull;
   for (int i = 1; i <= 20000; ++i) {
     const double x = i * 1e-3;
-    for (double v : {std::sin(x), std::cos(x), std::exp(-x), std::log(x), std::atan2(x, 1.3), std::pow(x, 0.37),
-                     std::sinh(1e-3 * x), std::cosh(1e-3 * x), std::tan(x)}) {
+    for (double v : {std::sin(x), std::cos(x), std::exp(-x), std::log(x), std::atan2(x, 1.3),
+                     std::pow(x, 0.37), std::sinh(1e-3 * x), std::cosh(1e-3 * x), std::tan(x)}) {
       unsigned long long bits;
       std::memcpy(&bits, &v, sizeof bits);
       h = (h ^ bits) * 1099511628211ull;
@@ -62,7 +62,7 @@ std::map<std::string, End> run_all(const CrossCpuOptions& options) {
       End end;
       end.status = run.state.status == Status::ok ? "ok" : "stopped";
       const GlobalBody body = global_body(run.scene, run.state);
-      const double values[8] = {body.X[0], body.X[1],    body.X[2],    body.L(0, 0),
+      const double values[8] = {body.X[0],    body.X[1],    body.X[2],    body.L(0, 0),
                                 body.L(0, 1), body.L(1, 0), body.L(1, 1), energy(run.scene, run.state)};
       std::copy(std::begin(values), std::end(values), end.values);
       ends[name + " " + std::string(entry.info.name)] = end;
@@ -169,11 +169,13 @@ int run_cross_cpu(const CrossCpuOptions& options) {
     row.dH = std::max(row.dH, dH);
     row.rel_H = std::max(row.rel_H, dH / std::max(1e-300, std::abs(a.values[7])));
   }
-  std::printf("| integrator | runs | bit-identical | max abs ΔX | max abs ΔL | max abs ΔH | max rel ΔH | worst ΔX in |\n");
+  std::printf(
+      "| integrator | runs | bit-identical | max abs ΔX | max abs ΔL | max abs ΔH | max rel ΔH | worst ΔX in "
+      "|\n");
   std::printf("| --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (const auto& [name, row] : rows)
-    std::printf("| %s | %d | %d | %.1e | %.1e | %.1e | %.1e | %s |\n", name.c_str(), row.runs, row.identical, row.dX,
-                row.dL, row.dH, row.rel_H, row.worst_scene.c_str());
+    std::printf("| %s | %d | %d | %.1e | %.1e | %.1e | %.1e | %s |\n", name.c_str(), row.runs, row.identical,
+                row.dX, row.dL, row.dH, row.rel_H, row.worst_scene.c_str());
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("\n%.1f s%s\n", seconds, missing ? " (some runs missing from the other CPU's dump)" : "");
   return missing || here.empty() ? 1 : 0;

@@ -11,9 +11,9 @@ namespace spinfold::bench {
 
 struct CrossCpuOptions {
   double until = 100.0;  // [time]
-  std::vector<std::string> scenes = {"spinning_rigid_sphere", "breathing_ellipse_sphere", "spin_vs_geodesic_sphere",
-                                     "spinning_rigid_pseudosphere", "deforming_spin_pseudosphere",
-                                     "spin_vs_geodesic_pseudosphere"};
+  std::vector<std::string> scenes = {"spinning_rigid_sphere",       "breathing_ellipse_sphere",
+                                     "spin_vs_geodesic_sphere",     "spinning_rigid_pseudosphere",
+                                     "deforming_spin_pseudosphere", "spin_vs_geodesic_pseudosphere"};
   // The glibc tunable for the other CPU; glibc 2.36 takes the bare feature names (the older
   // "_Usable" names are silently ignored: the run would be this CPU's again).
   std::string tunable = "glibc.cpu.hwcaps=-AVX2,-FMA,-AVX";
