@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bench/companions_bench.h"
+#include "bench/cross_cpu.h"
 #include "bench/record_bench.h"
 #include "bench/render_bench.h"
 #include "bench/share_link_bench.h"
@@ -59,7 +60,15 @@ int main(int argc, char** argv) {
       ->add_option("--live-seconds", record.live_seconds, "Live-rate measurement without a recording [s]")
       ->capture_default_str();
   record_cmd->add_option("--out", record.out_dir, "Where the clips are written")->capture_default_str();
+  spinfold::bench::CrossCpuOptions cross;
+  CLI::App* cross_cmd = app.add_subcommand(
+      "cross-cpu", "Every integrator here against a copy with glibc's FMA/AVX2 libm hidden (another CPU)");
+  cross_cmd->add_option("--until", cross.until, "Simulated time")->capture_default_str();
+  cross_cmd->add_option("--scenes", cross.scenes, "Presets")->capture_default_str();
+  cross_cmd->add_option("--tunable", cross.tunable, "GLIBC_TUNABLES of the other CPU")->capture_default_str();
+  cross_cmd->add_flag("--dump", cross.dump, "Print this process's ends (hex floats) and stop");
   CLI11_PARSE(app, argc, argv);
+  if (cross_cmd->parsed()) return spinfold::bench::run_cross_cpu(cross);
   if (record_cmd->parsed()) return spinfold::bench::run_record_bench(record);
   if (companions_cmd->parsed())
     return spinfold::bench::run_companions_bench(companions_repeats, companions_until);

@@ -15,6 +15,15 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DSPINFOLD_WERROR=ON > /
 cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs"
 
+# The golden frames again as two other CPUs would render them: llvmpipe compiling for AVX without
+# AVX2, then for SSE4.1, and glibc's libm without its FMA variants (the physics behind the frames).
+# Proves the tolerance holds beyond this machine (docs/performance.md, "Across CPUs").
+stage "golden frames with other CPUs' code"
+for caps in avx sse4.1; do
+  GALLIUM_OVERRIDE_CPU_CAPS=$caps GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-AVX \
+    build/tests/render_tests --gtest_filter='Views/GoldenFrame.*' --gtest_brief=1
+done
+
 stage "AddressSanitizer + UBSan build"
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DSPINFOLD_WERROR=ON \
   -DSPINFOLD_SANITIZE=ON > /dev/null

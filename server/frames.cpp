@@ -36,7 +36,7 @@ struct FrameJob {
 
 FrameJob frame_job(ServerContext& server, const std::string& id, Session& s, const FrameRequest& f) {
   const std::lock_guard lock(s.mutex);
-  FrameJob job{frame_etag(id, s.version, f), {s.version, s.run.state.t}, std::nullopt, f.view};
+  FrameJob job{frame_etag(id, state_tag(s), f), {s.version, s.run.state.t}, std::nullopt, f.view};
   if (!server.frames.contains(job.etag)) {
     job.view.scale = f.scale * render::body_scale_length(f.view.kind, s.run.scene.surface);
     static const Trail kNoTrail;  // trails are copied only when drawn
@@ -145,19 +145,36 @@ void check_view(const FrameRequest& f, SurfaceKind surface) {
     throw bad(422, "Invalid value", "view", std::string(render::view_name(f.view.kind)), *why);
 }
 
-std::string frame_etag(const std::string& id, std::uint64_t version, const FrameRequest& f) {
+std::string frame_etag(const std::string& id, const std::string& state, const FrameRequest& f) {
   const auto camera = [](const std::optional<double>& v) {
     char text[32] = "auto";  // aimed at the body
     if (v) std::snprintf(text, sizeof text, "%.17g", *v);
     return std::string(text);
   };
   char text[256];
-  std::snprintf(text, sizeof text, "\"%s-%llu-%d-%dx%d-%u-%.17g-%s-%s-%s-%s-%s%d\"", id.c_str(),
-                static_cast<unsigned long long>(version), static_cast<int>(f.view.kind), f.view.width,
-                f.view.height, f.view.layers, f.scale, camera(f.yaw).c_str(), camera(f.pitch).c_str(),
-                camera(f.distance).c_str(), camera(f.trail).c_str(), f.jpeg_quality ? "jpeg" : "png",
-                f.jpeg_quality.value_or(0));
+  std::snprintf(text, sizeof text, "W/\"%s-%s-%d-%dx%d-%u-%.17g-%s-%s-%s-%s-%s%d\"", id.c_str(),
+                state.c_str(), static_cast<int>(f.view.kind), f.view.width, f.view.height, f.view.layers,
+                f.scale, camera(f.yaw).c_str(), camera(f.pitch).c_str(), camera(f.distance).c_str(),
+                camera(f.trail).c_str(), f.jpeg_quality ? "jpeg" : "png", f.jpeg_quality.value_or(0));
   return text;
+}
+
+bool etag_matches(const std::string& if_none_match, const std::string& etag) {
+  const auto opaque = [](std::string_view tag) {
+    while (!tag.empty() && (tag.front() == ' ' || tag.front() == '\t')) tag.remove_prefix(1);
+    while (!tag.empty() && (tag.back() == ' ' || tag.back() == '\t')) tag.remove_suffix(1);
+    if (tag.starts_with("W/")) tag.remove_prefix(2);
+    return tag;
+  };
+  std::string_view rest = if_none_match;
+  while (!rest.empty()) {
+    const std::size_t comma = rest.find(',');
+    const std::string_view one = opaque(rest.substr(0, comma));
+    if (one == "*" || (!one.empty() && one == opaque(etag))) return true;
+    if (comma == std::string_view::npos) break;
+    rest.remove_prefix(comma + 1);
+  }
+  return false;
 }
 
 FrameBytes session_frame(ServerContext& server, const std::string& id, Session& s, const FrameRequest& f,

@@ -38,8 +38,12 @@ QueryParam quality_param();
 FrameRequest frame_request(const Query& q, SurfaceKind surface, bool jpeg);
 void check_view(const FrameRequest& f, SurfaceKind surface);
 
-// Names the session's state and every parameter of the picture: equal ETags, equal bytes.
-std::string frame_etag(const std::string& id, std::uint64_t version, const FrameRequest& f);
+// Names the session's state (state_tag) and every parameter of the picture: a weak ETag, since
+// replicas on other CPUs render the same state within the golden frames' tolerance, not to the same
+// bytes (on one CPU class: equal ETags, equal bytes).
+std::string frame_etag(const std::string& id, const std::string& state, const FrameRequest& f);
+// Whether an If-None-Match value names this ETag (weak comparison, RFC 9110 §8.8.3.2; "*" or a list).
+bool etag_matches(const std::string& if_none_match, const std::string& etag);
 
 // The state a frame shows.
 struct FrameInfo {

@@ -20,11 +20,11 @@ void send_frame(ServerContext& server, const Call& call, httplib::Response& res,
   {
     const std::lock_guard lock(s->mutex);
     f = frame_request(call.query, s->run.scene.surface.kind, jpeg);
-    etag = frame_etag(call.id, s->version, f);
+    etag = frame_etag(call.id, state_tag(*s), f);
     res.set_header("X-Spinfold-Provenance", provenance(*s));
   }
   res.set_header("Cache-Control", "no-cache");
-  if (call.http.get_header_value("If-None-Match") == etag) {
+  if (etag_matches(call.http.get_header_value("If-None-Match"), etag)) {
     res.set_header("ETag", etag);
     res.status = 304;
     return;

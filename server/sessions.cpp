@@ -1,6 +1,7 @@
 #include "server/sessions.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "codec/sample_json.h"
 #include "codec/scene_json.h"
@@ -24,6 +25,19 @@ void record_sample(Session& session) {
 }
 
 }  // namespace
+
+std::string state_tag(const Session& session) {
+  char text[96];
+  if (session.stored_version != 0) {
+    std::snprintf(text, sizeof text, "r%lld-%.17g", static_cast<long long>(session.stored_version),
+                  session.run.state.t);
+  } else {
+    static const std::string process = new_session_id().substr(0, 11);  // 66 random bits
+    std::snprintf(text, sizeof text, "m%s-%llu", process.c_str(),
+                  static_cast<unsigned long long>(session.version));
+  }
+  return text;
+}
 
 void restart(Session& session, const Scene& scene) {
   session.scene = scene;

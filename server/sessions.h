@@ -89,6 +89,13 @@ class SessionStore {
 // The most recent samples kept per session (older ones are dropped in halves).
 inline constexpr std::size_t kMaxTrajectory = 20000;
 
+// A name of the session's state valid across the processes sharing its store and across CPUs
+// (the session holds its lock): with a store, the row's version and the time (within one row
+// version the scene and timeline are fixed, so they determine the state; replicas replay it to the
+// same bits on one CPU class and within the bound of docs/performance.md on others); without one,
+// or while the memory is ahead of the store, this process's version and a number of this process.
+std::string state_tag(const Session& session);
+
 // The operations below hold the session's lock. Each records a sample and bumps the version.
 
 // Starts the session over at t = 0 of `scene` with an empty timeline (creation, reset, restart).

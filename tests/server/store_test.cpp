@@ -7,7 +7,9 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -18,6 +20,8 @@
 
 // After Eigen (none here, but the same order as the other server tests): httplib.h brings <resolv.h>.
 #include <httplib.h>
+
+#include "tests/render/frame_compare.h"
 
 namespace {
 
@@ -39,7 +43,8 @@ struct TempDir {
 // `spinfold serve --port 0 ARGS…` as a child process: the port it printed, its stderr, its exit.
 class Server {
  public:
-  explicit Server(const std::vector<std::string>& args) {
+  // `env`: NAME=VALUE settings added to the child's environment (another CPU's, for one).
+  explicit Server(const std::vector<std::string>& args, const std::vector<std::string>& env = {}) {
     err_file_ = fs::temp_directory_path() /
                 ("spinfold_store_err_" + std::to_string(getpid()) + "_" + std::to_string(++count_));
     int out[2];
@@ -50,6 +55,7 @@ class Server {
       const int err = open(err_file_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
       dup2(err, 2);
       close(out[0]);
+      for (const std::string& setting : env) putenv(strdup(setting.c_str()));
       std::vector<std::string> all = {SPINFOLD_BINARY, "serve", "--port", "0"};
       all.insert(all.end(), args.begin(), args.end());
       std::vector<char*> argv;
@@ -261,6 +267,115 @@ TEST(Store, SigtermEndsStreamsStoresAndExitsWithinTwoSeconds) {
   Server b(store_args(dir));
   ASSERT_GT(b.port(), 0) << b.err();
   EXPECT_GE(json::parse(look(b, id).session)["state"]["t"].get<double>(), 0.35);
+}
+
+// A replica on another CPU: glibc's libm without its FMA/AVX2 variants (the tunable that hides them;
+// glibc 2.36 takes the bare names) and llvmpipe compiling for SSE4.1. Its replay of a session differs
+// in the last bits (docs/performance.md, "Across CPUs"); nothing that crosses processes may rely on
+// those bits.
+const std::vector<std::string> kOtherCpu = {"GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-AVX",
+                                            "GALLIUM_OVERRIDE_CPU_CAPS=sse4.1"};
+
+// The frame's ETag, or what a conditional GET with `etag` answers (200 or 304).
+httplib::Result frame(const Server& s, const std::string& id, const std::string& if_none_match = "") {
+  httplib::Headers headers;
+  if (!if_none_match.empty()) headers.emplace("If-None-Match", if_none_match);
+  return s.client().Get((kSessions + "/" + id + "/frame.png?width=160&height=120").c_str(), headers);
+}
+
+// Two states of one session: the same time, scene and timeline; numbers within `bound` (relative).
+// Returns how many numbers differ at all (0 on one CPU class).
+int expect_same_state(const std::string& a_text, const std::string& b_text, double bound) {
+  int differing = 0;
+  const json a = json::parse(a_text), b = json::parse(b_text);
+  EXPECT_EQ(a["state"]["t"], b["state"]["t"]);
+  EXPECT_EQ(a["scene"], b["scene"]);
+  EXPECT_EQ(a["timeline"], b["timeline"]);
+  const auto compare = [&](const json& x, const json& y, const std::string& at, const auto& self) -> void {
+    if (x.is_number_float() && y.is_number_float()) {
+      const double u = x, v = y;
+      differing += u != v;
+      EXPECT_LE(std::abs(u - v), bound * std::max(1.0, std::abs(u))) << at << ": " << u << " against " << v;
+    } else if (x.is_object() && y.is_object()) {
+      for (const auto& [key, value] : x.items())
+        if (y.contains(key)) self(value, y[key], at + "." + key, self);
+    } else if (x.is_array() && y.is_array() && x.size() == y.size()) {
+      for (std::size_t i = 0; i < x.size(); ++i) self(x[i], y[i], at + "[" + std::to_string(i) + "]", self);
+    } else {
+      EXPECT_EQ(x, y) << at;
+    }
+  };
+  compare(a["state"], b["state"], "state", compare);
+  return differing;
+}
+
+void expect_same_picture(const std::string& a, const std::string& b) {
+  using spinfold::test::decode_png;
+  const auto pa = decode_png({a.begin(), a.end()}), pb = decode_png({b.begin(), b.end()});
+  ASSERT_TRUE(pa && pb);
+  const spinfold::test::FrameTolerance tolerance;
+  const auto d = spinfold::test::compare_frames(*pa, *pb, tolerance);
+  EXPECT_TRUE(spinfold::test::within(d, tolerance)) << spinfold::test::describe(d, tolerance);
+}
+
+TEST(Store, AReplicaOnAnotherCpuReplaysSessionsWithoutBreakingEtagsOrVersions) {
+  TempDir dir;
+  Server a(store_args(dir));
+  Server b(store_args(dir), kOtherCpu);
+  ASSERT_GT(a.port(), 0) << a.err();
+  ASSERT_GT(b.port(), 0) << b.err();
+  const std::string id = create(a, {{"preset", "deforming_spin_pseudosphere"}});
+  const auto first = frame(a, id);
+  ASSERT_EQ(first->status, 200);
+  const std::string at_start = first->get_header_value("ETag");
+  // Adaptive steps on H² (the closed form would be the same on every CPU), to t = 60.
+  const auto patch = a.client().Patch((kSessions + "/" + id).c_str(), R"({"integrator": {"name": "dop853"}})",
+                                      "application/merge-patch+json");
+  ASSERT_EQ(patch->status, 200) << patch->body;
+  work_on(a, id);
+  ASSERT_EQ(post(a, kSessions + "/" + id + "/advance", {{"until", 60}})->status, 200);
+  const Seen on_a = look(a, id);
+  const std::string etag_a = frame(a, id)->get_header_value("ETag");
+
+  // B replays the session from its row on its CPU: the same session, within the measured bound
+  // (1e-12 at t = 100 for dop853), and the same picture within the golden frames' tolerance.
+  const Seen on_b = look(b, id);
+  const int differing = expect_same_state(on_a.session, on_b.session, 1e-9);
+  std::printf("numbers of the state differing between the two CPUs' replays: %d\n", differing);
+  expect_same_picture(on_a.frame, on_b.frame);
+  // The ETag names the stored state, not the bytes of this CPU's replay: A's is valid at B (a
+  // failover keeps the client's frame), weak, since B's bytes may differ within the tolerance.
+  EXPECT_EQ(frame(b, id)->get_header_value("ETag"), etag_a);
+  EXPECT_EQ(etag_a.rfind("W/\"", 0), 0u) << etag_a;
+  EXPECT_EQ(frame(b, id, etag_a)->status, 304);
+  // A stale ETag (the state at t = 0) is never a 304 where the state has moved on.
+  EXPECT_NE(at_start, etag_a);
+  EXPECT_EQ(frame(b, id, at_start)->status, 200);
+  EXPECT_EQ(frame(a, id, at_start)->status, 200);
+
+  // Changed on B (from its own replay): A sees the row's new version, rebuilds, and its ETag for the
+  // old state no longer matches, on either replica.
+  ASSERT_EQ(post(b, kSessions + "/" + id + "/advance", {{"until", 80}})->status, 200);
+  const Seen b_later = look(b, id);
+  const Seen a_later = look(a, id);
+  EXPECT_EQ(json::parse(a_later.session)["state"]["t"], 80.0);
+  expect_same_state(b_later.session, a_later.session, 1e-9);
+  expect_same_picture(b_later.frame, a_later.frame);
+  EXPECT_EQ(frame(a, id, etag_a)->status, 200);
+  EXPECT_EQ(frame(b, id, etag_a)->status, 200);
+  // And writes keep working from both sides: each names the row version it saw, so neither
+  // gets a 409 from the other's write, and both serve the last one.
+  const auto patched = a.client().Patch((kSessions + "/" + id).c_str(), R"({"body": {"mass": 1.2}})",
+                                        "application/merge-patch+json");
+  ASSERT_EQ(patched->status, 200) << patched->body;
+  ASSERT_EQ(post(b, kSessions + "/" + id + "/advance", {{"until", 90}})->status, 200);
+  ASSERT_EQ(post(a, kSessions + "/" + id + "/advance", {{"until", 100}})->status, 200);
+  const Seen a_end = look(a, id), b_end = look(b, id);
+  EXPECT_EQ(json::parse(b_end.session)["state"]["t"], 100.0);
+  expect_same_state(a_end.session, b_end.session, 1e-9);
+  EXPECT_EQ(json::parse(b_end.session)["current"]["body"]["mass"], 1.2);
+  const auto tag = frame(a, id)->get_header_value("ETag");
+  EXPECT_EQ(frame(b, id, tag)->status, 304);
 }
 
 }  // namespace
