@@ -21,12 +21,14 @@
 #include <string>
 #include <thread>
 
+#include "cli/sweep.h"
 #include "codec/presets.h"
 #include "codec/sample_json.h"
 #include "codec/scene_json.h"
 #include "engine/chart.h"
 #include "engine/integrator.h"
 #include "engine/simulation.h"
+#ifndef SPINFOLD_COMPUTE_ONLY  // the compute-only build: simulate and sweep, no GL, FFmpeg or HTTP
 #include "record/clip.h"
 #include "record/recorder.h"
 #include "render/renderer.h"
@@ -34,6 +36,7 @@
 #include "render/view.h"
 #include "server/api.h"
 #include "server/session_db.h"
+#endif
 
 namespace {
 
@@ -121,6 +124,7 @@ int simulate(const SimulateOptions& opt) {
   return 0;
 }
 
+#ifndef SPINFOLD_COMPUTE_ONLY
 struct RenderOptions {
   SimulateOptions scene;
   double t = 0.0;
@@ -320,6 +324,7 @@ int serve(const server::ServerOptions& options) {
   api.reset();  // joins the player and the render thread before the exit code is returned
   return served || signalled ? 0 : 1;
 }
+#endif  // SPINFOLD_COMPUTE_ONLY
 
 int list_scenes() {
   for (const PresetSource& p : preset_sources()) {
@@ -358,6 +363,9 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("--integrator", sim.integrator, "Override the scene's integrator name");
   simulate_cmd->add_option("--dt", sim.dt, "Override the step (fixed-step) or first trial step");
   simulate_cmd->add_option("--tolerance", sim.tolerance, "Override the error tolerance per step");
+  cli::SweepOptions sweep_opt;
+  CLI::App* sweep_cmd = cli::add_sweep_command(app, sweep_opt);
+#ifndef SPINFOLD_COMPUTE_ONLY
   RenderOptions ren;
   CLI::App* render_cmd = app.add_subcommand("render", "Render the state at time T as a PNG");
   render_cmd->add_option("scene_file", ren.scene.scene_file, "Scene JSON file (default: the default preset)");
@@ -428,6 +436,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bool no_store = false;
   serve_cmd->add_flag("--no-store", no_store, "Keep sessions in memory only (as --data-dir '')");
+#endif
   CLI::App* scenes_cmd = app.add_subcommand("scenes", "List the embedded preset scenes");
   CLI::App* integrators_cmd = app.add_subcommand("integrators", "Print the integrator catalog");
 
@@ -444,12 +453,15 @@ int main(int argc, char** argv) {
 
   try {
     if (simulate_cmd->parsed()) return simulate(sim);
+    if (sweep_cmd->parsed()) return cli::run_sweep_command(sweep_opt, argc, argv);
+#ifndef SPINFOLD_COMPUTE_ONLY
     if (render_cmd->parsed()) return render_frame(ren);
     if (record_cmd->parsed()) return record_window(rec);
     if (serve_cmd->parsed()) {
       if (no_store) serve_opt.data_dir.clear();
       return serve(serve_opt);
     }
+#endif
     if (scenes_cmd->parsed()) return list_scenes();
     if (integrators_cmd->parsed()) return list_integrators();
   } catch (const BadInput& e) {
