@@ -7,7 +7,6 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -23,6 +22,7 @@
 #include "codec/scene_json.h"
 #include "engine/scene_fields.h"
 #include "engine/simulation.h"
+#include "engine/validation.h"
 
 #ifndef SPINFOLD_VERSION
 #define SPINFOLD_VERSION "unknown"
@@ -49,23 +49,35 @@ enum class Leaf { number, text };
 struct FieldPath {
   std::string path;
   Leaf leaf;
+  Range range{};                   // numbers: the allowed values
+  std::vector<std::string> names;  // names: the allowed ones (empty: free text)
 };
 
 template <typename Table>
 void collect_paths(const Table& table, const std::string& prefix, std::vector<FieldPath>& out);
 
-template <typename V>
-void collect_value(const std::string& path, std::vector<FieldPath>& out) {
+template <typename V, typename F>
+void collect_value(const F& field, const std::string& path, std::vector<FieldPath>& out) {
   if constexpr (std::is_same_v<V, double> || OptionalNumber<V>) {
-    out.push_back({path, Leaf::number});
-  } else if constexpr (std::is_same_v<V, std::string> || Enumerated<V>) {
-    out.push_back({path, Leaf::text});
+    out.push_back({path, Leaf::number, field.range, {}});
+  } else if constexpr (Enumerated<V>) {
+    std::vector<std::string> names;
+    for (const auto& n : enum_names(std::type_identity<V>{})) names.emplace_back(n.name);
+    out.push_back({path, Leaf::text, {}, names});
+  } else if constexpr (std::is_same_v<V, std::string>) {
+    std::vector<std::string> names;
+    if (field.text_rule == TextRule::integrator_name)
+      for (std::string_view n : integrator_names()) names.emplace_back(n);
+    out.push_back({path, Leaf::text, {}, names});
   } else if constexpr (HasFields<V>) {
     collect_paths(fields_of(std::type_identity<V>{}), path + ".", out);
   } else if constexpr (OptionalSection<V>) {
     collect_paths(fields_of(std::type_identity<typename V::value_type>{}), path + ".", out);
   } else if constexpr (std::is_same_v<V, DeformationPotential>) {
-    out.push_back({path + ".kind", Leaf::text});
+    std::vector<std::string> kinds;
+    for (std::string_view k : kDeformationKindNames)
+      if (!k.empty()) kinds.emplace_back(k);
+    out.push_back({path + ".kind", Leaf::text, {}, kinds});
     for_each_deformation_kind([&](auto, auto alternative) {
       using A = typename decltype(alternative)::type;
       collect_paths(fields_of(std::type_identity<A>{}), path + ".", out);
@@ -77,7 +89,7 @@ template <typename Table>
 void collect_paths(const Table& table, const std::string& prefix, std::vector<FieldPath>& out) {
   for_each_field(table, [&](const auto& field) {
     using V = typename std::decay_t<decltype(field)>::Value;
-    collect_value<V>(prefix + std::string(field.name), out);
+    collect_value<V>(field, prefix + std::string(field.name), out);
   });
 }
 
@@ -117,13 +129,48 @@ std::optional<double> parse_number(std::string_view text) {
   return v;
 }
 
+std::string number_text(double v) {  // shortest round-trip text, "1" not "1.0"
+  char text[32];
+  return std::string(text, std::to_chars(text, text + sizeof text, v).ptr);
+}
+
+// Why the field cannot hold this value whatever the other fields are (its range, its names), or "".
+std::string refusal(const FieldPath& field, const json& value) {
+  if (field.leaf == Leaf::text) {
+    const std::string text = value.get<std::string>();
+    if (field.names.empty() || std::find(field.names.begin(), field.names.end(), text) != field.names.end())
+      return {};
+    std::string names;
+    for (const std::string& n : field.names) names += (names.empty() ? "" : ", ") + n;
+    return "must be one of " + names;
+  }
+  const double v = value.get<double>();
+  const Range& r = field.range;
+  if (std::abs(v) > kMaxSceneMagnitude) return "must be at most 1e100 in magnitude";
+  if (!r.contains(v) || (r.min == 0.0 && r.min_open && v < kMinScenePositive)) {
+    std::string bounds;
+    if (r.has_min()) bounds = std::string(r.min_open ? "> " : ">= ") + number_text(r.min);
+    if (r.has_max())
+      bounds += (bounds.empty() ? "" : " and ") + std::string(r.max_open ? "< " : "<= ") + number_text(r.max);
+    return "must be " + bounds;
+  }
+  return {};
+}
+
 // A value of a field, as the scene JSON holds it.
 json field_value(const FieldPath& field, std::string_view text, const std::string& flag) {
-  if (field.leaf == Leaf::text) return std::string(text);
-  const auto v = parse_number(text);
-  if (!v)
-    throw BadInput{flag + ": " + field.path + ": not a finite number (got '" + std::string(text) + "')"};
-  return *v;
+  json value;
+  if (field.leaf == Leaf::text) {
+    value = std::string(text);
+  } else {
+    const auto v = parse_number(text);
+    if (!v)
+      throw BadInput{flag + ": " + field.path + ": not a finite number (got '" + std::string(text) + "')"};
+    value = *v;
+  }
+  if (const std::string why = refusal(field, value); !why.empty())
+    throw BadInput{flag + ": " + field.path + ": " + why + " (got '" + std::string(text) + "')"};
+  return value;
 }
 
 // One axis of the sweep: fields varied together (one for --set, the table's columns for --table),
@@ -171,6 +218,10 @@ Axis parse_set(const std::string& spec) {
       axis.values.push_back(
           {k == n - 1 && n > 1 ? *b : *a + (*b - *a) * static_cast<double>(k) / static_cast<double>(n - 1)});
     if (n == 1) axis.values = {{*a}};
+    for (const auto& v : axis.values)
+      if (const std::string why = refusal(field, v[0]); !why.empty())
+        throw BadInput{flag + ": " + field.path + ": " + why + " (got " + number_text(v[0].get<double>()) +
+                       " in '" + list + "')"};
     return axis;
   }
   for (const std::string& v : split(list, ',')) {
@@ -573,19 +624,18 @@ int sweep(const SweepOptions& opt, const std::string& command) {
   for (const Axis& a : plan.axes)
     for (const FieldPath* f : a.fields)
       if (!seen.insert(f->path).second) throw BadInput{a.flag + ": " + f->path + " is varied twice"};
-  // Each value alone on the base scene: a bad one is the user's mistake, said now (a combination
-  // that only fails together is its run's status, invalid_scene).
+  // A value its field refuses whatever the rest (out of its range, not one of its names) was
+  // refused above; a path that the base scene has no place for (ghat in an abc deformation) is
+  // refused here, each value alone on the base. A rule that ties fields together (a rigid body's
+  // mu = lambda, r <= πR) is checked for the combination each run makes: its status invalid_scene.
   for (const Axis& a : plan.axes)
     for (const auto& values : a.values) {
       json document = plan.base;
       apply(document, a.fields, values);
-      const SceneParse parsed = parse_scene(document);
-      if (!parsed.errors.empty()) {
-        std::string given;
-        for (std::size_t f = 0; f < a.fields.size(); ++f)
-          given += (f ? "," : "") + a.fields[f]->path + "=" + cell_text(values[f]);
-        throw BadInput{a.flag + ": " + given + ": " + describe_errors(parsed.errors)};
-      }
+      std::vector<FieldError> structural;
+      for (const FieldError& e : parse_scene(document).errors)
+        if (e.reason == "is not a known field here") structural.push_back(e);
+      if (!structural.empty()) throw BadInput{a.flag + ": " + describe_errors(structural)};
     }
   if (opt.zip) {
     for (const Axis& a : plan.axes)

@@ -263,7 +263,11 @@ TEST(Sweep, BadFieldsAndValuesAreExitTwoNamingThem) {
   };
   for (const Case& c : std::vector<Case>{
            {"--set initial.nope=1", "no scene field 'initial.nope'"},
-           {"--set initial.lambda=-1,1", "initial.lambda=-1"},
+           {"--set initial.lambda=-1,1", "initial.lambda: must be > 0 (got '-1')"},
+           {"--set integrator.tolerance=1e-20", "integrator.tolerance: must be >= 1e-15"},
+           {"--set initial.r=-1:1:3", "initial.r: must be >= 0 (got -1 in"},
+           {"--set surface.kind=torus", "must be one of sphere, pseudosphere, plane"},
+           {"--set potential.deformation.ghat=1", "potential.deformation.ghat: is not a known field here"},
            {"--set initial.r=1:2:x", "a:b:n"},
            {"--set initial.r=abc", "not a finite number (got 'abc')"},
            {"--set integrator.name=dop853,nosuch", "nosuch"},
@@ -272,7 +276,9 @@ TEST(Sweep, BadFieldsAndValuesAreExitTwoNamingThem) {
            {"--set initial.r=1 --shard 3/3", "--shard"},
            {"--set initial.r=1 --out rows.txt", "--out"},
        }) {
-    const auto r = run("sweep spinning_rigid_sphere " + c.args);
+    const auto r = run((c.args.find("deformation") != std::string::npos ? "sweep breathing_ellipse_sphere "
+                                                                        : "sweep spinning_rigid_sphere ") +
+                       c.args);
     EXPECT_EQ(r.exit_code, 2) << c.args;
     EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.args << ": " << r.err;
     EXPECT_EQ(r.out, "") << c.args;
@@ -294,6 +300,23 @@ TEST(Sweep, AFailedRunIsItsRowsStatusNotTheSweepsEnd) {
   EXPECT_NE(t.rows[1].at("detail").find("initial.r"), std::string::npos);
   EXPECT_EQ(t.rows[2].at("status"), "ok");
   EXPECT_EQ(t.rows[3].at("status"), "ok");
+
+  // A rigid body's lambda and mu go together: paired they run, crossed the unequal ones are rows.
+  const auto zipped = run(
+      "sweep spinning_rigid_sphere --set initial.lambda=1,2 --set initial.mu=1,2 --zip --t-end 1 --quiet");
+  ASSERT_EQ(zipped.exit_code, 0) << zipped.err;
+  const Table z = read_csv(zipped.out);
+  ASSERT_EQ(z.rows.size(), 2u);
+  for (const auto& row : z.rows) EXPECT_EQ(row.at("status"), "ok");
+  const auto crossed =
+      run("sweep spinning_rigid_sphere --set initial.lambda=1,2 --set initial.mu=1,2 --t-end 1 --quiet");
+  ASSERT_EQ(crossed.exit_code, 0) << crossed.err;
+  const Table c = read_csv(crossed.out);
+  ASSERT_EQ(c.rows.size(), 4u);
+  EXPECT_EQ(c.rows[0].at("status"), "ok");
+  EXPECT_EQ(c.rows[1].at("status"), "invalid_scene");
+  EXPECT_EQ(c.rows[2].at("status"), "invalid_scene");
+  EXPECT_EQ(c.rows[3].at("status"), "ok");
 
   const auto budget =
       run("sweep spinning_rigid_sphere --set integrator.name=rk4,dop853 --t-end 5 --max-steps 50 --quiet");
