@@ -346,6 +346,26 @@ TEST(Sweep, AnyVocabularyFieldCanBeVaried) {
   EXPECT_EQ(energies.size(), 12u);  // each value reached its run
 }
 
+TEST(Sweep, EveryListedFieldIsAColumnAndNoProgressOffATerminal) {
+  const auto list = run("sweep --list-fields");
+  ASSERT_EQ(list.exit_code, 0);
+  std::string fields;
+  int count = 0;
+  std::istringstream in(list.out);
+  for (std::string name; std::getline(in, name); ++count) fields += (fields.empty() ? "" : ",") + name;
+  EXPECT_GT(count, 100);
+  EXPECT_NE(fields.find(",drift.casimir,"), std::string::npos);
+  // action_variables_sphere has actions and frequencies: most columns hold numbers.
+  const auto r = run("sweep action_variables_sphere --set initial.r=1,1.1 --t-end 1 --fields " + fields);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // stderr is not a terminal here: no progress line
+  const Table t = read_csv(r.out);
+  ASSERT_EQ(t.rows.size(), 2u);
+  EXPECT_EQ(t.columns.size(), 1u + 1u + count + 5u);
+  EXPECT_NE(t.rows[0].at("actions.J_r"), "");
+  EXPECT_NE(t.rows[0].at("drift.energy"), "");
+}
+
 TEST(Sweep, AKilledSweepLeavesWholeLines) {
   TempDir dir;
   const fs::path out = dir.path / "rows.jsonl";
