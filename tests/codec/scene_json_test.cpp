@@ -14,7 +14,7 @@ namespace {
 // text after one would be ignored; a second value or trailing text is an error too.
 TEST(JsonText, OnlyExactlyOneValue) {
   EXPECT_EQ(parse_json_text(" {\"a\": 1}\r\n\t ")["a"], 1);
-  for (const std::string text :
+  for (const std::string& text :
        {std::string("{\"a\": 1}") + '\0' + "garbage", std::string("{\"a\": 1}") + '\0',
         '\0' + std::string("{}"), std::string("{\"a\": \"x") + '\0' + "y\"}", std::string("{\"a\": 1} x"),
         std::string("{\"a\": 1}{\"a\": 2}"), std::string("1 2"), std::string(""),
