@@ -87,13 +87,14 @@ ApiServer::ApiServer(ServerOptions options) : state_(std::make_unique<State>(std
   register_routes(http, state_->server, route_table(state_->server.options.limits));
   // Framing first, on the bytes as they arrived (server/framing.h): a refused head is answered and the
   // connection closed before any route, body or state is touched.
-  http.set_pre_routing_handler([](const httplib::Request&, httplib::Response& res) {
+  http.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
     const std::string* bytes = current_request_bytes();
     if (!bytes) return httplib::Server::HandlerResponse::Unhandled;
     const Framing f = read_framing(*bytes);
     if (f.status == 0) return httplib::Server::HandlerResponse::Unhandled;
     res.set_header("X-Spinfold-Version", server_version());
-    res.set_header("Connection", "close");
+    // (httplib adds its own when the client asked to close.)
+    if (req.get_header_value("Connection") != "close") res.set_header("Connection", "close");
     const char* title = f.status == 404   ? "Not found"
                         : f.status == 501 ? "Not implemented"
                                           : "Malformed request";
