@@ -156,6 +156,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BadArgs{"simulate --scene spinning_rigid_sphere --tolerance 5", "integrator.tolerance"},
                       BadArgs{"simulate --scene spinning_rigid_sphere --t-end abc", "t-end"},
                       BadArgs{"simulate --t-end 1e9 --every 1e-9", "samples"}, BadArgs{"explode", ""},
+                      // A rate whose Retry-After would not fit an integer is bounded; these are refused.
+                      BadArgs{"serve --port 0 --no-store --requests-per-second -1", "--requests-per-second"},
+                      BadArgs{"serve --port 0 --no-store --requests-per-second 1e400",
+                              "--requests-per-second"},
                       BadArgs{"", "subcommand"}));
 
 TEST(Cli, BadSceneFileNamesTheField) {
@@ -262,7 +266,8 @@ INSTANTIATE_TEST_SUITE_P(Table, CliRecordOutOfRange,
                                            BadArgs{"--t-end 1 --speed 1e-300", "--speed"},
                                            BadArgs{"--t-end 400000", "--t-end"},  // 1.2e7 frames at 30/s
                                            BadArgs{"--t-end 1 --fps 1e-300", "--fps"},
-                                           BadArgs{"--t-end 1 --fps 1e300", "--fps"}));
+                                           BadArgs{"--t-end 1 --fps 1e300", "--fps"},
+                                           BadArgs{"--t-end 1 --width 1e19", "--width"}));
 
 // A scene file that is not exactly one JSON value: a NUL byte and what follows it (nlohmann-json
 // alone would stop reading at the NUL), trailing text, a second value.

@@ -246,6 +246,22 @@ TEST_F(Hardening, RequestRatePerClientAddress) {
   EXPECT_EQ(a.Get("/api/v1/health")->status, 200);
 }
 
+// A rate so small that the wait until the next token (1/rate seconds) does not fit an integer: the
+// Retry-After is a day, checked before the conversion (it was undefined behaviour).
+TEST(HardeningTinyRate, RetryAfterIsBoundedNotOverflowed) {
+  ServerOptions options;
+  options.port = 0;
+  options.limits.requests_per_second_per_client = 1e-300;
+  options.limits.request_burst_per_client = 1.0;
+  TestServer server(options);
+  auto c = server.client();
+  EXPECT_EQ(c.Get("/api/v1/health")->status, 200);
+  const auto refused = c.Get("/api/v1/health");
+  ASSERT_TRUE(refused);
+  EXPECT_EQ(refused->status, 429);
+  EXPECT_EQ(refused->get_header_value("Retry-After"), "86400");
+}
+
 // X-Forwarded-For from a peer that is not the trusted proxy names nobody: all these requests are
 // the peer's (127.0.0.1), however many addresses they claim.
 TEST(HardeningUntrusted, ForwardedForIsIgnoredUnlessThePeerIsTheProxy) {
