@@ -21,6 +21,10 @@ namespace {
 
 thread_local const std::string* tl_request_bytes = nullptr;
 
+// [bytes] kept of a request beyond twice the body limit: room for its head (httplib reads lines of
+// any length; the front bounds them at 8 KiB).
+constexpr std::size_t kKeptHead = std::size_t{1} << 20;
+
 constexpr std::uint64_t kSaturated = ~std::uint64_t{0};
 
 bool is_tchar(unsigned char c) {
@@ -232,8 +236,8 @@ namespace {
 class ConnectionStream final : public httplib::Stream {
  public:
   ConnectionStream(socket_t sock, std::chrono::microseconds read_timeout,
-                   std::chrono::microseconds write_timeout)
-      : sock_(sock), read_timeout_(read_timeout), write_timeout_(write_timeout) {}
+                   std::chrono::microseconds write_timeout, std::size_t kept)
+      : sock_(sock), read_timeout_(read_timeout), write_timeout_(write_timeout), kept_(kept) {}
 
   bool is_readable() const override { return pending() > 0 || ready(POLLIN, read_timeout_); }
   bool is_writable() const override { return ready(POLLOUT, write_timeout_); }
@@ -253,7 +257,9 @@ class ConnectionStream final : public httplib::Stream {
     }
     const std::size_t n = std::min(size, pending());
     std::copy_n(buffer_.data() + offset_, n, ptr);
-    request_.append(buffer_.data() + offset_, n);
+    // Kept up to a bound: a longer request is cut short there, which the checks read as incomplete
+    // (refused), rather than held twice (httplib holds what it reads of it too).
+    if (request_.size() + n <= kept_) request_.append(buffer_.data() + offset_, n);
     offset_ += n;
     return static_cast<ssize_t>(n);
   }
@@ -313,6 +319,7 @@ class ConnectionStream final : public httplib::Stream {
 
   socket_t sock_;
   std::chrono::microseconds read_timeout_, write_timeout_;
+  std::size_t kept_;  // [bytes] of the current request kept at most
   std::string buffer_;
   std::size_t offset_ = 0;
   std::string request_;
@@ -340,7 +347,8 @@ bool FramingServer::process_and_close_socket(socket_t sock) {
   using std::chrono::microseconds;
   using std::chrono::seconds;
   ConnectionStream stream(sock, seconds(read_timeout_sec_) + microseconds(read_timeout_usec_),
-                          seconds(write_timeout_sec_) + microseconds(write_timeout_usec_));
+                          seconds(write_timeout_sec_) + microseconds(write_timeout_usec_),
+                          kKeptHead + 2 * payload_max_length_);
   bool ok = false;
   bool unread = false;  // the last request's body was not read to its end
   for (std::size_t left = keep_alive_max_count_; left > 0; --left) {
