@@ -14,8 +14,13 @@
 
 namespace spinfold {
 
-const IntegratorInfo exact_info{
-    "exact", 0, true, false, true, "closed form of the separable scenes (no radial potential; abc or none)"};
+const IntegratorInfo exact_info{"exact",
+                                0,
+                                true,
+                                false,
+                                true,
+                                "closed form of the separable scenes: radial potential g > 0 or none, abc "
+                                "deformation potential or none (physics.md §8)"};
 
 namespace {
 
@@ -283,9 +288,12 @@ ExactSolution make_exact_solution(const Scene& scene) {
   sol.theta0 = scene.initial.alpha - scene.initial.beta;
   if (const auto* abc = std::get_if<AbcPotential>(&scene.potential.deformation)) sol.internal = *abc;
   if (has_radial_barrier(scene)) {
+    // p_φ of the scene's chart, from the initial values: start.y is in a moved chart when the start
+    // lies outside the well-conditioned band (near a pole, far out on H²), and its p_φ is another one.
     const InitialState& q = scene.initial;
-    sol.radial = radial_orbit(scene, q.r, q.phi, q.r_dot, start.y[coord::p_phi], spin_of(scene, start.y),
-                              orbital_energy(scene, start));
+    const double s = spin_of(scene, start.y), S = polar_S(scene.surface, q.r);
+    const double p_phi = scene.body.mass * S * S * q.phi_dot + polar_C(scene.surface, q.r) * s;
+    sol.radial = radial_orbit(scene, q.r, q.phi, q.r_dot, p_phi, s, orbital_energy(scene, start));
   }
   return sol;
 }
@@ -426,10 +434,13 @@ State exact_state(const ExactSolution& sol, double t) {
     }
     return state;
   }
-  // Without V_r: the initial local body, its frame turned and deformed, in the moved chart.
-  const Chart g = orbit_motion(scene, sol.initial, t);
-  state.chart.A = g.A * sol.chart0.A;
-  state.chart.b = g.A * sol.chart0.b + g.b;
+  // Without V_r: the initial local body, its frame turned and deformed, in the moved chart. The
+  // orbit's isometry is taken in the start's chart (chart0 ∘ G_local(t) = G(t) ∘ chart0): the body's
+  // coordinates there are moderate, while far out on H² the global ones grow like e^{r/R} and the
+  // momentum map m X × V computed from them cancels to nothing (physics.md §8.6, chart rules).
+  const Chart g = orbit_motion(scene, sol.local0, t);
+  state.chart.A = sol.chart0.A * g.A;
+  state.chart.b = sol.chart0.A * g.b + sol.chart0.b;
   state.chart.global = t == 0.0 && sol.chart0.global;
   BodyKinematics local = sol.local0;
   std::tie(local.L, local.M) = frame_flow(scene, sol.internal, sol.local0, t);
