@@ -79,9 +79,15 @@ double det_of(const Coords& y) {
   return y[coord::L] * y[coord::L + 3] - y[coord::L + 1] * y[coord::L + 2];
 }
 
-// Time in [0, h] where det L crosses zero along the step from y, by bisection on sub-steps.
-double locate_degenerate(Integrator& integrator, const StepProblem& f, const Coords& y, double h,
-                         double tolerance) {
+// Where det L crosses zero along the step from y: the time in [0, h] (by bisection on sub-steps
+// from y, so it is the same whichever sample the step was cut for), and the state just before it.
+struct Crossing {
+  double t = 0.0;       // offset of the crossing [time]
+  double before = 0.0;  // offset of `y`, ≤ 1e-14 h before it [time]
+  Coords y;             // the state there (the integrator's sub-step from y)
+};
+Crossing locate_degenerate(Integrator& integrator, const StepProblem& f, const Coords& y, double h,
+                           double tolerance) {
   const double det0 = det_of(y);
   double lo = 0.0, hi = h;
   Coords trial;
@@ -94,7 +100,12 @@ double locate_degenerate(Integrator& integrator, const StepProblem& f, const Coo
     else
       hi = mid;
   }
-  return 0.5 * (lo + hi);
+  Crossing c{0.5 * (lo + hi), lo, y};
+  if (lo > 0.0) {
+    integrator.try_step(f, y, lo, tolerance, trial);
+    c.y = y + trial;
+  }
+  return c;
 }
 
 }  // namespace
@@ -128,8 +139,9 @@ void add_event(std::vector<DegenerateEvent>& events, double t) {
   events.push_back({t});
 }
 
-// The closed form jumps straight to t_end from the segment's start; a det L sign change since the
-// last state is located by bisection on the closed form itself, and a stop lands just before it.
+// The closed form jumps straight to t_end from the segment's start. The det L = 0 crossings since
+// the last state are the roots of det L(τ) in the closed form's own time (degenerate_times), so
+// they do not depend on where the run was sampled; a stop lands on the first one.
 void advance_exact(Simulation& run, double t_end) {
   const auto at = [&run](double t) {
     State s = exact_state(*run.exact, t - run.segment_start);
@@ -141,20 +153,12 @@ void advance_exact(Simulation& run, double t_end) {
     run.state.status = Status::non_finite;
     return;
   }
-  const Scene& scene = run.scene;
-  if (scene.body.model == BodyModel::affine && (det_of(run.state.y) > 0.0) != (det_of(next.y) > 0.0)) {
-    const bool positive = det_of(run.state.y) > 0.0;
-    double lo = run.state.t, hi = t_end;
-    for (int i = 0; i < 200 && hi - lo > 1e-14 * std::max(1.0, std::abs(hi)); ++i) {
-      const double mid = 0.5 * (lo + hi);
-      if ((det_of(at(mid).y) > 0.0) == positive)
-        lo = mid;
-      else
-        hi = mid;
-    }
-    add_event(run.events, 0.5 * (lo + hi));
-    if (scene.on_degenerate == OnDegenerate::stop) {
-      run.state = at(lo);
+  for (const double tau :
+       degenerate_times(*run.exact, run.state.t - run.segment_start, t_end - run.segment_start)) {
+    const double t = run.segment_start + tau;
+    add_event(run.events, t);
+    if (run.scene.on_degenerate == OnDegenerate::stop) {
+      run.state = at(t);
       run.state.status = Status::degenerate_frame;
       return;
     }
@@ -211,8 +215,20 @@ bool step_toward(Simulation& run, StepPoint& p, double t_end, Mode mode, std::ui
     }
 
     if (affine && (det_of(state.y) > 0.0) != (det_of(y_next) > 0.0)) {
-      add_event(events, state.t + locate_degenerate(*run.integrator, f, state.y, h, tolerance));
-      if (scene.on_degenerate == OnDegenerate::stop) {
+      const Crossing crossing = locate_degenerate(*run.integrator, f, state.y, h, tolerance);
+      const bool stop = scene.on_degenerate == OnDegenerate::stop;
+      // A stop reports the event at its own time (≤ 1e-14 h before the crossing's midpoint), so
+      // the stopped sample lists it.
+      add_event(events, state.t + (stop ? crossing.before : crossing.t));
+      if (stop) {
+        // The stop lands on the crossing (its last good side), not on the step before it: the
+        // stopped sample's time is the event's, whatever the sampling and the integrator.
+        if (all_finite(crossing.y)) {
+          state.y = crossing.y;
+          state.t += crossing.before;
+          p.carry.setZero(state.y.size());
+          p.t_carry = 0.0;
+        }
         state.status = Status::degenerate_frame;
         return true;
       }
