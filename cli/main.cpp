@@ -286,6 +286,9 @@ int serve(const server::ServerOptions& options) {
     throw BadInput{"--frame-ancestors: 'none' or space-separated origins (no ';', ',' or line breaks)"};
   if (options.render_threads < 0 || options.render_threads > 64)
     throw BadInput{"--render-threads: must be 0..64"};
+  const double rate = options.limits.requests_per_second_per_client;
+  if (!std::isfinite(rate) || rate < 0.0)
+    throw BadInput{"--requests-per-second: must be a finite number >= 0 (0: unlimited)"};
   sigset_t signals;
   sigemptyset(&signals);
   sigaddset(&signals, SIGTERM);

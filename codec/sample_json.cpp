@@ -1,5 +1,6 @@
 #include "codec/sample_json.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace spinfold {
@@ -51,7 +52,10 @@ json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_event
   j["lambda_dot"] = number(c.lambda_dot);
   j["mu_dot"] = number(c.mu_dot);
   j["p_r"] = number(c.p_r);
-  j["p_phi"] = number(c.p_phi);
+  // p_φ far out on H² is computed but has lost its digits: null, with the reason under undefined.
+  const bool p_phi_lost = std::any_of(c.undefined.begin(), c.undefined.end(),
+                                      [](const UndefinedValue& u) { return u.field == "p_phi"; });
+  j["p_phi"] = p_phi_lost ? json(nullptr) : number(c.p_phi);
   j["p_alpha"] = number(c.p_alpha);
   j["p_beta"] = number(c.p_beta);
   j["p_lambda"] = number(c.p_lambda);
@@ -78,11 +82,14 @@ json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_event
   if (r.momentum_map) {
     const Vec3& M = *r.momentum_map;
     j["M"] = {number(M.x()), number(M.y()), number(M.z())};
-    if (r.casimir) j["casimir"] = number(*r.casimir);
+  } else if (!r.undefined.empty() && r.casimir) {
+    j["M"] = nullptr;  // computed but lost its digits: the reason is under undefined
   }
+  if (r.casimir) j["casimir"] = number(*r.casimir);
 
   json undefined = json::object();
   for (const UndefinedValue& u : c.undefined) undefined[u.field] = u.reason;
+  for (const UndefinedValue& u : r.undefined) undefined[u.field] = u.reason;
   // Action variables J = ∮p dq and frequencies ν = ∂E/∂J [1/time] (engine/actions.h): null where
   // undefined, with the reason under undefined ("actions.J_r", "frequencies.r", or "actions").
   if (r.actions) {

@@ -15,8 +15,6 @@ using nlohmann::json;
 
 namespace {
 
-struct TooDeep {};
-
 // Reads one JSON object into plain fields, recording every problem with its dotted path.
 class Reader {
  public:
@@ -543,15 +541,9 @@ SceneParse parse_scene(const json& document) {
 SceneParse parse_scene_text(std::string_view text) {
   SceneParse result;
   try {
-    const json::parser_callback_t depth_guard = [](int depth, json::parse_event_t, json&) {
-      if (depth > kMaxJsonDepth) throw TooDeep{};
-      return true;
-    };
-    return parse_scene(json::parse(text, depth_guard));
-  } catch (const TooDeep&) {
-    result.errors.push_back({"", "", "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels"});
-  } catch (const json::exception& e) {
-    result.errors.push_back({"", "", std::string("malformed JSON: ") + e.what()});
+    return parse_scene(parse_json_text(text));
+  } catch (const JsonTextError& e) {
+    result.errors.push_back({"", "", e.what()});
   }
   return result;
 }

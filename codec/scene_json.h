@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "codec/json_text.h"
 #include "engine/scene.h"
 #include "engine/validation.h"
 
@@ -16,10 +17,8 @@ struct SceneParse {
   std::vector<FieldError> errors;  // structure errors (unknown key, wrong type) and validate_scene's
 };
 
-// Deepest nesting accepted in any JSON input (deeper input is rejected before it is built).
-inline constexpr int kMaxJsonDepth = 32;
-
-// Parses JSON text; malformed JSON is one error with field "" naming the position.
+// Parses JSON text (parse_json_text: exactly one value, no NUL byte); malformed JSON is one error
+// with field "" naming the position.
 SceneParse parse_scene_text(std::string_view text);
 // Reads a parsed document: unknown keys and kinds are rejected, omitted fields get the defaults
 // of engine/scene.h, and the result passes validate_scene.

@@ -4,13 +4,27 @@
 // - an error is application/problem+json with its status and a detail;
 // - a refused request (4xx) changes nothing: the session reads the same before and after;
 // - a JSON answer parses.
+// - a recording accepted (202) has from 1 to max_recording_frames frames (a double turned into
+//   an integer out of range gave INT64_MIN);
+// Half the inputs are raw bytes over a socket instead (the first byte picks): a request line, header
+// lines picked from framing-relevant ones (Content-Length with signs, lists and duplicates,
+// Transfer-Encoding, obs-fold, LF alone, an encoded slash) and a body, sent as it is or chunked
+// (its chunks' ends possibly broken). Properties: one answer with a status line; no 5xx other than
+// 501 (an unknown transfer coding) and 503; a request holding a construct RFC 9112 says to refuse
+// is 400/404/501; any answer >= 400 leaves the session unchanged.
 // Event streams and play are left out: they hold connections and change the session while the
 // properties are checked.
+#include <arpa/inet.h>
 #include <fuzzer/FuzzedDataProvider.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -38,6 +52,10 @@ struct Harness {
     // Every request comes from 127.0.0.1, thousands a second: the per-client rate limit
     // (hardening_test.cpp tests it) would answer the harness's own reads with 429.
     options.limits.requests_per_second_per_client = 0.0;
+    // Accepted recordings stay small: a few tiny frames each, and deleted after the check.
+    options.limits.max_recording_frames = 8;
+    options.limits.max_recording_pixels = 64 * 64;
+    options.limits.max_recordings_per_client = 64;
     server = new spinfold::server::ApiServer(options);
     port = server->bind();
     if (port <= 0) std::abort();
@@ -72,17 +90,155 @@ struct Harness {
   std::abort();
 }
 
+[[noreturn]] void violated_raw(const char* what, const std::string& request, const std::string& answer) {
+  std::fprintf(stderr, "property violated: %s\nrequest (raw):\n%s\nanswer:\n%s\n", what, request.c_str(),
+               answer.c_str());
+  std::abort();
+}
+
+// Sends `request` over a fresh connection to 127.0.0.1 and reads until the server closes it.
+std::string exchange(int port, const std::string& request) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) std::abort();
+  const timeval timeout{30, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  for (std::size_t sent = 0; sent < request.size();) {
+    const ssize_t n = ::send(fd, request.data() + sent, request.size() - sent, MSG_NOSIGNAL);
+    if (n <= 0) break;  // answered and closed before reading it all
+    sent += static_cast<std::size_t>(n);
+  }
+  ::shutdown(fd, SHUT_WR);  // nothing more: an incomplete request ends here
+  std::string answer;
+  char buffer[4096];
+  for (ssize_t n; (n = ::recv(fd, buffer, sizeof buffer, 0)) > 0;)
+    answer.append(buffer, static_cast<std::size_t>(n));
+  ::close(fd);
+  return answer;
+}
+
+// One raw request built from the input; see the properties at the top.
+void raw_request(Harness& h, FuzzedDataProvider& in) {
+  bool must_refuse = false;  // the request holds a construct RFC 9112 says to refuse
+  const std::string method = in.PickValueInArray({"POST", "PATCH", "GET", "DELETE"});
+  std::string target = in.PickValueInArray({"/api/v1/sessions/{id}/advance", "/api/v1/sessions/{id}",
+                                            "/api/v1/sessions/{id}/recordings", "/api/v1/sessions"});
+  if (in.ConsumeBool()) {
+    const std::size_t slash = target.find("/{id}");
+    if (slash != std::string::npos) {
+      target.replace(slash, 1, in.ConsumeBool() ? "%2F" : "%2f");
+      must_refuse = true;
+    }
+  }
+  if (const auto at = target.find("{id}"); at != std::string::npos) target.replace(at, 4, h.id);
+  std::string body = in.ConsumeRandomLengthString(256);
+  if (in.ConsumeBool()) body = R"({"until": 0.5})";  // a body that would act, were it read
+  std::string headers = "Host: 127.0.0.1\r\nConnection: close\r\nContent-Type: application/json\r\n";
+  bool chunked = false, has_length = false;
+  const int lines = in.ConsumeIntegralInRange(0, 4);
+  for (int k = 0; k < lines; ++k) {
+    switch (in.ConsumeIntegralInRange(0, 9)) {
+      case 0:
+        headers += "Content-Length: " + std::to_string(body.size()) + "\r\n";
+        has_length = true;
+        break;
+      case 1:
+        headers += "Content-Length: +" + std::to_string(body.size()) + "\r\n";
+        must_refuse = true;
+        break;
+      case 2:
+        headers += "Content-Length: -5\r\n";
+        must_refuse = true;
+        break;
+      case 3:
+        headers +=
+            "Content-Length: " + std::to_string(body.size() + 1 + in.ConsumeIntegralInRange(0, 9)) + "\r\n";
+        has_length = true;
+        break;
+      case 4:
+        headers += "Transfer-Encoding: chunked\r\n";
+        chunked = true;
+        break;
+      case 5:
+        headers += "X-Note: a\r\n folded\r\n";
+        must_refuse = true;
+        break;
+      case 6:
+        headers += "X-Note: a\n";
+        must_refuse = true;
+        break;
+      case 7:
+        headers += "Content-Length : " + std::to_string(body.size()) + "\r\n";
+        must_refuse = true;
+        break;
+      case 8:
+        headers += "Transfer-Encoding: " + in.ConsumeRandomLengthString(12) + "\r\n";
+        chunked = true;
+        break;
+      default:
+        headers += "X-" + in.ConsumeRandomLengthString(12) + ": " + in.ConsumeRandomLengthString(24) + "\r\n";
+    }
+  }
+  // Two lengths that differ, or a length with a transfer coding: ambiguous.
+  if (chunked && has_length) must_refuse = true;
+  std::optional<std::string> first_length;
+  for (std::size_t at = headers.find("Content-Length: "); at != std::string::npos;
+       at = headers.find("Content-Length: ", at + 1)) {
+    const std::string value = headers.substr(at + 16, headers.find('\r', at) - at - 16);
+    if (!first_length)
+      first_length = value;
+    else if (value != *first_length)
+      must_refuse = true;
+  }
+  std::string payload = body;
+  if (chunked) {
+    payload.clear();
+    const bool broken = in.ConsumeBool();
+    std::size_t at = 0;
+    while (at < body.size()) {
+      const std::size_t n = std::min<std::size_t>(body.size() - at, in.ConsumeIntegralInRange(1, 64));
+      char size[32];
+      std::snprintf(size, sizeof size, "%zx\r\n", n);
+      payload += size + body.substr(at, n) + (broken && at == 0 ? "XX\r\n" : "\r\n");
+      at += n;
+    }
+    payload += "0\r\n\r\n";
+    if (broken && !body.empty()) must_refuse = true;
+  }
+  const std::string request = method + " " + target + " HTTP/1.1\r\n" + headers + "\r\n" + payload;
+
+  const std::string before = h.session_body();
+  const std::string answer = exchange(h.port, request);
+  if (answer.rfind("HTTP/1.1 ", 0) != 0) violated_raw("no status line", request, answer);
+  if (answer.find("HTTP/1.1 ", 9) != std::string::npos) violated_raw("more than one answer", request, answer);
+  const int status = std::atoi(answer.c_str() + 9);
+  if (status >= 500 && status != 501 && status != 503) violated_raw("a server error", request, answer);
+  if (must_refuse && status != 400 && status != 404 && status != 501)
+    violated_raw("ambiguous framing was not refused", request, answer);
+  if (status >= 400 && h.session_body() != before)
+    violated_raw("a refused request changed the session", request, answer);
+  if (h.session_body().empty()) h.new_session();
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static Harness h;
   FuzzedDataProvider in(data, size);
+  if (in.ConsumeBool()) {
+    raw_request(h, in);
+    return 0;
+  }
   const std::string method = in.PickValueInArray({"GET", "POST", "PATCH", "DELETE", "PUT"});
   const std::string route = in.PickValueInArray(
       {"/api/v1/sessions", "/api/v1/sessions/{id}", "/api/v1/sessions/{id}/advance",
        "/api/v1/sessions/{id}/reset", "/api/v1/sessions/{id}/pause", "/api/v1/sessions/{id}/trajectory",
        "/api/v1/sessions/{id}/frame.png", "/api/v1/sessions/nope", "/api/v1/schema", "/api/v1/scenes",
-       "/api/v1/integrators", "/api/v1/health", "/api/v1/"});
+       "/api/v1/integrators", "/api/v1/health", "/api/v1/", "/api/v1/sessions/{id}/recordings",
+       "/api/v1/sessions/{id}/recordings", "/api/v1/recordings/nope", "/api/v1/sessions%2F{id}/advance"});
   std::string target = route;
   if (const auto at = target.find("{id}"); at != std::string::npos) target.replace(at, 4, h.id);
   const int parameters = in.ConsumeIntegralInRange(0, 3);
@@ -121,6 +277,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } else if (content_type.starts_with("application/json") &&
              json::parse(res->body, nullptr, false).is_discarded()) {
     violated("a JSON answer that does not parse", method, target, body, res);
+  }
+  if (route.ends_with("/recordings") && res->status == 202) {
+    const json made = json::parse(res->body, nullptr, false);
+    const long long frames = made.value("frames", -1LL);
+    if (frames < 1 || frames > 8)
+      violated("a recording's frame count out of range", method, target, body, res);
+    c.Delete("/api/v1/recordings/" + made.value("id", std::string("none")));
   }
   // Keep the stage as it was: sessions the input made go, the target session comes back.
   if (method == "POST" && route == "/api/v1/sessions" && res->status == 201) {

@@ -1,11 +1,24 @@
 #include "record/clip.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
+#include "engine/integer_cast.h"
 #include "engine/number_text.h"
 #include "render/scene_builder.h"
 
 namespace spinfold::record {
+
+namespace {
+
+// ⌈(t_end − t_start)·fps/speed⌉ as a double (inf or NaN for a window out of range). The 1e-9 keeps
+// a window of a whole number of frames from gaining one to rounding.
+double frames_exact(const Clip& c) {
+  return std::ceil((c.t_end - c.t_start) * c.fps / c.speed - 1e-9);
+}
+
+}  // namespace
 
 std::vector<FieldError> clip_errors(const Clip& c) {
   std::vector<FieldError> errors;
@@ -16,17 +29,27 @@ std::vector<FieldError> clip_errors(const Clip& c) {
     refuse("t_start", c.t_start, "must be a finite number >= 0");
   if (!std::isfinite(c.t_end) || !(c.t_end > c.t_start))
     refuse("t_end", c.t_end, "must be a finite number > t_start");
-  if (!std::isfinite(c.fps) || !(c.fps > 0.0) || c.fps > kMaxFps)
-    refuse("fps", c.fps, "must be a number in (0, 120] [frames/s]");
+  if (!std::isfinite(c.fps) || !(c.fps >= kMinFps) || c.fps > kMaxFps)
+    refuse("fps", c.fps, "must be a number from 0.01 to 120 [frames/s]");
   if (!std::isfinite(c.speed) || !(c.speed > 0.0))
     refuse("speed", c.speed, "must be a finite number > 0 [simulated time per second]");
+  if (errors.empty()) {
+    const double n = frames_exact(c);
+    if (!(n <= kMaxClipFrames)) {
+      const bool window = (c.t_end - c.t_start) * c.fps > kMaxClipFrames;
+      const std::string reason = "the window would take " + shortest(n) + " frames at fps " +
+                                 shortest(c.fps) + " and speed " + shortest(c.speed) +
+                                 "; at most 1e7 in one clip";
+      errors.push_back({window ? "t_end" : "speed", shortest(window ? c.t_end : c.speed), reason});
+    }
+  }
   return errors;
 }
 
 long long frame_count(const Clip& c) {
-  // The 1e-9 keeps a window of a whole number of frames from gaining one to rounding.
-  const double n = std::ceil((c.t_end - c.t_start) * c.fps / c.speed - 1e-9);
-  return n < 1.0 ? 1 : static_cast<long long>(n);
+  const double n = frames_exact(c);
+  if (!(n <= kMaxClipFrames)) throw std::logic_error("frame_count of a clip with errors");
+  return n < 1.0 ? 1 : *integer_within<long long>(n);
 }
 
 double frame_time(const Clip& c, long long k) {

@@ -23,15 +23,24 @@ namespace spinfold::record {
 struct Clip {
   double t_start = 0.0;  // [time] the first frame's simulated time, ≥ 0
   double t_end = 10.0;   // [time] the window's end (excluded), > t_start
-  double fps = 30.0;     // frames per second of the file, in (0, 120]
+  double fps = 30.0;     // frames per second of the file, from kMinFps to kMaxFps
   double speed = 1.0;    // simulated time per second of the file, > 0
 };
 
 inline constexpr double kMaxFps = 120.0;
+// A GIF's delay is 16-bit hundredths of a second (at most 655 s a frame) and FFmpeg's frame rate a
+// fraction of integers: 0.01 frames/s (100 s a frame) keeps both exact.
+inline constexpr double kMinFps = 0.01;
+// Frames in one clip, whoever records it (the server's limits.max_recording_frames is lower): the
+// count is computed in double and checked against this before it becomes an integer.
+inline constexpr double kMaxClipFrames = 1e7;
 
-// Refusals of a clip, each naming the field ("t_start", "t_end", "fps", "speed"), value and reason.
+// Refusals of a clip, each naming the field ("t_start", "t_end", "fps", "speed"), value and reason;
+// among them a window of more than kMaxClipFrames frames, which names t_end when the window is too
+// long at speed 1 and speed otherwise (a slow speed is what makes it long).
 std::vector<FieldError> clip_errors(const Clip& clip);
-// n = ⌈(t_end − t_start)·fps/speed⌉ (at least 1); only for a clip without errors.
+// n = ⌈(t_end − t_start)·fps/speed⌉, from 1 to kMaxClipFrames; std::logic_error for a clip with
+// errors (never a conversion out of range).
 long long frame_count(const Clip& clip);
 // t_k = t_start + k·speed/fps [time].
 double frame_time(const Clip& clip, long long k);

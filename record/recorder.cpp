@@ -1,5 +1,7 @@
 #include "record/recorder.h"
 
+#include "record/clip.h"
+
 namespace spinfold::record {
 
 std::optional<Format> parse_format(std::string_view name) {
@@ -48,6 +50,9 @@ std::optional<std::string> size_unsupported_reason(Format format, int width, int
 }
 
 std::unique_ptr<Recorder> open_recorder(Format format, const std::string& path, const RecordingSpec& spec) {
+  // Before the file exists: the writers turn fps into integer delays and time bases.
+  if (!(spec.fps >= kMinFps && spec.fps <= kMaxFps))
+    throw RecordError("fps must be a number from 0.01 to 120 [frames/s]");
   switch (format) {
     case Format::gif: return open_gif(path, spec);
     case Format::webm:

@@ -9,6 +9,8 @@
 #include <mutex>
 #include <numbers>
 
+#include "engine/integer_cast.h"
+
 namespace spinfold::render {
 
 namespace {
@@ -165,7 +167,7 @@ void append_path(std::vector<Vec3>& out, const Surface& surface, const Vec3& a, 
     return;
   }
   const double gap = (b - a).norm() / std::max(R, std::max(a.norm(), b.norm()) * 1e-3);
-  const int n = std::clamp(static_cast<int>(std::ceil(gap / 0.03)), 1, 16);
+  const int n = clamped_integer(std::ceil(gap / 0.03), 1, 16);  // clamped before the cast (NaN: 1)
   for (int i = 1; i <= n; ++i) {
     Vec3 p = a + (b - a) * (static_cast<double>(i) / n);
     if (surface.kind == SurfaceKind::sphere)
@@ -385,7 +387,7 @@ glm::dvec2 conformal_image(double K, const glm::dvec2& p) {
 // chords stray from the circle by less than `tolerance` [length] (at most 65536 of them).
 std::vector<glm::dvec2> arc(double rho, double a0, double a1, double tolerance) {
   const double step = 2.0 * std::sqrt(std::max(1e-300, 2.0 * tolerance / rho));  // sagitta ≈ ρ step²/8
-  const int n = static_cast<int>(std::clamp(std::ceil((a1 - a0) / step), 16.0, 65536.0));
+  const int n = clamped_integer(std::ceil((a1 - a0) / step), 16, 65536);         // NaN: 16
   std::vector<glm::dvec2> points;
   for (int k = 0; k <= n; ++k) {
     const double a = a0 + (a1 - a0) * k / n;

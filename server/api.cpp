@@ -3,6 +3,7 @@
 #include <sys/socket.h>
 
 #include "server/context.h"
+#include "server/framing.h"
 #include "server/player.h"
 #include "server/problem.h"
 #include "server/route_table.h"
@@ -51,7 +52,7 @@ constexpr int kSendBuffer = 128 * 1024;  // [bytes]: 4 motion frames, a 1280x720
 
 struct ApiServer::State {
   ServerContext server;
-  httplib::Server http;
+  FramingServer http;      // reads each connection itself: the framing checks see the raw bytes
   Player player;           // destroyed (joined) before the sessions it advances
   int listen_socket = -1;  // remembered by the socket options, for bind() to raise its backlog
 
@@ -84,6 +85,22 @@ ApiServer::ApiServer(ServerOptions options) : state_(std::make_unique<State>(std
     state->listen_socket = sock;
   });
   register_routes(http, state_->server, route_table(state_->server.options.limits));
+  // Framing first, on the bytes as they arrived (server/framing.h): a refused head is answered and the
+  // connection closed before any route, body or state is touched.
+  http.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
+    const std::string* bytes = current_request_bytes();
+    if (!bytes) return httplib::Server::HandlerResponse::Unhandled;
+    const Framing f = read_framing(*bytes);
+    if (f.status == 0) return httplib::Server::HandlerResponse::Unhandled;
+    res.set_header("X-Spinfold-Version", server_version());
+    // (httplib adds its own when the client asked to close.)
+    if (req.get_header_value("Connection") != "close") res.set_header("Connection", "close");
+    const char* title = f.status == 404   ? "Not found"
+                        : f.status == 501 ? "Not implemented"
+                                          : "Malformed request";
+    send_error(res, bad(f.status, title, f.field, f.value, f.reason));
+    return httplib::Server::HandlerResponse::Handled;
+  });
   http.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (res.body.empty()) send_error(res, unrouted(req, res.status));
   });

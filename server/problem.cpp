@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "codec/json_text.h"
 #include "codec/scene_json.h"
 
 // After Eigen: httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's parameter names.
@@ -85,16 +86,9 @@ json parse_body(const httplib::Request& req, const std::string& body,
   if (body.empty())
     throw bad(400, "Malformed request", "", "", "the body is empty: a JSON object is expected");
   try {
-    const json::parser_callback_t guard = [](int depth, json::parse_event_t, json&) {
-      if (depth > kMaxJsonDepth) throw std::length_error("nesting");
-      return true;
-    };
-    return json::parse(body, guard);
-  } catch (const std::length_error&) {
-    throw bad(400, "Malformed request", "", "",
-              "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
-  } catch (const json::exception& e) {
-    throw bad(400, "Malformed request", "", "", std::string("malformed JSON: ") + e.what());
+    return parse_json_text(body);
+  } catch (const JsonTextError& e) {
+    throw bad(400, "Malformed request", "", "", e.what());
   }
 }
 

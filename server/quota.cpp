@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "engine/integer_cast.h"
 #include "engine/number_text.h"
 #include "server/problem.h"
 
@@ -77,11 +78,13 @@ void ClientQuotas::admit_request(const std::string& client) {
     c.tokens -= 1.0;
     return;
   }
-  const auto wait = static_cast<long>(std::ceil((1.0 - c.tokens) / rate));
+  // Seconds until a token, checked before it becomes an integer (a tiny rate makes it huge): a day
+  // at most.
+  const long wait = clamped_integer<long>(std::ceil((1.0 - c.tokens) / rate), 1, 86400);
   throw over_quota("requests_per_second_per_client", rate,
                    "this client (" + client + ") sends more than " + shortest(rate) +
                        " requests a second (bursts of " + shortest(burst) + "); slow down",
-                   std::max(1L, wait));
+                   wait);
 }
 
 void ClientQuotas::add_session(const std::string& client, const std::string& id,

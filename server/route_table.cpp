@@ -10,6 +10,7 @@
 #include "codec/scene_schema.h"
 #include "engine/number_text.h"
 #include "server/context.h"
+#include "server/framing.h"
 #include "server/problem.h"
 
 // After Eigen: httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's parameter names.
@@ -264,6 +265,12 @@ std::string bounded_body(const httplib::Request& req, const httplib::ContentRead
     throw bad(400, "Malformed request", "", "",
               "a " + req.method + " needs a Content-Length header (0 when there is no body)");
   }
+  // Digits only (a sign or a space would still parse as a number): the front check of
+  // server/framing.h says the same for a server that reads its own connections.
+  if (!declared.empty() && declared.find_first_not_of("0123456789") != std::string::npos) {
+    close_connection();
+    throw bad(400, "Malformed request", "Content-Length", declared, "must be decimal digits only");
+  }
   if (std::strtoull(declared.c_str(), nullptr, 10) > limit) {
     close_connection();
     throw bad(413, "Payload too large", "Content-Length", declared,
@@ -276,6 +283,19 @@ std::string bounded_body(const httplib::Request& req, const httplib::ContentRead
     if (!over) body.append(data, length);
     return !over;
   });
+  // httplib ends a chunked body early at a chunk not followed by CRLF, and says it was whole: the
+  // bytes as they arrived decide (server/framing.h), before the body is acted on.
+  if (whole && req.has_header("Transfer-Encoding"))
+    if (const std::string* bytes = current_request_bytes()) {
+      const Framing f = read_framing(*bytes);
+      const ChunkedBody c = read_chunked(std::string_view(*bytes).substr(f.head_bytes));
+      if (f.status != 0 || c.verdict != ChunkedBody::Verdict::complete ||
+          c.bytes != bytes->size() - f.head_bytes) {
+        close_connection();
+        throw bad(400, "Malformed request", "Transfer-Encoding", "chunked",
+                  "malformed chunked body: " + (c.reason.empty() ? std::string("it ended early") : c.reason));
+      }
+    }
   if (whole) return body;
   close_connection();
   if (over)

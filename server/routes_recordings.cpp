@@ -67,8 +67,16 @@ RecordingJob recording_job(ServerContext& server, const Call& call, Session& s) 
   job.clip.t_end = number("t_end", std::nullopt).value_or(job.clip.t_start + 1.0);
   job.clip.fps = *number("fps", 30.0);
   job.clip.speed = *number("speed", 1.0);
-  for (const FieldError& e : record::clip_errors(job.clip))
-    if (body.contains(e.field)) errors.push_back(e);
+  // Each refusal of a field the body gave; a clip refused only for its defaults (t_end is t_start + 1
+  // unless given) is refused all the same, before any frame count becomes an integer.
+  const std::vector<FieldError> clip_refusals = record::clip_errors(job.clip);
+  bool clip_named = false;
+  for (const FieldError& e : clip_refusals)
+    if (body.contains(e.field)) {
+      errors.push_back(e);
+      clip_named = true;
+    }
+  if (!clip_named) errors.insert(errors.end(), clip_refusals.begin(), clip_refusals.end());
   const auto format = text("format");
   if (!format)
     errors.push_back({"format", body.contains("format") ? body["format"].dump() : "",
@@ -204,7 +212,8 @@ std::vector<Route> recording_routes(const Limits& limits) {
          {{"type", "number"},
           {"x-unit", "time"},
           {"description", "end of the window (excluded), > t_start"}}},
-        {"fps", {{"type", "number"}, {"exclusiveMinimum", 0}, {"maximum", record::kMaxFps}, {"default", 30}}},
+        {"fps",
+         {{"type", "number"}, {"minimum", record::kMinFps}, {"maximum", record::kMaxFps}, {"default", 30}}},
         {"speed",
          {{"type", "number"}, {"default", 1}, {"description", "simulated time per second of the file"}}},
         {"width",

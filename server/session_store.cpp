@@ -4,6 +4,7 @@
 // was built from (one SELECT by primary key) and rebuilds when they differ.
 #include <cstdio>
 
+#include "codec/json_text.h"
 #include "codec/scene_json.h"
 #include "server/session_db.h"
 #include "server/sessions.h"
@@ -40,9 +41,16 @@ bool load_row(Session& s, const StoredSession& row) {
     warn("stored session " + row.id + " cannot be restored: " + why);
     return false;
   };
-  const nlohmann::json scene_json = nlohmann::json::parse(row.scene, nullptr, false);
-  const nlohmann::json timeline = nlohmann::json::parse(row.timeline, nullptr, false);
-  if (scene_json.is_discarded() || timeline.is_discarded()) return refuse("malformed JSON");
+  // The same strict reading as a request body: a row cut short or with bytes appended is refused
+  // rather than read in part.
+  nlohmann::json scene_json;
+  nlohmann::json timeline;
+  try {
+    scene_json = parse_json_text(row.scene);
+    timeline = parse_json_text(row.timeline);
+  } catch (const JsonTextError& e) {
+    return refuse(e.what());
+  }
   const SceneParse scene = parse_scene(scene_json);
   if (!scene.scene) return refuse(describe_errors(scene.errors));
   const Rebuild rebuilt = rebuild(s, *scene.scene, timeline, row.t, kNoStepLimit);

@@ -156,6 +156,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BadArgs{"simulate --scene spinning_rigid_sphere --tolerance 5", "integrator.tolerance"},
                       BadArgs{"simulate --scene spinning_rigid_sphere --t-end abc", "t-end"},
                       BadArgs{"simulate --t-end 1e9 --every 1e-9", "samples"}, BadArgs{"explode", ""},
+                      // A rate whose Retry-After would not fit an integer is bounded; these are refused.
+                      BadArgs{"serve --port 0 --no-store --requests-per-second -1", "--requests-per-second"},
+                      BadArgs{"serve --port 0 --no-store --requests-per-second 1e400",
+                              "--requests-per-second"},
                       BadArgs{"", "subcommand"}));
 
 TEST(Cli, BadSceneFileNamesTheField) {
@@ -239,5 +243,47 @@ INSTANTIATE_TEST_SUITE_P(
                       BadArgs{"record --t-end 1 --width 65 --format webm --out /tmp/x.webm", "even"},
                       BadArgs{"record --t-end 1 --format gif --out /nonexistent/x.gif", "--out"},
                       BadArgs{"record --format gif --out /tmp/x.gif", "--t-end"}));
+
+// Windows whose frame count does not fit an integer (or the 1e7 frames of one clip): exit 2 naming
+// the option, before any file is made.
+class CliRecordOutOfRange : public ::testing::TestWithParam<BadArgs> {};
+
+TEST_P(CliRecordOutOfRange, ExitsTwoNamingTheOptionAndLeavesNoFile) {
+  const std::string out =
+      std::filesystem::temp_directory_path() / ("spinfold_out_of_range_" + std::to_string(getpid()) + ".gif");
+  std::filesystem::remove(out);
+  const Result r = spinfold(std::string("record --scene spinning_rigid_sphere ") + GetParam().args +
+                            " --width 64 --height 48 --format gif --out " + out);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_NE(r.err.find(GetParam().message), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out)) << "a file was left";
+}
+
+INSTANTIATE_TEST_SUITE_P(Table, CliRecordOutOfRange,
+                         ::testing::Values(BadArgs{"--t-end 1e19", "--t-end"},
+                                           BadArgs{"--t-end 1e308", "--t-end"},
+                                           BadArgs{"--t-end 1 --speed 1e-300", "--speed"},
+                                           BadArgs{"--t-end 400000", "--t-end"},  // 1.2e7 frames at 30/s
+                                           BadArgs{"--t-end 1 --fps 1e-300", "--fps"},
+                                           BadArgs{"--t-end 1 --fps 1e300", "--fps"},
+                                           BadArgs{"--t-end 1 --width 1e19", "--width"}));
+
+// A scene file that is not exactly one JSON value: a NUL byte and what follows it (nlohmann-json
+// alone would stop reading at the NUL), trailing text, a second value.
+TEST(Cli, SceneFileOfMoreThanOneJsonValueIsRefused) {
+  const std::string path =
+      std::filesystem::temp_directory_path() / ("spinfold_two_values_" + std::to_string(getpid()) + ".json");
+  for (const std::string& text : {std::string(R"({"body": {"mass": 2.5}})") + '\0' + "garbage",
+                                  std::string(R"({"body": {"mass": 2.5}} x)"),
+                                  std::string(R"({"body": {"mass": 2.5}} {"body": {"mass": 3}})")}) {
+    std::ofstream(path, std::ios::binary) << text;
+    const Result r = spinfold("simulate " + path + " --t-end 0.5");
+    EXPECT_EQ(r.exit_code, 2) << text;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_NE(r.err.find("malformed JSON"), std::string::npos) << r.err;
+  }
+  std::filesystem::remove(path);
+}
 
 }  // namespace

@@ -41,6 +41,26 @@ TEST(Clip, RefusalsNameTheField) {
   EXPECT_EQ(fields({0.0, 1.0, 0.0, 1.0}), "fps ");
   EXPECT_EQ(fields({0.0, 1.0, 121.0, 1.0}), "fps ");
   EXPECT_EQ(fields({0.0, 1.0, 30.0, -1.0}), "speed ");
+  EXPECT_EQ(fields({0.0, 1.0, 0.005, 1.0}), "fps ");  // below 0.01: a GIF delay over 16 bits
+}
+
+// A frame count that does not fit an integer, or is over 1e7, is refused before it becomes one:
+// naming t_end when the window is too long at speed 1, speed when a slow speed makes it long.
+TEST(Clip, FrameCountsOutOfRangeAreRefusedNotConverted) {
+  const auto fields = [](const Clip& c) {
+    std::string names;
+    for (const FieldError& e : clip_errors(c)) names += e.field + " ";
+    return names;
+  };
+  EXPECT_EQ(fields({0.0, 1e308, 30.0, 1.0}), "t_end ");
+  EXPECT_EQ(fields({0.0, 1e19, 30.0, 1.0}), "t_end ");
+  EXPECT_EQ(fields({0.0, 1e19, 120.0, 1e300}), "");  // 1 frame: long windows are fine when fast
+  EXPECT_EQ(fields({0.0, 1.0, 30.0, 1e-300}), "speed ");
+  EXPECT_EQ(fields({0.0, 1e6, 30.0, 1.0}), "t_end ");  // 3e7 frames
+  EXPECT_EQ(fields({0.0, 1e6, 10.0, 1.0}), "");        // exactly 1e7 frames
+  EXPECT_EQ(frame_count({0.0, 1e6, 10.0, 1.0}), 10000000);
+  EXPECT_EQ(frame_count({0.0, 1e19, 120.0, 1e300}), 1);
+  EXPECT_THROW(frame_count({0.0, 1e19, 30.0, 1.0}), std::logic_error);
 }
 
 // Frame by frame through parameter changes, the copy ends where replay() (the session's rebuild)

@@ -31,6 +31,7 @@ inline std::vector<BadRequest> bad_requests() {
   const std::string kDeep = std::string(100, '[') + std::string(100, ']');
   // Over the server's 64 KiB body limit and the front's.
   const std::string kHuge = "{\"name\": \"" + std::string(70000, 'x') + "\"}";
+  const std::string kNul(1, '\0');
   return {
 
       BadRequest{"POST", "/api/v1/sessions", "{}", "text/plain", 415, "Content-Type"},
@@ -88,7 +89,40 @@ inline std::vector<BadRequest> bad_requests() {
       BadRequest{"PATCH", "/api/v1/sessions/{id}", R"("mass")", "application/json", 400, ""},
       BadRequest{"POST", "/api/v1/sessions/{id}/play", R"({"rate": -1})", "application/json", 422, "rate"},
       BadRequest{"POST", "/api/v1/sessions/{id}/play", R"({"speed": 1})", "application/json", 422, "speed"},
-      BadRequest{"GET", "/api/v1/sessions/{id}/events?rate=1000", "", "", 422, "rate"}};
+      BadRequest{"GET", "/api/v1/sessions/{id}/events?rate=1000", "", "", 422, "rate"},
+      // Not exactly one JSON value: a NUL byte (nlohmann-json alone reads it as the end of input),
+      // text after the value, a second value.
+      BadRequest{"PATCH", "/api/v1/sessions/{id}", R"({"body":{"mass":2.5}})" + kNul + "garbage",
+                 "application/json", 400, ""},
+      BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"until":7.1})" + kNul, "application/json", 400,
+                 ""},
+      BadRequest{"POST", "/api/v1/sessions/{id}/advance", kNul + R"({"until":7.1})", "application/json", 400,
+                 ""},
+      BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"until":7.1} x)", "application/json", 400, ""},
+      BadRequest{"POST", "/api/v1/sessions/{id}/advance", R"({"until":7.1}{"until":8})", "application/json",
+                 400, ""},
+      BadRequest{"PATCH", "/api/v1/sessions/{id}", R"({"body":{"mass":2.5}} {"body":{"mass":3}})",
+                 "application/json", 400, ""},
+      BadRequest{"POST", "/api/v1/sessions/{id}/play", R"({"rate":2})" + kNul + "}", "application/json", 400,
+                 ""},
+      // Recording windows whose frame count does not fit an integer: 422 naming the field, no job.
+      BadRequest{"POST", "/api/v1/sessions/{id}/recordings", R"({"t_end": 1e308, "format": "gif"})",
+                 "application/json", 422, "t_end"},
+      BadRequest{"POST", "/api/v1/sessions/{id}/recordings", R"({"t_end": 1e19, "format": "gif"})",
+                 "application/json", 422, "t_end"},
+      BadRequest{"POST", "/api/v1/sessions/{id}/recordings",
+                 R"({"t_end": 1, "speed": 1e-300, "format": "gif"})", "application/json", 422, "speed"},
+      BadRequest{"POST", "/api/v1/sessions/{id}/recordings", R"({"speed": 1e-300, "format": "gif"})",
+                 "application/json", 422, "speed"},
+      BadRequest{"POST", "/api/v1/sessions/{id}/recordings",
+                 R"({"t_end": 1, "fps": 1e-300, "format": "gif"})", "application/json", 422, "fps"},
+      BadRequest{"POST", "/api/v1/sessions/{id}/recordings", R"({"t_start": 1e308, "format": "gif"})",
+                 "application/json", 422, "t_end"},
+      // RFC 3986: an encoded slash is data within a segment, not a separator.
+      BadRequest{"POST", "/api/v1/sessions%2F{id}/advance", R"({"until":7.1})", "application/json", 404,
+                 "path"},
+      BadRequest{"PATCH", "/api/v1/sessions%2f{id}", R"({"body":{"mass":2.5}})", "application/json", 404,
+                 "path"}};
 }
 
 // Sends the request (with the session id in its path) and checks the answer: status,

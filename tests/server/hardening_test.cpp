@@ -246,6 +246,22 @@ TEST_F(Hardening, RequestRatePerClientAddress) {
   EXPECT_EQ(a.Get("/api/v1/health")->status, 200);
 }
 
+// A rate so small that the wait until the next token (1/rate seconds) does not fit an integer: the
+// Retry-After is a day, checked before the conversion (it was undefined behaviour).
+TEST(HardeningTinyRate, RetryAfterIsBoundedNotOverflowed) {
+  ServerOptions options;
+  options.port = 0;
+  options.limits.requests_per_second_per_client = 1e-300;
+  options.limits.request_burst_per_client = 1.0;
+  TestServer server(options);
+  auto c = server.client();
+  EXPECT_EQ(c.Get("/api/v1/health")->status, 200);
+  const auto refused = c.Get("/api/v1/health");
+  ASSERT_TRUE(refused);
+  EXPECT_EQ(refused->status, 429);
+  EXPECT_EQ(refused->get_header_value("Retry-After"), "86400");
+}
+
 // X-Forwarded-For from a peer that is not the trusted proxy names nobody: all these requests are
 // the peer's (127.0.0.1), however many addresses they claim.
 TEST(HardeningUntrusted, ForwardedForIsIgnoredUnlessThePeerIsTheProxy) {
@@ -488,6 +504,130 @@ TEST(HardeningOversized, RefusedWithoutHarm) {
   auto created = c.Post("/api/v1/sessions", R"({"preset": "spinning_rigid_sphere"})", "application/json");
   ASSERT_TRUE(created);
   EXPECT_EQ(created->status, 201);
+}
+
+// ---- Framing (RFC 9112) refused by the embedded server alone, on the bytes as they arrived.
+
+// A request whose length is ambiguous, or whose head httplib 0.11 would read leniently, is refused
+// before any route runs: each would otherwise advance the session (the body {"until":7.1} asks for
+// it) or be read in part. The session's state is byte-identical afterwards.
+struct Framed {
+  const char* name;
+  std::string request;  // "{id}" is replaced by the session's id
+  int status;
+};
+
+void PrintTo(const Framed& f, std::ostream* os) {
+  *os << f.name;
+}
+
+std::vector<Framed> framing_cases() {
+  const std::string line = "POST /api/v1/sessions/{id}/advance HTTP/1.1\r\nHost: 127.0.0.1\r\n";
+  const std::string type = "Content-Type: application/json\r\n";
+  const std::string body = R"({"until":7.1})";  // 13 bytes
+  // The length differs from what the session id makes it: the GET's body ends early or late, and
+  // either way it must not run.
+  const std::string smuggled = line + type + "Content-Length: 13\r\n\r\n" + body;
+  return {
+      {"two different Content-Length", line + type + "Content-Length: 13\r\nContent-Length: 2\r\n\r\n" + body,
+       400},
+      {"Content-Length with a plus sign", line + type + "Content-Length: +13\r\n\r\n" + body, 400},
+      {"negative Content-Length", line + type + "Content-Length: -5\r\n\r\n" + body, 400},
+      {"Content-Length list that disagrees", line + type + "Content-Length: 13, 14\r\n\r\n" + body, 400},
+      {"Transfer-Encoding with Content-Length",
+       line + type + "Transfer-Encoding: chunked\r\nContent-Length: 13\r\n\r\nd\r\n" + body + "\r\n0\r\n\r\n",
+       400},
+      {"obs-fold", line + type + "X-Note: a\r\n folded\r\nContent-Length: 13\r\n\r\n" + body, 400},
+      {"obs-fold with a colon", line + type + "X-Note: a\r\n\tb: c\r\nContent-Length: 13\r\n\r\n" + body,
+       400},
+      {"a chunk not followed by CRLF",
+       line + type + "Transfer-Encoding: chunked\r\n\r\nd\r\n" + body + "XX\r\n0\r\n\r\n", 400},
+      {"a chunk size with a sign",
+       line + type + "Transfer-Encoding: chunked\r\n\r\n+d\r\n" + body + "\r\n0\r\n\r\n", 400},
+      {"a header line ending in LF alone", line + type + "Content-Length: 13\n\r\n" + body, 400},
+      {"whitespace before the colon", line + type + "Content-Length : 13\r\n\r\n" + body, 400},
+      {"a header line without a colon",
+       line + type + "Content-Length 13\r\nContent-Length: 13\r\n\r\n" + body, 400},
+      {"a transfer coding other than chunked",
+       line + type + "Transfer-Encoding: gzip, chunked\r\n\r\nd\r\n" + body + "\r\n0\r\n\r\n", 501},
+      {"an encoded slash in the path",
+       "POST /api/v1/sessions%2F{id}/advance HTTP/1.1\r\nHost: 127.0.0.1\r\n" + type +
+           "Content-Length: 13\r\n\r\n" + body,
+       404},
+      {"a GET with a body that holds a request",
+       "GET /api/v1/sessions/{id} HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: " +
+           std::to_string(smuggled.size()) + "\r\n\r\n" + smuggled,
+       400}};
+}
+
+class Framing : public ::testing::TestWithParam<Framed> {
+ protected:
+  static void SetUpTestSuite() {
+    ServerOptions options;
+    options.port = 0;
+    server_ = new TestServer(options);
+  }
+  static void TearDownTestSuite() { delete server_; }
+  static TestServer* server_;
+};
+
+TestServer* Framing::server_ = nullptr;
+
+TEST_P(Framing, RefusedAndTheSessionIsUnchanged) {
+  auto c = server_->client();
+  auto created = c.Post("/api/v1/sessions", R"({"preset": "spinning_rigid_sphere"})", "application/json");
+  ASSERT_TRUE(created);
+  ASSERT_EQ(created->status, 201);
+  const std::string id = json::parse(created->body)["id"];
+  const std::string before = c.Get("/api/v1/sessions/" + id)->body;
+  std::string request = GetParam().request;
+  for (std::size_t at; (at = request.find("{id}")) != std::string::npos;) request.replace(at, 4, id);
+  const RawAnswer answer = raw_request(server_->port(), request);
+  EXPECT_EQ(answer.status, GetParam().status) << answer.body.substr(0, 300);
+  const json problem = json::parse(answer.body, nullptr, false);
+  ASSERT_TRUE(problem.is_object()) << answer.body.substr(0, 300);
+  EXPECT_EQ(problem["status"], GetParam().status);
+  EXPECT_FALSE(problem["detail"].get<std::string>().empty());
+  EXPECT_EQ(c.Get("/api/v1/sessions/" + id)->body, before);  // not advanced, nothing changed
+  c.Delete("/api/v1/sessions/" + id);
+}
+
+INSTANTIATE_TEST_SUITE_P(Rfc9112, Framing, ::testing::ValuesIn(framing_cases()));
+
+// The same bytes, well framed, are acted on: a chunked body, two requests pipelined on one
+// connection (the second read from what the first read ahead), and a connection kept alive.
+TEST_F(Framing, WellFramedRequestsAreServed) {
+  auto c = server_->client();
+  auto created = c.Post("/api/v1/sessions", R"({"preset": "spinning_rigid_sphere"})", "application/json");
+  ASSERT_TRUE(created);
+  const std::string id = json::parse(created->body)["id"];
+  const std::string line = "POST /api/v1/sessions/" + id + "/advance HTTP/1.1\r\nHost: 127.0.0.1\r\n";
+  const std::string json_type = "Content-Type: application/json\r\n";
+  const RawAnswer chunked = raw_request(
+      server_->port(),
+      line + json_type + "Transfer-Encoding: chunked\r\n\r\n5\r\n{\"unt\r\n8\r\nil\":0.5}\r\n0\r\n\r\n");
+  EXPECT_EQ(chunked.status, 200) << chunked.body.substr(0, 300);
+  EXPECT_EQ(json::parse(chunked.body)["state"]["t"], 0.5);
+
+  const int fd = connect_loopback(server_->port());
+  const timeval timeout{10, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+  const auto advance = [&](const std::string& body, const std::string& more) {
+    return line + json_type + "Content-Length: " + std::to_string(body.size()) + "\r\n" + more + "\r\n" +
+           body;
+  };
+  const std::string both =
+      advance(R"({"until":0.75})", "") + advance(R"({"until":1.0})", "Connection: close\r\n");
+  ASSERT_EQ(::send(fd, both.data(), both.size(), MSG_NOSIGNAL), static_cast<ssize_t>(both.size()));
+  std::string answers;
+  char buffer[4096];
+  for (ssize_t n; (n = ::recv(fd, buffer, sizeof buffer, 0)) > 0;)
+    answers.append(buffer, static_cast<std::size_t>(n));
+  ::close(fd);
+  EXPECT_EQ(answers.find("HTTP/1.1 200"), 0u) << answers.substr(0, 300);
+  EXPECT_NE(answers.find("HTTP/1.1 200", 12), std::string::npos) << answers.substr(0, 600);
+  EXPECT_EQ(json::parse(c.Get("/api/v1/sessions/" + id)->body)["state"]["t"], 1.0);
+  c.Delete("/api/v1/sessions/" + id);
 }
 
 }  // namespace

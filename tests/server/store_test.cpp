@@ -18,6 +18,8 @@
 #include <thread>
 #include <vector>
 
+#include "server/session_db.h"
+
 // After Eigen (none here, but the same order as the other server tests): httplib.h brings <resolv.h>.
 #include <httplib.h>
 
@@ -222,6 +224,33 @@ TEST(Store, TwoServersOnOneDirectoryServeTheSameSessions) {
   EXPECT_EQ(status_of(a, id), 404);
   EXPECT_EQ(status_of(b, id), 404);
   EXPECT_EQ(b.client().Delete((kSessions + "/" + id).c_str())->status, 404);
+}
+
+// A row is read as strictly as a request body: a NUL byte and what follows it, text after the value
+// or a second value make it a row that is not restored (said on stderr), rather than one read in
+// part; a sound row beside them is restored.
+TEST(Store, ARowOfMoreThanOneJsonValueIsNotRestored) {
+  TempDir dir;
+  const std::string nul(1, '\0');
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"{}" + nul + "garbage", "[]"}, {"{} {}", "[]"}, {"{}", "[] x"}, {"{}", "[]" + nul}};
+  {
+    spinfold::server::SessionDb db((dir.path / "data").string());
+    ASSERT_GT(db.save({.id = "GoodGoodGoodGoodGoodGo", .scene = "{}", .timeline = "[]"}), 0);
+    for (std::size_t i = 0; i < bad.size(); ++i)
+      ASSERT_GT(db.save({.id = "BadRowBadRowBadRow000" + std::to_string(i),
+                         .scene = bad[i].first,
+                         .timeline = bad[i].second}),
+                0);
+  }
+  Server server(store_args(dir));
+  ASSERT_GT(server.port(), 0) << server.err();
+  EXPECT_EQ(status_of(server, "GoodGoodGoodGoodGoodGo"), 200);
+  for (std::size_t i = 0; i < bad.size(); ++i)
+    EXPECT_EQ(status_of(server, "BadRowBadRowBadRow000" + std::to_string(i)), 404) << i;
+  EXPECT_NE(server.err().find("cannot be restored: malformed JSON: a NUL byte"), std::string::npos)
+      << server.err();
+  EXPECT_NE(server.err().find("restored 1 sessions"), std::string::npos) << server.err();
 }
 
 TEST(Store, ADamagedDatabaseOrAnUnwritableDirectoryIsAStartError) {
