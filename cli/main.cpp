@@ -21,6 +21,7 @@
 #include <string>
 #include <thread>
 
+#include "cli/run_loop.h"
 #include "cli/sweep.h"
 #include "codec/presets.h"
 #include "codec/sample_json.h"
@@ -110,11 +111,8 @@ int simulate(const SimulateOptions& opt) {
     std::cout << sample_to_json(run, reported_until).dump() << '\n';
     reported_until = run.state.t;
   };
-  emit();
-  for (long k = 1; run.state.status == Status::ok && run.state.t < opt.t_end; ++k) {
-    advance_to(run, std::min(static_cast<double>(k) * opt.every, opt.t_end));
-    emit();
-  }
+  cli::sample_run(
+      run, opt.t_end, opt.every, [&](double t) { return advance_to(run, t); }, emit);
   std::cout.flush();
   if (run.state.status != Status::ok) {
     std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << status_name(run.state.status)

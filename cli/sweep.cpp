@@ -17,6 +17,7 @@
 #include <sstream>
 #include <thread>
 
+#include "cli/run_loop.h"
 #include "codec/presets.h"
 #include "codec/sample_json.h"
 #include "codec/scene_json.h"
@@ -472,16 +473,18 @@ std::string run_one(const Plan& plan, std::size_t index) {
         }
         reported_until = run.state.t;
       };
-      sample(&first);
       std::uint64_t attempts = plan.opt.max_steps.value_or(kNoStepLimit);
-      bool budget_left = true;
-      for (long k = 1; run.state.status == Status::ok && run.state.t < plan.opt.t_end; ++k) {
-        const double t = std::min(static_cast<double>(k) * plan.opt.every, plan.opt.t_end);
-        budget_left = plan.opt.max_steps ? advance_within(run, t, attempts) : advance_to(run, t);
-        if (!budget_left) break;
-        const bool final = run.state.status != Status::ok || run.state.t >= plan.opt.t_end;
-        sample(final ? &last : nullptr);
-      }
+      bool budget_left = true, started = false;
+      sample_run(
+          run, plan.opt.t_end, plan.opt.every,
+          [&](double t) {
+            return budget_left = plan.opt.max_steps ? advance_within(run, t, attempts) : advance_to(run, t);
+          },
+          [&] {
+            const bool final = run.state.status != Status::ok || run.state.t >= plan.opt.t_end;
+            sample(!started ? &first : final ? &last : nullptr);
+            started = true;
+          });
       if (last.empty()) flatten(sample_to_json(run, reported_until), "", last);
       status = budget_left ? last["status"].get<std::string>() : "max_steps";
       detail =
