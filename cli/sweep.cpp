@@ -535,6 +535,25 @@ bool jsonl_path(const std::string& out) {
   throw BadInput{"--out: must end in .csv or .jsonl (got '" + out + "')"};
 }
 
+// What makes the rows (base scene, varied values, times, budget): shards of one sweep share it, so
+// --merge can refuse a shard of another. FNV-1a, 64 bits, of a canonical text.
+std::string definition(const Plan& plan) {
+  std::string text = plan.base.dump() + "|t_end=" + number_text(plan.opt.t_end) +
+                     "|every=" + number_text(plan.opt.every) +
+                     "|max_steps=" + (plan.opt.max_steps ? std::to_string(*plan.opt.max_steps) : "") +
+                     "|zip=" + (plan.opt.zip ? "1" : "0");
+  for (const Axis& a : plan.axes) {
+    text += "|axis";
+    for (const FieldPath* f : a.fields) text += "," + f->path;
+    text += "=" + json(a.values).dump();
+  }
+  std::uint64_t hash = 0xcbf29ce484222325ULL;
+  for (unsigned char c : text) hash = (hash ^ c) * 0x100000001b3ULL;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  return hex;
+}
+
 // The header: for CSV comment lines and the column names, for JSON Lines one record. Everything in
 // it but the command line is the same for every shard of a sweep, and for the merged output.
 std::string header_text(const Plan& plan, const std::vector<std::string>& column_names,
@@ -544,13 +563,14 @@ std::string header_text(const Plan& plan, const std::vector<std::string>& column
     h["sweep"] = {{"version", SPINFOLD_VERSION},
                   {"command", command},
                   {"runs", plan.total},
+                  {"definition", definition(plan)},
                   {"shard", std::to_string(plan.shard) + "/" + std::to_string(plan.shards)},
                   {"columns", column_names}};
     return h.dump() + "\n";
   }
   std::string h = "# spinfold sweep " SPINFOLD_VERSION "\n# command: " + command +
-                  "\n# runs: " + std::to_string(plan.total) + "\n# shard: " + std::to_string(plan.shard) +
-                  "/" + std::to_string(plan.shards) + "\n";
+                  "\n# runs: " + std::to_string(plan.total) + "\n# definition: " + definition(plan) +
+                  "\n# shard: " + std::to_string(plan.shard) + "/" + std::to_string(plan.shards) + "\n";
   for (std::size_t i = 0; i < column_names.size(); ++i) h += (i ? "," : "") + csv_quote(column_names[i]);
   return h + "\n";
 }
@@ -725,12 +745,14 @@ ShardFile read_shard(const std::string& path, bool jsonl) {
   const std::string text = read_text(path, "--merge");
   ShardFile f;
   std::size_t pos = 0;
+  bool columns_seen = false;  // CSV: comment lines, then the column names, then rows
   while (pos < text.size()) {
     const std::size_t end = text.find('\n', pos);
     if (end == std::string::npos) break;  // a line cut short by a kill: not a row
     const std::string line = text.substr(pos, end - pos);
     pos = end + 1;
-    const bool header = jsonl ? f.header.empty() : (line.starts_with("#") || f.header.size() < 5);
+    const bool header = jsonl ? f.header.empty() : !columns_seen;
+    if (!jsonl && !line.starts_with("#")) columns_seen = true;
     if (header) {
       if (jsonl) {
         const json h = json::parse(line, nullptr, false);
@@ -810,11 +832,9 @@ int merge(const SweepOptions& opt, const std::string& command) {
     const json h = json::parse(shards[0].header[0]);
     // The same key order as a sweep writes.
     ojson o;
-    o["sweep"] = {{"version", h["sweep"]["version"]},
-                  {"command", command},
-                  {"runs", h["sweep"]["runs"]},
-                  {"shard", "0/1"},
-                  {"columns", h["sweep"]["columns"]}};
+    o["sweep"] = {
+        {"version", h["sweep"]["version"]},       {"command", command}, {"runs", h["sweep"]["runs"]},
+        {"definition", h["sweep"]["definition"]}, {"shard", "0/1"},     {"columns", h["sweep"]["columns"]}};
     std::fputs((o.dump() + "\n").c_str(), out);
   } else {
     for (const std::string& line : shards[0].header) {

@@ -248,13 +248,46 @@ TEST(Sweep, ShardsMergeIntoTheRowsOfOneProcess) {
     ASSERT_EQ(merged.exit_code, 0) << merged.err;
     const std::string expected = without_timing(slurp(dir.path / ("whole." + ext)), ext == "jsonl");
     EXPECT_EQ(without_timing(slurp(dir.path / ("merged." + ext)), ext == "jsonl"), expected);
-    EXPECT_EQ(std::count(expected.begin(), expected.end(), '\n'), ext == "csv" ? 3 + 1 + 10 : 1 + 10);
+    EXPECT_EQ(std::count(expected.begin(), expected.end(), '\n'), ext == "csv" ? 4 + 1 + 10 : 1 + 10);
     // A missing shard is refused, naming the runs missing.
     const auto partial = run("sweep --merge " + (dir.path / ("shard0." + ext)).string() + " --out " +
                              (dir.path / ("partial." + ext)).string());
     EXPECT_EQ(partial.exit_code, 2);
     EXPECT_NE(partial.err.find("runs missing (1, 2, 4"), std::string::npos) << partial.err;
   }
+}
+
+TEST(Sweep, MergeRefusesOtherSweepsAndCutRows) {
+  TempDir dir;
+  const std::string common = "sweep spinning_rigid_sphere --set initial.r=0.5:1:4 --t-end 1 --quiet";
+  const auto path = [&](const std::string& name) { return (dir.path / name).string(); };
+  ASSERT_EQ(run(common + " --shard 0/2 --out " + path("a0.csv")).exit_code, 0);
+  ASSERT_EQ(run(common + " --shard 1/2 --out " + path("a1.csv")).exit_code, 0);
+  // Shards of other sweeps: other columns, or the same columns with another --t-end or other values.
+  const std::string other_sweep = "sweep spinning_rigid_sphere --quiet --shard 1/2 --out ";
+  ASSERT_EQ(run(common + " --fields t --shard 1/2 --out " + path("c1.csv")).exit_code, 0);
+  ASSERT_EQ(run(other_sweep + path("d1.csv") + " --set initial.r=0.5:1:4 --t-end 2").exit_code, 0);
+  ASSERT_EQ(run(other_sweep + path("e1.csv") + " --set initial.r=0.5:1.1:4 --t-end 1").exit_code, 0);
+  for (const char* shard : {"c1.csv", "d1.csv", "e1.csv"}) {
+    const auto other = run("sweep --merge " + path("a0.csv") + " " + path(shard) + " --out " + path("m.csv"));
+    EXPECT_EQ(other.exit_code, 2) << shard;
+    EXPECT_NE(other.err.find("another sweep"), std::string::npos) << shard << ": " << other.err;
+  }
+  const auto twice =
+      run("sweep --merge " + path("a0.csv") + " " + path("a0.csv") + " --out " + path("m.csv"));
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_NE(twice.err.find("given twice"), std::string::npos) << twice.err;
+  // A shard cut in the middle of its last row (a kill): that row is missing, not half a row.
+  std::string cut = slurp(path("a1.csv"));
+  cut.resize(cut.size() - 10);
+  std::ofstream(path("cut1.csv")) << cut;
+  const auto merged =
+      run("sweep --merge " + path("a0.csv") + " " + path("cut1.csv") + " --out " + path("m.csv"));
+  EXPECT_EQ(merged.exit_code, 2);
+  EXPECT_NE(merged.err.find("runs missing (3)"), std::string::npos) << merged.err;
+  const auto whole =
+      run("sweep --merge " + path("a0.csv") + " " + path("a1.csv") + " --out " + path("m.csv"));
+  EXPECT_EQ(whole.exit_code, 0) << whole.err;
 }
 
 TEST(Sweep, BadFieldsAndValuesAreExitTwoNamingThem) {
