@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bench/companions_bench.h"
+#include "bench/oracle_sweep.h"
 #include "bench/record_bench.h"
 #include "bench/render_bench.h"
 #include "bench/share_link_bench.h"
@@ -59,7 +60,17 @@ int main(int argc, char** argv) {
       ->add_option("--live-seconds", record.live_seconds, "Live-rate measurement without a recording [s]")
       ->capture_default_str();
   record_cmd->add_option("--out", record.out_dir, "Where the clips are written")->capture_default_str();
+  spinfold::bench::OracleSweepOptions sweep;
+  CLI::App* sweep_cmd = app.add_subcommand(
+      "oracle-sweep", "Random scenes of every regime, every integrator against the extended-precision oracle");
+  sweep_cmd->add_option("--scenes", sweep.scenes, "Scenes per regime")->capture_default_str();
+  sweep_cmd->add_option("--seed", sweep.seed, "First seed (scene i uses seed + i)")->capture_default_str();
+  sweep_cmd->add_option("--t-end", sweep.t_end, "Horizon T")->capture_default_str();
+  sweep_cmd->add_option("--regime", sweep.regime, "Only this regime");
+  sweep_cmd->add_option("--integrator", sweep.integrator, "Only this integrator");
+  sweep_cmd->add_flag("--verbose", sweep.verbose, "Print each failing scene's JSON");
   CLI11_PARSE(app, argc, argv);
+  if (sweep_cmd->parsed()) return spinfold::bench::run_oracle_sweep(sweep);
   if (record_cmd->parsed()) return spinfold::bench::run_record_bench(record);
   if (companions_cmd->parsed())
     return spinfold::bench::run_companions_bench(companions_repeats, companions_until);
