@@ -62,7 +62,8 @@ int main(int argc, char** argv) {
   record_cmd->add_option("--out", record.out_dir, "Where the clips are written")->capture_default_str();
   spinfold::bench::OracleSweepOptions sweep;
   CLI::App* sweep_cmd = app.add_subcommand(
-      "oracle-sweep", "Random scenes of every regime, every integrator against the extended-precision oracle");
+      "oracle-sweep",
+      "Random scenes of every regime, every integrator against the extended-precision oracle");
   sweep_cmd->add_option("--scenes", sweep.scenes, "Scenes per regime")->capture_default_str();
   sweep_cmd->add_option("--seed", sweep.seed, "First seed (scene i uses seed + i)")->capture_default_str();
   sweep_cmd->add_option("--t-end", sweep.t_end, "Horizon T")->capture_default_str();

@@ -47,8 +47,11 @@ int run_oracle_sweep(const OracleSweepOptions& o) {
         if (!v.pass) ++cell.beyond;
         if (!(v.error <= cell.worst)) cell.worst = v.error, cell.worst_seed = seed;
         if (!v.pass && o.verbose)
-          std::printf("--- %s %s seed %llu: error %.3g %s\n%s\n", c.name.c_str(), regime.c_str(), seed, v.error,
-                      v.message.c_str(), v.scene_json.c_str());
+          std::printf(
+              "--- %s %s seed %llu: error %.3g (position %.3g, velocity %.3g, frame %.3g, energy %.3g) "
+              "%s\n%s\n",
+              c.name.c_str(), regime.c_str(), seed, v.error, v.diff.position, v.diff.velocity, v.diff.frame,
+              v.diff.energy, v.message.c_str(), v.scene_json.c_str());
       }
     }
   }
@@ -60,8 +63,8 @@ int run_oracle_sweep(const OracleSweepOptions& o) {
       const auto it = table.find({c.name, regime});
       if (it == table.end()) continue;
       const Cell& cell = it->second;
-      std::printf("| %s | %.0e | %s | %d | %d | %d | %.2g | %llu |\n", c.name.c_str(), c.bound, regime.c_str(),
-                  cell.runs, cell.refused, cell.beyond, cell.worst, cell.worst_seed);
+      std::printf("| %s | %.0e | %s | %d | %d | %d | %.2g | %llu |\n", c.name.c_str(), c.bound,
+                  regime.c_str(), cell.runs, cell.refused, cell.beyond, cell.worst, cell.worst_seed);
     }
   std::printf("\n%d oracle failures; %.1f s; T = %g; seeds %llu..%llu per regime\n", oracle_failures, seconds,
               o.t_end, o.seed, o.seed + static_cast<unsigned long long>(o.scenes) - 1);

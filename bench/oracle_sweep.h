@@ -7,7 +7,7 @@
 namespace spinfold::bench {
 
 struct OracleSweepOptions {
-  int scenes = 1000;           // per regime
+  int scenes = 1000;            // per regime
   unsigned long long seed = 1;  // the first seed; scene i of a regime uses seed + i
   double t_end = 2.0;
   std::string regime;      // "" all

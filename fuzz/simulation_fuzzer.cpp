@@ -5,7 +5,10 @@
 // - after a run, with whatever status, the state is finite (the last good one), the time is the
 //   requested one when the status is ok and the work was not cut, the paper coordinates that are
 //   defined are finite, and the same scene gives the same bits;
-// - the scene's JSON reads back to the same JSON.
+// - the scene's JSON reads back to the same JSON;
+// - on a scene of moderate numbers, `exact` (where it accepts the scene), `dop853` and `auto` at
+//   tolerance 1e-12 agree with the independent oracle (oracle/) at a short horizon to 1e-6: the
+//   fuzzer looks for wrong answers, not only for crashes.
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <cmath>
@@ -20,6 +23,7 @@
 #include "engine/paper_coordinates.h"
 #include "engine/simulation.h"
 #include "engine/validation.h"
+#include "oracle/differential.h"
 
 namespace spinfold {
 namespace {
@@ -112,6 +116,49 @@ void check_outputs(const Scene& scene, const State& state) {
   if (!c.X.allFinite()) violated("a non-finite position", scene);
 }
 
+// Numbers a person might type: the oracle's comparison is meaningful (and quick) for those.
+bool moderate(const Scene& s, double t_end) {
+  auto ok = [](double v, double lo, double hi) {
+    return v == 0.0 || (std::abs(v) >= lo && std::abs(v) <= hi);
+  };
+  const InitialState& q = s.initial;
+  const double R = s.surface.radius;
+  if (!(t_end > 0.0) || !ok(R, 0.2, 10.0) || !ok(s.body.mass, 0.1, 10.0) || !ok(s.body.inertia, 0.05, 10.0))
+    return false;
+  if (s.surface.kind == SurfaceKind::pseudosphere && q.r > 10.0 * R) return false;
+  for (double v : {q.r, q.lambda, q.mu, q.r_dot, q.alpha_dot, q.beta_dot, q.lambda_dot, q.mu_dot})
+    if (!ok(v, 1e-2, 10.0)) return false;
+  if (!ok(q.phi_dot * polar_S(s.surface, q.r), 1e-2, 10.0)) return false;
+  if (s.potential.radial && (s.potential.radial->gamma < 0.0 || !ok(s.potential.radial->gamma, 1e-3, 1.0)))
+    return false;  // g < 0 falls into the pole (physics.md §5: not supported)
+  if (const auto* abc = std::get_if<AbcPotential>(&s.potential.deformation))
+    for (double v : {abc->A, abc->B, abc->C})
+      if (!ok(v, 1e-3, 1.0)) return false;
+  if (const auto* polar = std::get_if<PolarPotential>(&s.potential.deformation))
+    for (double v : {polar->ghat, polar->gtilde})
+      if (!ok(v, 1e-3, 1.0)) return false;
+  return std::abs(q.lambda - q.mu) == 0.0 || std::abs(q.lambda - q.mu) > 1e-2;
+}
+
+void compare_with_oracle(const Scene& scene, double t_end) {
+  if (!moderate(scene, t_end)) return;
+  const double horizon = std::min(t_end, 0.25);
+  nlohmann::json j = scene_to_json(scene);
+  j["on_degenerate"] = "report";
+  const std::string text = j.dump();
+  const oracle::OracleScene os = oracle::read_scene(text);
+  const oracle::OracleRun reference = oracle::run_oracle(os, horizon, 1e-20, oracle::Precision::quad, 400);
+  if (!reference.ok || !std::isfinite(reference.energy_scale)) return;  // too stiff for a quick reference
+  for (const char* name : {"exact", "dop853", "auto"}) {
+    const oracle::IntegratorCase c{name, 0.01, 1e-12, 1e-6};
+    const oracle::Verdict v = oracle::check(text, c, horizon, os, reference, 20000);
+    if (v.refused || v.incomplete || v.pass) continue;
+    std::fprintf(stderr, "%s at t = %g: error %g (position %g, frame %g, energy %g) %s\n", name, horizon,
+                 v.error, v.diff.position, v.diff.frame, v.diff.energy, v.message.c_str());
+    violated("disagrees with the oracle", *parse_scene_text(v.scene_json).scene);
+  }
+}
+
 }  // namespace
 }  // namespace spinfold
 
@@ -146,5 +193,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       std::memcmp(again.state.y.data(), run.state.y.data(), sizeof(double) * run.state.y.size()) != 0 ||
       again.state.status != run.state.status)
     violated("the same scene gave different bits", scene);
+  compare_with_oracle(scene, t_end);
   return 0;
 }

@@ -13,16 +13,36 @@ __extension__ typedef __float128 Quad;
 
 // ---- the scalar types' functions: one overload set for __float128 and Big -----------------------
 namespace num {
-inline Quad sqrt(Quad x) { return sqrtq(x); }
-inline Quad sin(Quad x) { return sinq(x); }
-inline Quad cos(Quad x) { return cosq(x); }
-inline Quad sinh(Quad x) { return sinhq(x); }
-inline Quad cosh(Quad x) { return coshq(x); }
-inline Quad abs(Quad x) { return fabsq(x); }
-inline Quad asin(Quad x) { return asinq(x); }
-inline Quad asinh(Quad x) { return asinhq(x); }
-inline bool finite(Quad x) { return finiteq(x) != 0; }
-inline double to_double(Quad x) { return static_cast<double>(x); }
+inline Quad sqrt(Quad x) {
+  return sqrtq(x);
+}
+inline Quad sin(Quad x) {
+  return sinq(x);
+}
+inline Quad cos(Quad x) {
+  return cosq(x);
+}
+inline Quad sinh(Quad x) {
+  return sinhq(x);
+}
+inline Quad cosh(Quad x) {
+  return coshq(x);
+}
+inline Quad abs(Quad x) {
+  return fabsq(x);
+}
+inline Quad asin(Quad x) {
+  return asinq(x);
+}
+inline Quad asinh(Quad x) {
+  return asinhq(x);
+}
+inline bool finite(Quad x) {
+  return finiteq(x) != 0;
+}
+inline double to_double(Quad x) {
+  return static_cast<double>(x);
+}
 inline Quad from_big(const Big& x) {
   // two doubles carry 106 of the 113 bits; the third the rest
   const double hi = static_cast<double>(x);
@@ -38,16 +58,36 @@ inline Big to_big(Quad x) {
   const double lo = static_cast<double>(r1 - Quad(mid));
   return Big(hi) + Big(mid) + Big(lo);
 }
-inline Big sqrt(const Big& x) { return boost::multiprecision::sqrt(x); }
-inline Big sin(const Big& x) { return boost::multiprecision::sin(x); }
-inline Big cos(const Big& x) { return boost::multiprecision::cos(x); }
-inline Big sinh(const Big& x) { return boost::multiprecision::sinh(x); }
-inline Big cosh(const Big& x) { return boost::multiprecision::cosh(x); }
-inline Big abs(const Big& x) { return boost::multiprecision::abs(x); }
-inline Big asin(const Big& x) { return boost::multiprecision::asin(x); }
-inline Big asinh(const Big& x) { return boost::multiprecision::asinh(x); }
-inline bool finite(const Big& x) { return boost::multiprecision::isfinite(x); }
-inline double to_double(const Big& x) { return static_cast<double>(x); }
+inline Big sqrt(const Big& x) {
+  return boost::multiprecision::sqrt(x);
+}
+inline Big sin(const Big& x) {
+  return boost::multiprecision::sin(x);
+}
+inline Big cos(const Big& x) {
+  return boost::multiprecision::cos(x);
+}
+inline Big sinh(const Big& x) {
+  return boost::multiprecision::sinh(x);
+}
+inline Big cosh(const Big& x) {
+  return boost::multiprecision::cosh(x);
+}
+inline Big abs(const Big& x) {
+  return boost::multiprecision::abs(x);
+}
+inline Big asin(const Big& x) {
+  return boost::multiprecision::asin(x);
+}
+inline Big asinh(const Big& x) {
+  return boost::multiprecision::asinh(x);
+}
+inline bool finite(const Big& x) {
+  return boost::multiprecision::isfinite(x);
+}
+inline double to_double(const Big& x) {
+  return static_cast<double>(x);
+}
 template <class T>
 T convert(const Big& x) {
   if constexpr (std::is_same_v<T, Quad>)
@@ -68,11 +108,17 @@ template <class T>
 using V3 = std::array<T, 3>;
 
 template <class T>
-V3<T> operator+(const V3<T>& a, const V3<T>& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+V3<T> operator+(const V3<T>& a, const V3<T>& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
 template <class T>
-V3<T> operator-(const V3<T>& a, const V3<T>& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+V3<T> operator-(const V3<T>& a, const V3<T>& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
 template <class T>
-V3<T> operator*(const T& s, const V3<T>& a) { return {s * a[0], s * a[1], s * a[2]}; }
+V3<T> operator*(const T& s, const V3<T>& a) {
+  return {s * a[0], s * a[1], s * a[2]};
+}
 template <class T>
 V3<T> cross(const V3<T>& a, const V3<T>& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
@@ -84,20 +130,30 @@ struct Dual {
   T v, d;
 };
 template <class T>
-Dual<T> operator+(Dual<T> a, Dual<T> b) { return {a.v + b.v, a.d + b.d}; }
+Dual<T> operator+(Dual<T> a, Dual<T> b) {
+  return {a.v + b.v, a.d + b.d};
+}
 template <class T>
-Dual<T> operator-(Dual<T> a, Dual<T> b) { return {a.v - b.v, a.d - b.d}; }
+Dual<T> operator-(Dual<T> a, Dual<T> b) {
+  return {a.v - b.v, a.d - b.d};
+}
 template <class T>
-Dual<T> operator*(Dual<T> a, Dual<T> b) { return {a.v * b.v, a.d * b.v + a.v * b.d}; }
+Dual<T> operator*(Dual<T> a, Dual<T> b) {
+  return {a.v * b.v, a.d * b.v + a.v * b.d};
+}
 template <class T>
-Dual<T> operator/(Dual<T> a, Dual<T> b) { return {a.v / b.v, (a.d * b.v - a.v * b.d) / (b.v * b.v)}; }
+Dual<T> operator/(Dual<T> a, Dual<T> b) {
+  return {a.v / b.v, (a.d * b.v - a.v * b.d) / (b.v * b.v)};
+}
 template <class T>
 Dual<T> dsqrt(Dual<T> a) {
   const T s = num::sqrt(a.v);
   return {s, a.d / (2 * s)};
 }
 template <class T>
-Dual<T> cst(const T& c) { return {c, T(0)}; }
+Dual<T> cst(const T& c) {
+  return {c, T(0)};
+}
 
 // ---- the problem in the start frame --------------------------------------------------------
 template <class T>
@@ -149,7 +205,8 @@ struct Problem {
     }
     const Dual<T> u{K * dot(X, O), T(1)};  // u = C(r)
     const Dual<T> one = cst(T(1));
-    const Dual<T> V = kind == Kind::sphere ? cst(g) / ((one - u) * (one + u)) : cst(g / (R * R)) / ((u - one) * (u + one));
+    const Dual<T> V =
+        kind == Kind::sphere ? cst(g) / ((one - u) * (one + u)) : cst(g / (R * R)) / ((u - one) * (u + one));
     if (grad) *grad = (V.d * K) * O;
     return V.v;
   }
@@ -219,7 +276,8 @@ struct Problem {
     T Va, Vb;
     deformation(X, e[0], e[1], &Va, &Vb);
     const V3<T> je1 = jrot(X, e[0]), je2 = jrot(X, e[1]);
-    const V3<T> G[2] = {P(X, Va * (e[0] + je2) + Vb * (e[0] - je2)), P(X, Va * (e[1] - je1) + Vb * (e[1] + je1))};
+    const V3<T> G[2] = {P(X, Va * (e[0] + je2) + Vb * (e[0] - je2)),
+                        P(X, Va * (e[1] - je1) + Vb * (e[1] + je1))};
     V3<T> acc[2];
     for (int a = 0; a < 2; ++a) acc[a] = T(-1) * (Jinv[0 * 2 + a] * G[0] + Jinv[1 * 2 + a] * G[1]);
     if (model == Model::incompressible) {
@@ -306,7 +364,9 @@ OracleScene read_scene(std::string_view json_text) {
     s.J = {J, 0.0, 0.0, J};
   }
   const std::string model = body.value("model", std::string("affine"));
-  s.model = model == "rigid" ? Model::rigid : model == "incompressible" ? Model::incompressible : Model::affine;
+  s.model = model == "rigid"            ? Model::rigid
+            : model == "incompressible" ? Model::incompressible
+                                        : Model::affine;
   const json& potential = block(j, "potential");
   if (const auto it = potential.find("radial"); it != potential.end() && it->is_object()) {
     s.radial = true;
@@ -354,9 +414,13 @@ Isometry start_isometry(const OracleScene& s) {
   }
   const Big th = Big(s.r) / Big(s.R);
   if (s.kind == Kind::sphere)
-    T2 = {{{num::cos(th), Big(0), num::sin(th)}, {Big(0), Big(1), Big(0)}, {-num::sin(th), Big(0), num::cos(th)}}};
+    T2 = {{{num::cos(th), Big(0), num::sin(th)},
+           {Big(0), Big(1), Big(0)},
+           {-num::sin(th), Big(0), num::cos(th)}}};
   else
-    T2 = {{{num::cosh(th), Big(0), num::sinh(th)}, {Big(0), Big(1), Big(0)}, {num::sinh(th), Big(0), num::cosh(th)}}};
+    T2 = {{{num::cosh(th), Big(0), num::sinh(th)},
+           {Big(0), Big(1), Big(0)},
+           {num::sinh(th), Big(0), num::cosh(th)}}};
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) {
       Big sum = 0;
@@ -413,7 +477,8 @@ template <class T>
 using M2 = std::array<T, 4>;
 template <class T>
 M2<T> mul(const M2<T>& a, const M2<T>& b) {
-  return {a[0] * b[0] + a[1] * b[2], a[0] * b[1] + a[1] * b[3], a[2] * b[0] + a[3] * b[2], a[2] * b[1] + a[3] * b[3]};
+  return {a[0] * b[0] + a[1] * b[2], a[0] * b[1] + a[1] * b[3], a[2] * b[0] + a[3] * b[2],
+          a[2] * b[1] + a[3] * b[3]};
 }
 template <class T>
 M2<T> rot(const T& a) {
@@ -490,12 +555,16 @@ std::vector<T> start_state(const OracleScene& s, Problem<T>& p) {
 template <class T>
 Body3 body_of(const Problem<T>& p, const std::vector<T>& y) {
   Body3 b;
-  auto get = [&](int i) { return std::array<Big, 3>{num::big(y[i]), num::big(y[i + 1]), num::big(y[i + 2])}; };
+  auto get = [&](int i) {
+    return std::array<Big, 3>{num::big(y[i]), num::big(y[i + 1]), num::big(y[i + 2])};
+  };
   b.X = get(0), b.V = get(3), b.e1 = get(6);
   if (p.model == Model::rigid) {
     const V3<T> X{y[0], y[1], y[2]}, e1{y[6], y[7], y[8]};
     const V3<T> e2 = p.jrot(X, e1), W1 = p.omega_rigid * e2, W2 = p.omega_rigid * p.jrot(X, e2);
-    auto big3 = [](const V3<T>& v) { return std::array<Big, 3>{num::big(v[0]), num::big(v[1]), num::big(v[2])}; };
+    auto big3 = [](const V3<T>& v) {
+      return std::array<Big, 3>{num::big(v[0]), num::big(v[1]), num::big(v[2])};
+    };
     b.e2 = big3(e2), b.W1 = big3(W1), b.W2 = big3(W2);
   } else {
     b.e2 = get(9), b.W1 = get(12), b.W2 = get(15);
@@ -532,7 +601,8 @@ OracleRun integrate(const OracleScene& s, double t_end, double tolerance, long m
     Problem<T> q = p;  // the yardstick: kinetic + |potential|
     const V3<T> X{y[0], y[1], y[2]};
     T pot = q.radial_potential(X, nullptr);
-    if (p.model != Model::rigid) pot += q.deformation(X, {y[6], y[7], y[8]}, {y[9], y[10], y[11]}, nullptr, nullptr);
+    if (p.model != Model::rigid)
+      pot += q.deformation(X, {y[6], y[7], y[8]}, {y[9], y[10], y[11]}, nullptr, nullptr);
     run.energy_scale = num::to_double(num::abs(H0 - pot) + num::abs(pot));
   }
   std::vector<T> f0(n), z0(n), z1(n), fz(n);
@@ -582,7 +652,8 @@ OracleRun integrate(const OracleScene& s, double t_end, double tolerance, long m
       run.error = "non-finite state";
       return run;
     }
-    T factor = err == 0 ? T(4) : T(0.9) * num::sqrt(num::sqrt(num::sqrt(num::sqrt(tol / err))));  // ~ order 16
+    T factor =
+        err == 0 ? T(4) : T(0.9) * num::sqrt(num::sqrt(num::sqrt(num::sqrt(tol / err))));  // ~ order 16
     if (factor > 4) factor = 4;
     if (factor < T(0.1)) factor = T(0.1);
     if (err <= tol) {
@@ -606,7 +677,8 @@ OracleRun integrate(const OracleScene& s, double t_end, double tolerance, long m
 
 }  // namespace
 
-OracleRun run_oracle(const OracleScene& scene, double t_end, double tolerance, Precision precision, long max_steps) {
+OracleRun run_oracle(const OracleScene& scene, double t_end, double tolerance, Precision precision,
+                     long max_steps) {
   if (precision == Precision::big) return integrate<Big>(scene, t_end, tolerance, max_steps);
   return integrate<Quad>(scene, t_end, tolerance, max_steps);
 }
@@ -630,7 +702,39 @@ Big energy_of(const OracleScene& scene, const Body3& body) {
   return energy_of_state(p, y);
 }
 
-Difference compare(const OracleScene& scene, const OracleRun& run, const Body3& e) {
+namespace {
+
+// ⟨u_i, u_j⟩ (i ≤ j) and ω(u_i, u_j) (i < j) of u = (V, e₁, e₂, W₁, W₂): what is left of the body
+// once its place and heading are forgotten.
+std::vector<Big> gram(const Problem<Big>& p, const Body3& b) {
+  const V3<Big> u[5] = {b.V, b.e1, b.e2, b.W1, b.W2};
+  std::vector<Big> g;
+  for (int i = 0; i < 5; ++i)
+    for (int j = i; j < 5; ++j) {
+      g.push_back(p.dot(u[i], u[j]));
+      if (j > i) g.push_back(p.omega(b.X, u[i], u[j]));
+    }
+  return g;
+}
+
+// Geodesic distance from the scene's pole of a point in the scene's coordinates.
+Big radius_of(const OracleScene& s, const std::array<Big, 3>& X) {
+  const Big rho = num::sqrt(X[0] * X[0] + X[1] * X[1]);
+  if (s.kind == Kind::plane) return rho;
+  if (s.kind == Kind::pseudosphere) return Big(s.R) * num::asinh(rho / Big(s.R));
+  return Big(s.R) * boost::multiprecision::atan2(rho, X[2]);
+}
+
+std::array<Big, 3> to_global(const OracleScene& s, const Isometry& iso, const std::array<Big, 3>& x) {
+  std::array<Big, 3> g;
+  for (int i = 0; i < 3; ++i) g[i] = iso.M[i][0] * x[0] + iso.M[i][1] * x[1] + iso.M[i][2] * x[2] + iso.b[i];
+  (void)s;
+  return g;
+}
+
+}  // namespace
+
+Difference compare(const OracleScene& scene, const OracleRun& run, const Body3& e, const Body3& local) {
   Problem<Big> p = make_problem<Big>(scene);
   const Body3& o = run.end;
   Difference d;
@@ -639,16 +743,41 @@ Difference compare(const OracleScene& scene, const OracleRun& run, const Body3& 
   if (scene.kind == Kind::plane)
     d.position = num::to_double(chord);
   else if (scene.kind == Kind::sphere)
-    d.position = num::to_double(2 * p.R * num::asin(chord / (2 * p.R)));
+    d.position = num::to_double(2 * p.R * num::asin(std::min(Big(1), chord / (2 * p.R))));
   else
     d.position = num::to_double(2 * p.R * num::asinh(chord / (2 * p.R)));
+  const Isometry iso = start_isometry(scene);
+  const Big r_o = radius_of(scene, to_global(scene, iso, o.X)),
+            r_e = radius_of(scene, to_global(scene, iso, e.X));
+  d.radius = num::to_double(num::abs(r_o - r_e));
   auto norm = [&](const V3<Big>& w) { return num::sqrt(num::abs(p.dot(w, w))); };
   auto tangential = [&](const V3<Big>& w) { return norm(p.P(o.X, w)); };
   d.velocity = num::to_double(tangential(o.V - e.V));
   const Big escale = std::max({norm(o.e1), norm(o.e2), Big(1e-300)});
   d.frame = num::to_double(std::max(tangential(o.e1 - e.e1), tangential(o.e2 - e.e2)) / escale);
-  const Big He = energy_of(scene, e);
+  const std::vector<Big> go = gram(p, o), ge = gram(p, local);
+  Big gscale = 1, gdiff = 0;
+  for (std::size_t i = 0; i < go.size(); ++i) gscale = std::max(gscale, num::abs(go[i]));
+  for (std::size_t i = 0; i < go.size(); ++i) gdiff = std::max(gdiff, num::abs(go[i] - ge[i]));
+  d.invariants = num::to_double(gdiff / gscale);
+  // H of the engine's body: kinetic and deformation parts from its own chart, V_r at its place
+  Problem<Big> q = p;
+  q.radial = false;
+  Big He;
+  if (scene.model == Model::rigid) {  // the rigid spin is read off the same vectors
+    OracleScene plain = scene;
+    plain.radial = false;
+    He = energy_of(plain, local) + p.radial_potential(e.X, nullptr);
+  } else {
+    const V3<Big> ee[2] = {local.e1, local.e2}, W[2] = {local.W1, local.W2};
+    He = q.energy(local.X, local.V, ee, W) + p.radial_potential(e.X, nullptr);
+  }
   d.energy = num::to_double(num::abs(He - run.energy_exact) / Big(std::max(run.energy_scale, 1e-300)));
+  if (scene.kind == Kind::pseudosphere) {
+    const double c = std::cosh(std::max(num::to_double(r_o), scene.r) / scene.R);
+    d.position_floor = 1000 * 2.2e-16 * scene.R * c;
+    d.vector_floor = 100 * 2.2e-16 * c * c;
+  }
   return d;
 }
 

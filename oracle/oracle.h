@@ -11,11 +11,10 @@
 #pragma once
 
 #include <array>
+#include <boost/multiprecision/cpp_bin_float.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
-
-#include <boost/multiprecision/cpp_bin_float.hpp>
 
 namespace spinfold::oracle {
 
@@ -37,9 +36,9 @@ struct OracleScene {
   bool radial = false;
   double g = 0.0;  // radial gamma
   DefKind def = DefKind::none;
-  double A = 0, B = 0, C = 0;             // abc
-  double ghat = 0, gtilde = 0;            // polar
-  bool literal = false;                   // polar form
+  double A = 0, B = 0, C = 0;   // abc
+  double ghat = 0, gtilde = 0;  // polar
+  bool literal = false;         // polar form
   double r = 1, phi = 0, alpha = 0, beta = 0, lambda = 1, mu = 1;
   double r_dot = 0, phi_dot = 0, alpha_dot = 0, beta_dot = 0, lambda_dot = 0, mu_dot = 0;
   std::optional<double> spin, speed, heading;
@@ -57,8 +56,8 @@ struct Body3 {
 
 struct OracleRun {
   bool ok = false;
-  std::string error;  // why not ok (step size underflow, non-finite, too many steps)
-  Body3 start, end;   // in the start frame: the start is at the origin with E₁ = x̂, E₂ = ŷ
+  std::string error;        // why not ok (step size underflow, non-finite, too many steps)
+  Body3 start, end;         // in the start frame: the start is at the origin with E₁ = x̂, E₂ = ŷ
   double energy = 0;        // H at the start
   double energy_scale = 0;  // kinetic + |potential| at the start: the yardstick of energy errors
   double end_energy = 0;    // H at the end (the oracle's own drift: ~1e-25)
@@ -80,18 +79,29 @@ struct Isometry {
 Isometry start_isometry(const OracleScene& scene);
 // Its inverse applied to a point (translate) or a vector of the global coordinates.
 std::array<Big, 3> to_start_point(const OracleScene& scene, const Isometry& iso, const std::array<Big, 3>& x);
-std::array<Big, 3> to_start_vector(const OracleScene& scene, const Isometry& iso, const std::array<Big, 3>& v);
+std::array<Big, 3> to_start_vector(const OracleScene& scene, const Isometry& iso,
+                                   const std::array<Big, 3>& v);
 
 // H of a body given in the start frame (the oracle's own formula: §7's energy).
 Big energy_of(const OracleScene& scene, const Body3& body);
 
-// Chart-free distances between two bodies in the start frame.
+// Chart-free distances between the oracle's body at T and the engine's.
 struct Difference {
   double position = 0;  // geodesic distance [length]
-  double velocity = 0;  // |ΔV| in the metric at the oracle's point (tangential part) [length/time]
-  double frame = 0;     // max_A |Δe_A| (tangential part), relative to max(1, |e|)
-  double energy = 0;    // |ΔH| / energy scale
+  double radius = 0;    // |Δr|, r the geodesic distance from the scene's pole O [length]
+  double velocity = 0;  // |ΔV| (tangential part at the oracle's point) [length/time]
+  double frame = 0;     // max_A |Δe_A| (tangential part), relative to max_A |e_A|
+  double invariants = 0;  // the Gram matrix ⟨u_i, u_j⟩ and ω(u_i, u_j) of u = (V, e₁, e₂, W₁, W₂), relative
+  double energy = 0;  // |ΔH| / energy scale
+  // What double coordinates can resolve where the body is (the engine's chart matrices and the
+  // scene's r, φ have entries of size R cosh(r/R)): ε cosh(r/R) for a position, ε cosh²(r/R) for a
+  // vector's components in the local frame. 0 off H².
+  double position_floor = 0, vector_floor = 0;
 };
-Difference compare(const OracleScene& scene, const OracleRun& run, const Body3& engine_body);
+// `engine_body`: the engine's body in the start frame; `engine_local`: the same body in the engine's
+// own chart coordinates (exact doubles, no large transform): the invariants and the kinetic energy
+// come from it, so they do not inherit the chart matrix's round-off far out on H².
+Difference compare(const OracleScene& scene, const OracleRun& run, const Body3& engine_body,
+                   const Body3& engine_local);
 
 }  // namespace spinfold::oracle

@@ -1,5 +1,7 @@
 // The engine against the independent oracle (oracle/oracle.h): random scenes of every regime, run
 // with every catalog integrator and `auto`, compared at T on position, velocity, frame and energy.
+#include "oracle/oracle.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 #include <sstream>
 
 #include "oracle/differential.h"
-#include "oracle/oracle.h"
 
 namespace spinfold::oracle {
 namespace {
@@ -38,10 +39,12 @@ TEST(Oracle, ReproducesTheWorkedExampleW5) {
   const double r = 1.5 * std::atan2(std::hypot(x, y), z), phi = std::atan2(y, x);
   EXPECT_NEAR(r, 1.650073264590784, 1e-14);
   EXPECT_NEAR(phi, 0.7053552271149849, 1e-14);
-  const double E1[3] = {std::cos(r / 1.5) * std::cos(phi), std::cos(r / 1.5) * std::sin(phi), -std::sin(r / 1.5)};
+  const double E1[3] = {std::cos(r / 1.5) * std::cos(phi), std::cos(r / 1.5) * std::sin(phi),
+                        -std::sin(r / 1.5)};
   const double E2[3] = {-std::sin(phi), std::cos(phi), 0.0};
   auto comp = [](const double* E, const std::array<Big, 3>& e) {
-    return E[0] * static_cast<double>(e[0]) + E[1] * static_cast<double>(e[1]) + E[2] * static_cast<double>(e[2]);
+    return E[0] * static_cast<double>(e[0]) + E[1] * static_cast<double>(e[1]) +
+           E[2] * static_cast<double>(e[2]);
   };
   EXPECT_NEAR(comp(E1, e1), 0.9337349005373956, 1e-14);
   EXPECT_NEAR(comp(E1, e2), -0.47142953066718696, 1e-14);
@@ -57,19 +60,54 @@ TEST(Oracle, QuadAndFiftyDigitsAgree) {
   const OracleRun q = run_oracle(scene, 0.5, 1e-20, Precision::quad);
   const OracleRun b = run_oracle(scene, 0.5, 1e-20, Precision::big);
   ASSERT_TRUE(q.ok && b.ok);
-  const Difference d = compare(scene, q, b.end);
+  const Difference d = compare(scene, q, b.end, b.end);
   EXPECT_LT(std::max({d.position, d.velocity, d.frame, d.energy}), 1e-18) << text;
 }
 
 std::string replay(const Verdict& v) {
   std::ostringstream out;
-  out << "\n--- " << v.integrator << ": error " << v.error << " (position " << v.diff.position << ", velocity "
-      << v.diff.velocity << ", frame " << v.diff.frame << ", energy " << v.diff.energy << ")"
+  out << "\n--- " << v.integrator << ": error " << v.error << " (position " << v.diff.position
+      << ", velocity " << v.diff.velocity << ", frame " << v.diff.frame << ", energy " << v.diff.energy
+      << ", radius " << v.diff.radius << ", invariants " << v.diff.invariants << ")"
       << (v.message.empty() ? "" : " — " + v.message)
       << "\nreplay: save the scene below as s.json and run `spinfold simulate s.json --t-end " << kHorizon
       << " --every " << kHorizon << "`\n"
       << v.scene_json << "\n";
   return out.str();
+}
+
+// The reproductions of issue 22: W5 started inside the chart's re-centring band (r = 0.3 on R = 1.5),
+// and geodesic starts far out on H² (r₀ = 8R … 26R), run with `exact` and `auto`.
+TEST(IssueReproductions, ExactAndAutoAgreeWithTheOracle) {
+  const std::string w5 =
+      R"({"surface": {"kind": "sphere", "radius": 1.5}, "body": {"mass": 1.0, "inertia": 0.4},
+    "potential": {"radial": {"gamma": 0.05}, "deformation": {"kind": "abc", "A": 0.02, "B": 0.4, "C": 0.3}},
+    "initial": {"r": 0.3, "phi": 0, "alpha": 0, "beta": 0, "lambda": 1.1, "mu": 0.6, "r_dot": 0.1,
+                "phi_dot": 0.4, "alpha_dot": 0.5, "beta_dot": 0.2, "lambda_dot": 0, "mu_dot": 0.05}})";
+  std::vector<std::pair<std::string, double>> scenes = {{w5, 5.0}};
+  for (double r0 : {8.0, 12.0, 20.0, 26.0}) {
+    nlohmann::json j = {{"surface", {{"kind", "pseudosphere"}, {"radius", 1.0}}},
+                        {"body", {{"mass", 1.0}, {"inertia", 0.2}}},
+                        {"initial",
+                         {{"r", r0},
+                          {"phi", 0.3},
+                          {"speed", 0.6},
+                          {"heading", 1.1},
+                          {"spin", 0.4},
+                          {"lambda", 1.0},
+                          {"mu", 0.7}}}};
+    scenes.emplace_back(j.dump(2), 5.0);
+  }
+  for (const auto& [text, t_end] : scenes) {
+    const OracleScene scene = read_scene(text);
+    const OracleRun reference = run_oracle(scene, t_end);
+    ASSERT_TRUE(reference.ok) << reference.error;
+    for (const IntegratorCase& c : integrator_cases()) {
+      if (c.name != "exact" && c.name != "auto" && c.name != "dop853") continue;
+      const Verdict v = check(text, c, t_end, scene, reference);
+      EXPECT_TRUE(v.pass) << replay(v);
+    }
+  }
 }
 
 class Differential : public ::testing::TestWithParam<std::string> {};
@@ -82,7 +120,8 @@ TEST_P(Differential, EveryIntegratorAgreesWithTheOracle) {
     const OracleScene scene = read_scene(text);
     const OracleRun reference = run_oracle(scene, kHorizon);
     ASSERT_TRUE(reference.ok) << reference.error << "\n" << text;
-    ASSERT_LT(std::abs(reference.end_energy - reference.energy), 1e-18 * std::max(1.0, reference.energy_scale));
+    ASSERT_LT(std::abs(reference.end_energy - reference.energy),
+              1e-18 * std::max(1.0, reference.energy_scale));
     for (const IntegratorCase& c : integrator_cases()) {
       const Verdict v = check(text, c, kHorizon, scene, reference);
       if (!v.refused) ++ran[c.name];
