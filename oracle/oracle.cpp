@@ -1,7 +1,5 @@
 #include "oracle/oracle.h"
 
-#include <quadmath.h>
-
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -13,38 +11,15 @@ __extension__ typedef __float128 Quad;
 
 // ---- the scalar types' functions: one overload set for __float128 and Big -----------------------
 namespace num {
-inline Quad sqrt(Quad x) {
-  return sqrtq(x);
-}
-inline Quad sin(Quad x) {
-  return sinq(x);
-}
-inline Quad cos(Quad x) {
-  return cosq(x);
-}
-inline Quad sinh(Quad x) {
-  return sinhq(x);
-}
-inline Quad cosh(Quad x) {
-  return coshq(x);
-}
-inline Quad abs(Quad x) {
-  return fabsq(x);
-}
-inline Quad asin(Quad x) {
-  return asinq(x);
-}
-inline Quad asinh(Quad x) {
-  return asinhq(x);
-}
-inline bool finite(Quad x) {
-  return finiteq(x) != 0;
-}
+// __float128 arithmetic is the compiler's (GCC and clang; soft float in libgcc). Its few functions are
+// written here so that no libquadmath (whose header clang does not see) is needed: the square root by
+// Newton from the double one (each step doubles the digits), the rest through the 50-digit type (they
+// are used only to build the start).
 inline double to_double(Quad x) {
   return static_cast<double>(x);
 }
 inline Quad from_big(const Big& x) {
-  // two doubles carry 106 of the 113 bits; the third the rest
+  // three doubles carry the 113 bits
   const double hi = static_cast<double>(x);
   const Big r1 = x - Big(hi);
   const double mid = static_cast<double>(r1);
@@ -57,6 +32,30 @@ inline Big to_big(Quad x) {
   const double mid = static_cast<double>(r1);
   const double lo = static_cast<double>(r1 - Quad(mid));
   return Big(hi) + Big(mid) + Big(lo);
+}
+inline Quad abs(Quad x) {
+  return x < 0 ? -x : x;
+}
+inline bool finite(Quad x) {
+  return x == x && x - x == 0;  // false for NaN and ±inf
+}
+inline Quad sqrt(Quad x) {
+  if (!(x > 0)) return x == 0 ? Quad(0) : from_big(boost::multiprecision::sqrt(to_big(x)));  // NaN
+  Quad y = std::sqrt(static_cast<double>(x));
+  for (int i = 0; i < 2; ++i) y = (y + x / y) / 2;
+  return y;
+}
+inline Quad sin(Quad x) {
+  return from_big(boost::multiprecision::sin(to_big(x)));
+}
+inline Quad cos(Quad x) {
+  return from_big(boost::multiprecision::cos(to_big(x)));
+}
+inline Quad sinh(Quad x) {
+  return from_big(boost::multiprecision::sinh(to_big(x)));
+}
+inline Quad cosh(Quad x) {
+  return from_big(boost::multiprecision::cosh(to_big(x)));
 }
 inline Big sqrt(const Big& x) {
   return boost::multiprecision::sqrt(x);
