@@ -15,7 +15,11 @@ namespace spinfold::oracle {
 namespace {
 
 constexpr double kHorizon = 2.0;  // [time]
+#ifdef SPINFOLD_ORACLE_SCENES
+constexpr int kScenesPerRegime = SPINFOLD_ORACLE_SCENES;
+#else
 constexpr int kScenesPerRegime = 6;
+#endif
 
 // The oracle itself against physics.md §10 W5 (the closed form's state at t = 2, quoted to ~1e-15).
 TEST(Oracle, ReproducesTheWorkedExampleW5) {
