@@ -78,11 +78,14 @@ json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_event
   if (r.momentum_map) {
     const Vec3& M = *r.momentum_map;
     j["M"] = {number(M.x()), number(M.y()), number(M.z())};
-    if (r.casimir) j["casimir"] = number(*r.casimir);
+  } else if (!r.undefined.empty() && r.casimir) {
+    j["M"] = nullptr;  // computed but lost its digits: the reason is under undefined
   }
+  if (r.casimir) j["casimir"] = number(*r.casimir);
 
   json undefined = json::object();
   for (const UndefinedValue& u : c.undefined) undefined[u.field] = u.reason;
+  for (const UndefinedValue& u : r.undefined) undefined[u.field] = u.reason;
   // Action variables J = ∮p dq and frequencies ν = ∂E/∂J [1/time] (engine/actions.h): null where
   // undefined, with the reason under undefined ("actions.J_r", "frequencies.r", or "actions").
   if (r.actions) {

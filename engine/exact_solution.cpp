@@ -1,5 +1,6 @@
 #include "engine/exact_solution.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -14,8 +15,13 @@
 
 namespace spinfold {
 
-const IntegratorInfo exact_info{
-    "exact", 0, true, false, true, "closed form of the separable scenes (no radial potential; abc or none)"};
+const IntegratorInfo exact_info{"exact",
+                                0,
+                                true,
+                                false,
+                                true,
+                                "closed form of the separable scenes: radial potential g > 0 or none, abc "
+                                "deformation potential or none (physics.md §8)"};
 
 namespace {
 
@@ -283,9 +289,12 @@ ExactSolution make_exact_solution(const Scene& scene) {
   sol.theta0 = scene.initial.alpha - scene.initial.beta;
   if (const auto* abc = std::get_if<AbcPotential>(&scene.potential.deformation)) sol.internal = *abc;
   if (has_radial_barrier(scene)) {
+    // p_φ of the scene's chart, from the initial values: start.y is in a moved chart when the start
+    // lies outside the well-conditioned band (near a pole, far out on H²), and its p_φ is another one.
     const InitialState& q = scene.initial;
-    sol.radial = radial_orbit(scene, q.r, q.phi, q.r_dot, start.y[coord::p_phi], spin_of(scene, start.y),
-                              orbital_energy(scene, start));
+    const double s = spin_of(scene, start.y), S = polar_S(scene.surface, q.r);
+    const double p_phi = scene.body.mass * S * S * q.phi_dot + polar_C(scene.surface, q.r) * s;
+    sol.radial = radial_orbit(scene, q.r, q.phi, q.r_dot, p_phi, s, orbital_energy(scene, start));
   }
   return sol;
 }
@@ -426,15 +435,107 @@ State exact_state(const ExactSolution& sol, double t) {
     }
     return state;
   }
-  // Without V_r: the initial local body, its frame turned and deformed, in the moved chart.
-  const Chart g = orbit_motion(scene, sol.initial, t);
-  state.chart.A = g.A * sol.chart0.A;
-  state.chart.b = g.A * sol.chart0.b + g.b;
+  // Without V_r: the initial local body, its frame turned and deformed, in the moved chart. The
+  // orbit's isometry is taken in the start's chart (chart0 ∘ G_local(t) = G(t) ∘ chart0): the body's
+  // coordinates there are moderate, while far out on H² the global ones grow like e^{r/R} and the
+  // momentum map m X × V computed from them cancels to nothing (physics.md §8.6, chart rules).
+  const Chart g = orbit_motion(scene, sol.local0, t);
+  state.chart.A = sol.chart0.A * g.A;
+  state.chart.b = sol.chart0.A * g.b + sol.chart0.b;
   state.chart.global = t == 0.0 && sol.chart0.global;
   BodyKinematics local = sol.local0;
   std::tie(local.L, local.M) = frame_flow(scene, sol.internal, sol.local0, t);
   state.y = chart_coords(scene, local);
   return state;
+}
+
+namespace {
+
+// f(τ) = c + bτ + aτ², or the same with a, b, c of a function of another shape: its sign changes.
+struct Quadratic {
+  double a, b, c;
+};
+
+// Simple real roots of aτ² + bτ + c (a double root is a touch, not a crossing), without cancellation.
+std::vector<double> quadratic_roots(const Quadratic& f) {
+  if (f.a == 0.0) {
+    if (f.b == 0.0) return {};
+    return {-f.c / f.b};
+  }
+  const double discriminant = f.b * f.b - 4.0 * f.a * f.c;
+  if (!(discriminant > 0.0)) return {};
+  const double q = -0.5 * (f.b + std::copysign(std::sqrt(discriminant), f.b));
+  std::vector<double> roots;
+  if (q != 0.0)
+    roots = {q / f.a, f.c / q};
+  else
+    roots = {0.0};
+  std::sort(roots.begin(), roots.end());
+  return roots;
+}
+
+// |w(τ)|² of a plane motion as c + a·cos Ωτ + b·sin Ωτ (C > 0), c + a·cosh Ωτ + b·sinh Ωτ (C < 0)
+// or c + bτ + aτ² (C = 0): s̈ = 2E/J − (8C/J)s, the same Ω for both planes (physics.md §8.3).
+Quadratic squared_radius_coefficients(const PlaneMotion& m) {
+  if (m.C == 0.0) return {m.energy / m.J, m.s_dot0, m.s0};
+  const double c = m.energy / (4.0 * m.C), w = std::sqrt(std::abs(8.0 * m.C / m.J));
+  return {m.s0 - c, m.s_dot0 / w, c};  // a, b, c of c + a·cos + b·sin (or cosh, sinh)
+}
+
+}  // namespace
+
+std::vector<double> degenerate_times(const ExactSolution& sol, double t0, double t1) {
+  const Scene& scene = sol.scene;
+  std::vector<double> times;
+  if (scene.body.model != BodyModel::affine || !(t1 > t0)) return times;
+  const auto keep = [&](double t) {
+    if (t > t0 && t <= t1) times.push_back(t);
+  };
+  // The internal motion starts from the frame of the solution's start (the rotations by θ_s and
+  // −D(τ) leave det L alone).
+  const Mat2& L = sol.radial ? sol.initial.L : sol.local0.L;
+  const Mat2& M = sol.radial ? sol.initial.M : sol.local0.M;
+  const Inertia inertia = inertia_of(scene.body);
+  if (!inertia.isotropic) {  // free body: det(L + τM) = det L + τ tr(cof(L)ᵀM) + τ² det M
+    const double linear = L(0, 0) * M(1, 1) + L(1, 1) * M(0, 0) - L(0, 1) * M(1, 0) - L(1, 0) * M(0, 1);
+    for (double t : quadratic_roots({M.determinant(), linear, L.determinant()})) keep(t);
+    return times;
+  }
+  const AbcPotential& abc = sol.internal;
+  const PlaneMotion uv =
+      plane_motion(inertia.J, abc.A, abc.C, Vec2(0.5 * (L(0, 0) - L(1, 1)), 0.5 * (L(0, 1) + L(1, 0))),
+                   Vec2(0.5 * (M(0, 0) - M(1, 1)), 0.5 * (M(0, 1) + M(1, 0))));
+  const PlaneMotion pq =
+      plane_motion(inertia.J, abc.B, abc.C, Vec2(0.5 * (L(0, 0) + L(1, 1)), 0.5 * (L(1, 0) - L(0, 1))),
+                   Vec2(0.5 * (M(0, 0) + M(1, 1)), 0.5 * (M(1, 0) - M(0, 1))));
+  const Quadratic f_uv = squared_radius_coefficients(uv), f_pq = squared_radius_coefficients(pq);
+  const Quadratic f{f_pq.a - f_uv.a, f_pq.b - f_uv.b, f_pq.c - f_uv.c};  // det L = |pq|² − |uv|²
+  if (abc.C == 0.0) {
+    for (double t : quadratic_roots(f)) keep(t);
+    return times;
+  }
+  const double w = std::sqrt(std::abs(8.0 * abc.C / inertia.J));
+  if (abc.C < 0.0) {
+    // c + a cosh + b sinh = 0 with z = e^{Ωτ}: (a + b)z² + 2cz + (a − b) = 0, z > 0.
+    for (double z : quadratic_roots({f.a + f.b, 2.0 * f.c, f.a - f.b}))
+      if (z > 0.0) keep(std::log(z) / w);
+    std::sort(times.begin(), times.end());
+    return times;
+  }
+  // c + ρ cos(Ωτ − θ₀) = 0: Ωτ = θ₀ ± β + 2πk, β = arccos(−c/ρ) (no crossing when ρ ≤ |c|).
+  const double rho = std::hypot(f.a, f.b), theta0 = std::atan2(f.b, f.a);
+  if (!(rho > std::abs(f.c))) return times;
+  const double beta = std::acos(-f.c / rho), period = 2.0 * kPi;
+  for (const double offset : {theta0 - beta, theta0 + beta}) {
+    const double k_first = std::floor((w * t0 - offset) / period);
+    for (double k = k_first;; k += 1.0) {
+      const double t = (offset + period * k) / w;
+      if (t > t1) break;
+      keep(t);
+    }
+  }
+  std::sort(times.begin(), times.end());
+  return times;
 }
 
 }  // namespace spinfold

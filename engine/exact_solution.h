@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "engine/chart.h"
 #include "engine/scene.h"
@@ -72,5 +73,11 @@ ExactSolution make_exact_solution(const Scene& scene, const State& start);
 
 // The state at time t [time], in a well-conditioned chart.
 State exact_state(const ExactSolution& solution, double t);
+
+// The times τ in (t0, t1] [time, the solution's own] at which det L changes sign, oldest first:
+// the roots of det L(τ) = |w_pq(τ)|² − |w_uv(τ)|², a trigonometric, hyperbolic or quadratic
+// function of τ (physics.md §8.3; L + τM for a free anisotropic body), solved in closed form, so the
+// crossings do not depend on where the run is sampled. None for the rigid body.
+std::vector<double> degenerate_times(const ExactSolution& solution, double t0, double t1);
 
 }  // namespace spinfold

@@ -81,11 +81,44 @@ double vorticity(const Scene& scene, const State& state) {
   return vorticity_from_rate(inertia_of(scene.body), in.L, in.M);
 }
 
+ChartMomentum chart_momentum(const Scene& scene, const State& state) {
+  const Surface& surface = scene.surface;
+  const BodyKinematics body = chart_kinematics(scene, state.y);
+  ChartMomentum out;
+  out.local = scene.body.mass * body.X.cross(body.V) +
+              curvature(surface) * surface.radius * body.spin * raise(surface, body.X);
+  const Mat3& A = state.chart.A;
+  // (AX) × (AV) = det(A) A^{-T}(X × V), A^{-T} = ηAη for a Lorentz transform or a rotation, and
+  // η(AX) = ηAη(ηX).
+  Mat3 B = A;
+  if (surface.kind == SurfaceKind::pseudosphere) {
+    const Eigen::DiagonalMatrix<double, 3> eta(1.0, 1.0, -1.0);
+    B = eta * A * eta;
+  }
+  const double det = A.determinant() < 0.0 ? -1.0 : 1.0;
+  const Vec3 orbital = scene.body.mass * body.X.cross(body.V);
+  const Vec3 spin_part = out.local - orbital;
+  out.global = det * (B * orbital) + B * spin_part;
+  constexpr double kEps = 2.220446049250313e-16;
+  out.rounding = 8.0 * kEps * (B.cwiseAbs() * (orbital.cwiseAbs() + spin_part.cwiseAbs()));
+  return out;
+}
+
+bool well_conditioned(double rounding, double scale) {
+  return rounding <= 1e-8 * scale;
+}
+
 double angular_momentum(const Scene& scene, const State& state) {
   if (state.chart.global) return state.y[coord::p_phi];
+  if (scene.surface.kind != SurfaceKind::plane) return chart_momentum(scene, state).global.z();  // M₃
   const GlobalBody g = global_body(scene, state);
   const double orbital = scene.body.mass * (g.X.x() * g.V.y() - g.X.y() * g.V.x());
   return orbital + g.C * g.spin;  // M₃ = mS²φ̇ + Cs
+}
+
+double angular_momentum_rounding(const Scene& scene, const State& state) {
+  if (state.chart.global || scene.surface.kind == SurfaceKind::plane) return 0.0;
+  return chart_momentum(scene, state).rounding.z();
 }
 
 std::optional<SeparatedEnergies> separated_energies(const Scene& scene, const State& state) {
@@ -111,11 +144,10 @@ std::optional<SeparatedEnergies> separated_energies(const Scene& scene, const St
 std::optional<Vec3> momentum_map(const Scene& scene, const State& state) {
   if (scene.potential.radial) return std::nullopt;
   const Surface& surface = scene.surface;
+  if (surface.kind != SurfaceKind::plane) return chart_momentum(scene, state).global;
   const GlobalBody g = global_body(scene, state);
   const double m = scene.body.mass;
-  if (surface.kind == SurfaceKind::plane)
-    return Vec3(m * g.V.x(), m * g.V.y(), m * (g.X.x() * g.V.y() - g.X.y() * g.V.x()) + g.spin);
-  return Vec3(m * g.X.cross(g.V) + curvature(surface) * surface.radius * g.spin * raise(surface, g.X));
+  return Vec3(m * g.V.x(), m * g.V.y(), m * (g.X.x() * g.V.y() - g.X.y() * g.V.x()) + g.spin);
 }
 
 double casimir(const Surface& surface, const Vec3& M) {

@@ -1,6 +1,7 @@
 #include "engine/paper_coordinates.h"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "engine/chart.h"
@@ -50,6 +51,16 @@ PaperCoordinates paper_coordinates(const Scene& scene, const State& state) {
   out.p_alpha = g.spin;
   out.p_beta = vorticity(scene, state);
   out.p_phi = angular_momentum(scene, state);
+  if (!state.chart.global && scene.surface.kind != SurfaceKind::plane) {
+    const ChartMomentum cm = chart_momentum(scene, state);
+    if (!well_conditioned(cm.rounding.z(), std::abs(cm.global.z()) + cm.local.cwiseAbs().sum())) {
+      out.p_phi = std::numeric_limits<double>::quiet_NaN();  // null in every output
+      out.undefined.push_back(
+          {"p_phi",
+           "far out on the pseudosphere p_phi = m S^2 phi_dot + C s is the difference of numbers of size "
+           "e^(r/R) and keeps fewer than 8 digits in double (physics.md §6)"});
+    }
+  }
 
   const Mat2& L = g.L;
   // L̇ = M − Cφ̇εL in the paper's frame; at a pole only frame-independent parts are used.

@@ -48,8 +48,23 @@ Readout readout(const Simulation& run) {
   else
     r.actions = action_variables(scene, state);
   r.momentum_map = momentum_map(scene, state);
-  if (r.momentum_map && scene.surface.kind != SurfaceKind::plane)
-    r.casimir = casimir(scene.surface, *r.momentum_map);
+  if (r.momentum_map && scene.surface.kind != SurfaceKind::plane) {
+    // The casimir from M in the body's chart (an invariant of the isometry): no cancellation.
+    const ChartMomentum cm = chart_momentum(scene, state);
+    r.casimir = casimir(scene.surface, cm.local);
+    const double scale = cm.local.cwiseAbs().sum();
+    bool digits = true;
+    for (int i = 0; i < 3; ++i)
+      digits = digits && well_conditioned(cm.rounding[i], std::abs(cm.global[i]) + scale);
+    if (!digits) {
+      r.momentum_map.reset();
+      r.undefined.push_back(
+          {"M",
+           "far out on the pseudosphere the components of M are differences of numbers of "
+           "size e^(r/R) and keep fewer than 8 digits in double (the casimir is computed in "
+           "the body's chart and stays exact)"});
+    }
+  }
   r.status = state.status;
   r.status_name = status_name(state.status);
   r.status_detail = status_description(state.status);

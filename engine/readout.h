@@ -31,7 +31,9 @@ struct Readout {
   double det_L = 0.0;                          // det L, frame-independent [1]
   std::optional<SeparatedEnergies> separated;  // C_x, C_y [energy] (abc or no deformation, affine)
   std::optional<Vec3> momentum_map;            // M (physics.md §6), when defined
-  std::optional<double> casimir;               // MᵀηM, on S² and H² when M is defined
+  std::optional<double> casimir;               // MᵀηM, on S² and H² without a radial potential
+  // Values computed but not shown because they lost their digits (M far out on H²), with the reason.
+  std::vector<UndefinedValue> undefined;
   // Action variables and frequencies of the separable scenes (engine/actions.h); none with the
   // reason in actions_unsupported otherwise.
   std::optional<ActionVariables> actions;

@@ -39,11 +39,109 @@ void measure_energy_from_here(Simulation& run) {
   run.segment_start = run.state.t;
 }
 
-void use_integrator(Simulation& run) {
-  const CatalogEntry* entry = find_integrator(resolve_integrator(run.scene));
+void use_integrator(Simulation& run, std::string_view name) {
+  const CatalogEntry* entry = find_integrator(name);
   run.info = &entry->info;
   run.integrator = entry->make ? entry->make() : nullptr;
   run.exact.reset();
+}
+
+void use_integrator(Simulation& run) {
+  use_integrator(run, resolve_integrator(run.scene));
+}
+
+bool all_finite(const Coords& y) {
+  return y.allFinite();
+}
+
+// The coordinates and the chart they are in (an extreme scene can overflow the chart alone).
+bool all_finite(const State& state) {
+  return state.y.allFinite() && state.chart.A.allFinite() && state.chart.b.allFinite();
+}
+
+// The closed form's state at run time t [time].
+State exact_at(const Simulation& run, double t) {
+  State s = exact_state(*run.exact, t - run.segment_start);
+  s.t = t;
+  return s;
+}
+
+// The check is at this relative level: the closed forms agree with 35-digit evaluations to ~1e-13
+// (physics.md §11), so anything near 1e-8 is a wrong orbit or a state whose invariants no longer
+// carry 8 digits (a motion whose energy grew 1e6-fold).
+constexpr double kExactCheck = 1e-8;
+constexpr double kExactGrowth = 1e6;
+
+bool near(double a, double b, double scale) {
+  return std::abs(a - b) <= kExactCheck * scale;
+}
+
+// The conserved quantities of `state` against those of the segment's start.
+bool exact_consistent(const Simulation& run, const State& state) {
+  const Scene& scene = run.scene;
+  const ExactCheck& c = run.exact_check;
+  const EnergyParts now = energy_parts(scene, state.chart, state.y);
+  // A motion grown kExactGrowth-fold (an unbounded potential) has invariants whose round-off
+  // approaches the check's level: stop at that smooth, sampling-independent threshold, not at the
+  // first noisy failure.
+  if (!(energy_scale(now) <= kExactGrowth * run.energy_scale)) return false;
+  if (!near(now.kinetic + now.potential, run.initial_energy, run.energy_scale)) return false;
+  if (!near(orbital_energy(scene, state), c.orbital_energy, run.energy_scale)) return false;
+  if (!near(spin(scene, state), c.spin, c.momentum_scale)) return false;
+  if (c.p_phi_checked) {
+    const double rounding = angular_momentum_rounding(scene, state);
+    if (well_conditioned(rounding, c.momentum_scale) &&
+        std::abs(angular_momentum(scene, state) - c.p_phi) > kExactCheck * c.momentum_scale + rounding)
+      return false;
+  }
+  if (c.separated) {
+    const auto e = separated_energies(scene, state);
+    if (!e || !near(e->C_x, c.separated->C_x, run.energy_scale) ||
+        !near(e->C_y, c.separated->C_y, run.energy_scale))
+      return false;
+  }
+  return true;
+}
+
+// Records the start's invariants and checks the closed form at τ = 0 against the start (r, ṙ, L,
+// M in the paper's frame and the invariants). Call after measure_energy_from_here.
+void prepare_exact_check(Simulation& run) {
+  const Scene& scene = run.scene;
+  const State& start = run.state;
+  ExactCheck& c = run.exact_check;
+  c = ExactCheck{};
+  c.spin = spin(scene, start);
+  c.orbital_energy = orbital_energy(scene, start);
+  c.separated = separated_energies(scene, start);
+  const double m = scene.body.mass, R = scene.surface.radius;
+  const double L_norm = internal_state(scene, start.y).L.norm();
+  const double J = rigid_inertia(inertia_of(scene.body));
+  c.momentum_scale = std::abs(c.spin) + std::sqrt(2.0 * m * run.energy_scale) * R +
+                     std::sqrt(2.0 * J * run.energy_scale) * L_norm;
+  if (scene.surface.kind != SurfaceKind::plane)
+    c.momentum_scale += chart_momentum(scene, start).local.cwiseAbs().sum();
+  c.p_phi = angular_momentum(scene, start);
+  c.p_phi_checked = well_conditioned(angular_momentum_rounding(scene, start), c.momentum_scale);
+
+  State zero = exact_at(run, start.t);
+  c.start_ok = all_finite(zero) && exact_consistent(run, zero);
+  if (c.start_ok) {
+    const GlobalBody a = global_body(scene, start), b = global_body(scene, zero);
+    const double speed = std::sqrt(2.0 * run.energy_scale / m);
+    const double rate = std::sqrt(2.0 * run.energy_scale / J);
+    c.start_ok = std::abs(a.r - b.r) <= kExactCheck * (R + a.r) &&
+                 std::abs(a.r_dot - b.r_dot) <= kExactCheck * speed &&
+                 (a.L - b.L).norm() <= kExactCheck * a.L.norm() &&
+                 (a.M - b.M).norm() <= kExactCheck * (rate + a.M.norm() + speed * a.L.norm() / R);
+  }
+}
+
+// An exact run: the closed form, or for `auto` dop853 where the closed form fails its check at the start.
+void prepare_exact(Simulation& run, const State& start, bool scene_start) {
+  run.exact = scene_start ? make_exact_solution(run.scene) : make_exact_solution(run.scene, start);
+  prepare_exact_check(run);
+  if (!run.exact_check.start_ok && run.scene.integrator.name == kAutoIntegrator)
+    use_integrator(run, dop853_info.name);
 }
 
 }  // namespace
@@ -57,8 +155,8 @@ Simulation start_simulation(const Scene& scene, double start_time) {
   run.state.t = start_time;
   run.start_time = start_time;
   use_integrator(run);
-  if (!run.integrator) run.exact = make_exact_solution(scene);
   measure_energy_from_here(run);
+  if (!run.integrator) prepare_exact(run, run.state, true);
   run.grid = {run.state, Coords::Zero(run.state.y.size()), 0.0, scene.integrator.dt};
   run.checked = run.grid;
   return run;
@@ -66,22 +164,26 @@ Simulation start_simulation(const Scene& scene, double start_time) {
 
 namespace {
 
-bool all_finite(const Coords& y) {
-  return y.allFinite();
-}
-
-// The coordinates and the chart they are in (an extreme scene can overflow the chart alone).
-bool all_finite(const State& state) {
-  return state.y.allFinite() && state.chart.A.allFinite() && state.chart.b.allFinite();
-}
-
 double det_of(const Coords& y) {
   return y[coord::L] * y[coord::L + 3] - y[coord::L + 1] * y[coord::L + 2];
 }
 
-// Time in [0, h] where det L crosses zero along the step from y, by bisection on sub-steps.
-double locate_degenerate(Integrator& integrator, const StepProblem& f, const Coords& y, double h,
-                         double tolerance) {
+// det L of y has the sign `positive` however it is rounded (det_of and det_L may differ by an ulp).
+bool det_on_side(const Scene& scene, const Coords& y, bool positive) {
+  const double a = det_of(y), b = internal_state(scene, y).L.determinant();
+  return positive ? a > 0.0 && b > 0.0 : a < 0.0 && b < 0.0;
+}
+
+// Where det L crosses zero along the step from y: the time in [0, h] (by bisection on sub-steps
+// from y, so it is the same whichever sample the step was cut for), and the state just before it.
+struct Crossing {
+  double t = 0.0;       // offset of the crossing [time]
+  double before = 0.0;  // offset of `y`, ≤ 1e-14 h before it [time]
+  Coords y;             // the state there (the integrator's sub-step from y)
+};
+Crossing locate_degenerate(Integrator& integrator, const StepProblem& f, const Coords& y, double h,
+                           double tolerance) {
+  const Scene& scene = f.scene;
   const double det0 = det_of(y);
   double lo = 0.0, hi = h;
   Coords trial;
@@ -94,7 +196,16 @@ double locate_degenerate(Integrator& integrator, const StepProblem& f, const Coo
     else
       hi = mid;
   }
-  return 0.5 * (lo + hi);
+  Crossing c{0.5 * (lo + hi), lo, y};
+  // The state just before: back off (by 1e-15 h, doubling) until det L keeps its sign however rounded.
+  for (int k = 0; c.before > 0.0; ++k) {
+    integrator.try_step(f, y, c.before, tolerance, trial);
+    c.y = y + trial;
+    if (det_on_side(scene, c.y, det0 > 0.0) || k == 50) break;
+    c.before = std::max(0.0, lo - std::ldexp(1e-15 * h, k));
+    c.y = y;
+  }
+  return c;
 }
 
 }  // namespace
@@ -128,36 +239,38 @@ void add_event(std::vector<DegenerateEvent>& events, double t) {
   events.push_back({t});
 }
 
-// The closed form jumps straight to t_end from the segment's start; a det L sign change since the
-// last state is located by bisection on the closed form itself, and a stop lands just before it.
+// The closed form jumps straight to t_end from the segment's start. The det L = 0 crossings since
+// the last state are the roots of det L(τ) in the closed form's own time (degenerate_times), so
+// they do not depend on where the run was sampled; a stop lands on the first one.
 void advance_exact(Simulation& run, double t_end) {
-  const auto at = [&run](double t) {
-    State s = exact_state(*run.exact, t - run.segment_start);
-    s.t = t;
-    return s;
-  };
+  const auto at = [&run](double t) { return exact_at(run, t); };
   State next = at(t_end);
   if (!all_finite(next)) {
     run.state.status = Status::non_finite;
     return;
   }
-  const Scene& scene = run.scene;
-  if (scene.body.model == BodyModel::affine && (det_of(run.state.y) > 0.0) != (det_of(next.y) > 0.0)) {
-    const bool positive = det_of(run.state.y) > 0.0;
-    double lo = run.state.t, hi = t_end;
-    for (int i = 0; i < 200 && hi - lo > 1e-14 * std::max(1.0, std::abs(hi)); ++i) {
-      const double mid = 0.5 * (lo + hi);
-      if ((det_of(at(mid).y) > 0.0) == positive)
-        lo = mid;
-      else
-        hi = mid;
+  // The sign before the next crossing (only the affine body has crossings, and L in its state).
+  bool positive = run.scene.body.model == BodyModel::affine && det_of(run.state.y) > 0.0;
+  for (const double tau :
+       degenerate_times(*run.exact, run.state.t - run.segment_start, t_end - run.segment_start)) {
+    const double t = run.segment_start + tau;
+    if (run.scene.on_degenerate != OnDegenerate::stop) {
+      add_event(run.events, t);
+      positive = !positive;
+      continue;
     }
-    add_event(run.events, 0.5 * (lo + hi));
-    if (scene.on_degenerate == OnDegenerate::stop) {
-      run.state = at(lo);
-      run.state.status = Status::degenerate_frame;
-      return;
+    // The stop lands just before the crossing, where det L keeps its sign, and lists the event at
+    // its own time (≤ ~1e-15 t before the root).
+    State stop = at(t);
+    for (int k = 0; k < 50 && !det_on_side(run.scene, stop.y, positive); ++k) {
+      const double t_before = t - std::ldexp(1e-15 * std::max(1.0, std::abs(t)), k);
+      if (!(t_before > run.state.t)) break;
+      stop = at(t_before);
     }
+    add_event(run.events, stop.t);
+    run.state = stop;
+    run.state.status = Status::degenerate_frame;
+    return;
   }
   run.state = next;
   if (!run.exact_evaluated) ++run.steps;  // one per segment: the same however the run was advanced
@@ -211,8 +324,20 @@ bool step_toward(Simulation& run, StepPoint& p, double t_end, Mode mode, std::ui
     }
 
     if (affine && (det_of(state.y) > 0.0) != (det_of(y_next) > 0.0)) {
-      add_event(events, state.t + locate_degenerate(*run.integrator, f, state.y, h, tolerance));
-      if (scene.on_degenerate == OnDegenerate::stop) {
+      const Crossing crossing = locate_degenerate(*run.integrator, f, state.y, h, tolerance);
+      const bool stop = scene.on_degenerate == OnDegenerate::stop;
+      // A stop reports the event at its own time (≤ 1e-14 h before the crossing's midpoint), so
+      // the stopped sample lists it.
+      add_event(events, state.t + (stop ? crossing.before : crossing.t));
+      if (stop) {
+        // The stop lands on the crossing (its last good side), not on the step before it: the
+        // stopped sample's time is the event's, whatever the sampling and the integrator.
+        if (all_finite(crossing.y)) {
+          state.y = crossing.y;
+          state.t += crossing.before;
+          p.carry.setZero(state.y.size());
+          p.t_carry = 0.0;
+        }
         state.status = Status::degenerate_frame;
         return true;
       }
@@ -315,8 +440,29 @@ bool advance_body(Simulation& run, double t_end, std::uint64_t& attempts) {
   if (!run.exact) return advance_steps(run, t_end, attempts);
   if (attempts == 0) return false;
   --attempts;
+  if (!run.exact_check.start_ok) {  // the closed form does not reproduce its own start
+    run.state.status = Status::inconsistent;
+    return true;
+  }
   const State before = run.state;
   advance_exact(run, t_end);
+  if ((run.state.status == Status::ok || run.state.status == Status::degenerate_frame) &&
+      !exact_consistent(run, run.state)) {
+    // The last consistent time, by bisection on the closed form (before passed the check).
+    double lo = before.t, hi = run.state.t;
+    for (int i = 0; i < 100 && hi - lo > 1e-12 * std::max(1.0, std::abs(hi)); ++i) {
+      const double mid = 0.5 * (lo + hi);
+      const State s = exact_at(run, mid);
+      if (all_finite(s) && exact_consistent(run, s))
+        lo = mid;
+      else
+        hi = mid;
+    }
+    run.state = lo > before.t ? exact_at(run, lo) : before;
+    run.state.status = Status::inconsistent;
+    std::erase_if(run.events, [&](const DegenerateEvent& e) { return e.t > run.state.t; });
+    return true;
+  }
   if (run.state.status == Status::ok) {
     if (const Status trouble = health(run, run.state); trouble != Status::ok) {
       run.state = before;
@@ -399,13 +545,13 @@ void retune(Simulation& run, const Scene& next) {
   const double h_next = same_method && run.info->adaptive ? run.grid.h_next : next.integrator.dt;
   run.scene = next;
   if (!same_method || !run.integrator) use_integrator(run);
-  if (!run.integrator) run.exact = make_exact_solution(next, here);
   run.state = here;
-  run.grid = {here, Coords::Zero(here.y.size()), 0.0, h_next};
-  run.checked = run.grid;
   run.view_events.clear();
   run.exact_evaluated = false;
   measure_energy_from_here(run);
+  if (!run.integrator) prepare_exact(run, here, false);
+  run.grid = {here, Coords::Zero(here.y.size()), 0.0, h_next};
+  run.checked = run.grid;
 }
 
 }  // namespace spinfold

@@ -8,6 +8,7 @@
 
 #include "engine/exact_solution.h"
 #include "engine/integrator.h"
+#include "engine/invariants.h"
 #include "engine/scene.h"
 #include "engine/state.h"
 
@@ -26,6 +27,19 @@ struct StepPoint {
   double h_next = 0.0;   // next trial step [time]
 };
 
+// What the closed form is checked against at every state it gives (an independent check: these
+// come from the segment's start state, not from the closed form): the conserved quantities of
+// physics.md §6 and, at τ = 0, the start itself.
+struct ExactCheck {
+  bool start_ok = true;                        // the closed form at τ = 0 reproduces the start
+  double spin = 0.0;                           // s
+  double orbital_energy = 0.0;                 // E_orb [energy]
+  double p_phi = 0.0;                          // p_φ of the scene's chart
+  bool p_phi_checked = false;                  // p_φ of the start kept 8 digits (not far out on H²)
+  std::optional<SeparatedEnergies> separated;  // C_x, C_y (isotropic affine body)
+  double momentum_scale = 0.0;                 // what momenta are measured against [angular momentum]
+};
+
 struct Simulation {
   Scene scene;  // the parameters in force now
   State state;  // the state at the time last asked for (advance_to's t_end)
@@ -37,6 +51,7 @@ struct Simulation {
   const IntegratorInfo* info = nullptr;    // the integrator that runs (auto resolved)
   std::unique_ptr<Integrator> integrator;  // null when the exact solution runs
   std::optional<ExactSolution> exact;      // from the state at segment_start
+  ExactCheck exact_check;                  // what the closed form is checked against (exact only)
   bool exact_evaluated = false;            // the closed form of this segment was used (counted once in steps)
   double initial_energy = 0.0;             // H right after the last change (energy_reference_t) [energy]
   double energy_scale = 0.0;               // kinetic + |potential| energy then [energy]: the yardstick of

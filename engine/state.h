@@ -39,6 +39,8 @@ enum class Status {
                      // (r > kMaxHyperbolicDistance · R); the state is the last one within
   diverged,          // the energy error grew as large as the energy itself: the step is beyond the
                      // method's stability (or the tolerance too loose); the state is the last good one
+  inconsistent,      // the closed form (exact) failed its independent check: its start or its conserved
+                     // quantities disagree with the run's; the state is the last one that passed
 };
 
 std::string_view status_name(Status status);
