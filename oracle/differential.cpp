@@ -226,7 +226,7 @@ std::string random_scene(const std::string& regime, unsigned long long seed) {
             {"lambda_dot", lambda_dot},
             {"mu_dot", mu_dot},
             {"beta_dot", model == 1 ? 0.0 : beta_dot}};
-  const bool at_pole = (kind != 1 && r == 0.0) || (kind == 0 && r == pi * R);
+  const bool at_pole = r == 0.0 || (kind == 0 && r == pi * R);
   const double speed = uni(0.0, 1.0);
   const double S0 = kind == 0 ? R * std::sin(r / R) : kind == 1 ? R * std::sinh(r / R) : r;
   // far out the rates would be e^{r/R}-sized: the physical fields then
