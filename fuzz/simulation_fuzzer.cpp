@@ -8,7 +8,7 @@
 // - the scene's JSON reads back to the same JSON;
 // - on the scene with its immoderate numbers replaced by moderate ones, `exact` (where it accepts
 //   the scene), `dop853` and `auto` at tolerance 1e-12 agree with the independent oracle (oracle/) at
-//   a short horizon to 1e-6: the fuzzer looks for wrong answers, not only for crashes.
+//   a short horizon to 1e-6 (on one input in 16): the fuzzer looks for wrong answers, not only crashes.
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <cmath>
@@ -209,6 +209,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       std::memcmp(again.state.y.data(), run.state.y.data(), sizeof(double) * run.state.y.size()) != 0 ||
       again.state.status != run.state.status)
     violated("the same scene gave different bits", scene);
-  compare_with_oracle(scene, t_end);
+  // one input in 16 (by its bytes, so a replay does the same): keeps the fuzz stage's time
+  unsigned sum = 0;
+  for (std::size_t i = 0; i < size; ++i) sum += data[i];
+  if (sum % 16 == 0) compare_with_oracle(scene, t_end);
   return 0;
 }
