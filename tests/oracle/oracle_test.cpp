@@ -132,6 +132,23 @@ TEST(AutoChoice, MeetsTheToleranceOnTheIncompressibleBody) {
   }
 }
 
+// Found by the sweep after the `exactfix` merge (spinfold-bench oracle-sweep --scenes 250 --seed 1000
+// --regime far_h2): far out on H² (r₀ = 15–30 R) `exact` stops `inconsistent` at t = 0 or t ≈ 1, and
+// `auto`, which chooses it, stops with it instead of choosing an integrator that can run the scene.
+TEST(FarOutOnH2, ExactAndAutoRunOrRefuse) {
+  for (const unsigned long long seed : {1028ull, 1038ull, 1086ull}) {
+    const std::string text = random_scene("far_h2", seed);
+    const OracleScene scene = read_scene(text);
+    const OracleRun reference = run_oracle(scene, kHorizon);
+    ASSERT_TRUE(reference.ok) << reference.error;
+    for (const IntegratorCase& c : integrator_cases()) {
+      if (c.name != "exact" && c.name != "auto") continue;
+      const Verdict v = check(text, c, kHorizon, scene, reference);
+      EXPECT_TRUE(v.pass) << "seed " << seed << replay(v);
+    }
+  }
+}
+
 class Differential : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Differential, EveryIntegratorAgreesWithTheOracle) {
