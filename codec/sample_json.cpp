@@ -1,5 +1,6 @@
 #include "codec/sample_json.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace spinfold {
@@ -51,7 +52,10 @@ json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_event
   j["lambda_dot"] = number(c.lambda_dot);
   j["mu_dot"] = number(c.mu_dot);
   j["p_r"] = number(c.p_r);
-  j["p_phi"] = number(c.p_phi);
+  // p_φ far out on H² is computed but has lost its digits: null, with the reason under undefined.
+  const bool p_phi_lost = std::any_of(c.undefined.begin(), c.undefined.end(),
+                                      [](const UndefinedValue& u) { return u.field == "p_phi"; });
+  j["p_phi"] = p_phi_lost ? json(nullptr) : number(c.p_phi);
   j["p_alpha"] = number(c.p_alpha);
   j["p_beta"] = number(c.p_beta);
   j["p_lambda"] = number(c.p_lambda);

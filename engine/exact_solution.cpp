@@ -20,8 +20,9 @@ const IntegratorInfo exact_info{"exact",
                                 true,
                                 false,
                                 true,
-                                "closed form of the separable scenes: radial potential g > 0 or none, abc "
-                                "deformation potential or none (physics.md §8)"};
+                                "closed form of the separable scenes (physics.md §8, §17): radial potential "
+                                "g > 0 or none, abc or none (anisotropic inertia only without abc), rigid or "
+                                "affine; checked against its start's invariants"};
 
 namespace {
 

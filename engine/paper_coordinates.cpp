@@ -1,7 +1,6 @@
 #include "engine/paper_coordinates.h"
 
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 #include "engine/chart.h"
@@ -54,7 +53,6 @@ PaperCoordinates paper_coordinates(const Scene& scene, const State& state) {
   if (!state.chart.global && scene.surface.kind != SurfaceKind::plane) {
     const ChartMomentum cm = chart_momentum(scene, state);
     if (!well_conditioned(cm.rounding.z(), std::abs(cm.global.z()) + cm.local.cwiseAbs().sum())) {
-      out.p_phi = std::numeric_limits<double>::quiet_NaN();  // null in every output
       out.undefined.push_back(
           {"p_phi",
            "far out on the pseudosphere p_phi = m S^2 phi_dot + C s is the difference of numbers of size "

@@ -25,6 +25,8 @@ struct PaperCoordinates {
   std::optional<double> r_dot, phi_dot, alpha_dot, beta_dot, theta_dot;
   double lambda_dot = 0.0, mu_dot = 0.0;
   std::optional<double> p_r;
+  // p_phi far out on H² keeps fewer than 8 digits: then it is listed under `undefined` (outputs show
+  // null) and this is only the nearest double the chart gives.
   double p_phi = 0.0, p_alpha = 0.0, p_beta = 0.0, p_lambda = 0.0, p_mu = 0.0;
   Vec3 X;                 // global embedding position (physics.md §1)
   std::optional<Mat2> L;  // rows as physics.md §2: L_BA = component of e_A along E_B

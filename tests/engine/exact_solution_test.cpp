@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "engine/chart.h"
+#include "engine/dynamics.h"
 #include "engine/invariants.h"
 #include "engine/paper_coordinates.h"
 #include "test_support.h"
@@ -141,6 +142,110 @@ TEST(Exact, DegenerateCrossingLocatedOnTheClosedForm) {
   EXPECT_LT(stopped.state.t, 0.5);
   EXPECT_GT(stopped.state.t, 0.5 - 1e-12);
   EXPECT_GT(det_L(scene, stopped.state), 0.0);
+}
+
+// Compares two states through what stays well-conditioned anywhere (far out on H² included):
+// r, the position along the circle S·Δφ, the rates ṙ and Sφ̇, and L, M in the paper's frame.
+double paper_distance(const Scene& scene, const State& a, const State& b) {
+  const GlobalBody x = global_body(scene, a), y = global_body(scene, b);
+  const double dphi = std::remainder(x.phi - y.phi, 2.0 * std::numbers::pi);
+  // Far out (S ~ e^{r/R}) S·Δφ is compared as φ to 1e-12 rad: the integrations keep φ to ~1e-13.
+  return std::max({std::abs(x.r - y.r), std::max(0.0, std::abs(x.S * dphi) - 1e-12 * x.S),
+                   std::abs(x.r_dot - y.r_dot), std::abs(x.S * x.phi_dot - y.S * y.phi_dot),
+                   (x.L - y.L).norm(), (x.M - y.M).norm()});
+}
+
+State run_with(Scene scene, const std::string& integrator, double t) {
+  scene.integrator = {integrator, 0.01, 1e-13};
+  Simulation run = start_simulation(scene);
+  advance_to(run, t);
+  return run.state;
+}
+
+// physics.md W5 (separable_radial_abc) started at r = 0.3 on R = 1.5, inside the chart's re-centring
+// band (sin(r/R) < 0.3): the radial closed form must use p_φ of the scene's chart, not of the moved
+// chart the start is stored in (it reported r = 1.3056, φ = −0.254 with status ok).
+TEST(ExactChartRules, RadialPotentialFromAStartInTheRecentringBand) {
+  Scene scene;
+  scene.surface = {SurfaceKind::sphere, 1.5};
+  scene.body = {1.0, 0.4, BodyModel::affine};
+  scene.potential.radial = RadialPotential{0.05};
+  scene.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
+  scene.initial = {0.3, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.0, 0.05};
+  for (const double r0 : {0.3, 0.457, 0.458, 1.2}) {
+    scene.initial.r = r0;
+    const State exact = run_with(scene, "exact", 5.0), reference = run_with(scene, "dop853", 5.0);
+    ASSERT_EQ(exact.status, Status::ok) << r0;
+    EXPECT_LT(paper_distance(scene, exact, reference), 1e-9) << r0;
+  }
+  scene.initial.r = 0.3;
+  const PaperCoordinates c = paper_coordinates(scene, run_with(scene, "exact", 5.0));
+  EXPECT_NEAR(c.r, 1.26824, 1e-5);  // dop853 and gauss6 (issue 22)
+  EXPECT_NEAR(*c.phi, 2.81058, 1e-5);
+}
+
+// On H² with V_r > 0, starts at 0.1R and 4.1R (outside the band on both sides) and far out.
+TEST(ExactChartRules, RadialPotentialOnThePseudosphereOutsideTheBand) {
+  Scene scene;
+  scene.surface = {SurfaceKind::pseudosphere, 1.0};
+  scene.body = {1.0, 0.4, BodyModel::affine};
+  scene.potential.radial = RadialPotential{0.3};
+  scene.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
+  for (const double r0 : {0.1, 1.0, 4.1, 8.0, 12.0}) {
+    scene.initial = {r0, 0.3, 0.1, 0.2, 1.1, 0.6, 0.0, 0.5 / std::sinh(r0), 3.0, 0.2, 0.1, 0.05};
+    const State exact = run_with(scene, "exact", 5.0), reference = run_with(scene, "dop853", 5.0);
+    ASSERT_EQ(exact.status, Status::ok) << r0;
+    EXPECT_LT(paper_distance(scene, exact, reference), 1e-8) << r0;
+  }
+}
+
+// Far out on H² without a potential the orbit's isometry is taken in the start's chart: from 8R to
+// 30R the closed form agrees with dop853 (it erred by 1e-8 at 8R, O(1) from 15R and was non_finite
+// at t = 0 near 25R). S·Δφ is compared to S·1e-14 there: φ itself keeps only ~16 digits.
+TEST(ExactChartRules, FarOutOnThePseudosphereWithoutPotential) {
+  Scene scene;
+  scene.surface = {SurfaceKind::pseudosphere, 1.0};
+  scene.body = {1.0, 0.4, BodyModel::affine};
+  scene.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
+  for (const double r0 : {8.0, 12.0, 15.0, 20.0, 25.0, 30.0}) {
+    scene.initial = {r0, 0.3, 0.1, 0.2, 1.1, 0.6, 0.0, 0.5 / std::sinh(r0), 3.0, 0.2, 0.1, 0.05};
+    const State exact = run_with(scene, "exact", 5.0), reference = run_with(scene, "dop853", 5.0);
+    ASSERT_EQ(exact.status, Status::ok) << r0;
+    const GlobalBody x = global_body(scene, exact), y = global_body(scene, reference);
+    EXPECT_LT(std::abs(x.r - y.r), 1e-10) << r0;
+    EXPECT_LT((x.L - y.L).norm(), 1e-10) << r0;
+    EXPECT_LT(std::abs(x.r_dot - y.r_dot) + std::abs(x.S * x.phi_dot - y.S * y.phi_dot), 1e-10) << r0;
+    EXPECT_LT(x.S * std::abs(std::remainder(x.phi - y.phi, 2.0 * std::numbers::pi)), 1e-9 + 1e-14 * x.S)
+        << r0;
+  }
+}
+
+// det L(τ) in closed form: the roots are where det L changes sign along the closed form itself.
+TEST(ExactEvents, DegenerateTimesAreTheSignChangesOfDetL) {
+  Scene scene;
+  scene.surface = {SurfaceKind::sphere, 1.0};
+  scene.body = {1.0, 0.1, BodyModel::affine};
+  scene.initial = {1.2, 0.0, 0.0, 0.0, 1.0, 0.3, 0.0, 0.4, 0.3, 0.0, 0.0, -2.0};
+  for (const double C : {0.5, 0.0, -0.05}) {
+    scene.potential.deformation = AbcPotential{0.0, 0.0, C};
+    const ExactSolution sol = make_exact_solution(scene);
+    const std::vector<double> roots = degenerate_times(sol, 0.0, 10.0);
+    ASSERT_FALSE(roots.empty()) << C;
+    for (const double t : roots) {
+      const double before = internal_state(scene, exact_state(sol, t - 1e-7).y).L.determinant();
+      const double after = internal_state(scene, exact_state(sol, t + 1e-7).y).L.determinant();
+      EXPECT_LT(before * after, 0.0) << C << " at " << t;
+    }
+    // Between consecutive roots (and before the first) the sign does not change on a fine grid.
+    int changes = 0;
+    double previous = internal_state(scene, exact_state(sol, 0.0).y).L.determinant();
+    for (int k = 1; k <= 100000; ++k) {
+      const double det = internal_state(scene, exact_state(sol, 1e-4 * k).y).L.determinant();
+      if ((det > 0.0) != (previous > 0.0)) ++changes;
+      previous = det;
+    }
+    EXPECT_EQ(changes, static_cast<int>(roots.size())) << C;
+  }
 }
 
 }  // namespace

@@ -326,3 +326,141 @@ TEST(Rk4, FourthOrderOnTheSpinningCircle) {
 
 }  // namespace
 }  // namespace spinfold
+
+namespace spinfold {
+namespace {
+
+// A free-ish body whose frame passes det L = 0 about once a second (abc with C > 0, A = B = 0:
+// L oscillates through the degenerate set).
+Scene oscillating_through_degenerate() {
+  Scene s;
+  s.surface = {SurfaceKind::sphere, 1.0};
+  s.body = {1.0, 0.1, BodyModel::affine};
+  s.potential.deformation = AbcPotential{0.0, 0.0, 0.5};
+  s.initial = {1.2, 0.0, 0.0, 0.0, 1.0, 0.3, 0.0, 0.4, 0.3, 0.0, 0.0, -2.0};
+  s.integrator = {"auto", 0.01, 1e-10};
+  return s;
+}
+
+struct Sampled {
+  std::vector<double> events;  // as the samples list them
+  State last;
+  std::vector<double> last_sample_events;
+};
+
+// Advances to `until` by samples `every` apart, collecting the events each sample lists (what
+// `spinfold simulate --every` prints).
+Sampled sample(const Scene& scene, double every, double until) {
+  Simulation run = start_simulation(scene);
+  Sampled out;
+  double listed = run.state.t;
+  for (int k = 1; run.state.status == Status::ok; ++k) {
+    const double t = std::min(until, k * every);
+    advance_to(run, t);
+    out.last_sample_events.clear();
+    for (const DegenerateEvent& e : events_after(run, listed)) {
+      out.events.push_back(e.t);
+      out.last_sample_events.push_back(e.t);
+    }
+    listed = run.state.t;
+    if (t >= until) break;
+  }
+  out.last = run.state;
+  return out;
+}
+
+// The same scene gives the same det L = 0 events and the same stop whatever the sampling, for
+// every catalog integrator and auto; a stop lands on the first crossing and its sample lists it.
+TEST(Events, IndependentOfSamplingForEveryIntegrator) {
+  std::vector<std::string> names{"auto"};
+  for (const CatalogEntry& e : integrator_catalog()) names.emplace_back(e.info.name);
+  const Scene base = oscillating_through_degenerate();
+  const std::vector<double> reference = sample(
+                                            [&] {
+                                              Scene s = base;
+                                              s.integrator.name = "exact";
+                                              return s;
+                                            }(),
+                                            10.0, 10.0)
+                                            .events;
+  ASSERT_GE(reference.size(), 10u);
+  for (const std::string& name : names) {
+    Scene scene = base;
+    scene.integrator.name = name;
+    if (name == "rk4" || name == "implicit_midpoint") scene.integrator.dt = 0.001;
+    const Sampled coarse = sample(scene, 10.0, 10.0);
+    ASSERT_EQ(coarse.events.size(), reference.size()) << name;
+    // Against the closed form: each integrator's own accuracy (implicit_midpoint, order 2 at
+    // dt = 0.001, is the least accurate at ~1e-5).
+    for (std::size_t i = 0; i < reference.size(); ++i)
+      EXPECT_NEAR(coarse.events[i], reference[i], 1e-4) << name;
+    Scene stopping = scene;
+    stopping.on_degenerate = OnDegenerate::stop;
+    const Sampled coarse_stop = sample(stopping, 10.0, 10.0);
+    EXPECT_EQ(coarse_stop.last.status, Status::degenerate_frame) << name;
+    EXPECT_NEAR(coarse_stop.last.t, reference[0], 1e-4) << name;
+    ASSERT_EQ(coarse_stop.last_sample_events.size(), 1u) << name;
+    EXPECT_NEAR(coarse_stop.last_sample_events[0], coarse_stop.last.t, 1e-12) << name;
+    EXPECT_GT(det_L(stopping, coarse_stop.last), 0.0) << name;
+    for (const double every : {0.01, 0.25, 1.0}) {
+      const Sampled fine = sample(scene, every, 10.0);
+      ASSERT_EQ(fine.events.size(), coarse.events.size()) << name << " every " << every;
+      for (std::size_t i = 0; i < fine.events.size(); ++i)
+        EXPECT_NEAR(fine.events[i], coarse.events[i], 1e-12) << name << " every " << every;
+      const Sampled fine_stop = sample(stopping, every, 10.0);
+      EXPECT_EQ(fine_stop.last.status, Status::degenerate_frame) << name << " every " << every;
+      EXPECT_NEAR(fine_stop.last.t, coarse_stop.last.t, 1e-12) << name << " every " << every;
+      ASSERT_EQ(fine_stop.last_sample_events.size(), 1u) << name << " every " << every;
+      EXPECT_NEAR(fine_stop.last_sample_events[0], coarse_stop.last_sample_events[0], 1e-12) << name;
+    }
+  }
+}
+
+// An unbounded deformation potential (abc with C < 0): the closed form is right but its state's
+// invariants stop carrying 8 digits as the motion grows. The run stops `inconsistent` (never ok with
+// an energy error of order 1) at a sampling-independent time, on a state that passes the checks.
+TEST(ExactCheck, UnboundedPotentialStopsOnACheckedState) {
+  Scene scene;
+  scene.surface = {SurfaceKind::sphere, 1.0};
+  scene.body = {1.0, 0.4, BodyModel::affine};
+  scene.potential.deformation = AbcPotential{0.02, 0.4, -0.3};
+  scene.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.0, 0.4, 0.5, 0.2, 0.0, 0.05};
+  scene.integrator = {"exact", 0.01, 1e-10};
+  std::optional<double> stop_t;
+  for (const double every : {0.1, 1.0, 5.0, 40.0}) {
+    Simulation run = start_simulation(scene);
+    for (int k = 1; k * every <= 40.0 && run.state.status == Status::ok; ++k) {
+      advance_to(run, k * every);
+      const double error = std::abs(energy(scene, run.state) - run.initial_energy);
+      EXPECT_LE(error, 1e-8 * run.energy_scale) << "every " << every << " t " << run.state.t;
+    }
+    EXPECT_EQ(run.state.status, Status::inconsistent) << every;
+    if (!stop_t) stop_t = run.state.t;
+    EXPECT_NEAR(run.state.t, *stop_t, 1e-9) << every;
+  }
+  EXPECT_GT(*stop_t, 1.0);
+}
+
+// The check is independent of the closed form: a closed form with a wrong constant (the p_φ of the
+// wrong chart, as before issue 22) is caught at the first sample, and the run keeps its start.
+TEST(ExactCheck, AWrongClosedFormIsNeverOk) {
+  Scene scene;
+  scene.surface = {SurfaceKind::sphere, 1.5};
+  scene.body = {1.0, 0.4, BodyModel::affine};
+  scene.potential.radial = RadialPotential{0.05};
+  scene.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
+  scene.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.0, 0.05};
+  scene.integrator = {"exact", 0.01, 1e-10};
+  Simulation run = start_simulation(scene);
+  ASSERT_TRUE(run.exact && run.exact->radial);
+  run.exact->radial->p_phi *= 1.0 + 1e-6;
+  advance_to(run, 5.0);
+  EXPECT_EQ(run.state.status, Status::inconsistent);
+  EXPECT_EQ(run.state.t, 0.0);
+  Simulation good = start_simulation(scene);
+  advance_to(good, 5.0);
+  EXPECT_EQ(good.state.status, Status::ok);
+}
+
+}  // namespace
+}  // namespace spinfold

@@ -1,0 +1,91 @@
+// Invariants far out on H²: computed in the body's chart, or null with a reason (issue 22).
+#include "engine/invariants.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "engine/paper_coordinates.h"
+#include "engine/readout.h"
+#include "engine/simulation.h"
+#include "test_support.h"
+
+namespace spinfold {
+namespace {
+
+// A spinning rigid body moving round the pole at r0 (tangential velocity v): the casimir is
+// m²R²v² − s² (physics.md §6), whatever r0.
+Scene circling(double r0, double v, double spin, const char* integrator) {
+  Scene scene = test::rigid_scene(SurfaceKind::pseudosphere, 1.0, 1.0, 0.5, 1.0);
+  scene.initial.r = r0;
+  test::set_rigid_motion(scene, v, 1.2, spin);
+  scene.integrator = {integrator, 0.01, 1e-12};
+  return scene;
+}
+
+TEST(Invariants, CasimirFarOutOnThePseudosphereIsExact) {
+  const double v = 0.5, s = 0.3;
+  const double expected = v * v - s * s;  // m = R = 1
+  for (const double r0 : {1.0, 10.0, 20.0, 30.0}) {
+    for (const char* integrator : {"exact", "dop853"}) {
+      Simulation run = start_simulation(circling(r0, v, s, integrator));
+      advance_to(run, 2.0);
+      ASSERT_EQ(run.state.status, Status::ok) << r0 << integrator;
+      const Readout r = readout(run);
+      ASSERT_TRUE(r.casimir) << r0 << integrator;
+      EXPECT_NEAR(*r.casimir, expected, 1e-9) << r0 << integrator;  // read ±2e20 at 30R before
+    }
+  }
+}
+
+// p_φ and M: the same in every integrator to 8 digits, or null with the reason under `undefined`.
+TEST(Invariants, MomentaFarOutAgreeOrAreUndefined) {
+  for (const double r0 : {1.0, 10.0, 20.0, 30.0}) {
+    Simulation exact = start_simulation(circling(r0, 0.5, 0.3, "exact"));
+    Simulation dop = start_simulation(circling(r0, 0.5, 0.3, "dop853"));
+    advance_to(exact, 2.0);
+    advance_to(dop, 2.0);
+    const Readout a = readout(exact), b = readout(dop);
+    const auto defined = [](const Readout& r) {
+      for (const UndefinedValue& u : r.coordinates.undefined)
+        if (u.field == "p_phi") return u.reason.empty();
+      return std::isfinite(r.coordinates.p_phi);
+    };
+    const bool a_defined = defined(a), b_defined = defined(b);
+    for (const Readout* r : {&a, &b}) {
+      bool m_listed = false;
+      for (const UndefinedValue& u : r->undefined)
+        m_listed = m_listed || (u.field == "M" && !u.reason.empty());
+      EXPECT_EQ(m_listed, !r->momentum_map.has_value()) << r0;
+    }
+    if (a_defined && b_defined) {
+      EXPECT_NEAR(a.coordinates.p_phi, b.coordinates.p_phi, 1e-7 * (1.0 + std::abs(b.coordinates.p_phi)))
+          << r0;
+    }
+    if (a.momentum_map && b.momentum_map) {
+      EXPECT_LT((*a.momentum_map - *b.momentum_map).norm(), 1e-7 * (1.0 + b.momentum_map->norm())) << r0;
+    }
+    if (r0 <= 10.0) {  // near enough: everything defined
+      EXPECT_TRUE(a_defined && b_defined && a.momentum_map && b.momentum_map) << r0;
+    }
+    if (r0 >= 20.0) {  // M's components are e^{r/R}·ε‖A‖² wrong there (p_φ of all three differed)
+      EXPECT_FALSE(a.momentum_map || b.momentum_map || a_defined || b_defined) << r0;
+    }
+  }
+}
+
+// Near the origin the chart-computed momentum map is the global formula m X × V + K R s ηX.
+TEST(Invariants, MomentumMapFromTheChartIsTheGlobalOne) {
+  Scene scene = circling(0.1, 0.5, 0.3, "dop853");  // starts in a moved chart (near the pole)
+  Simulation run = start_simulation(scene);
+  advance_to(run, 3.0);
+  const GlobalBody g = global_body(scene, run.state);
+  const Vec3 direct = g.X.cross(g.V) - 1.0 * g.spin * Vec3(g.X.x(), g.X.y(), -g.X.z());
+  const Vec3 M = *momentum_map(scene, run.state);
+  EXPECT_LT((M - direct).norm(), 1e-12);
+  EXPECT_NEAR(angular_momentum(scene, run.state), direct.z(), 1e-12);
+}
+
+}  // namespace
+}  // namespace spinfold
