@@ -132,11 +132,11 @@ TEST(AutoChoice, MeetsTheToleranceOnTheIncompressibleBody) {
   }
 }
 
-// Found by the sweep after the `exactfix` merge (spinfold-bench oracle-sweep --scenes 250 --seed 1000
-// --regime far_h2): far out on H² (r₀ = 15–30 R) `exact` stops `inconsistent` at t = 0 or t ≈ 1, and
-// `auto`, which chooses it, stops with it instead of choosing an integrator that can run the scene.
+// Found by the sweep after the first `exactfix` merge (spinfold-bench oracle-sweep --scenes 250 --seed 1000
+// --regime far_h2): far out on H² (r₀ = 15–30 R) `exact` stopped `inconsistent` at t = 0 or t ≈ 1, and
+// `auto` with it. After exactfix a23b0ef 1231 still does (`exact` only; `auto` runs it right).
 TEST(FarOutOnH2, ExactAndAutoRunOrRefuse) {
-  for (const unsigned long long seed : {1028ull, 1038ull, 1086ull}) {
+  for (const unsigned long long seed : {1028ull, 1038ull, 1086ull, 1231ull}) {
     const std::string text = random_scene("far_h2", seed);
     const OracleScene scene = read_scene(text);
     const OracleRun reference = run_oracle(scene, kHorizon);
