@@ -3,6 +3,7 @@
 
 #include "bench/companions_bench.h"
 #include "bench/cross_cpu.h"
+#include "bench/oracle_sweep.h"
 #include "bench/record_bench.h"
 #include "bench/render_bench.h"
 #include "bench/share_link_bench.h"
@@ -67,8 +68,19 @@ int main(int argc, char** argv) {
   cross_cmd->add_option("--scenes", cross.scenes, "Presets")->capture_default_str();
   cross_cmd->add_option("--tunable", cross.tunable, "GLIBC_TUNABLES of the other CPU")->capture_default_str();
   cross_cmd->add_flag("--dump", cross.dump, "Print this process's ends (hex floats) and stop");
+  spinfold::bench::OracleSweepOptions sweep;
+  CLI::App* sweep_cmd = app.add_subcommand(
+      "oracle-sweep",
+      "Random scenes of every regime, every integrator against the extended-precision oracle");
+  sweep_cmd->add_option("--scenes", sweep.scenes, "Scenes per regime")->capture_default_str();
+  sweep_cmd->add_option("--seed", sweep.seed, "First seed (scene i uses seed + i)")->capture_default_str();
+  sweep_cmd->add_option("--t-end", sweep.t_end, "Horizon T")->capture_default_str();
+  sweep_cmd->add_option("--regime", sweep.regime, "Only this regime");
+  sweep_cmd->add_option("--integrator", sweep.integrator, "Only this integrator");
+  sweep_cmd->add_flag("--verbose", sweep.verbose, "Print each failing scene's JSON");
   CLI11_PARSE(app, argc, argv);
   if (cross_cmd->parsed()) return spinfold::bench::run_cross_cpu(cross);
+  if (sweep_cmd->parsed()) return spinfold::bench::run_oracle_sweep(sweep);
   if (record_cmd->parsed()) return spinfold::bench::run_record_bench(record);
   if (companions_cmd->parsed())
     return spinfold::bench::run_companions_bench(companions_repeats, companions_until);
