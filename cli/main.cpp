@@ -21,12 +21,15 @@
 #include <string>
 #include <thread>
 
+#include "cli/run_loop.h"
+#include "cli/sweep.h"
 #include "codec/presets.h"
 #include "codec/sample_json.h"
 #include "codec/scene_json.h"
 #include "engine/chart.h"
 #include "engine/integrator.h"
 #include "engine/simulation.h"
+#ifndef SPINFOLD_COMPUTE_ONLY  // the compute-only build: simulate and sweep, no GL, FFmpeg or HTTP
 #include "record/clip.h"
 #include "record/recorder.h"
 #include "render/renderer.h"
@@ -34,6 +37,7 @@
 #include "render/view.h"
 #include "server/api.h"
 #include "server/session_db.h"
+#endif
 
 namespace {
 
@@ -107,11 +111,8 @@ int simulate(const SimulateOptions& opt) {
     std::cout << sample_to_json(run, reported_until).dump() << '\n';
     reported_until = run.state.t;
   };
-  emit();
-  for (long k = 1; run.state.status == Status::ok && run.state.t < opt.t_end; ++k) {
-    advance_to(run, std::min(static_cast<double>(k) * opt.every, opt.t_end));
-    emit();
-  }
+  cli::sample_run(
+      run, opt.t_end, opt.every, [&](double t) { return advance_to(run, t); }, emit);
   std::cout.flush();
   if (run.state.status != Status::ok) {
     std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << status_name(run.state.status)
@@ -121,6 +122,7 @@ int simulate(const SimulateOptions& opt) {
   return 0;
 }
 
+#ifndef SPINFOLD_COMPUTE_ONLY
 struct RenderOptions {
   SimulateOptions scene;
   double t = 0.0;
@@ -323,6 +325,7 @@ int serve(const server::ServerOptions& options) {
   api.reset();  // joins the player and the render thread before the exit code is returned
   return served || signalled ? 0 : 1;
 }
+#endif  // SPINFOLD_COMPUTE_ONLY
 
 int list_scenes() {
   for (const PresetSource& p : preset_sources()) {
@@ -361,6 +364,9 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("--integrator", sim.integrator, "Override the scene's integrator name");
   simulate_cmd->add_option("--dt", sim.dt, "Override the step (fixed-step) or first trial step");
   simulate_cmd->add_option("--tolerance", sim.tolerance, "Override the error tolerance per step");
+  cli::SweepOptions sweep_opt;
+  CLI::App* sweep_cmd = cli::add_sweep_command(app, sweep_opt);
+#ifndef SPINFOLD_COMPUTE_ONLY
   RenderOptions ren;
   CLI::App* render_cmd = app.add_subcommand("render", "Render the state at time T as a PNG");
   render_cmd->add_option("scene_file", ren.scene.scene_file, "Scene JSON file (default: the default preset)");
@@ -431,6 +437,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bool no_store = false;
   serve_cmd->add_flag("--no-store", no_store, "Keep sessions in memory only (as --data-dir '')");
+#endif
   CLI::App* scenes_cmd = app.add_subcommand("scenes", "List the embedded preset scenes");
   CLI::App* integrators_cmd = app.add_subcommand("integrators", "Print the integrator catalog");
 
@@ -447,12 +454,15 @@ int main(int argc, char** argv) {
 
   try {
     if (simulate_cmd->parsed()) return simulate(sim);
+    if (sweep_cmd->parsed()) return cli::run_sweep_command(sweep_opt, argc, argv);
+#ifndef SPINFOLD_COMPUTE_ONLY
     if (render_cmd->parsed()) return render_frame(ren);
     if (record_cmd->parsed()) return record_window(rec);
     if (serve_cmd->parsed()) {
       if (no_store) serve_opt.data_dir.clear();
       return serve(serve_opt);
     }
+#endif
     if (scenes_cmd->parsed()) return list_scenes();
     if (integrators_cmd->parsed()) return list_integrators();
   } catch (const BadInput& e) {

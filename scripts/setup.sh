@@ -21,6 +21,7 @@ packages=(
   wrk curl                                        # HTTP load benchmark
   chromium                                        # browser tests of the web UI (playwright-core)
   nginx                                           # the front of the shared server (scripts/front.sh)
+  slurm-wlm munge                                 # the Slurm job array test (scripts/slurm_sweep_test.sh)
 )
 
 missing=()
