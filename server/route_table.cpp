@@ -383,12 +383,18 @@ ordered_json openapi_document(const std::vector<Route>& routes) {
       responses.emplace_back(status, description);
     };
     if (route.body) {
-      add(400, "malformed JSON, or an empty body");
+      add(400, "a body that is not exactly one JSON value (malformed, a NUL byte, trailing text), an empty body, "
+               "or framing RFC 9112 refuses");
       add(413, "body over the size limit");
       add(415, "Content-Type not " + joined(route.body->content_types, " or "));
     }
     if (has_id)
-      add(404, route.path.starts_with("/api/v1/recordings/") ? "unknown recording" : "unknown session");
+      add(404, std::string(route.path.starts_with("/api/v1/recordings/") ? "unknown recording" : "unknown session") +
+                   ", or an encoded slash (%2F) in the path");
+    // Every route: the framing check runs before routing (server/framing.h).
+    add(400, "framing RFC 9112 refuses (two lengths, a signed length, Transfer-Encoding with Content-Length, "
+             "obs-fold, a broken chunk)");
+    add(501, "a Transfer-Encoding other than chunked");
     add(422, "an invalid value or an unknown query parameter (problem+json names them)");
     add(429, "over this client's request rate (limits.requests_per_second_per_client); Retry-After");
     std::sort(responses.begin(), responses.end());
