@@ -131,6 +131,28 @@ TEST(Incompressible, AutoMeetsTheToleranceWhateverTheDt) {
   EXPECT_EQ(std::memcmp(many.state.y.data(), one.state.y.data(), sizeof(double) * one.state.y.size()), 0);
 }
 
+// Switching between `auto` (adaptive) and `split6` by name (fixed dt) mid-run changes the stepping,
+// although both report split6.
+TEST(Incompressible, RetuningBetweenAutoAndSplit6SwitchesTheStepping) {
+  Scene scene = incompressible_scene();
+  scene.integrator = {"auto", 0.05, 1e-12};  // ~50 adaptive steps per unit time
+  Simulation run = start_simulation(scene);
+  advance_to(run, 1.0);
+  ASSERT_TRUE(run.info->adaptive);
+  Scene fixed = scene;
+  fixed.integrator.name = "split6";
+  retune(run, fixed);
+  EXPECT_FALSE(run.info->adaptive);
+  const std::uint64_t steps = run.steps;
+  advance_to(run, 2.0);
+  // 1.0 / 0.05 = 20, the last one the cut landing step (not counted) when rounding falls short
+  EXPECT_GE(run.steps - steps, 19u);
+  EXPECT_LE(run.steps - steps, 20u);
+  retune(run, scene);
+  EXPECT_TRUE(run.info->adaptive);
+  EXPECT_EQ(std::string(run.info->name), "split6");
+}
+
 TEST(Incompressible, StartOffTheLevelSetIsRefused) {
   Scene scene = incompressible_scene();
   scene.initial.mu_dot = 0.1;  // d(det L)/dt ≠ 0
