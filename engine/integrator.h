@@ -65,6 +65,8 @@ std::unique_ptr<Integrator> make_gauss4();
 std::unique_ptr<Integrator> make_gauss6();
 std::unique_ptr<Integrator> make_split4();
 std::unique_ptr<Integrator> make_split6();
+// Not in the catalog: `auto`'s adaptive split6 for the incompressible body (resolve_integrator).
+std::unique_ptr<Integrator> make_split6_adaptive();
 extern const IntegratorInfo rk4_info;
 extern const IntegratorInfo dop853_info;
 extern const IntegratorInfo implicit_midpoint_info;
@@ -73,5 +75,6 @@ extern const IntegratorInfo gauss6_info;
 extern const IntegratorInfo exact_info;
 extern const IntegratorInfo split4_info;
 extern const IntegratorInfo split6_info;
+extern const IntegratorInfo split6_adaptive_info;
 
 }  // namespace spinfold

@@ -96,7 +96,14 @@ ChartMomentum chart_momentum(const Scene& scene, const State& state) {
     const Eigen::DiagonalMatrix<double, 3> eta(1.0, 1.0, -1.0);
     B = eta * A * eta;
   }
-  const double det = A.determinant() < 0.0 ? -1.0 : 1.0;
+  // det A = ±1, but far out on H² (‖A‖ ~ e^{r/R}) the 3×3 determinant cancels to noise (measured:
+  // −3.1 for a proper chart at r = 13R, which flipped the orbital part of p_φ). An isometry of the
+  // upper sheet keeps time (A₃₃ ≥ 1) and is R₁·boost·R₂, so its orientation is that of the spatial
+  // 2×2 block, whose determinant is cosh β ≥ 1 times ±1 and has no cancellation.
+  const double det = (surface.kind == SurfaceKind::pseudosphere ? A.topLeftCorner<2, 2>().determinant()
+                                                                : A.determinant()) < 0.0
+                         ? -1.0
+                         : 1.0;
   const Vec3 orbital = scene.body.mass * body.X.cross(body.V);
   const Vec3 spin_part = out.local - orbital;
   out.global = det * (B * orbital) + B * spin_part;

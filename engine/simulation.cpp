@@ -46,7 +46,19 @@ void use_integrator(Simulation& run, std::string_view name) {
   run.exact.reset();
 }
 
+// `auto` on the incompressible body: split6 with its step sized from the tolerance, not the scene's
+// fixed dt (the tolerance is what `auto` promises; dop853 cannot keep det L, physics.md §15).
+bool auto_adaptive_split6(const Scene& scene) {
+  return scene.integrator.name == kAutoIntegrator && resolve_integrator(scene) == split6_info.name;
+}
+
 void use_integrator(Simulation& run) {
+  if (auto_adaptive_split6(run.scene)) {
+    run.info = &split6_adaptive_info;
+    run.integrator = make_split6_adaptive();
+    run.exact.reset();
+    return;
+  }
   use_integrator(run, resolve_integrator(run.scene));
 }
 
@@ -544,6 +556,7 @@ void retune(Simulation& run, const Scene& next) {
   }
 
   const bool same_method = resolve_integrator(next) == run.info->name &&
+                           auto_adaptive_split6(next) == auto_adaptive_split6(run.scene) &&
                            next.integrator.tolerance == run.scene.integrator.tolerance;
   const double h_next = same_method && run.info->adaptive ? run.grid.h_next : next.integrator.dt;
   run.scene = next;

@@ -103,6 +103,56 @@ TEST(Incompressible, OtherIntegratorsAreRefusedWithAReason) {
   EXPECT_TRUE(exact_unsupported_reason(scene).has_value());
 }
 
+// `auto` runs split6 with its step sized from the tolerance (step doubling), not at the scene's dt:
+// at a dt far too coarse for the tolerance it still meets it, keeps det L, and the state does not
+// depend on how the run was sampled.
+TEST(Incompressible, AutoMeetsTheToleranceWhateverTheDt) {
+  Scene scene = incompressible_scene();
+  scene.integrator = {"auto", 0.5, 1e-12};
+  const double t_end = 4.0;
+  Scene fine = incompressible_scene();
+  fine.integrator = {"split6", 0.002, 1e-12};
+  const State reference = test::run_to(fine, t_end).state;
+  Scene fixed = scene;
+  fixed.integrator.name = "split6";  // the same dt, fixed: what auto ran before
+  const double fixed_error = state_distance(scene, test::run_to(fixed, t_end).state, reference);
+  const Simulation one = test::run_to(scene, t_end);
+  ASSERT_EQ(one.state.status, Status::ok);
+  EXPECT_TRUE(one.info->adaptive);
+  EXPECT_EQ(std::string(one.info->name), "split6");
+  const double error = state_distance(scene, one.state, reference);
+  EXPECT_LT(error, 1e-9) << "fixed dt 0.5 gave " << fixed_error;
+  EXPECT_GT(fixed_error, 1e3 * error);
+  EXPECT_NEAR(det_of(scene, one.state), 0.66, 1e-12);
+  Simulation many = start_simulation(scene);
+  for (int k = 1; k <= 40; ++k) advance_to(many, 0.1 * k);
+  ASSERT_EQ(many.state.t, t_end);
+  ASSERT_EQ(many.state.y.size(), one.state.y.size());
+  EXPECT_EQ(std::memcmp(many.state.y.data(), one.state.y.data(), sizeof(double) * one.state.y.size()), 0);
+}
+
+// Switching between `auto` (adaptive) and `split6` by name (fixed dt) mid-run changes the stepping,
+// although both report split6.
+TEST(Incompressible, RetuningBetweenAutoAndSplit6SwitchesTheStepping) {
+  Scene scene = incompressible_scene();
+  scene.integrator = {"auto", 0.05, 1e-12};  // ~50 adaptive steps per unit time
+  Simulation run = start_simulation(scene);
+  advance_to(run, 1.0);
+  ASSERT_TRUE(run.info->adaptive);
+  Scene fixed = scene;
+  fixed.integrator.name = "split6";
+  retune(run, fixed);
+  EXPECT_FALSE(run.info->adaptive);
+  const std::uint64_t steps = run.steps;
+  advance_to(run, 2.0);
+  // 1.0 / 0.05 = 20, the last one the cut landing step (not counted) when rounding falls short
+  EXPECT_GE(run.steps - steps, 19u);
+  EXPECT_LE(run.steps - steps, 20u);
+  retune(run, scene);
+  EXPECT_TRUE(run.info->adaptive);
+  EXPECT_EQ(std::string(run.info->name), "split6");
+}
+
 TEST(Incompressible, StartOffTheLevelSetIsRefused) {
   Scene scene = incompressible_scene();
   scene.initial.mu_dot = 0.1;  // d(det L)/dt ≠ 0
