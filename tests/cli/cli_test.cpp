@@ -12,32 +12,13 @@
 #include <vector>
 
 #include "codec/presets.h"
+#include "tests/cli/run_spinfold.h"
 
 namespace {
 
-struct Result {
-  int exit_code;
-  std::string out;
-  std::string err;
-};
-
+using spinfold::cli_test::Result;
 Result spinfold(const std::string& args) {
-  // One stderr file per process and call: ctest runs test cases in parallel processes.
-  static int calls = 0;
-  const std::string err_file =
-      std::filesystem::temp_directory_path() /
-      ("spinfold_cli_stderr_" + std::to_string(getpid()) + "_" + std::to_string(++calls));
-  const std::string command = std::string(SPINFOLD_BINARY) + " " + args + " 2>" + err_file;
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  char buffer[4096];
-  while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
-  const int status = pclose(pipe);
-  std::ifstream err_in(err_file);
-  std::stringstream err;
-  err << err_in.rdbuf();
-  std::filesystem::remove(err_file);
-  return {WEXITSTATUS(status), out, err.str()};
+  return spinfold::cli_test::run_spinfold(args);
 }
 
 std::vector<nlohmann::json> lines(const std::string& out) {
