@@ -90,12 +90,7 @@ TEST(Exact, ManyPeriodsStayOnTheClosedOrbit) {
 }
 
 TEST(Exact, W5ClosedFormStateAtTwoToRoundOff) {
-  Scene scene;
-  scene.surface = {SurfaceKind::sphere, 1.5};
-  scene.body = {1.0, 0.4, BodyModel::affine};
-  scene.potential.radial = RadialPotential{0.05};
-  scene.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
-  scene.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.0, 0.05};
+  Scene scene = test::w5_scene();
   const State s = exact_state(make_exact_solution(scene), 2.0);
   const PaperCoordinates c = paper_coordinates(scene, s);
   EXPECT_NEAR(c.r, 1.650073264590784, 1e-14);  // physics.md W5
@@ -166,12 +161,8 @@ State run_with(Scene scene, const std::string& integrator, double t) {
 // band (sin(r/R) < 0.3): the radial closed form must use p_φ of the scene's chart, not of the moved
 // chart the start is stored in (it reported r = 1.3056, φ = −0.254 with status ok).
 TEST(ExactChartRules, RadialPotentialFromAStartInTheRecentringBand) {
-  Scene scene;
-  scene.surface = {SurfaceKind::sphere, 1.5};
-  scene.body = {1.0, 0.4, BodyModel::affine};
-  scene.potential.radial = RadialPotential{0.05};
-  scene.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
-  scene.initial = {0.3, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.0, 0.05};
+  Scene scene = test::w5_scene();
+  scene.initial.r = 0.3;
   for (const double r0 : {0.3, 0.457, 0.458, 1.2}) {
     scene.initial.r = r0;
     const State exact = run_with(scene, "exact", 5.0), reference = run_with(scene, "dop853", 5.0);

@@ -444,12 +444,7 @@ TEST(ExactCheck, UnboundedPotentialStopsOnACheckedState) {
 // The check is independent of the closed form: a closed form with a wrong constant (the p_φ of the
 // wrong chart, as before issue 22) is caught at the first sample, and the run keeps its start.
 TEST(ExactCheck, AWrongClosedFormIsNeverOk) {
-  Scene scene;
-  scene.surface = {SurfaceKind::sphere, 1.5};
-  scene.body = {1.0, 0.4, BodyModel::affine};
-  scene.potential.radial = RadialPotential{0.05};
-  scene.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
-  scene.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.0, 0.05};
+  Scene scene = test::w5_scene();
   scene.integrator = {"exact", 0.01, 1e-10};
   Simulation run = start_simulation(scene);
   ASSERT_TRUE(run.exact && run.exact->radial);

@@ -46,6 +46,18 @@ inline Scene degenerate_crossing_scene() {
   return s;
 }
 
+// physics.md W5 (the preset separable_radial_abc): a radial potential and the abc deformation
+// potential on the sphere of radius 1.5, started at r = 1.2.
+inline Scene w5_scene() {
+  Scene s;
+  s.surface = {SurfaceKind::sphere, 1.5};
+  s.body = {1.0, 0.4, BodyModel::affine};
+  s.potential.radial = RadialPotential{0.05};
+  s.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
+  s.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.0, 0.05};
+  return s;
+}
+
 // Two states with the same time, chart, coordinates (bit for bit) and status.
 inline bool same_bits(const State& a, const State& b) {
   return a.t == b.t && a.y.size() == b.y.size() &&
