@@ -17,14 +17,9 @@
 namespace spinfold {
 namespace {
 
-// physics.md W5: sphere, radial + abc potentials.
+// physics.md W5 under dop853 at 1e-13.
 Scene w5_scene() {
-  Scene s;
-  s.surface = {SurfaceKind::sphere, 1.5};
-  s.body = {1.0, 0.4, BodyModel::affine};
-  s.potential.radial = RadialPotential{0.05};
-  s.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
-  s.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.0, 0.05};
+  Scene s = test::w5_scene();
   s.integrator = {"dop853", 0.01, 1e-13};
   return s;
 }

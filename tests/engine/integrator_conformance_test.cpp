@@ -12,16 +12,7 @@
 namespace spinfold {
 namespace {
 
-// physics.md W5: sphere, radial + abc potentials, a deforming spinning body.
-Scene w5_scene() {
-  Scene s;
-  s.surface = {SurfaceKind::sphere, 1.5};
-  s.body = {1.0, 0.4, BodyModel::affine};
-  s.potential.radial = RadialPotential{0.05};
-  s.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
-  s.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.0, 0.05};
-  return s;
-}
+using test::w5_scene;  // physics.md W5: sphere, radial + abc potentials, a deforming spinning body
 
 // W5 with anisotropic inertia J = [[0.3, 0.08], [0.08, 0.15]] (physics.md §13).
 Scene anisotropic_scene() {
