@@ -24,7 +24,9 @@
 #include "cli/run_loop.h"
 #include "cli/sweep.h"
 #include "codec/presets.h"
+#include "codec/provenance.h"
 #include "codec/sample_json.h"
+#include "codec/sample_table.h"
 #include "codec/scene_json.h"
 #include "engine/chart.h"
 #include "engine/integrator.h"
@@ -59,6 +61,14 @@ struct SimulateOptions {
   std::optional<std::string> integrator;
   std::optional<double> dt;
   std::optional<double> tolerance;
+  // simulate's output (codec/sample_table.h) and its budgets
+  std::string format;  // jsonl | csv; "": by --out's extension, else jsonl
+  std::string fields;  // table columns; "": all (CSV), the whole sample (JSON Lines)
+  std::string out;     // "" or "-": stdout
+  std::optional<std::uint64_t> max_steps;
+  std::optional<double> max_seconds;
+  bool quiet = false;
+  std::string command;  // the command line, for the provenance
 };
 
 std::string read_file(const std::string& path) {
@@ -99,27 +109,120 @@ Scene load_scene(const SimulateOptions& opt) {
   return *parsed.scene;
 }
 
+// "t = 41.5 / 100 (41%)  123456 steps  2.1 s", redrawn in place on stderr.
+void draw_run_progress(const Simulation& run, double t_end, double seconds) {
+  std::fprintf(stderr, "\rt = %.6g / %.6g (%.0f%%)  %llu steps  %.1f s ", run.state.t, t_end,
+               t_end > 0 ? 100.0 * run.state.t / t_end : 100.0, static_cast<unsigned long long>(run.steps),
+               seconds);
+}
+
+// Why a run ended before t_end without trouble of its own: a budget the user set.
+enum class Budget { left, steps, seconds };
+
 int simulate(const SimulateOptions& opt) {
   if (!std::isfinite(opt.t_end) || opt.t_end < 0.0) throw BadInput{"--t-end: must be a finite number >= 0"};
   if (!std::isfinite(opt.every) || !(opt.every > 0.0)) throw BadInput{"--every: must be a finite number > 0"};
   if (opt.t_end / opt.every > kMaxSamples) throw BadInput{"--every: more than 1e7 samples requested"};
+  if (opt.max_steps && *opt.max_steps == 0) throw BadInput{"--max-steps: must be at least 1"};
+  if (opt.max_seconds && (!std::isfinite(*opt.max_seconds) || !(*opt.max_seconds > 0.0)))
+    throw BadInput{"--max-seconds: must be a finite number > 0"};
+  const bool to_stdout = opt.out.empty() || opt.out == "-";
+  std::string format = opt.format;
+  if (format.empty()) format = !to_stdout && opt.out.ends_with(".csv") ? "csv" : "jsonl";
+  if (format != "jsonl" && format != "csv")
+    throw BadInput{"--format: must be jsonl or csv (got '" + format + "')"};
+  const bool csv = format == "csv";
   const Scene scene = load_scene(opt);
 
   Simulation run = start_simulation(scene);
+  SampleTable table;
+  try {
+    table = make_sample_table(opt.fields, sample_to_json(run, -1.0));
+  } catch (const std::invalid_argument& e) {
+    throw BadInput{std::string("--fields: ") + e.what()};
+  }
+  FILE* out = stdout;
+  if (!to_stdout) {
+    out = std::fopen(opt.out.c_str(), "w");
+    if (!out) throw BadInput{"--out: cannot write '" + opt.out + "'"};
+  }
+  // Line by line: a run killed at a cluster's time limit leaves whole lines only.
+  std::setvbuf(out, nullptr, _IOLBF, 1 << 16);
+  const auto write = [&](const std::string& line) { std::fputs(line.c_str(), out); };
+
+  const nlohmann::ordered_json provenance = provenance_json(scene, opt.command);
+  if (csv) {
+    write("# spinfold simulate " + version_line() + "\n# provenance: " + provenance.dump() + "\n");
+    write(table.csv_header());
+  } else {
+    write(nlohmann::ordered_json{{"provenance", provenance}}.dump() + "\n");
+  }
   double reported_until = -1.0;  // events up to this time were printed
   const auto emit = [&] {
-    std::cout << sample_to_json(run, reported_until).dump() << '\n';
+    const nlohmann::ordered_json sample = sample_to_json(run, reported_until);
+    if (csv)
+      write(table.csv_row(sample));
+    else
+      write((opt.fields.empty() ? sample : table.json_row(sample)).dump() + "\n");
     reported_until = run.state.t;
   };
-  cli::sample_run(
-      run, opt.t_end, opt.every, [&](double t) { return advance_to(run, t); }, emit);
-  std::cout.flush();
-  if (run.state.status != Status::ok) {
-    std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << status_name(run.state.status)
-              << "\n";
-    return kExitRunStopped;
+
+  // Advanced in slices of step attempts so that the clock, the progress line and --max-steps are
+  // looked at between them; a run's numbers do not depend on where it was stopped (advance_to).
+  constexpr std::uint64_t kSlice = 4096;
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const bool show = !opt.quiet && isatty(fileno(stderr));
+  double drawn_at = 0.0;
+  std::uint64_t steps_left = opt.max_steps.value_or(kNoStepLimit);
+  Budget budget = Budget::left;
+  const auto advance = [&](double t) {
+    while (true) {
+      if (opt.max_seconds && elapsed() > *opt.max_seconds) {
+        budget = Budget::seconds;
+        return false;
+      }
+      std::uint64_t slice = std::min(kSlice, steps_left);
+      const std::uint64_t before = slice;
+      const bool reached = advance_within(run, t, slice);
+      steps_left -= before - slice;
+      if (show && elapsed() - drawn_at > 0.25) draw_run_progress(run, opt.t_end, drawn_at = elapsed());
+      if (reached) return true;
+      if (steps_left == 0) {
+        budget = Budget::steps;
+        return false;
+      }
+    }
+  };
+  cli::sample_run(run, opt.t_end, opt.every, advance, emit);
+  if (show && drawn_at > 0.0) {
+    draw_run_progress(run, opt.t_end, elapsed());
+    std::fputc('\n', stderr);
   }
-  return 0;
+  int code = 0;
+  std::string stopped;
+  if (budget != Budget::left) {
+    stopped = budget == Budget::steps ? "max_steps (the step budget --max-steps ran out)"
+                                      : "max_seconds (the time budget --max-seconds ran out)";
+    code = kExitRunStopped;
+  } else if (run.state.status != Status::ok) {
+    stopped = std::string(status_name(run.state.status));
+    code = kExitRunStopped;
+  }
+  if (budget != Budget::left) {  // the last sample is not at the run's end: say where it got to
+    const nlohmann::ordered_json end = {{"stopped", budget == Budget::steps ? "max_steps" : "max_seconds"},
+                                        {"t", run.state.t},
+                                        {"steps", run.steps}};
+    write(csv ? "# stopped: " + end.dump() + "\n" : end.dump() + "\n");
+  }
+  if (!to_stdout)
+    std::fclose(out);
+  else
+    std::fflush(out);
+  if (code != 0) std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << stopped << "\n";
+  return code;
 }
 
 #ifndef SPINFOLD_COMPUTE_ONLY
@@ -193,7 +296,9 @@ int render_frame(const RenderOptions& opt) {
   const render::Snapshot snapshot = render::make_snapshot(run, trail, span);
   if (opt.camera.empty()) render::aim_camera_at_body(view, snapshot);
   render::Renderer renderer;
-  const std::vector<std::uint8_t> png = renderer.render_png(snapshot, view);
+  const std::vector<render::PngText> texts =
+      picture_texts(scene, opt.scene.command, opt.t, render::view_name(view.kind));
+  const std::vector<std::uint8_t> png = renderer.render_png(snapshot, view, texts);
   std::ofstream file(opt.out, std::ios::binary);
   if (!file) throw BadInput{"--out: cannot write '" + opt.out + "'"};
   file.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
@@ -247,7 +352,11 @@ int record_window(const RecordOptions& opt) {
     frames.pitch = frames.view.pitch;
     frames.distance = frames.view.distance;
   }
-  const record::RecordingSpec spec{frames.view.width, frames.view.height, opt.clip.fps};
+  nlohmann::ordered_json provenance = provenance_json(scene, opt.render.scene.command);
+  provenance["t_start"] = opt.clip.t_start;
+  provenance["t_end"] = opt.clip.t_end;
+  provenance["view"] = std::string(render::view_name(frames.view.kind));
+  const record::RecordingSpec spec{frames.view.width, frames.view.height, opt.clip.fps, provenance.dump()};
   std::unique_ptr<record::Recorder> recorder;
   try {
     recorder = record::open_recorder(*format, opt.render.out, spec);
@@ -305,7 +414,7 @@ int serve(const server::ServerOptions& options) {
   }
   const std::string id = api->create_session(*parse_scene_text(find_preset(kDefaultPreset)->json).scene);
   const std::string base = "http://" + options.host + ":" + std::to_string(port);
-  std::cout << "Spinfold " << SPINFOLD_VERSION << " serving on " << base << "/\n"
+  std::cout << "Spinfold " << version_line() << " serving on " << base << "/\n"
             << "  default scene '" << kDefaultPreset << "': " << base << "/api/v1/sessions/" << id << "\n"
             << "  its frame:  " << base << "/api/v1/sessions/" << id << "/frame.png\n"
             << "  sessions: "
@@ -351,7 +460,7 @@ int list_integrators() {
 
 int main(int argc, char** argv) {
   CLI::App app{"Spinfold: affinely-rigid bodies moving on the sphere and the pseudosphere"};
-  app.set_version_flag("--version", SPINFOLD_VERSION);
+  app.set_version_flag("--version", "spinfold " + version_line());
   app.require_subcommand(1);
 
   SimulateOptions sim;
@@ -364,6 +473,16 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("--integrator", sim.integrator, "Override the scene's integrator name");
   simulate_cmd->add_option("--dt", sim.dt, "Override the step (fixed-step) or first trial step");
   simulate_cmd->add_option("--tolerance", sim.tolerance, "Override the error tolerance per step");
+  simulate_cmd->add_option("--format", sim.format, "jsonl | csv (default: by --out's extension, else jsonl)");
+  simulate_cmd->add_option("--fields", sim.fields,
+                           "Comma-separated columns (see `spinfold simulate --list-fields`; default: all)");
+  simulate_cmd->add_option("--out", sim.out, "File to write (default: stdout)");
+  simulate_cmd->add_option("--max-steps", sim.max_steps, "Stop after this many step attempts (exit 3)");
+  simulate_cmd->add_option("--max-seconds", sim.max_seconds, "Stop after this much wall time (exit 3)");
+  simulate_cmd->add_flag("--quiet", sim.quiet,
+                         "No progress line (there is none when stderr is not a terminal)");
+  bool list_fields = false;
+  simulate_cmd->add_flag("--list-fields", list_fields, "Print the column names --fields takes, and exit");
   cli::SweepOptions sweep_opt;
   CLI::App* sweep_cmd = cli::add_sweep_command(app, sweep_opt);
 #ifndef SPINFOLD_COMPUTE_ONLY
@@ -453,11 +572,24 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (simulate_cmd->parsed()) return simulate(sim);
+    if (simulate_cmd->parsed() && list_fields) {
+      for (const std::string& name : sample_column_names()) std::printf("%s\n", name.c_str());
+      return 0;
+    }
+    if (simulate_cmd->parsed()) {
+      sim.command = command_line(argc, argv);
+      return simulate(sim);
+    }
     if (sweep_cmd->parsed()) return cli::run_sweep_command(sweep_opt, argc, argv);
 #ifndef SPINFOLD_COMPUTE_ONLY
-    if (render_cmd->parsed()) return render_frame(ren);
-    if (record_cmd->parsed()) return record_window(rec);
+    if (render_cmd->parsed()) {
+      ren.scene.command = command_line(argc, argv);
+      return render_frame(ren);
+    }
+    if (record_cmd->parsed()) {
+      rec.render.scene.command = command_line(argc, argv);
+      return record_window(rec);
+    }
     if (serve_cmd->parsed()) {
       if (no_store) serve_opt.data_dir.clear();
       return serve(serve_opt);

@@ -19,15 +19,13 @@
 
 #include "cli/run_loop.h"
 #include "codec/presets.h"
+#include "codec/provenance.h"
 #include "codec/sample_json.h"
+#include "codec/sample_table.h"
 #include "codec/scene_json.h"
 #include "engine/scene_fields.h"
 #include "engine/simulation.h"
 #include "engine/validation.h"
-
-#ifndef SPINFOLD_VERSION
-#define SPINFOLD_VERSION "unknown"
-#endif
 
 namespace spinfold::cli {
 
@@ -282,91 +280,6 @@ void apply(json& document, const std::vector<const FieldPath*>& fields, const st
   }
 }
 
-// The value as a cell: numbers as nlohmann writes them (shortest text that reads back the same,
-// as `simulate` prints them), text as it is.
-std::string cell_text(const json& v) {
-  if (v.is_null()) return "";
-  if (v.is_string()) return v.get<std::string>();
-  return v.dump();
-}
-
-std::string csv_quote(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) {
-    if (c == '"') q += '"';
-    q += (c == '\n' || c == '\r') ? ' ' : c;
-  }
-  return q + "\"";
-}
-
-// ---- the sample's fields ---------------------------------------------------------------------
-
-void flatten(const ojson& j, const std::string& prefix, std::map<std::string, ojson>& out) {
-  if (j.is_object()) {
-    for (auto it = j.begin(); it != j.end(); ++it) flatten(it.value(), prefix + it.key() + ".", out);
-  } else if (j.is_array()) {
-    for (std::size_t i = 0; i < j.size(); ++i) flatten(j[i], prefix + std::to_string(i) + ".", out);
-  } else {
-    out[prefix.substr(0, prefix.size() - 1)] = j;
-  }
-}
-
-// What a sample's flattened keys can be (a scene without actions has "actions" null, and so on).
-const std::vector<std::string>& value_field_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> n = {"t",
-                                  "r",
-                                  "phi",
-                                  "alpha",
-                                  "beta",
-                                  "theta",
-                                  "lambda",
-                                  "mu",
-                                  "r_dot",
-                                  "phi_dot",
-                                  "alpha_dot",
-                                  "beta_dot",
-                                  "theta_dot",
-                                  "lambda_dot",
-                                  "mu_dot",
-                                  "p_r",
-                                  "p_phi",
-                                  "p_alpha",
-                                  "p_beta",
-                                  "p_lambda",
-                                  "p_mu",
-                                  "X.0",
-                                  "X.1",
-                                  "X.2",
-                                  "L.0.0",
-                                  "L.0.1",
-                                  "L.1.0",
-                                  "L.1.1",
-                                  "det_L",
-                                  "energy",
-                                  "energy_error",
-                                  "energy_reference_t",
-                                  "energy_orbital",
-                                  "energy_deformation",
-                                  "spin",
-                                  "speed",
-                                  "heading",
-                                  "vorticity",
-                                  "C_x",
-                                  "C_y",
-                                  "M.0",
-                                  "M.1",
-                                  "M.2",
-                                  "casimir"};
-    for (const char* a : {"J_r", "J_phi", "J_alpha", "J_beta", "J_x", "J_y"})
-      n.push_back(std::string("actions.") + a);
-    for (const char* f : {"r", "phi", "x", "y"}) n.push_back(std::string("frequencies.") + f);
-    return n;
-  }();
-  return names;
-}
-
 struct Column {
   std::string name;
   bool drift = false;
@@ -375,7 +288,7 @@ struct Column {
 
 std::vector<Column> parse_fields(const std::string& list) {
   std::vector<Column> columns;
-  const auto& names = value_field_names();
+  const auto names = sample_value_names();
   for (const std::string& f : split(list, ',')) {
     if (f.empty()) continue;
     const bool drift = f.starts_with("drift.");
@@ -398,6 +311,7 @@ struct Plan {
   std::vector<Column> columns;
   bool jsonl = false;
   std::size_t shard = 0, shards = 1;
+  std::string command{};  // the command line (the trajectories' provenance)
 };
 
 std::vector<std::size_t> axis_steps(const Plan& plan, std::size_t index) {
@@ -432,7 +346,7 @@ std::string row_text(const Plan& plan, std::size_t index,
     return row.dump() + "\n";
   }
   std::string line = std::to_string(index);
-  for (const auto& [name, value] : cells) line += "," + csv_quote(cell_text(value));
+  for (const auto& [name, value] : cells) line += "," + csv_cell(value);
   return line + "\n";
 }
 
@@ -460,6 +374,11 @@ std::string run_one(const Plan& plan, std::size_t index) {
       if (!plan.opt.trajectories.empty())
         trajectory = std::make_unique<std::ofstream>(std::filesystem::path(plan.opt.trajectories) /
                                                      (std::to_string(index) + ".jsonl"));
+      if (trajectory)  // as `spinfold simulate` writes: the provenance record, then the samples
+        *trajectory << ojson{{"provenance", provenance_json(*parsed.scene, plan.command + " # run " +
+                                                                               std::to_string(index))}}
+                           .dump()
+                    << '\n';
       Simulation run = start_simulation(*parsed.scene);
       double reported_until = -1.0;
       const auto sample = [&](std::map<std::string, ojson>* into) {
@@ -467,7 +386,7 @@ std::string run_one(const Plan& plan, std::size_t index) {
           const ojson s = sample_to_json(run, reported_until);
           events += s["events"].size();
           if (trajectory) *trajectory << s.dump() << '\n';
-          if (into) flatten(s, "", *into);
+          if (into) *into = flatten_sample(s);
         } else {
           events += events_after(run, reported_until).size();
         }
@@ -485,7 +404,7 @@ std::string run_one(const Plan& plan, std::size_t index) {
             sample(!started ? &first : final ? &last : nullptr);
             started = true;
           });
-      if (last.empty()) flatten(sample_to_json(run, reported_until), "", last);
+      if (last.empty()) last = flatten_sample(sample_to_json(run, reported_until));
       status = budget_left ? last["status"].get<std::string>() : "max_steps";
       detail =
           budget_left ? last["status_detail"].get<std::string>() : "the step budget (--max-steps) ran out";
@@ -518,17 +437,6 @@ std::string run_one(const Plan& plan, std::size_t index) {
 
 // ---- the sweep ---------------------------------------------------------------------------------
 
-std::string command_line(int argc, char** argv) {
-  std::string line;
-  for (int i = 0; i < argc; ++i) {
-    std::string a = argv[i];
-    if (a.find_first_of(" \t\"'\n") != std::string::npos) a = "'" + a + "'";
-    std::replace(a.begin(), a.end(), '\n', ' ');
-    line += (i ? " " : "") + a;
-  }
-  return line;
-}
-
 bool jsonl_path(const std::string& out) {
   if (out.empty() || out == "-" || out.ends_with(".csv")) return false;
   if (out.ends_with(".jsonl")) return true;
@@ -547,11 +455,15 @@ std::string definition(const Plan& plan) {
     for (const FieldPath* f : a.fields) text += "," + f->path;
     text += "=" + json(a.values).dump();
   }
-  std::uint64_t hash = 0xcbf29ce484222325ULL;
-  for (unsigned char c : text) hash = (hash ^ c) * 0x100000001b3ULL;
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
-  return hex;
+  return fnv1a64_hex(text);
+}
+
+// The base scene's hash and integrator (codec/provenance.h; the command is the header's own).
+ojson base_provenance(const Plan& plan) {
+  const SceneParse parsed = parse_scene(plan.base);
+  if (!parsed.scene) return nullptr;
+  const json p = provenance_json(*parsed.scene, "");  // sorted keys, as --merge reads them back
+  return ojson(json{{"scene_hash", p["scene_hash"]}, {"integrator", p["integrator"]}});
 }
 
 // The header: for CSV comment lines and the column names, for JSON Lines one record. Everything in
@@ -560,17 +472,20 @@ std::string header_text(const Plan& plan, const std::vector<std::string>& column
                         const std::string& command) {
   if (plan.jsonl) {
     ojson h;
-    h["sweep"] = {{"version", SPINFOLD_VERSION},
+    h["sweep"] = {{"version", std::string(build_version())},
+                  {"commit", std::string(build_commit())},
                   {"command", command},
                   {"runs", plan.total},
                   {"definition", definition(plan)},
                   {"shard", std::to_string(plan.shard) + "/" + std::to_string(plan.shards)},
                   {"columns", column_names}};
+    h["sweep"]["base"] = base_provenance(plan);
     return h.dump() + "\n";
   }
-  std::string h = "# spinfold sweep " SPINFOLD_VERSION "\n# command: " + command +
+  std::string h = "# spinfold sweep " + version_line() + "\n# command: " + command +
                   "\n# runs: " + std::to_string(plan.total) + "\n# definition: " + definition(plan) +
-                  "\n# shard: " + std::to_string(plan.shard) + "/" + std::to_string(plan.shards) + "\n";
+                  "\n# shard: " + std::to_string(plan.shard) + "/" + std::to_string(plan.shards) +
+                  "\n# base: " + base_provenance(plan).dump() + "\n";
   for (std::size_t i = 0; i < column_names.size(); ++i) h += (i ? "," : "") + csv_quote(column_names[i]);
   return h + "\n";
 }
@@ -632,6 +547,7 @@ void draw_progress(std::size_t done, std::size_t total, std::size_t failed, doub
 
 int sweep(const SweepOptions& opt, const std::string& command) {
   Plan plan{.opt = opt, .base = {}, .axes = {}, .total = 0, .columns = {}, .jsonl = jsonl_path(opt.out)};
+  plan.command = command;
   if (!std::isfinite(opt.t_end) || opt.t_end < 0.0) throw BadInput{"--t-end: must be a finite number >= 0"};
   if (!std::isfinite(opt.every) || !(opt.every > 0.0)) throw BadInput{"--every: must be a finite number > 0"};
   if (opt.t_end / opt.every > kMaxSamples) throw BadInput{"--every: more than 1e7 samples requested"};
@@ -832,9 +748,14 @@ int merge(const SweepOptions& opt, const std::string& command) {
     const json h = json::parse(shards[0].header[0]);
     // The same key order as a sweep writes.
     ojson o;
-    o["sweep"] = {
-        {"version", h["sweep"]["version"]},       {"command", command}, {"runs", h["sweep"]["runs"]},
-        {"definition", h["sweep"]["definition"]}, {"shard", "0/1"},     {"columns", h["sweep"]["columns"]}};
+    o["sweep"] = {{"version", h["sweep"]["version"]},
+                  {"commit", h["sweep"]["commit"]},
+                  {"command", command},
+                  {"runs", h["sweep"]["runs"]},
+                  {"definition", h["sweep"]["definition"]},
+                  {"shard", "0/1"},
+                  {"columns", h["sweep"]["columns"]},
+                  {"base", h["sweep"]["base"]}};
     std::fputs((o.dump() + "\n").c_str(), out);
   } else {
     for (const std::string& line : shards[0].header) {
@@ -852,10 +773,10 @@ int merge(const SweepOptions& opt, const std::string& command) {
 }  // namespace
 
 std::vector<std::string> sweep_field_names() {
-  std::vector<std::string> names = value_field_names();
+  std::vector<std::string> names(sample_value_names().begin(), sample_value_names().end());
   names.push_back("integrator");
   names.push_back("status_detail");
-  for (const std::string& n : value_field_names()) names.push_back("drift." + n);
+  for (const std::string& n : sample_value_names()) names.push_back("drift." + n);
   return names;
 }
 
@@ -894,7 +815,7 @@ int run_sweep_command(const SweepOptions& opt, int argc, char** argv) {
       for (const std::string& n : sweep_field_names()) std::printf("%s\n", n.c_str());
       return 0;
     }
-    const std::string command = command_line(argc, argv);
+    const std::string command = spinfold::command_line(argc, argv);
     return opt.merge.empty() ? sweep(opt, command) : merge(opt, command);
   } catch (const BadInput& e) {
     std::fprintf(stderr, "spinfold: %s%s", e.message.c_str(), e.message.ends_with('\n') ? "" : "\n");

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 
 #include "engine/simulation.h"
@@ -21,5 +22,14 @@ struct ParameterChange {
 // max_attempts ran out first (the run then stands where it got to).
 bool replay(const Scene& scene, std::span<const ParameterChange> changes, double until, Simulation& run,
             Trail& trail, std::uint64_t max_attempts = kNoStepLimit);
+
+// The run's samples at t = 0 and at k·every up to `until` (the last at `until` exactly), as
+// `spinfold simulate` samples a run, with the changes applied on the way as replay applies them
+// (a sample at a change's time comes after it). `sample` sees the run at each sample time: the
+// rows of a trajectory whatever pattern the run was advanced in. Stops after the sample where the
+// run's status stopped it; false when max_attempts (for the whole replay) ran out first.
+bool replay_sampled(const Scene& scene, std::span<const ParameterChange> changes, double until, double every,
+                    const std::function<void(const Simulation&)>& sample,
+                    std::uint64_t max_attempts = kNoStepLimit);
 
 }  // namespace spinfold

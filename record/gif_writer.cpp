@@ -150,6 +150,7 @@ class GifWriter final : public Recorder {
     const GifByteType loop[3] = {1, 0, 0};
     check(EGifPutExtensionBlock(gif_, 3, loop));
     check(EGifPutExtensionTrailer(gif_));
+    if (!spec_.provenance.empty()) check(EGifPutComment(gif_, spec_.provenance.c_str()));
   }
 
   // Lloyd's k-means over the samples' distinct colours (weighted by their counts), seeded by the

@@ -3,6 +3,7 @@
 // libzip writes the archive at finish(): the PNGs are held in memory until then (bytes() counts them).
 #include <zip.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -32,7 +33,9 @@ class PngZipWriter final : public Recorder {
   }
 
   void add(const std::uint8_t* rgba) override {
-    const std::vector<std::uint8_t> png = render::encode_png(rgba, spec_.width, spec_.height);
+    std::vector<render::PngText> texts;
+    if (!spec_.provenance.empty()) texts.emplace_back("Source", spec_.provenance);
+    const std::vector<std::uint8_t> png = render::encode_png(rgba, spec_.width, spec_.height, texts);
     void* data = std::malloc(png.size());  // libzip frees it (freep = 1)
     if (!data) throw RecordError("out of memory");
     std::memcpy(data, png.data(), png.size());
@@ -57,6 +60,10 @@ class PngZipWriter final : public Recorder {
 
   void finish() override {
     if (frames_ == 0) throw RecordError("a zip of PNGs needs at least one frame");
+    if (!spec_.provenance.empty() && zip_set_archive_comment(zip_, spec_.provenance.c_str(),
+                                                             static_cast<zip_uint16_t>(std::min<std::size_t>(
+                                                                 spec_.provenance.size(), 65535))) != 0)
+      fail();
     if (zip_close(zip_) != 0) fail();
     zip_ = nullptr;
   }

@@ -31,6 +31,9 @@ struct RecordingSpec {
   int width = 640;    // [pixels]
   int height = 480;   // [pixels]
   double fps = 30.0;  // frames per second of the file (the playback rate, not the simulated rate)
+  // Where it came from (codec/provenance.h, one line of JSON): a GIF comment extension, the WebM
+  // and MP4 container's "comment" tag, the zip's archive comment and each PNG's Source text.
+  std::string provenance{};
 };
 
 class Recorder {

@@ -77,6 +77,7 @@ class VideoWriter final : public Recorder {
       stream_->avg_frame_rate = rate;
       output_->flags |= AVFMT_FLAG_BITEXACT;
       check(avio_open(&output_->pb, path.c_str(), AVIO_FLAG_WRITE), ("cannot write '" + path + "'").c_str());
+      if (!spec.provenance.empty()) av_dict_set(&output_->metadata, "comment", spec.provenance.c_str(), 0);
       AVDictionary* mux_options = nullptr;
       if (!webm) av_dict_set(&mux_options, "movflags", "+faststart", 0);  // playable while loading
       const int header = avformat_write_header(output_, &mux_options);

@@ -41,9 +41,31 @@ void chunk(std::vector<std::uint8_t>& out, std::string_view type, const std::uin
   put32(p + 8 + size, libdeflate_crc32(0, p + 4, 4 + size));
 }
 
+bool ascii(std::string_view s) {
+  for (const unsigned char c : s)
+    if (c >= 0x80) return false;
+  return true;
+}
+
+// tEXt: keyword, NUL, text; iTXt: keyword, NUL, no compression (0, 0), no language tag, NUL, no
+// translated keyword, NUL, UTF-8 text. A NUL inside the text would end it early: dropped.
+void text_chunk(std::vector<std::uint8_t>& out, const PngText& text) {
+  std::string keyword = text.first.substr(0, 79);
+  if (keyword.empty()) keyword = "Comment";
+  std::string value;
+  for (char c : text.second)
+    if (c != '\0') value += c;
+  const bool plain = ascii(keyword) && ascii(value);
+  std::string data = keyword + '\0';
+  if (!plain) data += std::string("\0\0", 2) + '\0' + '\0';
+  data += value;
+  chunk(out, plain ? "tEXt" : "iTXt", reinterpret_cast<const std::uint8_t*>(data.data()), data.size());
+}
+
 }  // namespace
 
-std::vector<std::uint8_t> encode_png(const std::uint8_t* rgba, int width, int height) {
+std::vector<std::uint8_t> encode_png(const std::uint8_t* rgba, int width, int height,
+                                     std::span<const PngText> texts) {
   const std::size_t w = static_cast<std::size_t>(width), h = static_cast<std::size_t>(height);
   // Scanlines: filter type 0 (none) and the RGB bytes.
   std::vector<std::uint8_t> raw(h * (1 + 3 * w));
@@ -72,6 +94,7 @@ std::vector<std::uint8_t> encode_png(const std::uint8_t* rgba, int width, int he
   header[8] = 8;
   header[9] = 2;
   chunk(out, "IHDR", header.data(), header.size());
+  for (const PngText& text : texts) text_chunk(out, text);
   chunk(out, "IDAT", idat.data(), compressed);
   chunk(out, "IEND", nullptr, 0);
   return out;

@@ -5,12 +5,21 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace spinfold::render {
 
+// A text chunk: keyword (1–79 printable Latin-1 characters) and text. Written as tEXt when both are
+// ASCII, as iTXt (UTF-8, uncompressed) otherwise (PNG spec §11.3.4).
+using PngText = std::pair<std::string, std::string>;
+
 // Level 1 and no filtering (filters cost more time than they save bytes on these frames). Rows are
-// top-down. Deterministic: same pixels, same bytes.
-std::vector<std::uint8_t> encode_png(const std::uint8_t* rgba, int width, int height);
+// top-down. The text chunks (provenance: codec/provenance.h) come before the image data.
+// Deterministic: same pixels and texts, same bytes.
+std::vector<std::uint8_t> encode_png(const std::uint8_t* rgba, int width, int height,
+                                     std::span<const PngText> texts = {});
 
 }  // namespace spinfold::render

@@ -34,9 +34,10 @@ Image Renderer::render_image(const Snapshot& snapshot, const ViewOptions& view) 
   return {view.width, view.height, std::vector<std::uint8_t>(rgba, rgba + bytes)};
 }
 
-std::vector<std::uint8_t> Renderer::render_png(const Snapshot& snapshot, const ViewOptions& view) {
+std::vector<std::uint8_t> Renderer::render_png(const Snapshot& snapshot, const ViewOptions& view,
+                                               std::span<const PngText> texts) {
   const FrameScene scene = build_scene(snapshot, view);
-  return encode_png(render_rgba(scene, view.width, view.height), view.width, view.height);
+  return encode_png(render_rgba(scene, view.width, view.height), view.width, view.height, texts);
 }
 
 std::vector<std::uint8_t> Renderer::render_jpeg(const Snapshot& snapshot, const ViewOptions& view,

@@ -8,6 +8,7 @@
 #include "render/gl_renderer.h"
 #include "render/osmesa_context.h"
 #include "render/overlay.h"
+#include "render/png_encoder.h"
 #include "render/scene_builder.h"
 
 namespace spinfold::render {
@@ -29,8 +30,9 @@ class Renderer {
   const std::uint8_t* render_rgba(const FrameScene& scene, int width, int height);
   // build_scene + render, the pixels copied out (to be encoded on another thread).
   Image render_image(const Snapshot& snapshot, const ViewOptions& view);
-  // build_scene + render + encode_png.
-  std::vector<std::uint8_t> render_png(const Snapshot& snapshot, const ViewOptions& view);
+  // build_scene + render + encode_png (with these text chunks).
+  std::vector<std::uint8_t> render_png(const Snapshot& snapshot, const ViewOptions& view,
+                                       std::span<const PngText> texts = {});
   // build_scene + render + encode_jpeg at this quality (1..100).
   std::vector<std::uint8_t> render_jpeg(const Snapshot& snapshot, const ViewOptions& view, int quality);
 

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "codec/provenance.h"
 #include "codec/sample_json.h"
 #include "codec/scene_json.h"
 #include "engine/number_text.h"
@@ -9,10 +10,6 @@
 
 // After Eigen: httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's parameter names.
 #include <httplib.h>
-
-#ifndef SPINFOLD_VERSION
-#define SPINFOLD_VERSION "0.0.0"
-#endif
 
 namespace spinfold::server {
 
@@ -75,8 +72,7 @@ void remove_session(ServerContext& server, const std::string& id) {
 }
 
 std::string provenance(const Session& s) {
-  return std::string("version=") + SPINFOLD_VERSION + "; integrator=" + std::string(s.run.info->name) +
-         "; tolerance=" + shortest(s.run.scene.integrator.tolerance);
+  return provenance_header(s.run.scene);
 }
 
 nlohmann::ordered_json session_json(const std::string& id, const Session& s) {
@@ -88,6 +84,7 @@ nlohmann::ordered_json session_json(const std::string& id, const Session& s) {
   j["current"] = scene_to_json(s.run.scene);  // the parameters in force now
   j["playing"] = s.playing;                   // advanced in real time by the player
   j["rate"] = s.rate;                         // simulated time per second while playing
+  j["provenance"] = provenance_json(s.run.scene, "");
   return j;
 }
 
@@ -97,8 +94,8 @@ void send_json(httplib::Response& res, const nlohmann::ordered_json& body, int s
   res.set_header("Content-Type", "application/json");
 }
 
-const char* server_version() {
-  return SPINFOLD_VERSION;
+std::string server_version() {
+  return std::string(build_version());
 }
 
 }  // namespace spinfold::server

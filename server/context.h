@@ -68,16 +68,18 @@ void commit(ServerContext& server, const std::string& id, Session& s);
 // Deletes the session from memory and store, or ApiError 404 (503 when the store cannot be written).
 void remove_session(ServerContext& server, const std::string& id);
 
-// X-Spinfold-Provenance: "version=…; integrator=…; tolerance=…" (numbers in shortest form).
+// X-Spinfold-Provenance: "version=…; commit=…; scene_hash=…; integrator=…; dt=…; tolerance=…" of
+// the scene in force now (codec/provenance.h; numbers in shortest form).
 std::string provenance(const Session& s);
 
-// {"id", "state", "scene", "timeline", "current", "playing", "rate"} of a session (its lock held).
+// {"id", "state", "scene", "timeline", "current", "playing", "rate", "provenance"} of a session (its
+// lock held).
 nlohmann::ordered_json session_json(const std::string& id, const Session& s);
 
 // A JSON answer.
 void send_json(httplib::Response& res, const nlohmann::ordered_json& body, int status = 200);
 
 // The version every response carries (X-Spinfold-Version).
-const char* server_version();
+std::string server_version();
 
 }  // namespace spinfold::server

@@ -2,7 +2,9 @@
 
 #include <cstdio>
 #include <future>
+#include <vector>
 
+#include "codec/provenance.h"
 #include "render/jpeg_encoder.h"
 #include "render/png_encoder.h"
 #include "render/snapshot.h"
@@ -32,16 +34,19 @@ struct FrameJob {
   FrameInfo info;
   std::optional<render::Snapshot> snapshot;
   render::ViewOptions view;
+  std::vector<render::PngText> texts;  // the provenance of the state shown (PNG only)
 };
 
 FrameJob frame_job(ServerContext& server, const std::string& id, Session& s, const FrameRequest& f) {
   const std::lock_guard lock(s.mutex);
-  FrameJob job{frame_etag(id, state_tag(s), f), {s.version, s.run.state.t}, std::nullopt, f.view};
+  FrameJob job{frame_etag(id, state_tag(s), f), {s.version, s.run.state.t}, std::nullopt, f.view, {}};
   if (!server.frames.contains(job.etag)) {
     job.view.scale = f.scale * render::body_scale_length(f.view.kind, s.run.scene.surface);
     static const Trail kNoTrail;  // trails are copied only when drawn
     job.snapshot = render::make_snapshot(s.run, f.view.layers & render::kTrail ? s.trail : kNoTrail,
                                          f.trail.value_or(-1.0));
+    if (!f.jpeg_quality)
+      job.texts = picture_texts(s.run.scene, "", s.run.state.t, render::view_name(f.view.kind));
   }
   return job;
 }
@@ -194,7 +199,7 @@ FrameBytes session_frame(ServerContext& server, const std::string& id, Session& 
         return std::make_shared<const std::vector<std::uint8_t>>(
             f.jpeg_quality
                 ? render::encode_jpeg(image.rgba.data(), image.width, image.height, *f.jpeg_quality)
-                : render::encode_png(image.rgba.data(), image.width, image.height));
+                : render::encode_png(image.rgba.data(), image.width, image.height, job.texts));
       });
     } catch (const Evicted&) {
       if (attempt == 3)

@@ -6,7 +6,9 @@
 
 #include <cstdlib>
 
+#include "codec/provenance.h"
 #include "engine/number_text.h"
+#include "render/view.h"
 #include "server/problem.h"
 #include "server/render_pool.h"
 #include "server/session_id.h"
@@ -196,8 +198,13 @@ void Recordings::run(Entry& entry) {
   RecordingStatus status = RecordingStatus::done;
   std::string reason;
   try {
-    auto recorder = record::open_recorder(job.format, entry.path,
-                                          {job.frames.view.width, job.frames.view.height, job.clip.fps});
+    nlohmann::ordered_json provenance = provenance_json(job.frames.scene, "");
+    provenance["t_start"] = job.clip.t_start;
+    provenance["t_end"] = job.clip.t_end;
+    provenance["view"] = std::string(render::view_name(job.frames.view.kind));
+    auto recorder = record::open_recorder(
+        job.format, entry.path,
+        {job.frames.view.width, job.frames.view.height, job.clip.fps, provenance.dump()});
     const auto render = [&](render::Snapshot snapshot, const render::ViewOptions& view) {
       try {
         return pool_.render(key, std::move(snapshot), view, RenderPriority::background).get();

@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "codec/presets.h"
+#include "codec/provenance.h"
 #include "codec/scene_json.h"
 #include "codec/scene_schema.h"
 #include "engine/integrator.h"
@@ -26,6 +27,7 @@ using nlohmann::ordered_json;
 void get_health(ServerContext& server, const Call&, httplib::Response& res) {
   send_json(res, {{"status", "ok"},
                   {"version", server_version()},
+                  {"commit", std::string(build_commit())},
                   {"sessions", server.sessions.size()},
                   {"streams", server.open_streams.load()},
                   {"render_threads", server.renderer.threads()},

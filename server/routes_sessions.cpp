@@ -5,10 +5,12 @@
 #include <sstream>
 
 #include "codec/presets.h"
+#include "codec/provenance.h"
 #include "codec/sample_json.h"
+#include "codec/sample_table.h"
 #include "codec/scene_json.h"
-#include "codec/trajectory_csv.h"
 #include "engine/number_text.h"
+#include "engine/timeline.h"
 #include "server/context.h"
 #include "server/problem.h"
 #include "server/route_table.h"
@@ -24,6 +26,7 @@ using nlohmann::json;
 using nlohmann::ordered_json;
 
 const std::string kSessions = "/api/v1/sessions";
+constexpr double kMaxTrajectoryRows = 100000;
 
 // A scene, or {"preset": name}; `field` names it in errors ("" at the top, "scene" in a link).
 Scene scene_of(const json& body, const std::string& field) {
@@ -234,11 +237,56 @@ void reset_session(ServerContext& server, const Call& call, httplib::Response& r
   send_json(res, session_json(call.id, *s));
 }
 
+// The samples at t = 0 and k·every up to the session's time, replayed from its timeline outside
+// the lock: the rows `spinfold simulate --every E` writes for the same scene, however the session
+// was advanced (by plays, advances or a restore).
 void get_trajectory(ServerContext& server, const Call& call, httplib::Response& res) {
   const auto s = find_session(server, call.id);
-  const std::lock_guard lock(s->mutex);
-  if (*call.query.text("format") == "json") return send_json(res, ordered_json(s->trajectory));
-  res.body = trajectory_csv(s->trajectory);
+  Scene scene;
+  std::vector<ParameterChange> changes;
+  double until = 0.0;
+  std::uint64_t attempts = 0;
+  std::string provenance_text;
+  {
+    const std::lock_guard lock(s->mutex);
+    scene = s->scene;
+    changes = s->changes;
+    until = s->run.state.t;
+    // What the session's own steps took, and room for the cut steps to each sample time.
+    attempts = s->run.steps + s->run.rejected + static_cast<std::uint64_t>(server.options.limits.max_steps);
+    provenance_text = provenance(*s);
+  }
+  const double every = *call.query.number("every");
+  if (until / every > kMaxTrajectoryRows)
+    throw bad(422, "Too many samples", "every", shortest(every),
+              "gives more than " + shortest(kMaxTrajectoryRows) + " samples up to t = " + shortest(until) +
+                  ": choose a larger interval");
+  std::vector<ordered_json> samples;
+  double reported_until = -1.0;
+  const bool complete = replay_sampled(
+      scene, changes, until, every,
+      [&](const Simulation& run) {
+        samples.push_back(sample_to_json(run, reported_until));
+        reported_until = run.state.t;
+      },
+      attempts);
+  if (!complete)
+    throw ApiError{503,
+                   "Trajectory unavailable",
+                   {{"", "", "the replay of the timeline ran out of step attempts"}},
+                   "1"};
+  const std::string fields = call.query.text("fields").value_or("");
+  SampleTable table = make_sample_table(fields, samples.front());
+  res.set_header("X-Spinfold-Provenance", provenance_text);
+  if (*call.query.text("format") == "json") {
+    ordered_json rows = ordered_json::array();
+    for (const ordered_json& sample : samples)
+      rows.push_back(fields.empty() ? sample : table.json_row(sample));
+    return send_json(res, rows);
+  }
+  const std::string comment[] = {"spinfold trajectory " + version_line(),
+                                 "provenance: " + provenance_json(scene, "").dump()};
+  res.body = samples_csv(samples, table, comment);
   res.set_header("Content-Type", "text/csv");
 }
 
@@ -359,15 +407,30 @@ std::vector<Route> session_routes(const Limits& limits) {
        .path = sid + "/trajectory",
        .operation_id = "get_trajectory",
        .handler = get_trajectory,
-       .summary = "The recorded samples: one after creation and after every advance",
+       .summary = "The run's samples at t = 0 and every `every` up to the session's time, replayed from "
+                  "its timeline (the rows of `spinfold simulate --every`, however the session was advanced)",
        .query = {{.name = "format",
                   .type = ParamType::enumeration,
                   .values = {"json", "csv"},
                   .default_value = "json",
-                  .description = "json: an array of samples (companions nested in each); csv: t, then "
-                                 "per body r, phi, lambda, mu, det_L, energy, energy_error, X, status "
-                                 "(companions' columns named LABEL.column)"}},
-       .responses = {{200, "application/json or text/csv"}}},
+                  .description = "json: an array of samples (companions nested in each), or of rows of the "
+                                 "chosen fields; csv: '# ' comment lines (version, provenance), the header, "
+                                 "one row per sample (companions' columns named LABEL.column; null cells "
+                                 "empty)"},
+                 {.name = "every",
+                  .type = ParamType::number,
+                  .unit = "time",
+                  .minimum = 0.0,
+                  .maximum = 1e9,
+                  .exclusive_minimum = true,
+                  .default_value = 0.5,
+                  .description = "the sample interval (at most 100000 samples)"},
+                 {.name = "fields",
+                  .type = ParamType::list,
+                  .values = sample_column_names(),
+                  .description = "the columns (as `spinfold simulate --fields`); absent: every column "
+                                 "(csv) or the whole sample (json)"}},
+       .responses = {{200, "application/json or text/csv"}, {422, "more than 100000 samples"}}},
   };
 }
 

@@ -16,11 +16,8 @@ using nlohmann::ordered_json;
 
 namespace {
 
-void record_sample(Session& session) {
-  session.trajectory.push_back(sample_to_json(session.run, session.reported_until));
-  session.reported_until = session.run.state.t;
-  if (session.trajectory.size() > kMaxTrajectory)
-    session.trajectory.erase(session.trajectory.begin(), session.trajectory.begin() + kMaxTrajectory / 2);
+// The state changed: frames and bodies cached for the old one are stale.
+void state_changed(Session& session) {
   ++session.version;
 }
 
@@ -46,14 +43,12 @@ void restart(Session& session, const Scene& scene) {
   session.run = start_simulation(scene);
   session.trail = Trail{};
   record_if_due(session.trail, session.run);
-  session.trajectory.clear();
-  session.reported_until = -1.0;
-  record_sample(session);
+  state_changed(session);
 }
 
 bool advance(Session& session, double t, std::uint64_t max_attempts) {
   const bool complete = advance_recording(session.run, session.trail, t, max_attempts);
-  record_sample(session);
+  state_changed(session);
   return complete;
 }
 
@@ -106,7 +101,7 @@ ChangeOutcome change(Session& session, const json& patch) {
   session.timeline.push_back({{"t", t}, {"patch", patch}});
   session.changes.push_back({t, *parsed.scene});
   record_if_due(session.trail, session.run);
-  record_sample(session);
+  state_changed(session);
   out.reason = "new parameters from t = " + shortest(t) + " on, continuing from the current state";
   return out;
 }
@@ -164,9 +159,7 @@ Rebuild rebuild(Session& session, const Scene& scene, const json& timeline, doub
   session.changes = changes;
   session.trail = Trail{};
   out.complete = replay(scene, changes, until, session.run, session.trail, max_attempts);
-  session.trajectory.clear();
-  session.reported_until = -1.0;
-  record_sample(session);
+  state_changed(session);
   return out;
 }
 

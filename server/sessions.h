@@ -28,8 +28,6 @@ struct Session {
   Simulation run;                                  // run.scene: the parameters in force now
   Trail trail;                                     // the path at fixed times since t = 0
   std::uint64_t version = 0;                       // changes with every change of state: part of frame ETags
-  std::vector<nlohmann::ordered_json> trajectory;  // a sample after creation, each advance, change and reset
-  double reported_until = -1.0;                    // det L events up to this time are in the trajectory
   std::string body;                                // the serialized GET response of `body_version`
   std::uint64_t body_version = ~std::uint64_t{0};
   bool playing = false;  // advanced in real time by the server's player
@@ -85,9 +83,6 @@ class SessionStore {
   std::uint64_t next_id_ = 1;
   SessionDb* db_ = nullptr;
 };
-
-// The most recent samples kept per session (older ones are dropped in halves).
-inline constexpr std::size_t kMaxTrajectory = 20000;
 
 // A name of the session's state valid across the processes sharing its store and across CPUs
 // (the session holds its lock): with a store, the row's version and the time (within one row

@@ -21,10 +21,16 @@ Result spinfold(const std::string& args) {
   return spinfold::cli_test::run_spinfold(args);
 }
 
+// The samples `simulate` printed, after its first record: the provenance.
 std::vector<nlohmann::json> lines(const std::string& out) {
   std::vector<nlohmann::json> rows;
   std::istringstream in(out);
-  for (std::string line; std::getline(in, line);) rows.push_back(nlohmann::json::parse(line));
+  std::string line;
+  if (!std::getline(in, line) || !nlohmann::json::parse(line).contains("provenance")) {
+    ADD_FAILURE() << "no provenance record first: " << line;
+    return rows;
+  }
+  for (; std::getline(in, line);) rows.push_back(nlohmann::json::parse(line));
   return rows;
 }
 

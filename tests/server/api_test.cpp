@@ -12,8 +12,15 @@
 #include <set>
 #include <thread>
 
+// Eigen (through the codec) must come before httplib.h (through bad_requests.h).
+// clang-format off
+#include "codec/presets.h"
+#include "codec/sample_json.h"
+#include "codec/sample_table.h"
+#include "codec/scene_json.h"
 #include "bad_requests.h"
 #include "decoded_image.h"
+// clang-format on
 #include "server/route_table.h"
 
 // After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
@@ -217,10 +224,15 @@ TEST_F(Api, SessionLifecycle) {
   auto csv = c.Get("/api/v1/sessions/" + id + "/trajectory?format=csv");
   ASSERT_TRUE(csv);
   EXPECT_EQ(csv->get_header_value("Content-Type"), "text/csv");
-  EXPECT_EQ(std::count(csv->body.begin(), csv->body.end(), '\n'), 4);  // header + 3 samples
+  // Two comment lines, the header, and samples at 0, 0.5, …, 2 and the session's 2.1.
+  EXPECT_EQ(std::count(csv->body.begin(), csv->body.end(), '\n'), 9) << csv->body;
+  EXPECT_TRUE(csv->body.starts_with("# spinfold trajectory ")) << csv->body.substr(0, 100);
   auto trajectory = c.Get("/api/v1/sessions/" + id + "/trajectory");
   ASSERT_TRUE(trajectory);
-  EXPECT_EQ(json::parse(trajectory->body).size(), 3u);
+  const json samples = json::parse(trajectory->body);
+  ASSERT_EQ(samples.size(), 6u);
+  EXPECT_EQ(samples[4]["t"], 2.0);
+  EXPECT_EQ(samples[5]["X"], json::parse(steps->body)["state"]["X"]);  // the session's state, to the bit
 
   auto reset = c.Post("/api/v1/sessions/" + id + "/reset", "{}", "application/json");
   ASSERT_TRUE(reset);
@@ -234,6 +246,51 @@ TEST_F(Api, SessionLifecycle) {
 
 // An adaptive method on a stiff scene may need any number of steps: one request does at most
 // max_steps attempts (100,000 here), keeps the progress and says so; the next one continues.
+// The trajectory is replayed from the timeline: the same rows however the session was advanced,
+// and those of the engine's own sampled run (what `spinfold simulate --every` prints).
+TEST_F(Api, TrajectoryRowsDoNotDependOnHowTheSessionWasAdvanced) {
+  httplib::Client c = client();
+  const auto create = [&] {
+    auto created =
+        c.Post("/api/v1/sessions", R"({"preset": "spinning_rigid_pseudosphere"})", "application/json");
+    EXPECT_EQ(created->status, 201);
+    return json::parse(created->body)["id"].get<std::string>();
+  };
+  const std::string a = create(), b = create();
+  for (const char* until : {"0.37", "1.1", "1.95", "3"})
+    ASSERT_EQ(c.Post("/api/v1/sessions/" + a + "/advance", std::string(R"({"until": )") + until + "}",
+                     "application/json")
+                  ->status,
+              200);
+  ASSERT_EQ(c.Post("/api/v1/sessions/" + b + "/advance", R"({"until": 3})", "application/json")->status, 200);
+  const std::string query = "/trajectory?format=csv&every=0.25&fields=t,r,phi,X.0,L.1.1,energy_error,events";
+  auto ta = c.Get("/api/v1/sessions/" + a + query);
+  auto tb = c.Get("/api/v1/sessions/" + b + query);
+  ASSERT_EQ(ta->status, 200) << ta->body;
+  EXPECT_EQ(ta->body, tb->body);
+  // The engine's run of the same scene sampled at k·0.25.
+  Simulation run =
+      start_simulation(*parse_scene_text(find_preset("spinning_rigid_pseudosphere")->json).scene);
+  std::vector<nlohmann::ordered_json> samples = {sample_to_json(run, -1.0)};
+  for (int k = 1; k <= 12; ++k) {
+    advance_to(run, 0.25 * k);
+    samples.push_back(sample_to_json(run, 0.25 * (k - 1)));
+  }
+  const SampleTable table = make_sample_table("t,r,phi,X.0,L.1.1,energy_error,events", samples.front());
+  std::string rows;
+  for (const auto& sample : samples) rows += table.csv_row(sample);
+  EXPECT_TRUE(ta->body.ends_with(table.csv_header() + rows)) << ta->body;
+  // Too many samples: 422 naming `every`; an unknown field: 400 naming `fields`.
+  auto many = c.Get("/api/v1/sessions/" + a + "/trajectory?every=1e-5");
+  EXPECT_EQ(many->status, 422);
+  EXPECT_NE(many->body.find("\"every\""), std::string::npos) << many->body;
+  auto unknown = c.Get("/api/v1/sessions/" + a + "/trajectory?fields=t,rr");
+  EXPECT_EQ(unknown->status / 100, 4);
+  EXPECT_NE(unknown->body.find("fields"), std::string::npos) << unknown->body;
+  remove(a);
+  remove(b);
+}
+
 TEST_F(Api, AdvanceStopsAtTheStepLimitAndKeepsTheProgress) {
   auto c = client();
   c.set_read_timeout(180, 0);  // 10⁵ stiff steps a request: seconds under the sanitizers on 2 busy cores
@@ -633,7 +690,8 @@ TEST_F(Api, OpenApiDocumentsEveryRouteAndQueryParameterOfTheTable) {
             (std::set<std::string>{"width", "height", "view", "layers", "scale", "yaw", "pitch", "distance",
                                    "trail"}));
   EXPECT_EQ(query_names("/api/v1/sessions/{id}/events", "get"), std::set<std::string>{"rate"});
-  EXPECT_EQ(query_names("/api/v1/sessions/{id}/trajectory", "get"), std::set<std::string>{"format"});
+  EXPECT_EQ(query_names("/api/v1/sessions/{id}/trajectory", "get"),
+            (std::set<std::string>{"format", "every", "fields"}));
   EXPECT_EQ(query_names("/api/v1/sessions", "post"), std::set<std::string>{});
   EXPECT_EQ(query_names("/api/v1/sessions/{id}", "get"), std::set<std::string>{});
   // And nothing is documented that the table does not have.

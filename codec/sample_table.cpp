@@ -1,0 +1,237 @@
+#include "codec/sample_table.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace spinfold {
+
+using nlohmann::ordered_json;
+
+namespace {
+
+void flatten(const ordered_json& j, const std::string& prefix, std::map<std::string, ordered_json>& out) {
+  if (j.is_object()) {
+    for (auto it = j.begin(); it != j.end(); ++it) flatten(it.value(), prefix + it.key() + ".", out);
+  } else if (j.is_array()) {
+    for (std::size_t i = 0; i < j.size(); ++i) flatten(j[i], prefix + std::to_string(i) + ".", out);
+  } else {
+    out[prefix.substr(0, prefix.size() - 1)] = j;
+  }
+}
+
+// A sample's nulls (actions, frequencies, M) have no members to flatten: their names come from here.
+const std::vector<std::string>& value_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n = {"t",
+                                  "r",
+                                  "phi",
+                                  "alpha",
+                                  "beta",
+                                  "theta",
+                                  "lambda",
+                                  "mu",
+                                  "r_dot",
+                                  "phi_dot",
+                                  "alpha_dot",
+                                  "beta_dot",
+                                  "theta_dot",
+                                  "lambda_dot",
+                                  "mu_dot",
+                                  "p_r",
+                                  "p_phi",
+                                  "p_alpha",
+                                  "p_beta",
+                                  "p_lambda",
+                                  "p_mu",
+                                  "X.0",
+                                  "X.1",
+                                  "X.2",
+                                  "L.0.0",
+                                  "L.0.1",
+                                  "L.1.0",
+                                  "L.1.1",
+                                  "det_L",
+                                  "energy",
+                                  "energy_error",
+                                  "energy_reference_t",
+                                  "energy_orbital",
+                                  "energy_deformation",
+                                  "spin",
+                                  "speed",
+                                  "heading",
+                                  "vorticity",
+                                  "C_x",
+                                  "C_y",
+                                  "M.0",
+                                  "M.1",
+                                  "M.2",
+                                  "casimir"};
+    for (const char* a : {"J_r", "J_phi", "J_alpha", "J_beta", "J_x", "J_y"})
+      n.push_back(std::string("actions.") + a);
+    for (const char* f : {"r", "phi", "x", "y"}) n.push_back(std::string("frequencies.") + f);
+    return n;
+  }();
+  return names;
+}
+
+const std::vector<std::string>& text_names() {
+  static const std::vector<std::string> names = {"steps",         "events",     "status",
+                                                 "status_detail", "integrator", "undefined"};
+  return names;
+}
+
+// "actions", "frequencies", "M": values whose members are the columns.
+bool is_group(const std::string& key) {
+  for (const std::string& name : value_names())
+    if (name.size() > key.size() && name.starts_with(key) && name[key.size()] == '.') return true;
+  return false;
+}
+
+}  // namespace
+
+std::span<const std::string> sample_value_names() {
+  return value_names();
+}
+
+std::span<const std::string> sample_text_names() {
+  return text_names();
+}
+
+std::vector<std::string> sample_column_names() {
+  std::vector<std::string> all = value_names();
+  all.insert(all.end(), text_names().begin(), text_names().end());
+  return all;
+}
+
+std::map<std::string, ordered_json> flatten_sample(const ordered_json& sample) {
+  std::map<std::string, ordered_json> out;
+  for (auto it = sample.begin(); it != sample.end(); ++it) {
+    const std::string& key = it.key();
+    if (key == "companions") continue;
+    if (key == "events") {
+      out["events"] = it.value().size();
+    } else if (key == "undefined") {
+      std::string names;
+      for (auto u = it.value().begin(); u != it.value().end(); ++u) {
+        if (!names.empty()) names += ';';
+        names += u.key();
+      }
+      out["undefined"] = names;
+    } else if (it.value().is_null() && is_group(key)) {
+      continue;  // a null group (actions of a non-separable scene): its members' cells are empty
+    } else {
+      flatten(it.value(), key + ".", out);
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> SampleTable::header() const {
+  std::vector<std::string> h = columns;
+  for (const std::string& label : companion_labels)
+    for (const std::string& c : columns) h.push_back(label + "." + c);
+  return h;
+}
+
+std::vector<ordered_json> SampleTable::row(const ordered_json& sample) const {
+  std::vector<ordered_json> cells;
+  const auto block = [&](const ordered_json& body) {
+    const auto values = flatten_sample(body);
+    for (const std::string& c : columns) {
+      const auto v = values.find(c);
+      cells.push_back(v == values.end() ? ordered_json() : v->second);
+    }
+  };
+  block(sample);
+  const ordered_json none = ordered_json::array();
+  const ordered_json& companions = sample.contains("companions") ? sample.at("companions") : none;
+  for (std::size_t i = 0; i < companion_labels.size(); ++i)
+    block(i < companions.size() ? companions.at(i) : ordered_json::object());
+  return cells;
+}
+
+std::string SampleTable::csv_header() const {
+  std::string line;
+  for (const std::string& name : header()) {
+    if (!line.empty()) line += ',';
+    line += csv_quote(name);
+  }
+  return line + "\n";
+}
+
+std::string SampleTable::csv_row(const ordered_json& sample) const {
+  std::string line;
+  bool first = true;
+  for (const ordered_json& cell : row(sample)) {
+    if (!first) line += ',';
+    line += csv_cell(cell);
+    first = false;
+  }
+  return line + "\n";
+}
+
+ordered_json SampleTable::json_row(const ordered_json& sample) const {
+  ordered_json j = ordered_json::object();
+  const std::vector<std::string> names = header();
+  const std::vector<ordered_json> cells = row(sample);
+  for (std::size_t i = 0; i < names.size(); ++i) j[names[i]] = cells[i];
+  return j;
+}
+
+SampleTable make_sample_table(std::string_view fields, const ordered_json& first_sample) {
+  SampleTable table;
+  const std::vector<std::string> known = sample_column_names();
+  if (fields.empty()) {
+    table.columns = known;
+  } else {
+    std::size_t start = 0;
+    while (start <= fields.size()) {
+      const std::size_t end = std::min(fields.find(',', start), fields.size());
+      const std::string name(fields.substr(start, end - start));
+      start = end + 1;
+      if (name.empty()) continue;
+      if (std::find(known.begin(), known.end(), name) == known.end())
+        throw std::invalid_argument("unknown field '" + name + "' (the names: " + [&] {
+          std::string all;
+          for (const std::string& k : known) {
+            if (!all.empty()) all += ", ";
+            all += k;
+          }
+          return all;
+        }() + ")");
+      table.columns.push_back(name);
+    }
+    if (table.columns.empty()) throw std::invalid_argument("no field named (give a comma-separated list)");
+  }
+  if (first_sample.contains("companions"))
+    for (const ordered_json& c : first_sample.at("companions"))
+      table.companion_labels.push_back(c.value("label", std::string()));
+  return table;
+}
+
+std::string samples_csv(std::span<const ordered_json> samples, const SampleTable& table,
+                        std::span<const std::string> comment) {
+  std::string csv;
+  for (const std::string& line : comment) csv += "# " + line + "\n";
+  csv += table.csv_header();
+  for (const ordered_json& s : samples) csv += table.csv_row(s);
+  return csv;
+}
+
+std::string csv_cell(const ordered_json& value) {
+  if (value.is_null()) return "";
+  if (value.is_string()) return csv_quote(value.get<std::string>());
+  return value.dump();
+}
+
+std::string csv_quote(std::string_view text) {
+  std::string s(text);
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  std::replace(s.begin(), s.end(), '\r', ' ');
+  if (s.find_first_of(",\"") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+}  // namespace spinfold

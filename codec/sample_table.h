@@ -1,0 +1,56 @@
+// Samples as table rows (CSV): one name per value, the same everywhere a table is written —
+// `spinfold simulate --format csv`, `spinfold sweep`'s columns and the API's trajectory CSV. A
+// sample's nested values are flattened with dots (X.0, L.0.1, actions.J_r, frequencies.r); a null
+// value (undefined at a pole, lost far out on H²; the reason is in the JSON sample's "undefined") is
+// an empty cell, which NumPy's genfromtxt and pandas read as NaN.
+#pragma once
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace spinfold {
+
+// The numeric values of a sample (codec/sample_json.h), flattened, in the sample's order.
+std::span<const std::string> sample_value_names();
+// The rest a row can show: steps (accepted so far), events (det L = 0 crossings since the previous
+// row), status, status_detail, integrator, undefined (the null values' names joined by ';').
+std::span<const std::string> sample_text_names();
+// Every column name a table accepts: the values, then the rest.
+std::vector<std::string> sample_column_names();
+
+// The sample's values by flattened name (objects by key, arrays by index); "events" becomes the
+// count of events and "undefined" the names joined by ';'. Companions are left out.
+std::map<std::string, nlohmann::ordered_json> flatten_sample(const nlohmann::ordered_json& sample);
+
+// The columns of a table: the names chosen (empty: all of sample_column_names()), then the same
+// columns of each companion named "LABEL.name".
+struct SampleTable {
+  std::vector<std::string> columns;
+  std::vector<std::string> companion_labels;
+
+  std::vector<std::string> header() const;
+  std::vector<nlohmann::ordered_json> row(const nlohmann::ordered_json& sample) const;
+  std::string csv_header() const;                                               // the column names line
+  std::string csv_row(const nlohmann::ordered_json& sample) const;              // one line
+  nlohmann::ordered_json json_row(const nlohmann::ordered_json& sample) const;  // {"name": value}
+};
+
+// `fields`: a comma-separated list of names ("" for all); `first_sample` gives the companions'
+// labels. Throws std::invalid_argument "unknown field 'x' (…)" naming the first unknown one.
+SampleTable make_sample_table(std::string_view fields, const nlohmann::ordered_json& first_sample);
+
+// The samples as CSV: `comment` lines (each prefixed "# "), the header, one row per sample.
+std::string samples_csv(std::span<const nlohmann::ordered_json> samples, const SampleTable& table,
+                        std::span<const std::string> comment = {});
+
+// A value as a cell: numbers as nlohmann writes them (the shortest text that reads back to the same
+// double), text as is (quoted per RFC 4180 when it holds a comma or quote; a line break becomes a space so
+// that one row is one line), null empty.
+std::string csv_cell(const nlohmann::ordered_json& value);
+std::string csv_quote(std::string_view text);
+
+}  // namespace spinfold

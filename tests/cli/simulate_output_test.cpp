@@ -1,0 +1,229 @@
+// What `spinfold simulate` writes besides its samples: tables with the columns a user picks, the
+// provenance of every output (JSON Lines, CSV, PNG), budgets that stop a run with a status, and
+// whole lines when a run is killed.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "codec/presets.h"
+#include "codec/sample_table.h"
+#include "tests/cli/run_spinfold.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using spinfold::cli_test::Result;
+
+Result spinfold(const std::string& args) {
+  return spinfold::cli_test::run_spinfold(args);
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+std::vector<std::string> cells_of(const std::string& line) {
+  std::vector<std::string> cells;
+  std::istringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.push_back("");
+  return cells;
+}
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+struct TempDir {
+  fs::path path = fs::temp_directory_path() / ("spinfold_simulate_output_" + std::to_string(getpid()) + "_" +
+                                               std::to_string(std::rand()));
+  TempDir() { fs::create_directories(path); }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+TEST(SimulateOutput, CsvRowsHoldTheNumbersOfTheJsonLinesToTheBit) {
+  const std::string run = "simulate --scene separable_radial_abc --t-end 3 --every 0.75";
+  const Result jsonl = spinfold(run);
+  const Result csv = spinfold(run + " --format csv --fields t,r,phi,X.2,L.0.1,actions.J_r,status");
+  ASSERT_EQ(jsonl.exit_code, 0) << jsonl.err;
+  ASSERT_EQ(csv.exit_code, 0) << csv.err;
+  const auto samples = lines_of(jsonl.out);
+  const auto rows = lines_of(csv.out);
+  // "# spinfold simulate …", "# provenance: {…}", the header, 5 rows.
+  ASSERT_EQ(rows.size(), 8u) << csv.out;
+  EXPECT_TRUE(rows[0].starts_with("# spinfold simulate ")) << rows[0];
+  ASSERT_TRUE(rows[1].starts_with("# provenance: ")) << rows[1];
+  EXPECT_EQ(rows[2], "t,r,phi,X.2,L.0.1,actions.J_r,status");
+  ASSERT_EQ(samples.size(), 6u);  // the provenance record and 5 samples
+  for (int k = 0; k < 5; ++k) {
+    const json s = json::parse(samples[k + 1]);
+    const auto cells = cells_of(rows[k + 3]);
+    ASSERT_EQ(cells.size(), 7u) << rows[k + 3];
+    EXPECT_EQ(std::stod(cells[0]), s["t"].get<double>());
+    EXPECT_EQ(std::stod(cells[1]), s["r"].get<double>());
+    EXPECT_EQ(std::stod(cells[2]), s["phi"].get<double>());
+    EXPECT_EQ(std::stod(cells[3]), s["X"][2].get<double>());
+    EXPECT_EQ(std::stod(cells[4]), s["L"][0][1].get<double>());
+    EXPECT_EQ(std::stod(cells[5]), s["actions"]["J_r"].get<double>());
+    EXPECT_EQ(cells[6], s["status"]);
+  }
+}
+
+TEST(SimulateOutput, EveryListedFieldIsAColumnAndTheDefaultIsAll) {
+  const Result names = spinfold("simulate --list-fields");
+  ASSERT_EQ(names.exit_code, 0) << names.err;
+  const auto listed = lines_of(names.out);
+  EXPECT_EQ(listed, spinfold::sample_column_names());
+  const Result csv = spinfold("simulate --scene spinning_rigid_sphere --t-end 1 --every 1 --format csv");
+  ASSERT_EQ(csv.exit_code, 0) << csv.err;
+  std::string header;
+  for (const std::string& n : listed) header += (header.empty() ? "" : ",") + n;
+  EXPECT_EQ(lines_of(csv.out)[2], header);
+  // JSON Lines with --fields: flat records of those names.
+  const Result flat =
+      spinfold("simulate --scene spinning_rigid_sphere --t-end 1 --every 1 --fields t,X.0,alpha");
+  ASSERT_EQ(flat.exit_code, 0) << flat.err;
+  const json row = json::parse(lines_of(flat.out).back());
+  EXPECT_EQ(row.size(), 3u) << row;
+  EXPECT_TRUE(row["alpha"].is_null());  // λ = μ: undefined, null as in the full sample
+}
+
+TEST(SimulateOutput, UnknownFieldsAndFormatsAreRefusedBeforeAnyOutput) {
+  TempDir dir;
+  for (const char* args : {"--fields t,rr", "--format xml", "--max-steps 0", "--max-seconds -1"}) {
+    const Result r =
+        spinfold(std::string("simulate --t-end 1 --out ") + (dir.path / "x.csv").string() + " " + args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_TRUE(r.out.empty()) << args;
+    EXPECT_FALSE(fs::exists(dir.path / "x.csv")) << args;
+  }
+  const Result r = spinfold("simulate --t-end 1 --fields t,rr");
+  EXPECT_NE(r.err.find("--fields: unknown field 'rr'"), std::string::npos) << r.err;
+}
+
+TEST(SimulateOutput, ProvenanceNamesTheBuildTheSceneTheIntegratorAndTheCommand) {
+  const Result version = spinfold("--version");
+  ASSERT_EQ(version.exit_code, 0);
+  // "spinfold 0.3.0 (commit 1a2b3c4d5e6f)" or "(commit …-dirty)"; "unknown" only without git.
+  EXPECT_TRUE(version.out.starts_with("spinfold ")) << version.out;
+  EXPECT_NE(version.out.find("(commit "), std::string::npos) << version.out;
+  const Result r = spinfold("simulate --scene spinning_rigid_sphere --t-end 1 --every 1 --tolerance 1e-9");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json p = json::parse(lines_of(r.out)[0])["provenance"];
+  EXPECT_EQ(p["software"], "spinfold");
+  EXPECT_NE(version.out.find(p["version"].get<std::string>()), std::string::npos);
+  EXPECT_NE(version.out.find(p["commit"].get<std::string>()), std::string::npos);
+  EXPECT_EQ(p["scene_hash"].get<std::string>().size(), 16u);
+  EXPECT_EQ(p["integrator"]["name"], "auto");
+  EXPECT_FALSE(p["integrator"]["runs"].get<std::string>().empty());
+  EXPECT_EQ(p["integrator"]["tolerance"], 1e-9);
+  EXPECT_NE(p["command"].get<std::string>().find("--tolerance 1e-9"), std::string::npos) << p["command"];
+  // The same scene from a file spelled differently hashes the same; another scene does not.
+  TempDir dir;
+  const fs::path file = dir.path / "scene.json";
+  const Result scene = spinfold("simulate --scene spinning_rigid_sphere --t-end 0 --every 1");
+  std::ofstream(file) << json::parse(spinfold::find_preset("spinning_rigid_sphere")->json).dump(4);
+  const Result same = spinfold("simulate " + file.string() + " --t-end 0 --every 1");
+  ASSERT_EQ(same.exit_code, 0) << same.err;
+  const auto hash = [](const Result& x) {
+    return json::parse(lines_of(x.out)[0])["provenance"]["scene_hash"];
+  };
+  EXPECT_EQ(hash(same), hash(scene));
+  EXPECT_NE(hash(scene), p["scene_hash"]);  // the tolerance differs
+}
+
+TEST(SimulateOutput, RenderedPngsCarryTheProvenanceAsTextChunks) {
+  TempDir dir;
+  const fs::path png = dir.path / "frame.png";
+  const Result r =
+      spinfold("render --scene spinning_rigid_sphere --t 0.5 --width 64 --height 48 --out " + png.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string bytes = slurp(png);
+  const std::size_t software = bytes.find("tEXtSoftware");
+  ASSERT_NE(software, std::string::npos);
+  EXPECT_EQ(bytes.compare(software + 13, 9, "spinfold "), 0);
+  const std::size_t source = bytes.find("tEXtSource");
+  ASSERT_NE(source, std::string::npos);
+  // The chunk's length precedes its type: the text is the JSON provenance with the time and view.
+  const auto length = [&](std::size_t at) {
+    std::uint32_t n = 0;
+    for (int k = 0; k < 4; ++k) n = n << 8 | static_cast<unsigned char>(bytes[at - 4 + k]);
+    return n;
+  };
+  const std::string text = bytes.substr(source + 11, length(source) - 7);
+  const json p = json::parse(text);
+  EXPECT_EQ(p["t"], 0.5);
+  EXPECT_EQ(p["view"], "sphere");
+  EXPECT_NE(p["command"].get<std::string>().find("render --scene spinning_rigid_sphere"), std::string::npos);
+  EXPECT_LT(source, bytes.find("IDAT"));
+}
+
+TEST(SimulateOutput, MaxStepsStopsTheRunWithItsStatusAndWhereItGot) {
+  const Result r = spinfold(
+      "simulate --scene spinning_rigid_sphere --integrator rk4 --dt 0.001 --t-end 10 "
+      "--every 1 --max-steps 2500");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("max_steps"), std::string::npos) << r.err;
+  const auto lines = lines_of(r.out);
+  ASSERT_GE(lines.size(), 3u);
+  const json last = json::parse(lines.back());
+  EXPECT_EQ(last["stopped"], "max_steps");
+  // 2500 attempts: the accepted steps and the cut steps to the sample times 1 and 2.
+  EXPECT_NEAR(last["t"].get<double>(), 2.5, 0.0031);
+  EXPECT_LE(last["steps"].get<int>(), 2500);
+  EXPECT_GE(last["steps"].get<int>(), 2497);
+  EXPECT_EQ(lines.size(), 1u + 3u + 1u);  // provenance, samples at 0, 1, 2, the stop record
+  // The samples before the stop are those of the run without a budget, to the bit.
+  const Result full =
+      spinfold("simulate --scene spinning_rigid_sphere --integrator rk4 --dt 0.001 --t-end 2 --every 1");
+  EXPECT_EQ(lines_of(full.out)[3], lines[3]);
+}
+
+TEST(SimulateOutput, MaxSecondsStopsALongRunWithItsStatus) {
+  const auto start = std::chrono::steady_clock::now();
+  const Result r = spinfold(
+      "simulate --scene spinning_rigid_sphere --integrator rk4 --dt 1e-5 --t-end 1e4 "
+      "--every 100 --format csv --max-seconds 0.3");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("max_seconds"), std::string::npos) << r.err;
+  EXPECT_TRUE(lines_of(r.out).back().starts_with("# stopped: {\"stopped\":\"max_seconds\""))
+      << lines_of(r.out).back();
+  EXPECT_LT(seconds, 5.0);
+}
+
+TEST(SimulateOutput, AKilledRunLeavesWholeLines) {
+  TempDir dir;
+  const fs::path out = dir.path / "run.csv";
+  // A long run; killed with SIGKILL once rows are in the file.
+  std::system(
+      ("bash -c '" + std::string(SPINFOLD_BINARY) +
+       " simulate --scene spinning_rigid_sphere --integrator rk4 --dt 1e-4 --t-end 1e5 --every 0.5 --out " +
+       out.string() + " & p=$!; i=0; while [ $i -lt 200 ]; do [ -f " + out.string() + " ] && [ $(wc -l < " +
+       out.string() + ") -ge 6 ] && break; sleep 0.05; i=$((i+1)); done; kill -KILL $p; wait $p'")
+          .c_str());
+  const std::string text = slurp(out);
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), '\n');
+  const auto lines = lines_of(text);
+  ASSERT_GE(lines.size(), 6u);
+  const std::size_t columns = cells_of(lines[2]).size();
+  for (std::size_t i = 3; i < lines.size(); ++i) EXPECT_EQ(cells_of(lines[i]).size(), columns) << lines[i];
+}
+
+}  // namespace

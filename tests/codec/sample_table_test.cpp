@@ -1,0 +1,125 @@
+// Samples as tables: one name per value (the sample's keys flattened), a column block per body,
+// empty cells for null values, quoted labels, unknown names refused.
+#include "codec/sample_table.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+#include <sstream>
+
+#include "codec/presets.h"
+#include "codec/sample_json.h"
+#include "codec/scene_json.h"
+
+namespace spinfold {
+namespace {
+
+using nlohmann::ordered_json;
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+std::vector<std::string> cells_of(const std::string& line) {  // no quoted cells in these rows
+  std::vector<std::string> cells;
+  std::istringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.push_back("");
+  return cells;
+}
+
+Simulation preset_run(const char* name) {
+  return start_simulation(*parse_scene_text(find_preset(name)->json).scene);
+}
+
+TEST(SampleTable, EveryValueOfASampleHasAColumnAndEveryColumnAValue) {
+  // Over every preset (separable ones have actions; those without a radial potential M and the
+  // casimir): each key of a sample is a column, and each column is a key of some sample.
+  const std::vector<std::string> names = sample_column_names();
+  std::set<std::string> seen;
+  for (const PresetSource& preset : preset_sources()) {
+    Simulation run = start_simulation(*parse_scene_text(preset.json).scene);
+    advance_to(run, 0.5);
+    for (const auto& [key, value] : flatten_sample(sample_to_json(run, -1.0))) {
+      EXPECT_NE(std::find(names.begin(), names.end(), key), names.end()) << "no column for " << key;
+      if (!value.is_null()) seen.insert(key);
+    }
+  }
+  for (const std::string& name : names)
+    EXPECT_TRUE(seen.contains(name)) << name << " has no value in any preset";
+  EXPECT_EQ(std::set<std::string>(names.begin(), names.end()).size(), names.size()) << "a name twice";
+}
+
+TEST(SampleTable, CellsHoldTheSamplesNumbersToTheBit) {
+  Simulation run = preset_run("spinning_rigid_sphere");
+  advance_to(run, 1.25);
+  const ordered_json sample = sample_to_json(run, -1.0);
+  const SampleTable table = make_sample_table("t,r,X.2,L.1.0,energy_error,status", sample);
+  const std::vector<std::string> cells = cells_of(lines_of(table.csv_row(sample))[0]);
+  ASSERT_EQ(cells.size(), 6u);
+  EXPECT_EQ(std::stod(cells[1]), sample["r"].get<double>());
+  EXPECT_EQ(std::stod(cells[2]), sample["X"][2].get<double>());
+  EXPECT_EQ(std::stod(cells[3]), sample["L"][1][0].get<double>());
+  EXPECT_EQ(std::stod(cells[4]), sample["energy_error"].get<double>());
+  EXPECT_EQ(cells[5], "ok");
+}
+
+TEST(SampleTable, NullValuesAreEmptyCellsAndTheirNamesAreListed) {
+  // At the pole φ and its rates are undefined (null in the sample, the reason under "undefined").
+  nlohmann::json document = nlohmann::json::parse(find_preset("pole_crossing_sphere")->json);
+  document["initial"]["r"] = 0.0;
+  Simulation run = start_simulation(*parse_scene(document).scene);
+  const ordered_json sample = sample_to_json(run, -1.0);
+  ASSERT_TRUE(sample["phi"].is_null());
+  const SampleTable table = make_sample_table("t,phi,undefined", sample);
+  const std::vector<std::string> cells = cells_of(lines_of(table.csv_row(sample))[0]);
+  ASSERT_EQ(cells.size(), 3u);
+  EXPECT_EQ(cells[1], "");
+  EXPECT_NE(cells[2].find("phi"), std::string::npos) << cells[2];
+}
+
+TEST(SampleTable, OneColumnBlockPerCompanionNamedByItsLabel) {
+  nlohmann::json document = nlohmann::json::parse(find_preset("opposite_spins_sphere")->json);
+  document["companions"][0]["label"] = "s = -1, mirrored";  // a comma: the header cell is quoted
+  Simulation run = start_simulation(*parse_scene(document).scene);
+  std::vector<ordered_json> samples = {sample_to_json(run, -1.0)};
+  advance_to(run, 1.0);
+  samples.push_back(sample_to_json(run, 0.0));
+  const SampleTable table = make_sample_table("t,r,status", samples.front());
+  const std::vector<std::string> lines =
+      lines_of(samples_csv(samples, table, std::vector<std::string>{"hello"}));
+  ASSERT_EQ(lines.size(), 4u);
+  EXPECT_EQ(lines[0], "# hello");
+  EXPECT_EQ(lines[1], "t,r,status,\"s = -1, mirrored.t\",\"s = -1, mirrored.r\",\"s = -1, mirrored.status\"");
+  EXPECT_EQ(lines[3].rfind("1.0,", 0), 0u) << lines[3];
+  EXPECT_NE(lines[3].find("," + nlohmann::json(samples[1]["companions"][0]["r"]).dump() + ","),
+            std::string::npos);
+  EXPECT_EQ(lines[3].substr(lines[3].size() - 3), ",ok");
+}
+
+TEST(SampleTable, UnknownFieldsAreRefusedByName) {
+  Simulation run = preset_run("spinning_rigid_sphere");
+  const ordered_json sample = sample_to_json(run, -1.0);
+  try {
+    make_sample_table("t,rr", sample);
+    FAIL() << "an unknown field was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'rr'"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(make_sample_table(",", sample), std::invalid_argument);
+  EXPECT_EQ(make_sample_table("", sample).columns, sample_column_names());
+}
+
+TEST(SampleTable, CellsNeverBreakALine) {
+  EXPECT_EQ(csv_quote("a\nb"), "a b");
+  EXPECT_EQ(csv_quote("say \"x\", y"), "\"say \"\"x\"\", y\"");
+  EXPECT_EQ(csv_cell(ordered_json()), "");
+  EXPECT_EQ(csv_cell(ordered_json(0.1)), "0.1");
+}
+
+}  // namespace
+}  // namespace spinfold
