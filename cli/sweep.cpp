@@ -518,6 +518,8 @@ std::string run_one(const Plan& plan, std::size_t index) {
 
 // ---- the sweep ---------------------------------------------------------------------------------
 
+}  // namespace
+
 std::string command_line(int argc, char** argv) {
   std::string line;
   for (int i = 0; i < argc; ++i) {
@@ -528,6 +530,8 @@ std::string command_line(int argc, char** argv) {
   }
   return line;
 }
+
+namespace {
 
 bool jsonl_path(const std::string& out) {
   if (out.empty() || out == "-" || out.ends_with(".csv")) return false;

@@ -41,6 +41,9 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& opt);
 // that fails is its row's status. `argv` is written into the output's header.
 int run_sweep_command(const SweepOptions& opt, int argc, char** argv);
 
+// argv as one line, arguments with blanks or quotes single-quoted (the outputs' `# command:` header).
+std::string command_line(int argc, char** argv);
+
 // The names --fields accepts: final-state values of a sample (nested ones flattened with dots:
 // X.0, L.0.1, actions.J_r, frequencies.r) and drift.NAME (final minus initial) of the numeric ones.
 std::vector<std::string> sweep_field_names();
