@@ -86,17 +86,4 @@ double state_error(const Scene& scene, const State& a, const State& b) {
   return std::isfinite(e) ? e : INFINITY;
 }
 
-double characteristic_period(const Scene& scene) {
-  const State s0 = initial_state(scene);
-  const double m = scene.body.mass, R = scene.surface.radius;
-  if (scene.potential.radial) {
-    // Λ = 2KE/m + K²s²/m² (physics.md §8.2): u = C(r) oscillates with ω = √Λ.
-    const double K = curvature(scene.surface), E = orbital_energy(scene, s0), s = spin(scene, s0);
-    return 2.0 * std::numbers::pi / std::sqrt(2.0 * K * E / m + K * K * s * s / (m * m));
-  }
-  const Vec3 M = *momentum_map(scene, s0);
-  const double c = casimir(scene.surface, M);
-  return 2.0 * std::numbers::pi * m * R * R / std::sqrt(std::abs(c));
-}
-
 }  // namespace spinfold::bench

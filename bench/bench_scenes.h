@@ -18,10 +18,6 @@ struct BenchScene {
 
 std::vector<BenchScene> work_precision_scenes();
 
-// The characteristic (orbital) period of a scene's motion [time]: 2πmR²/|M| on S²,
-// 2πmR²/√(−MᵀηM) for a bounded orbit on H²; for scenes with a radial potential 2π/√Λ (physics.md §8.2).
-double characteristic_period(const Scene& scene);
-
 // Largest component difference of two states' embedded (X, V, e_A, W_A), each vector's difference
 // relative to max(1, its length); infinity if either is not finite.
 double state_error(const Scene& scene, const State& a, const State& b);

@@ -2,23 +2,18 @@
 
 #include <array>
 #include <boost/numeric/odeint.hpp>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <iostream>
-#include <limits>
 #include <map>
 #include <sstream>
 
 #include "bench/bench_scenes.h"
 #include "engine/chart.h"
 #include "engine/dynamics.h"
-#include "engine/exact_solution.h"
-#include "engine/invariants.h"
 #include "engine/simulation.h"
+#include "workprecision/work_precision.h"
 
 namespace spinfold::bench {
 
@@ -26,65 +21,6 @@ namespace {
 
 namespace odeint = boost::numeric::odeint;
 using OdeState = std::array<double, 12>;  // rigid bodies use the first 6 entries
-
-struct Point {
-  std::string method;
-  std::string parameter;  // "dt" or "tol"
-  double value = 0.0;
-  double seconds_per_unit_time = 0.0;
-  double state_error = 0.0;
-  double energy_error = 0.0;
-  long steps = 0;  // accepted steps (ours) or right-hand-side evaluations (Odeint)
-};
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// Smallest wall time of repeated runs (at least 1, until 0.2 s have been spent or 5 runs).
-template <typename Run>
-double min_seconds(Run&& run) {
-  double best = kInf, total = 0.0;
-  for (int rep = 0; rep < 5 && total < 0.2; ++rep) {
-    const auto start = std::chrono::steady_clock::now();
-    run();
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    best = std::min(best, s);
-    total += s;
-  }
-  return best;
-}
-
-struct Case {
-  const BenchScene& bench;
-  double t_end;
-  State reference;
-  double energy0;
-};
-
-Point measure(const Case& c, const std::string& method, const std::string& parameter, double value,
-              const std::function<State(long&)>& run) {
-  Point p{method, parameter, value};
-  State final_state;
-  long steps = 0;
-  p.seconds_per_unit_time = min_seconds([&] { final_state = run(steps); }) / c.t_end;
-  p.steps = steps;
-  if (final_state.status != Status::ok || !final_state.y.allFinite()) {
-    p.state_error = p.energy_error = kInf;
-    return p;
-  }
-  p.state_error = state_error(c.bench.scene, final_state, c.reference);
-  p.energy_error = std::abs(energy(c.bench.scene, final_state) - c.energy0) / std::abs(c.energy0);
-  return p;
-}
-
-State run_ours(const Scene& base, const std::string& name, double dt, double tolerance, double t_end,
-               long& steps) {
-  Scene scene = base;
-  scene.integrator = {name, dt, tolerance};
-  Simulation run = start_simulation(scene);
-  advance_to(run, t_end);
-  steps = static_cast<long>(run.steps);
-  return run.state;
-}
 
 // Boost.Odeint on the same vector field in the scene's chart (the bench scenes never leave it).
 struct OdeintSystem {
@@ -131,133 +67,66 @@ State run_odeint(const Scene& scene, const std::string& stepper, double toleranc
   return state;
 }
 
-// Cost at the target error, interpolated log-log along the curve (points ordered from coarse to fine).
-double cost_at(const std::vector<Point>& curve, double target) {
-  double best = kInf;
-  for (std::size_t i = 0; i < curve.size(); ++i) {
-    const Point& p = curve[i];
-    if (p.state_error <= target) best = std::min(best, p.seconds_per_unit_time);
-    if (i + 1 < curve.size()) {
-      const Point& q = curve[i + 1];
-      if (p.state_error > target && q.state_error <= target && std::isfinite(p.state_error) &&
-          q.state_error > 0) {
-        const double f = std::log(target / p.state_error) / std::log(q.state_error / p.state_error);
-        best = std::min(best, std::exp(std::log(p.seconds_per_unit_time) +
-                                       f * std::log(q.seconds_per_unit_time / p.seconds_per_unit_time)));
-      }
-    }
-  }
-  return best;
-}
-
-std::string format_cost(double seconds) {
-  if (!std::isfinite(seconds)) return "not reached";
-  std::ostringstream out;
-  out.precision(3);
-  out << seconds * 1e6;
-  return out.str();
-}
-
-void write_plot(const std::filesystem::path& dir, const std::string& scene,
-                const std::map<std::string, std::vector<Point>>& curves, double t_end) {
-  std::ofstream gp(dir / (scene + ".gp"));
-  gp << "set terminal png size 1100,800\nset output '" << (dir / (scene + ".png")).string() << "'\n"
-     << "set termoption noenhanced\nset logscale xy\nset format x '1e%L'\nset format y '1e%L'\nset grid\n"
-     << "set xlabel 'state error at T = " << t_end
-     << "'\nset ylabel 'wall time per unit simulated time [s]'\n"
-     << "set title 'work-precision: " << scene << "'\nset key outside right\n";
-  std::string plot = "plot ";
-  for (const auto& [method, curve] : curves) {
-    const std::string file = (dir / (scene + "_" + method + ".dat")).string();
-    std::ofstream dat(file);
-    for (const Point& p : curve)
-      if (std::isfinite(p.state_error) && p.state_error > 0)
-        dat << p.state_error << " " << p.seconds_per_unit_time << "\n";
-    const std::string style = method.starts_with("odeint") ? " dashtype 2" : "";  // competitors dashed
-    plot += "'" + file + "' using 1:2 with linespoints" + style + " title '" + method + "', ";
-  }
-  gp << plot.substr(0, plot.size() - 2) << "\n";
-}
-
 }  // namespace
 
 int run_work_precision(const WorkPrecisionOptions& options) {
   namespace fs = std::filesystem;
+  namespace wp = work_precision;
+  std::vector<std::string> unknown;
+  for (const std::string& name : options.scenes)
+    if (std::ranges::none_of(work_precision_scenes(), [&](const BenchScene& b) { return b.name == name; }))
+      unknown.push_back(name);
+  if (!unknown.empty()) {
+    std::string valid;
+    for (const BenchScene& b : work_precision_scenes()) valid += (valid.empty() ? "" : ", ") + b.name;
+    for (const std::string& name : unknown)
+      std::cerr << "spinfold-bench: no bench scene named '" << name << "'\n";
+    std::cerr << "(bench scenes: " << valid << "; `spinfold work-precision` takes any scene)\n";
+    return 2;
+  }
   const fs::path dir = options.out_dir;
   fs::create_directories(dir);
   std::ofstream csv(dir / "work_precision.csv");
   csv << "scene,method,parameter,value,seconds_per_unit_time,state_error,energy_error,steps\n";
-  csv.precision(6);
   std::ostringstream md;
   md << "| scene | T | reference | auto picks | best of ours at " << options.target_error
      << " (µs per unit time) | best Odeint | speed-up | best stepping integrator of ours | its speed-up |\n"
      << "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
 
   for (const BenchScene& bench : work_precision_scenes()) {
-    if (!options.scenes.empty() &&
-        std::find(options.scenes.begin(), options.scenes.end(), bench.name) == options.scenes.end())
+    if (!options.scenes.empty() && std::ranges::find(options.scenes, bench.name) == options.scenes.end())
       continue;
     const Scene& scene = bench.scene;
-    const double t_end = options.periods * characteristic_period(scene);
-    const bool closed_form = !exact_unsupported_reason(scene);
-    State reference;
-    std::string reference_kind = "closed form";
-    if (closed_form) {
-      reference = exact_state(make_exact_solution(scene), t_end);
-    } else {
-      // Two independent methods at their finest: Gauss–Legendre 6 at period/4096 (the reference,
-      // so that DOP853 is not measured against itself) and DOP853 at 1e-15 (the cross-check).
-      long steps = 0;
-      reference = run_ours(scene, "gauss6", characteristic_period(scene) / 4096, 1e-10, t_end, steps);
-      const State check = run_ours(scene, "dop853", 0.01, 1e-15, t_end, steps);
-      std::ostringstream kind;
-      kind.precision(1);
-      kind << "gauss6 at period/4096, within " << std::scientific << state_error(scene, reference, check)
-           << " of DOP853 at 1e-15";
-      reference_kind = kind.str();
-    }
-    const Case c{bench, t_end, reference, energy(scene, initial_state(scene))};
-    std::cerr << bench.name << ": T = " << t_end << ", reference " << reference_kind << "\n";
+    const double t_end = options.periods * wp::characteristic_period(scene);
+    const wp::Reference reference = wp::make_reference(scene, t_end);
+    std::cerr << bench.name << ": T = " << t_end << ", reference " << reference.kind << ": "
+              << reference.description << "\n";
 
-    std::map<std::string, std::vector<Point>> curves;
-    const auto record = [&](const Point& p) {
-      curves[p.method].push_back(p);
-      csv << bench.name << "," << p.method << "," << p.parameter << "," << p.value << ","
-          << p.seconds_per_unit_time << "," << p.state_error << "," << p.energy_error << "," << p.steps
-          << "\n";
+    const auto record = [&](const wp::Point& p) {
+      csv << bench.name << "," << p.method << "," << p.parameter << "," << wp::format_number(p.value) << ","
+          << wp::format_number(p.seconds_per_unit_time) << "," << wp::format_number(p.state_error) << ","
+          << wp::format_number(p.energy_error) << "," << p.steps << "\n";
     };
-    const double period = characteristic_period(scene);
-    for (const CatalogEntry& entry : integrator_catalog()) {
-      const std::string name(entry.info.name);
-      if (entry.info.exact) {
-        if (closed_form)
-          record(measure(c, name, "-", 0.0,
-                         [&](long& steps) { return run_ours(scene, name, 0.01, 1e-10, t_end, steps); }));
-      } else if (entry.info.adaptive) {
-        for (double tol = 1e-3; tol >= 0.9e-15; tol /= 10)
-          record(measure(c, name, "tol", tol,
-                         [&](long& steps) { return run_ours(scene, name, 0.01, tol, t_end, steps); }));
-      } else {
-        for (int k = 3; k <= 16; ++k) {
-          const double dt = period / (1 << k);
-          const Point p = measure(
-              c, name, "dt", dt, [&](long& steps) { return run_ours(scene, name, dt, 1e-10, t_end, steps); });
-          record(p);
-          if (p.state_error < 1e-13 || p.seconds_per_unit_time * t_end > options.max_seconds_per_run) break;
-        }
-      }
-    }
+    wp::SweepOptions sweep;
+    sweep.t_end = t_end;
+    sweep.include_auto = false;  // the table names what auto picks instead
+    sweep.max_seconds_per_run = options.max_seconds_per_run;
+    wp::Curves curves = wp::sweep(scene, reference, sweep, record);
     for (const std::string stepper : {"odeint_dopri5", "odeint_fehlberg78", "odeint_bulirsch_stoer"})
-      for (double tol = 1e-3; tol >= 0.9e-16; tol /= 10)
-        record(measure(c, stepper, "tol", tol,
-                       [&](long& evals) { return run_odeint(scene, stepper, tol, t_end, evals); }));
+      for (double tol = 1e-3; tol >= 0.9e-16; tol /= 10) {
+        const wp::Point p = wp::measure(reference, t_end, stepper, "tol", tol, [&](long& evals) {
+          return run_odeint(scene, stepper, tol, t_end, evals);
+        });
+        curves[stepper].push_back(p);
+        record(p);
+      }
 
     // Summary at the target error.
     std::string best_ours, best_odeint, best_stepping;
-    double cost_ours = kInf, cost_odeint = kInf, cost_stepping = kInf;
+    double cost_ours = wp::kNotReached, cost_odeint = wp::kNotReached, cost_stepping = wp::kNotReached;
     for (const auto& [method, curve] : curves) {
-      const double cost = cost_at(curve, options.target_error);
-      std::cerr << "  " << method << ": " << format_cost(cost) << " µs per unit time at "
+      const double cost = wp::cost_at(curve, options.target_error);
+      std::cerr << "  " << method << ": " << wp::format_cost(cost) << " µs per unit time at "
                 << options.target_error << "\n";
       if (method.starts_with("odeint")) {
         if (cost < cost_odeint) cost_odeint = cost, best_odeint = method;
@@ -270,16 +139,18 @@ int run_work_precision(const WorkPrecisionOptions& options) {
     auto_scene.integrator.name = "auto";
     std::ostringstream row;
     row.precision(3);
-    row << "| " << bench.name << " | " << t_end << " | " << reference_kind << " | "
-        << resolve_integrator(auto_scene) << " | " << best_ours << " " << format_cost(cost_ours) << " | "
-        << best_odeint << " " << format_cost(cost_odeint) << " | " << cost_odeint / cost_ours << "× | "
-        << best_stepping << " " << format_cost(cost_stepping) << " | " << cost_odeint / cost_stepping
-        << "× |\n";
+    row << "| " << bench.name << " | " << t_end << " | " << reference.kind << ": " << reference.description
+        << " | " << resolve_integrator(auto_scene) << " | " << best_ours << " " << wp::format_cost(cost_ours)
+        << " | " << best_odeint << " " << wp::format_cost(cost_odeint) << " | " << cost_odeint / cost_ours
+        << "× | " << best_stepping << " " << wp::format_cost(cost_stepping) << " | "
+        << cost_odeint / cost_stepping << "× |\n";
     md << row.str();
-    write_plot(dir, bench.name, curves, t_end);
-    if (std::system("command -v gnuplot > /dev/null 2>&1") == 0)
-      std::system(("gnuplot '" + (dir / (bench.name + ".gp")).string() + "'").c_str());
+    if (const std::string why =
+            wp::write_plot(dir, bench.name, "work-precision: " + bench.name, curves, t_end);
+        !why.empty())
+      std::cerr << "  no plot: " << why << "\n";
   }
+  md << "\nError: " << wp::kErrorMeaning << ".\n";
   std::ofstream(dir / "summary.md") << md.str();
   std::cout << md.str();
   return 0;

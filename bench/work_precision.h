@@ -15,8 +15,10 @@ struct WorkPrecisionOptions {
   double max_seconds_per_run = 1.0;  // stop refining a fixed-step sweep beyond this
 };
 
-// Writes work_precision.csv, one PNG per scene (if gnuplot is installed) and summary.md into
-// out_dir; prints the summary. Returns 0.
+// Writes work_precision.csv, one plot per scene (<scene>.gp, .png and .svg if gnuplot is installed)
+// and summary.md into out_dir; prints the summary. Returns 0, or 2 (nothing written) for an unknown
+// scene name. The sweeps, the reference and the plots are workprecision/'s, as `spinfold
+// work-precision` runs them on any scene.
 int run_work_precision(const WorkPrecisionOptions& options);
 
 }  // namespace spinfold::bench

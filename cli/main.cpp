@@ -1,6 +1,7 @@
 // spinfold: the command line. `simulate` prints JSON Lines samples of a run; `render` draws one
 // frame; `record` a time window as a GIF, WebM, MP4 or zip of PNGs; `scenes` lists the presets;
-// `integrators` prints the catalog. Bad input: a message on stderr and exit code 2.
+// `integrators` prints the catalog; `work-precision` measures run time against error on a scene.
+// Bad input: a message on stderr and exit code 2.
 #include <pthread.h>
 #include <unistd.h>
 
@@ -23,6 +24,9 @@
 
 #include "cli/run_loop.h"
 #include "cli/sweep.h"
+#ifndef SPINFOLD_COMPUTE_ONLY
+#include "cli/work_precision_command.h"
+#endif
 #include "codec/presets.h"
 #include "codec/provenance.h"
 #include "codec/sample_json.h"
@@ -527,6 +531,8 @@ int main(int argc, char** argv) {
   record_cmd->add_option("--trail", rec.render.trail, "Time span of the trail (default: the whole run)");
   record_cmd->add_option("--integrator", rec.render.scene.integrator, "Override the scene's integrator name");
   record_cmd->add_flag("--quiet", rec.quiet, "No progress bar (there is none when stderr is not a terminal)");
+  cli::WorkPrecisionOptions wp_opt;
+  CLI::App* wp_cmd = cli::add_work_precision_command(app, wp_opt);
   server::ServerOptions serve_opt;
   CLI::App* serve_cmd = app.add_subcommand("serve", "Serve the HTTP API with a session on the default scene");
   serve_cmd->add_option("--host", serve_opt.host, "Address to bind")->capture_default_str();
@@ -590,6 +596,7 @@ int main(int argc, char** argv) {
       rec.render.scene.command = command_line(argc, argv);
       return record_window(rec);
     }
+    if (wp_cmd->parsed()) return cli::run_work_precision_command(wp_opt, argc, argv);
     if (serve_cmd->parsed()) {
       if (no_store) serve_opt.data_dir.clear();
       return serve(serve_opt);

@@ -59,6 +59,30 @@ B3 chart_apply(const Mat3& M, const B3& v) {
 
 }  // namespace
 
+EngineBody engine_body(const Scene& sc, const State& state, const OracleScene& scene) {
+  // the engine's body in its chart's coordinates, then globally, then in the oracle's start frame
+  const BodyKinematics k = chart_kinematics(sc, state.y);
+  const Vec3 F2 = rotate_quarter(sc.surface, k.X, k.F1);
+  const Vec3 e1 = k.F1 * k.L(0, 0) + F2 * k.L(1, 0), e2 = k.F1 * k.L(0, 1) + F2 * k.L(1, 1);
+  const Vec3 W1 = k.F1 * k.M(0, 0) + F2 * k.M(1, 0), W2 = k.F1 * k.M(0, 1) + F2 * k.M(1, 1);
+  const Mat3& A = state.chart.A;
+  const Isometry iso = start_isometry(scene);
+  B3 X = chart_apply(A, big3(k.X));
+  for (int i = 0; i < 3; ++i) X[i] += Big(state.chart.b[i]);
+  EngineBody out;
+  Body3& body = out.in_start_frame;
+  body.X = to_start_point(scene, iso, X);
+  body.V = to_start_vector(scene, iso, chart_apply(A, big3(k.V)));
+  body.e1 = to_start_vector(scene, iso, chart_apply(A, big3(e1)));
+  body.e2 = to_start_vector(scene, iso, chart_apply(A, big3(e2)));
+  body.W1 = to_start_vector(scene, iso, chart_apply(A, big3(W1)));
+  body.W2 = to_start_vector(scene, iso, chart_apply(A, big3(W2)));
+  Body3& local = out.in_chart;
+  local.X = big3(k.X), local.V = big3(k.V), local.e1 = big3(e1), local.e2 = big3(e2);
+  local.W1 = big3(W1), local.W2 = big3(W2);
+  return out;
+}
+
 Verdict check(std::string_view scene_json, const IntegratorCase& c, double t_end, const OracleScene& scene,
               const OracleRun& reference, std::uint64_t max_attempts) {
   Verdict v;
@@ -84,26 +108,8 @@ Verdict check(std::string_view scene_json, const IntegratorCase& c, double t_end
     v.error = INFINITY;
     return v;
   }
-  // the engine's body in its chart's coordinates, then globally, then in the oracle's start frame
-  const BodyKinematics k = chart_kinematics(sc, run.state.y);
-  const Vec3 F2 = rotate_quarter(sc.surface, k.X, k.F1);
-  const Vec3 e1 = k.F1 * k.L(0, 0) + F2 * k.L(1, 0), e2 = k.F1 * k.L(0, 1) + F2 * k.L(1, 1);
-  const Vec3 W1 = k.F1 * k.M(0, 0) + F2 * k.M(1, 0), W2 = k.F1 * k.M(0, 1) + F2 * k.M(1, 1);
-  const Mat3& A = run.state.chart.A;
-  const Isometry iso = start_isometry(scene);
-  B3 X = chart_apply(A, big3(k.X));
-  for (int i = 0; i < 3; ++i) X[i] += Big(run.state.chart.b[i]);
-  Body3 body;
-  body.X = to_start_point(scene, iso, X);
-  body.V = to_start_vector(scene, iso, chart_apply(A, big3(k.V)));
-  body.e1 = to_start_vector(scene, iso, chart_apply(A, big3(e1)));
-  body.e2 = to_start_vector(scene, iso, chart_apply(A, big3(e2)));
-  body.W1 = to_start_vector(scene, iso, chart_apply(A, big3(W1)));
-  body.W2 = to_start_vector(scene, iso, chart_apply(A, big3(W2)));
-  Body3 local;
-  local.X = big3(k.X), local.V = big3(k.V), local.e1 = big3(e1), local.e2 = big3(e2);
-  local.W1 = big3(W1), local.W2 = big3(W2);
-  const Difference& d = v.diff = compare(scene, reference, body, local);
+  const EngineBody body = engine_body(sc, run.state, scene);
+  const Difference& d = v.diff = compare(scene, reference, body.in_start_frame, body.in_chart);
   // each measure against the bound, those that go through double coordinates of size R cosh(r/R)
   // against the bound plus what such coordinates can resolve
   v.error = std::max({d.radius, d.invariants, d.energy, d.position - d.position_floor,

@@ -10,6 +10,11 @@
 
 #include "oracle/oracle.h"
 
+namespace spinfold {
+struct Scene;
+struct State;
+}  // namespace spinfold
+
 namespace spinfold::oracle {
 
 // What an integrator is run with in the differential test, and the bound its answer must meet:
@@ -34,6 +39,14 @@ struct Verdict {
   bool pass = false;
   std::string scene_json;  // the scene as run (replay: spinfold simulate FILE --t-end T)
 };
+
+// An engine state (any chart) as compare() takes it: mapped in 50 digits into the oracle's start
+// frame of `oracle_scene` (the same scene as read by read_scene), and in the engine's own chart.
+struct EngineBody {
+  Body3 in_start_frame;
+  Body3 in_chart;
+};
+EngineBody engine_body(const Scene& scene, const State& state, const OracleScene& oracle_scene);
 
 // The scene with the case's integrator settings, as JSON text.
 std::string with_integrator(std::string_view scene_json, const IntegratorCase& c);

@@ -1,0 +1,194 @@
+#include "cli/work_precision_command.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "cli/sweep.h"
+#include "codec/presets.h"
+#include "codec/provenance.h"
+#include "codec/scene_json.h"
+#include "engine/integrator.h"
+#include "engine/simulation.h"
+#include "workprecision/work_precision.h"
+
+namespace spinfold::cli {
+
+namespace {
+
+namespace wp = work_precision;
+namespace fs = std::filesystem;
+
+constexpr int kExitBadInput = 2;
+
+struct BadInput {
+  std::string message;
+};
+
+std::string valid_integrator_names() {
+  std::string names;
+  for (const CatalogEntry& e : integrator_catalog()) names += std::string(e.info.name) + ", ";
+  return names + std::string(kAutoIntegrator);
+}
+
+std::vector<std::string> parse_integrators(const std::string& list) {
+  std::vector<std::string> names, unknown;
+  std::istringstream in(list);
+  for (std::string name; std::getline(in, name, ',');) {
+    if (name.empty()) continue;
+    if (name == kAutoIntegrator || find_integrator(name))
+      names.push_back(name);
+    else
+      unknown.push_back("'" + name + "'");
+  }
+  if (!unknown.empty()) {
+    std::string joined;
+    for (const std::string& u : unknown) joined += (joined.empty() ? "" : ", ") + u;
+    throw BadInput{"--integrators: unknown " + joined + " (valid: " + valid_integrator_names() + ")"};
+  }
+  if (!list.empty() && names.empty()) throw BadInput{"--integrators: no integrator named"};
+  return names;
+}
+
+// The scene and the name it goes by in the outputs.
+std::pair<Scene, std::string> load_scene(const WorkPrecisionOptions& opt) {
+  if (opt.scene_file.empty() == opt.preset.empty())
+    throw BadInput{"give either a scene file or --scene PRESET (see `spinfold scenes`)"};
+  std::string text, label;
+  if (!opt.scene_file.empty()) {
+    std::ifstream in(opt.scene_file, std::ios::binary);
+    if (!in) throw BadInput{"cannot read scene file '" + opt.scene_file + "'"};
+    std::ostringstream read;
+    read << in.rdbuf();
+    text = read.str();
+    label = fs::path(opt.scene_file).filename().string();
+  } else {
+    const PresetSource* preset = find_preset(opt.preset);
+    if (!preset) {
+      std::string names;
+      for (const PresetSource& p : preset_sources())
+        names += (names.empty() ? "" : ", ") + std::string(p.name);
+      throw BadInput{"--scene: no preset named '" + opt.preset + "' (presets: " + names + ")"};
+    }
+    text = preset->json;
+    label = opt.preset;
+  }
+  SceneParse parsed = parse_scene_text(text);
+  if (!parsed.errors.empty()) throw BadInput{"the scene " + label + ": " + describe_errors(parsed.errors)};
+  return {*parsed.scene, label};
+}
+
+void write_csv(const fs::path& file, const std::string& header, const wp::Curves& curves) {
+  std::ofstream csv(file);
+  csv << header << "method,parameter,value,seconds_per_unit_time,state_error,energy_error,steps\n";
+  for (const auto& [method, curve] : curves)
+    for (const wp::Point& p : curve)
+      csv << method << "," << p.parameter << "," << wp::format_number(p.value) << ","
+          << wp::format_number(p.seconds_per_unit_time) << "," << wp::format_number(p.state_error) << ","
+          << wp::format_number(p.energy_error) << "," << p.steps << "\n";
+}
+
+int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
+  // Everything is checked before anything is written.
+  if (opt.out.empty()) throw BadInput{"--out: the folder to write is required"};
+  if (opt.t_end && !(std::isfinite(*opt.t_end) && *opt.t_end > 0.0))
+    throw BadInput{"--t-end: must be a finite number > 0"};
+  if (!(std::isfinite(opt.target_error) && opt.target_error > 0.0))
+    throw BadInput{"--target-error: must be a finite number > 0"};
+  if (!(std::isfinite(opt.max_seconds_per_run) && opt.max_seconds_per_run > 0.0))
+    throw BadInput{"--max-seconds-per-run: must be a finite number > 0"};
+  const auto [scene, label] = load_scene(opt);
+  wp::SweepOptions sweep;
+  sweep.integrators = parse_integrators(opt.integrators);
+  sweep.max_seconds_per_run = opt.max_seconds_per_run;
+  const double period = wp::characteristic_period(scene);
+  sweep.t_end = opt.t_end ? *opt.t_end : kDefaultPeriods * (std::isfinite(period) ? period : 1.0);
+  if (const fs::path out(opt.out); fs::exists(out) && !fs::is_directory(out))
+    throw BadInput{"--out: '" + opt.out + "' exists and is not a folder"};
+  std::error_code error;
+  fs::create_directories(opt.out, error);
+  if (error) throw BadInput{"--out: cannot create '" + opt.out + "': " + error.message()};
+
+  const double t_end = sweep.t_end;
+  std::cerr << "work-precision: " << label << ", T = " << t_end << ": computing the reference\n";
+  const wp::Reference reference = wp::make_reference(scene, t_end);
+  std::cerr << "  reference: " << reference.kind << ": " << reference.description << "\n";
+  const wp::Curves curves = wp::sweep(scene, reference, sweep, [](const wp::Point& p) {
+    std::cerr << "  " << p.method << " " << p.parameter << " " << p.value << ": error " << p.state_error
+              << ", " << wp::format_cost(p.seconds_per_unit_time) << " µs per unit time\n";
+  });
+
+  Scene auto_scene = scene;
+  auto_scene.integrator.name = kAutoIntegrator;
+  const std::string auto_picks = "picks " + std::string(resolve_integrator(auto_scene));
+  const std::string line = wp::recommendation(curves, opt.target_error, t_end, auto_picks);
+  std::ostringstream t_text, period_text;
+  t_text << t_end;
+  period_text << period;
+  const std::string horizon =
+      "T = " + t_text.str() +
+      (opt.t_end               ? " (--t-end)"
+       : std::isfinite(period) ? " (" + std::to_string(static_cast<int>(kDefaultPeriods)) +
+                                     " characteristic periods of " + period_text.str() + ")"
+                               : " (" + std::to_string(static_cast<int>(kDefaultPeriods)) +
+                                     " time units: the motion has no characteristic period)");
+  const std::string header =
+      "# spinfold work-precision " + version_line() + "\n# command: " + spinfold::command_line(argc, argv) +
+      "\n# provenance: " + provenance_json(scene, "").dump() + "\n# scene: " + label + "; " + horizon +
+      "\n# reference: " + reference.kind + ": " + reference.description + "\n# " + wp::kErrorMeaning + "\n";
+  write_csv(fs::path(opt.out) / "work_precision.csv", header, curves);
+  const std::string plot =
+      wp::write_plot(opt.out, "work_precision", "work-precision: " + label, curves, t_end);
+
+  std::ostringstream md;
+  md << "# Work-precision: " << label << "\n\n"
+     << "**Recommendation.** " << line << "\n\n"
+     << "- " << horizon << "; target error " << opt.target_error << "\n"
+     << "- Reference: " << reference.kind << ": " << reference.description << "\n"
+     << "- Error: " << wp::kErrorMeaning << "\n";
+  if (!scene.companions.empty()) md << "- The main body only: its companions are separate runs.\n";
+  for (const auto& [name, why] : wp::skipped_integrators(scene, sweep))
+    md << "- Not run: " << name << " (" << why << ")\n";
+  md << "- Plot: " << (plot.empty() ? "work_precision.png, work_precision.svg" : plot)
+     << " (re-plot: `gnuplot work_precision.gp` in this folder); data: work_precision.csv\n\n"
+     << "Cost at error " << opt.target_error << " (interpolated along each curve, µs per unit time):\n\n"
+     << "| method | µs per unit time |\n| --- | --- |\n";
+  for (const auto& [method, curve] : curves)
+    md << "| " << method << " | " << wp::format_cost(wp::cost_at(curve, opt.target_error)) << " |\n";
+  md << "\nEvery point:\n\n" << wp::points_table(curves);
+  std::ofstream(fs::path(opt.out) / "summary.md") << md.str();
+  std::cout << md.str();
+  return 0;
+}
+
+}  // namespace
+
+CLI::App* add_work_precision_command(CLI::App& app, WorkPrecisionOptions& opt) {
+  CLI::App* cmd = app.add_subcommand(
+      "work-precision", "Run time against error for each integrator on a scene (CSV, plot, recommendation)");
+  cmd->add_option("scene_file", opt.scene_file, "Scene JSON file");
+  cmd->add_option("--scene", opt.preset, "An embedded preset by name (see `spinfold scenes`)");
+  cmd->add_option("--integrators", opt.integrators,
+                  "Comma-separated catalog names and/or auto (default: all, auto at the scene's tolerance)");
+  cmd->add_option("--t-end", opt.t_end, "Horizon T (default: 20 characteristic periods)");
+  cmd->add_option("--target-error", opt.target_error, "Error the recommendation is for")
+      ->capture_default_str();
+  cmd->add_option("--max-seconds-per-run", opt.max_seconds_per_run,
+                  "Stop refining a method once one run takes longer [s]")
+      ->capture_default_str();
+  cmd->add_option("--out", opt.out, "Folder to write")->required();
+  return cmd;
+}
+
+int run_work_precision_command(const WorkPrecisionOptions& opt, int argc, char** argv) {
+  try {
+    return work_precision(opt, argc, argv);
+  } catch (const BadInput& e) {
+    std::cerr << "spinfold: " << e.message << (e.message.ends_with('\n') ? "" : "\n");
+    return kExitBadInput;
+  }
+}
+
+}  // namespace spinfold::cli

@@ -1,0 +1,403 @@
+#include "workprecision/work_precision.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <numbers>
+#include <sstream>
+
+#include "codec/scene_json.h"
+#include "engine/chart.h"
+#include "engine/exact_solution.h"
+#include "engine/integrator.h"
+#include "engine/invariants.h"
+#include "engine/simulation.h"
+#include "oracle/differential.h"
+
+namespace spinfold::work_precision {
+
+namespace {
+
+std::string sci(double value, int digits = 2) {
+  std::ostringstream out;
+  out.precision(digits);
+  out << value;
+  return out.str();
+}
+
+// The main body alone: companions are separate runs that never act on it (scene.h).
+Scene main_body_only(Scene scene) {
+  scene.companions.clear();
+  scene.companions_source.clear();
+  return scene;
+}
+
+State run_engine(const Scene& base, const std::string& name, double dt, double tolerance, double t_end,
+                 long& steps, std::uint64_t max_attempts = kNoStepLimit) {
+  Scene scene = base;
+  scene.integrator = {name, dt, tolerance};
+  Simulation run = start_simulation(scene);
+  if (!advance_to(run, t_end, max_attempts)) run.state.status = Status::step_failed;  // budget spent
+  steps = static_cast<long>(run.steps);
+  return run.state;
+}
+
+bool finished(const State& state, double t_end) {
+  return state.status == Status::ok && state.t == t_end && state.y.allFinite();
+}
+
+// The oracle's comparison of an engine state with a reference body (the oracle's own end, or an
+// engine state's mapped the same way).
+struct OracleMeasure {
+  Scene scene;
+  oracle::OracleScene oracle_scene;
+  oracle::OracleRun reference;  // its end is the reference body; energy_exact, energy_scale at the start
+
+  Errors operator()(const State& state) const {
+    const oracle::EngineBody body = oracle::engine_body(scene, state, oracle_scene);
+    const oracle::Difference d = oracle::compare(oracle_scene, reference, body.in_start_frame, body.in_chart);
+    Errors e{std::max({d.position, d.velocity, d.frame}), d.energy};
+    if (!std::isfinite(e.state)) e.state = kNotReached;
+    if (!std::isfinite(e.energy)) e.energy = kNotReached;
+    return e;
+  }
+};
+
+// Where the oracle cannot read the scene: the embedded vectors' largest component difference,
+// relative to max(1, |v|) (the bench's measure before the oracle), and |ΔH| / |H(0)|.
+Errors embedded_errors(const Scene& scene, const State& a, const State& reference, double energy0) {
+  const EmbeddedBody x = global_embedding(scene, a), y = global_embedding(scene, reference);
+  double e = 0.0;
+  for (const auto& [u, v] : {std::pair{x.X, y.X},
+                             {x.V, y.V},
+                             {x.e[0], y.e[0]},
+                             {x.e[1], y.e[1]},
+                             {x.W[0], y.W[0]},
+                             {x.W[1], y.W[1]}})
+    e = std::max(e, (u - v).cwiseAbs().maxCoeff() / std::max(1.0, v.norm()));
+  const double de = std::abs(energy(scene, a) - energy0) / std::max(std::abs(energy0), 1e-300);
+  return {std::isfinite(e) ? e : kNotReached, std::isfinite(de) ? de : kNotReached};
+}
+
+}  // namespace
+
+double characteristic_period(const Scene& scene) {
+  const State s0 = initial_state(scene);
+  const double m = scene.body.mass, R = scene.surface.radius;
+  double period = kNotReached;
+  if (scene.potential.radial) {
+    // Λ = 2KE/m + K²s²/m² (physics.md §8.2): u = C(r) oscillates with ω = √Λ.
+    const double K = curvature(scene.surface), E = orbital_energy(scene, s0), s = spin(scene, s0);
+    period = 2.0 * std::numbers::pi / std::sqrt(2.0 * K * E / m + K * K * s * s / (m * m));
+  } else if (const auto M = momentum_map(scene, s0)) {
+    period = 2.0 * std::numbers::pi * m * R * R / std::sqrt(std::abs(casimir(scene.surface, *M)));
+  }
+  return std::isfinite(period) && period > 0.0 ? period : kNotReached;
+}
+
+Reference make_reference(const Scene& scene_in, double t_end) {
+  const Scene scene = main_body_only(scene_in);
+  const bool closed_form = !exact_unsupported_reason(scene);
+  const double period = characteristic_period(scene);
+  long steps = 0;
+  // The engine's most accurate state at T, for a reference or a cross-check.
+  const auto engine_best = [&](std::string& what) {
+    if (closed_form) {
+      what = "the closed form";
+      return exact_state(make_exact_solution(scene), t_end);
+    }
+    what = "gauss6 at dt = " + sci(std::min(period, t_end) / 4096, 3);
+    return run_engine(scene, "gauss6", std::min(period, t_end) / 4096, 1e-10, t_end, steps);
+  };
+  const auto dop853_best = [&] { return run_engine(scene, "dop853", 0.01, 1e-15, t_end, steps); };
+
+  std::unique_ptr<OracleMeasure> measure;
+  std::string oracle_trouble;
+  try {
+    measure = std::make_unique<OracleMeasure>(
+        OracleMeasure{scene, oracle::read_scene(scene_to_json(scene).dump()), {}});
+  } catch (const std::exception& e) {
+    oracle_trouble = std::string("the oracle cannot read the scene (") + e.what() + ")";
+  }
+  if (measure) {
+    measure->reference = oracle::run_oracle(measure->oracle_scene, t_end);
+    if (measure->reference.ok) {
+      // Its own check: the engine's best independent answer, measured against it.
+      std::string what;
+      const State check = closed_form ? engine_best(what) : dop853_best();
+      if (!closed_form) what = "dop853 at tol 1e-15";
+      const Errors agreement = (*measure)(check);
+      const auto shared = std::shared_ptr<OracleMeasure>(std::move(measure));
+      return {"oracle",
+              "the extended-precision oracle (oracle/, __float128 Gragg-Bulirsch-Stoer at tol 1e-20, no "
+              "code shared with the engine); " +
+                  what + " is within " + sci(agreement.state) + " of it",
+              [shared](const State& s) { return (*shared)(s); }};
+    }
+    oracle_trouble = "the oracle stopped (" + measure->reference.error + ")";
+  }
+
+  // The engine's best, cross-checked by dop853 at 1e-15 (by the closed form's own check otherwise).
+  std::string what;
+  const State reference = engine_best(what);
+  const State check = dop853_best();
+  const std::string kind = closed_form ? "closed form" : "gauss6";
+  if (measure) {  // the oracle read the scene: its comparison still measures against our state
+    measure->reference.end = oracle::engine_body(scene, reference, measure->oracle_scene).in_start_frame;
+    const auto shared = std::shared_ptr<OracleMeasure>(std::move(measure));
+    return {
+        kind,
+        oracle_trouble + ": " + what + ", within " + sci((*shared)(check).state) + " of dop853 at tol 1e-15",
+        [shared](const State& s) { return (*shared)(s); }};
+  }
+  const double energy0 = energy(scene, initial_state(scene));
+  return {
+      kind,
+      oracle_trouble + ": " + what + ", within " +
+          sci(embedded_errors(scene, check, reference, energy0).state) +
+          " of dop853 at tol 1e-15 (errors: embedded components, not geodesic)",
+      [scene, reference, energy0](const State& s) { return embedded_errors(scene, s, reference, energy0); }};
+}
+
+Point measure(const Reference& reference, double t_end, const std::string& method,
+              const std::string& parameter, double value, const std::function<State(long&)>& run) {
+  Point p{method, parameter, value};
+  State final_state;
+  long steps = 0;
+  double best = kNotReached, total = 0.0;
+  for (int rep = 0; rep < 5 && total < 0.2; ++rep) {  // best of up to 5 runs within 0.2 s
+    const auto start = std::chrono::steady_clock::now();
+    final_state = run(steps);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    best = std::min(best, s);
+    total += s;
+  }
+  p.seconds_per_unit_time = best / t_end;
+  p.steps = steps;
+  if (!finished(final_state, t_end)) return p;  // errors stay "not reached"
+  const Errors e = reference.errors(final_state);
+  p.state_error = e.state;
+  p.energy_error = e.energy;
+  return p;
+}
+
+std::map<std::string, std::string> skipped_integrators(const Scene& scene, const SweepOptions& options) {
+  std::map<std::string, std::string> skipped;
+  const bool wanted = options.integrators.empty() ||
+                      std::ranges::find(options.integrators, "exact") != options.integrators.end();
+  if (const auto why = exact_unsupported_reason(main_body_only(scene)); why && wanted)
+    skipped["exact"] = *why;
+  return skipped;
+}
+
+Curves sweep(const Scene& scene_in, const Reference& reference, const SweepOptions& options,
+             const std::function<void(const Point&)>& on_point) {
+  const Scene scene = main_body_only(scene_in);
+  const double t_end = options.t_end;
+  const bool closed_form = !exact_unsupported_reason(scene);
+  // Fixed steps are fractions of the period (of T where the motion has none or T is shorter).
+  const double base_step = std::min(characteristic_period(scene), t_end);
+  const auto wanted = [&](std::string_view name) {
+    if (options.integrators.empty()) return name != kAutoIntegrator || options.include_auto;
+    return std::ranges::find(options.integrators, name) != options.integrators.end();
+  };
+  Curves curves;
+  const auto record = [&](const Point& p) {
+    curves[p.method].push_back(p);
+    if (on_point) on_point(p);
+    return p;
+  };
+  const auto engine = [&](const std::string& name, double dt, double tolerance) {
+    return [&scene, name, dt, tolerance, t_end, &options](long& steps) {
+      return run_engine(scene, name, dt, tolerance, t_end, steps, options.max_attempts_per_run);
+    };
+  };
+  const auto too_slow = [&](const Point& p) {
+    return p.seconds_per_unit_time * t_end > options.max_seconds_per_run;
+  };
+  for (const CatalogEntry& entry : integrator_catalog()) {
+    const std::string name(entry.info.name);
+    if (!wanted(name)) continue;
+    if (entry.info.exact) {
+      if (closed_form) record(measure(reference, t_end, name, "-", 0.0, engine(name, 0.01, 1e-10)));
+    } else if (entry.info.adaptive) {
+      for (double tol = 1e-3; tol >= 0.9e-15; tol /= 10)
+        if (too_slow(record(measure(reference, t_end, name, "tol", tol, engine(name, 0.01, tol))))) break;
+    } else {
+      for (int k = 3; k <= 16; ++k) {
+        const double dt = base_step / (1 << k);
+        const Point p = record(measure(reference, t_end, name, "dt", dt, engine(name, dt, 1e-10)));
+        if (p.state_error < 1e-13 || too_slow(p)) break;
+      }
+    }
+  }
+  if (wanted(kAutoIntegrator)) {
+    const std::string name(kAutoIntegrator);
+    record(measure(reference, t_end, name, "tol", scene.integrator.tolerance,
+                   engine(name, scene.integrator.dt, scene.integrator.tolerance)));
+  }
+  return curves;
+}
+
+double cost_at(const std::vector<Point>& curve, double target) {
+  double best = kNotReached;
+  for (std::size_t i = 0; i < curve.size(); ++i) {
+    const Point& p = curve[i];
+    if (p.state_error <= target) best = std::min(best, p.seconds_per_unit_time);
+    if (i + 1 < curve.size()) {
+      const Point& q = curve[i + 1];
+      if (p.state_error > target && q.state_error <= target && std::isfinite(p.state_error) &&
+          q.state_error > 0) {
+        const double f = std::log(target / p.state_error) / std::log(q.state_error / p.state_error);
+        best = std::min(best, std::exp(std::log(p.seconds_per_unit_time) +
+                                       f * std::log(q.seconds_per_unit_time / p.seconds_per_unit_time)));
+      }
+    }
+  }
+  return best;
+}
+
+std::string format_cost(double seconds) {
+  if (!std::isfinite(seconds)) return "not reached";
+  return sci(seconds * 1e6, 3);
+}
+
+std::string format_number(double value) {
+  if (!std::isfinite(value)) return "inf";
+  return sci(value, 6);
+}
+
+namespace {
+
+std::string setting(const Point& p) {
+  if (p.parameter == "-") return p.method;
+  return p.method + " at " + p.parameter + " " + sci(p.value, 3);
+}
+
+// "1.6×", "40×", "7800×": two significant digits, never an exponent.
+std::string ratio(double a, double b) {
+  const double r = a / b;
+  if (r >= 100 && std::isfinite(r)) {
+    const double unit = std::pow(10.0, std::floor(std::log10(r)) - 1);
+    return std::to_string(std::llround(std::round(r / unit) * unit)) + "×";
+  }
+  return sci(r, 2) + "×";
+}
+
+}  // namespace
+
+std::string recommendation(const Curves& curves, double target, double t_end, const std::string& auto_picks) {
+  // The cheapest measured setting of each method that reaches the target (a setting one can use).
+  std::map<std::string, const Point*> cheapest;
+  const Point* most_accurate = nullptr;
+  for (const auto& [method, curve] : curves)
+    for (const Point& p : curve) {
+      if (p.state_error <= target &&
+          (!cheapest[method] || p.seconds_per_unit_time < cheapest[method]->seconds_per_unit_time))
+        cheapest[method] = &p;
+      if (std::isfinite(p.state_error) && (!most_accurate || p.state_error < most_accurate->state_error))
+        most_accurate = &p;
+    }
+  std::erase_if(cheapest, [](const auto& kv) { return kv.second == nullptr; });
+  const std::string where = "at error " + sci(target) + " over T = " + sci(t_end, 4);
+  if (cheapest.empty()) {
+    std::string line = "No integrator reached error " + sci(target) + " over T = " + sci(t_end, 4);
+    if (most_accurate)
+      line += "; the most accurate was " + setting(*most_accurate) + " (error " +
+              sci(most_accurate->state_error) + ", " + format_cost(most_accurate->seconds_per_unit_time) +
+              " µs per unit time)";
+    return line + ".";
+  }
+  const Point* best_stepping = nullptr;
+  for (const auto& [method, p] : cheapest)
+    if (method != "exact" && method != kAutoIntegrator &&
+        (!best_stepping || p->seconds_per_unit_time < best_stepping->seconds_per_unit_time))
+      best_stepping = p;
+  std::string line = "For this scene " + where + ": ";
+  if (best_stepping) {
+    line += setting(*best_stepping) + ", " + format_cost(best_stepping->seconds_per_unit_time) +
+            " µs per unit time (error " + sci(best_stepping->state_error) + ")";
+  } else {
+    line += "no stepping integrator reached it";
+  }
+  const double base = best_stepping ? best_stepping->seconds_per_unit_time : kNotReached;
+  const auto compare_to_base = [&](const Point& p) {
+    if (!std::isfinite(base)) return format_cost(p.seconds_per_unit_time) + " µs per unit time";
+    return p.seconds_per_unit_time < base ? ratio(base, p.seconds_per_unit_time) + " cheaper"
+                                          : ratio(p.seconds_per_unit_time, base) + " dearer";
+  };
+  if (const auto it = cheapest.find("exact"); it != cheapest.end())
+    line += "; exact is valid here and " + compare_to_base(*it->second);
+  if (const auto it = cheapest.find(std::string(kAutoIntegrator)); it != cheapest.end())
+    line += "; auto (" + auto_picks + ") at the scene's tol " + sci(it->second->value) + " reaches it too, " +
+            compare_to_base(*it->second);
+  else if (curves.contains(std::string(kAutoIntegrator)))
+    line += "; auto (" + auto_picks + ") at the scene's tol " +
+            sci(curves.at(std::string(kAutoIntegrator))[0].value) + " does not reach it";
+  return line + ".";
+}
+
+std::string points_table(const Curves& curves) {
+  std::ostringstream md;
+  md << "| method | parameter | value | µs per unit time | state error | energy error | steps |\n"
+     << "| --- | --- | --- | --- | --- | --- | --- |\n";
+  for (const auto& [method, curve] : curves)
+    for (const Point& p : curve)
+      md << "| " << method << " | " << p.parameter << " | " << (p.parameter == "-" ? "-" : sci(p.value, 3))
+         << " | " << format_cost(p.seconds_per_unit_time) << " | "
+         << (std::isfinite(p.state_error) ? sci(p.state_error) : "stopped") << " | "
+         << (std::isfinite(p.energy_error) ? sci(p.energy_error) : "-") << " | " << p.steps << " |\n";
+  return md.str();
+}
+
+std::string write_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,
+                       const Curves& curves, double t_end) {
+  const std::string gp_name = stem + ".gp";
+  const auto quote_safe = [](std::string text) {  // gnuplot's single-quoted strings have no escape
+    std::ranges::replace(text, '\'', '"');
+    return text;
+  };
+  std::ofstream gp(dir / gp_name);
+  gp << "# Re-plot with `gnuplot " << gp_name << "` in this folder: draws " << stem << ".svg and " << stem
+     << ".png.\n";
+  std::string plot;
+  int index = 0;
+  for (const auto& [method, curve] : curves) {
+    std::ostringstream data;
+    data.precision(6);
+    for (const Point& p : curve)
+      if (std::isfinite(p.state_error) && p.state_error > 0)
+        data << p.state_error << " " << p.seconds_per_unit_time << "\n";
+    if (data.str().empty()) continue;  // nothing finite to draw (every run stopped)
+    const std::string block = "$data" + std::to_string(index++);
+    gp << block << " << EOD\n" << data.str() << "EOD\n";
+    const bool ours = find_integrator(method) || method == kAutoIntegrator;
+    plot += (plot.empty() ? "plot " : ", ") + block + " using 1:2 with linespoints" +
+            (ours ? "" : " dashtype 2") + " title '" + quote_safe(method) + "'";
+  }
+  if (plot.empty()) return "no run finished: nothing to plot";
+  gp << "set logscale xy\nset format x '1e%L'\nset format y '1e%L'\nset grid\n"
+     << "set xlabel 'state error at T = " << sci(t_end, 4) << "'\n"
+     << "set ylabel 'wall time per unit simulated time [s]'\n"
+     << "set title '" << quote_safe(title) << "'\nset key outside right\n"
+     << "set terminal svg size 1100,800 dynamic noenhanced\nset output '" << stem << ".svg'\n"
+     << plot
+     << "\n"
+     // pngcairo where this gnuplot has it (antialiased), the libgd png terminal otherwise
+     << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1100,800 noenhanced } "
+        "else { set terminal png size 1100,800 noenhanced }\n"
+     << "set output '" << stem << ".png'\nreplot\nset output\n";
+  gp.close();
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) return "gnuplot is not installed";
+  std::string quoted = dir.string();
+  for (std::size_t i = 0; (i = quoted.find('\'', i)) != std::string::npos; i += 4)
+    quoted.replace(i, 1, "'\\''");
+  const std::string command = "cd '" + quoted + "' && gnuplot '" + gp_name + "' > /dev/null 2>&1";
+  if (std::system(command.c_str()) != 0) return "gnuplot failed on " + gp_name;
+  return "";
+}
+
+}  // namespace spinfold::work_precision

@@ -1,0 +1,106 @@
+// Work-precision measurement (issue 24): run time per unit simulated time against the error at T,
+// for any scene. Shared by `spinfold work-precision` (any scene) and `spinfold-bench work-precision`
+// (the bench scenes, with Boost.Odeint beside ours): the reference, the sweeps, the cost at a target
+// error, the recommendation and the gnuplot script.
+//
+// The error is chart-free: the engine's state at T and the reference's are compared by the oracle's
+// `compare` (oracle/oracle.h) in the oracle's start frame, whatever chart each run ended in.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "engine/scene.h"
+#include "engine/state.h"
+
+namespace spinfold::work_precision {
+
+inline constexpr double kNotReached = std::numeric_limits<double>::infinity();
+
+// What CSV headers and summaries say "state_error" and "energy_error" mean.
+inline constexpr const char* kErrorMeaning =
+    "state_error = max(geodesic distance of the positions [length], |dV| tangential [length/time], "
+    "max_A |de_A| / max_A |e_A|) at T against the reference; energy_error = |H(T) - H(0)| / "
+    "(kinetic + |potential| energy at the start)";
+
+// One measured run.
+struct Point {
+  std::string method;
+  std::string parameter;  // "dt", "tol" or "-" (exact)
+  double value = 0.0;
+  double seconds_per_unit_time = 0.0;  // best wall time of repeated runs / T
+  double state_error = kNotReached;    // see kErrorMeaning; infinity when the run stopped
+  double energy_error = kNotReached;
+  long steps = 0;  // accepted steps (ours) or right-hand-side evaluations (Odeint)
+};
+
+struct Errors {
+  double state = kNotReached;
+  double energy = kNotReached;
+};
+
+// The most accurate solution at T available for the scene: the extended-precision oracle where it
+// runs, else the closed form where the engine has one, else gauss6 at period/4096 cross-checked by
+// dop853 at 1e-15. Its `errors` measure any engine state at T (in any chart) against it.
+struct Reference {
+  std::string kind;         // "oracle", "closed form" or "gauss6"
+  std::string description;  // what was run, and its own agreement check
+  std::function<Errors(const State&)> errors;
+};
+Reference make_reference(const Scene& scene, double t_end);
+
+// The characteristic (orbital) period of a scene's motion [time]: 2πmR²/√|MᵀηM| without a radial
+// potential; 2π/√Λ, Λ = 2KE/m + K²s²/m², with one (physics.md §8.2). Infinity where the motion
+// has none (a body at rest, a free body on the plane).
+double characteristic_period(const Scene& scene);
+
+struct SweepOptions {
+  double t_end = 1.0;
+  std::vector<std::string> integrators;  // catalog names and/or "auto"; empty: every catalog entry
+  bool include_auto = true;              // with an empty list: also `auto` at the scene's tolerance
+  double max_seconds_per_run = 1.0;      // stop refining a method once one run takes longer
+  std::uint64_t max_attempts_per_run = 20'000'000;  // a run past this is "not reached"
+};
+
+// Times `run` (repeated, best of up to 5 within 0.2 s) and measures its final state.
+Point measure(const Reference& reference, double t_end, const std::string& method,
+              const std::string& parameter, double value, const std::function<State(long& steps)>& run);
+
+// Sweeps each integrator: adaptive ones over tol = 1e-3 … 1e-15, fixed-step ones over
+// dt = period/8 … period/65536 (until the error is below 1e-13 or a run exceeds the time limit),
+// `exact` once where the scene has a closed form, `auto` once. `on_point` sees each point as it is
+// measured. Returns the curves by method, each from coarse to fine.
+using Curves = std::map<std::string, std::vector<Point>>;
+Curves sweep(const Scene& scene, const Reference& reference, const SweepOptions& options,
+             const std::function<void(const Point&)>& on_point = {});
+
+// Integrators of the catalog that a scene cannot run here, with the reason (exact without a
+// closed form); the sweep leaves them out.
+std::map<std::string, std::string> skipped_integrators(const Scene& scene, const SweepOptions& options);
+
+// Cost at the target error, interpolated log-log along the curve; kNotReached when it never gets there.
+double cost_at(const std::vector<Point>& curve, double target_error);
+// Microseconds with 3 significant digits, or "not reached".
+std::string format_cost(double seconds_per_unit_time);
+// A number as written in the CSV and summaries (6 significant digits).
+std::string format_number(double value);
+
+// One line: the cheapest setting that reaches the target error (and how much cheaper `exact` or
+// `auto` is where they reach it too), or that none reached it and which came closest.
+std::string recommendation(const Curves& curves, double target_error, double t_end,
+                           const std::string& auto_picks);
+
+// The markdown table of the curves' points (method, setting, cost, errors, steps).
+std::string points_table(const Curves& curves);
+
+// Writes `<stem>.gp` in `dir` (the data inline, so that `gnuplot <stem>.gp` in dir re-plots) drawing
+// <stem>.png and <stem>.svg, and runs gnuplot there. Methods outside the catalog are dashed.
+// Returns "" or why no image was drawn (gnuplot missing or failing).
+std::string write_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,
+                       const Curves& curves, double t_end);
+
+}  // namespace spinfold::work_precision
