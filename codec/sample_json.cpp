@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <limits>
 
 namespace spinfold {
 
@@ -87,9 +89,6 @@ json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_event
   }
   if (r.casimir) j["casimir"] = number(*r.casimir);
 
-  json undefined = json::object();
-  for (const UndefinedValue& u : c.undefined) undefined[u.field] = u.reason;
-  for (const UndefinedValue& u : r.undefined) undefined[u.field] = u.reason;
   // Action variables J = ∮p dq and frequencies ν = ∂E/∂J [1/time] (engine/actions.h): null where
   // undefined, with the reason under undefined ("actions.J_r", "frequencies.r", or "actions").
   if (r.actions) {
@@ -98,14 +97,12 @@ json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_event
                     {"J_beta", number(a.J_beta)}, {"J_x", number(a.J_x)},     {"J_y", number(a.J_y)}};
     j["frequencies"] = {
         {"r", number(a.nu_r)}, {"phi", number(a.nu_phi)}, {"x", number(a.nu_x)}, {"y", number(a.nu_y)}};
-    for (const UndefinedValue& u : a.undefined)
-      undefined[u.field.starts_with("nu_") ? "frequencies." + u.field.substr(3) : "actions." + u.field] =
-          u.reason;
   } else {
     j["actions"] = nullptr;
     j["frequencies"] = nullptr;
-    undefined["actions"] = r.actions_unsupported;
   }
+  json undefined = json::object();
+  for (const auto& [field, reason] : undefined_values(r)) undefined[field] = reason;
   j["undefined"] = undefined;
   json events = json::array();
   for (const DegenerateEvent& e : new_events) events.push_back({{"kind", "det_L_zero"}, {"t", number(e.t)}});
@@ -115,6 +112,88 @@ json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_event
   j["integrator"] = std::string(r.integrator);
   j["steps"] = r.steps;
   return j;
+}
+
+std::vector<std::pair<std::string, std::string>> undefined_values(const Readout& r) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const UndefinedValue& u : r.coordinates.undefined) out.emplace_back(u.field, u.reason);
+  for (const UndefinedValue& u : r.undefined) out.emplace_back(u.field, u.reason);
+  if (r.actions) {
+    for (const UndefinedValue& u : r.actions->undefined)
+      out.emplace_back(u.field.starts_with("nu_") ? "frequencies." + u.field.substr(3) : "actions." + u.field,
+                       u.reason);
+  } else {
+    out.emplace_back("actions", r.actions_unsupported);
+  }
+  return out;
+}
+
+void sample_values(const Readout& r, std::span<double> out) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto finite = [](double v) { return std::isfinite(v) ? v : nan; };
+  const auto optional = [&](const std::optional<double>& v) { return v ? finite(*v) : nan; };
+  const PaperCoordinates& c = r.coordinates;
+  const bool p_phi_lost = std::any_of(c.undefined.begin(), c.undefined.end(),
+                                      [](const UndefinedValue& u) { return u.field == "p_phi"; });
+  const ActionVariables* a = r.actions ? &*r.actions : nullptr;
+  // In the order of sample_value_names(); a test holds the two to the same names and numbers.
+  const double values[] = {
+      finite(r.t),
+      optional(c.r),
+      optional(c.phi),
+      optional(c.alpha),
+      optional(c.beta),
+      optional(c.theta),
+      optional(c.lambda),
+      optional(c.mu),
+      optional(c.r_dot),
+      optional(c.phi_dot),
+      optional(c.alpha_dot),
+      optional(c.beta_dot),
+      optional(c.theta_dot),
+      optional(c.lambda_dot),
+      optional(c.mu_dot),
+      optional(c.p_r),
+      p_phi_lost ? nan : optional(c.p_phi),
+      optional(c.p_alpha),
+      optional(c.p_beta),
+      optional(c.p_lambda),
+      optional(c.p_mu),
+      finite(c.X.x()),
+      finite(c.X.y()),
+      finite(c.X.z()),
+      c.L ? finite((*c.L)(0, 0)) : nan,
+      c.L ? finite((*c.L)(0, 1)) : nan,
+      c.L ? finite((*c.L)(1, 0)) : nan,
+      c.L ? finite((*c.L)(1, 1)) : nan,
+      finite(r.det_L),
+      finite(r.energy),
+      finite(r.energy_error),
+      finite(r.energy_reference_t),
+      finite(r.energy_orbital),
+      finite(r.energy_deformation),
+      finite(r.spin),
+      optional(r.speed),
+      optional(r.heading),
+      finite(r.vorticity),
+      r.separated ? finite(r.separated->C_x) : nan,
+      r.separated ? finite(r.separated->C_y) : nan,
+      r.momentum_map ? finite(r.momentum_map->x()) : nan,
+      r.momentum_map ? finite(r.momentum_map->y()) : nan,
+      r.momentum_map ? finite(r.momentum_map->z()) : nan,
+      optional(r.casimir),
+      a ? optional(a->J_r) : nan,
+      a ? optional(a->J_phi) : nan,
+      a ? optional(a->J_alpha) : nan,
+      a ? optional(a->J_beta) : nan,
+      a ? optional(a->J_x) : nan,
+      a ? optional(a->J_y) : nan,
+      a ? optional(a->nu_r) : nan,
+      a ? optional(a->nu_phi) : nan,
+      a ? optional(a->nu_x) : nan,
+      a ? optional(a->nu_y) : nan,
+  };
+  std::copy(std::begin(values), std::end(values), out.begin());
 }
 
 }  // namespace spinfold

@@ -3,6 +3,9 @@
 
 #include <nlohmann/json.hpp>
 #include <span>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "engine/readout.h"
 #include "engine/simulation.h"
@@ -17,5 +20,12 @@ nlohmann::ordered_json sample_to_json(const Simulation& run, double events_since
 // One body's sample from a read-out already made (engine/readout.h): the HUD shows the same
 // values; `new_events` are given.
 nlohmann::ordered_json sample_to_json(const Readout& readout, std::span<const DegenerateEvent> new_events);
+
+// The numbers of one body's sample without building JSON (the Python binding's arrays): in the
+// order of sample_value_names() (codec/sample_table.h), NaN where the JSON sample has null or
+// leaves the value out. The same doubles as sample_to_json's, to the bit.
+void sample_values(const Readout& readout, std::span<double> out);
+// The sample's "undefined": {field, reason} of every value that is null.
+std::vector<std::pair<std::string, std::string>> undefined_values(const Readout& readout);
 
 }  // namespace spinfold

@@ -31,6 +31,11 @@ nlohmann::json scene_to_json(const Scene& scene);
 // speed, heading ↔ r_dot, phi_dot): the patch's value wins instead of clashing with it.
 void merge_scene_patch(nlohmann::json& document, const nlohmann::json& patch);
 
+// Why a merge patch taking the scene `before` to `after` cannot continue the run (retune) and
+// starts it over at t = 0 instead (a new start, other companions, another surface kind without a
+// curvature dial, joining or leaving the incompressible constraint), or "" when it can continue.
+std::string restart_reason(const nlohmann::json& patch, const Scene& before, const Scene& after);
+
 // "field: reason (value)" lines, one per error.
 std::string describe_errors(const std::vector<FieldError>& errors);
 

@@ -52,23 +52,6 @@ bool advance(Session& session, double t, std::uint64_t max_attempts) {
   return complete;
 }
 
-std::string restart_reason(const json& patch, const Scene& before, const Scene& after) {
-  if (patch.contains("initial")) return "the initial state changed: the run starts over at t = 0";
-  if (patch.contains("companions") || patch.contains("vary") ||
-      before.companions.size() != after.companions.size())
-    return "the companions changed: the run starts over at t = 0";
-  if (before.surface.kind != after.surface.kind && !dialled(before.surface, after.surface))
-    return "the surface changed kind: the run starts over at t = 0 on the new surface (give "
-           "surface.curvature "
-           "to dial through 0 without a restart)";
-  // The incompressible body holds det L at the start's λμ: joining or leaving that constraint
-  // mid-run would snap the shape to it (or leave its multiplier's momentum behind).
-  if ((before.body.model == BodyModel::incompressible) != (after.body.model == BodyModel::incompressible))
-    return "the body became or stopped being incompressible (its area is the start's): the run starts over "
-           "at t = 0";
-  return "";
-}
-
 ChangeOutcome change(Session& session, const json& patch) {
   ChangeOutcome out;
   json document = scene_to_json(session.run.scene);

@@ -25,10 +25,10 @@ struct Session {
   Scene scene;
   nlohmann::ordered_json timeline = nlohmann::ordered_json::array();  // [{"t", "patch"}]
   std::vector<ParameterChange> changes;
-  Simulation run;                                  // run.scene: the parameters in force now
-  Trail trail;                                     // the path at fixed times since t = 0
-  std::uint64_t version = 0;                       // changes with every change of state: part of frame ETags
-  std::string body;                                // the serialized GET response of `body_version`
+  Simulation run;             // run.scene: the parameters in force now
+  Trail trail;                // the path at fixed times since t = 0
+  std::uint64_t version = 0;  // changes with every change of state: part of frame ETags
+  std::string body;           // the serialized GET response of `body_version`
   std::uint64_t body_version = ~std::uint64_t{0};
   bool playing = false;  // advanced in real time by the server's player
   double rate = 1.0;     // simulated time per second of wall time while playing
@@ -112,9 +112,6 @@ struct ChangeOutcome {
 
 // Applies a JSON merge patch of the scene at the current time.
 ChangeOutcome change(Session& session, const nlohmann::json& patch);
-
-// Why a patch cannot be a timeline entry (it would restart the run), or "" when it can.
-std::string restart_reason(const nlohmann::json& patch, const Scene& before, const Scene& after);
 
 // Rebuilds a session from a scene, a timeline [{"t", "patch"}] and a time: the state and the
 // trail are those of the session that made the timeline, bit for bit. Refusals name the entry.

@@ -3,9 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "codec/presets.h"
+#include "codec/sample_table.h"
 #include "codec/scene_json.h"
 #include "engine/readout.h"
 
@@ -105,6 +107,43 @@ TEST(SampleJson, SampleAndHudComeFromTheSameReadout) {
                           format("  det L = %.4f", sample["det_L"].get<double>()))
         << preset.name;
   }
+}
+
+// The arrays of the Python binding hold the JSON sample's numbers to the bit, NaN for its nulls and
+// missing values, over every preset and a start far out on H² (p_phi and M null there).
+TEST(SampleJson, SampleValuesAreTheJsonNumbersToTheBit) {
+  std::vector<std::string> scenes;
+  for (const PresetSource& p : preset_sources()) scenes.emplace_back(p.json);
+  scenes.push_back(R"({"surface": {"kind": "pseudosphere", "radius": 1}, "initial": {"r": 22, "spin": 1}})");
+  scenes.push_back(R"({"surface": {"kind": "sphere"}, "initial": {"r": 0}})");  // at the pole
+  const auto names = sample_value_names();
+  std::vector<double> values(names.size());
+  int nulls = 0;
+  for (const std::string& text : scenes) {
+    const SceneParse parsed = parse_scene_text(text);
+    ASSERT_TRUE(parsed.scene) << describe_errors(parsed.errors);
+    Simulation run = start_simulation(*parsed.scene);
+    for (double t : {0.0, 0.7, 2.3}) {
+      advance_to(run, t);
+      const Readout r = readout(run);
+      sample_values(r, values);
+      const auto flat = flatten_sample(sample_to_json(r, {}));
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        const auto found = flat.find(names[i]);
+        if (found == flat.end() || found->second.is_null()) {
+          EXPECT_TRUE(std::isnan(values[i])) << names[i] << " in " << text.substr(0, 60);
+          ++nulls;
+        } else {
+          EXPECT_EQ(values[i], found->second.get<double>()) << names[i] << " in " << text.substr(0, 60);
+        }
+      }
+      std::size_t listed = 0;
+      for (const auto& [field, reason] : undefined_values(r))
+        listed += flat.at("undefined").get<std::string>().find(field) != std::string::npos;
+      EXPECT_EQ(listed, undefined_values(r).size());
+    }
+  }
+  EXPECT_GT(nulls, 0);
 }
 
 }  // namespace
