@@ -285,19 +285,9 @@ int render_frame(const RenderOptions& opt) {
   const Scene scene = load_scene(opt.scene);
   render::ViewOptions view = view_options(opt, scene);
 
-  Simulation run = start_simulation(scene);
-  Trail trail;  // every body's, companions' included
-  const double span = std::min(opt.t, opt.trail.value_or(opt.t));
-  if (view.layers & render::kTrail && span > 0.0) {
-    // The trail is recorded only when it is drawn, every body's at k·spacing from t = 0: 512
-    // samples over its span, fewer when the span is under 1/128 of the run (at most 2^16 samples
-    // in all, so that a short span late in a long run does not stop the run millions of times).
-    trail.spacing = std::max(span / 512, opt.t / 65536);
-    trail.max_points = 65536 + 2;
-    advance_recording(run, trail, opt.t);
-  }
-  advance_to(run, opt.t);
-  const render::Snapshot snapshot = render::make_snapshot(run, trail, span);
+  Simulation run;
+  const render::Snapshot snapshot =
+      render::snapshot_at(scene, opt.t, view.layers & render::kTrail, opt.trail, run);
   if (opt.camera.empty()) render::aim_camera_at_body(view, snapshot);
   render::Renderer renderer;
   const std::vector<render::PngText> texts =

@@ -1,5 +1,7 @@
 #include "render/snapshot.h"
 
+#include <algorithm>
+
 #include "engine/chart.h"
 #include "engine/dynamics.h"
 #include "engine/readout.h"
@@ -53,6 +55,22 @@ Snapshot make_snapshot(const Simulation& run, const Trail& trail, double span) {
     s.bodies.push_back(std::move(b));
   }
   return s;
+}
+
+Snapshot snapshot_at(const Scene& scene, double t, bool with_trail, std::optional<double> trail_span,
+                     Simulation& run) {
+  run = start_simulation(scene);
+  Trail trail;  // every body's, companions' included
+  const double span = std::min(t, trail_span.value_or(t));
+  if (with_trail && span > 0.0) {
+    // Recorded only when drawn, every body's at k·spacing from t = 0 (so that a short span late in
+    // a long run does not stop the run millions of times).
+    trail.spacing = std::max(span / 512, t / 65536);
+    trail.max_points = 65536 + 2;
+    advance_recording(run, trail, t);
+  }
+  advance_to(run, t);
+  return make_snapshot(run, trail, span);
 }
 
 }  // namespace spinfold::render

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,14 @@ struct Snapshot {
 // recorded positions within the last `span` [time] (all of them for span < 0) followed by its
 // current position; an empty `trail` (no samples) gives bodies without trails.
 Snapshot make_snapshot(const Simulation& run, const Trail& trail, double span);
+
+// The snapshot of the scene's run at time t [time] as `spinfold render` draws it: the run advanced
+// from 0, the trail (when `with_trail`) recorded at 512 samples over the last `trail_span` [time]
+// (default: the whole run; fewer when the span is under 1/128 of the run, at most 2^16 samples).
+// `run` gets the run (its status says whether it stopped before t). The CLI and the Python
+// binding draw their stills from this, so their pixels are equal.
+Snapshot snapshot_at(const Scene& scene, double t, bool with_trail, std::optional<double> trail_span,
+                     Simulation& run);
 
 // Companion i's colour: its own, else the palette's entry i (cycled).
 std::array<float, 3> companion_color(const Scene& scene, std::size_t i);

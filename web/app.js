@@ -19,6 +19,7 @@ const ui = {
   events: null, live: null, plots: null, series: [[], [], [], [], [], []],
   preset: null,  // the preset the session started from (its card is highlighted)
   opening: null,  // the promise of a scene being opened (a new session replacing this one)
+  borrowed: null,  // a session shown by ?session=ID (made elsewhere): never deleted here
 };
 const $ = (id) => document.getElementById(id);
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
@@ -463,7 +464,7 @@ let thumbnailSession = null;  // the gallery's short-lived session, if one is be
 function leave() {
   saveSession(true, { deleted: true });
   for (const id of [ui.id, thumbnailSession])
-    if (id) fetch(`${api}/sessions/${id}`, { method: "DELETE", keepalive: true }).catch(() => {});
+    if (id && id !== ui.borrowed) fetch(`${api}/sessions/${id}`, { method: "DELETE", keepalive: true }).catch(() => {});
   if (ui.events) ui.events.close();
   ui.events = null;
   ui.live.close();
@@ -516,7 +517,7 @@ async function openSceneNow(scene, { until = 0, timeline = [], preset = null } =
   const old = ui.id;
   const body = until > 0 || timeline.length ? { scene, timeline, until } : scene;
   const created = await withRetry("Opening the scene", () => request("POST", "/sessions", body));
-  if (old && old !== created.id) request("DELETE", `/sessions/${old}`).catch(() => {});
+  if (old && old !== created.id && old !== ui.borrowed) request("DELETE", `/sessions/${old}`).catch(() => {});
   ui.preset = preset;
   ui.modified = timeline.length > 0;
   setPlaying(false);
@@ -527,6 +528,21 @@ async function openSceneNow(scene, { until = 0, timeline = [], preset = null } =
 // The session to show on load: a share link's, this tab's (re-attached, or rebuilt when the
 // server no longer has it), or the default preset.
 async function firstSession() {
+  // ?session=ID shows a session someone else made (a notebook's Session.show()): it is borrowed,
+  // never deleted by this tab.
+  const asked = new URLSearchParams(location.search).get("session");
+  if (asked) {
+    try {
+      const session = await request("GET", `/sessions/${encodeURIComponent(asked)}`);
+      ui.borrowed = session.id;
+      attach(session);
+      status("Showing a shared session: changes here change it for everyone who shows it.");
+      return;
+    } catch (e) {
+      if (e.status !== 404) throw e;
+      status("That session is gone; opening the default scene.");
+    }
+  }
   const shared = fromHash();
   if (shared) return openScene(shared.scene, { until: shared.until, timeline: shared.timeline, preset: shared.scene.name ?? null });
   const mine = loadSaved();

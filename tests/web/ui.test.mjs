@@ -188,7 +188,10 @@ try {
       assert.equal(res.headers.get("content-type"), type);
     }
     const csv = await (await fetch(await page.$eval("#export-csv", (a) => a.href))).text();
-    assert.match(csv.split("\n")[0], /^t,r,phi/);
+    // "# " comment lines (version, provenance), then the header.
+    const lines = csv.split("\n");
+    assert.match(lines[0], /^# spinfold trajectory /);
+    assert.match(lines.find((l) => !l.startsWith("#")), /^t,r,phi/);
   });
 
   await test("a refused value's message is cleared by the next good edit", async () => {

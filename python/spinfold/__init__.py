@@ -1,0 +1,426 @@
+"""Spinfold: affinely-rigid bodies moving on the sphere and the pseudosphere, from Python.
+
+The engine runs in C++ (the module ``spinfold._core``) with the GIL released; results come back as
+NumPy arrays. Every number equals what ``spinfold simulate`` prints for the same scene, to the bit.
+
+    >>> import spinfold
+    >>> run = spinfold.simulate("spin_vs_geodesic_sphere", t_end=10, every=0.1)
+    >>> run["r"][-1], run["X"].shape
+    >>> spinfold.render("spin_vs_geodesic_sphere", t=10)   # a Frame; a notebook shows it
+
+A scene is a preset's name, a path to a scene file, JSON text or a dict (README, "Scene format").
+Undefined values (φ at a pole, α and β of a round body) are NaN; ``result.undefined(i)`` gives the
+reasons of sample i and ``result.reasons`` every reason met in the run.
+"""
+
+from __future__ import annotations
+
+import builtins
+import itertools
+import json
+import os
+from typing import Any, Iterable, Iterator, Mapping, Sequence
+
+import numpy as np
+
+from . import _core
+from .client import Client, ServerError, Session
+
+__all__ = [
+    "__version__",
+    "presets",
+    "integrators",
+    "field_names",
+    "simulate",
+    "run_many",
+    "sweep",
+    "Result",
+    "Simulation",
+    "render",
+    "Frame",
+    "Client",
+    "Session",
+    "ServerError",
+]
+
+__version__ = f"{_core.version()}+{_core.commit()}" if _core.commit() != "unknown" else _core.version()
+"""The version (it follows CHANGELOG.md) and the commit the module was built from."""
+
+_VALUE_NAMES: list[str] = _core.value_names()
+_GROUPS = {"X": (3,), "L": (2, 2), "M": (3,)}
+_EVENT_DTYPE = np.dtype([("t", "f8"), ("sample", "i8"), ("kind", "U16")])
+
+
+def presets() -> dict[str, str]:
+    """The embedded preset scenes: name -> description (``spinfold scenes``)."""
+    return {name: description for name, description, _ in _core.presets()}
+
+
+def integrators() -> list[dict[str, Any]]:
+    """The integrator catalog: name, order, symplectic, adaptive, exact, summary."""
+    return _core.integrators()
+
+
+def field_names() -> list[str]:
+    """The numeric fields of a sample, flattened (``X.0``, ``L.1.0``, ``actions.J_r``)."""
+    return list(_VALUE_NAMES)
+
+
+def _scene_text(scene: Any, field: str = "scene") -> str:
+    """JSON text of a scene given as a preset name, a path, JSON text or a mapping."""
+    if isinstance(scene, Mapping):
+        try:
+            return json.dumps(scene, allow_nan=False)
+        except (TypeError, ValueError) as error:
+            raise TypeError(f"{field}: not a JSON document ({error})") from None
+    if isinstance(scene, os.PathLike):
+        scene = os.fspath(scene)
+    if not isinstance(scene, str):
+        raise TypeError(f"{field}: must be a preset name, a path, JSON text or a dict (got {type(scene).__name__})")
+    stripped = scene.lstrip()
+    if stripped.startswith("{"):
+        return scene
+    for name, _, text in _core.presets():
+        if name == scene:
+            return text
+    if os.path.isfile(scene):
+        with open(scene, encoding="utf-8") as file:
+            return file.read()
+    raise ValueError(f"{field}: '{scene}' is neither a preset ({', '.join(presets())}) nor a scene file")
+
+
+def _with_overrides(text: str, overrides: Mapping[str, Any]) -> str:
+    """Applies `integrator=`, `dt=`, `tolerance=` (as the CLI's flags) and dotted paths."""
+    if not overrides:
+        return text
+    patch: dict[str, Any] = {}
+    for key, value in overrides.items():
+        path = {"integrator": "integrator.name", "dt": "integrator.dt", "tolerance": "integrator.tolerance"}.get(
+            key, key.replace("__", ".")
+        )
+        node = patch
+        parts = path.split(".")
+        for part in parts[:-1]:
+            node = node.setdefault(part, {})
+        node[parts[-1]] = value
+    return _core.merge_patch(text, json.dumps(patch))
+
+
+class Result(Mapping[str, np.ndarray]):
+    """One run's samples: a mapping of NumPy arrays, one per field, one row per sample.
+
+    Keys: the scalar fields (``t``, ``r``, ``phi``, …, ``actions.J_r``, ``frequencies.r``), ``X``
+    and ``M`` as (n, 3), ``L`` as (n, 2, 2), ``steps``, ``status`` (a string per sample) and
+    ``events`` (a structured array of ``t``, ``sample``, ``kind``). Undefined values are NaN.
+    """
+
+    def __init__(self, raw: dict[str, Any]):
+        values = raw["values"]
+        columns: dict[str, np.ndarray] = {}
+        for i, name in enumerate(_VALUE_NAMES):
+            group = name.split(".", 1)[0]
+            if group not in _GROUPS:
+                columns[name] = values[:, i]
+        for group, shape in _GROUPS.items():
+            index = [i for i, n in enumerate(_VALUE_NAMES) if n.split(".", 1)[0] == group]
+            columns[group] = values[:, index].reshape((values.shape[0],) + shape)
+        columns["steps"] = raw["steps"]
+        columns["status"] = np.array(raw["status"], dtype="U32")
+        events = np.empty(len(raw["event_t"]), dtype=_EVENT_DTYPE)
+        events["t"] = raw["event_t"]
+        events["sample"] = raw["event_row"]
+        events["kind"] = "det_L_zero"
+        columns["events"] = events
+        self._columns = columns
+        self._values = values
+        self._undefined_sets: list[dict[str, str]] = raw["undefined_sets"]
+        self._undefined_row: np.ndarray = raw["undefined_row"]
+        self.label: str = raw.get("label", "")
+        """A companion's label ("" for the main body)."""
+        self.integrator: str = raw["integrator"]
+        """The integrator that ran (``auto`` resolved)."""
+        self.status_detail: str = raw["status_detail"]
+        """The final status in one sentence."""
+        self.companions: list[Result] = [Result(c) for c in raw.get("companions", [])]
+        """One Result per companion body, in scene order."""
+        self.provenance: dict[str, Any] = json.loads(raw["provenance"]) if "provenance" in raw else {}
+        """Version, commit, scene hash, integrator and command (README, "Tables and provenance")."""
+        self.complete: bool = raw.get("budget_left", True)
+        """False when ``max_steps`` ran out before ``t_end``."""
+
+    def __getitem__(self, key: str) -> np.ndarray:
+        try:
+            return self._columns[key]
+        except KeyError:
+            raise KeyError(f"{key!r} is not a field (fields: {', '.join(self._columns)})") from None
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._columns)
+
+    def __len__(self) -> int:
+        return len(self._columns)
+
+    @property
+    def status(self) -> str:
+        """The run's final status: ``ok``, or why it stopped (README, "One sample")."""
+        return str(self._columns["status"][-1]) if len(self._columns["status"]) else "ok"
+
+    @property
+    def samples(self) -> int:
+        """The number of samples (rows)."""
+        return self._values.shape[0]
+
+    def undefined(self, i: int) -> dict[str, str]:
+        """The reasons of the values that are NaN in sample `i`: field -> reason."""
+        return dict(self._undefined_sets[int(self._undefined_row[i])])
+
+    @property
+    def reasons(self) -> dict[str, str]:
+        """Every undefined field met in the run with its (first) reason."""
+        out: dict[str, str] = {}
+        for reasons in self._undefined_sets:
+            for field, reason in reasons.items():
+                out.setdefault(field, reason)
+        return out
+
+    def table(self) -> np.ndarray:
+        """The numeric fields as one (n, len(field_names())) array, in field_names() order."""
+        return self._values
+
+    def __repr__(self) -> str:
+        return (
+            f"<spinfold.Result {self.samples} samples, t = {self['t'][0] if self.samples else 0:g}.."
+            f"{self['t'][-1] if self.samples else 0:g}, {self.integrator}, status {self.status}>"
+        )
+
+
+def simulate(scene: Any, t_end: float = 10.0, every: float = 0.5, *, max_steps: int | None = None,
+             **overrides: Any) -> Result:
+    """Runs a scene and samples it at t = 0, every, 2·every, … and t_end.
+
+    `scene`: a preset name, a path, JSON text or a dict. Keyword overrides: ``integrator``, ``dt``,
+    ``tolerance`` (as the CLI's flags) or any scene field with ``__`` for its dots
+    (``initial__spin=1.5``). The numbers are those of ``spinfold simulate`` to the bit.
+    `max_steps` bounds the step attempts (``result.complete`` is False when they ran out).
+    """
+    text = _with_overrides(_scene_text(scene), overrides)
+    return Result(_core.simulate(text, float(t_end), float(every), max_steps, "python: spinfold.simulate"))
+
+
+def run_many(scenes: Iterable[Any], t_end: float = 10.0, every: float = 0.5, *,
+             threads: int | None = None) -> list[Result]:
+    """Runs many scenes on C++ threads (`threads`; None: one per core) with the GIL released.
+
+    Each run is what ``simulate`` gives for that scene. A refused scene raises ValueError naming its
+    index before anything runs.
+    """
+    texts = [_scene_text(s, f"scenes[{i}]") for i, s in enumerate(scenes)]
+    if threads is not None and (not isinstance(threads, int) or threads < 1):
+        raise ValueError(f"threads: must be a whole number >= 1 or None (got {threads!r})")
+    raw = _core.run_many(texts, float(t_end), float(every), threads or 0, "python: spinfold.run_many")
+    return [Result(r) for r in raw]
+
+
+def sweep(base: Any, vary: Mapping[str, Sequence[Any]], t_end: float = 10.0, every: float = 0.5, *,
+          fields: Sequence[str] = ("t", "r", "phi", "energy_error"), zip: bool = False,
+          threads: int | None = None) -> dict[str, np.ndarray]:
+    """``spinfold sweep`` from Python: `base` with the fields of `vary` (a scene path such as
+    ``"initial.spin"`` -> its values) set to each combination (the Cartesian product, or paired with
+    `zip`), run on C++ threads. Returns columns: the varied fields, the final values of `fields`,
+    ``status`` and ``steps``, one row per run in order (the last field varies fastest).
+    """
+    unknown = [f for f in fields if f not in _VALUE_NAMES]
+    if unknown:
+        raise ValueError(f"fields: unknown {unknown} (see spinfold.field_names())")
+    if not vary:
+        raise ValueError("vary: give at least one field and its values")
+    paths = list(vary)
+    value_lists = [list(vary[p]) for p in paths]
+    if any(len(v) == 0 for v in value_lists):
+        raise ValueError("vary: every field needs at least one value")
+    if zip:
+        if len({len(v) for v in value_lists}) != 1:
+            raise ValueError("vary: with zip=True every field needs as many values")
+        combos = list(builtins.zip(*value_lists))
+    else:
+        combos = list(itertools.product(*value_lists))
+    text = _scene_text(base, "base")
+    scenes = [_with_overrides(text, {p.replace(".", "__"): v for p, v in builtins.zip(paths, c)}) for c in combos]
+    results = run_many(scenes, t_end, every, threads=threads)
+    out: dict[str, np.ndarray] = {}
+    for j, p in enumerate(paths):
+        out[p] = np.array([c[j] for c in combos])
+    index = {n: i for i, n in enumerate(_VALUE_NAMES)}
+    for f in fields:
+        out[f] = np.array([r.table()[-1, index[f]] for r in results])
+    out["status"] = np.array([r.status for r in results], dtype="U32")
+    out["steps"] = np.array([r["steps"][-1] for r in results], dtype=np.uint64)
+    return out
+
+
+class Simulation:
+    """A run steered step by step, as a server session: advance, read, patch, reset, trajectory."""
+
+    def __init__(self, scene: Any = None, **overrides: Any):
+        """`scene`: a preset name, a path, JSON text or a dict (None: the default preset)."""
+        text = _scene_text(_core.default_preset() if scene is None else scene)
+        self._run = _core.Simulation(_with_overrides(text, overrides))
+
+    @property
+    def t(self) -> float:
+        """The run's time."""
+        return self._run.t
+
+    def advance(self, until: float, *, max_steps: int | None = None) -> bool:
+        """Advances to `until` (False when `max_steps` attempts ran out first; call again to go on)."""
+        return self._run.advance(float(until), max_steps)
+
+    @property
+    def state(self) -> dict[str, Any]:
+        """The current sample as a dict (the JSON sample; null values are None)."""
+        return json.loads(self._run.state())
+
+    def sample(self) -> dict[str, Any]:
+        """The current sample with the det L = 0 events since the previous sample() call."""
+        return json.loads(self._run.sample())
+
+    @property
+    def scene(self) -> dict[str, Any]:
+        """The parameters in force now."""
+        return json.loads(self._run.scene())
+
+    def patch(self, changes: Mapping[str, Any]) -> tuple[str, str]:
+        """Applies a JSON merge patch of the scene: the run continues under the new parameters
+        (``("continued", reason)``) or, where the server's session would, starts over at t = 0
+        (``("restarted", reason)``). A refused patch raises ValueError and changes nothing."""
+        if not isinstance(changes, Mapping):
+            raise TypeError(f"changes: must be a mapping (got {type(changes).__name__})")
+        kind, reason = self._run.patch(json.dumps(changes, allow_nan=False))
+        return kind, reason
+
+    def reset(self) -> None:
+        """Back to t = 0 with the parameters in force."""
+        self._run.reset()
+
+    def trajectory(self, every: float = 0.5) -> Result:
+        """The samples at 0, every, … up to now, replayed from the changes: the same however the
+        run was advanced."""
+        return Result(self._run.trajectory(float(every)))
+
+    def __repr__(self) -> str:
+        return f"<spinfold.Simulation t = {self.t:g}>"
+
+
+class Frame:
+    """A rendered picture: ``pixels`` is an (H, W, 4) uint8 RGBA array, rows top-down."""
+
+    def __init__(self, pixels: np.ndarray, texts: Sequence[tuple[str, str]] = (), status: str = "ok"):
+        self.pixels = pixels
+        self.texts = list(texts)
+        """The PNG text chunks written by save() and _repr_png_ (the provenance)."""
+        self.status = status
+        """The run's status at the frame's time."""
+
+    @property
+    def width(self) -> int:
+        return int(self.pixels.shape[1])
+
+    @property
+    def height(self) -> int:
+        return int(self.pixels.shape[0])
+
+    def png(self) -> bytes:
+        """The frame as PNG bytes (the encoder of ``spinfold render``, with the provenance)."""
+        rgba = np.ascontiguousarray(self.pixels, dtype=np.uint8)
+        return _core.encode_png(rgba.tobytes(), self.width, self.height, self.texts)
+
+    def save(self, path: str | os.PathLike) -> None:
+        """Writes the frame as a PNG file."""
+        with open(path, "wb") as file:
+            file.write(self.png())
+
+    def _repr_png_(self) -> bytes:
+        return self.png()
+
+    @classmethod
+    def from_png(cls, data: bytes) -> "Frame":
+        """A frame from PNG bytes of 8-bit RGB or RGBA (what the server and ``spinfold render``
+        write), with its text chunks."""
+        return _decode_png(data)
+
+    def __repr__(self) -> str:
+        return f"<spinfold.Frame {self.width}x{self.height}>"
+
+
+def _decode_png(data: bytes) -> Frame:
+    import struct
+    import zlib
+
+    if not isinstance(data, (bytes, bytearray)) or data[:8] != b"\x89PNG\r\n\x1a\n":
+        raise ValueError("png: not PNG data")
+    pos, idat, texts = 8, b"", []
+    width = height = channels = 0
+    while pos + 8 <= len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        pos += 12 + length
+        if kind == b"IHDR":
+            width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+            if depth != 8 or colour not in (2, 6) or body[12] != 0:
+                raise ValueError("png: only 8-bit RGB or RGBA without interlacing")
+            channels = 3 if colour == 2 else 4
+        elif kind == b"IDAT":
+            idat += body
+        elif kind == b"tEXt":
+            key, _, text = body.partition(b"\0")
+            texts.append((key.decode("latin-1"), text.decode("latin-1")))
+        elif kind == b"IEND":
+            break
+    raw = np.frombuffer(zlib.decompress(idat), dtype=np.uint8).reshape(height, 1 + width * channels)
+    rows = raw[:, 1:].astype(np.int32)
+    bpp = channels
+    for y in range(height):  # undo the row filters (PNG spec §9); spinfold's own PNGs use none
+        f = raw[y, 0]
+        if f == 0:
+            continue
+        line, prior = rows[y], rows[y - 1] if y else np.zeros_like(rows[y])
+        for x in range(line.size):
+            a = line[x - bpp] if x >= bpp else 0
+            b = prior[x]
+            c = prior[x - bpp] if x >= bpp else 0
+            if f == 1:
+                line[x] = (line[x] + a) & 255
+            elif f == 2:
+                line[x] = (line[x] + b) & 255
+            elif f == 3:
+                line[x] = (line[x] + (a + b) // 2) & 255
+            else:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+    pixels = rows.astype(np.uint8).reshape(height, width, channels)
+    if channels == 3:
+        pixels = np.concatenate([pixels, np.full((height, width, 1), 255, np.uint8)], axis=2)
+    return Frame(pixels, texts)
+
+
+def render(scene: Any, t: float = 0.0, *, view: str | None = None, width: int = 640, height: int = 480,
+           layers: str | Sequence[str] = "surface,grid,body,frame,trail,hud",
+           camera: tuple[float, float, float] | None = None, scale: float = 0.25,
+           trail: float | None = None) -> Frame:
+    """The picture ``spinfold render`` draws of the scene at time `t` (the same pixels).
+
+    `view`: sphere, hyperboloid, disk, plane, klein, halfplane, tractricoid, conformal, …
+    (None: the surface's own); `layers`: a comma-separated string or a list; `camera`:
+    (yaw, pitch, distance) for the 3-D views (None: aimed at the body).
+    """
+    if not isinstance(layers, str):
+        layers = ",".join(layers)
+    for name, value in (("width", width), ("height", height)):
+        if not isinstance(value, (int, np.integer)):
+            raise TypeError(f"{name}: must be a whole number of pixels (got {value!r})")
+    raw = _core.render(_scene_text(scene), float(t), view or "", int(width), int(height), layers,
+                       None if camera is None else tuple(float(c) for c in camera), float(scale),
+                       None if trail is None else float(trail), "python: spinfold.render")
+    pixels = np.frombuffer(raw["rgba"], dtype=np.uint8).reshape(raw["height"], raw["width"], 4).copy()
+    return Frame(pixels, [tuple(t) for t in raw["texts"]], raw["status"])
