@@ -95,7 +95,6 @@ WorkPrecisionJob work_precision_job(ServerContext& server, const Call& call) {
       const std::lock_guard lock(session->mutex);
       scene = session->run.scene;
       job.source = "session";
-      job.source_name = id.get<std::string>();
     }
   }
 

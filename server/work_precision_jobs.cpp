@@ -35,6 +35,13 @@ std::string read_file(const fs::path& path) {
   return text.str();
 }
 
+// "preset NAME", "the scene given", "the scene of a session": never the session's id, which is a
+// capability (the plot and the CSV are made to be shared).
+std::string describe_source(const WorkPrecisionJob& job) {
+  if (job.source == "preset") return "preset " + job.source_name;
+  return job.source == "session" ? "the scene of a session" : "the scene given";
+}
+
 // The plot as gnuplot draws it for the CLI, in a directory of its own that is removed at once: the
 // result keeps the SVG and PNG in memory.
 void draw_plot(const WorkPrecisionJob& job, WorkPrecisionResult& result) {
@@ -44,9 +51,11 @@ void draw_plot(const WorkPrecisionJob& job, WorkPrecisionResult& result) {
     return;
   }
   const fs::path dir = pattern;
-  const std::string title =
-      "work-precision: " + (job.source_name.empty() ? job.source : job.source + " " + job.source_name);
-  result.plot_trouble = wp::write_plot(dir, "work_precision", title, result.curves, job.t_end);
+  // Shown scaled into the UI's side column (about 500 pixels wide, a phone's 370): larger letters,
+  // the legend below.
+  const wp::PlotLayout layout{.width = 600, .height = 560, .font_points = 13, .key_below = true};
+  result.plot_trouble = wp::write_plot(dir, "work_precision", "work-precision: " + describe_source(job),
+                                       result.curves, job.t_end, layout);
   if (result.plot_trouble.empty()) {
     result.svg = read_file(dir / "work_precision.svg");
     result.png = read_file(dir / "work_precision.png");
@@ -210,14 +219,14 @@ void WorkPrecisionJobs::run(Entry& entry) {
           wp::recommendation(result->curves, job.target_error, job.t_end, wp::auto_picks(job.scene));
       result->recommended = wp::recommended_setting(result->curves, job.target_error);
       result->skipped = wp::skipped_integrators(job.scene, options);
-      const std::string source = job.source + (job.source_name.empty() ? "" : " " + job.source_name);
-      result->csv = wp::csv("# spinfold work-precision " + version_line() +
-                                "\n# command: POST /api/v1/work-precision\n# provenance: " +
-                                provenance_json(job.scene, "POST /api/v1/work-precision").dump() +
-                                "\n# scene: " + source + "; T = " + shortest(job.t_end) + "; target error " +
-                                shortest(job.target_error) + "\n# reference: " + reference.kind + ": " +
-                                reference.description + "\n# " + wp::kErrorMeaning + "\n",
-                            result->curves);
+      result->csv =
+          wp::csv("# spinfold work-precision " + version_line() +
+                      "\n# command: POST /api/v1/work-precision\n# provenance: " +
+                      provenance_json(job.scene, "POST /api/v1/work-precision").dump() +
+                      "\n# scene: " + describe_source(job) + "; T = " + shortest(job.t_end) +
+                      "; target error " + shortest(job.target_error) + "\n# reference: " + reference.kind +
+                      ": " + reference.description + "\n# " + wp::kErrorMeaning + "\n",
+                  result->curves);
       draw_plot(job, *result);
     }
   } catch (const std::exception& e) {  // out of memory, or the engine refusing the scene

@@ -33,7 +33,7 @@ struct WorkPrecisionJob {
   std::string client{};                    // the address that asked (its quota)
   Scene scene{};                           // the main body is measured; companions are separate runs
   std::string source{};                    // "scene", "preset" or "session"
-  std::string source_name{};               // the preset's name or the session's id ("" for a scene given)
+  std::string source_name{};               // the preset's name ("" otherwise: a session's id is never shown)
   std::vector<std::string> integrators{};  // catalog names and/or auto; empty: all and auto
   double t_end = 1.0;
   double target_error = 1e-10;

@@ -398,7 +398,7 @@ std::string points_table(const Curves& curves) {
 }
 
 std::string write_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,
-                       const Curves& curves, double t_end) {
+                       const Curves& curves, double t_end, const PlotLayout& layout) {
   const std::string gp_name = stem + ".gp";
   const auto quote_safe = [](std::string text) {  // gnuplot's single-quoted strings have no escape
     std::ranges::replace(text, '\'', '"');
@@ -423,16 +423,21 @@ std::string write_plot(const std::filesystem::path& dir, const std::string& stem
             (ours ? "" : " dashtype 2") + " title '" + quote_safe(method) + "'";
   }
   if (plot.empty()) return "no run finished: nothing to plot";
+  const std::string size = std::to_string(layout.width) + "," + std::to_string(layout.height);
+  const std::string font =
+      layout.font_points > 0 ? std::string(" font ',") + std::to_string(layout.font_points) + "'" : "";
   gp << "set logscale xy\nset format x '1e%L'\nset format y '1e%L'\nset grid\n"
      << "set xlabel 'state error at T = " << sci(t_end, 4) << "'\n"
      << "set ylabel 'wall time per unit simulated time [s]'\n"
-     << "set title '" << quote_safe(title) << "'\nset key outside right\n"
-     << "set terminal svg size 1100,800 dynamic noenhanced\nset output '" << stem << ".svg'\n"
+     << "set title '" << quote_safe(title) << "'\nset key "
+     << (layout.key_below ? "outside below" : "outside right") << "\n"
+     << "set terminal svg size " << size << " dynamic noenhanced" << font << "\nset output '" << stem
+     << ".svg'\n"
      << plot
      << "\n"
      // pngcairo where this gnuplot has it (antialiased), the libgd png terminal otherwise
-     << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1100,800 noenhanced } "
-        "else { set terminal png size 1100,800 noenhanced }\n"
+     << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size " << size << " noenhanced"
+     << font << " } else { set terminal png size " << size << " noenhanced" << font << " }\n"
      << "set output '" << stem << ".png'\nreplot\nset output\n";
   gp.close();
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) return "gnuplot is not installed";

@@ -119,10 +119,18 @@ std::string csv(const std::string& comments, const Curves& curves);
 // The markdown table of the curves' points (method, setting, cost, errors, steps).
 std::string points_table(const Curves& curves);
 
+// The picture's size and lettering: the default is a page of its own (the CLI's files); a plot
+// shown scaled down in a narrow column (the browser UI's) wants fewer pixels and larger letters.
+struct PlotLayout {
+  int width = 1100, height = 800;  // [pixels]
+  int font_points = 0;             // 0: gnuplot's default
+  bool key_below = false;          // the legend under the plot rather than to its right
+};
+
 // Writes `<stem>.gp` in `dir` (the data inline, so that `gnuplot <stem>.gp` in dir re-plots) drawing
 // <stem>.png and <stem>.svg, and runs gnuplot there. Methods outside the catalog are dashed.
 // Returns "" or why no image was drawn (gnuplot missing or failing).
 std::string write_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,
-                       const Curves& curves, double t_end);
+                       const Curves& curves, double t_end, const PlotLayout& layout = {});
 
 }  // namespace spinfold::work_precision

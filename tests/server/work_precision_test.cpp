@@ -162,8 +162,10 @@ TEST_F(WorkPrecision, ASessionsCurrentSceneAndAPresetAreMeasured) {
   const json job = follow(json::parse(res->body)["url"]).back();
   ASSERT_EQ(job["status"], "done") << job;
   EXPECT_EQ(job["source"], "session");
-  EXPECT_EQ(job["source_name"], session);
+  EXPECT_EQ(job["source_name"], "");  // a session's id is a capability: never in a job, its CSV or plot
   const std::string csv = c.Get(job["result"]["data_csv"].get<std::string>())->body;
+  EXPECT_EQ(csv.find(session), std::string::npos);
+  EXPECT_EQ(c.Get(job["result"]["plot_svg"].get<std::string>())->body.find(session), std::string::npos);
   EXPECT_NE(csv.find("\"rk4\""), std::string::npos) << "the provenance names the session's integrator now";
 
   res = post({{"preset", "spinning_rigid_sphere"}, {"integrators", {"exact", "rk4"}}, {"t_end", 0.5}});
