@@ -80,16 +80,6 @@ std::pair<Scene, std::string> load_scene(const WorkPrecisionOptions& opt) {
   return {*parsed.scene, label};
 }
 
-void write_csv(const fs::path& file, const std::string& header, const wp::Curves& curves) {
-  std::ofstream csv(file);
-  csv << header << "method,parameter,value,seconds_per_unit_time,state_error,energy_error,steps\n";
-  for (const auto& [method, curve] : curves)
-    for (const wp::Point& p : curve)
-      csv << method << "," << p.parameter << "," << wp::format_number(p.value) << ","
-          << wp::format_number(p.seconds_per_unit_time) << "," << wp::format_number(p.state_error) << ","
-          << wp::format_number(p.energy_error) << "," << p.steps << "\n";
-}
-
 int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
   // Everything is checked before anything is written.
   if (opt.out.empty()) throw BadInput{"--out: the folder to write is required"};
@@ -104,7 +94,7 @@ int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
   sweep.integrators = parse_integrators(opt.integrators);
   sweep.max_seconds_per_run = opt.max_seconds_per_run;
   const double period = wp::characteristic_period(scene);
-  sweep.t_end = opt.t_end ? *opt.t_end : kDefaultPeriods * (std::isfinite(period) ? period : 1.0);
+  sweep.t_end = opt.t_end ? *opt.t_end : wp::default_t_end(scene);
   if (const fs::path out(opt.out); fs::exists(out) && !fs::is_directory(out))
     throw BadInput{"--out: '" + opt.out + "' exists and is not a folder"};
   std::error_code error;
@@ -120,25 +110,22 @@ int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
               << ", " << wp::format_cost(p.seconds_per_unit_time) << " µs per unit time\n";
   });
 
-  Scene auto_scene = scene;
-  auto_scene.integrator.name = kAutoIntegrator;
-  const std::string auto_picks = "picks " + std::string(resolve_integrator(auto_scene));
-  const std::string line = wp::recommendation(curves, opt.target_error, t_end, auto_picks);
+  const std::string line = wp::recommendation(curves, opt.target_error, t_end, wp::auto_picks(scene));
   std::ostringstream t_text, period_text;
   t_text << t_end;
   period_text << period;
   const std::string horizon =
       "T = " + t_text.str() +
       (opt.t_end               ? " (--t-end)"
-       : std::isfinite(period) ? " (" + std::to_string(static_cast<int>(kDefaultPeriods)) +
+       : std::isfinite(period) ? " (" + std::to_string(static_cast<int>(wp::kDefaultPeriods)) +
                                      " characteristic periods of " + period_text.str() + ")"
-                               : " (" + std::to_string(static_cast<int>(kDefaultPeriods)) +
+                               : " (" + std::to_string(static_cast<int>(wp::kDefaultPeriods)) +
                                      " time units: the motion has no characteristic period)");
   const std::string header =
       "# spinfold work-precision " + version_line() + "\n# command: " + spinfold::command_line(argc, argv) +
       "\n# provenance: " + provenance_json(scene, "").dump() + "\n# scene: " + label + "; " + horizon +
       "\n# reference: " + reference.kind + ": " + reference.description + "\n# " + wp::kErrorMeaning + "\n";
-  write_csv(fs::path(opt.out) / "work_precision.csv", header, curves);
+  std::ofstream(fs::path(opt.out) / "work_precision.csv") << wp::csv(header, curves);
   const std::string plot =
       wp::write_plot(opt.out, "work_precision", "work-precision: " + label, curves, t_end);
 

@@ -14,15 +14,11 @@ struct WorkPrecisionOptions {
   std::string scene_file;
   std::string preset;
   std::string integrators;      // comma-separated catalog names and/or auto; "": all
-  std::optional<double> t_end;  // [time]; default kDefaultPeriods characteristic periods
+  std::optional<double> t_end;  // [time]; default work_precision::default_t_end
   double target_error = 1e-10;  // the error the recommendation is made for
   double max_seconds_per_run = 1.0;
   std::string out;
 };
-
-// T when --t-end is not given: this many characteristic periods (or this many time units where the
-// motion has no period).
-inline constexpr double kDefaultPeriods = 20.0;
 
 // Registers the subcommand; `opt` must outlive the parse.
 CLI::App* add_work_precision_command(CLI::App& app, WorkPrecisionOptions& opt);

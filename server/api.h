@@ -55,6 +55,16 @@ struct Limits {
   std::chrono::seconds recording_max_age{3600};    // a finished recording is deleted after this
   int recording_threads = 1;                       // recordings encoded at once (the rest wait, queued)
 
+  // Work-precision jobs (POST /api/v1/work-precision; server/work_precision_jobs.h), measured one at
+  // a time on one background thread. A refused horizon is 422 naming t_end; a refused job is 429.
+  double max_work_precision_periods = 20.0;     // T in characteristic periods of the scene
+  double max_work_precision_t_end = 1000.0;     // T [time], also for scenes whose motion has no period
+  double work_precision_seconds_per_run = 0.5;  // a method stops refining once one run takes longer [s]
+  long long work_precision_steps_per_run = 2'000'000;  // step attempts of one run (past them: not reached)
+  int max_work_precision_jobs_per_client = 1;          // queued or running jobs of one address
+  int max_work_precision_jobs = 16;                    // jobs kept (any status), all clients
+  std::chrono::seconds work_precision_max_age{3600};   // a finished job's result is dropped after this
+
   // Slow and idle connections (each holds a worker thread while open; ServerOptions::threads).
   std::chrono::seconds read_timeout{3};        // the longest wait for the next bytes of a request
   std::chrono::seconds keep_alive_timeout{3};  // an idle keep-alive connection is closed after this

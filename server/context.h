@@ -18,6 +18,7 @@
 #include "server/render_pool.h"
 #include "server/session_db.h"
 #include "server/sessions.h"
+#include "server/work_precision_jobs.h"
 
 namespace httplib {
 struct Response;
@@ -39,6 +40,7 @@ struct ServerContext {
   RenderPool renderer{options.render_threads};
   FrameCache frames{128};
   Recordings recordings{options.limits, renderer};  // after the pool: its jobs render there
+  WorkPrecisionJobs work_precision{options.limits};
   ChangeSignal changes;              // bumped after every change of a session (live streams wait on it)
   std::atomic<int> open_streams{0};  // event and live streams now open
   std::mutex viewers_mutex;          // guards viewers
@@ -53,6 +55,10 @@ struct ServerContext {
     sessions.restore();
   }
 };
+
+// A scene, or {"preset": name}; `field` names it in errors ("" at the top, "scene" in a link):
+// ApiError 422 naming each refused field.
+Scene scene_of(const nlohmann::json& body, const std::string& field);
 
 // The session with this id, or ApiError 404 (the same answer on every route).
 std::shared_ptr<Session> find_session(ServerContext& server, const std::string& id);

@@ -225,8 +225,9 @@ bool Call::has_body() const {
 
 std::vector<Route> route_table(const Limits& limits) {
   std::vector<Route> routes;
-  for (auto part : {catalog_routes(limits), session_routes(limits), frame_routes(limits),
-                    event_routes(limits), live_routes(limits), recording_routes(limits)})
+  for (auto part :
+       {catalog_routes(limits), session_routes(limits), frame_routes(limits), event_routes(limits),
+        live_routes(limits), recording_routes(limits), work_precision_routes(limits)})
     for (Route& r : part) routes.push_back(std::move(r));
   return routes;
 }
@@ -369,6 +370,17 @@ void register_routes(httplib::Server& http, ServerContext& server, const std::ve
 
 // ---- The OpenAPI document.
 
+namespace {
+
+// What the {id} of a path names.
+std::string id_names(const std::string& path) {
+  if (path.starts_with("/api/v1/recordings/")) return "recording";
+  if (path.starts_with("/api/v1/work-precision/")) return "work-precision job";
+  return "session";
+}
+
+}  // namespace
+
 ordered_json openapi_document(const std::vector<Route>& routes) {
   const ordered_json problem_ref{{"$ref", "#/components/schemas/Problem"}};
   const ordered_json retry_after{{"description", "seconds to wait before trying again"},
@@ -383,17 +395,17 @@ ordered_json openapi_document(const std::vector<Route>& routes) {
       responses.emplace_back(status, description);
     };
     if (route.body) {
-      add(400, "a body that is not exactly one JSON value (malformed, a NUL byte, trailing text), an empty body, "
-               "or framing RFC 9112 refuses");
+      add(400,
+          "a body that is not exactly one JSON value (malformed, a NUL byte, trailing text), an empty body, "
+          "or framing RFC 9112 refuses");
       add(413, "body over the size limit");
       add(415, "Content-Type not " + joined(route.body->content_types, " or "));
     }
-    if (has_id)
-      add(404, std::string(route.path.starts_with("/api/v1/recordings/") ? "unknown recording" : "unknown session") +
-                   ", or an encoded slash (%2F) in the path");
+    if (has_id) add(404, "unknown " + id_names(route.path) + ", or an encoded slash (%2F) in the path");
     // Every route: the framing check runs before routing (server/framing.h).
-    add(400, "framing RFC 9112 refuses (two lengths, a signed length, Transfer-Encoding with Content-Length, "
-             "obs-fold, a broken chunk)");
+    add(400,
+        "framing RFC 9112 refuses (two lengths, a signed length, Transfer-Encoding with Content-Length, "
+        "obs-fold, a broken chunk)");
     add(501, "a Transfer-Encoding other than chunked");
     add(422, "an invalid value or an unknown query parameter (problem+json names them)");
     add(429, "over this client's request rate (limits.requests_per_second_per_client); Retry-After");
@@ -413,8 +425,7 @@ ordered_json openapi_document(const std::vector<Route>& routes) {
           {{"name", "id"},
            {"in", "path"},
            {"required", true},
-           {"description",
-            route.path.starts_with("/api/v1/recordings/") ? "the recording's id" : "the session's id"},
+           {"description", "the " + id_names(route.path) + "'s id"},
            {"schema", {{"type", "string"}, {"pattern", std::string("^") + kIdPattern + "$"}}}});
     for (const QueryParam& p : route.query)
       parameters.push_back({{"name", p.name},

@@ -108,13 +108,14 @@ struct Route {
 std::vector<Route> route_table(const Limits& limits);
 
 // Each resource's rows (routes_catalog.cpp, routes_sessions.cpp, routes_frames.cpp, routes_events.cpp,
-// routes_live.cpp, routes_recordings.cpp).
+// routes_live.cpp, routes_recordings.cpp, routes_work_precision.cpp).
 std::vector<Route> catalog_routes(const Limits& limits);
 std::vector<Route> session_routes(const Limits& limits);
 std::vector<Route> frame_routes(const Limits& limits);
 std::vector<Route> event_routes(const Limits& limits);
 std::vector<Route> live_routes(const Limits& limits);
 std::vector<Route> recording_routes(const Limits& limits);
+std::vector<Route> work_precision_routes(const Limits& limits);
 
 // The router regex of an OpenAPI path: "{id}" → a session id group, the rest literal.
 std::string path_regex(const std::string& path);

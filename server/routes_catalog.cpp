@@ -145,6 +145,8 @@ std::vector<Route> catalog_routes(const Limits&) {
         std::pair{"/live.js", "The browser UI's live view (parses the live stream)"},
         std::pair{"/record.js", "The browser UI's Record panel"},
         std::pair{"/record.css", "The Record panel's style sheet"},
+        std::pair{"/workprecision.js", "The browser UI's \"Which integrator for this scene?\" panel"},
+        std::pair{"/workprecision.css", "That panel's style sheet"},
         std::pair{"/style.css", "The browser UI's style sheet"},
         std::pair{"/vendor/uPlot.esm.js", "uPlot, the UI's plotting library"},
         std::pair{"/vendor/uPlot.min.css", "uPlot's style sheet"}})

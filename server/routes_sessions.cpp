@@ -20,13 +20,8 @@
 
 namespace spinfold::server {
 
-namespace {
-
 using nlohmann::json;
 using nlohmann::ordered_json;
-
-const std::string kSessions = "/api/v1/sessions";
-constexpr double kMaxTrajectoryRows = 100000;
 
 // A scene, or {"preset": name}; `field` names it in errors ("" at the top, "scene" in a link).
 Scene scene_of(const json& body, const std::string& field) {
@@ -46,6 +41,11 @@ Scene scene_of(const json& body, const std::string& field) {
   if (!parsed.scene) throw ApiError{422, "Invalid scene", parsed.errors, ""};
   return *parsed.scene;
 }
+
+namespace {
+
+const std::string kSessions = "/api/v1/sessions";
+constexpr double kMaxTrajectoryRows = 100000;
 
 // A share link's body: {"scene", "timeline", "until"} (a scene itself never has a "scene" key).
 bool is_share_link(const json& body) {

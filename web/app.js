@@ -3,6 +3,7 @@
 import uPlot from "/vendor/uPlot.esm.js";
 import { LiveView } from "/live.js";
 import { setupRecording } from "/record.js";
+import { setupWorkPrecision } from "/workprecision.js";
 
 const api = "/api/v1";
 const embed = new URLSearchParams(location.search).get("embed") === "1";
@@ -1309,6 +1310,8 @@ async function main() {
   wire();
   // Recording (web/record.js): the Record panel, given the session, its time and the view.
   setupRecording($("record-panel"), { session: () => ui.id, time: () => ui.t, view: viewParams });
+  // "Which integrator for this scene?" (web/workprecision.js): its "Use …" is a change like any other.
+  setupWorkPrecision($("wp-panel"), { session: () => ui.id, apply: (patch) => applyChange(patch, true) });
   makePlots();
   fitFrameToWindow();
   measureFrame();

@@ -98,6 +98,11 @@ double characteristic_period(const Scene& scene) {
   return std::isfinite(period) && period > 0.0 ? period : kNotReached;
 }
 
+double default_t_end(const Scene& scene) {
+  const double period = characteristic_period(scene);
+  return kDefaultPeriods * (std::isfinite(period) ? period : 1.0);
+}
+
 Reference make_reference(const Scene& scene_in, double t_end) {
   const Scene scene = main_body_only(scene_in);
   const bool closed_form = !exact_unsupported_reason(scene);
@@ -218,27 +223,42 @@ Curves sweep(const Scene& scene_in, const Reference& reference, const SweepOptio
   const auto too_slow = [&](const Point& p) {
     return p.seconds_per_unit_time * t_end > options.max_seconds_per_run;
   };
-  for (const CatalogEntry& entry : integrator_catalog()) {
-    const std::string name(entry.info.name);
-    if (!wanted(name)) continue;
-    if (entry.info.exact) {
-      if (closed_form) record(measure(reference, t_end, name, "-", 0.0, engine(name, 0.01, 1e-10)));
-    } else if (entry.info.adaptive) {
-      for (double tol = 1e-3; tol >= 0.9e-15; tol /= 10)
+  // The methods to sweep, in order: the catalog's wanted entries (exact only with a closed form), then auto.
+  std::vector<const CatalogEntry*> methods;
+  for (const CatalogEntry& entry : integrator_catalog())
+    if (wanted(entry.info.name) && (!entry.info.exact || closed_form)) methods.push_back(&entry);
+  const bool with_auto = wanted(kAutoIntegrator);
+  const std::size_t total = methods.size() + (with_auto ? 1 : 0);
+  std::size_t done = 0;
+  const auto proceed = [&] { return !options.proceed || options.proceed(done, total); };
+  for (const CatalogEntry* entry : methods) {
+    const std::string name(entry->info.name);
+    if (entry->info.exact) {
+      if (!proceed()) return curves;
+      record(measure(reference, t_end, name, "-", 0.0, engine(name, 0.01, 1e-10)));
+    } else if (entry->info.adaptive) {
+      for (double tol = 1e-3; tol >= 0.9e-15; tol /= 10) {
+        if (!proceed()) return curves;
         if (too_slow(record(measure(reference, t_end, name, "tol", tol, engine(name, 0.01, tol))))) break;
+      }
     } else {
       for (int k = 3; k <= 16; ++k) {
+        if (!proceed()) return curves;
         const double dt = base_step / (1 << k);
         const Point p = record(measure(reference, t_end, name, "dt", dt, engine(name, dt, 1e-10)));
         if (p.state_error < 1e-13 || too_slow(p)) break;
       }
     }
+    ++done;
   }
-  if (wanted(kAutoIntegrator)) {
+  if (with_auto) {
+    if (!proceed()) return curves;
     const std::string name(kAutoIntegrator);
     record(measure(reference, t_end, name, "tol", scene.integrator.tolerance,
                    engine(name, scene.integrator.dt, scene.integrator.tolerance)));
+    ++done;
   }
+  if (options.proceed) options.proceed(done, total);  // the last progress: every method done
   return curves;
 }
 
@@ -289,6 +309,22 @@ std::string ratio(double a, double b) {
 
 }  // namespace
 
+std::optional<Point> recommended_setting(const Curves& curves, double target) {
+  std::optional<Point> best;
+  for (const auto& [method, curve] : curves)
+    if (method != "exact" && method != kAutoIntegrator)
+      for (const Point& p : curve)
+        if (p.state_error <= target && (!best || p.seconds_per_unit_time < best->seconds_per_unit_time))
+          best = p;
+  return best;
+}
+
+std::string auto_picks(const Scene& scene) {
+  Scene auto_scene = scene;
+  auto_scene.integrator.name = kAutoIntegrator;
+  return "picks " + std::string(resolve_integrator(auto_scene));
+}
+
 std::string recommendation(const Curves& curves, double target, double t_end, const std::string& auto_picks) {
   // The cheapest measured setting of each method that reaches the target (a setting one can use).
   std::map<std::string, const Point*> cheapest;
@@ -311,11 +347,8 @@ std::string recommendation(const Curves& curves, double target, double t_end, co
               " µs per unit time)";
     return line + ".";
   }
-  const Point* best_stepping = nullptr;
-  for (const auto& [method, p] : cheapest)
-    if (method != "exact" && method != kAutoIntegrator &&
-        (!best_stepping || p->seconds_per_unit_time < best_stepping->seconds_per_unit_time))
-      best_stepping = p;
+  const std::optional<Point> best_setting = recommended_setting(curves, target);
+  const Point* best_stepping = best_setting ? &*best_setting : nullptr;
   std::string line = "For this scene " + where + ": ";
   if (best_stepping) {
     line += setting(*best_stepping) + ", " + format_cost(best_stepping->seconds_per_unit_time) +
@@ -340,6 +373,17 @@ std::string recommendation(const Curves& curves, double target, double t_end, co
   return line + ".";
 }
 
+std::string csv(const std::string& comments, const Curves& curves) {
+  std::ostringstream out;
+  out << comments << kCsvColumns << "\n";
+  for (const auto& [method, curve] : curves)
+    for (const Point& p : curve)
+      out << method << "," << p.parameter << "," << format_number(p.value) << ","
+          << format_number(p.seconds_per_unit_time) << "," << format_number(p.state_error) << ","
+          << format_number(p.energy_error) << "," << p.steps << "\n";
+  return out.str();
+}
+
 std::string points_table(const Curves& curves) {
   std::ostringstream md;
   md << "| method | parameter | value | µs per unit time | state error | energy error | steps |\n"
@@ -354,7 +398,7 @@ std::string points_table(const Curves& curves) {
 }
 
 std::string write_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,
-                       const Curves& curves, double t_end) {
+                       const Curves& curves, double t_end, const PlotLayout& layout) {
   const std::string gp_name = stem + ".gp";
   const auto quote_safe = [](std::string text) {  // gnuplot's single-quoted strings have no escape
     std::ranges::replace(text, '\'', '"');
@@ -379,16 +423,21 @@ std::string write_plot(const std::filesystem::path& dir, const std::string& stem
             (ours ? "" : " dashtype 2") + " title '" + quote_safe(method) + "'";
   }
   if (plot.empty()) return "no run finished: nothing to plot";
+  const std::string size = std::to_string(layout.width) + "," + std::to_string(layout.height);
+  const std::string font =
+      layout.font_points > 0 ? std::string(" font ',") + std::to_string(layout.font_points) + "'" : "";
   gp << "set logscale xy\nset format x '1e%L'\nset format y '1e%L'\nset grid\n"
      << "set xlabel 'state error at T = " << sci(t_end, 4) << "'\n"
      << "set ylabel 'wall time per unit simulated time [s]'\n"
-     << "set title '" << quote_safe(title) << "'\nset key outside right\n"
-     << "set terminal svg size 1100,800 dynamic noenhanced\nset output '" << stem << ".svg'\n"
+     << "set title '" << quote_safe(title) << "'\nset key "
+     << (layout.key_below ? "outside below" : "outside right") << "\n"
+     << "set terminal svg size " << size << " dynamic noenhanced" << font << "\nset output '" << stem
+     << ".svg'\n"
      << plot
      << "\n"
      // pngcairo where this gnuplot has it (antialiased), the libgd png terminal otherwise
-     << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1100,800 noenhanced } "
-        "else { set terminal png size 1100,800 noenhanced }\n"
+     << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size " << size << " noenhanced"
+     << font << " } else { set terminal png size " << size << " noenhanced" << font << " }\n"
      << "set output '" << stem << ".png'\nreplot\nset output\n";
   gp.close();
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) return "gnuplot is not installed";

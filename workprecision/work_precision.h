@@ -11,6 +11,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -58,12 +59,20 @@ Reference make_reference(const Scene& scene, double t_end);
 // has none (a body at rest, a free body on the plane).
 double characteristic_period(const Scene& scene);
 
+// The horizon when none is given: this many characteristic periods (time units where the motion
+// has none), long enough for the errors to build up but short enough to sweep in seconds.
+inline constexpr double kDefaultPeriods = 20.0;
+double default_t_end(const Scene& scene);
+
 struct SweepOptions {
   double t_end = 1.0;
   std::vector<std::string> integrators;  // catalog names and/or "auto"; empty: every catalog entry
   bool include_auto = true;              // with an empty list: also `auto` at the scene's tolerance
   double max_seconds_per_run = 1.0;      // stop refining a method once one run takes longer
   std::uint64_t max_attempts_per_run = 20'000'000;  // a run past this is "not reached"
+  // Asked before each run with the methods finished so far and the methods to sweep (progress);
+  // false stops the sweep there, and it returns the curves measured until then (a cancel).
+  std::function<bool(std::size_t methods_done, std::size_t methods)> proceed{};
 };
 
 // Times `run` (repeated, best of up to 5 within 0.2 s) and measures its final state.
@@ -89,18 +98,39 @@ std::string format_cost(double seconds_per_unit_time);
 // A number as written in the CSV and summaries (6 significant digits).
 std::string format_number(double value);
 
+// The cheapest measured setting of a stepping integrator (neither exact nor auto) whose error at T
+// is within the target: the one `recommendation` names first. nullopt when none reached it.
+std::optional<Point> recommended_setting(const Curves& curves, double target_error);
+
+// "picks <integrator>": what `auto` resolves to on the scene, for `recommendation`.
+std::string auto_picks(const Scene& scene);
+
 // One line: the cheapest setting that reaches the target error (and how much cheaper `exact` or
 // `auto` is where they reach it too), or that none reached it and which came closest.
 std::string recommendation(const Curves& curves, double target_error, double t_end,
                            const std::string& auto_picks);
 
+// The CSV of the curves: `comments` ("# ..." lines, each ending in a newline) then kCsvColumns and
+// one row per point (numbers as format_number writes them).
+inline constexpr const char* kCsvColumns =
+    "method,parameter,value,seconds_per_unit_time,state_error,energy_error,steps";
+std::string csv(const std::string& comments, const Curves& curves);
+
 // The markdown table of the curves' points (method, setting, cost, errors, steps).
 std::string points_table(const Curves& curves);
+
+// The picture's size and lettering: the default is a page of its own (the CLI's files); a plot
+// shown scaled down in a narrow column (the browser UI's) wants fewer pixels and larger letters.
+struct PlotLayout {
+  int width = 1100, height = 800;  // [pixels]
+  int font_points = 0;             // 0: gnuplot's default
+  bool key_below = false;          // the legend under the plot rather than to its right
+};
 
 // Writes `<stem>.gp` in `dir` (the data inline, so that `gnuplot <stem>.gp` in dir re-plots) drawing
 // <stem>.png and <stem>.svg, and runs gnuplot there. Methods outside the catalog are dashed.
 // Returns "" or why no image was drawn (gnuplot missing or failing).
 std::string write_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,
-                       const Curves& curves, double t_end);
+                       const Curves& curves, double t_end, const PlotLayout& layout = {});
 
 }  // namespace spinfold::work_precision
