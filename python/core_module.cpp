@@ -82,7 +82,8 @@ struct BodyColumns {
       event_row.push_back(static_cast<std::int64_t>(row));
     }
     auto undefined = undefined_values(r);
-    if (undefined_sets.empty() || undefined_sets.back() != undefined) undefined_sets.push_back(std::move(undefined));
+    if (undefined_sets.empty() || undefined_sets.back() != undefined)
+      undefined_sets.push_back(std::move(undefined));
     undefined_row.push_back(static_cast<std::int32_t>(undefined_sets.size() - 1));
     integrator = r.integrator;
     status_detail = r.status_detail;
@@ -105,14 +106,17 @@ struct RunColumns {
 };
 
 // `spinfold simulate`'s run: samples at 0, every, 2·every, … and t_end (cli/run_loop.h).
-RunColumns run_columns(const Scene& scene, double t_end, double every, std::optional<std::uint64_t> max_steps) {
+RunColumns run_columns(const Scene& scene, double t_end, double every,
+                       std::optional<std::uint64_t> max_steps) {
   RunColumns out;
   Simulation run = start_simulation(scene);
   double since = -1.0;
   std::uint64_t attempts = max_steps.value_or(kNoStepLimit);
   cli::sample_run(
       run, t_end, every,
-      [&](double t) { return out.budget_left = max_steps ? advance_within(run, t, attempts) : advance_to(run, t); },
+      [&](double t) {
+        return out.budget_left = max_steps ? advance_within(run, t, attempts) : advance_to(run, t);
+      },
       [&] {
         out.append(run, since);
         since = run.state.t;
@@ -163,8 +167,8 @@ py::dict run_dict(RunColumns&& run, const Scene& scene, const std::string& comma
   return d;
 }
 
-py::dict simulate(const std::string& scene_text, double t_end, double every, std::optional<std::uint64_t> max_steps,
-                  const std::string& command) {
+py::dict simulate(const std::string& scene_text, double t_end, double every,
+                  std::optional<std::uint64_t> max_steps, const std::string& command) {
   check_times(t_end, every);
   if (max_steps && *max_steps == 0) throw py::value_error("max_steps: must be at least 1");
   const Scene scene = scene_of(scene_text);
@@ -205,7 +209,8 @@ py::list run_many(const std::vector<std::string>& scene_texts, double t_end, dou
     for (std::thread& t : pool) t.join();
   }
   py::list out;
-  for (std::size_t i = 0; i < results.size(); ++i) out.append(run_dict(std::move(results[i]), scenes[i], command));
+  for (std::size_t i = 0; i < results.size(); ++i)
+    out.append(run_dict(std::move(results[i]), scenes[i], command));
   return out;
 }
 
@@ -213,12 +218,14 @@ py::list run_many(const std::vector<std::string>& scene_texts, double t_end, dou
 // keeps them, so that its trajectory can be replayed.
 class PySimulation {
  public:
-  explicit PySimulation(const std::string& scene_text) : base_(scene_of(scene_text)) { run_ = start_simulation(base_); }
+  explicit PySimulation(const std::string& scene_text) : base_(scene_of(scene_text)) {
+    run_ = start_simulation(base_);
+  }
 
   bool advance(double until, std::optional<std::uint64_t> max_steps) {
     if (!std::isfinite(until) || until < run_.state.t)
-      throw py::value_error("until: must be a finite time not before the run's t = " + shortest(run_.state.t) +
-                            " (got " + shortest(until) + ")");
+      throw py::value_error("until: must be a finite time not before the run's t = " +
+                            shortest(run_.state.t) + " (got " + shortest(until) + ")");
     if (max_steps && *max_steps == 0) throw py::value_error("max_steps: must be at least 1");
     py::gil_scoped_release release;
     return advance_to(run_, until, max_steps.value_or(kNoStepLimit));
@@ -245,7 +252,8 @@ class PySimulation {
     } catch (const JsonTextError& e) {
       throw py::value_error(std::string("changes: ") + e.what());
     }
-    if (!patch.is_object()) throw py::type_error("changes: must be a mapping (a JSON merge patch of the scene)");
+    if (!patch.is_object())
+      throw py::type_error("changes: must be a mapping (a JSON merge patch of the scene)");
     nlohmann::json document = scene_to_json(run_.scene);
     nlohmann::json merged = document;
     merge_scene_patch(merged, patch);
@@ -297,10 +305,12 @@ class PySimulation {
 };
 
 // The still `spinfold render` draws, as RGBA rows top-down, on this thread's GL context.
-py::dict render_still(const std::string& scene_text, double t, const std::string& view_name, int width, int height,
-                const std::string& layers_text, std::optional<std::tuple<double, double, double>> camera,
-                double scale, std::optional<double> trail, const std::string& command) {
-  if (!std::isfinite(t) || t < 0.0) throw py::value_error("t: must be a finite number >= 0 (got " + shortest(t) + ")");
+py::dict render_still(const std::string& scene_text, double t, const std::string& view_name, int width,
+                      int height, const std::string& layers_text,
+                      std::optional<std::tuple<double, double, double>> camera, double scale,
+                      std::optional<double> trail, const std::string& command) {
+  if (!std::isfinite(t) || t < 0.0)
+    throw py::value_error("t: must be a finite number >= 0 (got " + shortest(t) + ")");
   if (trail && (!std::isfinite(*trail) || *trail < 0.0)) throw py::value_error("trail: must be >= 0");
   if (width < 16 || width > 4096 || height < 16 || height > 4096)
     throw py::value_error("width/height: must be between 16 and 4096 pixels");
@@ -311,7 +321,8 @@ py::dict render_still(const std::string& scene_text, double t, const std::string
   if (!view_name.empty()) {
     const auto kind = render::parse_view(view_name);
     if (!kind)
-      throw py::value_error("view: must be one of " + render::joined_view_names(", ") + " (got '" + view_name + "')");
+      throw py::value_error("view: must be one of " + render::joined_view_names(", ") + " (got '" +
+                            view_name + "')");
     view.kind = *kind;
   }
   if (const auto why = render::view_unsupported_reason(view.kind, scene.surface.kind))
@@ -355,11 +366,12 @@ py::dict render_still(const std::string& scene_text, double t, const std::string
 }
 
 py::bytes png_bytes(const py::bytes& rgba, int width, int height,
-                     const std::vector<std::pair<std::string, std::string>>& texts) {
+                    const std::vector<std::pair<std::string, std::string>>& texts) {
   const std::string_view pixels = rgba;
   if (width <= 0 || height <= 0 || pixels.size() != static_cast<std::size_t>(width) * height * 4)
     throw py::value_error("rgba: must hold width × height × 4 bytes");
-  const auto png = render::encode_png(reinterpret_cast<const std::uint8_t*>(pixels.data()), width, height, texts);
+  const auto png =
+      render::encode_png(reinterpret_cast<const std::uint8_t*>(pixels.data()), width, height, texts);
   return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
 }
 
@@ -383,7 +395,8 @@ PYBIND11_MODULE(_core, m) {
     std::vector<std::tuple<std::string, std::string, std::string>> out;
     for (const PresetSource& p : preset_sources()) {
       const SceneParse parsed = parse_scene_text(p.json);
-      out.emplace_back(std::string(p.name), parsed.scene ? parsed.scene->description : "", std::string(p.json));
+      out.emplace_back(std::string(p.name), parsed.scene ? parsed.scene->description : "",
+                       std::string(p.json));
     }
     return out;
   });
@@ -409,8 +422,9 @@ PYBIND11_MODULE(_core, m) {
         py::arg("command"));
   m.def("run_many", &run_many, py::arg("scenes"), py::arg("t_end"), py::arg("every"), py::arg("threads"),
         py::arg("command"));
-  m.def("render", &render_still, py::arg("scene"), py::arg("t"), py::arg("view"), py::arg("width"), py::arg("height"),
-        py::arg("layers"), py::arg("camera"), py::arg("scale"), py::arg("trail"), py::arg("command"));
+  m.def("render", &render_still, py::arg("scene"), py::arg("t"), py::arg("view"), py::arg("width"),
+        py::arg("height"), py::arg("layers"), py::arg("camera"), py::arg("scale"), py::arg("trail"),
+        py::arg("command"));
   m.def("encode_png", &png_bytes);
   py::class_<PySimulation>(m, "Simulation")
       .def(py::init<const std::string&>())

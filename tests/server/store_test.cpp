@@ -86,7 +86,7 @@ class Server {
   int port() const { return port_; }
   httplib::Client client() const {
     httplib::Client c("127.0.0.1", port_);
-    c.set_read_timeout(30, 0);
+    c.set_read_timeout(120, 0);  // the sanitizer builds on a loaded 2-core machine: minutes, not seconds
     return c;
   }
   // Sends the signal and waits for the exit: the exit code (128 + signal when killed).
@@ -360,9 +360,12 @@ TEST(Store, AReplicaOnAnotherCpuReplaysSessionsWithoutBreakingEtagsOrVersions) {
   // Adaptive steps on H² (the closed form would be the same on every CPU), to t = 60.
   const auto patch = a.client().Patch((kSessions + "/" + id).c_str(), R"({"integrator": {"name": "dop853"}})",
                                       "application/merge-patch+json");
+  ASSERT_TRUE(patch) << "no answer: " << httplib::to_string(patch.error());
   ASSERT_EQ(patch->status, 200) << patch->body;
   work_on(a, id);
-  ASSERT_EQ(post(a, kSessions + "/" + id + "/advance", {{"until", 60}})->status, 200);
+  const auto advanced = post(a, kSessions + "/" + id + "/advance", {{"until", 60}});
+  ASSERT_TRUE(advanced) << "no answer: " << httplib::to_string(advanced.error());
+  ASSERT_EQ(advanced->status, 200);
   const Seen on_a = look(a, id);
   const std::string etag_a = frame(a, id)->get_header_value("ETag");
 
