@@ -116,15 +116,9 @@ json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_event
 
 std::vector<std::pair<std::string, std::string>> undefined_values(const Readout& r) {
   std::vector<std::pair<std::string, std::string>> out;
-  for (const UndefinedValue& u : r.coordinates.undefined) out.emplace_back(u.field, u.reason);
-  for (const UndefinedValue& u : r.undefined) out.emplace_back(u.field, u.reason);
-  if (r.actions) {
-    for (const UndefinedValue& u : r.actions->undefined)
-      out.emplace_back(u.field.starts_with("nu_") ? "frequencies." + u.field.substr(3) : "actions." + u.field,
-                       u.reason);
-  } else {
-    out.emplace_back("actions", r.actions_unsupported);
-  }
+  for_each_undefined(r, [&](std::string_view prefix, std::string_view field, std::string_view reason) {
+    out.emplace_back(std::string(prefix).append(field), std::string(reason));
+  });
   return out;
 }
 

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -27,5 +28,20 @@ nlohmann::ordered_json sample_to_json(const Readout& readout, std::span<const De
 void sample_values(const Readout& readout, std::span<double> out);
 // The sample's "undefined": {field, reason} of every value that is null.
 std::vector<std::pair<std::string, std::string>> undefined_values(const Readout& readout);
+// The same without building it: fn(prefix, field, reason) for each, the name being prefix + field.
+template <typename F>
+void for_each_undefined(const Readout& r, F&& fn) {
+  for (const UndefinedValue& u : r.coordinates.undefined) fn(std::string_view(), u.field, u.reason);
+  for (const UndefinedValue& u : r.undefined) fn(std::string_view(), u.field, u.reason);
+  if (r.actions) {
+    for (const UndefinedValue& u : r.actions->undefined) {
+      const bool frequency = u.field.starts_with("nu_");
+      fn(frequency ? std::string_view("frequencies.") : std::string_view("actions."),
+         frequency ? std::string_view(u.field).substr(3) : std::string_view(u.field), u.reason);
+    }
+  } else {
+    fn(std::string_view(), std::string_view("actions"), r.actions_unsupported);
+  }
+}
 
 }  // namespace spinfold

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -56,11 +57,12 @@ void check_times(double t_end, double every) {
   if (t_end / every > kMaxSamples) throw py::value_error("every: more than 1e7 samples requested");
 }
 
-// One body's samples as columns, filled without the GIL.
+// One body's samples as columns, filled without the GIL (reserved up front: no regrowth).
 struct BodyColumns {
   std::string label;           // companions: their label
   std::vector<double> values;  // rows × sample_value_names().size(), row-major
-  std::vector<std::string> status;
+  std::vector<std::uint8_t> status;  // index into status_names
+  std::vector<std::string> status_names;
   std::vector<std::uint64_t> steps;
   std::vector<double> event_t;
   std::vector<std::int64_t> event_row;
@@ -69,24 +71,52 @@ struct BodyColumns {
   std::vector<std::int32_t> undefined_row;
   std::string integrator, status_detail;
 
+  void reserve(std::size_t rows) {
+    values.reserve(rows * sample_value_names().size());
+    status.reserve(rows);
+    steps.reserve(rows);
+    undefined_row.reserve(rows);
+  }
+
   void append(const Simulation& run, double events_since) {
     const Readout r = readout(run);
     const std::size_t width = sample_value_names().size();
     const std::size_t row = status.size();
     values.resize(values.size() + width);
     sample_values(r, std::span<double>(values.data() + row * width, width));
-    status.emplace_back(r.status_name);
+    const auto code = static_cast<std::size_t>(
+        std::find(status_names.begin(), status_names.end(), r.status_name) - status_names.begin());
+    if (code == status_names.size()) status_names.emplace_back(r.status_name);
+    status.push_back(static_cast<std::uint8_t>(code));
     steps.push_back(r.steps);
     for (const DegenerateEvent& e : events_after(run, events_since)) {
       event_t.push_back(e.t);
       event_row.push_back(static_cast<std::int64_t>(row));
     }
-    auto undefined = undefined_values(r);
-    if (undefined_sets.empty() || undefined_sets.back() != undefined)
-      undefined_sets.push_back(std::move(undefined));
+    if (!same_as_last_undefined(r)) undefined_sets.push_back(undefined_values(r));
     undefined_row.push_back(static_cast<std::int32_t>(undefined_sets.size() - 1));
     integrator = r.integrator;
     status_detail = r.status_detail;
+  }
+
+ private:
+  // Whether the read-out's undefined values are the last set's, compared without building strings.
+  bool same_as_last_undefined(const Readout& r) const {
+    if (undefined_sets.empty()) return false;
+    const auto& last = undefined_sets.back();
+    std::size_t i = 0;
+    bool same = true;
+    for_each_undefined(r, [&](std::string_view prefix, std::string_view field, std::string_view reason) {
+      if (!same || i >= last.size()) {
+        same = false;
+        return;
+      }
+      const std::string& name = last[i].first;
+      same = name.size() == prefix.size() + field.size() && name.starts_with(prefix) &&
+             std::string_view(name).substr(prefix.size()) == field && last[i].second == reason;
+      ++i;
+    });
+    return same && i == last.size();
   }
 };
 
@@ -109,6 +139,7 @@ struct RunColumns {
 RunColumns run_columns(const Scene& scene, double t_end, double every,
                        std::optional<std::uint64_t> max_steps) {
   RunColumns out;
+  out.main.reserve(static_cast<std::size_t>(std::ceil(t_end / every)) + 2);
   Simulation run = start_simulation(scene);
   double since = -1.0;
   std::uint64_t attempts = max_steps.value_or(kNoStepLimit);
@@ -124,19 +155,18 @@ RunColumns run_columns(const Scene& scene, double t_end, double every,
   return out;
 }
 
+// A vector handed to NumPy without a copy: the array owns it through a capsule.
+template <typename T>
+py::array_t<T> owned_array(std::vector<T>&& data, std::vector<py::ssize_t> shape) {
+  auto* held = new std::vector<T>(std::move(data));
+  py::capsule owner(held, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(shape, held->data(), owner);
+}
+
 py::dict body_dict(BodyColumns&& b) {
-  const std::size_t width = sample_value_names().size();
-  const std::size_t rows = b.status.size();
-  py::array_t<double> values({rows, width});
-  std::copy(b.values.begin(), b.values.end(), values.mutable_data());
-  py::array_t<std::uint64_t> steps(static_cast<py::ssize_t>(rows));
-  std::copy(b.steps.begin(), b.steps.end(), steps.mutable_data());
-  py::array_t<double> event_t(static_cast<py::ssize_t>(b.event_t.size()));
-  std::copy(b.event_t.begin(), b.event_t.end(), event_t.mutable_data());
-  py::array_t<std::int64_t> event_row(static_cast<py::ssize_t>(b.event_row.size()));
-  std::copy(b.event_row.begin(), b.event_row.end(), event_row.mutable_data());
-  py::array_t<std::int32_t> undefined_row(static_cast<py::ssize_t>(rows));
-  std::copy(b.undefined_row.begin(), b.undefined_row.end(), undefined_row.mutable_data());
+  const auto width = static_cast<py::ssize_t>(sample_value_names().size());
+  const auto rows = static_cast<py::ssize_t>(b.status.size());
+  const auto events = static_cast<py::ssize_t>(b.event_t.size());
   py::list undefined_sets;
   for (const auto& set : b.undefined_sets) {
     py::dict reasons;
@@ -145,13 +175,14 @@ py::dict body_dict(BodyColumns&& b) {
   }
   py::dict d;
   d["label"] = b.label;
-  d["values"] = values;
-  d["status"] = b.status;
-  d["steps"] = steps;
-  d["event_t"] = event_t;
-  d["event_row"] = event_row;
+  d["values"] = owned_array(std::move(b.values), {rows, width});
+  d["status_codes"] = owned_array(std::move(b.status), {rows});
+  d["status_names"] = b.status_names;
+  d["steps"] = owned_array(std::move(b.steps), {rows});
+  d["event_t"] = owned_array(std::move(b.event_t), {events});
+  d["event_row"] = owned_array(std::move(b.event_row), {events});
   d["undefined_sets"] = undefined_sets;
-  d["undefined_row"] = undefined_row;
+  d["undefined_row"] = owned_array(std::move(b.undefined_row), {rows});
   d["integrator"] = b.integrator;
   d["status_detail"] = b.status_detail;
   return d;
@@ -178,6 +209,19 @@ py::dict simulate(const std::string& scene_text, double t_end, double every,
     columns = run_columns(scene, t_end, every, max_steps);
   }
   return run_dict(std::move(columns), scene, command);
+}
+
+// The seconds simulate() spends in C++ for the scene (the run, its read-outs and columns), without
+// making Python objects: bench/python_bench.py's yardstick of the binding's overhead.
+double engine_seconds(const std::string& scene_text, double t_end, double every, const std::string& integrator) {
+  check_times(t_end, every);
+  nlohmann::json document = parse_json_text(scene_text);
+  if (!integrator.empty()) document["integrator"]["name"] = integrator;
+  const Scene scene = scene_of(document.dump());
+  py::gil_scoped_release release;
+  const auto start = std::chrono::steady_clock::now();
+  const RunColumns columns = run_columns(scene, t_end, every, std::nullopt);
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // Many runs on `threads` C++ threads (0: one per core), the GIL released; results in input order.
@@ -426,6 +470,7 @@ PYBIND11_MODULE(_core, m) {
         py::arg("height"), py::arg("layers"), py::arg("camera"), py::arg("scale"), py::arg("trail"),
         py::arg("command"));
   m.def("encode_png", &png_bytes);
+  m.def("engine_seconds", &engine_seconds);
   py::class_<PySimulation>(m, "Simulation")
       .def(py::init<const std::string&>())
       .def("advance", &PySimulation::advance, py::arg("until"), py::arg("max_steps") = std::nullopt)

@@ -47,13 +47,14 @@ __version__ = f"{_core.version()}+{_core.commit()}" if _core.commit() != "unknow
 """The version (it follows CHANGELOG.md) and the commit the module was built from."""
 
 _VALUE_NAMES: list[str] = _core.value_names()
+_PRESETS: dict[str, tuple[str, str]] = {name: (description, text) for name, description, text in _core.presets()}
 _GROUPS = {"X": (3,), "L": (2, 2), "M": (3,)}
 _EVENT_DTYPE = np.dtype([("t", "f8"), ("sample", "i8"), ("kind", "U16")])
 
 
 def presets() -> dict[str, str]:
     """The embedded preset scenes: name -> description (``spinfold scenes``)."""
-    return {name: description for name, description, _ in _core.presets()}
+    return {name: description for name, (description, _) in _PRESETS.items()}
 
 
 def integrators() -> list[dict[str, Any]]:
@@ -80,9 +81,8 @@ def _scene_text(scene: Any, field: str = "scene") -> str:
     stripped = scene.lstrip()
     if stripped.startswith("{"):
         return scene
-    for name, _, text in _core.presets():
-        if name == scene:
-            return text
+    if scene in _PRESETS:
+        return _PRESETS[scene][1]
     if os.path.isfile(scene):
         with open(scene, encoding="utf-8") as file:
             return file.read()
@@ -125,7 +125,7 @@ class Result(Mapping[str, np.ndarray]):
             index = [i for i, n in enumerate(_VALUE_NAMES) if n.split(".", 1)[0] == group]
             columns[group] = values[:, index].reshape((values.shape[0],) + shape)
         columns["steps"] = raw["steps"]
-        columns["status"] = np.array(raw["status"], dtype="U32")
+        columns["status"] = np.array(raw["status_names"] or ["ok"], dtype="U32")[raw["status_codes"]]
         events = np.empty(len(raw["event_t"]), dtype=_EVENT_DTYPE)
         events["t"] = raw["event_t"]
         events["sample"] = raw["event_row"]
