@@ -6,6 +6,7 @@
 #include "engine/chart.h"
 #include "engine/invariants.h"
 #include "engine/simulation.h"
+#include "workprecision/work_precision.h"
 
 namespace spinfold::bench {
 
@@ -74,16 +75,7 @@ std::vector<BenchScene> work_precision_scenes() {
 }
 
 double state_error(const Scene& scene, const State& a, const State& b) {
-  const EmbeddedBody x = global_embedding(scene, a), y = global_embedding(scene, b);
-  double e = 0.0;
-  for (const auto& [u, v] : {std::pair{x.X, y.X},
-                             {x.V, y.V},
-                             {x.e[0], y.e[0]},
-                             {x.e[1], y.e[1]},
-                             {x.W[0], y.W[0]},
-                             {x.W[1], y.W[1]}})
-    e = std::max(e, (u - v).cwiseAbs().maxCoeff() / std::max(1.0, v.norm()));
-  return std::isfinite(e) ? e : INFINITY;
+  return work_precision::embedded_state_error(scene, a, b);
 }
 
 }  // namespace spinfold::bench

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <sstream>
@@ -69,7 +70,15 @@ struct OracleMeasure {
 // Where the oracle cannot read the scene: the embedded vectors' largest component difference,
 // relative to max(1, |v|) (the bench's measure before the oracle), and |ΔH| / |H(0)|.
 Errors embedded_errors(const Scene& scene, const State& a, const State& reference, double energy0) {
-  const EmbeddedBody x = global_embedding(scene, a), y = global_embedding(scene, reference);
+  const double e = embedded_state_error(scene, a, reference);
+  const double de = std::abs(energy(scene, a) - energy0) / std::max(std::abs(energy0), 1e-300);
+  return {std::isfinite(e) ? e : kNotReached, std::isfinite(de) ? de : kNotReached};
+}
+
+}  // namespace
+
+double embedded_state_error(const Scene& scene, const State& a, const State& b) {
+  const EmbeddedBody x = global_embedding(scene, a), y = global_embedding(scene, b);
   double e = 0.0;
   for (const auto& [u, v] : {std::pair{x.X, y.X},
                              {x.V, y.V},
@@ -78,11 +87,8 @@ Errors embedded_errors(const Scene& scene, const State& a, const State& referenc
                              {x.W[0], y.W[0]},
                              {x.W[1], y.W[1]}})
     e = std::max(e, (u - v).cwiseAbs().maxCoeff() / std::max(1.0, v.norm()));
-  const double de = std::abs(energy(scene, a) - energy0) / std::max(std::abs(energy0), 1e-300);
-  return {std::isfinite(e) ? e : kNotReached, std::isfinite(de) ? de : kNotReached};
+  return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
 }
-
-}  // namespace
 
 double characteristic_period(const Scene& scene) {
   const State s0 = initial_state(scene);
