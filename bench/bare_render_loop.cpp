@@ -1,9 +1,11 @@
 #include "bench/bare_render_loop.h"
 
+#ifdef SPINFOLD_HAVE_OSMESA  // the bare loop is OSMesa's, GL linked by name; libpng is always here
 #define GL_GLEXT_PROTOTYPES
 #include <GL/gl.h>
 #include <GL/glext.h>
 #include <GL/osmesa.h>
+#endif
 #include <png.h>
 
 #include <algorithm>
@@ -54,6 +56,7 @@ std::vector<unsigned char> encode_with_libpng(const unsigned char* rgba, int w, 
 
 }  // namespace
 
+#ifdef SPINFOLD_HAVE_OSMESA
 BareTimings bare_render_loop(int width, int height, const std::vector<float>& opaque,
                              const std::vector<float>& translucent, const std::vector<float>& lines,
                              const float* view_projection, int frames) {
@@ -131,6 +134,8 @@ BareTimings bare_render_loop(int width, int height, const std::vector<float>& op
   OSMesaDestroyContext(context);
   return {median(render), median(enc)};
 }
+
+#endif
 
 std::vector<unsigned char> bare_encode_png(const unsigned char* rgba, int width, int height) {
   return encode_with_libpng(rgba, width, height);

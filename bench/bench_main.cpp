@@ -3,6 +3,7 @@
 
 #include "bench/companions_bench.h"
 #include "bench/cross_cpu.h"
+#include "bench/gl_bench.h"
 #include "bench/oracle_sweep.h"
 #include "bench/record_bench.h"
 #include "bench/render_bench.h"
@@ -30,6 +31,11 @@ int main(int argc, char** argv) {
   int render_frames = 30;
   CLI::App* render_cmd = app.add_subcommand("render", "Frame cost against the bare OSMesa + libpng loop");
   render_cmd->add_option("--frames", render_frames, "Frames per measurement (median)")->capture_default_str();
+  spinfold::bench::GlBenchOptions gl;
+  CLI::App* gl_cmd = app.add_subcommand(
+      "gl", "Frame time and frames/s of each GL backend (EGL, OSMesa) at 640x480 and 1920x1080");
+  gl_cmd->add_option("--backend", gl.backend, "all | auto | egl | osmesa")->capture_default_str();
+  gl_cmd->add_option("--frames", gl.frames, "Frames per size (median)")->capture_default_str();
   int share_repeats = 9;
   double share_until = 1000.0;
   CLI::App* share_cmd = app.add_subcommand(
@@ -86,6 +92,7 @@ int main(int argc, char** argv) {
     return spinfold::bench::run_companions_bench(companions_repeats, companions_until);
   if (soak_cmd->parsed()) return spinfold::bench::run_soak(soak);
   if (share_cmd->parsed()) return spinfold::bench::run_share_link_bench(share_repeats, share_until);
+  if (gl_cmd->parsed()) return spinfold::bench::run_gl_bench(gl);
   if (render_cmd->parsed()) return spinfold::bench::run_render_bench(render_frames);
   if (wp_cmd->parsed()) return spinfold::bench::run_work_precision(wp);
   if (stress_cmd->parsed()) return spinfold::bench::run_stress(stress_names, stress_size);

@@ -15,9 +15,9 @@
 #include "codec/scene_json.h"
 #include "engine/chart.h"
 #include "engine/simulation.h"
+#include "render/gl_context.h"
 #include "render/gl_renderer.h"
 #include "render/jpeg_encoder.h"
-#include "render/osmesa_context.h"
 #include "render/overlay.h"
 #include "render/png_encoder.h"
 #include "render/renderer.h"
@@ -122,7 +122,7 @@ std::vector<render::Snapshot> moving_snapshots(std::string_view preset, double t
 struct GlUnderTest {
   render::GlRenderer gl;
   render::HudOverlay& hud;
-  double render_ms(render::OsmesaContext& context, const render::FrameScene& scene, int w, int h) {
+  double render_ms(render::GlContext& context, const render::FrameScene& scene, int w, int h) {
     const auto t = std::chrono::steady_clock::now();
     context.make_current(w, h);
     gl.draw(scene, w, h);
@@ -136,8 +136,8 @@ struct GlUnderTest {
 // Anti-aliasing and the cached background (gl_renderer.h): each pair of variants measured
 // interleaved, frame by frame, in one context, so that the machine's drift falls on both.
 void anti_aliasing_and_cache_tables(int frames) {
-  render::OsmesaContext context;
-  context.make_current(64, 64);
+  const std::unique_ptr<render::GlContext> owned_context = render::make_gl_context();
+  render::GlContext& context = *owned_context;
   render::HudOverlay hud;
   using Options = render::GlRenderer::Options;
   Options aliased;  // the previous renderer: one sample, 1 px lines, nothing cached
@@ -280,8 +280,12 @@ int run_render_bench(int frames) {
       if (scene.statics && scene.draw_grid)
         for (const auto& v : scene.statics->grid) put(lines, v.position, v.color);
       for (const auto& v : scene.lines) put(lines, v.position, v.color);
+#ifdef SPINFOLD_HAVE_OSMESA
       const BareTimings bare =
           bare_render_loop(size.w, size.h, opaque, translucent, lines, &scene.view_projection[0][0], frames);
+#else  // the bare loop is OSMesa's: no baseline in a build without it
+      const BareTimings bare{std::nan(""), std::nan("")};
+#endif
       const double frame = median(build) + median(draw) + median(encode);
       std::printf("| %dx%d | %s | %d | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", size.w,
                   size.h, set.name, triangles, segments, median(build), median(draw), median(encode), frame,

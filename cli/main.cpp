@@ -439,6 +439,42 @@ int list_scenes() {
   return 0;
 }
 
+#ifndef SPINFOLD_COMPUTE_ONLY
+// --gl auto|egl|osmesa (default: SPINFOLD_GL, else auto); CLI11 refuses other values (exit 2).
+void add_gl_option(CLI::App* command, std::string& choice) {
+  command
+      ->add_option("--gl", choice,
+                   "GL backend: auto (an EGL GPU device, else EGL surfaceless, else OSMesa) | egl | osmesa "
+                   "(default: SPINFOLD_GL, else auto)")
+      ->check(CLI::IsMember({"auto", "egl", "osmesa"}));
+}
+
+// The process's backend from --gl, else SPINFOLD_GL (a bad value is bad input, exit 2).
+void apply_gl_choice(const std::string& choice) {
+  if (!choice.empty()) {
+    render::set_gl_backend(*render::parse_gl_backend(choice));
+    return;
+  }
+  try {
+    render::set_gl_backend(render::gl_backend_setting());
+  } catch (const std::invalid_argument& e) {
+    throw BadInput{e.what()};
+  }
+}
+
+// For --version: the backends built in and the context SPINFOLD_GL (else auto) gives here.
+std::string gl_version_lines() {
+  std::string lines = "GL backends built in: " + render::compiled_gl_backends() + "\n";
+  try {
+    const std::unique_ptr<render::GlContext> context = render::make_gl_context();
+    lines += "GL in use: " + context->name() + " (" + context->renderer() + ")";
+  } catch (const std::exception& e) {
+    lines += std::string("GL in use: none (") + e.what() + ")";
+  }
+  return lines;
+}
+#endif
+
 int list_integrators() {
   std::printf("%-18s %5s %10s %8s %5s  %s\n", "name", "order", "symplectic", "adaptive", "exact", "summary");
   for (const CatalogEntry& e : integrator_catalog()) {
@@ -454,7 +490,11 @@ int list_integrators() {
 
 int main(int argc, char** argv) {
   CLI::App app{"Spinfold: affinely-rigid bodies moving on the sphere and the pseudosphere"};
+#ifdef SPINFOLD_COMPUTE_ONLY
   app.set_version_flag("--version", "spinfold " + version_line());
+#else
+  app.set_version_flag("--version", [] { return "spinfold " + version_line() + "\n" + gl_version_lines(); });
+#endif
   app.require_subcommand(1);
 
   SimulateOptions sim;
@@ -495,6 +535,8 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--trail", ren.trail, "Time span of the trail (default: the whole run)");
   render_cmd->add_option("--out", ren.out, "PNG file to write");
   render_cmd->add_option("--integrator", ren.scene.integrator, "Override the scene's integrator name");
+  std::string gl_choice;  // --gl of render, record or serve (one subcommand runs)
+  add_gl_option(render_cmd, gl_choice);
   RecordOptions rec;
   CLI::App* record_cmd =
       app.add_subcommand("record", "Record a time window as a GIF, WebM, MP4 or a zip of PNGs");
@@ -520,6 +562,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   record_cmd->add_option("--trail", rec.render.trail, "Time span of the trail (default: the whole run)");
   record_cmd->add_option("--integrator", rec.render.scene.integrator, "Override the scene's integrator name");
+  add_gl_option(record_cmd, gl_choice);
   record_cmd->add_flag("--quiet", rec.quiet, "No progress bar (there is none when stderr is not a terminal)");
   cli::WorkPrecisionOptions wp_opt;
   CLI::App* wp_cmd = cli::add_work_precision_command(app, wp_opt);
@@ -527,6 +570,7 @@ int main(int argc, char** argv) {
   CLI::App* serve_cmd = app.add_subcommand("serve", "Serve the HTTP API with a session on the default scene");
   serve_cmd->add_option("--host", serve_opt.host, "Address to bind")->capture_default_str();
   serve_cmd->add_option("--port", serve_opt.port, "Port (0: any free port)")->capture_default_str();
+  add_gl_option(serve_cmd, gl_choice);
   serve_cmd->add_option("--threads", serve_opt.threads, "HTTP worker threads (one per open connection)")
       ->capture_default_str();
   serve_cmd
@@ -578,6 +622,7 @@ int main(int argc, char** argv) {
     }
     if (sweep_cmd->parsed()) return cli::run_sweep_command(sweep_opt, argc, argv);
 #ifndef SPINFOLD_COMPUTE_ONLY
+    if (render_cmd->parsed() || record_cmd->parsed() || serve_cmd->parsed()) apply_gl_choice(gl_choice);
     if (render_cmd->parsed()) {
       ren.scene.command = command_line(argc, argv);
       return render_frame(ren);

@@ -1,9 +1,5 @@
 #include "render/gl_renderer.h"
 
-#define GL_GLEXT_PROTOTYPES
-#include <GL/gl.h>
-#include <GL/glext.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -11,7 +7,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "render/osmesa_context.h"
+#include "render/gl_api.h"
+#include "render/gl_context.h"
 #include "render/shader_sources.h"
 
 namespace spinfold::render {
@@ -215,17 +212,12 @@ void GlRenderer::draw_flat(const std::vector<Vertex>& vertices, unsigned mode) {
 }
 
 void GlRenderer::finish() {
-  glFinish();  // OSMesa copies the (unused) default framebuffer into its buffer here
-  if (!readback_) return;
-  int width = 0, height = 0;
-  std::uint8_t* pixels = current_color_buffer(width, height);
-  if (!pixels || width != readback_->width || height != readback_->height)
+  glFinish();  // OSMesa copies the default framebuffer into its buffer here
+  GlContext* context = current_gl_context();
+  if (!context ||
+      (readback_ && (context->width() != readback_->width || context->height() != readback_->height)))
     throw std::runtime_error("the current context's buffer does not match the frame");
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, readback_->fbo);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glPixelStorei(GL_PACK_INVERT_MESA, GL_TRUE);  // top row first, as the buffer holds them
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
-  glPixelStorei(GL_PACK_INVERT_MESA, GL_FALSE);
+  context->read_back(readback_ ? readback_->fbo : 0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   readback_ = nullptr;
 }

@@ -59,7 +59,7 @@ class GlRenderer {
   // Draws the frame (width × height: the current context's size) and leaves bound the framebuffer
   // that whatever draws next (the HUD) must draw into.
   void draw(const FrameScene& scene, int width, int height);
-  // Waits for the frame and puts it into the context's buffer (OsmesaContext::pixels()).
+  // Waits for the frame and puts it into the context's buffer (GlContext::pixels()).
   void finish();
 
   // The samples a frame of this size is drawn with: options().samples, halved while the

@@ -6,7 +6,7 @@
 
 namespace spinfold::render {
 
-OsmesaContext::OsmesaContext() {
+OsmesaContext::OsmesaContext() : GlContext("osmesa") {
   const int attributes[] = {OSMESA_FORMAT,
                             OSMESA_RGBA,
                             OSMESA_DEPTH_BITS,
@@ -23,30 +23,27 @@ OsmesaContext::OsmesaContext() {
   context_ = OSMesaCreateContextAttribs(attributes, nullptr);
   if (!context_)
     throw std::runtime_error("OSMesa could not create a GL 3.3 core context with a depth buffer");
+  make_current(64, 64);
+  load_api([](const char* name) { return reinterpret_cast<void (*)()>(OSMesaGetProcAddress(name)); });
 }
 
 OsmesaContext::~OsmesaContext() {
+  if (current_gl_context() == this) OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
+  unbind_if_current();
   if (context_) OSMesaDestroyContext(static_cast<OSMesaContext>(context_));
 }
 
 void OsmesaContext::make_current(int width, int height) {
-  if (width != width_ || height != height_) {
-    buffer_.assign(static_cast<std::size_t>(width) * height * 4, 0);
-    width_ = width;
-    height_ = height;
-  }
+  resize(width, height);
   if (!OSMesaMakeCurrent(static_cast<OSMesaContext>(context_), buffer_.data(), GL_UNSIGNED_BYTE, width,
                          height))
     throw std::runtime_error("OSMesaMakeCurrent failed");
   OSMesaPixelStore(OSMESA_Y_UP, 0);  // top-down rows: PNG order at no cost
+  bind_api();
 }
 
-std::uint8_t* current_color_buffer(int& width, int& height) {
-  const OSMesaContext context = OSMesaGetCurrentContext();
-  int format = 0;
-  void* buffer = nullptr;
-  if (!context || !OSMesaGetColorBuffer(context, &width, &height, &format, &buffer)) return nullptr;
-  return static_cast<std::uint8_t*>(buffer);
+void OsmesaContext::read_back(unsigned fbo) {
+  if (fbo != 0) GlContext::read_back(fbo);
 }
 
 }  // namespace spinfold::render

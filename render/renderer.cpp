@@ -5,8 +5,12 @@
 
 namespace spinfold::render {
 
-Renderer::Renderer() {
-  context_.make_current(64, 64);
+Renderer::Renderer() : Renderer(make_gl_context()) {}
+
+Renderer::Renderer(GlBackend backend) : Renderer(make_gl_context(backend)) {}
+
+Renderer::Renderer(std::unique_ptr<GlContext> context) : context_(std::move(context)) {
+  context_->make_current(64, 64);
   gl_ = std::make_unique<GlRenderer>();
   render_rgba(FrameScene{}, 64, 64);  // warm-up: compile the shaders' machine code now
 }
@@ -17,14 +21,14 @@ Renderer::~Renderer() {
 }
 
 const std::uint8_t* Renderer::render_rgba(const FrameScene& scene, int width, int height) {
-  context_.make_current(width, height);
+  context_->make_current(width, height);
   gl_->draw(scene, width, height);
   if (!scene.hud_lines.empty() || !scene.legend.empty()) {
     if (!hud_) hud_ = std::make_unique<HudOverlay>();
     hud_->draw(scene.hud_lines, scene.legend, scene.hud, width, height);
   }
   gl_->finish();
-  return context_.pixels();
+  return context_->pixels();
 }
 
 Image Renderer::render_image(const Snapshot& snapshot, const ViewOptions& view) {

@@ -5,8 +5,8 @@
 #include <memory>
 #include <vector>
 
+#include "render/gl_context.h"
 #include "render/gl_renderer.h"
-#include "render/osmesa_context.h"
 #include "render/overlay.h"
 #include "render/png_encoder.h"
 #include "render/scene_builder.h"
@@ -21,9 +21,11 @@ struct Image {
 
 class Renderer {
  public:
-  // Creates the context on the calling thread and warms it up (shader JIT costs the first frame
-  // 20–70 ms: platform-notes.md). Use the renderer only from this thread.
+  // Creates the context (of gl_backend_setting()'s backend, or this one) on the calling thread and
+  // warms it up (shader JIT costs the first frame 20–70 ms: platform-notes.md). Use the renderer
+  // only from this thread.
   Renderer();
+  explicit Renderer(GlBackend backend);
   ~Renderer();
 
   // Draws the scene; the returned pointer is width·height·4 RGBA bytes, valid until the next call.
@@ -35,9 +37,13 @@ class Renderer {
                                        std::span<const PngText> texts = {});
   // build_scene + render + encode_jpeg at this quality (1..100).
   std::vector<std::uint8_t> render_jpeg(const Snapshot& snapshot, const ViewOptions& view, int quality);
+  // The context's backend ("egl-device", "egl-surfaceless", "osmesa") and GL_RENDERER.
+  const GlContext& context() const { return *context_; }
 
  private:
-  OsmesaContext context_;
+  explicit Renderer(std::unique_ptr<GlContext> context);
+
+  std::unique_ptr<GlContext> context_;
   std::unique_ptr<GlRenderer> gl_;
   std::unique_ptr<HudOverlay> hud_;  // created at the first frame that shows the HUD
 };

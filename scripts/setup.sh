@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git ca-certificates
   libeigen3-dev                                   # engine
-  libosmesa6-dev libglm-dev libimgui-dev libpng-dev  # renderer
+  libosmesa6-dev libegl-dev libegl-mesa0 libglm-dev libimgui-dev libpng-dev  # renderer (OSMesa, EGL)
   libdeflate-dev libturbojpeg0-dev                # frames: PNG compression, JPEG
   libcpp-httplib-dev nlohmann-json3-dev           # server and JSON codec
   libsqlite3-dev                                  # the durable session store

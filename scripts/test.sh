@@ -23,6 +23,12 @@ for caps in avx sse4.1; do
   GALLIUM_OVERRIDE_CPU_CAPS=$caps GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-AVX \
     build/tests/render_tests --gtest_filter='Views/GoldenFrame.*' --gtest_brief=1
 done
+# The golden frames through the other GL backend: auto picks EGL (surfaceless llvmpipe) on a machine
+# without a GPU, so the ctest run above checked EGL's frames; OSMesa's once more (README, "GL backends").
+if build/spinfold --version | grep -q '^GL backends built in:.*osmesa'; then
+  stage "golden frames through OSMesa"
+  SPINFOLD_GL=osmesa build/tests/render_tests --gtest_filter='Views/GoldenFrame.*' --gtest_brief=1
+fi
 
 stage "AddressSanitizer + UBSan build"
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DSPINFOLD_WERROR=ON \

@@ -8,6 +8,7 @@
 #include "codec/scene_json.h"
 #include "codec/scene_schema.h"
 #include "engine/integrator.h"
+#include "render/gl_context.h"
 #include "render/view.h"
 #include "server/context.h"
 #include "server/problem.h"
@@ -25,13 +26,16 @@ using nlohmann::json;
 using nlohmann::ordered_json;
 
 void get_health(ServerContext& server, const Call&, httplib::Response& res) {
+  const render::GlInUse gl = render::gl_in_use();
   send_json(res, {{"status", "ok"},
                   {"version", server_version()},
                   {"commit", std::string(build_commit())},
                   {"sessions", server.sessions.size()},
                   {"streams", server.open_streams.load()},
                   {"render_threads", server.renderer.threads()},
-                  {"render_threads_started", server.renderer.started()}});
+                  {"render_threads_started", server.renderer.started()},
+                  // The render threads' GL backend and GL_RENDERER ("" until one has made its context).
+                  {"gl", {{"backend", gl.backend}, {"renderer", gl.renderer}}}});
 }
 
 void get_scenes(ServerContext&, const Call&, httplib::Response& res) {

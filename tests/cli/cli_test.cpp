@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -200,7 +201,47 @@ INSTANTIATE_TEST_SUITE_P(
         BadArgs{"render --scene spinning_rigid_sphere --layers body,glitter --out /tmp/x.png", "glitter"},
         BadArgs{"render --scene spinning_rigid_sphere --camera 1,2 --out /tmp/x.png", "--camera"},
         BadArgs{"render --scene spinning_rigid_sphere --t -1 --out /tmp/x.png", "--t"},
-        BadArgs{"render --scene spinning_rigid_sphere", "--out"}));
+        BadArgs{"render --scene spinning_rigid_sphere", "--out"},
+        BadArgs{"render --scene spinning_rigid_sphere --gl nonsense --out /tmp/x.png", "--gl"},
+        BadArgs{"record --scene spinning_rigid_sphere --t-end 1 --format gif --out /tmp/x.gif --gl nonsense",
+                "--gl"},
+        BadArgs{"serve --port 0 --gl nonsense", "--gl"},
+        BadArgs{"render --scene spinning_rigid_sphere --gl --out /tmp/x.png", "--gl"}));
+
+// SPINFOLD_GL picks the backend as --gl does: each backend draws the still; a bad value is refused
+// with exit 2 naming the variable.
+Result with_gl_environment(const std::string& value, const std::string& args) {
+  setenv("SPINFOLD_GL", value.c_str(), 1);
+  const Result r = spinfold(args);
+  unsetenv("SPINFOLD_GL");
+  return r;
+}
+
+TEST(CliRender, EachGlBackendDrawsTheStillThroughTheEnvironment) {
+  const std::string out =
+      std::filesystem::temp_directory_path() / ("spinfold_gl_" + std::to_string(getpid()) + ".png");
+  const std::string version = spinfold("--version").out;
+  const std::string built_in = version.substr(version.find("GL backends built in:"));
+  for (const char* backend : {"osmesa", "egl"}) {
+    if (built_in.substr(0, built_in.find('\n')).find(backend) == std::string::npos) continue;  // not in this build
+    const Result r = with_gl_environment(backend, "render --scene spinning_rigid_sphere --t 2 --width 160 "
+                                                  "--height 120 --out " + out);
+    ASSERT_EQ(r.exit_code, 0) << backend << ": " << r.err;
+    EXPECT_GT(std::filesystem::file_size(out), 1000u) << backend;
+    std::filesystem::remove(out);
+  }
+  const Result bad = with_gl_environment("nonsense", "render --scene spinning_rigid_sphere --out " + out);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("SPINFOLD_GL"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(Cli, VersionNamesTheGlBackendsBuiltInAndTheOneInUse) {
+  const Result r = spinfold("--version");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("GL backends built in:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("GL in use:"), std::string::npos) << r.out;
+}
 
 // Not a terminal: no progress bar, nothing on stderr; the zip holds one PNG per frame (its
 // central directory lists them: "frame-000000.png" … at 10 frames/s over [0.5, 0.8) = 3 frames).

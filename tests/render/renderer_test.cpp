@@ -1,5 +1,5 @@
-// The renderer through OSMesa: pixels where the geometry says, the far side hidden, the HUD only
-// when asked, identical bytes for identical input, and a golden PNG per view.
+// The renderer through the process's GL backend (SPINFOLD_GL; auto here): pixels where the geometry says, the
+// far side hidden, the HUD only when asked, identical bytes for identical input, and a golden PNG per view.
 #include "render/renderer.h"
 
 #include <gtest/gtest.h>
@@ -17,8 +17,8 @@
 #include "codec/scene_json.h"
 #include "engine/chart.h"
 #include "engine/timeline.h"
+#include "render/gl_context.h"
 #include "render/gl_renderer.h"
-#include "render/osmesa_context.h"
 #include "render/snapshot.h"
 #include "tests/render/frame_compare.h"
 
@@ -229,21 +229,21 @@ TEST(Renderer, TheLegendAppearsOnlyWithMoreThanOneBody) {
 
 // A GL renderer with its own context, without the HUD: frames of a scene with these options.
 struct BareGl {
-  OsmesaContext context;
+  std::unique_ptr<GlContext> context = make_gl_context();
   std::unique_ptr<GlRenderer> gl;
   explicit BareGl(const GlRenderer::Options& options) {
-    context.make_current(64, 64);
+    context->make_current(64, 64);
     gl = std::make_unique<GlRenderer>(options);
   }
   ~BareGl() {
-    context.make_current(64, 64);
+    context->make_current(64, 64);
     gl.reset();
   }
   std::vector<std::uint8_t> frame(const FrameScene& scene, int width, int height) {
-    context.make_current(width, height);
+    context->make_current(width, height);
     gl->draw(scene, width, height);
     gl->finish();
-    return {context.pixels(), context.pixels() + static_cast<std::size_t>(width) * height * 4};
+    return {context->pixels(), context->pixels() + static_cast<std::size_t>(width) * height * 4};
   }
 };
 
