@@ -108,10 +108,10 @@ std::vector<Route> catalog_routes(const Limits&) {
        .path = "/api/v1/health",
        .operation_id = "get_health",
        .handler = get_health,
-       .summary = "Liveness, version, session count and open event and live streams",
+       .summary = "Liveness, version, sessions, open streams, render threads and their GL backend",
        .responses = {{200,
                       "{\"status\": \"ok\", \"version\", \"sessions\", \"streams\", \"render_threads\", "
-                      "\"render_threads_started\"}"}}},
+                      "\"render_threads_started\", \"gl\": {\"backend\", \"renderer\"}}"}}},
       {.method = "GET",
        .path = "/api/v1/scenes",
        .operation_id = "list_scenes",

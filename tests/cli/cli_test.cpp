@@ -223,9 +223,12 @@ TEST(CliRender, EachGlBackendDrawsTheStillThroughTheEnvironment) {
   const std::string version = spinfold("--version").out;
   const std::string built_in = version.substr(version.find("GL backends built in:"));
   for (const char* backend : {"osmesa", "egl"}) {
-    if (built_in.substr(0, built_in.find('\n')).find(backend) == std::string::npos) continue;  // not in this build
-    const Result r = with_gl_environment(backend, "render --scene spinning_rigid_sphere --t 2 --width 160 "
-                                                  "--height 120 --out " + out);
+    if (built_in.substr(0, built_in.find('\n')).find(backend) == std::string::npos)
+      continue;  // not in this build
+    const Result r = with_gl_environment(backend,
+                                         "render --scene spinning_rigid_sphere --t 2 --width 160 "
+                                         "--height 120 --out " +
+                                             out);
     ASSERT_EQ(r.exit_code, 0) << backend << ": " << r.err;
     EXPECT_GT(std::filesystem::file_size(out), 1000u) << backend;
     std::filesystem::remove(out);
