@@ -102,15 +102,18 @@ std::string format_cost(double seconds_per_unit_time);
 // A number as written in the CSV and summaries (6 significant digits).
 std::string format_number(double value);
 
-// The cheapest measured setting of a stepping integrator (neither exact nor auto) whose error at T
-// is within the target: the one `recommendation` names first. nullopt when none reached it.
+// The setting `recommendation` names first: auto at the scene's tolerance when it reaches the target
+// at no more than 1.25× the cost of the cheapest stepping setting that does (auto keeps choosing
+// well after later changes), else that stepping setting (a catalog integrator with its tol or dt).
+// nullopt when neither reached it. Never `exact` alone: auto picks it where it holds.
 std::optional<Point> recommended_setting(const Curves& curves, double target_error);
 
 // "picks <integrator>": what `auto` resolves to on the scene, for `recommendation`.
 std::string auto_picks(const Scene& scene);
 
-// One line: the cheapest setting that reaches the target error (and how much cheaper `exact` or
-// `auto` is where they reach it too), or that none reached it and which came closest.
+// One line: the recommended setting (recommended_setting) with its cost and error, and how the
+// others compare (the cheapest stepping setting, exact, auto), or that none reached it and which came
+// closest.
 std::string recommendation(const Curves& curves, double target_error, double t_end,
                            const std::string& auto_picks);
 
