@@ -77,19 +77,6 @@ Errors embedded_errors(const Scene& scene, const State& a, const State& referenc
 
 }  // namespace
 
-double embedded_state_error(const Scene& scene, const State& a, const State& b) {
-  const EmbeddedBody x = global_embedding(scene, a), y = global_embedding(scene, b);
-  double e = 0.0;
-  for (const auto& [u, v] : {std::pair{x.X, y.X},
-                             {x.V, y.V},
-                             {x.e[0], y.e[0]},
-                             {x.e[1], y.e[1]},
-                             {x.W[0], y.W[0]},
-                             {x.W[1], y.W[1]}})
-    e = std::max(e, (u - v).cwiseAbs().maxCoeff() / std::max(1.0, v.norm()));
-  return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
-}
-
 double characteristic_period(const Scene& scene) {
   const State s0 = initial_state(scene);
   const double m = scene.body.mass, R = scene.surface.radius;

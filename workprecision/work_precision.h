@@ -59,10 +59,6 @@ Reference make_reference(const Scene& scene, double t_end);
 // has none (a body at rest, a free body on the plane).
 double characteristic_period(const Scene& scene);
 
-// The largest component difference of the embedded position, velocity, frame and frame rates,
-// relative to max(1, |v|) of b's: a chart-free error without the oracle (infinity if not finite).
-double embedded_state_error(const Scene& scene, const State& a, const State& b);
-
 // The horizon when none is given: this many characteristic periods (time units where the motion
 // has none), long enough for the errors to build up but short enough to sweep in seconds.
 inline constexpr double kDefaultPeriods = 20.0;
