@@ -6,7 +6,6 @@
 #include "engine/chart.h"
 #include "engine/invariants.h"
 #include "engine/simulation.h"
-#include "workprecision/work_precision.h"
 
 namespace spinfold::bench {
 
@@ -75,7 +74,7 @@ std::vector<BenchScene> work_precision_scenes() {
 }
 
 double state_error(const Scene& scene, const State& a, const State& b) {
-  return work_precision::embedded_state_error(scene, a, b);
+  return embedded_state_error(scene, a, b);
 }
 
 }  // namespace spinfold::bench

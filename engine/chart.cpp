@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <utility>
 
 #include "engine/dynamics.h"
 #include "engine/inertia.h"
@@ -176,6 +178,19 @@ bool maintain_chart(const Scene& scene, State& state) {
   if (!leave) return false;
   recentre(scene, body, state.chart, state.y);
   return true;
+}
+
+double embedded_state_error(const Scene& scene, const State& a, const State& b) {
+  const EmbeddedBody x = global_embedding(scene, a), y = global_embedding(scene, b);
+  double e = 0.0;
+  for (const auto& [u, v] : {std::pair{x.X, y.X},
+                             {x.V, y.V},
+                             {x.e[0], y.e[0]},
+                             {x.e[1], y.e[1]},
+                             {x.W[0], y.W[0]},
+                             {x.W[1], y.W[1]}})
+    e = std::max(e, (u - v).cwiseAbs().maxCoeff() / std::max(1.0, v.norm()));
+  return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
 }
 
 EmbeddedBody global_embedding(const Scene& scene, const State& state) {

@@ -66,6 +66,11 @@ struct EmbeddedBody {
 };
 EmbeddedBody global_embedding(const Scene& scene, const State& state);
 
+// How far two states of a scene are apart, chart-free: the largest component difference of their
+// embedded X, V, e_A and W_A, each relative to max(1, |b's vector|) [1]; infinity if not finite.
+// The benchmarks' error where no oracle is at hand.
+double embedded_state_error(const Scene& scene, const State& a, const State& b);
+
 // Inverse of the chart isometry's linear part: ηAᵀη (Lorentz or rotation).
 Mat3 inverse_linear(const Surface& surface, const Mat3& A);
 

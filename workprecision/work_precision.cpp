@@ -77,19 +77,6 @@ Errors embedded_errors(const Scene& scene, const State& a, const State& referenc
 
 }  // namespace
 
-double embedded_state_error(const Scene& scene, const State& a, const State& b) {
-  const EmbeddedBody x = global_embedding(scene, a), y = global_embedding(scene, b);
-  double e = 0.0;
-  for (const auto& [u, v] : {std::pair{x.X, y.X},
-                             {x.V, y.V},
-                             {x.e[0], y.e[0]},
-                             {x.e[1], y.e[1]},
-                             {x.W[0], y.W[0]},
-                             {x.W[1], y.W[1]}})
-    e = std::max(e, (u - v).cwiseAbs().maxCoeff() / std::max(1.0, v.norm()));
-  return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
-}
-
 double characteristic_period(const Scene& scene) {
   const State s0 = initial_state(scene);
   const double m = scene.body.mass, R = scene.surface.radius;
@@ -315,7 +302,10 @@ std::string ratio(double a, double b) {
 
 }  // namespace
 
-std::optional<Point> recommended_setting(const Curves& curves, double target) {
+namespace {
+
+// The cheapest measured setting of a stepping integrator (neither exact nor auto) within the target.
+std::optional<Point> best_stepping_setting(const Curves& curves, double target) {
   std::optional<Point> best;
   for (const auto& [method, curve] : curves)
     if (method != "exact" && method != kAutoIntegrator)
@@ -323,6 +313,29 @@ std::optional<Point> recommended_setting(const Curves& curves, double target) {
         if (p.state_error <= target && (!best || p.seconds_per_unit_time < best->seconds_per_unit_time))
           best = p;
   return best;
+}
+
+// auto at the scene's tolerance, when it reaches the target.
+std::optional<Point> auto_setting(const Curves& curves, double target) {
+  const auto it = curves.find(std::string(kAutoIntegrator));
+  if (it == curves.end() || it->second.empty() || !(it->second[0].state_error <= target)) return std::nullopt;
+  return it->second[0];
+}
+
+// auto is recommended when it reaches the target at no more than this factor of the best stepping
+// setting's cost: it keeps choosing well when the scene is changed later (it picks exact where the
+// closed form holds, and the cheapest stepper otherwise).
+constexpr double kAutoSlack = 1.25;
+
+}  // namespace
+
+std::optional<Point> recommended_setting(const Curves& curves, double target) {
+  const std::optional<Point> stepping = best_stepping_setting(curves, target);
+  const std::optional<Point> automatic = auto_setting(curves, target);
+  if (automatic &&
+      (!stepping || automatic->seconds_per_unit_time <= kAutoSlack * stepping->seconds_per_unit_time))
+    return automatic;
+  return stepping;
 }
 
 std::string auto_picks(const Scene& scene) {
@@ -353,29 +366,40 @@ std::string recommendation(const Curves& curves, double target, double t_end, co
               " µs per unit time)";
     return line + ".";
   }
-  const std::optional<Point> best_setting = recommended_setting(curves, target);
-  const Point* best_stepping = best_setting ? &*best_setting : nullptr;
-  std::string line = "For this scene " + where + ": ";
-  if (best_stepping) {
-    line += setting(*best_stepping) + ", " + format_cost(best_stepping->seconds_per_unit_time) +
-            " µs per unit time (error " + sci(best_stepping->state_error) + ")";
-  } else {
-    line += "no stepping integrator reached it";
-  }
-  const double base = best_stepping ? best_stepping->seconds_per_unit_time : kNotReached;
-  const auto compare_to_base = [&](const Point& p) {
-    if (!std::isfinite(base)) return format_cost(p.seconds_per_unit_time) + " µs per unit time";
+  const std::optional<Point> recommended = recommended_setting(curves, target);
+  const std::optional<Point> stepping = best_stepping_setting(curves, target);
+  const std::string auto_text = "auto (" + auto_picks + ") at the scene's tol ";
+  const auto described = [&](const Point& p) {
+    return (p.method == kAutoIntegrator ? auto_text + sci(p.value) : setting(p)) + ", " +
+           format_cost(p.seconds_per_unit_time) + " µs per unit time (error " + sci(p.state_error) + ")";
+  };
+  const auto compared = [](const Point& p, double base) {
     return p.seconds_per_unit_time < base ? ratio(base, p.seconds_per_unit_time) + " cheaper"
                                           : ratio(p.seconds_per_unit_time, base) + " dearer";
   };
-  if (const auto it = cheapest.find("exact"); it != cheapest.end())
-    line += "; exact is valid here and " + compare_to_base(*it->second);
-  if (const auto it = cheapest.find(std::string(kAutoIntegrator)); it != cheapest.end())
-    line += "; auto (" + auto_picks + ") at the scene's tol " + sci(it->second->value) + " reaches it too, " +
-            compare_to_base(*it->second);
-  else if (curves.contains(std::string(kAutoIntegrator)))
-    line += "; auto (" + auto_picks + ") at the scene's tol " +
-            sci(curves.at(std::string(kAutoIntegrator))[0].value) + " does not reach it";
+  std::string line = "For this scene " + where + ": ";
+  if (!recommended) {
+    line += "no stepping integrator reached it";
+    if (const auto it = cheapest.find("exact"); it != cheapest.end())
+      line +=
+          "; exact is valid here: " + format_cost(it->second->seconds_per_unit_time) + " µs per unit time";
+    if (curves.contains(std::string(kAutoIntegrator)))
+      line += "; " + auto_text + sci(curves.at(std::string(kAutoIntegrator))[0].value) + " does not reach it";
+    return line + ".";
+  }
+  line += described(*recommended);
+  const double base = recommended->seconds_per_unit_time;
+  if (recommended->method == kAutoIntegrator) {
+    if (stepping)
+      line += "; the cheapest stepping setting, " + setting(*stepping) + ", is " + compared(*stepping, base);
+  } else {
+    if (const auto it = cheapest.find("exact"); it != cheapest.end())
+      line += "; exact is valid here and " + compared(*it->second, base) + " (auto picks it where it holds)";
+    if (curves.contains(std::string(kAutoIntegrator)) && !cheapest.contains(std::string(kAutoIntegrator)))
+      line += "; " + auto_text + sci(curves.at(std::string(kAutoIntegrator))[0].value) + " does not reach it";
+    else if (const auto it = cheapest.find(std::string(kAutoIntegrator)); it != cheapest.end())
+      line += "; " + auto_text + sci(it->second->value) + " reaches it too, " + compared(*it->second, base);
+  }
   return line + ".";
 }
 

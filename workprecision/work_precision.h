@@ -59,10 +59,6 @@ Reference make_reference(const Scene& scene, double t_end);
 // has none (a body at rest, a free body on the plane).
 double characteristic_period(const Scene& scene);
 
-// The largest component difference of the embedded position, velocity, frame and frame rates,
-// relative to max(1, |v|) of b's: a chart-free error without the oracle (infinity if not finite).
-double embedded_state_error(const Scene& scene, const State& a, const State& b);
-
 // The horizon when none is given: this many characteristic periods (time units where the motion
 // has none), long enough for the errors to build up but short enough to sweep in seconds.
 inline constexpr double kDefaultPeriods = 20.0;
@@ -102,15 +98,18 @@ std::string format_cost(double seconds_per_unit_time);
 // A number as written in the CSV and summaries (6 significant digits).
 std::string format_number(double value);
 
-// The cheapest measured setting of a stepping integrator (neither exact nor auto) whose error at T
-// is within the target: the one `recommendation` names first. nullopt when none reached it.
+// The setting `recommendation` names first: auto at the scene's tolerance when it reaches the target
+// at no more than 1.25× the cost of the cheapest stepping setting that does (auto keeps choosing
+// well after later changes), else that stepping setting (a catalog integrator with its tol or dt).
+// nullopt when neither reached it. Never `exact` alone: auto picks it where it holds.
 std::optional<Point> recommended_setting(const Curves& curves, double target_error);
 
 // "picks <integrator>": what `auto` resolves to on the scene, for `recommendation`.
 std::string auto_picks(const Scene& scene);
 
-// One line: the cheapest setting that reaches the target error (and how much cheaper `exact` or
-// `auto` is where they reach it too), or that none reached it and which came closest.
+// One line: the recommended setting (recommended_setting) with its cost and error, and how the
+// others compare (the cheapest stepping setting, exact, auto), or that none reached it and which came
+// closest.
 std::string recommendation(const Curves& curves, double target_error, double t_end,
                            const std::string& auto_picks);
 

@@ -227,3 +227,41 @@ TEST(SimulateOutput, AKilledRunLeavesWholeLines) {
 }
 
 }  // namespace
+
+namespace {
+
+// A GIF's comment extension (0x21 0xFE) joined from its sub-blocks (each at most 255 bytes).
+std::string gif_comment(const std::string& gif) {
+  const std::size_t at = gif.find("\x21\xFE");
+  if (at == std::string::npos) return "";
+  std::string text;
+  for (std::size_t pos = at + 2; pos < gif.size() && gif[pos] != 0;) {
+    const auto length = static_cast<unsigned char>(gif[pos]);
+    text += gif.substr(pos + 1, length);
+    pos += 1 + length;
+  }
+  return text;
+}
+
+TEST(SimulateOutput, RecordingsCarryTheProvenanceInTheirContainers) {
+  TempDir dir;
+  for (const char* format : {"gif", "png-zip", "webm"}) {
+    const fs::path out =
+        dir.path / (std::string("clip.") + (std::string(format) == "png-zip" ? "zip" : format));
+    const Result r =
+        spinfold(std::string("record --scene spinning_rigid_sphere --t-end 0.2 --fps 10 --width 64 "
+                             "--height 48 --quiet --format ") +
+                 format + " --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << format << ": " << r.err;
+    // A GIF comment extension, the zip's archive comment (and each PNG's Source text), the WebM
+    // container's comment tag: each holds the provenance JSON with the window and the view.
+    const std::string bytes = std::string(format) == "gif" ? gif_comment(slurp(out)) : slurp(out);
+    const std::size_t at = bytes.find("\"scene_hash\":\"");
+    ASSERT_NE(at, std::string::npos) << format;
+    EXPECT_NE(bytes.find("\"t_end\":0.2"), std::string::npos) << format;
+    EXPECT_NE(bytes.find("\"view\":\"sphere\""), std::string::npos) << format;
+    EXPECT_NE(bytes.find("record --scene spinning_rigid_sphere"), std::string::npos) << format;
+  }
+}
+
+}  // namespace

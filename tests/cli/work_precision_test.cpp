@@ -156,6 +156,21 @@ TEST(WorkPrecision, UserSceneGivesCsvPlotsAndARecommendation) {
   EXPECT_NE(summary.find("| dop853 | tol |"), std::string::npos) << summary;
 }
 
+// Where the closed form holds, auto (which picks it) is recommended, not the cheapest stepper: the
+// "Use …" button of the UI sets what is named first.
+TEST(WorkPrecision, AutoIsRecommendedWhereItIsCheapest) {
+  TempDir dir;
+  const fs::path out = dir.path / "out";
+  const auto r = run_spinfold(
+      "work-precision --scene spinning_rigid_sphere --integrators dop853,auto --t-end 2 "
+      "--out " +
+      out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("over T = 2: auto (picks exact) at the scene's tol 1e-10, "), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("the cheapest stepping setting, dop853 at tol "), std::string::npos) << r.out;
+}
+
 TEST(WorkPrecision, UnknownPresetExits2AndWritesNothing) {
   TempDir dir;
   const auto r = run_spinfold("work-precision --scene no_such_scene --out " + dir.path.string());

@@ -206,6 +206,11 @@ TEST_F(Api, SessionLifecycle) {
   EXPECT_EQ(created->get_header_value("Location"), "/api/v1/sessions/" + id);
   EXPECT_NE(created->get_header_value("X-Spinfold-Provenance").find("integrator=exact"), std::string::npos);
   EXPECT_EQ(body["state"]["t"], 0.0);
+  // Where the numbers come from: the build, the scene's hash and the integrator (codec/provenance.h).
+  EXPECT_EQ(body["provenance"]["software"], "spinfold");
+  EXPECT_FALSE(body["provenance"]["commit"].get<std::string>().empty());
+  EXPECT_EQ(body["provenance"]["scene_hash"].get<std::string>().size(), 16u);
+  EXPECT_NE(created->get_header_value("X-Spinfold-Provenance").find("scene_hash="), std::string::npos);
 
   auto advanced = c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 2})", "application/json");
   ASSERT_TRUE(advanced);
