@@ -506,6 +506,9 @@ function recover() {
 
 // A scene from t = 0, or (a share link, a reload) a scene with its timeline rebuilt up to `until`.
 async function openScene(scene, options = {}) {
+  // One opening at a time: each replaces the session the previous one made (two clicks in quick
+  // succession would otherwise both replace the same old session and leave one of theirs behind).
+  while (ui.opening) await ui.opening.catch(() => {});
   const opening = openSceneNow(scene, options);
   ui.opening = opening;
   try {

@@ -205,7 +205,10 @@ try {
   });
 
   await test("the energy plot: labelled decades, zeros on the floor, a growing rk4 error, history across a change", async () => {
+    // The default preset may be open already: wait for the new session, not for the card.
+    const before = await sessionId(page);
     await page.click('.preset[data-name="spinning_rigid_sphere"]');
+    await page.waitForFunction((old) => new URL(document.querySelector("#export-state").href).pathname.split("/").pop() !== old, before);
     await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "spinning_rigid_sphere");
     // The closed form: an error of 0 or round-off sits on the floor, the axis still has ticks.
     await page.waitForFunction(() => (document.querySelector("#plot-energy").dataset.ticks || "").includes("≤10⁻¹⁶"));
