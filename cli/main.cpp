@@ -412,8 +412,9 @@ int serve(const server::ServerOptions& options) {
             << "  default scene '" << kDefaultPreset << "': " << base << "/api/v1/sessions/" << id << "\n"
             << "  its frame:  " << base << "/api/v1/sessions/" << id << "/frame.png\n"
             << "  sessions: "
-            << (options.data_dir.empty() ? "in memory only"
-                                         : "stored in " + options.data_dir + "/sessions.db")
+            << (!options.store.empty()      ? "stored in " + server::store_url_for_messages(options.store)
+                : options.data_dir.empty() ? "in memory only"
+                                           : "stored in " + options.data_dir + "/sessions.db")
             << std::endl;
   std::atomic<bool> signalled{false};
   std::thread waiter([&] {
@@ -583,7 +584,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   serve_cmd
       ->add_option("--trusted-proxy", serve_opt.trusted_proxy,
-                   "Address of the reverse proxy whose X-Forwarded-For names the client ('' never trusts it)")
+                   "Address (or IPv4 network a.b.c.d/n) of the reverse proxy whose X-Forwarded-For names the client ('' never trusts it)")
       ->capture_default_str();
   serve_cmd
       ->add_option("--requests-per-second", serve_opt.limits.requests_per_second_per_client,
@@ -594,6 +595,11 @@ int main(int argc, char** argv) {
       ->add_option("--data-dir", serve_opt.data_dir,
                    "Directory of the session store (sessions.db, SQLite); '' keeps sessions in memory only")
       ->capture_default_str();
+  serve_cmd
+      ->add_option("--store", serve_opt.store,
+                   "PostgreSQL URL of a session store shared by replicas on several hosts "
+                   "(postgresql://user:password@host:port/db); instead of --data-dir")
+      ->envname("SPINFOLD_STORE");
   bool no_store = false;
   serve_cmd->add_flag("--no-store", no_store, "Keep sessions in memory only (as --data-dir '')");
 #endif
@@ -633,7 +639,7 @@ int main(int argc, char** argv) {
     }
     if (wp_cmd->parsed()) return cli::run_work_precision_command(wp_opt, argc, argv);
     if (serve_cmd->parsed()) {
-      if (no_store) serve_opt.data_dir.clear();
+      if (no_store) serve_opt.data_dir.clear(), serve_opt.store.clear();
       return serve(serve_opt);
     }
 #endif

@@ -10,6 +10,7 @@ packages=(
   libdeflate-dev libturbojpeg0-dev                # frames: PNG compression, JPEG
   libcpp-httplib-dev nlohmann-json3-dev           # server and JSON codec
   libsqlite3-dev                                  # the durable session store
+  libpq-dev postgresql iproute2                   # the PostgreSQL store, its tests, several hosts (netns)
   libgif-dev libzip-dev                           # recordings: GIF (giflib), a zip of PNGs (libzip)
   libavformat-dev libavcodec-dev libavutil-dev libswscale-dev  # recordings: WebM/VP9 and MP4/H.264
                                                   # (FFmpeg; its libavcodec brings libvpx and libx264)

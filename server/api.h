@@ -87,12 +87,15 @@ struct ServerOptions {
   // "https://lms.example.edu https://slides.example.org" for `?embed=1` in slides or an LMS.
   std::string frame_ancestors = "'none'";
   std::string data_dir;  // the durable session store (DIR/sessions.db, SQLite); "": memory only
+  // A PostgreSQL URL (postgresql://…): the store instead of data_dir, for replicas on several hosts
+  // (server/postgres_session_db.h).
+  std::string store;
   Limits limits;
 };
 
 class ApiServer {
  public:
-  // With a data_dir, opens the store and restores its sessions: StoreError (server/session_db.h)
+  // With a store or data_dir, opens the store and restores its sessions: StoreError (server/session_db.h)
   // when it cannot (unwritable directory, damaged or locked database).
   explicit ApiServer(ServerOptions options);
   ~ApiServer();

@@ -35,7 +35,7 @@ struct Viewer {
 
 struct ServerContext {
   ServerOptions options;
-  std::unique_ptr<SessionDb> db;  // the durable store (options.data_dir), or none: memory only
+  std::unique_ptr<SessionDb> db;  // the durable store (options.store, else options.data_dir), or none
   SessionStore sessions;
   RenderPool renderer{options.render_threads};
   FrameCache frames{128};
@@ -50,7 +50,7 @@ struct ServerContext {
 
   explicit ServerContext(ServerOptions o)
       : options(std::move(o)),
-        db(options.data_dir.empty() ? nullptr : std::make_unique<SessionDb>(options.data_dir)),
+        db(open_session_db(options.store, options.data_dir)),
         sessions(options.limits.max_sessions, options.limits.idle_expiry, db.get()) {
     sessions.restore();
   }

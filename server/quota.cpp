@@ -30,8 +30,22 @@ ApiError over_quota(const std::string& limit, double value, const std::string& r
 
 }  // namespace
 
+bool is_trusted_proxy(const std::string& address, const std::string& trusted) {
+  if (trusted.empty()) return false;
+  const std::size_t slash = trusted.find('/');
+  if (slash == std::string::npos) return address == trusted;
+  // IPv4 a.b.c.d/n: a front whose address changes (a Kubernetes pod) inside a known network.
+  in_addr net{}, peer{};
+  const int bits = std::atoi(trusted.c_str() + slash + 1);
+  if (bits < 0 || bits > 32 || inet_pton(AF_INET, trusted.substr(0, slash).c_str(), &net) != 1 ||
+      inet_pton(AF_INET, address.c_str(), &peer) != 1)
+    return false;
+  const std::uint32_t mask = bits == 0 ? 0 : ~std::uint32_t{0} << (32 - bits);
+  return (ntohl(net.s_addr) & mask) == (ntohl(peer.s_addr) & mask);
+}
+
 std::string client_address(const httplib::Request& req, const std::string& trusted_proxy) {
-  if (trusted_proxy.empty() || req.remote_addr != trusted_proxy) return req.remote_addr;
+  if (!is_trusted_proxy(req.remote_addr, trusted_proxy)) return req.remote_addr;
   const std::string forwarded = req.get_header_value("X-Forwarded-For");
   const std::size_t end = forwarded.find(',');
   std::string first = forwarded.substr(0, end);

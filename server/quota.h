@@ -18,8 +18,12 @@ namespace spinfold::server {
 
 struct Session;
 
+// True when `address` is the trusted proxy: equal to `trusted`, or inside it when it is an IPv4
+// network "a.b.c.d/n" (a front whose pod address changes); never when `trusted` is "".
+bool is_trusted_proxy(const std::string& address, const std::string& trusted);
+
 // The client's address: the socket's peer, or the first address of X-Forwarded-For when the peer is
-// `trusted_proxy` (never when it is "") and the header holds an IP address.
+// the trusted proxy (is_trusted_proxy) and the header holds an IP address.
 std::string client_address(const httplib::Request& req, const std::string& trusted_proxy);
 
 class ClientQuotas {

@@ -80,7 +80,9 @@ std::string Recordings::start(RecordingJob job) {
               "width × height = " + std::to_string(pixels) + " pixels; at most " +
                   std::to_string(limits_.max_recording_pixels) + " (limits.max_recording_pixels)");
   auto entry = std::make_shared<Entry>();
-  entry->state.id = new_session_id();
+  // The session's id (22 characters) first: the front's consistent hashing sends the recording's
+  // requests to the replica that records it, the one its session's go to (deploy/nginx/spinfold.conf).
+  entry->state.id = job.session + new_session_id();
   entry->state.frames = frames;
   entry->path = dir_ / (entry->state.id + "." + std::string(record::file_extension(job.format)));
   entry->state.job = std::move(job);

@@ -23,9 +23,10 @@ using nlohmann::ordered_json;
 
 namespace {
 
-// Session ids (server/session_id.h: 22 characters of base64url); any such text up to 32 characters
-// routes, so that an unknown or malformed id gets the one 404 of an unknown session.
-constexpr const char* kIdPattern = "[A-Za-z0-9_-]{1,32}";
+// Session ids (server/session_id.h: 22 characters of base64url; a recording's is its session's and
+// 22 more); any such text up to 44 characters routes, so that an unknown or malformed id gets the one
+// 404 of an unknown session or recording.
+constexpr const char* kIdPattern = "[A-Za-z0-9_-]{1,44}";
 
 std::string joined(const std::vector<std::string>& items, const std::string& last) {
   std::string text;

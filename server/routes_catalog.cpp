@@ -27,7 +27,10 @@ using nlohmann::ordered_json;
 
 void get_health(ServerContext& server, const Call&, httplib::Response& res) {
   const render::GlInUse gl = render::gl_in_use();
-  send_json(res, {{"status", "ok"},
+  // A replica whose store is away cannot take changes: 503, so that a readiness probe (Kubernetes)
+  // takes it out of the Service until the store answers again.
+  const bool store_ok = !server.db || server.db->reachable();
+  send_json(res, {{"status", store_ok ? "ok" : "store unavailable"},
                   {"version", server_version()},
                   {"commit", std::string(build_commit())},
                   {"sessions", server.sessions.size()},
@@ -35,7 +38,12 @@ void get_health(ServerContext& server, const Call&, httplib::Response& res) {
                   {"render_threads", server.renderer.threads()},
                   {"render_threads_started", server.renderer.started()},
                   // The render threads' GL backend and GL_RENDERER ("" until one has made its context).
-                  {"gl", {{"backend", gl.backend}, {"renderer", gl.renderer}}}});
+                  {"gl", {{"backend", gl.backend}, {"renderer", gl.renderer}}},
+                  {"store",
+                   {{"kind", server.db ? std::string(server.db->kind()) : "memory"},
+                    {"where", server.db ? server.db->path() : ""},
+                    {"reachable", store_ok}}}},
+            store_ok ? 200 : 503);
 }
 
 void get_scenes(ServerContext&, const Call&, httplib::Response& res) {
@@ -108,10 +116,14 @@ std::vector<Route> catalog_routes(const Limits&) {
        .path = "/api/v1/health",
        .operation_id = "get_health",
        .handler = get_health,
-       .summary = "Liveness, version, sessions, open streams, render threads and their GL backend",
+       .summary = "Readiness, version, sessions, open streams, render threads and their GL backend, the "
+                  "session store",
        .responses = {{200,
                       "{\"status\": \"ok\", \"version\", \"sessions\", \"streams\", \"render_threads\", "
-                      "\"render_threads_started\", \"gl\": {\"backend\", \"renderer\"}}"}}},
+                      "\"render_threads_started\", \"gl\": {\"backend\", \"renderer\"}, \"store\": {\"kind\", "
+                      "\"where\", \"reachable\"}}"},
+                     {503, "the same, with \"status\": \"store unavailable\": the session store does not "
+                           "answer (the replica is not ready)"}}},
       {.method = "GET",
        .path = "/api/v1/scenes",
        .operation_id = "list_scenes",

@@ -1,23 +1,21 @@
-// The durable store of sessions: one SQLite database (WAL mode) in the data directory, one row per
-// session holding what determines it (scene, timeline, time) and a version bumped by every write.
-// Several server processes may share the file: readers never wait for the writer, writers take turns
-// (busy timeout), and each write names the version it saw, so none overwrites a change it missed.
+// The durable store of sessions: one row per session holding what determines it (scene, timeline,
+// time) and a version bumped by every write. Several server processes may share the store: each
+// write names the version it saw, so none overwrites a change it missed (a lost race is a 409).
+// Two implementations: SQLite in the data directory (server/sqlite_session_db.h, the default: one
+// machine, nothing to run) and PostgreSQL (server/postgres_session_db.h: replicas on several hosts).
 #pragma once
 
 #include <chrono>
 #include <cstdint>
-#include <mutex>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-struct sqlite3;
-struct sqlite3_stmt;
-
 namespace spinfold::server {
 
-// The store cannot be opened, read or written: a message naming the file and SQLite's reason.
+// The store cannot be opened, read or written: a message naming the store and the reason.
 struct StoreError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -28,46 +26,45 @@ struct StoredSession {
   std::int64_t version = 0;  // bumped by every write; 0: not stored yet
   std::string scene;         // JSON: the parameters at t = 0
   std::string timeline;      // JSON: [{"t", "patch"}]
-  double t = 0.0;            // [time] the session's current time, bit for bit (an 8-byte REAL)
+  double t = 0.0;            // [time] the session's current time, bit for bit (an 8-byte double; −0 as +0)
   bool playing = false;      // as last stored (a session loaded from the store starts paused)
   double rate = 1.0;         // simulated time per second of wall time while playing
 };
 
+// What every store does; each call is one atomic statement, safe from any thread. A call that cannot
+// reach the store throws StoreError (the server answers 503 and keeps nothing half-written).
 class SessionDb {
  public:
-  // Opens (creating it and the directory when missing) DIR/sessions.db in WAL mode and checks it
-  // (PRAGMA quick_check); StoreError when the directory is unwritable or the file is not a sound
-  // Spinfold database, or stays locked past `busy_timeout`.
-  explicit SessionDb(const std::string& dir,
-                     std::chrono::milliseconds busy_timeout = std::chrono::seconds(5));
-  ~SessionDb();
-  SessionDb(const SessionDb&) = delete;
-  SessionDb& operator=(const SessionDb&) = delete;
-
-  const std::string& path() const { return path_; }
+  virtual ~SessionDb() = default;
+  // Where the rows are, for messages: the file, or the database URL without its password.
+  virtual const std::string& path() const = 0;
+  virtual std::string_view kind() const = 0;  // "sqlite" or "postgresql"
   // The row's version, or nullopt when there is no such row.
-  std::optional<std::int64_t> version(const std::string& id);
-  std::optional<StoredSession> load(const std::string& id);
-  std::vector<StoredSession> load_all();
+  virtual std::optional<std::int64_t> version(const std::string& id) = 0;
+  virtual std::optional<StoredSession> load(const std::string& id) = 0;
+  virtual std::vector<StoredSession> load_all() = 0;  // least recently used first
   // Writes the row if its stored version is still `row.version` (0: inserts a new row) and returns
   // the new version, or 0 when another writer changed or deleted it first (nothing written).
-  std::int64_t save(const StoredSession& row);
+  virtual std::int64_t save(const StoredSession& row) = 0;
   // Marks the row used now (its version unchanged): rows unused for the idle expiry are dropped.
-  void touch(const std::string& id);
-  bool remove(const std::string& id);  // true when a row was deleted
-  std::int64_t count();
-  void expire(std::chrono::seconds idle);  // deletes rows unused for longer than `idle`
-
- private:
-  struct Statement;
-  void exec(const char* sql);
-  [[noreturn]] void fail(const std::string& what);
-  sqlite3_stmt* prepare(const char* sql);
-  std::mutex mutex_;  // one connection, its statements used by one thread at a time
-  std::string path_;
-  sqlite3* db_ = nullptr;
-  std::vector<sqlite3_stmt*> statements_;
+  virtual void touch(const std::string& id) = 0;
+  virtual bool remove(const std::string& id) = 0;  // true when a row was deleted
+  virtual std::int64_t count() = 0;
+  virtual void expire(std::chrono::seconds idle) = 0;  // deletes rows unused for longer than `idle`
+  // True when the store answers now (GET /health): a store that is away makes the replica unready.
+  virtual bool reachable() = 0;
 };
+
+// The store `spinfold serve` was asked for: `url` "postgresql://…" (or "postgres://…") is PostgreSQL;
+// "" is SQLite in `data_dir` (DIR/sessions.db); both empty: nullptr (sessions in memory only).
+// StoreError when it cannot be opened (an unwritable directory, a damaged file, a malformed URL).
+std::unique_ptr<SessionDb> open_session_db(const std::string& url, const std::string& data_dir);
+
+// True for the URLs open_session_db gives to PostgreSQL.
+bool is_postgres_url(const std::string& url);
+// postgresql://user@host:port/db: the URL as messages show it, without its password (StoreError
+// when libpq cannot read it).
+std::string store_url_for_messages(const std::string& url);
 
 // The per-user state directory: $XDG_STATE_HOME/spinfold, else ~/.local/state/spinfold ("" when
 // neither variable is set).

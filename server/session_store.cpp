@@ -135,8 +135,11 @@ std::shared_ptr<Session> SessionStore::checked(const std::string& id, std::share
     const std::lock_guard lock(mutex_);
     return sessions_.emplace(id, s).first->second;  // another thread's load if it came first
   } catch (const StoreError& e) {
+    // The store cannot be read: what this process has (no other process can change the row while
+    // the store is away), or the error when this process has nothing (find_session: 503, not 404).
+    if (!memory) throw;
     warn(e.what());
-    return memory;  // the store cannot be read: what this process has
+    return memory;
   }
 }
 
@@ -181,7 +184,16 @@ std::size_t SessionStore::restore() {
   if (!db_) return 0;
   const auto start = Clock::now();
   std::size_t restored = 0;
-  for (const StoredSession& row : db_->load_all()) {
+  std::vector<StoredSession> rows;
+  try {
+    rows = db_->load_all();
+  } catch (const StoreError& e) {
+    if (db_->kind() != "postgresql") throw;  // a local file that cannot be read is a start error
+    // A database not up yet: replicas may start first; each session loads when first asked for.
+    warn(std::string(e.what()) + "; sessions load when first asked for");
+    return 0;
+  }
+  for (const StoredSession& row : rows) {
     auto s = loaded(row);
     if (!s) continue;
     const std::lock_guard lock(mutex_);

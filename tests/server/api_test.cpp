@@ -707,7 +707,7 @@ TEST_F(Api, OpenApiDocumentsEveryRouteAndQueryParameterOfTheTable) {
 
 TEST(RouteTable, PathsBecomeRegexes) {
   EXPECT_EQ(path_regex("/api/v1/sessions/{id}/frame.png"),
-            "/api/v1/sessions/([A-Za-z0-9_-]{1,32})/frame\\.png");
+            "/api/v1/sessions/([A-Za-z0-9_-]{1,44})/frame\\.png");
   EXPECT_EQ(path_regex("/"), "/");
   // One row per method and path.
   std::set<std::string> seen;

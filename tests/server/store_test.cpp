@@ -19,11 +19,13 @@
 #include <vector>
 
 #include "server/session_db.h"
+#include "server/sqlite_session_db.h"
 
 // After Eigen (none here, but the same order as the other server tests): httplib.h brings <resolv.h>.
 #include <httplib.h>
 
 #include "tests/render/frame_compare.h"
+#include "tests/server/test_stores.h"
 
 namespace {
 
@@ -164,12 +166,25 @@ void work_on(const Server& s, const std::string& id) {
   ASSERT_EQ(post(s, kSessions + "/" + id + "/advance", {{"steps", 37}})->status, 200);
 }
 
-TEST(Store, KillNineAndRestartGiveTheSameSessionsBitForBit) {
-  TempDir dir;
+// The store tests run against each store: SQLite in a directory, PostgreSQL (a database on the server
+// ctest starts: server_tests_postgres).
+class StoreOn : public testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+    if (GetParam() == "postgresql" && spinfold::test::postgres_dir().empty())
+      GTEST_SKIP() << "no PostgreSQL for this run (ctest's server_tests_postgres starts one)";
+    store_ = std::make_unique<spinfold::test::Backend>(GetParam());
+    ASSERT_TRUE(store_->ready());
+  }
+  std::vector<std::string> args() const { return store_->serve_args(); }
+  std::unique_ptr<spinfold::test::Backend> store_;
+};
+
+TEST_P(StoreOn, KillNineAndRestartGiveTheSameSessionsBitForBit) {
   std::string id, played;
   Seen before;
   {
-    Server a(store_args(dir));
+    Server a(args());
     ASSERT_GT(a.port(), 0) << a.err();
     id = create(a, {{"preset", "deforming_spin_pseudosphere"}});
     work_on(a, id);
@@ -183,7 +198,7 @@ TEST(Store, KillNineAndRestartGiveTheSameSessionsBitForBit) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1600));
     EXPECT_EQ(a.stop(SIGKILL), 128 + SIGKILL);
   }
-  Server b(store_args(dir));
+  Server b(args());
   ASSERT_GT(b.port(), 0) << b.err();
   EXPECT_NE(b.err().find("restored"), std::string::npos) << b.err();
   const Seen after = look(b, id);
@@ -198,10 +213,9 @@ TEST(Store, KillNineAndRestartGiveTheSameSessionsBitForBit) {
   EXPECT_EQ(json::parse(look(b, played).session)["state"]["t"], t);
 }
 
-TEST(Store, TwoServersOnOneDirectoryServeTheSameSessions) {
-  TempDir dir;
-  Server a(store_args(dir));
-  Server b(store_args(dir));
+TEST_P(StoreOn, TwoServersOnOneStoreServeTheSameSessions) {
+  Server a(args());
+  Server b(args());
   ASSERT_GT(a.port(), 0) << a.err();
   ASSERT_GT(b.port(), 0) << b.err();
   const std::string id = create(a, {{"preset", "deforming_spin_pseudosphere"}});
@@ -226,6 +240,56 @@ TEST(Store, TwoServersOnOneDirectoryServeTheSameSessions) {
   EXPECT_EQ(b.client().Delete((kSessions + "/" + id).c_str())->status, 404);
 }
 
+INSTANTIATE_TEST_SUITE_P(Stores, StoreOn, testing::Values("sqlite", "postgresql"),
+                         [](const testing::TestParamInfo<std::string>& p) { return p.param; });
+
+// The database goes away for a few seconds: changes answer 503 problem+json and nothing is
+// acknowledged that was not committed; a session only the store knows is 503, not 404; when the
+// database is back, the same server serves and stores again, and a new server restores it all.
+TEST(PostgresServe, ChangesAnswer503WhileTheDatabaseIsAwayAndNothingIsLost) {
+  if (spinfold::test::postgres_dir().empty()) GTEST_SKIP() << "no PostgreSQL for this run";
+  spinfold::test::Backend store("postgresql");
+  ASSERT_TRUE(store.ready());
+  std::string id, other;
+  {
+    Server a(store.serve_args());
+    Server b(store.serve_args());
+    ASSERT_GT(a.port(), 0) << a.err();
+    ASSERT_GT(b.port(), 0) << b.err();
+    id = create(a, {{"preset", "deforming_spin_pseudosphere"}});
+    work_on(a, id);
+    other = create(b, {{"preset", "spinning_rigid_sphere"}});
+    const std::string before = look(a, id).session;
+    ASSERT_EQ(std::system(spinfold::test::fixture("down").c_str()), 0);
+    const auto patch = a.client().Patch((kSessions + "/" + id).c_str(), R"({"body": {"mass": 2.5}})",
+                                        "application/merge-patch+json");
+    ASSERT_TRUE(patch);
+    EXPECT_EQ(patch->status, 503) << patch->body;
+    EXPECT_EQ(patch->get_header_value("Content-Type"), "application/problem+json");
+    EXPECT_EQ(post(a, kSessions, {{"preset", "spinning_rigid_sphere"}})->status, 503);
+    EXPECT_EQ(status_of(a, other), 503) << "a session the store holds is not unknown";
+    ASSERT_EQ(std::system(spinfold::test::fixture("up").c_str()), 0);
+    // Back within the reconnection backoff (at most 5 s).
+    int status = 0;
+    for (int i = 0; i < 80 && status != 200; ++i) {
+      status = status_of(a, other);
+      if (status != 200) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    ASSERT_EQ(status, 200);
+    EXPECT_EQ(look(a, id).session, before) << "the refused change must not show";
+    EXPECT_EQ(look(b, id).session, before);
+    const auto again = a.client().Patch((kSessions + "/" + id).c_str(), R"({"body": {"mass": 2.5}})",
+                                        "application/merge-patch+json");
+    ASSERT_TRUE(again);
+    EXPECT_EQ(again->status, 200) << again->body;
+    EXPECT_EQ(look(b, id).session, look(a, id).session);
+  }
+  Server c(store.serve_args());
+  ASSERT_GT(c.port(), 0) << c.err();
+  EXPECT_EQ(json::parse(look(c, id).session)["current"]["body"]["mass"], 2.5);
+  EXPECT_EQ(status_of(c, other), 200);
+}
+
 // A row is read as strictly as a request body: a NUL byte and what follows it, text after the value
 // or a second value make it a row that is not restored (said on stderr), rather than one read in
 // part; a sound row beside them is restored.
@@ -235,7 +299,7 @@ TEST(Store, ARowOfMoreThanOneJsonValueIsNotRestored) {
   const std::vector<std::pair<std::string, std::string>> bad = {
       {"{}" + nul + "garbage", "[]"}, {"{} {}", "[]"}, {"{}", "[] x"}, {"{}", "[]" + nul}};
   {
-    spinfold::server::SessionDb db((dir.path / "data").string());
+    spinfold::server::SqliteSessionDb db((dir.path / "data").string());
     ASSERT_GT(db.save({.id = "GoodGoodGoodGoodGoodGo", .scene = "{}", .timeline = "[]"}), 0);
     for (std::size_t i = 0; i < bad.size(); ++i)
       ASSERT_GT(db.save({.id = "BadRowBadRowBadRow000" + std::to_string(i),
