@@ -95,7 +95,7 @@ up() {
   echo "listen_addresses = '$db_ip'" >> "$state/pg/postgresql.conf"
   echo "unix_socket_directories = '$state/pg-run'" >> "$state/pg/postgresql.conf"
   db start
-  PGPASSWORD=$(cat "$state/db-password") in_host db "$pg_bin/psql" -q -h "$db_ip" -U spinfold -d postgres \
+  PGPASSWORD=$(cat "$state/db-password") in_host db "$pg_bin/psql" -q -h "$state/pg-run" -U spinfold -d postgres \
     -c "CREATE DATABASE spinfold"
 
   for ((i = 1; i <= n; ++i)); do start_replica "$i"; done

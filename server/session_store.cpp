@@ -24,6 +24,23 @@ void warn(const std::string& what) {
   std::fprintf(stderr, "spinfold: %s\n", what.c_str());
 }
 
+// One line a second at most: a store away for a while would otherwise log every tick of the player.
+void warn_store_error(const std::string& what) {
+  static std::mutex mutex;
+  static Clock::time_point last{};
+  static int held = 0;
+  const std::lock_guard lock(mutex);
+  const auto now = Clock::now();
+  if (now - last < std::chrono::seconds(1)) {
+    ++held;
+    return;
+  }
+  last = now;
+  if (held > 0) std::fprintf(stderr, "spinfold: (%d more store errors in the last second)\n", held);
+  held = 0;
+  warn(what);
+}
+
 StoredSession row_of(const std::string& id, const Session& s) {
   return {.id = id,
           .version = s.stored_version,
@@ -90,7 +107,7 @@ std::size_t SessionStore::count_locked() {
   if (db_) try {
       return static_cast<std::size_t>(db_->count());
     } catch (const StoreError& e) {
-      warn(e.what());
+      warn_store_error(e.what());
     }
   return sessions_.size();
 }
@@ -99,7 +116,7 @@ void SessionStore::expire_stored() {
   if (db_) try {
       db_->expire(idle_expiry_);
     } catch (const StoreError& e) {
-      warn(e.what());
+      warn_store_error(e.what());
     }
 }
 
@@ -135,10 +152,15 @@ std::shared_ptr<Session> SessionStore::checked(const std::string& id, std::share
     const std::lock_guard lock(mutex_);
     return sessions_.emplace(id, s).first->second;  // another thread's load if it came first
   } catch (const StoreError& e) {
-    // The store cannot be read: what this process has (no other process can change the row while
-    // the store is away), or the error when this process has nothing (find_session: 503, not 404).
+    // The store cannot be read: what this process has, when it is what the store holds (no other
+    // process can change the row while the store is away); otherwise the error (find_session: 503):
+    // this process has nothing, or memory ahead of the store (a refused change must not be served).
     if (!memory) throw;
-    warn(e.what());
+    {
+      const std::lock_guard lock(memory->mutex);
+      if (memory->stored_version == 0) throw;
+    }
+    warn_store_error(e.what());
     return memory;
   }
 }
@@ -150,7 +172,7 @@ SessionStore::Saved SessionStore::save(const std::string& id, Session& s) {
   try {
     if (write(*db_, id, s)) return Saved::stored;
   } catch (const StoreError& e) {
-    warn(e.what());
+    warn_store_error(e.what());
     saved = Saved::failed;
   }
   s.stored_version = 0;  // the memory is ahead of the store: the next find reloads it
@@ -169,7 +191,7 @@ void SessionStore::save_played(const std::string& id, Session& s, bool now) {
       s.playing = false;
     }
   } catch (const StoreError& e) {
-    warn(e.what());  // kept unsaved: the next tick tries again
+    warn_store_error(e.what());  // kept unsaved: the next tick tries again
   }
 }
 
