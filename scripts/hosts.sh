@@ -14,7 +14,8 @@
 #   scripts/hosts.sh status            # each host's processes
 #
 # Environment: HOSTS_STATE (state folder, default /tmp/spinfold-hosts), SPINFOLD_BIN (build/spinfold),
-# HOSTS_NET (the /24's first three numbers, default 10.251.0).
+# HOSTS_NET (the /24's first three numbers, default 10.251.0), HOSTS_FRONT_RATE (the front's requests
+# per second per address, default deploy/nginx/spinfold.conf's 100: a soak from one address raises it).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 state=${HOSTS_STATE:-/tmp/spinfold-hosts}
@@ -109,8 +110,9 @@ up() {
   awk -v prefix="$state/nginx" -v listen="$front_ip:$front_port" -v user="user nobody nogroup;" \
     -v ups="$upstreams" '
     /@UPSTREAMS@/ { printf "%s", ups; next }
-    { gsub(/@PREFIX@/, prefix); gsub(/@LISTEN@/, listen); gsub(/@USER@/, user); print }
-  ' "$root/deploy/nginx/spinfold.conf" > "$state/nginx/nginx.conf"
+    { gsub(/@PREFIX@/, prefix); gsub(/@LISTEN@/, listen); gsub(/@USER@/, user);
+      if (rate != "") gsub(/rate=100r\/s/, "rate=" rate "r/s"); print }
+  ' rate="${HOSTS_FRONT_RATE:-}" "$root/deploy/nginx/spinfold.conf" > "$state/nginx/nginx.conf"
   in_host front setsid nginx -p "$state/nginx" -c "$state/nginx/nginx.conf" -e "$state/nginx/error.log" \
     > /dev/null 2>&1 < /dev/null &
   wait_http client "http://$front_ip:$front_port/api/v1/health"
