@@ -22,8 +22,8 @@ enum class ViewKind {
   conformal,    // every surface: stereographic (S²), identity (plane), Poincaré (H²), continuous in K, 2-D
 };
 
-// A row of the one table of views (render/view_table.cpp, beside each view's implementation): the
-// name the API, the CLI and the UI use, the surfaces each shows, and how the UI titles and explains it.
+// The one table of views: the name the API, the CLI and the UI use, the surfaces each shows, and
+// how the UI titles and explains it.
 struct ViewInfo {
   std::string_view name;
   ViewKind kind;
