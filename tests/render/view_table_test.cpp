@@ -113,6 +113,24 @@ TEST(ViewTable, EveryViewDrawsAndAimsAtABodyOnEachSurfaceItShows) {
     }
 }
 
+TEST(ViewTable, AViewThatUsesStaticGeometryHasASurfaceAndAGridForEachSurfaceItShows) {
+  for (const ViewRow& row : view_table())
+    for (const SurfaceKind surface : kSurfaces) {
+      if (!shows(row.info, surface) || !row.model().uses_static()) continue;
+      const StaticGeometry& g = static_geometry(surface, row.info.kind);
+      EXPECT_EQ(&g, &static_geometry(surface, row.info.kind)) << "built once: " << row.info.name;
+      if (row.info.kind == ViewKind::plane) {  // the whole frame: cleared to its colour, a grid per frame
+        EXPECT_TRUE(g.surface.empty() && g.grid.empty());
+        continue;
+      }
+      EXPECT_FALSE(g.surface.empty()) << row.info.name;
+      EXPECT_FALSE(g.grid.empty()) << row.info.name;
+      EXPECT_FALSE(g.edges.empty()) << row.info.name;
+      EXPECT_EQ(g.surface.size() % 3, 0u) << row.info.name;  // triangles
+      EXPECT_EQ(g.grid.size() % 2, 0u) << row.info.name;     // segments
+    }
+}
+
 TEST(ViewTable, BodyScaleIsInRadiiButInLengthsInTheConformalView) {
   const Surface sphere{SurfaceKind::sphere, 3.0};
   for (const ViewRow& row : view_table())
