@@ -1,6 +1,7 @@
 #include "render/view_table.h"
 
 #include <array>
+#include <iterator>
 
 #include "render/views/view_model.h"
 
@@ -19,7 +20,7 @@ const ViewModel& conformal_view();
 namespace {
 
 // name, kind, three_d, shows {sphere, pseudosphere, plane}, title, description; implementation.
-constexpr std::array<ViewRow, 8> kViews{{
+constexpr ViewRow kViews[] = {
     {{"sphere", ViewKind::sphere, true, true, false, false, "3-D sphere",
       "the sphere in space, seen by an orbiting camera"},
      &sphere_view},
@@ -46,11 +47,11 @@ constexpr std::array<ViewRow, 8> kViews{{
       "any curvature K in one flat map, angles true: stereographic (K > 0), the plane itself (K = 0), the "
       "Poincaré disk (K < 0), in lengths and following the body, so the picture changes continuously with K"},
      &conformal_view},
-}};
+};
 
 constexpr auto kInfos = [] {
-  std::array<ViewInfo, kViews.size()> infos{};
-  for (std::size_t i = 0; i < kViews.size(); ++i) infos[i] = kViews[i].info;
+  std::array<ViewInfo, std::size(kViews)> infos{};
+  for (std::size_t i = 0; i < std::size(kViews); ++i) infos[i] = kViews[i].info;
   return infos;
 }();
 
@@ -67,7 +68,7 @@ std::span<const ViewInfo> views() {
 const ViewModel& view_model(ViewKind view) {
   for (const ViewRow& row : kViews)
     if (row.info.kind == view) return row.model();
-  return kViews.front().model();
+  return kViews[0].model();
 }
 
 }  // namespace spinfold::render
