@@ -3,30 +3,13 @@
 #include <array>
 #include <utility>
 
+#include "render/view_table.h"
+#include "render/views/view_model.h"
+
 namespace spinfold::render {
 
 namespace {
 
-constexpr std::array<ViewInfo, 8> kViews{{
-    {"sphere", ViewKind::sphere, true, true, false, false, "3-D sphere",
-     "the sphere in space, seen by an orbiting camera"},
-    {"disk", ViewKind::disk, false, true, true, false, "disk (flat map)",
-     "the Poincaré disk (H²) or the stereographic plane (S²): angles true, geodesics circular arcs"},
-    {"hyperboloid", ViewKind::hyperboloid, true, false, true, false, "3-D hyperboloid",
-     "H² as the upper sheet of the hyperboloid x₃² − x₁² − x₂² = R² in Minkowski space"},
-    {"klein", ViewKind::klein, false, false, true, false, "Klein disk (straight geodesics)",
-     "the Beltrami–Klein disk: geodesics are straight chords, angles and shapes are not true"},
-    {"halfplane", ViewKind::halfplane, false, false, true, false, "upper half-plane",
-     "the Poincaré upper half-plane: angles true, geodesics semicircles on the boundary or vertical lines"},
-    {"tractricoid", ViewKind::tractricoid, true, false, true, false, "3-D pseudosphere (tractricoid)",
-     "Beltrami's surface of curvature −1/R² in space: a strip of H² wrapped round its axis, ending at its "
-     "rim"},
-    {"plane", ViewKind::plane, false, false, false, true, "flat plane",
-     "the Euclidean plane, following the body"},
-    {"conformal", ViewKind::conformal, false, true, true, true, "conformal (continuous in K)",
-     "any curvature K in one flat map, angles true: stereographic (K > 0), the plane itself (K = 0), the "
-     "Poincaré disk (K < 0), in lengths and following the body, so the picture changes continuously with K"},
-}};
 constexpr std::array<std::pair<std::string_view, unsigned>, 7> kLayers{{{"surface", kSurface},
                                                                         {"grid", kGrid},
                                                                         {"body", kBody},
@@ -55,21 +38,17 @@ std::span<const std::string_view> layer_names() {
   return kLayerNames;
 }
 
-std::span<const ViewInfo> views() {
-  return kViews;
-}
-
 std::string joined_view_names(std::string_view separator) {
   std::string names;
-  for (const ViewInfo& v : kViews)
+  for (const ViewInfo& v : views())
     names += (names.empty() ? "" : std::string(separator)) + std::string(v.name);
   return names;
 }
 
 const ViewInfo& view_info(ViewKind view) {
-  for (const ViewInfo& v : kViews)
+  for (const ViewInfo& v : views())
     if (v.kind == view) return v;
-  return kViews.front();
+  return views().front();
 }
 
 namespace {
@@ -86,7 +65,7 @@ bool shows(const ViewInfo& v, SurfaceKind surface) {
 std::optional<std::string> view_unsupported_reason(ViewKind view, SurfaceKind surface) {
   if (shows(view_info(view), surface)) return std::nullopt;
   std::string names;
-  for (const ViewInfo& v : kViews)
+  for (const ViewInfo& v : views())
     if (shows(v, surface)) names += (names.empty() ? "" : ", ") + std::string(v.name);
   const char* what = surface == SurfaceKind::sphere         ? "the sphere"
                      : surface == SurfaceKind::pseudosphere ? "the pseudosphere"
@@ -95,7 +74,7 @@ std::optional<std::string> view_unsupported_reason(ViewKind view, SurfaceKind su
 }
 
 std::optional<ViewKind> parse_view(std::string_view name) {
-  for (const ViewInfo& v : kViews)
+  for (const ViewInfo& v : views())
     if (v.name == name) return v.kind;
   return std::nullopt;
 }
@@ -123,7 +102,7 @@ std::optional<unsigned> parse_layers(std::string_view list, std::string* unknown
 }
 
 double body_scale_length(ViewKind view, const Surface& surface) {
-  return view == ViewKind::conformal ? 1.0 : surface.radius;
+  return view_model(view).body_scale_length(surface);
 }
 
 }  // namespace spinfold::render

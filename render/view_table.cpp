@@ -1,0 +1,74 @@
+#include "render/view_table.h"
+
+#include <array>
+#include <iterator>
+
+#include "render/views/view_model.h"
+
+namespace spinfold::render {
+
+// The views' instances, one per file in render/views/.
+const ViewModel& sphere_view();
+const ViewModel& disk_view();
+const ViewModel& hyperboloid_view();
+const ViewModel& klein_view();
+const ViewModel& halfplane_view();
+const ViewModel& tractricoid_view();
+const ViewModel& plane_view();
+const ViewModel& conformal_view();
+
+namespace {
+
+// name, kind, three_d, shows {sphere, pseudosphere, plane}, title, description; implementation.
+constexpr ViewRow kViews[] = {
+    {{"sphere", ViewKind::sphere, true, true, false, false, "3-D sphere",
+      "the sphere in space, seen by an orbiting camera"},
+     &sphere_view},
+    {{"disk", ViewKind::disk, false, true, true, false, "disk (flat map)",
+      "the Poincaré disk (H²) or the stereographic plane (S²): angles true, geodesics circular arcs"},
+     &disk_view},
+    {{"hyperboloid", ViewKind::hyperboloid, true, false, true, false, "3-D hyperboloid",
+      "H² as the upper sheet of the hyperboloid x₃² − x₁² − x₂² = R² in Minkowski space"},
+     &hyperboloid_view},
+    {{"klein", ViewKind::klein, false, false, true, false, "Klein disk (straight geodesics)",
+      "the Beltrami–Klein disk: geodesics are straight chords, angles and shapes are not true"},
+     &klein_view},
+    {{"halfplane", ViewKind::halfplane, false, false, true, false, "upper half-plane",
+      "the Poincaré upper half-plane: angles true, geodesics semicircles on the boundary or vertical lines"},
+     &halfplane_view},
+    {{"tractricoid", ViewKind::tractricoid, true, false, true, false, "3-D pseudosphere (tractricoid)",
+      "Beltrami's surface of curvature −1/R² in space: a strip of H² wrapped round its axis, ending at its "
+      "rim"},
+     &tractricoid_view},
+    {{"plane", ViewKind::plane, false, false, false, true, "flat plane",
+      "the Euclidean plane, following the body"},
+     &plane_view},
+    {{"conformal", ViewKind::conformal, false, true, true, true, "conformal (continuous in K)",
+      "any curvature K in one flat map, angles true: stereographic (K > 0), the plane itself (K = 0), the "
+      "Poincaré disk (K < 0), in lengths and following the body, so the picture changes continuously with K"},
+     &conformal_view},
+};
+
+constexpr auto kInfos = [] {
+  std::array<ViewInfo, std::size(kViews)> infos{};
+  for (std::size_t i = 0; i < std::size(kViews); ++i) infos[i] = kViews[i].info;
+  return infos;
+}();
+
+}  // namespace
+
+std::span<const ViewRow> view_table() {
+  return kViews;
+}
+
+std::span<const ViewInfo> views() {
+  return kInfos;
+}
+
+const ViewModel& view_model(ViewKind view) {
+  for (const ViewRow& row : kViews)
+    if (row.info.kind == view) return row.model();
+  return kViews[0].model();
+}
+
+}  // namespace spinfold::render

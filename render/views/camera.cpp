@@ -1,0 +1,142 @@
+#include "render/views/camera.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <limits>
+
+#include "render/views/drawing.h"
+
+namespace spinfold::render {
+
+glm::mat4 orbit_camera(const ViewOptions& view, const glm::dvec3& default_target) {
+  const double aspect = static_cast<double>(view.width) / view.height;
+  const glm::dvec3 target =
+      view.target ? glm::dvec3((*view.target)[0], (*view.target)[1], (*view.target)[2]) : default_target;
+  const glm::dvec3 dir(std::cos(view.pitch) * std::cos(view.yaw), std::cos(view.pitch) * std::sin(view.yaw),
+                       std::sin(view.pitch));
+  const glm::dvec3 eye = target + view.distance * dir;
+  const glm::dvec3 up = std::abs(dir.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+  // Near and far planes grow with a camera drawn back to frame a body far out on H².
+  const double reach = std::max(1.0, view.distance / 5.0);
+  return glm::mat4(glm::perspective(glm::radians(kFovY), aspect, 0.05 * reach, 100.0 * reach) *
+                   glm::lookAt(eye, target, up));
+}
+
+Window2d window_around(const ViewOptions& view, const glm::dvec2& centre, double half) {
+  const double aspect = static_cast<double>(view.width) / view.height;
+  Window2d w;
+  w.centre = centre;
+  w.hx = aspect >= 1 ? half * aspect : half;
+  w.hy = aspect >= 1 ? half : half / aspect;
+  return w;
+}
+
+glm::dvec2 target_or(const ViewOptions& view, const glm::dvec2& otherwise) {
+  return view.target ? glm::dvec2((*view.target)[0], (*view.target)[1]) : otherwise;
+}
+
+glm::mat4 window_camera(const Window2d& w) {
+  return glm::mat4(
+      glm::ortho(w.centre.x - w.hx, w.centre.x + w.hx, w.centre.y - w.hy, w.centre.y + w.hy, -1.0, 1.0));
+}
+
+std::vector<Sight> sights(const ViewModel& model, const Snapshot& snapshot, const ViewOptions& view,
+                          bool recent_only) {
+  const Surface& surface = snapshot.surface;
+  std::vector<Sight> out;
+  for (const BodySnapshot& body : snapshot.bodies) {
+    if (!model.on_view(surface, body.X)) continue;
+    const double weight = &body == &snapshot.bodies.front() ? 1000.0 : 50.0;
+    out.push_back({model.world_position(surface, body.X), weight});
+    for (const Vec3& P : ellipse_points(surface, body, view.scale, 8))
+      if (model.on_view(surface, P)) out.push_back({model.world_position(surface, P), 5.0});
+  }
+  for (const BodySnapshot& body : snapshot.bodies) {
+    const std::size_t stride = body.trail.size() / 96 + 1;
+    const double weight = 10.0 * static_cast<double>(stride) / static_cast<double>(body.trail.size());
+    for (std::size_t i = 0; i < body.trail.size(); i += stride) {
+      const Vec3& P = body.trail[i];
+      if (!model.on_view(surface, P)) continue;
+      if (recent_only) {  // the trail's last stretch: within 3 radii (intrinsic) of its body
+        const double R = surface.radius, c = -dot(surface, P, body.X) / (R * R);
+        if (R * std::acosh(std::max(1.0, c)) > 3.0 * R) continue;
+      }
+      out.push_back({model.world_position(surface, P), weight});
+    }
+  }
+  return out;
+}
+
+double badness(const ViewModel& model, const ViewOptions& view, const std::vector<Sight>& points,
+               const HudLayout& hud) {
+  FrameScene scene;
+  scene.view_projection = model.camera(view);
+  const double margin = 0.04 * std::min(view.width, view.height),
+               edge = 0.01 * std::min(view.width, view.height);
+  const auto grown = [&](const PixelBox& b) {
+    return b.w > 0.0 ? PixelBox{b.x - margin, b.y - margin, b.w + 2 * margin, b.h + 2 * margin} : b;
+  };
+  const PixelBox hud_box = grown(hud.hud), legend_box = grown(hud.legend);
+  const glm::dvec4 h = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
+  const glm::dvec3 eye = glm::dvec3(h) / h.w;
+  double bad = 0.0;
+  for (const Sight& p : points) {
+    const bool hidden = model.hidden(p.at, eye);
+    const std::optional<glm::dvec2> px = pixel_position(scene, view, p.at);
+    if (hidden || !px || px->x < edge || px->y < edge || px->x > view.width - edge ||
+        px->y > view.height - edge || hud_box.contains(*px) || legend_box.contains(*px))
+      bad += p.weight;
+  }
+  return bad;
+}
+
+void clear_the_boxes(const ViewModel& model, ViewOptions& view, const std::vector<Sight>& points,
+                     const HudLayout& hud, std::initializer_list<double> pulls) {
+  constexpr double kTurns[][2] = {{0, 0},    {0, 0.1},    {0, 0.2},     {0.1, 0.1},  {-0.1, 0.1},
+                                  {0, 0.3},  {0.15, 0.2}, {-0.15, 0.2}, {0.2, 0.3},  {-0.2, 0.3},
+                                  {0, 0.45}, {0.3, 0.3},  {-0.3, 0.3},  {0.3, 0.45}, {-0.3, 0.45},
+                                  {0.15, 0}, {-0.15, 0},  {0.3, 0},     {-0.3, 0}};
+  const ViewOptions start = view;
+  double best = std::numeric_limits<double>::infinity();
+  for (const double pull : pulls)
+    for (const auto& turn : kTurns) {
+      ViewOptions v = start;
+      v.yaw = start.yaw + turn[0];
+      v.pitch = std::clamp(start.pitch + turn[1], -1.3, 1.3);
+      v.distance = start.distance * pull;
+      const double bad = badness(model, v, points, hud);
+      if (bad < best) best = bad, view = v;
+      if (best == 0.0) return;
+    }
+}
+
+void aim_orbit(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud,
+               double min_radius, double pitch, double yaw_turn) {
+  const std::vector<Sight> points = sights(model, snapshot, view, true);
+  if (points.empty()) return;  // every body off the view (beyond the tractricoid's rim): the default camera
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const Sight& p : points) lo = glm::min(lo, p.at), hi = glm::max(hi, p.at);
+  const glm::dvec3 centre = 0.5 * (lo + hi);
+  double radius = min_radius;
+  for (const Sight& p : points) radius = std::max(radius, glm::length(p.at - centre));
+  const double aspect = static_cast<double>(view.width) / view.height;
+  const double half_fov = std::atan(std::tan(glm::radians(kFovY) / 2) * std::min(1.0, aspect));
+  view.target = std::array<double, 3>{centre.x, centre.y, centre.z};
+  view.distance = radius / std::sin(0.85 * half_fov);
+  view.pitch = pitch;
+  if (glm::length(glm::dvec2(centre)) > 1e-9) view.yaw = std::atan2(centre.y, centre.x) + yaw_turn;
+  clear_the_boxes(model, view, points, hud, {1.0, 1.25, 1.6});
+}
+
+void aim_at_bodies_centre(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot) {
+  glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const BodySnapshot& body : snapshot.bodies) {
+    const glm::dvec3 w = model.world_position(snapshot.surface, body.X);
+    lo = glm::min(lo, glm::dvec2(w)), hi = glm::max(hi, glm::dvec2(w));
+  }
+  const glm::dvec2 c = 0.5 * (lo + hi);
+  view.target = std::array<double, 3>{c.x, c.y, 0.0};
+}
+
+}  // namespace spinfold::render

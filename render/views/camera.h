@@ -1,0 +1,59 @@
+// The cameras the views share and the search that aims them: an orbiting perspective camera (the
+// 3-D views), an orthographic window (the 2-D views), and what a camera must show of the bodies
+// and how badly a candidate shows it (aim_camera_at_body).
+#pragma once
+
+#include <initializer_list>
+#include <vector>
+
+#include "render/scene_builder.h"
+#include "render/views/view_model.h"
+
+namespace spinfold::render {
+
+// The 3-D views' vertical field of view [degrees].
+inline constexpr double kFovY = 35.0;
+
+// Perspective, orbiting view.target (else `default_target`) at view.distance from the direction
+// (yaw, pitch), z up [world units].
+glm::mat4 orbit_camera(const ViewOptions& view, const glm::dvec3& default_target);
+
+// The window centred on `centre` whose shorter side spans 2·half [world units], the longer one
+// stretched to the frame's aspect ratio.
+Window2d window_around(const ViewOptions& view, const glm::dvec2& centre, double half);
+// view.target's (x, y), or `otherwise` when the view has none.
+glm::dvec2 target_or(const ViewOptions& view, const glm::dvec2& otherwise);
+// The orthographic projection of a window (z from −1 to 1).
+glm::mat4 window_camera(const Window2d& w);
+
+// What a camera must show [world units] and how much each counts: the main body's centre above
+// all (1000), each companion's (50), each body's outline (5 a point) and its trail (10 in all).
+struct Sight {
+  glm::dvec3 at;
+  double weight;
+};
+// The sights of a snapshot in a view, the main body's first when it is on the view; with
+// `recent_only`, only each trail's last stretch (within 3 radii, intrinsic, of its body).
+std::vector<Sight> sights(const ViewModel& model, const Snapshot& snapshot, const ViewOptions& view,
+                          bool recent_only);
+// How badly a camera shows the sights: the weight of those hidden (ViewModel::hidden) or behind
+// the camera, out of the frame (less a margin) or under the HUD's or legend's box (grown by the
+// margin).
+double badness(const ViewModel& model, const ViewOptions& view, const std::vector<Sight>& points,
+               const HudLayout& hud);
+// Tries the camera turned by each of a fixed list of (Δyaw, Δpitch) and drawn back by each factor
+// of `pulls`, in this order, and keeps the first that shows the sights best.
+void clear_the_boxes(const ViewModel& model, ViewOptions& view, const std::vector<Sight>& points,
+                     const HudLayout& hud, std::initializer_list<double> pulls);
+
+// The orbit of a surface that stretches out of a unit ball (hyperboloid, tractricoid): orbit the
+// centre of the bounding box of the bodies and their recent trails, at the distance at which a
+// ball round all of them (at least `min_radius` [world units]) fills 85% of the narrower field of
+// view, at `pitch` [rad], from the side of the axis turned by `yaw_turn` [rad] from the centre's,
+// then clear the boxes.
+void aim_orbit(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud,
+               double min_radius, double pitch, double yaw_turn);
+// A window centred on the bounding box of the bodies' positions (plane, conformal).
+void aim_at_bodies_centre(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot);
+
+}  // namespace spinfold::render

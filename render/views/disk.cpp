@@ -1,0 +1,67 @@
+// The Poincaré disk (H²) or the stereographic plane (S²): one flat map, angles true.
+#include <cmath>
+
+#include "render/views/camera.h"
+#include "render/views/drawing.h"
+#include "render/views/view_model.h"
+
+namespace spinfold::render {
+
+namespace {
+
+class DiskView final : public ViewModel {
+ public:
+  // Poincaré disk (H²) or stereographic projection from the south pole (S²): (X₁, X₂)/(R + X₃).
+  // Far out on H² both grow like e^{r/R} and the ratio stays below 1 without overflow.
+  glm::dvec3 world_position(const Surface& surface, const Vec3& X) const override {
+    const double d = surface.radius + X.z();
+    return glm::dvec3(X.x() / d, X.y() / d, 0.0);
+  }
+
+  // The disk |w| < 1 of H² with its polar grid and rim, or the sphere's map out to |w| = 3 with
+  // parallels down to 150° and meridians every 30°.
+  StaticGeometry build_static(SurfaceKind kind) const override {
+    StaticGeometry g;
+    const Surface unit{kind, 1.0};
+    if (kind == SurfaceKind::pseudosphere) add_geodesic_polar_grid(g.grid, unit, *this, 6.0, 128, 64);
+    const double radius = kind == SurfaceKind::pseudosphere ? 1.0 : 3.0;
+    const int slices = 128;
+    for (int j = 0; j < slices; ++j) {
+      const double p0 = 2 * kPi * j / slices, p1 = 2 * kPi * (j + 1) / slices;
+      const LitVertex c{{0, 0, 0}, {0, 0, 1}};
+      g.surface.push_back(c);
+      g.surface.push_back({glm::vec3(radius * std::cos(p0), radius * std::sin(p0), 0), {0, 0, 1}});
+      g.surface.push_back({glm::vec3(radius * std::cos(p1), radius * std::sin(p1), 0), {0, 0, 1}});
+    }
+    if (kind == SurfaceKind::sphere) {
+      for (int k = 1; k < 10; ++k)  // parallels down to 150°
+        add_grid_curve(
+            g.grid, unit, *this, [&](double s) { return chart_point(unit, kPi * k / 12, 2 * kPi * s).X; },
+            128);
+      for (int k = 0; k < 12; ++k)
+        add_grid_curve(
+            g.grid, unit, *this,
+            [&](double s) { return chart_point(unit, kPi * 0.8 * s, 2 * kPi * k / 12).X; }, 64);
+    } else {
+      for (int j = 0; j < slices; ++j) {  // the rim
+        const double p0 = 2 * kPi * j / slices, p1 = 2 * kPi * (j + 1) / slices;
+        add_segment(g.grid, {std::cos(p0), std::sin(p0), 0}, {std::cos(p1), std::sin(p1), 0}, kGridColor);
+      }
+    }
+    return g;
+  }
+
+  // The unit disk and a margin, centred whatever view.target says.
+  glm::mat4 camera(const ViewOptions& view) const override {
+    return window_camera(window_around(view, glm::dvec2(0.0), 1.08));
+  }
+};
+
+}  // namespace
+
+const ViewModel& disk_view() {
+  static const DiskView view;
+  return view;
+}
+
+}  // namespace spinfold::render

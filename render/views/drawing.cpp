@@ -1,0 +1,153 @@
+#include "render/views/drawing.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace spinfold::render {
+
+namespace {
+
+// The geodesic companion's trail: dashes and gaps of these lengths [world units, radii].
+constexpr double kDash = 0.045, kGap = 0.03;
+
+// The body-frame vector a e₁ + b e₂ and its intrinsic length from the Gram matrix.
+struct FrameVector {
+  Vec3 v;
+  double length;
+};
+FrameVector frame_vector(const BodySnapshot& s, double a, double b) {
+  const double q = s.gram(0, 0) * a * a + 2.0 * s.gram(0, 1) * a * b + s.gram(1, 1) * b * b;
+  return {a * s.e[0] + b * s.e[1], std::sqrt(std::max(0.0, q))};
+}
+
+}  // namespace
+
+glm::vec4 outline_color(const BodySnapshot& body) {
+  if (body.color == kMainBodyColor) return {0.70f, 0.30f, 0.02f, 1.0f};
+  return {0.75f * body.color[0], 0.75f * body.color[1], 0.75f * body.color[2], 1.0f};
+}
+
+glm::dvec3 lifted(const ViewModel& view, const glm::dvec3& w) {
+  const double lift = view.lift();
+  return lift != 0.0 ? w + lift * view.normal(w) : w;
+}
+
+void add_segment(std::vector<Vertex>& lines, const glm::dvec3& a, const glm::dvec3& b,
+                 const glm::vec4& color) {
+  lines.push_back({to_float(a), color});
+  lines.push_back({to_float(b), color});
+}
+
+void add_polyline(std::vector<Vertex>& lines, const Surface& surface, const ViewModel& view,
+                  const std::vector<Vec3>& points, const glm::vec4& color, bool closed,
+                  const Window2d* clip) {
+  for (std::size_t i = 0; i + 1 < points.size() + (closed ? 1 : 0); ++i) {
+    const Vec3& a = points[i];
+    const Vec3& b = points[(i + 1) % points.size()];
+    if (!view.on_view(surface, a) || !view.on_view(surface, b)) continue;
+    const glm::dvec3 wa = lifted(view, view.world_position(surface, a)),
+                     wb = lifted(view, view.world_position(surface, b));
+    if (clip && !(clip->near(glm::dvec2(wa)) && clip->near(glm::dvec2(wb)))) continue;
+    add_segment(lines, wa, wb, color);
+  }
+}
+
+void add_dashed_polyline(std::vector<Vertex>& lines, const Surface& surface, const ViewModel& view,
+                         const std::vector<Vec3>& points, const glm::vec4& color, const Window2d* clip) {
+  double phase = 0.0;  // distance into the current dash + gap period
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+    if (!view.on_view(surface, points[i]) || !view.on_view(surface, points[i + 1])) continue;
+    const glm::dvec3 a = lifted(view, view.world_position(surface, points[i]));
+    const glm::dvec3 b = lifted(view, view.world_position(surface, points[i + 1]));
+    if (clip && !(clip->near(glm::dvec2(a)) && clip->near(glm::dvec2(b)))) continue;
+    const double length = glm::length(b - a);
+    double done = 0.0;
+    while (done < length) {
+      const bool on = phase < kDash;
+      const double step = std::min(length - done, (on ? kDash : kDash + kGap) - phase);
+      if (on)
+        add_segment(lines, a + (b - a) * (done / length), a + (b - a) * ((done + step) / length), color);
+      done += step;
+      phase += step;
+      if (phase >= kDash + kGap) phase = 0.0;
+    }
+  }
+}
+
+Vec3 exp_frame(const Surface& surface, const BodySnapshot& body, double a, double b) {
+  const FrameVector f = frame_vector(body, a, b);
+  return exponential_map(surface, body.X, f.v, f.length);
+}
+
+void add_body(FrameScene& scene, const Surface& surface, const ViewModel& view, double scale,
+              const BodySnapshot& body) {
+  const glm::vec4 fill = rgba(body.color, kFillAlpha);
+  const std::vector<Vec3> outline = ellipse_points(surface, body, scale, 64);
+  // The fill follows the surface: rings at 1/8, 2/8, … of the way out (a flat fan would sink
+  // below the sphere's surface and vanish under the depth test).
+  constexpr int kRings = 8;
+  const auto ring_point = [&](int ring, std::size_t i) {
+    const double theta = 2 * kPi * static_cast<double>(i % outline.size()) / outline.size();
+    const double f = scale * ring / kRings;
+    return to_float(lifted(view, view.world_position(surface, exp_frame(surface, body, f * std::cos(theta),
+                                                                        f * std::sin(theta)))));
+  };
+  for (int ring = 0; ring < kRings; ++ring)
+    for (std::size_t i = 0; i < outline.size(); ++i) {
+      const glm::vec3 a = ring_point(ring, i), b = ring_point(ring + 1, i), c = ring_point(ring + 1, i + 1),
+                      d = ring_point(ring, i + 1);
+      scene.fills.insert(scene.fills.end(), {{a, fill}, {b, fill}, {c, fill}});
+      if (ring > 0) scene.fills.insert(scene.fills.end(), {{a, fill}, {c, fill}, {d, fill}});
+    }
+  add_polyline(scene.lines, surface, view, outline, outline_color(body), true);
+}
+
+void add_frame_arrows(FrameScene& scene, const Surface& surface, const ViewModel& view, double scale,
+                      const BodySnapshot& body) {
+  for (int a = 0; a < 2; ++a) {
+    std::vector<Vec3> shaft;
+    for (int i = 0; i <= 16; ++i) {
+      const double f = scale * 1.3 * i / 16;
+      shaft.push_back(exp_frame(surface, body, a == 0 ? f : 0.0, a == 0 ? 0.0 : f));
+    }
+    add_polyline(scene.lines, surface, view, shaft, kArrowColors[a], false);
+    // Arrowhead in world space: two barbs back from the tip, in the surface's tangent plane.
+    const glm::dvec3 tip = lifted(view, view.world_position(surface, shaft.back()));
+    const glm::dvec3 before = lifted(view, view.world_position(surface, shaft[12]));
+    const glm::dvec3 back = before - tip;
+    if (glm::length(back) > 0.0) {
+      const glm::dvec3 normal = view.normal(tip);
+      const glm::dvec3 side = 0.45 * glm::length(back) * glm::normalize(glm::cross(normal, back));
+      add_segment(scene.lines, tip, before + side, kArrowColors[a]);
+      add_segment(scene.lines, tip, before - side, kArrowColors[a]);
+    }
+  }
+}
+
+void add_quad(StaticGeometry& g, const LitVertex& a, const LitVertex& b, const LitVertex& c,
+              const LitVertex& d) {
+  g.surface.insert(g.surface.end(), {a, b, c, a, c, d});
+}
+
+void add_geodesic_polar_grid(std::vector<Vertex>& grid, const Surface& unit, const ViewModel& view,
+                             double extent, int around, int out) {
+  for (double r = 0.5; r <= extent + 1e-9; r += 0.5)
+    add_grid_curve(
+        grid, unit, view, [&](double s) { return chart_point(unit, r, 2 * kPi * s).X; }, around);
+  for (int k = 0; k < 12; ++k)
+    add_grid_curve(
+        grid, unit, view, [&](double s) { return chart_point(unit, extent * s, 2 * kPi * k / 12).X; }, out);
+}
+
+// The default bodies: every body on the view, ellipses first, then arrows.
+void ViewModel::add_bodies(FrameScene& scene, const Snapshot& snapshot, const ViewOptions& view) const {
+  const Surface& surface = snapshot.surface;
+  if (view.layers & kBody)
+    for (const BodySnapshot& body : snapshot.bodies)
+      if (on_view(surface, body.X)) add_body(scene, surface, *this, view.scale, body);
+  if (view.layers & kFrame)
+    for (const BodySnapshot& body : snapshot.bodies)
+      if (on_view(surface, body.X)) add_frame_arrows(scene, surface, *this, view.scale, body);
+}
+
+}  // namespace spinfold::render

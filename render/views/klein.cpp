@@ -1,0 +1,47 @@
+// The Beltrami–Klein disk (H²): geodesics are straight chords; angles and shapes are not true.
+#include <cmath>
+
+#include "render/views/camera.h"
+#include "render/views/drawing.h"
+#include "render/views/view_model.h"
+
+namespace spinfold::render {
+
+namespace {
+
+class KleinView final : public ViewModel {
+ public:
+  // (X₁, X₂)/X₃: the central projection of the hyperboloid onto the plane X₃ = R (in radii).
+  glm::dvec3 world_position(const Surface& /*surface*/, const Vec3& X) const override {
+    return glm::dvec3(X.x() / X.z(), X.y() / X.z(), 0.0);
+  }
+
+  // The unit disk and its rim, and H²'s polar grid out to r = 6.
+  StaticGeometry build_static(SurfaceKind kind) const override {
+    StaticGeometry g;
+    const int slices = 128;
+    for (int j = 0; j < slices; ++j) {
+      const double p0 = 2 * kPi * j / slices, p1 = 2 * kPi * (j + 1) / slices;
+      g.surface.push_back({{0, 0, 0}, {0, 0, 1}});
+      g.surface.push_back({glm::vec3(std::cos(p0), std::sin(p0), 0), {0, 0, 1}});
+      g.surface.push_back({glm::vec3(std::cos(p1), std::sin(p1), 0), {0, 0, 1}});
+      add_segment(g.grid, {std::cos(p0), std::sin(p0), 0}, {std::cos(p1), std::sin(p1), 0}, kGridColor);
+    }
+    add_geodesic_polar_grid(g.grid, Surface{kind, 1.0}, *this, 6.0, 128, 64);
+    return g;
+  }
+
+  // The unit disk and a margin.
+  glm::mat4 camera(const ViewOptions& view) const override {
+    return window_camera(window_around(view, glm::dvec2(0.0), 1.08));
+  }
+};
+
+}  // namespace
+
+const ViewModel& klein_view() {
+  static const KleinView view;
+  return view;
+}
+
+}  // namespace spinfold::render

@@ -1,0 +1,80 @@
+// The one interface a view implements: its projection, static geometry, camera, per-frame
+// background, bodies and aiming. Each view is one file in render/views/ (sphere.cpp, disk.cpp, …)
+// listed by one row of the view table (render/view_table.cpp); build_scene and aim_camera_at_body
+// ask the view for what differs and never switch on ViewKind. No GL: plain draw lists.
+#pragma once
+
+#include <cmath>
+#include <glm/glm.hpp>
+#include <optional>
+
+#include "render/scene_builder.h"
+
+namespace spinfold::render {
+
+// The centre and half-extents of a 2-D view's orthographic frame [world units].
+struct Window2d {
+  glm::dvec2 centre{0.0};
+  double hx = 1.0, hy = 1.0;
+  // Whether a world point is within the window grown by its own size on every side. The conformal
+  // view draws a segment only when both its ends are: near the sphere's antipode (at infinity) the
+  // images of neighbouring points lie far apart on opposite sides, and their chord would cross the
+  // frame.
+  bool near(const glm::dvec2& w) const {
+    return std::abs(w.x - centre.x) <= 3.0 * hx && std::abs(w.y - centre.y) <= 3.0 * hy;
+  }
+};
+
+// Defaults are those of a flat 2-D view that shows every point; a view overrides what it does
+// differently. Implementations are stateless singletons (one const object per view).
+class ViewModel {
+ public:
+  virtual ~ViewModel() = default;
+
+  // ---- Projection
+  // Where an embedded point X of `surface` lands in the view's world coordinates (world_position).
+  virtual glm::dvec3 world_position(const Surface& surface, const Vec3& X) const = 0;
+  // Whether the view shows X (false only off the tractricoid's strip).
+  virtual bool on_view(const Surface& /*surface*/, const Vec3& /*X*/) const { return true; }
+  // The surface's unit normal at a world point: overlays are lifted along it and arrowheads lie
+  // across it. +z in the 2-D views.
+  virtual glm::dvec3 normal(const glm::dvec3& /*w*/) const { return {0.0, 0.0, 1.0}; }
+  // How far overlays sit above the surface along normal() so that the depth test keeps them
+  // [world units]; 0: on it.
+  virtual double lift() const { return 0.0; }
+
+  // ---- Geometry that depends only on the surface kind (cached by static_geometry()).
+  // Triangles of the surface and its grid, in unit radii; empty for a view whose background
+  // follows the camera (drawn by add_background instead).
+  virtual StaticGeometry build_static(SurfaceKind /*kind*/) const { return {}; }
+  // Whether build_scene uses the cached static geometry at all (false: everything is drawn per
+  // frame, as the conformal view's background depends on K, which no cache key holds).
+  virtual bool uses_static() const { return true; }
+
+  // ---- Camera
+  // The view-projection matrix of the frame.
+  virtual glm::mat4 camera(const ViewOptions& view) const = 0;
+  // FrameScene::depth_bias: a fraction of the distance to the camera.
+  virtual float depth_bias() const { return 0.0f; }
+  // Whether a point in the frame is still out of sight from a camera at `eye` (beyond the
+  // sphere's limb): aiming counts it as missed.
+  virtual bool hidden(const glm::dvec3& /*at*/, const glm::dvec3& /*eye*/) const { return false; }
+  // Places the camera to show the bodies and their trails clear of the HUD's and legend's boxes
+  // (aim_camera_at_body; snapshot.bodies is not empty). Default: the view's fixed camera.
+  virtual void aim(ViewOptions& /*view*/, const Snapshot& /*snapshot*/, const HudLayout& /*hud*/) const {}
+
+  // ---- What a frame draws beyond the static geometry
+  // The per-frame background: FrameScene's grid_lines, backdrop and colours (after the surface's
+  // colour is chosen and the draw_surface/draw_grid flags are set).
+  virtual void add_background(FrameScene& /*scene*/, const Surface& /*surface*/,
+                              const ViewOptions& /*view*/) const {}
+  // Trails' segments are kept only when both ends lie near this window (nullopt: all of them).
+  virtual std::optional<Window2d> clip(const ViewOptions& /*view*/) const { return std::nullopt; }
+  // The bodies' ellipses (kBody) and frame arrows (kFrame), all ellipses first. Default: each
+  // body on the view drawn through world_position (add_body, add_frame_arrows; drawing.cpp).
+  virtual void add_bodies(FrameScene& scene, const Snapshot& snapshot, const ViewOptions& view) const;
+  // The length ViewOptions::scale is given in (body_scale_length).
+  virtual double body_scale_length(const Surface& surface) const { return surface.radius; }
+};
+
+}  // namespace spinfold::render

@@ -1,0 +1,142 @@
+// The view table: one row per view, its metadata and implementation consistent, and every view
+// through the ViewModel interface drawing and aiming at a body on each surface it shows.
+#include "render/view_table.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+#include "render/scene_builder.h"
+#include "render/views/view_model.h"
+#include "views/view_test_support.h"
+
+namespace spinfold::render {
+namespace {
+
+using testing::body_at;
+using testing::in_frame;
+using testing::pixel_of;
+
+constexpr ViewKind kAllKinds[] = {ViewKind::sphere,      ViewKind::hyperboloid, ViewKind::disk,
+                                  ViewKind::plane,       ViewKind::klein,       ViewKind::halfplane,
+                                  ViewKind::tractricoid, ViewKind::conformal};
+constexpr SurfaceKind kSurfaces[] = {SurfaceKind::sphere, SurfaceKind::pseudosphere, SurfaceKind::plane};
+
+bool shows(const ViewInfo& v, SurfaceKind s) {
+  return s == SurfaceKind::sphere ? v.sphere : s == SurfaceKind::pseudosphere ? v.pseudosphere : v.plane;
+}
+
+TEST(ViewTable, EveryKindHasExactlyOneRowAndViewsListsTheRowsInOrder) {
+  const auto table = view_table();
+  ASSERT_EQ(table.size(), std::size(kAllKinds));
+  ASSERT_EQ(views().size(), table.size());
+  for (const ViewKind kind : kAllKinds) {
+    int rows = 0;
+    for (const ViewRow& row : table) rows += row.info.kind == kind;
+    EXPECT_EQ(rows, 1) << view_name(kind);
+  }
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    EXPECT_EQ(views()[i].name, table[i].info.name);
+    EXPECT_EQ(views()[i].kind, table[i].info.kind);
+    EXPECT_EQ(&view_info(table[i].info.kind), &views()[i]);
+  }
+}
+
+TEST(ViewTable, NamesAreUniqueAndParseBackToTheirKind) {
+  std::set<std::string> names;
+  for (const ViewRow& row : view_table()) {
+    EXPECT_TRUE(names.insert(std::string(row.info.name)).second) << row.info.name;
+    EXPECT_EQ(parse_view(row.info.name), row.info.kind);
+    EXPECT_FALSE(row.info.title.empty()) << row.info.name;
+    EXPECT_FALSE(row.info.description.empty()) << row.info.name;
+  }
+  EXPECT_FALSE(parse_view("mercator"));
+}
+
+TEST(ViewTable, EachRowNamesItsOwnImplementationOnceAndViewModelFindsIt) {
+  std::set<const ViewModel*> models;
+  for (const ViewRow& row : view_table()) {
+    ASSERT_NE(row.model, nullptr) << row.info.name;
+    const ViewModel* model = &row.model();
+    EXPECT_EQ(model, &row.model()) << "one instance per view: " << row.info.name;
+    EXPECT_EQ(model, &view_model(row.info.kind)) << row.info.name;
+    EXPECT_TRUE(models.insert(model).second) << "shared with another row: " << row.info.name;
+  }
+}
+
+TEST(ViewTable, ThreeDViewsArePerspectiveAndDepthTestedTheFlatOnesOrthographic) {
+  for (const ViewRow& row : view_table()) {
+    ViewOptions view;
+    view.kind = row.info.kind;
+    const glm::mat4 m = row.model().camera(view);
+    // An orthographic projection keeps w = 1: its last row is (0, 0, 0, 1) (glm indexes [column][row]).
+    const bool keeps_w = m[0][3] == 0.0f && m[1][3] == 0.0f && m[2][3] == 0.0f && m[3][3] == 1.0f;
+    EXPECT_EQ(keeps_w, !row.info.three_d) << row.info.name;
+    const SurfaceKind surface = row.info.sphere         ? SurfaceKind::sphere
+                                : row.info.pseudosphere ? SurfaceKind::pseudosphere
+                                                        : SurfaceKind::plane;
+    const FrameScene scene = build_scene(body_at(surface, 1.0, 0.3, 0.4), view);
+    EXPECT_EQ(scene.depth_test, row.info.three_d) << row.info.name;
+    if (!row.info.three_d) {
+      EXPECT_EQ(scene.depth_bias, 0.0f) << row.info.name;
+      EXPECT_EQ(row.model().normal({0.3, 0.2, 0.0}), glm::dvec3(0, 0, 1)) << row.info.name;
+      EXPECT_EQ(row.model().lift(), 0.0) << row.info.name;
+    }
+  }
+}
+
+TEST(ViewTable, EveryViewDrawsAndAimsAtABodyOnEachSurfaceItShows) {
+  for (const ViewRow& row : view_table())
+    for (const SurfaceKind surface : kSurfaces) {
+      if (!shows(row.info, surface)) {
+        EXPECT_TRUE(view_unsupported_reason(row.info.kind, surface)) << row.info.name;
+        continue;
+      }
+      EXPECT_FALSE(view_unsupported_reason(row.info.kind, surface)) << row.info.name;
+      const Snapshot s = body_at(surface, 2.0, 0.4, 0.7, 1.2, 0.8);
+      ViewOptions view;
+      view.kind = row.info.kind;
+      view.scale = 0.25 * body_scale_length(view.kind, s.surface);
+      aim_camera_at_body(view, s);
+      const FrameScene scene = build_scene(s, view);
+      const std::string what = std::string(row.info.name) + " of surface " + std::to_string(int(surface));
+      EXPECT_FALSE(scene.fills.empty()) << what;
+      EXPECT_FALSE(scene.lines.empty()) << what;
+      EXPECT_EQ(scene.statics != nullptr, row.model().uses_static()) << what;
+      for (const Vertex& v : scene.lines)
+        ASSERT_TRUE(std::isfinite(v.position.x + v.position.y + v.position.z)) << what;
+      EXPECT_TRUE(in_frame(pixel_of(scene, view, s.surface, s.bodies[0].X), view)) << what;
+      // The ellipse's outline is in the frame too: the camera shows the body, not just its centre.
+      for (const Vec3& P : ellipse_points(s.surface, s.bodies[0], view.scale, 8))
+        EXPECT_TRUE(in_frame(pixel_of(scene, view, s.surface, P), view)) << what;
+    }
+}
+
+TEST(ViewTable, AViewThatUsesStaticGeometryHasASurfaceAndAGridForEachSurfaceItShows) {
+  for (const ViewRow& row : view_table())
+    for (const SurfaceKind surface : kSurfaces) {
+      if (!shows(row.info, surface) || !row.model().uses_static()) continue;
+      const StaticGeometry& g = static_geometry(surface, row.info.kind);
+      EXPECT_EQ(&g, &static_geometry(surface, row.info.kind)) << "built once: " << row.info.name;
+      if (row.info.kind == ViewKind::plane) {  // the whole frame: cleared to its colour, a grid per frame
+        EXPECT_TRUE(g.surface.empty() && g.grid.empty());
+        continue;
+      }
+      EXPECT_FALSE(g.surface.empty()) << row.info.name;
+      EXPECT_FALSE(g.grid.empty()) << row.info.name;
+      EXPECT_FALSE(g.edges.empty()) << row.info.name;
+      EXPECT_EQ(g.surface.size() % 3, 0u) << row.info.name;  // triangles
+      EXPECT_EQ(g.grid.size() % 2, 0u) << row.info.name;     // segments
+    }
+}
+
+TEST(ViewTable, BodyScaleIsInRadiiButInLengthsInTheConformalView) {
+  const Surface sphere{SurfaceKind::sphere, 3.0};
+  for (const ViewRow& row : view_table())
+    EXPECT_EQ(body_scale_length(row.info.kind, sphere), row.info.kind == ViewKind::conformal ? 1.0 : 3.0)
+        << row.info.name;
+}
+
+}  // namespace
+}  // namespace spinfold::render

@@ -1,0 +1,99 @@
+// The shared cameras and the aiming search (render/views/camera.cpp).
+#include "render/views/camera.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "render/view_table.h"
+#include "view_test_support.h"
+
+namespace spinfold::render {
+namespace {
+
+TEST(Camera, AWindowKeepsItsShorterSideAndStretchesTheLongerToTheAspect) {
+  ViewOptions wide;  // 640×480
+  const Window2d w = window_around(wide, {1.0, 2.0}, 3.0);
+  EXPECT_EQ(w.centre, glm::dvec2(1.0, 2.0));
+  EXPECT_DOUBLE_EQ(w.hy, 3.0);
+  EXPECT_DOUBLE_EQ(w.hx, 4.0);
+  ViewOptions tall;
+  tall.width = 300, tall.height = 600;
+  const Window2d t = window_around(tall, {0.0, 0.0}, 3.0);
+  EXPECT_DOUBLE_EQ(t.hx, 3.0);
+  EXPECT_DOUBLE_EQ(t.hy, 6.0);
+  // The window camera maps its corners to the frame's.
+  FrameScene scene;
+  scene.view_projection = window_camera(w);
+  const glm::dvec2 top_left = *pixel_position(scene, wide, {1.0 - 4.0, 2.0 + 3.0, 0.0});
+  EXPECT_NEAR(top_left.x, 0.0, 1e-4);
+  EXPECT_NEAR(top_left.y, 0.0, 1e-4);
+}
+
+TEST(Camera, TheTargetIsTheViewsOrTheFallback) {
+  ViewOptions view;
+  EXPECT_EQ(target_or(view, {0.0, 1.0}), glm::dvec2(0.0, 1.0));
+  view.target = std::array<double, 3>{4.0, 5.0, 6.0};
+  EXPECT_EQ(target_or(view, {0.0, 1.0}), glm::dvec2(4.0, 5.0));
+}
+
+TEST(Camera, AnOrbitingCameraLooksAtItsTargetFromItsDistance) {
+  ViewOptions view;
+  view.yaw = 0.3, view.pitch = 0.2, view.distance = 5.0;
+  for (const auto& target :
+       {std::optional<std::array<double, 3>>{}, std::optional(std::array<double, 3>{1, 2, 3})}) {
+    view.target = target;
+    const glm::dvec3 at =
+        target ? glm::dvec3((*target)[0], (*target)[1], (*target)[2]) : glm::dvec3(0, 0, 1.6);
+    FrameScene scene;
+    scene.view_projection = orbit_camera(view, glm::dvec3(0, 0, 1.6));
+    const glm::dvec2 px = *pixel_position(scene, view, at);
+    EXPECT_NEAR(px.x, 320.0, 1e-3);
+    EXPECT_NEAR(px.y, 240.0, 1e-3);
+    const glm::dvec4 h = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
+    EXPECT_NEAR(glm::length(glm::dvec3(h) / h.w - at), 5.0, 1e-3);
+  }
+}
+
+TEST(Camera, BadnessWeighsTheSightsOutOfTheFrameBehindTheCameraOrUnderTheHud) {
+  const ViewModel& plane = view_model(ViewKind::plane);
+  ViewOptions view;
+  view.kind = ViewKind::plane;
+  HudLayout hud;
+  const std::vector<Sight> sights{
+      {{0.0, 0.0, 0.0}, 1000.0}, {{3.97, 0.0, 0.0}, 5.0}, {{9.0, 0.0, 0.0}, 50.0}};
+  EXPECT_DOUBLE_EQ(badness(plane, view, sights, hud), 5.0 + 50.0);  // one by the edge, one beyond it
+  hud.hud = {300.0, 220.0, 40.0, 40.0};                             // over the frame's centre
+  EXPECT_DOUBLE_EQ(badness(plane, view, sights, hud), 1000.0 + 5.0 + 50.0);
+}
+
+TEST(Camera, ClearingTheBoxesNeverLeavesTheCameraWorseThanItFoundIt) {
+  const Snapshot s = testing::body_at(SurfaceKind::sphere, 1.0, 1.2, 0.5);
+  const ViewModel& sphere = view_model(ViewKind::sphere);
+  ViewOptions view;
+  view.yaw = 0.5, view.pitch = 0.2;  // over the body, which the HUD's box below covers
+  const std::vector<Sight> points = sights(sphere, s, view, false);
+  ASSERT_EQ(points.front().weight, 1000.0);
+  HudLayout hud;
+  const glm::dvec2 body = *testing::pixel_of(build_scene(s, view), view, s.surface, s.bodies[0].X);
+  hud.hud = {body.x - 30.0, body.y - 30.0, 60.0, 60.0};
+  const double before = badness(sphere, view, points, hud);
+  EXPECT_GE(before, 1000.0);
+  clear_the_boxes(sphere, view, points, hud, {1.0, 1.2});
+  EXPECT_LT(badness(sphere, view, points, hud), 1000.0);
+}
+
+TEST(Camera, AimingAtTheBodiesCentreTakesTheMiddleOfTheirBoundingBox) {
+  Snapshot s = testing::body_at(SurfaceKind::plane, 1.0, 0.0, 0.0);
+  s.bodies.push_back(s.bodies[0]);
+  s.bodies[0].X = Vec3(1.0, 1.0, 0.0);
+  s.bodies[1].X = Vec3(3.0, -5.0, 0.0);
+  ViewOptions view;
+  view.kind = ViewKind::plane;
+  aim_at_bodies_centre(view_model(ViewKind::plane), view, s);
+  ASSERT_TRUE(view.target);
+  EXPECT_EQ(*view.target, (std::array<double, 3>{2.0, -2.0, 0.0}));
+}
+
+}  // namespace
+}  // namespace spinfold::render

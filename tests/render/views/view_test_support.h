@@ -1,0 +1,45 @@
+// Snapshots and checks the view tests share (tests/render/views/*_test.cpp, view_table_test.cpp).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <glm/glm.hpp>
+#include <optional>
+
+#include "engine/chart.h"
+#include "render/scene_builder.h"
+
+namespace spinfold::render::testing {
+
+// A body at chart point (r, φ) [radii, rad] with L = diag(λ, μ) in the paper's frame.
+inline Snapshot body_at(SurfaceKind kind, double R, double r, double phi, double lambda = 1.0,
+                        double mu = 1.0) {
+  Snapshot s;
+  s.surface = {kind, R};
+  const ChartPoint p = chart_point(s.surface, r * R, phi);
+  BodySnapshot& b = s.bodies.emplace_back();
+  b.X = p.X;
+  b.e[0] = lambda * p.E1;
+  b.e[1] = mu * p.E2;
+  b.gram << lambda * lambda, 0.0, 0.0, mu * mu;
+  return s;
+}
+
+// The pixel an embedded point lands on in a built frame, if in front of the camera.
+inline std::optional<glm::dvec2> pixel_of(const FrameScene& scene, const ViewOptions& view,
+                                          const Surface& surface, const Vec3& X) {
+  return pixel_position(scene, view, world_position(surface, view.kind, X));
+}
+
+inline bool in_frame(const std::optional<glm::dvec2>& px, const ViewOptions& view) {
+  return px && px->x >= 0.0 && px->x <= view.width && px->y >= 0.0 && px->y <= view.height;
+}
+
+// Geodesic distance on the sphere or H² from the embedding's inner product.
+inline double geodesic_distance(const Surface& surface, const Vec3& a, const Vec3& b) {
+  const double R = surface.radius, c = dot(surface, a, b) / (R * R);
+  return surface.kind == SurfaceKind::sphere ? R * std::acos(std::clamp(c, -1.0, 1.0))
+                                             : R * std::acosh(std::max(1.0, -c));
+}
+
+}  // namespace spinfold::render::testing
