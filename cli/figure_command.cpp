@@ -176,7 +176,8 @@ void write_frame_figure(const Scene& scene, const render::Snapshot& snapshot, re
   view.layers &= ~static_cast<unsigned>(render::kHud);  // no HUD box for the camera to keep clear of
   if (aim) render::aim_camera_at_body(view, snapshot);
   render::FigureCaption caption;
-  caption.title = scene_title(scene);
+  caption.title = scene.name.empty() ? "Spinfold scene" : scene.name;
+  caption.description = scene.description;
   char at[64];
   std::snprintf(at, sizeof at, "; t=%.17g; view=", t);
   caption.provenance = provenance_header(scene) + at + std::string(render::view_name(view.kind)) +

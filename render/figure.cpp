@@ -1,6 +1,7 @@
 #include "render/figure.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -110,21 +111,44 @@ class Camera {
   std::vector<float> depth_;
 };
 
-glm::dvec2 to_page(const glm::dvec3& pixel) { return glm::dvec2(pixel) * kPointsPerPixel; }
+// A pixel position on the page [pt], rounded to 1/100 pt (a hundredth of a point is 3.5 µm on
+// paper; the files are a third smaller for it).
+glm::dvec2 to_page(const glm::dvec3& pixel) {
+  return glm::round(glm::dvec2(pixel) * kPointsPerPixel * 100.0) / 100.0;
+}
+
+// Whether b lies on the straight line from a to c, within 0.02 pt (b can go from a polyline).
+bool on_line(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
+  const glm::dvec2 ac = c - a, ab = b - a;
+  const double length = glm::length(ac);
+  if (length < 1e-9) return false;
+  return std::abs(ac.x * ab.y - ac.y * ab.x) / length < 0.02 && glm::dot(ab, ac) > 0.0 &&
+         glm::dot(ab, ac) < length * length;
+}
+
+// Whether a segment of the frame [pixels] misses the frame (both ends beyond one of its edges).
+bool outside_frame(const glm::dvec3& a, const glm::dvec3& b, const ViewOptions& view) {
+  return (a.x < 0 && b.x < 0) || (a.y < 0 && b.y < 0) || (a.x > view.width && b.x > view.width) ||
+         (a.y > view.height && b.y > view.height);
+}
 
 bool same_color(const glm::vec4& a, const glm::vec4& b) { return glm::all(glm::equal(a, b)); }
 
 // Line segments (pairs of vertices, as GL_LINES) as polylines on the page: hidden pieces left out
 // (each segment cut into pieces of about 2 px, each tested at its middle), consecutive segments
 // that meet joined into one path while their colour stays the same.
-void add_segments(FigurePage& page, const Camera& camera, const std::vector<Vertex>& segments, double width,
-                  const std::string& role, const std::optional<glm::dvec4>& color = std::nullopt) {
+void add_segments(FigurePage& page, const Camera& camera, const ViewOptions& view, const std::vector<Vertex>& segments,
+                  double width, const std::string& role, const std::optional<glm::dvec4>& color = std::nullopt) {
   FigurePath* open = nullptr;  // the path the last visible piece ended
   glm::vec4 open_color{-1.0f};
   const auto add_piece = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::vec4& c) {
     const glm::dvec2 pa = to_page(a), pb = to_page(b);
     if (open && same_color(c, open_color) && glm::distance(open->points.back(), pa) < 1e-6) {
-      open->points.push_back(pb);
+      std::vector<glm::dvec2>& points = open->points;
+      if (points.size() >= 2 && on_line(points[points.size() - 2], points.back(), pb))
+        points.back() = pb;  // straight on: one point fewer
+      else if (glm::distance(points.back(), pb) > 1e-9)
+        points.push_back(pb);
       return;
     }
     FigurePath path;
@@ -139,7 +163,7 @@ void add_segments(FigurePage& page, const Camera& camera, const std::vector<Vert
   for (std::size_t i = 0; i + 1 < segments.size(); i += 2) {
     const auto a = camera.project(glm::dvec3(segments[i].position));
     const auto b = camera.project(glm::dvec3(segments[i + 1].position));
-    if (!a || !b) {
+    if (!a || !b || outside_frame(*a, *b, view)) {
       open = nullptr;
       continue;
     }
@@ -163,35 +187,59 @@ void add_segments(FigurePage& page, const Camera& camera, const std::vector<Vert
 // Triangles as one filled path each colour (their union: every triangle turned counter-clockwise
 // on the page, filled with the non-zero rule, so that neither seams nor overlaps show). Hidden
 // triangles (tested at the centroid) are left out when `depth_tested`.
+// Triangles of a mesh made of quads (a, b, c, a, c, d) are joined back into their quads where
+// both halves are kept and turn the same way on the page (a quad folded over the silhouette stays
+// two triangles). Triangles off the frame or hidden are left out.
 template <typename V>
-void add_triangles(FigurePage& page, const Camera& camera, const std::vector<V>& triangles,
+void add_triangles(FigurePage& page, const Camera& camera, const ViewOptions& view, const std::vector<V>& triangles,
                    const std::optional<glm::dvec4>& color, bool depth_tested, const std::string& role) {
   FigurePath* path = nullptr;
   glm::dvec4 path_color{-1.0};
-  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
+  const auto signed_area = [](const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
+    return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  };
+  // The page's corners of triangle t, or nullopt when it is not drawn.
+  const auto corners = [&](std::size_t t) -> std::optional<std::array<glm::dvec2, 3>> {
     std::optional<glm::dvec3> v[3];
-    bool behind = false;
     for (int k = 0; k < 3; ++k) {
       v[k] = camera.project(glm::dvec3(triangles[t + k].position), depth_tested);
-      behind = behind || !v[k];
+      if (!v[k]) return std::nullopt;
     }
-    if (behind) continue;
-    if (depth_tested && !camera.visible((*v[0] + *v[1] + *v[2]) / 3.0)) continue;
-    glm::dvec4 c;
+    const double x0 = std::min({v[0]->x, v[1]->x, v[2]->x}), x1 = std::max({v[0]->x, v[1]->x, v[2]->x});
+    const double y0 = std::min({v[0]->y, v[1]->y, v[2]->y}), y1 = std::max({v[0]->y, v[1]->y, v[2]->y});
+    if (x1 < 0 || y1 < 0 || x0 > view.width || y0 > view.height) return std::nullopt;  // off the frame
+    if (depth_tested && !camera.visible((*v[0] + *v[1] + *v[2]) / 3.0)) return std::nullopt;
+    return std::array<glm::dvec2, 3>{to_page(*v[0]), to_page(*v[1]), to_page(*v[2])};
+  };
+  const auto color_of = [&](std::size_t t) {
     if constexpr (std::is_same_v<V, Vertex>)
-      c = color.value_or(glm::dvec4(triangles[t].color));
+      return color.value_or(glm::dvec4(triangles[t].color));
     else
-      c = *color;
+      return *color;
+  };
+  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    const auto p = corners(t);
+    if (!p) continue;
+    const glm::dvec4 c = color_of(t);
     if (!path || c != path_color) {
       page.paths.push_back(FigurePath{.color = c, .filled = true, .role = role});
       path = &page.paths.back();
       path_color = c;
     }
-    glm::dvec2 p[3] = {to_page(*v[0]), to_page(*v[1]), to_page(*v[2])};
-    const double area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x);
-    if (area < 0) std::swap(p[1], p[2]);
-    path->points.insert(path->points.end(), {p[0], p[1], p[2]});
-    path->runs.push_back(3);
+    std::vector<glm::dvec2> polygon{(*p)[0], (*p)[1], (*p)[2]};
+    const double area = signed_area((*p)[0], (*p)[1], (*p)[2]);
+    // The quad's other half: (a, c, d) after (a, b, c).
+    const std::size_t u = t + 3;
+    if (u + 2 < triangles.size() && triangles[u].position == triangles[t].position &&
+        triangles[u + 1].position == triangles[t + 2].position && color_of(u) == c) {
+      if (const auto q = corners(u); q && signed_area((*q)[0], (*q)[1], (*q)[2]) * area > 0) {
+        polygon.push_back((*q)[2]);
+        t = u;  // both halves drawn
+      }
+    }
+    if (area < 0) std::reverse(polygon.begin(), polygon.end());
+    path->points.insert(path->points.end(), polygon.begin(), polygon.end());
+    path->runs.push_back(polygon.size());
   }
 }
 
@@ -232,14 +280,23 @@ void add_circle_labels(FigurePage& page, const Snapshot& snapshot, const ViewOpt
     }
   const double directions[] = {0.25 * kPi, 0.75 * kPi, -0.25 * kPi, -0.75 * kPi, 0.5 * kPi, -0.5 * kPi, 0.0, kPi};
   const double w = view.width * kPointsPerPixel, h = view.height * kPointsPerPixel;
+  const double spacing = radii[1] - radii[0];
+  // Where the circle of radius r [R] crosses the ray at φ, on the page.
+  const auto at = [&](double r, double phi) -> std::optional<glm::dvec2> {
+    const Vec3 X = chart_point(surface, std::max(0.0, r) * surface.radius, phi).X;
+    const auto px = pixel_position(scene, view, world_position(surface, view.kind, X));
+    if (!px) return std::nullopt;
+    return *px * kPointsPerPixel;
+  };
   for (const double r : radii) {
     const std::string text = circle_label(r, sphere);
     const double half = 0.5 * text_width(text, kLabelSize) + 1.0;
     for (const double phi : directions) {
-      const Vec3 X = chart_point(surface, r * surface.radius, phi).X;
-      const auto px = pixel_position(scene, view, world_position(surface, view.kind, X));
-      if (!px) continue;
-      const glm::dvec2 p = *px * kPointsPerPixel;
+      const auto here = at(r, phi), inside = at(r - spacing, phi), outside = at(r + spacing, phi);
+      if (!here || !inside || !outside) continue;
+      const glm::dvec2 p = *here;
+      // Room for the text between the neighbouring circles (none near the disk's rim, where they crowd).
+      if (glm::distance(p, *inside) < 1.6 * kLabelSize || glm::distance(p, *outside) < 1.6 * kLabelSize) continue;
       const Box box{p.x - half, p.y - 0.5 * kLabelSize - 1.0, p.x + half, p.y + 0.5 * kLabelSize + 1.0};
       if (box.x0 < 2 || box.y0 < 2 || box.x1 > w - 2 || box.y1 > h - 2) continue;
       if (std::any_of(taken.begin(), taken.end(), [&](const Box& b) { return b.overlaps(box); })) continue;
@@ -314,7 +371,7 @@ std::string grid_line(const Snapshot& snapshot, const ViewOptions& view) {
 }
 
 // Words of `text` in lines no wider than `width` [pt].
-std::vector<std::string> wrap(const std::string& text, double size, double width) {
+std::vector<std::string> wrap(const std::string& text, double size, bool bold, double width) {
   std::vector<std::string> lines;
   std::string line;
   std::size_t i = 0;
@@ -323,7 +380,7 @@ std::vector<std::string> wrap(const std::string& text, double size, double width
     if (j == std::string::npos) j = text.size();
     const std::string word = text.substr(i, j - i);
     const std::string longer = line.empty() ? word : line + " " + word;
-    if (!line.empty() && text_width(longer, size) > width) {
+    if (!line.empty() && text_width(longer, size, bold) > width) {
       lines.push_back(line);
       line = word;
     } else {
@@ -390,18 +447,19 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
   page.paths.push_back({.points = {{0, 0}, {w, 0}, {w, h}, {0, h}}, .color = ground, .filled = true, .role = "ground"});
 
   const bool three_d = scene.depth_test;
-  if (!scene.backdrop.empty()) add_triangles(page, camera, scene.backdrop, std::nullopt, false, "surface");
+  if (!scene.backdrop.empty()) add_triangles(page, camera, view, scene.backdrop, std::nullopt, false, "surface");
+  // The surface's fill: its visible faces (hidden ones lie under them) in one flat colour.
   if (scene.statics && scene.draw_surface)
-    add_triangles(page, camera, scene.statics->surface, glm::dvec4(scene.surface_color), false, "surface");
-  if (scene.statics && scene.draw_grid) add_segments(page, camera, scene.statics->grid, grid_width, "grid");
-  add_segments(page, camera, scene.grid_lines, grid_width, "grid");
+    add_triangles(page, camera, view, scene.statics->surface, glm::dvec4(scene.surface_color), three_d, "surface");
+  if (scene.statics && scene.draw_grid) add_segments(page, camera, view, scene.statics->grid, grid_width, "grid");
+  add_segments(page, camera, view, scene.grid_lines, grid_width, "grid");
   if (scene.statics && (scene.draw_surface || scene.draw_grid)) {
     if (three_d)
-      add_segments(page, camera, silhouette(*scene.statics, scene), line_width, "outline", kOutlineColor);
+      add_segments(page, camera, view, silhouette(*scene.statics, scene), line_width, "outline", kOutlineColor);
     else
-      add_segments(page, camera, boundary_edges(*scene.statics), line_width, "outline", kOutlineColor);
+      add_segments(page, camera, view, boundary_edges(*scene.statics), line_width, "outline", kOutlineColor);
   }
-  add_triangles(page, camera, scene.fills, std::nullopt, three_d, "body");
+  add_triangles(page, camera, view, scene.fills, std::nullopt, three_d, "body");
   // The lines: trails (by their colour), then the bodies' outlines and arrows.
   std::vector<Vertex> trails, others;
   for (std::size_t i = 0; i + 1 < scene.lines.size(); i += 2) {
@@ -411,8 +469,8 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
     });
     (trail ? trails : others).insert((trail ? trails : others).end(), {scene.lines[i], scene.lines[i + 1]});
   }
-  add_segments(page, camera, trails, line_width, "trail");
-  add_segments(page, camera, others, line_width, "body");
+  add_segments(page, camera, view, trails, line_width, "trail");
+  add_segments(page, camera, view, others, line_width, "body");
 
   if (view.layers & kGrid) {
     if (figure_scale(view.kind) == FigureScale::circle_labels && scene.statics)
@@ -460,13 +518,14 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
   const double text_right = legend.empty() ? w - kMargin : legend_x - 2 * kMargin;
   const double text_width_left = std::max(60.0, text_right - kMargin);
   const auto add_lines = [&](const std::string& text, double size, bool bold, const glm::dvec4& color) {
-    for (const std::string& l : wrap(text, size, text_width_left)) {
+    for (const std::string& l : wrap(text, size, bold, text_width_left)) {
       y += size * kLineSpacing;
       page.texts.push_back({.at = {kMargin, y - 0.3 * size}, .text = l, .size = size, .bold = bold,
                             .color = color, .role = "caption"});
     }
   };
   if (!caption.title.empty()) add_lines(caption.title, kTitleSize, true, {0.1, 0.1, 0.1, 1});
+  if (!caption.description.empty()) add_lines(caption.description, kCaptionSize, false, {0.1, 0.1, 0.1, 1});
   std::vector<std::string> lines = snapshot.hud_lines;
   if (view.layers & kActions) lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
   if (!snapshot.bodies.empty() && !on_view(snapshot.surface, view.kind, snapshot.bodies.front().X))

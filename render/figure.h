@@ -20,7 +20,8 @@ namespace spinfold::render {
 
 // The text under the picture.
 struct FigureCaption {
-  std::string title;       // the scene's name (and description)
+  std::string title;        // the scene's name (bold; the file's title)
+  std::string description;  // the scene's one line
   std::string provenance;  // one line (codec/provenance.h's provenance_header)
   std::string metadata;    // written into the file (the provenance JSON)
 };

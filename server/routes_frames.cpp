@@ -55,7 +55,9 @@ void send_figure(ServerContext& server, const Call& call, httplib::Response& res
     const std::lock_guard lock(s->mutex);
     f = frame_request(call.query, s->run.scene.surface.kind, false);
     etag = frame_etag(call.id, state_tag(*s), f);
-    etag.insert(etag.size() - 1, "-" + std::string(render::figure_format_name(format)));
+    std::string suffix(1, '-');  // the format in the ETag, before its closing quote
+    suffix.append(render::figure_format_name(format));
+    etag.insert(etag.size() - 1, suffix);
     res.set_header("X-Spinfold-Provenance", provenance(*s));
     if (!etag_matches(call.http.get_header_value("If-None-Match"), etag)) {
       f.view.scale = f.scale * render::body_scale_length(f.view.kind, s->run.scene.surface);
@@ -63,8 +65,9 @@ void send_figure(ServerContext& server, const Call& call, httplib::Response& res
       snapshot = render::make_snapshot(s->run, f.view.layers & render::kTrail ? s->trail : kNoTrail,
                                        f.trail.value_or(-1.0));
       const Scene& scene = s->run.scene;
-      caption.title = scene.name.empty() ? "Spinfold session " + call.id : scene.name;
-      if (!scene.description.empty()) caption.title += ": " + scene.description;
+      caption.title = scene.name.empty() ? std::string("Spinfold session ") : scene.name;
+      if (scene.name.empty()) caption.title.append(call.id);
+      caption.description = scene.description;
       char at[48];
       std::snprintf(at, sizeof at, "; t=%.17g; view=", s->run.state.t);
       caption.provenance = provenance(*s) + at + std::string(render::view_name(f.view.kind));

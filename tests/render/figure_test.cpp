@@ -36,7 +36,7 @@ Figure figure_of(const std::string& preset, double t, std::optional<ViewKind> ki
   f.view.scale = 0.25 * body_scale_length(f.view.kind, scene.surface);
   f.view.layers &= ~static_cast<unsigned>(kHud);
   aim_camera_at_body(f.view, f.snapshot);
-  f.page = figure_page(f.snapshot, f.view, {"Test scene", "version=test; scene_hash=0", "{\"software\":\"spinfold\"}"});
+  f.page = figure_page(f.snapshot, f.view, {"Test scene", "A scene for the tests.", "version=test; scene_hash=0", "{\"software\":\"spinfold\"}"});
   return f;
 }
 
@@ -79,6 +79,7 @@ TEST(Figure, SphereFigureHasOutlineGridTrailsBodiesLegendAndCaption) {
   EXPECT_EQ(legend[1], f.snapshot.bodies[1].label);
   const std::vector<std::string> caption = texts_of(f.page, "caption");
   EXPECT_EQ(caption.front(), "Test scene");
+  EXPECT_EQ(caption[1], "A scene for the tests.");
   EXPECT_TRUE(contains(caption, "t = 6.000"));
   EXPECT_TRUE(contains(caption, "energy error = "));
   EXPECT_TRUE(contains(caption, "integrator: "));
