@@ -74,12 +74,6 @@ std::vector<std::string> split(const std::string& list) {
   return out;
 }
 
-std::string scene_title(const Scene& scene) {
-  std::string title = scene.name.empty() ? "Spinfold scene" : scene.name;
-  if (!scene.description.empty()) title += ": " + scene.description;
-  return title;
-}
-
 glm::dvec4 rgba(const std::array<float, 3>& c) { return {c[0], c[1], c[2], 1.0}; }
 
 int plot(const PlotOptions& opt, int argc, char** argv) {
@@ -139,7 +133,8 @@ int plot(const PlotOptions& opt, int argc, char** argv) {
   sample_run(run, opt.t_end, every, [&](double t) { return advance_to(run, t); }, emit);
 
   const std::string command = command_line(argc, argv);
-  plot.title = scene_title(scene);
+  plot.title = scene.name.empty() ? "Spinfold scene" : scene.name;
+  plot.description = scene.description;
   plot.provenance = provenance_header(scene) + "; command=" + command;
   plot.metadata = provenance_json(scene, command).dump();
   write_bytes(opt.out, render::draw_figure(render::series_page(plot), format));

@@ -22,6 +22,28 @@ std::string number(double v, const char* pattern = "%.4g") {
   return text;
 }
 
+// Words of `text` in lines no wider than `width` [pt].
+std::vector<std::string> wrap(const std::string& text, double size, bool bold, double width) {
+  std::vector<std::string> lines;
+  std::string line;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    std::size_t j = text.find(' ', i);
+    if (j == std::string::npos) j = text.size();
+    const std::string word = text.substr(i, j - i);
+    const std::string longer = line.empty() ? word : line + " " + word;
+    if (!line.empty() && text_width(longer, size, bold) > width) {
+      lines.push_back(line);
+      line = word;
+    } else {
+      line = longer;
+    }
+    i = j + 1;
+  }
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
 // One axis: the range shown and its ticks, in the axis's own coordinate (log10|y| when log).
 struct Axis {
   double lo = 0, hi = 1;
@@ -108,11 +130,34 @@ FigurePage series_page(const SeriesPlot& plot) {
   page.metadata = plot.metadata;
   const double left = kLeft, right = plot.width - kRight, plot_width = right - left;
   double y = kTop;
-  if (!plot.title.empty()) {
-    y += kTitleSize;
-    page.texts.push_back({.at = {left, y}, .text = plot.title, .size = kTitleSize, .bold = true, .role = "title"});
-    y += 8.0;
+  for (const std::string& line : wrap(plot.title, kTitleSize, true, right - left)) {
+    y += kTitleSize * 1.3;
+    page.texts.push_back({.at = {left, y}, .text = line, .size = kTitleSize, .bold = true, .role = "title"});
   }
+  for (const std::string& line : wrap(plot.description, kAxisSize, false, right - left)) {
+    y += kAxisSize * 1.35;
+    page.texts.push_back({.at = {left, y}, .text = line, .size = kAxisSize, .role = "title"});
+  }
+  // One legend for every panel (each shows the same bodies), in a row above them, when there is
+  // more than one line to tell apart.
+  std::vector<const PlotLine*> named;
+  for (const PlotPanel& panel : plot.panels)
+    for (const PlotLine& line : panel.lines)
+      if (std::none_of(named.begin(), named.end(), [&](const PlotLine* n) { return n->label == line.label; }))
+        named.push_back(&line);
+  if (named.size() > 1) {
+    y += kTickSize * 1.6;
+    double x = left;
+    for (const PlotLine* line : named) {
+      const double width = 22.0 + text_width(line->label, kTickSize) + 14.0;
+      if (x > left && x + width > right) x = left, y += kTickSize * 1.5;
+      page.paths.push_back({.points = {{x, y - 0.35 * kTickSize}, {x + 16.0, y - 0.35 * kTickSize}},
+                            .color = line->color, .width = 1.5, .clip_to_picture = false, .role = "legend"});
+      page.texts.push_back({.at = {x + 20.0, y}, .text = line->label, .size = kTickSize, .role = "legend"});
+      x += width;
+    }
+  }
+  y += 8.0;
 
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
   for (const double x : plot.x)
@@ -180,25 +225,10 @@ FigurePage series_page(const SeriesPlot& plot) {
     page.texts.push_back({.at = {12.0, 0.5 * (top + bottom)}, .text = title, .size = kAxisSize,
                           .align = TextAlign::centre, .angle = 1.5707963267948966, .role = "axis"});
     if (empty)
-      page.texts.push_back({.at = {0.5 * (left + right), 0.5 * (top + bottom)}, .text = "no finite values",
+      page.texts.push_back({.at = {0.5 * (left + right), 0.5 * (top + bottom)},
+                            .text = panel.log ? "nothing to plot: every value zero or undefined"
+                                              : "nothing to plot: every value undefined",
                             .size = kAxisSize, .align = TextAlign::centre, .role = "axis"});
-    // A legend in the upper right corner when the panel tells lines apart.
-    if (panel.lines.size() > 1) {
-      double widest = 0.0;
-      for (const PlotLine& line : panel.lines) widest = std::max(widest, text_width(line.label, kTickSize));
-      const double row = kTickSize * 1.3, box_w = widest + 28.0, box_h = row * panel.lines.size() + 6.0;
-      const double bx = right - box_w - 4.0, by = top + 4.0;
-      page.paths.push_back({.points = {{bx, by}, {bx + box_w, by}, {bx + box_w, by + box_h}, {bx, by + box_h}},
-                            .color = {1, 1, 1, 0.85}, .filled = true, .clip_to_picture = false, .role = "legend"});
-      for (std::size_t l = 0; l < panel.lines.size(); ++l) {
-        const double base = by + 3.0 + row * (l + 1) - 0.25 * row;
-        page.paths.push_back({.points = {{bx + 4.0, base - 0.35 * kTickSize}, {bx + 20.0, base - 0.35 * kTickSize}},
-                              .color = panel.lines[l].color, .width = 1.5, .clip_to_picture = false,
-                              .role = "legend"});
-        page.texts.push_back({.at = {bx + 24.0, base}, .text = panel.lines[l].label, .size = kTickSize,
-                              .role = "legend"});
-      }
-    }
     y = bottom + kGap;
   }
   // The x axis's title under the last panel's tick labels.

@@ -1,6 +1,6 @@
 // Time series as a vector figure for a paper (render/figure_page.h): one panel per quantity,
 // stacked over a shared x axis, each with its own y axis (label, unit, ticks; linear, or
-// logarithmic in |y|), a legend where a panel holds more than one line (the body and its
+// logarithmic in |y|), one legend above them where there is more than one line (the body and its
 // companions), and the provenance beneath. `spinfold plot` (cli/figure_command.h) fills it from a run.
 #pragma once
 
@@ -30,7 +30,8 @@ struct SeriesPlot {
   std::string x_unit = "time";
   std::vector<double> x;
   std::vector<PlotPanel> panels;
-  std::string title;       // the scene and the run, above the panels
+  std::string title;        // the scene's name, above the panels (bold; the file's title)
+  std::string description;  // the scene's one line, under the title
   std::string provenance;  // one line beneath (codec/provenance.h's provenance_header)
   std::string metadata;    // written into the file (the provenance JSON)
   double width = 480;          // of the page [pt]

@@ -56,7 +56,7 @@ TEST(CliFigure, RenderWritesAPdfWithTheCaption) {
   const auto text = figure_test::run_tool("pdftotext " + out + " -");
   EXPECT_NE(text.out.find("t = 2.000"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("integrator:"), std::string::npos) << text.out;
-  EXPECT_NE(text.out.find("r = 1 R"), std::string::npos) << text.out;  // a labelled geodesic circle
+  EXPECT_NE(text.out.find("r = 0.5 R"), std::string::npos) << text.out;  // a labelled geodesic circle
   std::filesystem::remove(out);
 }
 

@@ -183,9 +183,9 @@ TEST(Figure, PdfHasOnePageOfTheFiguresSizeAndItsText) {
   const std::string path = temporary_file(pdf, ".pdf");
   const auto info = run_tool("pdfinfo " + path);
   EXPECT_EQ(info.exit_code, 0) << info.out;
-  EXPECT_NE(info.out.find("Pages:          1"), std::string::npos) << info.out;
-  EXPECT_NE(info.out.find("Title:          Test scene"), std::string::npos) << info.out;
-  EXPECT_NE(info.out.find("Page size:      480 x"), std::string::npos) << info.out;
+  EXPECT_EQ(figure_test::pdfinfo_field(info.out, "Pages"), "1") << info.out;
+  EXPECT_EQ(figure_test::pdfinfo_field(info.out, "Title"), "Test scene") << info.out;
+  EXPECT_TRUE(figure_test::pdfinfo_field(info.out, "Page size").starts_with("480 x ")) << info.out;
   const auto text = run_tool("pdftotext " + path + " -");
   EXPECT_EQ(text.exit_code, 0) << text.out;
   EXPECT_NE(text.out.find("body 1"), std::string::npos) << text.out;
@@ -208,7 +208,11 @@ TEST(Figure, FormatsByNameAndExtension) {
 
 TEST(Figure, NiceTicksAreRoundNumbersCoveringTheRange) {
   EXPECT_EQ(nice_ticks(0.0, 10.0, 5), (std::vector<double>{0, 2, 4, 6, 8, 10}));
-  EXPECT_EQ(nice_ticks(-0.3, 0.3, 5), (std::vector<double>{-0.3, -0.2, -0.1, 0, 0.1, 0.2, 0.3}));
+  EXPECT_EQ(nice_ticks(-0.3, 0.3, 5), (std::vector<double>{-0.2, 0, 0.2}));  // steps of 0.2: 1, 2 or 5 × 10ᵏ
+  const std::vector<double> tenths = nice_ticks(-0.3, 0.3, 6);
+  ASSERT_EQ(tenths.size(), 7u);
+  for (std::size_t i = 0; i < tenths.size(); ++i) EXPECT_NEAR(tenths[i], -0.3 + 0.1 * static_cast<double>(i), 1e-12);
+  EXPECT_EQ(tenths[3], 0.0);  // an exact zero, never -2.8e-17
   const std::vector<double> small = nice_ticks(1e-12, 9e-12, 4);
   ASSERT_FALSE(small.empty());
   EXPECT_NEAR(small.front(), 2e-12, 1e-24);

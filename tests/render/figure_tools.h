@@ -45,4 +45,16 @@ inline ToolResult run_tool(const std::string& command) {
   return r;
 }
 
+// A field of pdfinfo's output ("Pages", "Title", "Page size"), its value trimmed; "" when absent.
+inline std::string pdfinfo_field(const std::string& out, const std::string& field) {
+  const std::size_t at = out.find("\n" + field + ":") != std::string::npos ? out.find("\n" + field + ":") + 1
+                         : out.starts_with(field + ":")                     ? 0
+                                                                            : std::string::npos;
+  if (at == std::string::npos) return "";
+  std::size_t begin = at + field.size() + 1;
+  const std::size_t end = out.find('\n', begin);
+  while (begin < end && out[begin] == ' ') ++begin;
+  return out.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+}
+
 }  // namespace spinfold::figure_test
