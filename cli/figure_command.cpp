@@ -168,8 +168,13 @@ render::FigureFormat render_format(const std::string& format_option, const std::
 void write_frame_figure(const Scene& scene, const render::Snapshot& snapshot, render::ViewOptions view, bool aim,
                         render::FigureFormat format, const std::string& out, const std::string& command,
                         double t) {
-  view.layers &= ~static_cast<unsigned>(render::kHud);  // no HUD box for the camera to keep clear of
-  if (aim) render::aim_camera_at_body(view, snapshot);
+  if (aim) {  // with no HUD box for the camera to keep clear of
+    render::ViewOptions aimed = view;
+    aimed.layers &= ~static_cast<unsigned>(render::kHud);
+    render::aim_camera_at_body(aimed, snapshot);
+    aimed.layers = view.layers;  // the hud layer asks for the caption
+    view = aimed;
+  }
   render::FigureCaption caption;
   caption.title = scene.name.empty() ? "Spinfold scene" : scene.name;
   caption.description = scene.description;

@@ -429,7 +429,8 @@ std::string circle_label(double r_over_R, bool sphere) {
 
 FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, const FigureCaption& caption) {
   ViewOptions view = view_in;
-  view.layers &= ~static_cast<unsigned>(kHud);  // the caption takes its place
+  const bool captioned = (view.layers & kHud) != 0;  // the caption takes the HUD's place
+  view.layers &= ~static_cast<unsigned>(kHud);
   const FrameScene scene = build_scene(snapshot, view);
   const Camera camera(scene, view);
   const LineWidths widths = line_widths(view.width, view.height);
@@ -524,6 +525,10 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
                             .color = color, .role = "caption"});
     }
   };
+  if (!captioned) {  // a bare figure (the paper's own caption says it): the legend only
+    page.height = h + (legend.empty() ? 0.0 : 2 * kMargin + legend.size() * line);
+    return page;
+  }
   if (!caption.title.empty()) add_lines(caption.title, kTitleSize, true, {0.1, 0.1, 0.1, 1});
   if (!caption.description.empty()) add_lines(caption.description, kCaptionSize, false, {0.1, 0.1, 0.1, 1});
   std::vector<std::string> lines = snapshot.hud_lines;

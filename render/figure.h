@@ -29,8 +29,9 @@ struct FigureCaption {
 // The page of the frame `view` shows of `snapshot`: view.width × view.height pixels become a
 // picture of kPointsPerPixel points each, the caption beneath: the title, the snapshot's read-out
 // (its HUD lines: t, energy error, integrator, …; the action lines with the actions layer), what
-// the grid shows, and the provenance. The HUD is not drawn over the picture; the camera is the one
-// `view` holds (aim it first, as for a frame).
+// the grid shows, and the provenance. The HUD is not drawn over the picture: the hud layer asks
+// for the caption (without it the page is the picture and the legend); the camera is the one
+// `view` holds (aim it first, as for a frame, with the hud layer off: there is no box to clear).
 FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view, const FigureCaption& caption);
 
 // Whether the view labels its geodesic circles (disk, Klein, half-plane) or shows a scale bar

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <stdexcept>
 
@@ -119,9 +120,32 @@ cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned i
   return CAIRO_STATUS_SUCCESS;
 }
 
+// cairo numbers an SVG's surfaces ("surface6") with a counter of the process: renumbered in the
+// order they appear, so that the same figure gives the same bytes in any process.
+std::string renumber_surfaces(const std::string& text) {
+  std::string out;
+  std::map<std::string, std::string> numbers;
+  std::size_t from = 0;
+  for (std::size_t at; (at = text.find("surface", from)) != std::string::npos;) {
+    std::size_t end = at + 7;
+    while (end < text.size() && std::isdigit(static_cast<unsigned char>(text[end]))) ++end;
+    const bool id = at > 0 && (text[at - 1] == '"' || text[at - 1] == '#') && end > at + 7;
+    out.append(text, from, end - from);
+    if (id) {
+      const std::string number = text.substr(at + 7, end - at - 7);
+      const auto [it, fresh] = numbers.try_emplace(number, std::to_string(numbers.size() + 1));
+      out.replace(out.size() - number.size(), number.size(), it->second);
+    }
+    from = end;
+  }
+  out.append(text, from, std::string::npos);
+  return out;
+}
+
 // cairo writes no title or metadata into an SVG: they go in after the opening <svg> tag.
 void add_svg_metadata(std::vector<std::uint8_t>& svg, const FigurePage& page) {
-  const std::string text(svg.begin(), svg.end());
+  const std::string text = renumber_surfaces(std::string(svg.begin(), svg.end()));
+  svg.assign(text.begin(), text.end());
   const std::size_t open = text.find("<svg");
   const std::size_t end = open == std::string::npos ? open : text.find('>', open);
   if (end == std::string::npos) throw std::runtime_error("cairo wrote an SVG without an <svg> element");
@@ -152,6 +176,9 @@ std::vector<std::uint8_t> draw_figure(const FigurePage& page, FigureFormat forma
     cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, page.title.c_str());
     cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_SUBJECT, page.metadata.c_str());
     cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "spinfold");
+    // No creation date (cairo writes the clock's unless it is given one it cannot read): the same
+    // figure gives the same bytes, as every output's provenance promises (codec/provenance.h).
+    cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, "");
   } else {
     throw std::invalid_argument("draw_figure: a vector format (svg or pdf) is needed");
   }

@@ -84,6 +84,7 @@ void send_figure(ServerContext& server, const Call& call, httplib::Response& res
   render::ViewOptions view = f.view;
   view.layers &= ~static_cast<unsigned>(render::kHud);  // no HUD box for the camera to keep clear of
   render::aim_camera_at_body(view, *snapshot);
+  view.layers = f.view.layers;  // the hud layer asks for the caption
   if (f.yaw) view.yaw = *f.yaw;
   if (f.pitch) view.pitch = *f.pitch;
   if (f.distance) view.distance = *f.distance;

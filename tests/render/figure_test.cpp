@@ -36,6 +36,7 @@ Figure figure_of(const std::string& preset, double t, std::optional<ViewKind> ki
   f.view.scale = 0.25 * body_scale_length(f.view.kind, scene.surface);
   f.view.layers &= ~static_cast<unsigned>(kHud);
   aim_camera_at_body(f.view, f.snapshot);
+  f.view.layers |= kHud;  // the caption
   f.page = figure_page(f.snapshot, f.view, {"Test scene", "A scene for the tests.", "version=test; scene_hash=0", "{\"software\":\"spinfold\"}"});
   return f;
 }
@@ -141,6 +142,19 @@ TEST(Figure, PlaneAndConformalViewsHaveAScaleBarInLengths) {
   EXPECT_TRUE(conformal_bar[0].find("(at the centre)") != std::string::npos) << conformal_bar[0];
 }
 
+// Without the hud layer the page is the picture and the legend: a bare figure for a paper's own
+// caption (the provenance stays in the file's metadata).
+TEST(Figure, WithoutTheHudLayerThereIsNoCaption) {
+  const Figure f = figure_of("spin_vs_geodesic_sphere", 2.0);
+  ViewOptions bare = f.view;
+  bare.layers &= ~static_cast<unsigned>(kHud);
+  const FigurePage page = figure_page(f.snapshot, bare, {"Test scene", "", "version=test", "{}"});
+  EXPECT_TRUE(texts_of(page, "caption").empty());
+  EXPECT_EQ(texts_of(page, "legend").size(), 2u);
+  EXPECT_LT(page.height, f.page.height);
+  EXPECT_EQ(page.title, "Test scene");
+}
+
 TEST(Figure, ScaleBarLengthIsOneTwoOrFiveTimesAPowerOfTen) {
   EXPECT_DOUBLE_EQ(scale_bar_length(1.0), 1.0);
   EXPECT_DOUBLE_EQ(scale_bar_length(1.9), 1.0);
@@ -192,6 +206,18 @@ TEST(Figure, PdfHasOnePageOfTheFiguresSizeAndItsText) {
   EXPECT_NE(text.out.find("energy error"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("r = 0.5 R"), std::string::npos) << text.out;
   std::filesystem::remove(path);
+}
+
+// Nothing in a figure depends on the clock (no PDF creation date) or on what was drawn before.
+TEST(Figure, TheSameFigureGivesTheSameBytes) {
+  const Figure f = figure_of("spinning_rigid_sphere", 2.0);
+  for (const FigureFormat format : {FigureFormat::svg, FigureFormat::pdf}) {
+    const std::vector<std::uint8_t> first = draw_figure(f.page, format);
+    draw_figure(figure_of("spin_vs_geodesic_pseudosphere", 1.0).page, format);
+    EXPECT_TRUE(first == draw_figure(f.page, format)) << figure_format_name(format);
+  }
+  const std::vector<std::uint8_t> pdf = draw_figure(f.page, FigureFormat::pdf);
+  EXPECT_EQ(std::string(pdf.begin(), pdf.end()).find("/CreationDate"), std::string::npos);
 }
 
 TEST(Figure, FormatsByNameAndExtension) {
