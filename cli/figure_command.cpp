@@ -74,26 +74,33 @@ std::vector<std::string> split(const std::string& list) {
   return out;
 }
 
-glm::dvec4 rgba(const std::array<float, 3>& c) { return {c[0], c[1], c[2], 1.0}; }
+glm::dvec4 rgba(const std::array<float, 3>& c) {
+  return {c[0], c[1], c[2], 1.0};
+}
 
 int plot(const PlotOptions& opt, int argc, char** argv) {
-  if (!std::isfinite(opt.t_end) || !(opt.t_end > 0.0)) throw FigureInputError("--t-end: must be a finite number > 0");
+  if (!std::isfinite(opt.t_end) || !(opt.t_end > 0.0))
+    throw FigureInputError("--t-end: must be a finite number > 0");
   const double every = opt.every.value_or(opt.t_end / 1000.0);
   if (!std::isfinite(every) || !(every > 0.0)) throw FigureInputError("--every: must be a finite number > 0");
   if (opt.t_end / every > kMaxPlotSamples) throw FigureInputError("--every: more than 1e6 samples requested");
-  if (!(opt.width >= 200.0 && opt.width <= 2000.0)) throw FigureInputError("--width: must be 200..2000 points");
+  if (!(opt.width >= 200.0 && opt.width <= 2000.0))
+    throw FigureInputError("--width: must be 200..2000 points");
   if (!(opt.panel_height >= 40.0 && opt.panel_height <= 1000.0))
     throw FigureInputError("--panel-height: must be 40..1000 points");
   if (opt.out.empty()) throw FigureInputError("--out: the SVG or PDF file to write is required");
   const render::FigureFormat format = render_format(opt.format, opt.out);
   if (format == render::FigureFormat::png)
-    throw FigureInputError("--format: plot writes svg or pdf (got png; `spinfold simulate --format csv` gives the numbers)");
+    throw FigureInputError(
+        "--format: plot writes svg or pdf (got png; `spinfold simulate --format csv` gives the numbers)");
   const std::vector<std::string> fields = split(opt.fields);
-  if (fields.size() < 2) throw FigureInputError("--fields: an x axis and at least one quantity, e.g. t,energy_error");
+  if (fields.size() < 2)
+    throw FigureInputError("--fields: an x axis and at least one quantity, e.g. t,energy_error");
   const std::vector<std::string> numeric(sample_value_names().begin(), sample_value_names().end());
   for (const std::string& f : fields)
     if (std::find(numeric.begin(), numeric.end(), f) == numeric.end())
-      throw FigureInputError("--fields: '" + f + "' is not a numeric column (see `spinfold simulate --list-fields`)");
+      throw FigureInputError("--fields: '" + f +
+                             "' is not a numeric column (see `spinfold simulate --list-fields`)");
   const std::vector<std::string> log = split(opt.log);
   for (const std::string& f : log)
     if (std::find(fields.begin() + 1, fields.end(), f) == fields.end())
@@ -108,8 +115,8 @@ int plot(const PlotOptions& opt, int argc, char** argv) {
   plot.width = opt.width;
   plot.panel_height = opt.panel_height;
   for (std::size_t i = 1; i < fields.size(); ++i) {
-    render::PlotPanel panel{fields[i], column_unit(fields[i]),
-                            std::find(log.begin(), log.end(), fields[i]) != log.end(), {}};
+    render::PlotPanel panel{
+        fields[i], column_unit(fields[i]), std::find(log.begin(), log.end(), fields[i]) != log.end(), {}};
     panel.lines.push_back({"body 1", rgba(render::kMainTrailColor), {}});
     for (std::size_t c = 0; c < table.companion_labels.size(); ++c)
       panel.lines.push_back({table.companion_labels[c], rgba(render::companion_color(scene, c)), {}});
@@ -130,7 +137,8 @@ int plot(const PlotOptions& opt, int argc, char** argv) {
         panel.lines[c + 1].y.push_back(number(row, table.companion_labels[c] + "." + panel.quantity));
     }
   };
-  sample_run(run, opt.t_end, every, [&](double t) { return advance_to(run, t); }, emit);
+  sample_run(
+      run, opt.t_end, every, [&](double t) { return advance_to(run, t); }, emit);
 
   const std::string command = command_line(argc, argv);
   plot.title = scene.name.empty() ? "Spinfold scene" : scene.name;
@@ -139,7 +147,8 @@ int plot(const PlotOptions& opt, int argc, char** argv) {
   plot.metadata = provenance_json(scene, command).dump();
   write_bytes(opt.out, render::draw_figure(render::series_page(plot), format));
   if (run.state.status != Status::ok) {
-    std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << status_name(run.state.status) << "\n";
+    std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << status_name(run.state.status)
+              << "\n";
     return kExitRunStopped;
   }
   return 0;
@@ -165,9 +174,9 @@ render::FigureFormat render_format(const std::string& format_option, const std::
   return *named;
 }
 
-void write_frame_figure(const Scene& scene, const render::Snapshot& snapshot, render::ViewOptions view, bool aim,
-                        render::FigureFormat format, const std::string& out, const std::string& command,
-                        double t) {
+void write_frame_figure(const Scene& scene, const render::Snapshot& snapshot, render::ViewOptions view,
+                        bool aim, render::FigureFormat format, const std::string& out,
+                        const std::string& command, double t) {
   if (aim) {  // with no HUD box for the camera to keep clear of
     render::ViewOptions aimed = view;
     aimed.layers &= ~static_cast<unsigned>(render::kHud);
@@ -192,8 +201,9 @@ CLI::App* add_plot_command(CLI::App& app, PlotOptions& opt) {
       "plot", "Plot quantities of a run against time (or another field) as an SVG or PDF figure for a paper");
   cmd->add_option("scene_file", opt.scene_file, "Scene JSON file (default: the default preset)");
   cmd->add_option("--scene", opt.preset, "Plot an embedded preset by name (see `spinfold scenes`)");
-  cmd->add_option("--fields", opt.fields,
-                  "The x axis, then one panel per quantity (numeric columns of `spinfold simulate --list-fields`)")
+  cmd->add_option(
+         "--fields", opt.fields,
+         "The x axis, then one panel per quantity (numeric columns of `spinfold simulate --list-fields`)")
       ->capture_default_str();
   cmd->add_option("--log", opt.log, "Fields plotted as |value| on a logarithmic axis (e.g. energy_error)");
   cmd->add_option("--t-end", opt.t_end, "Simulated time to reach")->capture_default_str();

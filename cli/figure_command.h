@@ -32,17 +32,17 @@ render::FigureFormat render_format(const std::string& format_option, const std::
 // PNG, with no HUD box to keep clear) unless `aim` is false, the caption from the scene, its
 // snapshot and the provenance (with `command`, the command line). Throws FigureInputError when
 // `out` cannot be written.
-void write_frame_figure(const Scene& scene, const render::Snapshot& snapshot, render::ViewOptions view, bool aim,
-                        render::FigureFormat format, const std::string& out, const std::string& command,
-                        double t);
+void write_frame_figure(const Scene& scene, const render::Snapshot& snapshot, render::ViewOptions view,
+                        bool aim, render::FigureFormat format, const std::string& out,
+                        const std::string& command, double t);
 
 struct PlotOptions {
   std::string scene_file;
   std::string preset;
   std::string fields = "t,energy_error";  // the x axis, then one panel per quantity
-  std::string log;                         // fields drawn on a logarithmic axis of |value|
-  double t_end = 10.0;                     // [time]
-  std::optional<double> every;             // sample spacing [time]; default t_end/1000
+  std::string log;                        // fields drawn on a logarithmic axis of |value|
+  double t_end = 10.0;                    // [time]
+  std::optional<double> every;            // sample spacing [time]; default t_end/1000
   std::optional<std::string> integrator;
   std::optional<double> dt;
   std::optional<double> tolerance;

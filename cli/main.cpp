@@ -292,7 +292,8 @@ int render_frame(const RenderOptions& opt, const std::string& format_option) {
   const render::Snapshot snapshot =
       render::snapshot_at(scene, opt.t, view.layers & render::kTrail, opt.trail, run);
   if (format != render::FigureFormat::png) {  // a vector figure (cli/figure_command.h)
-    cli::write_frame_figure(scene, snapshot, view, opt.camera.empty(), format, opt.out, opt.scene.command, opt.t);
+    cli::write_frame_figure(scene, snapshot, view, opt.camera.empty(), format, opt.out, opt.scene.command,
+                            opt.t);
   } else {
     if (opt.camera.empty()) render::aim_camera_at_body(view, snapshot);
     render::Renderer renderer;

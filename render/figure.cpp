@@ -132,13 +132,16 @@ bool outside_frame(const glm::dvec3& a, const glm::dvec3& b, const ViewOptions& 
          (a.y > view.height && b.y > view.height);
 }
 
-bool same_color(const glm::vec4& a, const glm::vec4& b) { return glm::all(glm::equal(a, b)); }
+bool same_color(const glm::vec4& a, const glm::vec4& b) {
+  return glm::all(glm::equal(a, b));
+}
 
 // Line segments (pairs of vertices, as GL_LINES) as polylines on the page: hidden pieces left out
 // (each segment cut into pieces of about 2 px, each tested at its middle), consecutive segments
 // that meet joined into one path while their colour stays the same.
-void add_segments(FigurePage& page, const Camera& camera, const ViewOptions& view, const std::vector<Vertex>& segments,
-                  double width, const std::string& role, const std::optional<glm::dvec4>& color = std::nullopt) {
+void add_segments(FigurePage& page, const Camera& camera, const ViewOptions& view,
+                  const std::vector<Vertex>& segments, double width, const std::string& role,
+                  const std::optional<glm::dvec4>& color = std::nullopt) {
   FigurePath* open = nullptr;  // the path the last visible piece ended
   glm::vec4 open_color{-1.0f};
   const auto add_piece = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::vec4& c) {
@@ -172,7 +175,8 @@ void add_segments(FigurePage& page, const Camera& camera, const ViewOptions& vie
       add_piece(*a, *b, c);
       continue;
     }
-    const int pieces = std::clamp(static_cast<int>(std::ceil(glm::distance(glm::dvec2(*a), glm::dvec2(*b)) / 2.0)), 1, 512);
+    const int pieces =
+        std::clamp(static_cast<int>(std::ceil(glm::distance(glm::dvec2(*a), glm::dvec2(*b)) / 2.0)), 1, 512);
     for (int k = 0; k < pieces; ++k) {
       const glm::dvec3 p0 = glm::mix(*a, *b, static_cast<double>(k) / pieces);
       const glm::dvec3 p1 = glm::mix(*a, *b, static_cast<double>(k + 1) / pieces);
@@ -191,8 +195,9 @@ void add_segments(FigurePage& page, const Camera& camera, const ViewOptions& vie
 // both halves are kept and turn the same way on the page (a quad folded over the silhouette stays
 // two triangles). Triangles off the frame or hidden are left out.
 template <typename V>
-void add_triangles(FigurePage& page, const Camera& camera, const ViewOptions& view, const std::vector<V>& triangles,
-                   const std::optional<glm::dvec4>& color, bool depth_tested, const std::string& role) {
+void add_triangles(FigurePage& page, const Camera& camera, const ViewOptions& view,
+                   const std::vector<V>& triangles, const std::optional<glm::dvec4>& color, bool depth_tested,
+                   const std::string& role) {
   FigurePath* path = nullptr;
   glm::dvec4 path_color{-1.0};
   const auto signed_area = [](const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
@@ -278,7 +283,8 @@ void add_circle_labels(FigurePage& page, const Snapshot& snapshot, const ViewOpt
       const double clear = 40.0 * kPointsPerPixel;
       taken.push_back({p.x - clear, p.y - clear, p.x + clear, p.y + clear});
     }
-  const double directions[] = {0.25 * kPi, 0.75 * kPi, -0.25 * kPi, -0.75 * kPi, 0.5 * kPi, -0.5 * kPi, 0.0, kPi};
+  const double directions[] = {0.25 * kPi, 0.75 * kPi, -0.25 * kPi, -0.75 * kPi,
+                               0.5 * kPi,  -0.5 * kPi, 0.0,         kPi};
   const double w = view.width * kPointsPerPixel, h = view.height * kPointsPerPixel;
   const double spacing = radii[1] - radii[0];
   // Where the circle of radius r [R] crosses the ray at φ, on the page.
@@ -296,7 +302,8 @@ void add_circle_labels(FigurePage& page, const Snapshot& snapshot, const ViewOpt
       if (!here || !inside || !outside) continue;
       const glm::dvec2 p = *here;
       // Room for the text between the neighbouring circles (none near the disk's rim, where they crowd).
-      if (glm::distance(p, *inside) < 1.6 * kLabelSize || glm::distance(p, *outside) < 1.6 * kLabelSize) continue;
+      if (glm::distance(p, *inside) < 1.6 * kLabelSize || glm::distance(p, *outside) < 1.6 * kLabelSize)
+        continue;
       const Box box{p.x - half, p.y - 0.5 * kLabelSize - 1.0, p.x + half, p.y + 0.5 * kLabelSize + 1.0};
       if (box.x0 < 2 || box.y0 < 2 || box.x1 > w - 2 || box.y1 > h - 2) continue;
       if (std::any_of(taken.begin(), taken.end(), [&](const Box& b) { return b.overlaps(box); })) continue;
@@ -315,11 +322,14 @@ void add_circle_labels(FigurePage& page, const Snapshot& snapshot, const ViewOpt
 
 // A bar of 1, 2 or 5 × 10ᵏ lengths in the picture's lower left corner, measured at the pole (the
 // conformal view's scale 1 + K|w|²/4 grows away from it).
-void add_scale_bar(FigurePage& page, const Snapshot& snapshot, const ViewOptions& view, const FrameScene& scene) {
+void add_scale_bar(FigurePage& page, const Snapshot& snapshot, const ViewOptions& view,
+                   const FrameScene& scene) {
   const Surface& surface = snapshot.surface;
   const double step = 1e-3 * surface.radius;  // [length]
-  const auto a = pixel_position(scene, view, world_position(surface, view.kind, chart_point(surface, 0.0, 0.0).X));
-  const auto b = pixel_position(scene, view, world_position(surface, view.kind, chart_point(surface, step, 0.0).X));
+  const auto a =
+      pixel_position(scene, view, world_position(surface, view.kind, chart_point(surface, 0.0, 0.0).X));
+  const auto b =
+      pixel_position(scene, view, world_position(surface, view.kind, chart_point(surface, step, 0.0).X));
   if (!a || !b) return;
   const double per_length = glm::distance(*a, *b) / step * kPointsPerPixel;  // [pt per length]
   if (!(per_length > 0.0) || !std::isfinite(per_length)) return;
@@ -354,18 +364,24 @@ std::string grid_line(const Snapshot& snapshot, const ViewOptions& view) {
     case ViewKind::sphere: return "Grid: parallels every 15 degrees, meridians every 30 degrees.";
     case ViewKind::hyperboloid:
       return "Grid: geodesic circles r = 0.5 R, 1 R, ... about the pole; radial geodesics every 30 degrees.";
-    case ViewKind::tractricoid: return "Grid: meridians (geodesics) every 30 degrees, parallels (horocycles).";
+    case ViewKind::tractricoid:
+      return "Grid: meridians (geodesics) every 30 degrees, parallels (horocycles).";
     case ViewKind::disk:
-      return sphere ? "Grid: geodesic circles about the pole (parallels every 15 degrees); meridians every 30 degrees."
-                    : "Grid: geodesic circles about the pole, labelled with their radius r; radial geodesics every 30 degrees.";
+      return sphere ? "Grid: geodesic circles about the pole (parallels every 15 degrees); meridians every "
+                      "30 degrees."
+                    : "Grid: geodesic circles about the pole, labelled with their radius r; radial geodesics "
+                      "every 30 degrees.";
     case ViewKind::klein:
     case ViewKind::halfplane:
-      return "Grid: geodesic circles about the pole, labelled with their radius r; radial geodesics every 30 degrees.";
-    case ViewKind::plane: return "Grid: lines every " + format("%g", kPlaneGridSpacing) + " R (R = " +
-                                 format("%g", snapshot.surface.radius) + ").";
+      return "Grid: geodesic circles about the pole, labelled with their radius r; radial geodesics every 30 "
+             "degrees.";
+    case ViewKind::plane:
+      return "Grid: lines every " + format("%g", kPlaneGridSpacing) +
+             " R (R = " + format("%g", snapshot.surface.radius) + ").";
     case ViewKind::conformal:
       return "Grid: the image of a square grid of geodesic normal coordinates, every " +
-             format("%g", kPlaneGridSpacing * body_scale_length(view.kind, snapshot.surface)) + " length units.";
+             format("%g", kPlaneGridSpacing * body_scale_length(view.kind, snapshot.surface)) +
+             " length units.";
   }
   return "";
 }
@@ -445,18 +461,23 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
   // The picture's ground: the surface's colour where it fills the frame (the plane), else white.
   const glm::dvec4 ground =
       same_color(scene.clear_color, scene.surface_color) ? glm::dvec4(scene.clear_color) : glm::dvec4(1.0);
-  page.paths.push_back({.points = {{0, 0}, {w, 0}, {w, h}, {0, h}}, .color = ground, .filled = true, .role = "ground"});
+  page.paths.push_back(
+      {.points = {{0, 0}, {w, 0}, {w, h}, {0, h}}, .color = ground, .filled = true, .role = "ground"});
 
   const bool three_d = scene.depth_test;
-  if (!scene.backdrop.empty()) add_triangles(page, camera, view, scene.backdrop, std::nullopt, false, "surface");
+  if (!scene.backdrop.empty())
+    add_triangles(page, camera, view, scene.backdrop, std::nullopt, false, "surface");
   // The surface's fill: its visible faces (hidden ones lie under them) in one flat colour.
   if (scene.statics && scene.draw_surface)
-    add_triangles(page, camera, view, scene.statics->surface, glm::dvec4(scene.surface_color), three_d, "surface");
-  if (scene.statics && scene.draw_grid) add_segments(page, camera, view, scene.statics->grid, grid_width, "grid");
+    add_triangles(page, camera, view, scene.statics->surface, glm::dvec4(scene.surface_color), three_d,
+                  "surface");
+  if (scene.statics && scene.draw_grid)
+    add_segments(page, camera, view, scene.statics->grid, grid_width, "grid");
   add_segments(page, camera, view, scene.grid_lines, grid_width, "grid");
   if (scene.statics && (scene.draw_surface || scene.draw_grid)) {
     if (three_d)
-      add_segments(page, camera, view, silhouette(*scene.statics, scene), line_width, "outline", kOutlineColor);
+      add_segments(page, camera, view, silhouette(*scene.statics, scene), line_width, "outline",
+                   kOutlineColor);
     else
       add_segments(page, camera, view, boundary_edges(*scene.statics), line_width, "outline", kOutlineColor);
   }
@@ -464,10 +485,11 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
   // The lines: trails (by their colour), then the bodies' outlines and arrows.
   std::vector<Vertex> trails, others;
   for (std::size_t i = 0; i + 1 < scene.lines.size(); i += 2) {
-    const bool trail = std::any_of(snapshot.bodies.begin(), snapshot.bodies.end(), [&](const BodySnapshot& b) {
-      const glm::vec4 c(b.trail_color[0], b.trail_color[1], b.trail_color[2], 1.0f);
-      return same_color(scene.lines[i].color, c);
-    });
+    const bool trail =
+        std::any_of(snapshot.bodies.begin(), snapshot.bodies.end(), [&](const BodySnapshot& b) {
+          const glm::vec4 c(b.trail_color[0], b.trail_color[1], b.trail_color[2], 1.0f);
+          return same_color(scene.lines[i].color, c);
+        });
     (trail ? trails : others).insert((trail ? trails : others).end(), {scene.lines[i], scene.lines[i + 1]});
   }
   add_segments(page, camera, view, trails, line_width, "trail");
@@ -511,9 +533,14 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
     for (int k = 0; k < 16; ++k)
       dot.push_back({legend_x + 0.5 * swatch + 4.0 * std::cos(2 * kPi * k / 16),
                      mid + 2.6 * std::sin(2 * kPi * k / 16)});
-    page.paths.push_back({.points = dot, .color = glm::dvec4(legend[i].color), .filled = true,
-                          .clip_to_picture = false, .role = "legend"});
-    page.texts.push_back({.at = {legend_x + swatch + 6.0, base}, .text = legend[i].label, .size = kCaptionSize,
+    page.paths.push_back({.points = dot,
+                          .color = glm::dvec4(legend[i].color),
+                          .filled = true,
+                          .clip_to_picture = false,
+                          .role = "legend"});
+    page.texts.push_back({.at = {legend_x + swatch + 6.0, base},
+                          .text = legend[i].label,
+                          .size = kCaptionSize,
                           .role = "legend"});
   }
   const double text_right = legend.empty() ? w - kMargin : legend_x - 2 * kMargin;
@@ -521,8 +548,12 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
   const auto add_lines = [&](const std::string& text, double size, bool bold, const glm::dvec4& color) {
     for (const std::string& l : wrap(text, size, bold, text_width_left)) {
       y += size * kLineSpacing;
-      page.texts.push_back({.at = {kMargin, y - 0.3 * size}, .text = l, .size = size, .bold = bold,
-                            .color = color, .role = "caption"});
+      page.texts.push_back({.at = {kMargin, y - 0.3 * size},
+                            .text = l,
+                            .size = size,
+                            .bold = bold,
+                            .color = color,
+                            .role = "caption"});
     }
   };
   if (!captioned) {  // a bare figure (the paper's own caption says it): the legend only
@@ -532,7 +563,8 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
   if (!caption.title.empty()) add_lines(caption.title, kTitleSize, true, {0.1, 0.1, 0.1, 1});
   if (!caption.description.empty()) add_lines(caption.description, kCaptionSize, false, {0.1, 0.1, 0.1, 1});
   std::vector<std::string> lines = snapshot.hud_lines;
-  if (view.layers & kActions) lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
+  if (view.layers & kActions)
+    lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
   if (!snapshot.bodies.empty() && !on_view(snapshot.surface, view.kind, snapshot.bodies.front().X))
     lines.push_back("body 1 is beyond the rim: off the part of H2 this surface shows");
   std::string view_line = "View: " + std::string(view_info(view.kind).title) + ".";

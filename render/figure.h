@@ -22,8 +22,8 @@ namespace spinfold::render {
 struct FigureCaption {
   std::string title;        // the scene's name (bold; the file's title)
   std::string description;  // the scene's one line
-  std::string provenance;  // one line (codec/provenance.h's provenance_header)
-  std::string metadata;    // written into the file (the provenance JSON)
+  std::string provenance;   // one line (codec/provenance.h's provenance_header)
+  std::string metadata;     // written into the file (the provenance JSON)
 };
 
 // The page of the frame `view` shows of `snapshot`: view.width × view.height pixels become a

@@ -62,7 +62,9 @@ void select_font(cairo_t* cr, double size, bool bold) {
   cairo_set_font_size(cr, size);
 }
 
-void set_color(cairo_t* cr, const glm::dvec4& c) { cairo_set_source_rgba(cr, c.r, c.g, c.b, c.a); }
+void set_color(cairo_t* cr, const glm::dvec4& c) {
+  cairo_set_source_rgba(cr, c.r, c.g, c.b, c.a);
+}
 
 void paint_path(cairo_t* cr, const FigurePath& path) {
   if (path.points.size() < 2) return;
@@ -159,6 +161,12 @@ void add_svg_metadata(std::vector<std::uint8_t>& svg, const FigurePage& page) {
 double text_width(std::string_view text, double size, bool bold) {
   const Surface surface(cairo_image_surface_create(CAIRO_FORMAT_A8, 1, 1));
   const Context cr(cairo_create(surface.get()));
+  // Unhinted metrics, as the SVG and PDF surfaces use (an image surface rounds advances to pixels).
+  cairo_font_options_t* options = cairo_font_options_create();
+  cairo_font_options_set_hint_metrics(options, CAIRO_HINT_METRICS_OFF);
+  cairo_font_options_set_hint_style(options, CAIRO_HINT_STYLE_NONE);
+  cairo_set_font_options(cr.get(), options);
+  cairo_font_options_destroy(options);
   select_font(cr.get(), size, bold);
   cairo_text_extents_t extents;
   cairo_text_extents(cr.get(), std::string(text).c_str(), &extents);
@@ -204,7 +212,8 @@ std::vector<std::uint8_t> draw_figure(const FigurePage& page, FigureFormat forma
   }
   cairo_surface_finish(surface.get());
   if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
-    throw std::runtime_error(std::string("cairo: ") + cairo_status_to_string(cairo_surface_status(surface.get())));
+    throw std::runtime_error(std::string("cairo: ") +
+                             cairo_status_to_string(cairo_surface_status(surface.get())));
   surface.reset();
   if (format == FigureFormat::svg) add_svg_metadata(bytes, page);
   return bytes;

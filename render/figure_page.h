@@ -54,12 +54,12 @@ enum class TextAlign { left, centre, right };
 struct FigureText {
   glm::dvec2 at{0.0};  // the baseline's start, centre or end by `align` [pt]
   std::string text{};  // UTF-8
-  double size = 9.0;  // [pt]
+  double size = 9.0;   // [pt]
   bool bold = false;
   TextAlign align = TextAlign::left;
   double angle = 0.0;  // counter-clockwise about `at` [rad] (a y axis's label: π/2)
   glm::dvec4 color{0.1, 0.1, 0.1, 1};
-  bool halo = false;  // a white outline under the glyphs, legible over lines
+  bool halo = false;   // a white outline under the glyphs, legible over lines
   std::string role{};  // "caption", "legend", "label", "tick", "axis", ...
 };
 

@@ -10,7 +10,7 @@ namespace spinfold::render {
 
 namespace {
 
-constexpr double kLeft = 64.0, kRight = 14.0, kTop = 10.0, kGap = 16.0;  // margins [pt]
+constexpr double kLeft = 64.0, kRight = 14.0, kTop = 10.0, kGap = 16.0;                       // margins [pt]
 constexpr double kTickSize = 7.5, kAxisSize = 8.5, kTitleSize = 10.0, kProvenanceSize = 6.0;  // [pt]
 constexpr double kTick = 3.0;  // tick mark length [pt]
 const glm::dvec4 kInk{0.1, 0.1, 0.1, 1.0};
@@ -122,8 +122,9 @@ FigurePage series_page(const SeriesPlot& plot) {
   for (const PlotPanel& panel : plot.panels)
     for (const PlotLine& line : panel.lines)
       if (line.y.size() != plot.x.size())
-        throw std::invalid_argument("series_page: " + panel.quantity + " has " + std::to_string(line.y.size()) +
-                                    " values for " + std::to_string(plot.x.size()) + " times");
+        throw std::invalid_argument("series_page: " + panel.quantity + " has " +
+                                    std::to_string(line.y.size()) + " values for " +
+                                    std::to_string(plot.x.size()) + " times");
   FigurePage page;
   page.width = plot.width;
   page.title = plot.title;
@@ -152,7 +153,10 @@ FigurePage series_page(const SeriesPlot& plot) {
       const double width = 22.0 + text_width(line->label, kTickSize) + 14.0;
       if (x > left && x + width > right) x = left, y += kTickSize * 1.5;
       page.paths.push_back({.points = {{x, y - 0.35 * kTickSize}, {x + 16.0, y - 0.35 * kTickSize}},
-                            .color = line->color, .width = 1.5, .clip_to_picture = false, .role = "legend"});
+                            .color = line->color,
+                            .width = 1.5,
+                            .clip_to_picture = false,
+                            .role = "legend"});
       page.texts.push_back({.at = {x + 20.0, y}, .text = line->label, .size = kTickSize, .role = "legend"});
       x += width;
     }
@@ -162,7 +166,8 @@ FigurePage series_page(const SeriesPlot& plot) {
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
   for (const double x : plot.x)
     if (std::isfinite(x)) x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x);
-  const Axis x_axis = make_axis(std::isfinite(x_lo) ? x_lo : 0.0, std::isfinite(x_hi) ? x_hi : 1.0, false, false);
+  const Axis x_axis =
+      make_axis(std::isfinite(x_lo) ? x_lo : 0.0, std::isfinite(x_hi) ? x_hi : 1.0, false, false);
   const auto x_at = [&](double x) { return left + x_axis.to_unit(x) * plot_width; };
 
   for (std::size_t p = 0; p < plot.panels.size(); ++p) {
@@ -181,11 +186,17 @@ FigurePage series_page(const SeriesPlot& plot) {
 
     // Grid lines at the ticks, then the lines, then the frame, ticks and labels over them.
     for (const double t : y_axis.ticks)
-      page.paths.push_back({.points = {{left, y_at(t)}, {right, y_at(t)}}, .color = kGridInk, .width = 0.5,
-                            .clip_to_picture = false, .role = "grid"});
+      page.paths.push_back({.points = {{left, y_at(t)}, {right, y_at(t)}},
+                            .color = kGridInk,
+                            .width = 0.5,
+                            .clip_to_picture = false,
+                            .role = "grid"});
     for (const double t : x_axis.ticks)
-      page.paths.push_back({.points = {{x_at(t), top}, {x_at(t), bottom}}, .color = kGridInk, .width = 0.5,
-                            .clip_to_picture = false, .role = "grid"});
+      page.paths.push_back({.points = {{x_at(t), top}, {x_at(t), bottom}},
+                            .color = kGridInk,
+                            .width = 0.5,
+                            .clip_to_picture = false,
+                            .role = "grid"});
     for (std::size_t l = 0; l < panel.lines.size(); ++l) {
       FigurePath run{.color = panel.lines[l].color, .width = 1.0, .clip_to_picture = false, .role = "series"};
       const auto flush = [&] {
@@ -203,40 +214,65 @@ FigurePage series_page(const SeriesPlot& plot) {
       flush();
     }
     page.paths.push_back({.points = {{left, top}, {right, top}, {right, bottom}, {left, bottom}},
-                          .color = kInk, .width = 0.75, .closed = true, .clip_to_picture = false, .role = "axes"});
+                          .color = kInk,
+                          .width = 0.75,
+                          .closed = true,
+                          .clip_to_picture = false,
+                          .role = "axes"});
     for (std::size_t i = 0; i < y_axis.ticks.size(); ++i) {
       const double ty = y_at(y_axis.ticks[i]);
-      page.paths.push_back({.points = {{left - kTick, ty}, {left, ty}}, .color = kInk, .width = 0.75,
-                            .clip_to_picture = false, .role = "tick"});
-      page.texts.push_back({.at = {left - kTick - 2.0, ty + 0.35 * kTickSize}, .text = y_axis.labels[i],
-                            .size = kTickSize, .align = TextAlign::right, .role = "tick"});
+      page.paths.push_back({.points = {{left - kTick, ty}, {left, ty}},
+                            .color = kInk,
+                            .width = 0.75,
+                            .clip_to_picture = false,
+                            .role = "tick"});
+      page.texts.push_back({.at = {left - kTick - 2.0, ty + 0.35 * kTickSize},
+                            .text = y_axis.labels[i],
+                            .size = kTickSize,
+                            .align = TextAlign::right,
+                            .role = "tick"});
     }
     for (std::size_t i = 0; i < x_axis.ticks.size(); ++i) {
       const double tx = x_at(x_axis.ticks[i]);
-      page.paths.push_back({.points = {{tx, bottom}, {tx, bottom + kTick}}, .color = kInk, .width = 0.75,
-                            .clip_to_picture = false, .role = "tick"});
+      page.paths.push_back({.points = {{tx, bottom}, {tx, bottom + kTick}},
+                            .color = kInk,
+                            .width = 0.75,
+                            .clip_to_picture = false,
+                            .role = "tick"});
       if (p + 1 == plot.panels.size())
-        page.texts.push_back({.at = {tx, bottom + kTick + 2.0 + kTickSize}, .text = x_axis.labels[i],
-                              .size = kTickSize, .align = TextAlign::centre, .role = "tick"});
+        page.texts.push_back({.at = {tx, bottom + kTick + 2.0 + kTickSize},
+                              .text = x_axis.labels[i],
+                              .size = kTickSize,
+                              .align = TextAlign::centre,
+                              .role = "tick"});
     }
     // The y axis's title, turned, left of the tick labels; its power of ten beside it.
     std::string title = axis_title(panel.log ? "|" + panel.quantity + "|" : panel.quantity, panel.unit);
     if (!y_axis.factor.empty()) title += "  " + y_axis.factor;
-    page.texts.push_back({.at = {12.0, 0.5 * (top + bottom)}, .text = title, .size = kAxisSize,
-                          .align = TextAlign::centre, .angle = 1.5707963267948966, .role = "axis"});
+    page.texts.push_back({.at = {12.0, 0.5 * (top + bottom)},
+                          .text = title,
+                          .size = kAxisSize,
+                          .align = TextAlign::centre,
+                          .angle = 1.5707963267948966,
+                          .role = "axis"});
     if (empty)
       page.texts.push_back({.at = {0.5 * (left + right), 0.5 * (top + bottom)},
                             .text = panel.log ? "nothing to plot: every value zero or undefined"
                                               : "nothing to plot: every value undefined",
-                            .size = kAxisSize, .align = TextAlign::centre, .role = "axis"});
+                            .size = kAxisSize,
+                            .align = TextAlign::centre,
+                            .role = "axis"});
     y = bottom + kGap;
   }
   // The x axis's title under the last panel's tick labels.
   y += kTickSize;
   std::string x_title = axis_title(plot.x_quantity, plot.x_unit);
   if (!x_axis.factor.empty()) x_title += "  " + x_axis.factor;
-  page.texts.push_back({.at = {0.5 * (left + right), y}, .text = x_title, .size = kAxisSize,
-                        .align = TextAlign::centre, .role = "axis"});
+  page.texts.push_back({.at = {0.5 * (left + right), y},
+                        .text = x_title,
+                        .size = kAxisSize,
+                        .align = TextAlign::centre,
+                        .role = "axis"});
   y += 6.0;
   if (!plot.provenance.empty()) {
     // The provenance, wrapped to the page.
@@ -245,7 +281,10 @@ FigurePage series_page(const SeriesPlot& plot) {
     const std::string& text = plot.provenance;
     const auto emit = [&](const std::string& l) {
       y += kProvenanceSize * 1.35;
-      page.texts.push_back({.at = {8.0, y}, .text = l, .size = kProvenanceSize, .color = {0.4, 0.4, 0.4, 1},
+      page.texts.push_back({.at = {8.0, y},
+                            .text = l,
+                            .size = kProvenanceSize,
+                            .color = {0.4, 0.4, 0.4, 1},
                             .role = "caption"});
     };
     while (i < text.size()) {

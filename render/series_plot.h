@@ -13,9 +13,9 @@
 namespace spinfold::render {
 
 struct PlotLine {
-  std::string label;                 // the legend's text ("body 1", a companion's label)
-  glm::dvec4 color{0, 0, 0, 1};      // RGBA in [0, 1]
-  std::vector<double> y;             // one per SeriesPlot::x; NaN (undefined): a gap
+  std::string label;             // the legend's text ("body 1", a companion's label)
+  glm::dvec4 color{0, 0, 0, 1};  // RGBA in [0, 1]
+  std::vector<double> y;         // one per SeriesPlot::x; NaN (undefined): a gap
 };
 
 struct PlotPanel {
@@ -30,12 +30,12 @@ struct SeriesPlot {
   std::string x_unit = "time";
   std::vector<double> x;
   std::vector<PlotPanel> panels;
-  std::string title;        // the scene's name, above the panels (bold; the file's title)
-  std::string description;  // the scene's one line, under the title
-  std::string provenance;  // one line beneath (codec/provenance.h's provenance_header)
-  std::string metadata;    // written into the file (the provenance JSON)
-  double width = 480;          // of the page [pt]
-  double panel_height = 120;   // of each panel's plotting area [pt]
+  std::string title;          // the scene's name, above the panels (bold; the file's title)
+  std::string description;    // the scene's one line, under the title
+  std::string provenance;     // one line beneath (codec/provenance.h's provenance_header)
+  std::string metadata;       // written into the file (the provenance JSON)
+  double width = 480;         // of the page [pt]
+  double panel_height = 120;  // of each panel's plotting area [pt]
 };
 
 // The page; std::invalid_argument when a line's length differs from x's or there is no panel.

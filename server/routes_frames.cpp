@@ -9,10 +9,10 @@
 #include "render/jpeg_encoder.h"
 #include "render/snapshot.h"
 #include "server/context.h"
-#include "server/sessions.h"
 #include "server/frames.h"
 #include "server/problem.h"
 #include "server/route_table.h"
+#include "server/sessions.h"
 
 // After Eigen: httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's parameter names.
 #include <httplib.h>
@@ -45,7 +45,8 @@ void send_frame(ServerContext& server, const Call& call, httplib::Response& res,
 
 // frame.svg / frame.pdf: the same picture as a vector figure for a paper (render/figure.h), drawn
 // on the calling thread (no GL, no render pool); the caption replaces the HUD.
-void send_figure(ServerContext& server, const Call& call, httplib::Response& res, render::FigureFormat format) {
+void send_figure(ServerContext& server, const Call& call, httplib::Response& res,
+                 render::FigureFormat format) {
   const auto s = find_session(server, call.id);
   FrameRequest f;
   std::string etag;
@@ -71,7 +72,8 @@ void send_figure(ServerContext& server, const Call& call, httplib::Response& res
       char at[48];
       std::snprintf(at, sizeof at, "; t=%.17g; view=", s->run.state.t);
       caption.provenance = provenance(*s) + at + std::string(render::view_name(f.view.kind));
-      for (const auto& [key, value] : picture_texts(scene, "", s->run.state.t, render::view_name(f.view.kind)))
+      for (const auto& [key, value] :
+           picture_texts(scene, "", s->run.state.t, render::view_name(f.view.kind)))
         if (key == "Source") caption.metadata = value;
     }
   }
@@ -88,7 +90,8 @@ void send_figure(ServerContext& server, const Call& call, httplib::Response& res
   if (f.yaw) view.yaw = *f.yaw;
   if (f.pitch) view.pitch = *f.pitch;
   if (f.distance) view.distance = *f.distance;
-  const std::vector<std::uint8_t> bytes = render::draw_figure(render::figure_page(*snapshot, view, caption), format);
+  const std::vector<std::uint8_t> bytes =
+      render::draw_figure(render::figure_page(*snapshot, view, caption), format);
   res.body.assign(bytes.begin(), bytes.end());
   res.set_header("Content-Type", std::string(render::figure_content_type(format)));
 }

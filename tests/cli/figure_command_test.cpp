@@ -46,7 +46,8 @@ TEST(CliFigure, RenderWritesAnSvgByTheExtension) {
 
 TEST(CliFigure, RenderWritesAPdfWithTheCaption) {
   const std::string out = temp("frame.pdf");
-  const auto r = run_spinfold("render --scene spin_vs_geodesic_pseudosphere --view halfplane --t 2 --format pdf --out " + out);
+  const auto r = run_spinfold(
+      "render --scene spin_vs_geodesic_pseudosphere --view halfplane --t 2 --format pdf --out " + out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(read(out).starts_with("%PDF-"));
   if (!figure_test::have_tool("pdfinfo") || !figure_test::have_tool("pdftotext"))
@@ -94,11 +95,14 @@ TEST(CliFigure, RenderFormatFollowsTheExtensionAndTheOption) {
 
 TEST(CliFigure, PlotDrawsTheFieldsAgainstTime) {
   const std::string svg = temp("series.svg"), pdf = temp("series.pdf");
-  auto r = run_spinfold("plot --scene spin_vs_geodesic_sphere --fields t,energy_error,r --log energy_error "
-                        "--t-end 4 --out " + svg);
+  auto r = run_spinfold(
+      "plot --scene spin_vs_geodesic_sphere --fields t,energy_error,r --log energy_error "
+      "--t-end 4 --out " +
+      svg);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(read(svg).starts_with("<?xml"));
-  r = run_spinfold("plot --scene spin_vs_geodesic_sphere --fields t,energy_error,r --t-end 4 --every 0.05 --out " + pdf);
+  r = run_spinfold(
+      "plot --scene spin_vs_geodesic_sphere --fields t,energy_error,r --t-end 4 --every 0.05 --out " + pdf);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   if (figure_test::have_tool("xmllint")) {
     const auto check = figure_test::run_tool("xmllint --noout " + svg);

@@ -37,7 +37,9 @@ Figure figure_of(const std::string& preset, double t, std::optional<ViewKind> ki
   f.view.layers &= ~static_cast<unsigned>(kHud);
   aim_camera_at_body(f.view, f.snapshot);
   f.view.layers |= kHud;  // the caption
-  f.page = figure_page(f.snapshot, f.view, {"Test scene", "A scene for the tests.", "version=test; scene_hash=0", "{\"software\":\"spinfold\"}"});
+  f.page = figure_page(
+      f.snapshot, f.view,
+      {"Test scene", "A scene for the tests.", "version=test; scene_hash=0", "{\"software\":\"spinfold\"}"});
   return f;
 }
 
@@ -49,8 +51,8 @@ std::vector<std::string> texts_of(const FigurePage& page, const std::string& rol
 }
 
 std::size_t paths_of(const FigurePage& page, const std::string& role) {
-  return static_cast<std::size_t>(
-      std::count_if(page.paths.begin(), page.paths.end(), [&](const FigurePath& p) { return p.role == role; }));
+  return static_cast<std::size_t>(std::count_if(page.paths.begin(), page.paths.end(),
+                                                [&](const FigurePath& p) { return p.role == role; }));
 }
 
 double stroked_length(const FigurePage& page, const std::string& role) {
@@ -62,7 +64,8 @@ double stroked_length(const FigurePage& page, const std::string& role) {
 }
 
 bool contains(const std::vector<std::string>& texts, const std::string& part) {
-  return std::any_of(texts.begin(), texts.end(), [&](const std::string& t) { return t.find(part) != std::string::npos; });
+  return std::any_of(texts.begin(), texts.end(),
+                     [&](const std::string& t) { return t.find(part) != std::string::npos; });
 }
 
 TEST(Figure, SphereFigureHasOutlineGridTrailsBodiesLegendAndCaption) {
@@ -113,7 +116,8 @@ TEST(Figure, FlatViewsOfH2LabelTheirGeodesicCircles) {
     const Figure f = figure_of("spin_vs_geodesic_pseudosphere", 4.0, kind);
     const std::vector<std::string> labels = texts_of(f.page, "label");
     EXPECT_GE(labels.size(), 2u) << view_name(kind);
-    for (const std::string& label : labels) EXPECT_TRUE(label.starts_with("r = ") && label.ends_with(" R")) << label;
+    for (const std::string& label : labels)
+      EXPECT_TRUE(label.starts_with("r = ") && label.ends_with(" R")) << label;
     EXPECT_GE(paths_of(f.page, "outline"), 1u) << view_name(kind);  // the rim, or y = 0
     EXPECT_TRUE(contains(texts_of(f.page, "caption"), "geodesic circles about the pole")) << view_name(kind);
   }
@@ -193,7 +197,8 @@ TEST(Figure, PdfHasOnePageOfTheFiguresSizeAndItsText) {
   const std::vector<std::uint8_t> pdf = draw_figure(f.page, FigureFormat::pdf);
   ASSERT_GT(pdf.size(), 1000u);
   EXPECT_EQ(std::string(pdf.begin(), pdf.begin() + 5), "%PDF-");
-  if (!have_tool("pdfinfo") || !have_tool("pdftotext")) GTEST_SKIP() << "pdfinfo missing (Debian poppler-utils)";
+  if (!have_tool("pdfinfo") || !have_tool("pdftotext"))
+    GTEST_SKIP() << "pdfinfo missing (Debian poppler-utils)";
   const std::string path = temporary_file(pdf, ".pdf");
   const auto info = run_tool("pdfinfo " + path);
   EXPECT_EQ(info.exit_code, 0) << info.out;
@@ -218,31 +223,6 @@ TEST(Figure, TheSameFigureGivesTheSameBytes) {
   }
   const std::vector<std::uint8_t> pdf = draw_figure(f.page, FigureFormat::pdf);
   EXPECT_EQ(std::string(pdf.begin(), pdf.end()).find("/CreationDate"), std::string::npos);
-}
-
-TEST(Figure, FormatsByNameAndExtension) {
-  EXPECT_EQ(parse_figure_format("svg"), FigureFormat::svg);
-  EXPECT_EQ(parse_figure_format("jpg"), std::nullopt);
-  EXPECT_EQ(figure_format_of_path("out/figure.PDF"), FigureFormat::pdf);
-  EXPECT_EQ(figure_format_of_path("figure.png"), FigureFormat::png);
-  EXPECT_EQ(figure_format_of_path("figure.jpg"), std::nullopt);
-  EXPECT_EQ(figure_format_of_path("dir.svg/figure"), std::nullopt);
-  EXPECT_EQ(figure_content_type(FigureFormat::svg), "image/svg+xml");
-  EXPECT_EQ(figure_content_type(FigureFormat::pdf), "application/pdf");
-  EXPECT_THROW(draw_figure(FigurePage{}, FigureFormat::png), std::invalid_argument);
-}
-
-TEST(Figure, NiceTicksAreRoundNumbersCoveringTheRange) {
-  EXPECT_EQ(nice_ticks(0.0, 10.0, 5), (std::vector<double>{0, 2, 4, 6, 8, 10}));
-  EXPECT_EQ(nice_ticks(-0.3, 0.3, 5), (std::vector<double>{-0.2, 0, 0.2}));  // steps of 0.2: 1, 2 or 5 × 10ᵏ
-  const std::vector<double> tenths = nice_ticks(-0.3, 0.3, 6);
-  ASSERT_EQ(tenths.size(), 7u);
-  for (std::size_t i = 0; i < tenths.size(); ++i) EXPECT_NEAR(tenths[i], -0.3 + 0.1 * static_cast<double>(i), 1e-12);
-  EXPECT_EQ(tenths[3], 0.0);  // an exact zero, never -2.8e-17
-  const std::vector<double> small = nice_ticks(1e-12, 9e-12, 4);
-  ASSERT_FALSE(small.empty());
-  EXPECT_NEAR(small.front(), 2e-12, 1e-24);
-  EXPECT_TRUE(nice_ticks(std::nan(""), 1.0, 5).empty());
 }
 
 }  // namespace

@@ -21,11 +21,12 @@ inline bool have_tool(const std::string& name) {
 // The bytes in a temporary file named for this process (ctest runs cases in parallel processes).
 inline std::string temporary_file(const std::vector<std::uint8_t>& bytes, const std::string& extension) {
   static int count = 0;
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("spinfold_figure_" + std::to_string(getpid()) + "_" + std::to_string(++count) + extension))
-                               .string();
-  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
-                                              static_cast<std::streamsize>(bytes.size()));
+  const std::string path =
+      (std::filesystem::temp_directory_path() /
+       ("spinfold_figure_" + std::to_string(getpid()) + "_" + std::to_string(++count) + extension))
+          .string();
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   return path;
 }
 
@@ -48,8 +49,8 @@ inline ToolResult run_tool(const std::string& command) {
 // A field of pdfinfo's output ("Pages", "Title", "Page size"), its value trimmed; "" when absent.
 inline std::string pdfinfo_field(const std::string& out, const std::string& field) {
   const std::size_t at = out.find("\n" + field + ":") != std::string::npos ? out.find("\n" + field + ":") + 1
-                         : out.starts_with(field + ":")                     ? 0
-                                                                            : std::string::npos;
+                         : out.starts_with(field + ":")                    ? 0
+                                                                           : std::string::npos;
   if (at == std::string::npos) return "";
   std::size_t begin = at + field.size() + 1;
   const std::size_t end = out.find('\n', begin);

@@ -1189,7 +1189,8 @@ TEST_F(Api, SvgAndPdfFramesAreVectorFiguresOfTheState) {
   const std::string etag = svg->get_header_value("ETag");
   EXPECT_NE(etag, c.Get(session + "/frame.png?view=disk&width=480&height=360")->get_header_value("ETag"));
   EXPECT_NE(etag, c.Get(session + "/frame.pdf?view=disk&width=480&height=360")->get_header_value("ETag"));
-  EXPECT_EQ(c.Get(session + "/frame.svg?view=disk&width=480&height=360", {{"If-None-Match", etag}})->status, 304);
+  EXPECT_EQ(c.Get(session + "/frame.svg?view=disk&width=480&height=360", {{"If-None-Match", etag}})->status,
+            304);
   EXPECT_EQ(c.Get(session + "/frame.svg?width=5")->status, 422);
   EXPECT_EQ(c.Get(session + "/frame.pdf?view=sphere")->status, 422);  // no sphere view of H²
   if (figure_test::have_tool("xmllint") && figure_test::have_tool("pdfinfo")) {
