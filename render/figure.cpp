@@ -283,6 +283,13 @@ void add_circle_labels(FigurePage& page, const Snapshot& snapshot, const ViewOpt
       const double clear = 40.0 * kPointsPerPixel;
       taken.push_back({p.x - clear, p.y - clear, p.x + clear, p.y + clear});
     }
+  // Nor over a trail: every few of its points keep a small box clear.
+  for (const BodySnapshot& body : snapshot.bodies)
+    for (std::size_t i = 0; i < body.trail.size(); i += std::max<std::size_t>(1, body.trail.size() / 256))
+      if (const auto px = pixel_position(scene, view, world_position(surface, view.kind, body.trail[i]))) {
+        const glm::dvec2 p = *px * kPointsPerPixel;
+        taken.push_back({p.x - 3.0, p.y - 3.0, p.x + 3.0, p.y + 3.0});
+      }
   const double directions[] = {0.25 * kPi, 0.75 * kPi, -0.25 * kPi, -0.75 * kPi,
                                0.5 * kPi,  -0.5 * kPi, 0.0,         kPi};
   const double w = view.width * kPointsPerPixel, h = view.height * kPointsPerPixel;
