@@ -1,6 +1,7 @@
 // spinfold: the command line. `simulate` prints JSON Lines samples of a run; `render` draws one
 // frame; `record` a time window as a GIF, WebM, MP4 or zip of PNGs; `scenes` lists the presets;
-// `integrators` prints the catalog; `work-precision` measures run time against error on a scene.
+// `integrators` prints the catalog; `work-precision` measures run time against error on a scene;
+// `plot` draws quantities of a run as an SVG or PDF figure (render writes those too).
 // Bad input: a message on stderr and exit code 2.
 #include <pthread.h>
 #include <unistd.h>
@@ -25,6 +26,7 @@
 #include "cli/run_loop.h"
 #include "cli/sweep.h"
 #ifndef SPINFOLD_COMPUTE_ONLY
+#include "cli/figure_command.h"
 #include "cli/work_precision_command.h"
 #endif
 #include "codec/presets.h"
@@ -278,9 +280,10 @@ render::ViewOptions view_options(const RenderOptions& opt, const Scene& scene) {
   return view;
 }
 
-int render_frame(const RenderOptions& opt) {
+int render_frame(const RenderOptions& opt, const std::string& format_option) {
   if (!std::isfinite(opt.t) || opt.t < 0.0) throw BadInput{"--t: must be a finite number >= 0"};
   if (opt.out.empty()) throw BadInput{"--out: the PNG file to write is required"};
+  const render::FigureFormat format = cli::render_format(format_option, opt.out);  // before any work
   if (opt.trail && (!std::isfinite(*opt.trail) || *opt.trail < 0.0)) throw BadInput{"--trail: must be >= 0"};
   const Scene scene = load_scene(opt.scene);
   render::ViewOptions view = view_options(opt, scene);
@@ -288,14 +291,19 @@ int render_frame(const RenderOptions& opt) {
   Simulation run;
   const render::Snapshot snapshot =
       render::snapshot_at(scene, opt.t, view.layers & render::kTrail, opt.trail, run);
-  if (opt.camera.empty()) render::aim_camera_at_body(view, snapshot);
-  render::Renderer renderer;
-  const std::vector<render::PngText> texts =
-      picture_texts(scene, opt.scene.command, opt.t, render::view_name(view.kind));
-  const std::vector<std::uint8_t> png = renderer.render_png(snapshot, view, texts);
-  std::ofstream file(opt.out, std::ios::binary);
-  if (!file) throw BadInput{"--out: cannot write '" + opt.out + "'"};
-  file.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+  if (format != render::FigureFormat::png) {  // a vector figure (cli/figure_command.h)
+    cli::write_frame_figure(scene, snapshot, view, opt.camera.empty(), format, opt.out, opt.scene.command,
+                            opt.t);
+  } else {
+    if (opt.camera.empty()) render::aim_camera_at_body(view, snapshot);
+    render::Renderer renderer;
+    const std::vector<render::PngText> texts =
+        picture_texts(scene, opt.scene.command, opt.t, render::view_name(view.kind));
+    const std::vector<std::uint8_t> png = renderer.render_png(snapshot, view, texts);
+    std::ofstream file(opt.out, std::ios::binary);
+    if (!file) throw BadInput{"--out: cannot write '" + opt.out + "'"};
+    file.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+  }
   if (run.state.status != Status::ok) {
     std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << status_name(run.state.status)
               << "\n";
@@ -522,7 +530,8 @@ int main(int argc, char** argv) {
   CLI::App* sweep_cmd = cli::add_sweep_command(app, sweep_opt);
 #ifndef SPINFOLD_COMPUTE_ONLY
   RenderOptions ren;
-  CLI::App* render_cmd = app.add_subcommand("render", "Render the state at time T as a PNG");
+  CLI::App* render_cmd =
+      app.add_subcommand("render", "Render the state at time T as a PNG, or an SVG or PDF figure");
   render_cmd->add_option("scene_file", ren.scene.scene_file, "Scene JSON file (default: the default preset)");
   render_cmd->add_option("--scene", ren.scene.preset, "Render an embedded preset by name");
   render_cmd->add_option("--t", ren.t, "Time of the frame")->capture_default_str();
@@ -534,7 +543,11 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--scale", ren.scale, "Ellipse display scale [surface radii]")
       ->capture_default_str();
   render_cmd->add_option("--trail", ren.trail, "Time span of the trail (default: the whole run)");
-  render_cmd->add_option("--out", ren.out, "PNG file to write");
+  render_cmd->add_option("--out", ren.out, "File to write (.png, .svg or .pdf)");
+  std::string render_format;  // png | svg | pdf (cli/figure_command.h)
+  render_cmd->add_option("--format", render_format,
+                         "png | svg | pdf: the GL frame, or a vector figure for a paper (default: by --out's "
+                         "extension, else png)");
   render_cmd->add_option("--integrator", ren.scene.integrator, "Override the scene's integrator name");
   std::string gl_choice;  // --gl of render, record or serve (one subcommand runs)
   add_gl_option(render_cmd, gl_choice);
@@ -567,6 +580,8 @@ int main(int argc, char** argv) {
   record_cmd->add_flag("--quiet", rec.quiet, "No progress bar (there is none when stderr is not a terminal)");
   cli::WorkPrecisionOptions wp_opt;
   CLI::App* wp_cmd = cli::add_work_precision_command(app, wp_opt);
+  cli::PlotOptions plot_opt;
+  CLI::App* plot_cmd = cli::add_plot_command(app, plot_opt);
   server::ServerOptions serve_opt;
   CLI::App* serve_cmd = app.add_subcommand("serve", "Serve the HTTP API with a session on the default scene");
   serve_cmd->add_option("--host", serve_opt.host, "Address to bind")->capture_default_str();
@@ -631,13 +646,14 @@ int main(int argc, char** argv) {
     if (render_cmd->parsed() || record_cmd->parsed() || serve_cmd->parsed()) apply_gl_choice(gl_choice);
     if (render_cmd->parsed()) {
       ren.scene.command = command_line(argc, argv);
-      return render_frame(ren);
+      return render_frame(ren, render_format);
     }
     if (record_cmd->parsed()) {
       rec.render.scene.command = command_line(argc, argv);
       return record_window(rec);
     }
     if (wp_cmd->parsed()) return cli::run_work_precision_command(wp_opt, argc, argv);
+    if (plot_cmd->parsed()) return cli::run_plot_command(plot_opt, argc, argv);
     if (serve_cmd->parsed()) {
       if (no_store) serve_opt.data_dir.clear(), serve_opt.store.clear();
       return serve(serve_opt);
@@ -648,6 +664,11 @@ int main(int argc, char** argv) {
   } catch (const BadInput& e) {
     std::cerr << "spinfold: " << e.message << (e.message.ends_with('\n') ? "" : "\n");
     return kExitBadInput;
+#ifndef SPINFOLD_COMPUTE_ONLY
+  } catch (const cli::FigureInputError& e) {
+    std::cerr << "spinfold: " << e.what() << "\n";
+    return kExitBadInput;
+#endif
   } catch (const std::runtime_error& e) {  // record::RecordError among them
     std::cerr << "spinfold: " << e.what() << "\n";
     return 1;

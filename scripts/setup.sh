@@ -27,6 +27,9 @@ packages=(
   python3-pytest                                  # its tests (tests/python)
   python3-setuptools python3-pip                  # pip install --no-build-isolation of the package
   jupyter-nbconvert python3-nbconvert python3-ipykernel python3-matplotlib  # the notebook (examples/)
+  libcairo2-dev fonts-dejavu-core               # vector figures (SVG, PDF): cairo, Debian-packaged and
+                                                  # mature, one API for both, text in DejaVu Sans
+  libxml2-utils poppler-utils librsvg2-bin        # the figures' checks: xmllint, pdfinfo/pdftoppm, rsvg-convert
 )
 
 missing=()

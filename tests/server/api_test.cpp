@@ -20,6 +20,7 @@
 #include "codec/scene_json.h"
 #include "bad_requests.h"
 #include "decoded_image.h"
+#include "tests/render/figure_tools.h"
 // clang-format on
 #include "server/route_table.h"
 
@@ -629,7 +630,7 @@ TEST(RouteTable, EveryOperationHasAUniqueSnakeCaseVerbId) {
   // The names clients already use for the main operations.
   for (const char* id :
        {"create_session", "get_session", "update_session", "delete_session", "advance_session", "get_frame",
-        "create_recording", "get_scene_schema", "get_openapi_document"})
+        "create_recording", "get_scene_schema", "get_openapi_document", "get_frame_svg", "get_frame_pdf"})
     EXPECT_TRUE(ids.contains(id)) << id;
 }
 
@@ -694,6 +695,8 @@ TEST_F(Api, OpenApiDocumentsEveryRouteAndQueryParameterOfTheTable) {
   EXPECT_EQ(query_names("/api/v1/sessions/{id}/frame.png", "get"),
             (std::set<std::string>{"width", "height", "view", "layers", "scale", "yaw", "pitch", "distance",
                                    "trail"}));
+  for (const char* figure : {"/api/v1/sessions/{id}/frame.svg", "/api/v1/sessions/{id}/frame.pdf"})
+    EXPECT_EQ(query_names(figure, "get"), query_names("/api/v1/sessions/{id}/frame.png", "get")) << figure;
   EXPECT_EQ(query_names("/api/v1/sessions/{id}/events", "get"), std::set<std::string>{"rate"});
   EXPECT_EQ(query_names("/api/v1/sessions/{id}/trajectory", "get"),
             (std::set<std::string>{"format", "every", "fields"}));
@@ -1162,6 +1165,46 @@ TEST_F(Api, JpegFrameIsThePngsPictureInAThirdOfTheBytes) {
   auto other_again = c.Get(session + "/frame.jpg?quality=71", {{"If-None-Match", "\"x\""}});
   EXPECT_TRUE(other->body == other_again->body);
   EXPECT_EQ(c.Get(session + "/frame.jpg?quality=101")->status, 422);
+  remove(id);
+}
+
+// frame.svg and frame.pdf: the frame's request as a vector figure for a paper (render/figure.h),
+// with its own ETag; a bad parameter is refused as for frame.png.
+TEST_F(Api, SvgAndPdfFramesAreVectorFiguresOfTheState) {
+  auto c = client();
+  const std::string id = create(R"({"preset": "spin_vs_geodesic_pseudosphere"})");
+  const std::string session = "/api/v1/sessions/" + id;
+  ASSERT_EQ(c.Post(session + "/advance", R"({"until": 2})", "application/json")->status, 200);
+  auto svg = c.Get(session + "/frame.svg?view=disk&width=480&height=360");
+  auto pdf = c.Get(session + "/frame.pdf?view=halfplane");
+  ASSERT_EQ(svg->status, 200) << svg->body;
+  ASSERT_EQ(pdf->status, 200) << pdf->body;
+  EXPECT_EQ(svg->get_header_value("Content-Type"), "image/svg+xml");
+  EXPECT_EQ(pdf->get_header_value("Content-Type"), "application/pdf");
+  EXPECT_TRUE(svg->body.starts_with("<?xml")) << svg->body.substr(0, 40);
+  EXPECT_NE(svg->body.find("width=\"360pt\""), std::string::npos);  // 480 px at 0.75 pt each
+  EXPECT_NE(svg->body.find("<title>spin_vs_geodesic_pseudosphere"), std::string::npos);
+  EXPECT_TRUE(pdf->body.starts_with("%PDF-"));
+  EXPECT_FALSE(svg->get_header_value("X-Spinfold-Provenance").empty());
+  const std::string etag = svg->get_header_value("ETag");
+  EXPECT_NE(etag, c.Get(session + "/frame.png?view=disk&width=480&height=360")->get_header_value("ETag"));
+  EXPECT_NE(etag, c.Get(session + "/frame.pdf?view=disk&width=480&height=360")->get_header_value("ETag"));
+  EXPECT_EQ(c.Get(session + "/frame.svg?view=disk&width=480&height=360", {{"If-None-Match", etag}})->status,
+            304);
+  EXPECT_EQ(c.Get(session + "/frame.svg?width=5")->status, 422);
+  EXPECT_EQ(c.Get(session + "/frame.pdf?view=sphere")->status, 422);  // no sphere view of H²
+  if (figure_test::have_tool("xmllint") && figure_test::have_tool("pdfinfo")) {
+    const std::string svg_file =
+        figure_test::temporary_file(std::vector<std::uint8_t>(svg->body.begin(), svg->body.end()), ".svg");
+    const std::string pdf_file =
+        figure_test::temporary_file(std::vector<std::uint8_t>(pdf->body.begin(), pdf->body.end()), ".pdf");
+    const auto xml = figure_test::run_tool("xmllint --noout " + svg_file);
+    EXPECT_EQ(xml.exit_code, 0) << xml.out;
+    const auto info = figure_test::run_tool("pdfinfo " + pdf_file);
+    EXPECT_EQ(info.exit_code, 0) << info.out;
+    std::filesystem::remove(svg_file);
+    std::filesystem::remove(pdf_file);
+  }
   remove(id);
 }
 
