@@ -1,3 +1,4 @@
+// @ts-check
 // The live view: one connection per viewer (GET …/live, multipart/x-mixed-replace), parsed here so
 // that only the newest frame is decoded and each decoded frame is painted once, at the display's
 // refresh. Camera and view changes steer the same stream (PATCH …/live?viewer=), one request in
@@ -16,7 +17,9 @@ const headEnd = new TextEncoder().encode("\r\n\r\n");
 
 // Frames out of a multipart/x-mixed-replace body, as they complete: {type, info, bytes}.
 class MultipartParser {
-  constructor() { this.buffer = new Uint8Array(0); }
+  constructor() {
+    this.buffer = new Uint8Array(0);
+  }
   push(chunk) {
     const joined = new Uint8Array(this.buffer.length + chunk.length);
     joined.set(this.buffer);
@@ -53,17 +56,17 @@ export class LiveView {
     this.canvas = canvas;
     this.context = canvas.getContext("2d");
     this.stats = { received: 0, decoded: 0, painted: 0, skipped: 0 };
-    this.onPaint = null;  // (info) after a frame is painted
-    this.onGone = null;   // () when the server no longer knows the session (404)
+    this.onPaint = null; // (info) after a frame is painted
+    this.onGone = null; // () when the server no longer knows the session (404)
     this.abort = null;
     this.session = null;
     this.viewer = null;
     this.decoding = false;
-    this.newest = null;  // the newest part not yet decoded
-    this.ready = null;   // {bitmap, info}: decoded, not yet painted
+    this.newest = null; // the newest part not yet decoded
+    this.ready = null; // {bitmap, info}: decoded, not yet painted
     this.steering = false;
     this.pendingSteer = null;
-    this.connected = false;  // the server has answered the stream's request: the viewer exists
+    this.connected = false; // the server has answered the stream's request: the viewer exists
     const paint = () => {
       if (this.ready) {
         const { bitmap, info } = this.ready;
@@ -75,8 +78,13 @@ export class LiveView {
         this.context.drawImage(bitmap, 0, 0, this.canvas.width, this.canvas.height);
         bitmap.close();
         this.stats.painted++;
-        Object.assign(this.canvas.dataset, { seq: info.seq, version: info.version, t: info.t, kind: info.kind,
-                                             painted: this.stats.painted });
+        Object.assign(this.canvas.dataset, {
+          seq: info.seq,
+          version: info.version,
+          t: info.t,
+          kind: info.kind,
+          painted: this.stats.painted,
+        });
         if (this.onPaint) this.onPaint(info);
       }
       requestAnimationFrame(paint);
@@ -87,7 +95,7 @@ export class LiveView {
   // Opens the stream of a session with these frame parameters (URLSearchParams or object).
   open(session, params) {
     this.close();
-    this.pendingSteer = null;  // the stream opens with the current parameters
+    this.pendingSteer = null; // the stream opens with the current parameters
     this.session = session;
     this.viewer = "v" + crypto.getRandomValues(new Uint32Array(2)).join("");
     const q = new URLSearchParams(params);
@@ -107,28 +115,31 @@ export class LiveView {
     while (!abort.signal.aborted) {
       try {
         const res = await fetch(url, { signal: abort.signal, cache: "no-store" });
-        if (res.status === 404 && this.onGone) { this.onGone(); return; }
+        if (res.status === 404 && this.onGone) {
+          this.onGone();
+          return;
+        }
         if (!res.ok) throw new Error(`live stream: ${res.status}`);
         this.connected = true;
-        if (this.pendingSteer) this.steer({});  // asked while the stream was connecting
+        if (this.pendingSteer) this.steer({}); // asked while the stream was connecting
         const parser = new MultipartParser();
         const reader = res.body.getReader();
         for (;;) {
           const { value, done } = await reader.read();
           if (done) break;
           for (const part of parser.push(value)) {
-            if (!part.type.startsWith("image/")) continue;  // a heartbeat
+            if (!part.type.startsWith("image/")) continue; // a heartbeat
             this.stats.received++;
-            if (this.newest) this.stats.skipped++;  // never decoded: a newer one came first
+            if (this.newest) this.stats.skipped++; // never decoded: a newer one came first
             this.newest = part;
             this.decode();
           }
         }
-      } catch (e) {
+      } catch {
         if (abort.signal.aborted) return;
       }
       this.connected = false;
-      await new Promise((r) => setTimeout(r, 1000));  // the server went away: try again
+      await new Promise((r) => setTimeout(r, 1000)); // the server went away: try again
     }
   }
 
@@ -140,7 +151,10 @@ export class LiveView {
     try {
       const bitmap = await createImageBitmap(new Blob([part.bytes], { type: part.type }));
       this.stats.decoded++;
-      if (this.ready) { this.ready.bitmap.close(); this.stats.skipped++; }
+      if (this.ready) {
+        this.ready.bitmap.close();
+        this.stats.skipped++;
+      }
       this.ready = { bitmap, info: part.info, bytes: part.bytes, type: part.type };
       this.last = { bytes: part.bytes, type: part.type, info: part.info };
     } finally {

@@ -1,19 +1,11 @@
+// @ts-check
 // "Which integrator for this scene?": POST /api/v1/work-precision with the session's id starts a job
 // on the server that runs each integrator on the scene as it is now (from its start) at tightening
 // tolerances or steps, measures its error at T against an independent reference and times it. A
 // progress bar follows GET …/{id}; then the plot (the job's SVG), the recommendation, and a button
 // that sets the recommended integrator on the session through the app's own PATCH. No physics here.
-const api = "/api/v1";
-
-function el(tag, attributes = {}, ...children) {
-  const node = document.createElement(tag);
-  for (const [k, v] of Object.entries(attributes)) {
-    if (k === "text") node.textContent = v;
-    else node.setAttribute(k, v);
-  }
-  node.append(...children);
-  return node;
-}
+import { api } from "./api.js";
+import { el } from "./dom.js";
 
 // 3 significant digits, small ones as 1e-5 (not 0.00001), as the recommendation writes them.
 function short(x) {
@@ -28,37 +20,74 @@ const setting = (p) => `${p.parameter} ${short(p.value)}`;
 export function setupWorkPrecision(box, app) {
   const $ = (id) => box.querySelector(`#${id}`);
   box.append(
-    el("details", { id: "wp-details" },
+    el(
+      "details",
+      { id: "wp-details" },
       el("summary", { text: "Which integrator for this scene?" }),
-      el("p", { class: "note", id: "wp-about",
-                text: "Runs each integrator on this scene as it is now, from its start, at tightening tolerances " +
-                      "or steps; measures its error at time T against an independent reference and times it. " +
-                      "Seconds to a minute, on the server." }),
-      el("div", { class: "wp-row" },
+      el("p", {
+        class: "note",
+        id: "wp-about",
+        text:
+          "Runs each integrator on this scene as it is now, from its start, at tightening tolerances " +
+          "or steps; measures its error at time T against an independent reference and times it. " +
+          "Seconds to a minute, on the server.",
+      }),
+      el(
+        "div",
+        { class: "wp-row" },
         // Each label holds its input, so that a narrow screen wraps them as pairs.
-        el("label", { text: "Horizon T [time] " },
-           el("input", { id: "wp-t-end", type: "number", step: "any", min: "0", placeholder: "20 periods",
-                         "aria-describedby": "wp-about" })),
-        el("label", { text: "Target error " },
-           el("input", { id: "wp-target", type: "number", step: "any", min: "1e-15", max: "1", value: "1e-10" }))),
-      el("div", { class: "wp-row" },
+        el(
+          "label",
+          { text: "Horizon T [time] " },
+          el("input", {
+            id: "wp-t-end",
+            type: "number",
+            step: "any",
+            min: "0",
+            placeholder: "20 periods",
+            "aria-describedby": "wp-about",
+          }),
+        ),
+        el(
+          "label",
+          { text: "Target error " },
+          el("input", { id: "wp-target", type: "number", step: "any", min: "1e-15", max: "1", value: "1e-10" }),
+        ),
+      ),
+      el(
+        "div",
+        { class: "wp-row" },
         el("button", { id: "wp-start", type: "button", text: "Measure the integrators" }),
         el("button", { id: "wp-cancel", type: "button", text: "Cancel", hidden: "" }),
         el("progress", { id: "wp-progress", max: "1", value: "0", hidden: "", "aria-label": "Measuring" }),
-        el("span", { id: "wp-status", role: "status" })),
-      el("div", { id: "wp-result", hidden: "" },
+        el("span", { id: "wp-status", role: "status" }),
+      ),
+      el(
+        "div",
+        { id: "wp-result", hidden: "" },
         el("p", { id: "wp-recommendation" }),
-        el("div", { class: "wp-row" },
+        el(
+          "div",
+          { class: "wp-row" },
           el("button", { id: "wp-use", type: "button", hidden: "" }),
-          el("span", { id: "wp-use-status", role: "status" })),
+          el("span", { id: "wp-use-status", role: "status" }),
+        ),
         el("img", { id: "wp-plot", alt: "" }),
-        el("p", { class: "wp-links" },
-          el("a", { id: "wp-svg", target: "_blank", text: "Plot (SVG)" }), " ",
-          el("a", { id: "wp-png", target: "_blank", text: "Plot (PNG)" }), " ",
-          el("a", { id: "wp-csv", download: "work_precision.csv", text: "Data (CSV)" })))));
+        el(
+          "p",
+          { class: "wp-links" },
+          el("a", { id: "wp-svg", target: "_blank", text: "Plot (SVG)" }),
+          " ",
+          el("a", { id: "wp-png", target: "_blank", text: "Plot (PNG)" }),
+          " ",
+          el("a", { id: "wp-csv", download: "work_precision.csv", text: "Data (CSV)" }),
+        ),
+      ),
+    ),
+  );
 
-  let current = null;  // the job followed now: its url
-  let recommended = null;  // the result's recommended setting, with the integrator PATCH takes
+  let current = null; // the job followed now: its url
+  let recommended = null; // the result's recommended setting, with the integrator PATCH takes
   const say = (text) => ($("wp-status").textContent = text);
 
   function body() {
@@ -81,10 +110,15 @@ export function setupWorkPrecision(box, app) {
     plot.hidden = !r.plot_svg;
     if (r.plot_svg) {
       plot.src = r.plot_svg;
-      plot.alt = `Work-precision plot over T = ${job.t_end}: wall time per unit simulated time against the state ` +
-                 `error at T, one curve per integrator (the data: ${r.points.length} runs in the CSV)`;
+      plot.alt =
+        `Work-precision plot over T = ${job.t_end}: wall time per unit simulated time against the state ` +
+        `error at T, one curve per integrator (the data: ${r.points.length} runs in the CSV)`;
     }
-    for (const [id, href] of [["wp-svg", r.plot_svg], ["wp-png", r.plot_png], ["wp-csv", r.data_csv]]) {
+    for (const [id, href] of [
+      ["wp-svg", r.plot_svg],
+      ["wp-png", r.plot_png],
+      ["wp-csv", r.data_csv],
+    ]) {
       $(id).hidden = !href;
       if (href) $(id).href = href;
     }
@@ -96,12 +130,18 @@ export function setupWorkPrecision(box, app) {
       if (current !== url) return;
       const res = await fetch(url);
       const job = await res.json();
-      if (!res.ok) { say(job.detail || job.title); break; }
+      if (!res.ok) {
+        say(job.detail || job.title);
+        break;
+      }
       $("wp-progress").value = job.progress;
       if (job.status === "queued") say("Waiting for another measurement to finish…");
       else if (job.status === "running")
-        say(job.stage === "reference" ? `Computing the reference at T = ${short(job.t_end)}…`
-                                      : `Measuring… ${job.methods_done} of ${job.methods} integrators done`);
+        say(
+          job.stage === "reference"
+            ? `Computing the reference at T = ${short(job.t_end)}…`
+            : `Measuring… ${job.methods_done} of ${job.methods} integrators done`,
+        );
       else {
         if (job.status === "done") {
           show(job);
@@ -127,7 +167,10 @@ export function setupWorkPrecision(box, app) {
     say("Starting…");
     try {
       const res = await fetch(`${api}/work-precision`, {
-        method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body()) });
+        method: "POST",
+        headers: { "Content-Type": "application/json" },
+        body: JSON.stringify(body()),
+      });
       const job = await res.json();
       if (!res.ok) throw new Error(job.detail || job.title);
       current = job.url;
