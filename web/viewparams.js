@@ -56,8 +56,8 @@ export function fromContract(answer) {
 }
 
 /**
- * TEMPORARY fallback while GET /api/v1/view-parameters answers 404 (a server from before the
- * route): the same shape read from the page's own controls — the layer checkboxes in #layers
+ * TEMPORARY fallback while the server has no GET /api/v1/view-parameters (one from before the
+ * route; viewcontrols.js asks its OpenAPI document): the same shape read from the page's own controls — the layer checkboxes in #layers
  * (name, checked, title) and the camera's data-*-min/max attributes on the frame. Remove it, and
  * those attributes, once every server has the route.
  * @param {{layerBoxes: Array<{name: string, checked: boolean, title: string}>,
