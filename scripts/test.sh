@@ -11,6 +11,10 @@ jobs=$(nproc)
 started=$SECONDS
 stage() { echo "test.sh: $1 at +$((SECONDS - started)) s"; }  # where CI's time goes
 
+# The web UI's lint and formatting (web/eslint.config.js, web/.prettierrc.json): a few seconds.
+stage "web lint (ESLint, Prettier)"
+(cd web && npx --no-install eslint . && npx --no-install prettier --check .)
+
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DSPINFOLD_WERROR=ON > /dev/null
 cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs"
