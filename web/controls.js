@@ -6,7 +6,7 @@
 import { $, el, clear } from "./dom.js";
 import { applyChange } from "./session.js";
 import { store } from "./state.js";
-import { curvatureForm, radiusOf, surfaceKind } from "./surface.js";
+import { curvatureForm } from "./surface.js";
 
 /** @typedef {import("./state.js").AppState} AppState */
 /** @typedef {{path: string[], spec: any, value: any, replaced: boolean}} Field */
@@ -127,7 +127,7 @@ function fieldRow(f) {
   const error = el("span", { class: "error", id: `${id}-error` });
   input.setAttribute("aria-describedby", error.id);
   input.addEventListener("change", async () => {
-    const current = store.get().current;
+    const { current, surface } = store.get();
     /** @type {any} */
     const patch = {};
     let node = patch;
@@ -148,8 +148,8 @@ function fieldRow(f) {
     if (path[0] === "surface" && path[1] === "curvature") Object.assign(node, { kind: null, radius: null });
     else if (path[0] === "surface" && curvatureForm(current.surface))
       Object.assign(node, {
-        kind: node.kind ?? surfaceKind(current.surface),
-        radius: node.radius ?? radiusOf(current.surface) ?? 1,
+        kind: node.kind ?? surface?.kind,
+        radius: node.radius ?? surface?.radius,
         curvature: null,
       });
     try {

@@ -7,7 +7,7 @@ import { $, el } from "./dom.js";
 import { say } from "./readout.js";
 import { openScene, presetLabel } from "./session.js";
 import { store } from "./state.js";
-import { surfaceKind, surfaceName } from "./surface.js";
+import { surfaceName } from "./surface.js";
 
 /** @typedef {import("./state.js").AppState} AppState */
 
@@ -54,11 +54,9 @@ export function renderGalleryMarks(s, b) {
 
 /** The preset's description, or what is shown instead. @param {AppState} s @param {AppState} b */
 export function renderExplanation(s, b) {
-  if (!s.current || (s.preset === b.preset && s.current === b.current)) return;
+  if (!s.surface || (s.preset === b.preset && s.surface === b.surface)) return;
   const preset = s.presets.find((p) => p.name === s.preset);
-  $("explanation").textContent = preset
-    ? preset.description
-    : `Your own scene on the ${surfaceName[surfaceKind(s.current.surface)]}.`;
+  $("explanation").textContent = preset ? preset.description : `Your own scene on the ${surfaceName[s.surface.kind]}.`;
 }
 
 /** The cards, then their thumbnails, one short-lived session at a time, kept for the tab. */

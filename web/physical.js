@@ -8,7 +8,7 @@ import { sleep } from "./api.js";
 import { $, el, clear } from "./dom.js";
 import { applyChange } from "./session.js";
 import { store, withView } from "./state.js";
-import { curvatureForm, curvatureOf, radiusOf, surfaceKind } from "./surface.js";
+import { curvatureForm, shownRadius } from "./surface.js";
 import { showConformal } from "./viewcontrols.js";
 
 /** @typedef {import("./state.js").AppState} AppState */
@@ -115,6 +115,7 @@ function physicalRows(s) {
   // run continues through K = 0 (the body keeps its place, velocity and frame); the picture
   // switches to the conformal view, the one view that exists on every surface and is continuous in K.
   const byK = curvatureForm(surface);
+  const resolved = /** @type {import("./surface.js").ResolvedSurface} */ (s.surface);
   rows.push(
     {
       key: "curvature",
@@ -123,7 +124,8 @@ function physicalRows(s) {
       max: 2,
       step: 0.01,
       live: true,
-      value: curvatureOf(surface),
+      // K as given in the K form, else the server's σ/R².
+      value: byK ? surface.curvature : resolved.curvature,
       before: showConformal,
       patch: (v) => ({ surface: { curvature: v, kind: null, radius: null } }),
     },
@@ -136,11 +138,11 @@ function physicalRows(s) {
       disabled: byK,
       // Derived from K, the row says so before the field's own description.
       note: byK
-        ? surfaceKind(surface) === "plane"
+        ? resolved.kind === "plane"
           ? "From the curvature: K = 0 is the flat plane, which has no radius."
           : "From the curvature: R = 1/√|K|. To set R, pick the surface above."
         : "",
-      value: radiusOf(surface),
+      value: shownRadius(surface, resolved),
       placeholder: "none",
       patch: (v) => ({ surface: { radius: v } }),
     },
@@ -185,7 +187,7 @@ const updates = new Map();
 
 /** @param {AppState} s @param {AppState} b */
 export function renderPhysical(s, b) {
-  if (!s.current || !s.schema) return;
+  if (!s.current || !s.surface || !s.schema) return;
   if (
     s.current === b.current &&
     s.start === b.start &&
@@ -200,7 +202,7 @@ export function renderPhysical(s, b) {
   const keys = rows.map((r) => r.key).join(",");
   if (form.dataset.keys === keys) {
     for (const row of rows) updates.get(row.key)?.(row);
-    $("phys-surface").value = surfaceKind(s.current.surface);
+    $("phys-surface").value = s.surface.kind;
     return;
   }
   form.dataset.keys = keys;
@@ -327,7 +329,7 @@ function surfaceKindRow(s) {
     ["plane", "flat plane (no curvature)"],
   ])
     select.add(new Option(text, value));
-  select.value = surfaceKind(s.current.surface);
+  select.value = /** @type {import("./surface.js").ResolvedSurface} */ (s.surface).kind;
   const help = el("small", {
     class: "help",
     id: "phys-surface-help",
@@ -336,17 +338,17 @@ function surfaceKindRow(s) {
   select.title = help.textContent;
   const error = el("span", { class: "error" });
   select.addEventListener("change", async () => {
-    const surface = store.get().current.surface;
+    const { current, surface } = store.get();
     try {
       // From the curvature form: that form goes, the radius it implied stays (1 from the plane).
       await applyChange({
-        surface: curvatureForm(surface)
-          ? { kind: select.value, radius: radiusOf(surface) ?? 1, curvature: null }
+        surface: curvatureForm(current.surface)
+          ? { kind: select.value, radius: surface?.radius ?? 1, curvature: null }
           : { kind: select.value },
       });
     } catch (e) {
       error.textContent = /** @type {Error} */ (e).message;
-      select.value = surfaceKind(store.get().current.surface);
+      select.value = store.get().surface?.kind;
     }
   });
   return el("div", { class: "phys" }, el("label", { for: "phys-surface", text: "Surface ↺" }), select, help, error);

@@ -11,7 +11,7 @@ import { clearHistory } from "./plots.js";
 import { num, receive, say } from "./readout.js";
 import { fromHash } from "./share.js";
 import { store, withView } from "./state.js";
-import { surfaceKind } from "./surface.js";
+import { writtenKind } from "./surface.js";
 
 /** @typedef {import("./state.js").AppState} AppState */
 /** @typedef {import("./lifecycle.js").LifecycleEvent} LifecycleEvent */
@@ -62,10 +62,11 @@ export async function call(method, path, body) {
  */
 function adopted(s, session) {
   const preset = s.presets.find((p) => p.name === s.preset);
-  const samePreset = preset && surfaceKind(preset.scene.surface ?? {}) === surfaceKind(session.current.surface);
+  const samePreset = preset && writtenKind(preset.scene.surface) === session.surface.kind;
   return {
     scene: session.scene,
     current: session.current,
+    surface: session.surface,
     timeline: session.timeline,
     preset: samePreset ? s.preset : null,
     ...(typeof session.playing === "boolean" ? { playing: session.playing, rate: session.rate ?? s.rate } : {}),

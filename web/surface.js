@@ -1,52 +1,38 @@
 // @ts-check
-// The surface's kind, curvature and radius: in either of the scene's forms, {kind, radius} or {curvature: K}, as the server
-// answered it (the session's `current.surface`): K > 0 the sphere of radius 1/√K, 0 the plane,
-// K < 0 the hyperbolic plane of radius 1/√−K. Pure. K itself is the server's number where the scene
-// gives it; only the kind of a K-form surface is read off K here (the session answer does not name it).
+// The surface as the server resolved it: each session answer names it ({"surface": {kind, radius,
+// curvature}}, server/context.cpp) in either of the scene's forms, {kind, radius} or {curvature: K},
+// so the UI never re-derives the kind from K (the engine's flat threshold stays in the engine). Pure.
 
 /** @typedef {"sphere" | "pseudosphere" | "plane"} SurfaceKind */
-/** @typedef {{kind?: SurfaceKind, radius?: number, curvature?: number | null}} Surface */
+/** A scene's surface as written. @typedef {{kind?: SurfaceKind, radius?: number, curvature?: number | null}} Surface */
+/** The server's resolution of it. @typedef {{kind: SurfaceKind, radius: number, curvature: number}} ResolvedSurface */
 
-// |K| below the engine's kFlatCurvature (engine/surface.h) is the plane. The server does not say
-// which kind a K-form surface resolved to; the views it offers for it follow from this.
-const flatBelow = 1e-24;
-
-/** @param {Surface | undefined | null} surface */
+/** Whether a scene gives its surface by K (the curvature dial) rather than kind and radius. @param {Surface | undefined | null} surface */
 export const curvatureForm = (surface) => typeof surface?.curvature === "number";
 
 /**
+ * The kind of a surface as written in a scene the server has not resolved (a preset's): its kind,
+ * or the sign of its K.
  * @param {Surface | undefined | null} surface
  * @returns {SurfaceKind}
  */
-export function surfaceKind(surface) {
+export function writtenKind(surface) {
   if (curvatureForm(surface)) {
     const K = /** @type {number} */ (surface?.curvature);
-    return Math.abs(K) < flatBelow ? "plane" : K > 0 ? "sphere" : "pseudosphere";
+    return K > 0 ? "sphere" : K < 0 ? "pseudosphere" : "plane";
   }
   return surface?.kind ?? "sphere";
 }
 
 /**
- * K [1/length²]: the server's number in the K form; ±1/R² (0 on the plane) in the other.
- * @param {Surface} surface
- */
-export function curvatureOf(surface) {
-  if (curvatureForm(surface)) return /** @type {number} */ (surface.curvature);
-  const R = surface.radius ?? 1;
-  return { sphere: 1, plane: 0, pseudosphere: -1 }[surfaceKind(surface)] / (R * R);
-}
-
-/**
- * The radius the surface has now [length] (1/√|K| in the K form; none on the plane there).
- * @param {Surface} surface
+ * The radius a control shows [length]: the server's, none on the plane of a K-form scene (there
+ * R is only the length scale, not something the dial set).
+ * @param {Surface} given the scene's surface in force
+ * @param {ResolvedSurface} resolved
  * @returns {number | undefined}
  */
-export function radiusOf(surface) {
-  if (!curvatureForm(surface)) return surface.radius ?? 1;
-  return surfaceKind(surface) === "plane"
-    ? undefined
-    : 1 / Math.sqrt(Math.abs(/** @type {number} */ (surface.curvature)));
-}
+export const shownRadius = (given, resolved) =>
+  curvatureForm(given) && resolved.kind === "plane" ? undefined : resolved.radius;
 
 /** @type {Record<SurfaceKind, string>} */
 export const surfaceName = { sphere: "sphere", pseudosphere: "hyperbolic plane", plane: "flat plane" };

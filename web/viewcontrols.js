@@ -4,7 +4,6 @@
 import { ProblemError, request } from "./api.js";
 import { $, el, clear } from "./dom.js";
 import { store, withView } from "./state.js";
-import { surfaceKind } from "./surface.js";
 import { fromAttributes, fromContract } from "./viewparams.js";
 
 /** @typedef {import("./state.js").AppState} AppState */
@@ -35,7 +34,7 @@ export async function loadViewParameters() {
 }
 
 /** The views offered on the surface shown. @param {AppState} s */
-const offered = (s) => s.views.filter((v) => v.surfaces.includes(surfaceKind(s.current?.surface)));
+const offered = (s) => s.views.filter((v) => v.surfaces.includes(s.surface?.kind));
 
 /**
  * Keeps the view one the surface has: the first offered when the surface changed under it (the
@@ -43,7 +42,7 @@ const offered = (s) => s.views.filter((v) => v.surfaces.includes(surfaceKind(s.c
  * @param {AppState} s
  */
 function keepViewOffered(s) {
-  if (!s.current || !s.views.length) return;
+  if (!s.surface || !s.views.length) return;
   const kinds = offered(s).map((v) => v.name);
   if (kinds.length && !kinds.includes(/** @type {string} */ (s.view.kind)))
     store.update((now) => withView(now, { kind: kinds[0], yaw: null, pitch: null, distance: null }));
@@ -51,12 +50,7 @@ function keepViewOffered(s) {
 
 /** @param {AppState} s @param {AppState} b */
 function renderViewMenu(s, b) {
-  if (
-    s.views === b.views &&
-    s.view.kind === b.view.kind &&
-    surfaceKind(s.current?.surface) === surfaceKind(b.current?.surface)
-  )
-    return;
+  if (s.views === b.views && s.view.kind === b.view.kind && s.surface?.kind === b.surface?.kind) return;
   const select = clear($("view"));
   for (const v of offered(s)) select.add(Object.assign(new Option(v.title, v.name), { title: v.description }));
   if (s.view.kind) select.value = s.view.kind;

@@ -196,6 +196,32 @@ TEST_F(Api, TheActionsLayerAddsToTheOverlay) {
   remove(id);
 }
 
+// The session names its surface resolved (server/context.cpp): the kind and radius a given K
+// implies, the plane below the engine's flat threshold, and K in the kind-and-radius form; the UI
+// reads these instead of re-deriving them with a copied constant.
+TEST_F(Api, TheSessionNamesItsSurfaceResolved) {
+  auto c = client();
+  const auto surface_of = [&](const std::string& surface) {
+    const std::string id = create(R"({"surface": )" + surface + R"(, "body": {"model": "rigid"}})");
+    auto got = c.Get("/api/v1/sessions/" + id);
+    remove(id);
+    EXPECT_TRUE(got);
+    const json body = json::parse(got->body);
+    EXPECT_EQ(body["current"]["surface"], json::parse(surface));  // the scene as given, unchanged
+    return body["surface"];
+  };
+  const json h2 = surface_of(R"({"curvature": -0.25})");
+  EXPECT_EQ(h2["kind"], "pseudosphere");
+  EXPECT_DOUBLE_EQ(h2["radius"].get<double>(), 2.0);
+  EXPECT_DOUBLE_EQ(h2["curvature"].get<double>(), -0.25);
+  const json flat = surface_of(R"({"curvature": 1e-30})");  // below kFlatCurvature
+  EXPECT_EQ(flat["kind"], "plane");
+  EXPECT_EQ(flat["curvature"].get<double>(), 0.0);
+  const json sphere = surface_of(R"({"kind": "sphere", "radius": 0.5})");
+  EXPECT_EQ(sphere["kind"], "sphere");
+  EXPECT_DOUBLE_EQ(sphere["curvature"].get<double>(), 4.0);
+}
+
 TEST_F(Api, SessionLifecycle) {
   auto c = client();
   auto created = c.Post("/api/v1/sessions", R"({"preset": "separable_radial_abc"})", "application/json");
