@@ -170,7 +170,7 @@ export function setupPlots() {
             ...axisStyle,
             size: 56,
             splits: energySplits,
-            filter: (/** @type {unknown} */ _u, /** @type {unknown} */ splits) => splits,
+            filter: (/** @type {unknown} */ _u, /** @type {number[]} */ splits) => splits,
             values: energyLabels,
           },
         ],

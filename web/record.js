@@ -9,13 +9,24 @@ import { el } from "./dom.js";
 // The "GIF for slides" preset: small enough to paste into slides and chat.
 const slidesPreset = { format: "gif", width: 640, height: 480, fps: 15 };
 
+/**
+ * @param {string} id
+ * @param {number} value
+ * @param {Record<string, string>} [attributes]
+ */
 function numberInput(id, value, attributes = {}) {
   return el("input", { id, type: "number", step: "any", value: String(value), size: "5", ...attributes });
 }
 
 // Builds the panel in `box`. `app` gives: session() → its id; time() → its current time; view() →
 // the view's query parameters (view, layers, scale, yaw, pitch, distance as shown).
+/**
+ * @param {HTMLElement} box
+ * @param {{session: () => string | null, time: () => number,
+ *   view: () => Record<string, string | number>}} app
+ */
 export function setupRecording(box, app) {
+  /** @param {string} id @returns {any} */
   const $ = (id) => box.querySelector(`#${id}`);
   box.append(
     el(
@@ -87,9 +98,10 @@ export function setupRecording(box, app) {
     ),
   );
 
+  /** @type {string | null} */
   let current = null; // the recording followed now: its url
-  const say = (text) => ($("record-status").textContent = text);
-  const number = (id) => Number($(id).value);
+  const say = (/** @type {string} */ text) => ($("record-status").textContent = text);
+  const number = (/** @type {string} */ id) => Number($(id).value);
 
   $("record-slides").onclick = () => {
     $("record-format").value = slidesPreset.format;
@@ -108,6 +120,7 @@ export function setupRecording(box, app) {
       t_end = number("record-to");
     }
     const view = app.view();
+    /** @type {Record<string, string | number>} */
     const out = {
       t_start,
       t_end,
@@ -124,6 +137,7 @@ export function setupRecording(box, app) {
     return out;
   }
 
+  /** @param {string} url */
   async function follow(url) {
     for (;;) {
       if (current !== url) return;
@@ -173,7 +187,7 @@ export function setupRecording(box, app) {
       $("record-cancel").hidden = false;
       await follow(r.url);
     } catch (e) {
-      say(e.message);
+      say(/** @type {Error} */ (e).message);
       $("record-start").disabled = false;
     }
   };

@@ -8,16 +8,22 @@ import { api } from "./api.js";
 import { el } from "./dom.js";
 
 // 3 significant digits, small ones as 1e-5 (not 0.00001), as the recommendation writes them.
+/** @param {number} x */
 function short(x) {
   const rounded = Number(x.toPrecision(3));
   return rounded !== 0 && Math.abs(rounded) < 1e-3 ? rounded.toExponential() : String(rounded);
 }
 // "tol 1e-6", "dt 0.0123": a setting.
-const setting = (p) => `${p.parameter} ${short(p.value)}`;
+const setting = (/** @type {{parameter: string, value: number}} */ p) => `${p.parameter} ${short(p.value)}`;
 
 // Builds the panel in `box`. `app` gives: session() → its id; apply(patch) → the app's PATCH of the
 // session (its controls and status line follow), a promise.
+/**
+ * @param {HTMLElement} box
+ * @param {{session: () => string | null, apply: (patch: any) => Promise<unknown>}} app
+ */
 export function setupWorkPrecision(box, app) {
+  /** @param {string} id @returns {any} */
   const $ = (id) => box.querySelector(`#${id}`);
   box.append(
     el(
@@ -86,11 +92,14 @@ export function setupWorkPrecision(box, app) {
     ),
   );
 
+  /** @type {string | null} */
   let current = null; // the job followed now: its url
+  /** @type {any} */
   let recommended = null; // the result's recommended setting, with the integrator PATCH takes
-  const say = (text) => ($("wp-status").textContent = text);
+  const say = (/** @type {string} */ text) => ($("wp-status").textContent = text);
 
   function body() {
+    /** @type {{session: string | null, t_end?: number, target_error?: number}} */
     const out = { session: app.session() };
     const tEnd = $("wp-t-end").value.trim();
     if (tEnd !== "") out.t_end = Number(tEnd);
@@ -99,6 +108,7 @@ export function setupWorkPrecision(box, app) {
     return out;
   }
 
+  /** @param {any} job */
   function show(job) {
     const r = job.result;
     $("wp-recommendation").textContent = r.recommendation;
@@ -125,6 +135,7 @@ export function setupWorkPrecision(box, app) {
     $("wp-result").hidden = false;
   }
 
+  /** @param {string} url */
   async function follow(url) {
     for (;;) {
       if (current !== url) return;
@@ -177,7 +188,7 @@ export function setupWorkPrecision(box, app) {
       $("wp-cancel").hidden = false;
       await follow(job.url);
     } catch (e) {
-      say(e.message);
+      say(/** @type {Error} */ (e).message);
       $("wp-start").disabled = false;
       $("wp-progress").hidden = true;
     }
@@ -193,7 +204,7 @@ export function setupWorkPrecision(box, app) {
       await app.apply({ integrator: recommended.integrator });
       $("wp-use-status").textContent = `The session now runs ${recommended.method} at ${setting(recommended)}.`;
     } catch (e) {
-      $("wp-use-status").textContent = e.message;
+      $("wp-use-status").textContent = /** @type {Error} */ (e).message;
     }
   };
 }
