@@ -4,7 +4,7 @@
 import { $ } from "./dom.js";
 import { say } from "./readout.js";
 import { applyChange } from "./session.js";
-import { store, withView } from "./state.js";
+import { mount, store, withView } from "./state.js";
 
 /** @param {import("./state.js").AppState} s */
 const hasGeodesic = (s) => (s.current?.companions ?? []).some((/** @type {any} */ c) => c.geodesic);
@@ -58,7 +58,7 @@ async function clearComparisons() {
 }
 
 export function setupComparisons() {
-  store.subscribe(renderComparisons);
+  mount(renderComparisons);
   $("geodesic").onclick = () => toggleGeodesic();
   $("fan").onclick = () => addFan();
   $("fan-clear").onclick = () => clearComparisons();

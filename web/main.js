@@ -18,7 +18,7 @@ import { renderReadout, say } from "./readout.js";
 import { setupRecording } from "./record.js";
 import { applyChange, checkSession, firstSession, keepSaved, leave, recover } from "./session.js";
 import { shareUrl } from "./share.js";
-import { store, withView } from "./state.js";
+import { mount, store, withView } from "./state.js";
 import { loadViewParameters, setupViewControls } from "./viewcontrols.js";
 import { setupWorkPrecision } from "./workprecision.js";
 
@@ -42,7 +42,7 @@ async function main() {
 
   // The views, each a render(state, previous) of the store.
   for (const render of [renderReadout, renderPhysical, renderControls, renderExplanation, renderGalleryMarks])
-    store.subscribe(render);
+    mount(render);
   setupPlayback();
   setupViewControls();
   setupComparisons();

@@ -4,7 +4,7 @@
 import { $ } from "./dom.js";
 import { say } from "./readout.js";
 import { pause, play, reset, step } from "./session.js";
-import { store } from "./state.js";
+import { mount, store } from "./state.js";
 
 /** @param {import("./state.js").AppState} s @param {import("./state.js").AppState} b */
 export function renderPlayback(s, b) {
@@ -29,7 +29,7 @@ export function renderPlayback(s, b) {
 const reported = (action) => () => action().catch((e) => say(e.message));
 
 export function setupPlayback() {
-  store.subscribe(renderPlayback);
+  mount(renderPlayback);
   $("play").onclick = () => {
     store.update({ rate: Number($("speed").value) });
     play();

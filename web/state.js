@@ -130,3 +130,14 @@ export const withView = (state, change) => ({ view: { ...state.view, ...change }
 
 /** The app's one store. */
 export const store = createStore(initialState());
+
+/**
+ * Shows a view: renders it now from the state as it is (against the initial state, so that it
+ * draws whatever is already set), then at every change.
+ * @param {(state: AppState, previous: AppState) => void} render
+ * @returns {() => void} unsubscribes
+ */
+export function mount(render) {
+  render(store.get(), initialState());
+  return store.subscribe(render);
+}

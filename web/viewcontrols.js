@@ -3,7 +3,7 @@
 // order), the layers of GET /api/v1/view-parameters, rendered from the store.
 import { ProblemError, request } from "./api.js";
 import { $, el, clear } from "./dom.js";
-import { store, withView } from "./state.js";
+import { mount, store, withView } from "./state.js";
 import { fromAttributes, fromContract } from "./viewparams.js";
 
 /** @typedef {import("./state.js").AppState} AppState */
@@ -76,7 +76,7 @@ function renderLayers(s, b) {
 }
 
 export function setupViewControls() {
-  store.subscribe((s, b) => {
+  mount((s, b) => {
     keepViewOffered(s);
     renderViewMenu(s, b);
     renderLayers(s, b);

@@ -85,3 +85,17 @@ test("the initial state: no session, idle, the default layers", () => {
   assert.ok(state.view.layers.includes("trail"));
   assert.ok(!state.view.layers.includes("actions"));
 });
+
+test("mount renders a view at once from the state as it is, then at every change", async () => {
+  const { mount, store } = await import("../state.js");
+  store.update({ rate: 2 });
+  const seen = [];
+  const stop = mount((s, b) => seen.push([b.rate, s.rate]));
+  store.update({ rate: 3 });
+  stop();
+  store.update({ rate: 4 });
+  assert.deepEqual(seen, [
+    [1, 2], // against the initial state: what is already set is drawn
+    [2, 3],
+  ]);
+});
