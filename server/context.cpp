@@ -84,16 +84,16 @@ nlohmann::ordered_json session_json(const std::string& id, const Session& s) {
   j["scene"] = scene_to_json(s.scene);        // the parameters at t = 0
   j["timeline"] = s.timeline;                 // the changes since: [{"t", "patch"}]
   j["current"] = scene_to_json(s.run.scene);  // the parameters in force now
+  j["playing"] = s.playing;                   // advanced in real time by the player
+  j["rate"] = s.rate;                         // simulated time per second while playing
+  j["provenance"] = provenance_json(s.run.scene, "");
   // The surface in force, resolved: its kind and radius also when the scene gave K (a dial through
   // 0: the server's kFlatCurvature decides the plane), and K = σ/R² [1/length²]; the UI reads these
   // rather than re-deriving them.
   const Surface& surface = s.run.scene.surface;
   for (const auto& kind : kSurfaceKindNames)
-    if (kind.value == surface.kind) j["surface"] = {{"kind", kind.name}, {"radius", surface.radius},
-                                                    {"curvature", curvature(surface)}};
-  j["playing"] = s.playing;                   // advanced in real time by the player
-  j["rate"] = s.rate;                         // simulated time per second while playing
-  j["provenance"] = provenance_json(s.run.scene, "");
+    if (kind.value == surface.kind)
+      j["surface"] = {{"kind", kind.name}, {"radius", surface.radius}, {"curvature", curvature(surface)}};
   return j;
 }
 

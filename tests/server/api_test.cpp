@@ -8,6 +8,9 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <thread>
@@ -124,6 +127,45 @@ TEST_F(Api, EveryOpenApiOperationIsRouted) {
   auto schema = c.Get("/api/v1/schema");
   ASSERT_TRUE(schema);
   EXPECT_EQ(json::parse(schema->body)["title"], "Spinfold scene");
+}
+
+// The web UI's files come from a glob of web/ (cmake/embed_web.cmake): every page file on disk is
+// served as it is and listed in the OpenAPI document with its own summary, and every module a
+// module imports is served, so a new module needs no edit anywhere else.
+TEST_F(Api, EveryFileOfWebIsServedAndListed) {
+  auto c = client();
+  const json paths = json::parse(c.Get("/api/v1/openapi.json")->body)["paths"];
+  const std::filesystem::path web = SPINFOLD_WEB_DIR;
+  std::set<std::string> served, imported;
+  for (const auto& entry : std::filesystem::directory_iterator(web)) {
+    const std::string name = entry.path().filename().string();
+    const std::string ext = entry.path().extension().string();
+    const bool page =
+        name == "index.html" || ((ext == ".js" || ext == ".css") && !name.ends_with(".config.js"));
+    if (!page) continue;
+    const std::string url = name == "index.html" ? "/" : "/" + name;
+    std::ifstream in(entry.path(), std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    auto res = c.Get(url);
+    ASSERT_TRUE(res) << url;
+    EXPECT_EQ(res->status, 200) << url;
+    EXPECT_EQ(res->body, text) << url;
+    ASSERT_TRUE(paths.contains(url)) << url;
+    EXPECT_FALSE(paths[url]["get"]["summary"].get<std::string>().empty()) << url;
+    served.insert(url);
+    // import … from "./module.js"
+    for (std::size_t at = text.find("from \"./"); at != std::string::npos;
+         at = text.find("from \"./", at + 1)) {
+      const std::size_t from = at + 8;  // after `from "./`
+      imported.insert(
+          std::string(1, '/').append(std::string_view(text).substr(from, text.find('"', from) - from)));
+    }
+  }
+  EXPECT_GE(served.size(), 20u);  // index.html, the modules, the style sheets
+  EXPECT_TRUE(served.contains("/main.js"));
+  for (const std::string& url : imported)
+    EXPECT_TRUE(served.contains(url)) << url << " is imported but not served";
+  EXPECT_EQ(c.Get("/eslint.config.js")->status, 404);  // tooling is not served
 }
 
 // Becoming incompressible mid-run restarts: the constraint holds the start's area, so continuing
