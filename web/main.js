@@ -43,6 +43,11 @@ async function main() {
   // The views, each a render(state, previous) of the store.
   for (const render of [renderReadout, renderPhysical, renderControls, renderExplanation, renderGalleryMarks])
     mount(render);
+  // The session's lifecycle phase on the page (idle, opening, live, expired, rebuilding), for
+  // tests and for looking at a page that misbehaves.
+  mount((s, b) => {
+    if (s.phase !== b.phase || !document.body.dataset.phase) document.body.dataset.phase = s.phase;
+  });
   setupPlayback();
   setupViewControls();
   setupComparisons();

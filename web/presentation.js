@@ -1,6 +1,6 @@
 // @ts-check
 // Full screen, themes, the tab's icon and the embedded layout (?embed=1).
-import { $ } from "./dom.js";
+import { $, el } from "./dom.js";
 import { say } from "./readout.js";
 
 export function toggleFullscreen() {
@@ -31,8 +31,7 @@ function setIcon() {
   const svg =
     `<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 32 32"><circle cx="16" cy="16" r="14" fill="#233"/>` +
     `<ellipse cx="16" cy="16" rx="9" ry="5" fill="#f90" transform="rotate(-30 16 16)"/></svg>`;
-  const link = document.createElement("link");
-  link.rel = "icon";
+  const link = el("link", { rel: "icon" });
   link.href = URL.createObjectURL(new Blob([svg], { type: "image/svg+xml" }));
   document.head.append(link);
 }
