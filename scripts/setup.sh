@@ -49,11 +49,13 @@ else
 fi
 
 # The web UI's npm packages (uPlot, served to the browser; playwright-core and @axe-core/playwright,
-# for the browser tests; @seriousme/openapi-schema-validator and ajv, for the OpenAPI check), from
+# for the browser tests; @seriousme/openapi-schema-validator and ajv, for the OpenAPI check; eslint,
+# @eslint/js, globals, prettier and typescript, for the UI's lint stage in scripts/test.sh), from
 # the npm registry, pinned by web/package-lock.json. Installed again when any of them is missing.
 root=$(cd "$(dirname "$0")/.." && pwd)
 missing=""
-for package in uplot playwright-core @axe-core/playwright @seriousme/openapi-schema-validator ajv; do
+for package in uplot playwright-core @axe-core/playwright @seriousme/openapi-schema-validator ajv eslint @eslint/js \
+               globals prettier typescript; do
   [[ -d "$root/web/node_modules/$package" ]] || missing="$missing $package"
 done
 if [[ -n "$missing" ]]; then

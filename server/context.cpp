@@ -6,6 +6,8 @@
 #include "codec/sample_json.h"
 #include "codec/scene_json.h"
 #include "engine/number_text.h"
+#include "engine/scene_fields.h"
+#include "engine/surface.h"
 #include "server/problem.h"
 
 // After Eigen: httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's parameter names.
@@ -92,6 +94,13 @@ nlohmann::ordered_json session_json(const std::string& id, const Session& s) {
   j["playing"] = s.playing;                   // advanced in real time by the player
   j["rate"] = s.rate;                         // simulated time per second while playing
   j["provenance"] = provenance_json(s.run.scene, "");
+  // The surface in force, resolved: its kind and radius also when the scene gave K (a dial through
+  // 0: the server's kFlatCurvature decides the plane), and K = σ/R² [1/length²]; the UI reads these
+  // rather than re-deriving them.
+  const Surface& surface = s.run.scene.surface;
+  for (const auto& kind : kSurfaceKindNames)
+    if (kind.value == surface.kind)
+      j["surface"] = {{"kind", kind.name}, {"radius", surface.radius}, {"curvature", curvature(surface)}};
   return j;
 }
 

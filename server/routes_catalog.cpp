@@ -155,22 +155,14 @@ std::vector<Route> catalog_routes(const Limits&) {
        .summary = "This document",
        .responses = {{200, "OpenAPI 3.1"}}},
   };
-  // The browser UI, embedded at build time.
-  for (const auto& [path, summary] :
-       {std::pair{"/", "The browser UI"}, std::pair{"/app.js", "The browser UI's script"},
-        std::pair{"/live.js", "The browser UI's live view (parses the live stream)"},
-        std::pair{"/record.js", "The browser UI's Record panel"},
-        std::pair{"/record.css", "The Record panel's style sheet"},
-        std::pair{"/workprecision.js", "The browser UI's \"Which integrator for this scene?\" panel"},
-        std::pair{"/workprecision.css", "That panel's style sheet"},
-        std::pair{"/style.css", "The browser UI's style sheet"},
-        std::pair{"/vendor/uPlot.esm.js", "uPlot, the UI's plotting library"},
-        std::pair{"/vendor/uPlot.min.css", "uPlot's style sheet"}})
+  // The browser UI, embedded at build time: every file of web/ (the build's glob), each described
+  // by its own opening comment.
+  for (const auto& [path, asset] : web_assets())
     routes.push_back({.method = "GET",
                       .path = path,
                       .operation_id = asset_operation_id(path),
                       .handler = get_web_asset,
-                      .summary = summary,
+                      .summary = std::string(asset.summary),
                       .ignores_unknown_query = true,
                       .responses = {{200, "the file"}}});
   return routes;

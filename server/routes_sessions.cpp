@@ -340,7 +340,9 @@ std::vector<Route> session_routes(const Limits& limits) {
        .operation_id = "get_session",
        .handler = get_session,
        .summary = "The session: its state, scene (t = 0), timeline of changes and parameters in force",
-       .responses = {{200, "{\"id\", \"state\", \"scene\", \"timeline\", \"current\"}"}}},
+       .responses = {{200,
+                      "{\"id\", \"state\", \"scene\", \"timeline\", \"current\", \"surface\": "
+                      "{\"kind\", \"radius\", \"curvature\"} (resolved)}"}}},
       {.method = "PATCH",
        .path = sid,
        .operation_id = "update_session",

@@ -1,3 +1,4 @@
+// @ts-check
 // The live view: one connection per viewer (GET …/live, multipart/x-mixed-replace), parsed here so
 // that only the newest frame is decoded and each decoded frame is painted once, at the display's
 // refresh. Camera and view changes steer the same stream (PATCH …/live?viewer=), one request in
@@ -5,6 +6,10 @@
 const boundary = "--spinfold-frame\r\n";
 const decoder = new TextDecoder();
 
+/**
+ * The index of `pattern` in `bytes` from `from`, or −1.
+ * @param {Uint8Array} bytes @param {Uint8Array} pattern @param {number} from
+ */
 function indexOf(bytes, pattern, from) {
   outer: for (let i = from; i + pattern.length <= bytes.length; i++) {
     for (let j = 0; j < pattern.length; j++) if (bytes[i + j] !== pattern[j]) continue outer;
@@ -15,8 +20,16 @@ function indexOf(bytes, pattern, from) {
 const headEnd = new TextEncoder().encode("\r\n\r\n");
 
 // Frames out of a multipart/x-mixed-replace body, as they complete: {type, info, bytes}.
+/** @typedef {Record<string, string>} FrameInfo the X-Spinfold-Frame header's fields (seq, version, t, kind, …) */
+/** @typedef {{type: string, info: FrameInfo, bytes: Uint8Array}} Part */
 class MultipartParser {
-  constructor() { this.buffer = new Uint8Array(0); }
+  constructor() {
+    this.buffer = new Uint8Array(0);
+  }
+  /**
+   * @param {Uint8Array} chunk
+   * @returns {Part[]}
+   */
   push(chunk) {
     const joined = new Uint8Array(this.buffer.length + chunk.length);
     joined.set(this.buffer);
@@ -28,6 +41,7 @@ class MultipartParser {
       if (end < 0) break;
       const head = decoder.decode(this.buffer.subarray(0, end));
       if (!head.startsWith(boundary)) throw new Error("live stream: not a part: " + head.slice(0, 40));
+      /** @type {Record<string, string>} */
       const headers = {};
       for (const line of head.slice(boundary.length).split("\r\n")) {
         const colon = line.indexOf(":");
@@ -35,6 +49,7 @@ class MultipartParser {
       }
       const length = Number(headers["content-length"]);
       if (this.buffer.length < end + 4 + length + 2) break;
+      /** @type {FrameInfo} */
       const info = {};
       for (const item of (headers["x-spinfold-frame"] || "").split("; ")) {
         const eq = item.indexOf("=");
@@ -49,21 +64,24 @@ class MultipartParser {
 
 export class LiveView {
   // canvas: where frames are painted; its width and height are the frames'.
+  /** @param {HTMLCanvasElement} canvas */
   constructor(canvas) {
     this.canvas = canvas;
-    this.context = canvas.getContext("2d");
+    this.context = /** @type {CanvasRenderingContext2D} */ (canvas.getContext("2d"));
     this.stats = { received: 0, decoded: 0, painted: 0, skipped: 0 };
-    this.onPaint = null;  // (info) after a frame is painted
-    this.onGone = null;   // () when the server no longer knows the session (404)
+    /** @type {((info: FrameInfo) => void) | null} */
+    this.onPaint = null; // (info) after a frame is painted
+    /** @type {(() => void) | null} */
+    this.onGone = null; // () when the server no longer knows the session (404)
     this.abort = null;
     this.session = null;
     this.viewer = null;
     this.decoding = false;
-    this.newest = null;  // the newest part not yet decoded
-    this.ready = null;   // {bitmap, info}: decoded, not yet painted
+    this.newest = null; // the newest part not yet decoded
+    this.ready = null; // {bitmap, info}: decoded, not yet painted
     this.steering = false;
     this.pendingSteer = null;
-    this.connected = false;  // the server has answered the stream's request: the viewer exists
+    this.connected = false; // the server has answered the stream's request: the viewer exists
     const paint = () => {
       if (this.ready) {
         const { bitmap, info } = this.ready;
@@ -75,8 +93,13 @@ export class LiveView {
         this.context.drawImage(bitmap, 0, 0, this.canvas.width, this.canvas.height);
         bitmap.close();
         this.stats.painted++;
-        Object.assign(this.canvas.dataset, { seq: info.seq, version: info.version, t: info.t, kind: info.kind,
-                                             painted: this.stats.painted });
+        Object.assign(this.canvas.dataset, {
+          seq: info.seq,
+          version: info.version,
+          t: info.t,
+          kind: info.kind,
+          painted: this.stats.painted,
+        });
         if (this.onPaint) this.onPaint(info);
       }
       requestAnimationFrame(paint);
@@ -85,12 +108,16 @@ export class LiveView {
   }
 
   // Opens the stream of a session with these frame parameters (URLSearchParams or object).
+  /**
+   * @param {string} session
+   * @param {Record<string, string | number>} params
+   */
   open(session, params) {
     this.close();
-    this.pendingSteer = null;  // the stream opens with the current parameters
+    this.pendingSteer = null; // the stream opens with the current parameters
     this.session = session;
     this.viewer = "v" + crypto.getRandomValues(new Uint32Array(2)).join("");
-    const q = new URLSearchParams(params);
+    const q = new URLSearchParams(/** @type {Record<string, string>} */ (params));
     q.set("viewer", this.viewer);
     const abort = (this.abort = new AbortController());
     this.read(`/api/v1/sessions/${session}/live?${q}`, abort).catch(() => {});
@@ -103,32 +130,39 @@ export class LiveView {
     this.newest = null;
   }
 
+  /**
+   * @param {string} url
+   * @param {AbortController} abort
+   */
   async read(url, abort) {
     while (!abort.signal.aborted) {
       try {
         const res = await fetch(url, { signal: abort.signal, cache: "no-store" });
-        if (res.status === 404 && this.onGone) { this.onGone(); return; }
+        if (res.status === 404 && this.onGone) {
+          this.onGone();
+          return;
+        }
         if (!res.ok) throw new Error(`live stream: ${res.status}`);
         this.connected = true;
-        if (this.pendingSteer) this.steer({});  // asked while the stream was connecting
+        if (this.pendingSteer) this.steer({}); // asked while the stream was connecting
         const parser = new MultipartParser();
-        const reader = res.body.getReader();
+        const reader = /** @type {ReadableStream<Uint8Array>} */ (res.body).getReader();
         for (;;) {
           const { value, done } = await reader.read();
           if (done) break;
           for (const part of parser.push(value)) {
-            if (!part.type.startsWith("image/")) continue;  // a heartbeat
+            if (!part.type.startsWith("image/")) continue; // a heartbeat
             this.stats.received++;
-            if (this.newest) this.stats.skipped++;  // never decoded: a newer one came first
+            if (this.newest) this.stats.skipped++; // never decoded: a newer one came first
             this.newest = part;
             this.decode();
           }
         }
-      } catch (e) {
+      } catch {
         if (abort.signal.aborted) return;
       }
       this.connected = false;
-      await new Promise((r) => setTimeout(r, 1000));  // the server went away: try again
+      await new Promise((r) => setTimeout(r, 1000)); // the server went away: try again
     }
   }
 
@@ -138,9 +172,12 @@ export class LiveView {
     const part = this.newest;
     this.newest = null;
     try {
-      const bitmap = await createImageBitmap(new Blob([part.bytes], { type: part.type }));
+      const bitmap = await createImageBitmap(new Blob([/** @type {BlobPart} */ (part.bytes)], { type: part.type }));
       this.stats.decoded++;
-      if (this.ready) { this.ready.bitmap.close(); this.stats.skipped++; }
+      if (this.ready) {
+        this.ready.bitmap.close();
+        this.stats.skipped++;
+      }
       this.ready = { bitmap, info: part.info, bytes: part.bytes, type: part.type };
       this.last = { bytes: part.bytes, type: part.type, info: part.info };
     } finally {
@@ -150,6 +187,7 @@ export class LiveView {
   }
 
   // Changes the stream's picture (frame parameters; aim: "body" puts the camera back on the body).
+  /** @param {Record<string, string | number>} params */
   async steer(params) {
     if (!this.session) return;
     this.pendingSteer = { ...(this.pendingSteer || {}), ...params };
@@ -161,7 +199,7 @@ export class LiveView {
       while (this.pendingSteer) {
         const q = new URLSearchParams(this.pendingSteer);
         this.pendingSteer = null;
-        q.set("viewer", this.viewer);
+        q.set("viewer", /** @type {string} */ (this.viewer));
         const res = await fetch(`/api/v1/sessions/${this.session}/live?${q}`, { method: "PATCH", body: "" });
         if ((res.status === 429 || res.status === 404) && (retries += 1) <= 30) {
           // Over the rate limit, or the stream is (re)connecting: the newest wish, a little later.

@@ -1,67 +1,105 @@
+// @ts-check
 // "Which integrator for this scene?": POST /api/v1/work-precision with the session's id starts a job
 // on the server that runs each integrator on the scene as it is now (from its start) at tightening
 // tolerances or steps, measures its error at T against an independent reference and times it. A
 // progress bar follows GET …/{id}; then the plot (the job's SVG), the recommendation, and a button
 // that sets the recommended integrator on the session through the app's own PATCH. No physics here.
-const api = "/api/v1";
-
-function el(tag, attributes = {}, ...children) {
-  const node = document.createElement(tag);
-  for (const [k, v] of Object.entries(attributes)) {
-    if (k === "text") node.textContent = v;
-    else node.setAttribute(k, v);
-  }
-  node.append(...children);
-  return node;
-}
+import { api } from "./api.js";
+import { el } from "./dom.js";
 
 // 3 significant digits, small ones as 1e-5 (not 0.00001), as the recommendation writes them.
+/** @param {number} x */
 function short(x) {
   const rounded = Number(x.toPrecision(3));
   return rounded !== 0 && Math.abs(rounded) < 1e-3 ? rounded.toExponential() : String(rounded);
 }
 // "tol 1e-6", "dt 0.0123": a setting.
-const setting = (p) => `${p.parameter} ${short(p.value)}`;
+const setting = (/** @type {{parameter: string, value: number}} */ p) => `${p.parameter} ${short(p.value)}`;
 
 // Builds the panel in `box`. `app` gives: session() → its id; apply(patch) → the app's PATCH of the
 // session (its controls and status line follow), a promise.
+/**
+ * @param {HTMLElement} box
+ * @param {{session: () => string | null, apply: (patch: any) => Promise<unknown>}} app
+ */
 export function setupWorkPrecision(box, app) {
+  /** @param {string} id @returns {any} */
   const $ = (id) => box.querySelector(`#${id}`);
   box.append(
-    el("details", { id: "wp-details" },
+    el(
+      "details",
+      { id: "wp-details" },
       el("summary", { text: "Which integrator for this scene?" }),
-      el("p", { class: "note", id: "wp-about",
-                text: "Runs each integrator on this scene as it is now, from its start, at tightening tolerances " +
-                      "or steps; measures its error at time T against an independent reference and times it. " +
-                      "Seconds to a minute, on the server." }),
-      el("div", { class: "wp-row" },
+      el("p", {
+        class: "note",
+        id: "wp-about",
+        text:
+          "Runs each integrator on this scene as it is now, from its start, at tightening tolerances " +
+          "or steps; measures its error at time T against an independent reference and times it. " +
+          "Seconds to a minute, on the server.",
+      }),
+      el(
+        "div",
+        { class: "wp-row" },
         // Each label holds its input, so that a narrow screen wraps them as pairs.
-        el("label", { text: "Horizon T [time] " },
-           el("input", { id: "wp-t-end", type: "number", step: "any", min: "0", placeholder: "20 periods",
-                         "aria-describedby": "wp-about" })),
-        el("label", { text: "Target error " },
-           el("input", { id: "wp-target", type: "number", step: "any", min: "1e-15", max: "1", value: "1e-10" }))),
-      el("div", { class: "wp-row" },
+        el(
+          "label",
+          { text: "Horizon T [time] " },
+          el("input", {
+            id: "wp-t-end",
+            type: "number",
+            step: "any",
+            min: "0",
+            placeholder: "20 periods",
+            "aria-describedby": "wp-about",
+          }),
+        ),
+        el(
+          "label",
+          { text: "Target error " },
+          el("input", { id: "wp-target", type: "number", step: "any", min: "1e-15", max: "1", value: "1e-10" }),
+        ),
+      ),
+      el(
+        "div",
+        { class: "wp-row" },
         el("button", { id: "wp-start", type: "button", text: "Measure the integrators" }),
         el("button", { id: "wp-cancel", type: "button", text: "Cancel", hidden: "" }),
         el("progress", { id: "wp-progress", max: "1", value: "0", hidden: "", "aria-label": "Measuring" }),
-        el("span", { id: "wp-status", role: "status" })),
-      el("div", { id: "wp-result", hidden: "" },
+        el("span", { id: "wp-status", role: "status" }),
+      ),
+      el(
+        "div",
+        { id: "wp-result", hidden: "" },
         el("p", { id: "wp-recommendation" }),
-        el("div", { class: "wp-row" },
+        el(
+          "div",
+          { class: "wp-row" },
           el("button", { id: "wp-use", type: "button", hidden: "" }),
-          el("span", { id: "wp-use-status", role: "status" })),
+          el("span", { id: "wp-use-status", role: "status" }),
+        ),
         el("img", { id: "wp-plot", alt: "" }),
-        el("p", { class: "wp-links" },
-          el("a", { id: "wp-svg", target: "_blank", text: "Plot (SVG)" }), " ",
-          el("a", { id: "wp-png", target: "_blank", text: "Plot (PNG)" }), " ",
-          el("a", { id: "wp-csv", download: "work_precision.csv", text: "Data (CSV)" })))));
+        el(
+          "p",
+          { class: "wp-links" },
+          el("a", { id: "wp-svg", target: "_blank", text: "Plot (SVG)" }),
+          " ",
+          el("a", { id: "wp-png", target: "_blank", text: "Plot (PNG)" }),
+          " ",
+          el("a", { id: "wp-csv", download: "work_precision.csv", text: "Data (CSV)" }),
+        ),
+      ),
+    ),
+  );
 
-  let current = null;  // the job followed now: its url
-  let recommended = null;  // the result's recommended setting, with the integrator PATCH takes
-  const say = (text) => ($("wp-status").textContent = text);
+  /** @type {string | null} */
+  let current = null; // the job followed now: its url
+  /** @type {any} */
+  let recommended = null; // the result's recommended setting, with the integrator PATCH takes
+  const say = (/** @type {string} */ text) => ($("wp-status").textContent = text);
 
   function body() {
+    /** @type {{session: string | null, t_end?: number, target_error?: number}} */
     const out = { session: app.session() };
     const tEnd = $("wp-t-end").value.trim();
     if (tEnd !== "") out.t_end = Number(tEnd);
@@ -70,6 +108,7 @@ export function setupWorkPrecision(box, app) {
     return out;
   }
 
+  /** @param {any} job */
   function show(job) {
     const r = job.result;
     $("wp-recommendation").textContent = r.recommendation;
@@ -81,27 +120,39 @@ export function setupWorkPrecision(box, app) {
     plot.hidden = !r.plot_svg;
     if (r.plot_svg) {
       plot.src = r.plot_svg;
-      plot.alt = `Work-precision plot over T = ${job.t_end}: wall time per unit simulated time against the state ` +
-                 `error at T, one curve per integrator (the data: ${r.points.length} runs in the CSV)`;
+      plot.alt =
+        `Work-precision plot over T = ${job.t_end}: wall time per unit simulated time against the state ` +
+        `error at T, one curve per integrator (the data: ${r.points.length} runs in the CSV)`;
     }
-    for (const [id, href] of [["wp-svg", r.plot_svg], ["wp-png", r.plot_png], ["wp-csv", r.data_csv]]) {
+    for (const [id, href] of [
+      ["wp-svg", r.plot_svg],
+      ["wp-png", r.plot_png],
+      ["wp-csv", r.data_csv],
+    ]) {
       $(id).hidden = !href;
       if (href) $(id).href = href;
     }
     $("wp-result").hidden = false;
   }
 
+  /** @param {string} url */
   async function follow(url) {
     for (;;) {
       if (current !== url) return;
       const res = await fetch(url);
       const job = await res.json();
-      if (!res.ok) { say(job.detail || job.title); break; }
+      if (!res.ok) {
+        say(job.detail || job.title);
+        break;
+      }
       $("wp-progress").value = job.progress;
       if (job.status === "queued") say("Waiting for another measurement to finish…");
       else if (job.status === "running")
-        say(job.stage === "reference" ? `Computing the reference at T = ${short(job.t_end)}…`
-                                      : `Measuring… ${job.methods_done} of ${job.methods} integrators done`);
+        say(
+          job.stage === "reference"
+            ? `Computing the reference at T = ${short(job.t_end)}…`
+            : `Measuring… ${job.methods_done} of ${job.methods} integrators done`,
+        );
       else {
         if (job.status === "done") {
           show(job);
@@ -127,14 +178,17 @@ export function setupWorkPrecision(box, app) {
     say("Starting…");
     try {
       const res = await fetch(`${api}/work-precision`, {
-        method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body()) });
+        method: "POST",
+        headers: { "Content-Type": "application/json" },
+        body: JSON.stringify(body()),
+      });
       const job = await res.json();
       if (!res.ok) throw new Error(job.detail || job.title);
       current = job.url;
       $("wp-cancel").hidden = false;
       await follow(job.url);
     } catch (e) {
-      say(e.message);
+      say(/** @type {Error} */ (e).message);
       $("wp-start").disabled = false;
       $("wp-progress").hidden = true;
     }
@@ -150,7 +204,7 @@ export function setupWorkPrecision(box, app) {
       await app.apply({ integrator: recommended.integrator });
       $("wp-use-status").textContent = `The session now runs ${recommended.method} at ${setting(recommended)}.`;
     } catch (e) {
-      $("wp-use-status").textContent = e.message;
+      $("wp-use-status").textContent = /** @type {Error} */ (e).message;
     }
   };
 }

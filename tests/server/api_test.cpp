@@ -8,6 +8,9 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <thread>
@@ -127,6 +130,45 @@ TEST_F(Api, EveryOpenApiOperationIsRouted) {
   EXPECT_EQ(json::parse(schema->body)["title"], "Spinfold scene");
 }
 
+// The web UI's files come from a glob of web/ (cmake/embed_web.cmake): every page file on disk is
+// served as it is and listed in the OpenAPI document with its own summary, and every module a
+// module imports is served, so a new module needs no edit anywhere else.
+TEST_F(Api, EveryFileOfWebIsServedAndListed) {
+  auto c = client();
+  const json paths = json::parse(c.Get("/api/v1/openapi.json")->body)["paths"];
+  const std::filesystem::path web = SPINFOLD_WEB_DIR;
+  std::set<std::string> served, imported;
+  for (const auto& entry : std::filesystem::directory_iterator(web)) {
+    const std::string name = entry.path().filename().string();
+    const std::string ext = entry.path().extension().string();
+    const bool page =
+        name == "index.html" || ((ext == ".js" || ext == ".css") && !name.ends_with(".config.js"));
+    if (!page) continue;
+    const std::string url = name == "index.html" ? "/" : "/" + name;
+    std::ifstream in(entry.path(), std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    auto res = c.Get(url);
+    ASSERT_TRUE(res) << url;
+    EXPECT_EQ(res->status, 200) << url;
+    EXPECT_EQ(res->body, text) << url;
+    ASSERT_TRUE(paths.contains(url)) << url;
+    EXPECT_FALSE(paths[url]["get"]["summary"].get<std::string>().empty()) << url;
+    served.insert(url);
+    // import … from "./module.js"
+    for (std::size_t at = text.find("from \"./"); at != std::string::npos;
+         at = text.find("from \"./", at + 1)) {
+      const std::size_t from = at + 8;  // after `from "./`
+      imported.insert(
+          std::string(1, '/').append(std::string_view(text).substr(from, text.find('"', from) - from)));
+    }
+  }
+  EXPECT_GE(served.size(), 20u);  // index.html, the modules, the style sheets
+  EXPECT_TRUE(served.contains("/main.js"));
+  for (const std::string& url : imported)
+    EXPECT_TRUE(served.contains(url)) << url << " is imported but not served";
+  EXPECT_EQ(c.Get("/eslint.config.js")->status, 404);  // tooling is not served
+}
+
 // Becoming incompressible mid-run restarts: the constraint holds the start's area, so continuing
 // would snap the body's shape (det L 0.86 → 0.91 in one step, as it did).
 TEST_F(Api, BecomingIncompressibleRestartsTheRunInsteadOfSnappingTheShape) {
@@ -195,6 +237,32 @@ TEST_F(Api, TheActionsLayerAddsToTheOverlay) {
   ASSERT_TRUE(state);
   EXPECT_TRUE(json::parse(state->body)["state"]["actions"]["J_r"].is_number()) << state->body;
   remove(id);
+}
+
+// The session names its surface resolved (server/context.cpp): the kind and radius a given K
+// implies, the plane below the engine's flat threshold, and K in the kind-and-radius form; the UI
+// reads these instead of re-deriving them with a copied constant.
+TEST_F(Api, TheSessionNamesItsSurfaceResolved) {
+  auto c = client();
+  const auto surface_of = [&](const std::string& surface) {
+    const std::string id = create(R"({"surface": )" + surface + R"(, "body": {"model": "rigid"}})");
+    auto got = c.Get("/api/v1/sessions/" + id);
+    remove(id);
+    EXPECT_TRUE(got);
+    const json body = json::parse(got->body);
+    EXPECT_EQ(body["current"]["surface"], json::parse(surface));  // the scene as given, unchanged
+    return body["surface"];
+  };
+  const json h2 = surface_of(R"({"curvature": -0.25})");
+  EXPECT_EQ(h2["kind"], "pseudosphere");
+  EXPECT_DOUBLE_EQ(h2["radius"].get<double>(), 2.0);
+  EXPECT_DOUBLE_EQ(h2["curvature"].get<double>(), -0.25);
+  const json flat = surface_of(R"({"curvature": 1e-30})");  // below kFlatCurvature
+  EXPECT_EQ(flat["kind"], "plane");
+  EXPECT_EQ(flat["curvature"].get<double>(), 0.0);
+  const json sphere = surface_of(R"({"kind": "sphere", "radius": 0.5})");
+  EXPECT_EQ(sphere["kind"], "sphere");
+  EXPECT_DOUBLE_EQ(sphere["curvature"].get<double>(), 4.0);
 }
 
 TEST_F(Api, SessionLifecycle) {

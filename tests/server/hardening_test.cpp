@@ -300,7 +300,7 @@ TEST_F(Hardening, UnknownAndMalformedIdsAreTheOne404) {
 
 TEST_F(Hardening, SecurityHeadersOnTheUiAndItsFiles) {
   auto c = server_->client("10.0.6.1");
-  for (const char* path : {"/", "/app.js", "/style.css", "/api/v1/health"}) {
+  for (const char* path : {"/", "/main.js", "/style.css", "/api/v1/health"}) {
     auto res = c.Get(path);
     ASSERT_TRUE(res);
     EXPECT_EQ(res->status, 200) << path;

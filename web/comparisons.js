@@ -1,0 +1,65 @@
+// @ts-check
+// The comparisons: the geodesic companion (one click or G) and a fan of spins (vary). The legend is
+// drawn in the picture by the server (the hud layer).
+import { $ } from "./dom.js";
+import { say } from "./readout.js";
+import { applyChange } from "./session.js";
+import { mount, store, withView } from "./state.js";
+
+/** @param {import("./state.js").AppState} s */
+const hasGeodesic = (s) => (s.current?.companions ?? []).some((/** @type {any} */ c) => c.geodesic);
+
+/** @param {import("./state.js").AppState} s @param {import("./state.js").AppState} b */
+export function renderComparisons(s, b) {
+  if (!s.current || s.current === b.current) return;
+  const on = hasGeodesic(s);
+  $("geodesic").setAttribute("aria-pressed", String(on));
+  $("geodesic").textContent = on ? "− Geodesic companion" : "+ Geodesic companion";
+}
+
+/** Adds or removes the geodesic companion; its legend needs the hud, which is switched on. */
+export async function toggleGeodesic() {
+  const s = store.get();
+  const companions = s.current.companions ?? [];
+  const next = hasGeodesic(s)
+    ? companions.filter((/** @type {any} */ c) => !c.geodesic)
+    : [...companions, { geodesic: true, label: "geodesic (s = 0)" }];
+  try {
+    await applyChange({ companions: next.length ? next : null });
+    store.update((now) =>
+      now.view.layers.includes("hud") ? {} : withView(now, { layers: [...now.view.layers, "hud"], hudChosen: true }),
+    );
+  } catch (e) {
+    say(/** @type {Error} */ (e).message);
+  }
+}
+
+/** Companions from the same start with spins spread over the range asked. */
+async function addFan() {
+  const from = Number($("fan-from").value);
+  const to = Number($("fan-to").value);
+  const count = Math.max(2, Math.min(8, Math.round(Number($("fan-count").value) || 4)));
+  const values = Array.from({ length: count }, (_, i) =>
+    Number((from + ((to - from) * i) / (count - 1)).toPrecision(6)),
+  );
+  try {
+    await applyChange({ vary: { field: "initial.spin", values } });
+  } catch (e) {
+    say(`The fan was refused: ${/** @type {Error} */ (e).message}`);
+  }
+}
+
+async function clearComparisons() {
+  try {
+    await applyChange({ companions: null, vary: null });
+  } catch (e) {
+    say(/** @type {Error} */ (e).message);
+  }
+}
+
+export function setupComparisons() {
+  mount(renderComparisons);
+  $("geodesic").onclick = () => toggleGeodesic();
+  $("fan").onclick = () => addFan();
+  $("fan-clear").onclick = () => clearComparisons();
+}

@@ -1,0 +1,178 @@
+// @ts-check
+// The picture (the live frame stream): one live stream per page (live.js), opened on the session and steered whenever the
+// view, camera or size in the store change (one subscriber, not a refresh at every call site); the
+// frame's size follows its shown size; the export links follow the same view.
+import { api } from "./api.js";
+import { $ } from "./dom.js";
+import { LiveView } from "./live.js";
+import { store, withView } from "./state.js";
+import { clampTo, toApi } from "./viewparams.js";
+
+/** @typedef {import("./state.js").AppState} AppState */
+
+/**
+ * The frame's query parameters for a state: size, view, layers, scale, and the camera when the
+ * user moved it (in the route's units).
+ * @param {AppState} state
+ * @returns {Record<string, string | number>}
+ */
+export function viewQuery(state) {
+  const { view, size, viewParameters: controls } = state;
+  /** @type {Record<string, string | number>} */
+  const q = {
+    width: size.width,
+    height: size.height,
+    view: view.kind ?? "",
+    layers: view.layers.join(","),
+    scale: view.scale,
+  };
+  if (view.yaw !== null && view.pitch !== null)
+    Object.assign(q, {
+      yaw: toApi(controls, "yaw", view.yaw).toFixed(4),
+      pitch: toApi(controls, "pitch", view.pitch).toFixed(4),
+    });
+  if (view.distance !== null) q.distance = view.distance.toFixed(3);
+  return q;
+}
+
+/**
+ * A frame's PNG address.
+ * @param {AppState} state
+ * @param {number} width
+ * @param {number} height
+ */
+export function frameUrl(state, width = state.size.width, height = state.size.height) {
+  return `${api}/sessions/${state.id}/frame.png?${new URLSearchParams(/** @type {any} */ ({ ...viewQuery(state), width, height }))}`;
+}
+
+/** @type {LiveView} */
+let live;
+
+/**
+ * The live view on #frame, following the store; `onGone` when the server no longer knows the session.
+ * @param {() => void} onGone
+ */
+export function setupFrame(onGone) {
+  live = new LiveView($("frame"));
+  live.onGone = onGone;
+  let steered = "";
+  store.subscribe((s, b) => {
+    if (!s.id || s.phase !== "live") return;
+    const params = viewQuery(s);
+    const key = JSON.stringify(params);
+    if (s.id !== b.id || b.phase !== "live") {
+      measureFrame();
+      live.open(s.id, viewQuery(store.get()));
+      steered = JSON.stringify(viewQuery(store.get()));
+    } else if (key !== steered) {
+      steered = key;
+      live.steer(s.view.yaw === null ? { ...params, aim: "body" } : params);
+    }
+    renderExports(s);
+  });
+  fitFrameToWindow();
+  measureFrame();
+  watchFrameSize();
+}
+
+export const closeFrame = () => live?.close();
+
+/** The export links: the frame as shown, at the size asked, the state and the trajectory. */
+export function renderExports(state = store.get()) {
+  if (!state.id) return;
+  const pixels = (/** @type {string} */ id, /** @type {number} */ fallback) => {
+    const input = $(id);
+    // The input's own min and max (the frame route's width and height limits).
+    const v = Math.round(Number(input.value) || fallback);
+    return Math.max(Number(input.min), Math.min(Number(input.max), v));
+  };
+  $("export-png").href = frameUrl(state);
+  $("export-png-sized").href = frameUrl(state, pixels("png-width", 1920), pixels("png-height", 1080));
+  $("export-state").href = `${api}/sessions/${state.id}`;
+  $("export-csv").href = `${api}/sessions/${state.id}/trajectory?format=csv`;
+}
+
+// The frame is asked at the size it is shown × devicePixelRatio, at most 1920×1080 (the aspect
+// kept), and again whenever the shown size changes (window, full screen, phone rotation).
+function measureFrame() {
+  const box = $("frame").getBoundingClientRect();
+  if (box.width < 8 || box.height < 8) return;
+  const dpr = window.devicePixelRatio || 1;
+  let width = Math.round(box.width * dpr);
+  let height = Math.round(box.height * dpr);
+  const shrink = Math.min(1, 1920 / width, 1080 / height);
+  width = Math.max(16, Math.round(width * shrink));
+  height = Math.max(16, Math.round(height * shrink));
+  defaultHud(box.width, box.height);
+  const { size } = store.get();
+  if (width !== size.width || height !== size.height) store.update({ size: { width, height } });
+}
+
+// A frame shown smaller than this (CSS pixels; a phone, upright or on its side) has no room for
+// legible overlay text: it would cover a third of the picture or be a few pixels high, and the
+// readout below the frame says the same. Off by default there, on elsewhere; once the teacher
+// ticks or unticks "hud", theirs is the choice.
+const smallFrame = { width: 520, height: 360 };
+/** @param {number} shownWidth @param {number} shownHeight */
+function defaultHud(shownWidth, shownHeight) {
+  const { view } = store.get();
+  if (view.hudChosen) return;
+  const want = shownWidth >= smallFrame.width && shownHeight >= smallFrame.height;
+  if (want === view.layers.includes("hud")) return;
+  const layers = want ? [...view.layers, "hud"] : view.layers.filter((l) => l !== "hud");
+  store.update((s) => withView(s, { layers }));
+}
+
+// The frame and the playback bar below it fit the window at load: the frame is never taller than
+// the room between its top and the window's bottom less the toolbar (at least 240 px).
+function fitFrameToWindow() {
+  const top = $("frame-box").getBoundingClientRect().top + window.scrollY;
+  const room = Math.max(240, window.innerHeight - top - $("toolbar").offsetHeight - 20);
+  document.documentElement.style.setProperty("--frame-room", `${Math.round(room)}px`);
+}
+
+function watchFrameSize() {
+  /** @type {ReturnType<typeof setTimeout> | undefined} */
+  let timer;
+  new ResizeObserver(() => {
+    clearTimeout(timer);
+    timer = setTimeout(measureFrame, 120);
+  }).observe($("frame"));
+  const refit = new ResizeObserver(fitFrameToWindow);
+  for (const id of ["gallery", "toolbar", "busy"]) refit.observe($(id));
+  refit.observe(/** @type {Element} */ (document.querySelector("header")));
+  addEventListener("resize", fitFrameToWindow);
+}
+
+// ---- The camera: orbit (keys, drag) and zoom, within the route's ranges.
+// Where an orbit starts when the server aimed the camera (render/scene_builder's aim at the body).
+const aimed = { yaw: 0.7, pitch: 0.45, distance: 3.4 };
+
+/** @param {AppState} state */
+export const is3d = (state) => Boolean(state.views.find((v) => v.name === state.view.kind)?.three_d);
+
+/**
+ * The camera turned by (dYaw, dPitch) radians, or set to yaw, pitch (a drag).
+ * @param {{dYaw?: number, dPitch?: number, yaw?: number, pitch?: number}} turn
+ */
+export function orbit({ dYaw = 0, dPitch = 0, yaw, pitch }) {
+  store.update((s) => {
+    const controls = s.viewParameters;
+    return withView(s, {
+      yaw: clampTo(controls, "yaw", (yaw ?? s.view.yaw ?? aimed.yaw) + dYaw),
+      pitch: clampTo(controls, "pitch", (pitch ?? s.view.pitch ?? aimed.pitch) + dPitch),
+    });
+  });
+}
+
+/** The camera where it is now (or where the server aims it). @param {AppState} state */
+export const camera = (state) => ({ yaw: state.view.yaw ?? aimed.yaw, pitch: state.view.pitch ?? aimed.pitch });
+
+/** Closer by `factor` in the 3-D views; a larger body in the 2-D ones. @param {number} factor */
+export function zoom(factor) {
+  store.update((s) =>
+    is3d(s)
+      ? withView(s, { distance: clampTo(s.viewParameters, "distance", (s.view.distance ?? aimed.distance) / factor) })
+      : withView(s, { scale: clampTo(s.viewParameters, "scale", s.view.scale * factor) }),
+  );
+}

@@ -1,0 +1,112 @@
+// @ts-check
+// The preset gallery and the scene's explanation: the presets in teaching order (the default
+// first, then spin against geodesic, then deformation, then the rest in the server's order), with
+// thumbnails the server renders.
+import { api, request } from "./api.js";
+import { $, el } from "./dom.js";
+import { say } from "./readout.js";
+import { openScene, presetLabel } from "./session.js";
+import { store } from "./state.js";
+import { surfaceName } from "./surface.js";
+
+/** @typedef {import("./state.js").AppState} AppState */
+
+const teachingOrder = [
+  "spinning_rigid_sphere",
+  "geodesic_rigid_sphere",
+  "spin_vs_geodesic_sphere",
+  "spin_vs_geodesic_pseudosphere",
+  "spin_fan_sphere",
+  "opposite_spins_sphere",
+  "spinning_rigid_pseudosphere",
+  "geodesic_rigid_pseudosphere",
+  "spinning_rigid_plane",
+  "breathing_ellipse_sphere",
+  "deforming_spin_pseudosphere",
+  "deforming_spin_vs_geodesic_pseudosphere",
+];
+/** @param {string} name */
+const rank = (name) => {
+  const i = teachingOrder.indexOf(name);
+  return i < 0 ? teachingOrder.length : i;
+};
+
+/** The gallery's short-lived session, while a thumbnail is being made. @type {string | null} */
+let thumbnailSession = null;
+export const thumbnailInProgress = () => thumbnailSession;
+
+/** The preset shown is highlighted, marked "modified" once changed. @param {AppState} s @param {AppState} b */
+export function renderGalleryMarks(s, b) {
+  if (s.preset === b.preset && s.modified === b.modified && s.presets === b.presets) return;
+  document.querySelectorAll(".preset").forEach((card) => {
+    const button = /** @type {HTMLElement} */ (card);
+    const active = button.dataset.name === s.preset;
+    button.classList.toggle("active", active);
+    button.setAttribute("aria-pressed", String(active));
+    button.classList.toggle("modified", active && s.modified);
+    /** @type {HTMLElement} */ (button.querySelector(".mark")).textContent = active
+      ? s.modified
+        ? "modified"
+        : "selected"
+      : "";
+  });
+}
+
+/** The preset's description, or what is shown instead. @param {AppState} s @param {AppState} b */
+export function renderExplanation(s, b) {
+  if (!s.surface || (s.preset === b.preset && s.surface === b.surface)) return;
+  const preset = s.presets.find((p) => p.name === s.preset);
+  $("explanation").textContent = preset ? preset.description : `Your own scene on the ${surfaceName[s.surface.kind]}.`;
+}
+
+/** The cards, then their thumbnails, one short-lived session at a time, kept for the tab. */
+export async function buildGallery() {
+  const gallery = $("gallery");
+  const presets = [...store.get().presets].sort((a, b) => rank(a.name) - rank(b.name));
+  for (const preset of presets) {
+    const button = el(
+      "button",
+      { type: "button", class: "preset", "data-name": preset.name, title: preset.description },
+      el("img", { alt: "" }),
+      el("b", { text: presetLabel(preset.name) }),
+      el("span", { class: "mark" }),
+      el("small", { text: preset.description }),
+    );
+    button.addEventListener("click", () =>
+      openScene(preset.scene, { preset: preset.name }).catch((e) => say(e.message)),
+    );
+    gallery.append(button);
+  }
+  const s = store.get();
+  renderGalleryMarks(s, { ...s, presets: [] });
+  for (const preset of presets) {
+    const img = gallery.querySelector(`[data-name="${preset.name}"] img`);
+    const key = `spinfold.thumb.${preset.name}`;
+    try {
+      let blob;
+      const cached = sessionStorage.getItem(key);
+      if (cached) {
+        blob = new Blob([Uint8Array.from(atob(cached), (c) => c.charCodeAt(0))], { type: "image/png" });
+      } else {
+        const made = await request("POST", "/sessions", preset.scene);
+        thumbnailSession = made.id;
+        await request("POST", `/sessions/${made.id}/advance`, { until: 2 });
+        const res = await fetch(
+          `${api}/sessions/${made.id}/frame.png?width=160&height=120&layers=surface,grid,body,trail`,
+        );
+        blob = await res.blob();
+        await request("DELETE", `/sessions/${made.id}`);
+        thumbnailSession = null;
+        const bytes = new Uint8Array(await blob.arrayBuffer());
+        try {
+          sessionStorage.setItem(key, btoa(String.fromCharCode(...bytes)));
+        } catch {
+          /* full: fetch again next time */
+        }
+      }
+      img.src = URL.createObjectURL(blob);
+    } catch {
+      /* a missing thumbnail is not worth an error */
+    }
+  }
+}

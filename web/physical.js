@@ -1,0 +1,355 @@
+// @ts-check
+// The physical controls, first in the side panel: each a slider and a number, its unit in words, a
+// one-line explanation shown on hover and focus. Label, unit and explanation come from the scene's
+// JSON Schema (title, x-unit, description: the engine's field table, engine/scene_fields.h), never
+// from a table of the UI's own. Rendered from the store: rebuilt when the rows change (another body
+// model or potential), otherwise updated in place, so that focus and a dragged slider stay put.
+import { sleep } from "./api.js";
+import { $, el, clear } from "./dom.js";
+import { applyChange } from "./session.js";
+import { store, withView } from "./state.js";
+import { curvatureForm, shownRadius } from "./surface.js";
+import { showConformal } from "./viewcontrols.js";
+
+/** @typedef {import("./state.js").AppState} AppState */
+/**
+ * @typedef {{key: string, field?: string, label: string, unit: string, help: string, note?: string,
+ *   min: number, max: number, step: number, value: number | undefined, placeholder?: string,
+ *   restarts?: boolean, live?: boolean, disabled?: boolean, view?: boolean, before?: () => void,
+ *   patch: ((v: number) => any) | null}} Row
+ */
+
+const degree = Math.PI / 180;
+const liveInterval = 120; // ms between two changes sent by a dragged live slider
+
+/**
+ * A scene field's schema by its path ("potential.deformation.C": the abc branch's).
+ * @param {any} schema
+ * @param {string} path
+ */
+function schemaField(schema, path) {
+  const [section, ...rest] = path.split(".");
+  let spec = schema.properties[section];
+  for (const key of rest) {
+    if (key !== "deformation" && spec.oneOf)
+      spec = spec.oneOf.find((/** @type {any} */ b) => b.properties?.kind?.const === "abc");
+    spec = spec.properties[key];
+  }
+  return spec;
+}
+
+// How a schema unit is shown: a pure number ("1") says so; an angle the UI shows in degrees.
+const displayUnit = (/** @type {string} */ unit) => ({ 1: "pure number", rad: "degrees" })[unit] ?? unit;
+
+/** @param {AppState} s */
+function physicalRows(s) {
+  /** @param {string} path */
+  const described = (path) => {
+    const spec = schemaField(s.schema, path);
+    return { field: path, label: spec.title, unit: displayUnit(spec["x-unit"]), help: spec.description };
+  };
+  const current = s.current;
+  const initial = current.initial;
+  const start = s.start ?? {};
+  const rigid = current.body.model === "rigid";
+  const deformation = current.potential?.deformation;
+  const surface = current.surface;
+  const heading = initial.heading ?? start.heading;
+  /** @param {number} speed @param {number} heading */
+  const speedHeading = (speed, heading) => ({ initial: { speed, heading } });
+  /** @type {Row[]} */
+  const rows = [
+    {
+      key: "spin",
+      ...described("initial.spin"),
+      min: -3,
+      max: 3,
+      step: 0.05,
+      restarts: true,
+      value: initial.spin ?? start.spin,
+      patch: (v) => ({ initial: { spin: v } }),
+    },
+    {
+      key: "speed",
+      ...described("initial.speed"),
+      min: 0,
+      max: 3,
+      step: 0.05,
+      restarts: true,
+      value: initial.speed ?? start.speed,
+      patch: (v) => speedHeading(v, heading ?? Math.PI / 2),
+    },
+    {
+      key: "heading",
+      ...described("initial.heading"),
+      min: -180,
+      max: 180,
+      step: 1,
+      restarts: true,
+      value: heading === undefined ? undefined : heading / degree,
+      patch: (v) => speedHeading(initial.speed ?? start.speed ?? 0.5, v * degree),
+    },
+    {
+      key: "lambda",
+      ...described("initial.lambda"),
+      min: 0.2,
+      max: 3,
+      step: 0.05,
+      restarts: true,
+      value: initial.lambda ?? start.lambda,
+      patch: (v) => ({ initial: rigid ? { lambda: v, mu: v } : { lambda: v } }),
+    },
+  ];
+  if (!rigid)
+    rows.push({
+      key: "mu",
+      ...described("initial.mu"),
+      min: 0.2,
+      max: 3,
+      step: 0.05,
+      restarts: true,
+      value: initial.mu ?? start.mu,
+      patch: (v) => ({ initial: { mu: v } }),
+    });
+  // The curvature dial: one slider from the sphere through the plane to the hyperbolic plane. The
+  // run continues through K = 0 (the body keeps its place, velocity and frame); the picture
+  // switches to the conformal view, the one view that exists on every surface and is continuous in K.
+  const byK = curvatureForm(surface);
+  const resolved = /** @type {import("./surface.js").ResolvedSurface} */ (s.surface);
+  rows.push(
+    {
+      key: "curvature",
+      ...described("surface.curvature"),
+      min: -2,
+      max: 2,
+      step: 0.01,
+      live: true,
+      // K as given in the K form, else the server's σ/R².
+      value: byK ? surface.curvature : resolved.curvature,
+      before: showConformal,
+      patch: (v) => ({ surface: { curvature: v, kind: null, radius: null } }),
+    },
+    {
+      key: "radius",
+      ...described("surface.radius"),
+      min: 0.25,
+      max: 5,
+      step: 0.05,
+      disabled: byK,
+      // Derived from K, the row says so before the field's own description.
+      note: byK
+        ? resolved.kind === "plane"
+          ? "From the curvature: K = 0 is the flat plane, which has no radius."
+          : "From the curvature: R = 1/√|K|. To set R, pick the surface above."
+        : "",
+      value: shownRadius(surface, resolved),
+      placeholder: "none",
+      patch: (v) => ({ surface: { radius: v } }),
+    },
+    {
+      key: "gamma",
+      ...described("potential.radial.gamma"),
+      min: 0,
+      max: 1,
+      step: 0.01,
+      value: current.potential?.radial?.gamma ?? 0,
+      patch: (v) => ({ potential: { radial: { gamma: v } } }),
+    },
+  );
+  if (!rigid && (!deformation || deformation.kind === "abc"))
+    rows.push({
+      key: "C",
+      ...described("potential.deformation.C"),
+      min: 0,
+      max: 5,
+      step: 0.05,
+      value: deformation?.C ?? 0,
+      patch: (v) => ({ potential: { deformation: { kind: "abc", C: v } } }),
+    });
+  // (In the conformal view the size is in lengths, so the picture does not change with K.)
+  rows.push({
+    key: "scale",
+    label: "Body size on screen",
+    unit: s.view.kind === "conformal" ? "lengths" : "surface radii",
+    min: 0.05,
+    max: 1,
+    step: 0.01,
+    view: true,
+    help: "Only the picture: how large the body's ellipse is drawn (+ and − keys in 2-D views).",
+    value: s.view.scale,
+    patch: null,
+  });
+  return rows;
+}
+
+/** @type {Map<string, (row: Row) => void>} each row's update, by key */
+const updates = new Map();
+
+/** @param {AppState} s @param {AppState} b */
+export function renderPhysical(s, b) {
+  if (!s.current || !s.surface || !s.schema) return;
+  if (
+    s.current === b.current &&
+    s.start === b.start &&
+    s.view.kind === b.view.kind &&
+    s.view.scale === b.view.scale &&
+    s.schema === b.schema &&
+    $("physical").childElementCount
+  )
+    return;
+  const form = $("physical");
+  const rows = physicalRows(s);
+  const keys = rows.map((r) => r.key).join(",");
+  if (form.dataset.keys === keys) {
+    for (const row of rows) updates.get(row.key)?.(row);
+    $("phys-surface").value = s.surface.kind;
+    return;
+  }
+  form.dataset.keys = keys;
+  clear(form);
+  updates.clear();
+  form.append(
+    el("h2", { text: "Physics" }),
+    el("p", {
+      class: "note",
+      text: "↺: changing it restarts the run at t = 0. The others change the run from now on.",
+    }),
+    surfaceKindRow(s),
+  );
+  for (const row of rows) form.append(physicalRow(row));
+}
+
+/** @param {Row} spec */
+function physicalRow(spec) {
+  const id = `phys-${spec.key}`;
+  const row = el("div", { class: "phys", "data-key": spec.key, "data-field": spec.field });
+  const label = el("label", { for: id, text: spec.label + (spec.restarts ? " ↺" : "") });
+  const range = el("input", {
+    type: "range",
+    min: spec.min,
+    max: spec.max,
+    step: spec.step,
+    id: `${id}-range`,
+    "aria-label": `${spec.label} slider`,
+  });
+  const number = el("input", { type: "number", step: "any", id, name: `phys.${spec.key}` });
+  const unit = el("span", { class: "unit", text: spec.unit });
+  const help = el("small", { class: "help", id: `${id}-help` });
+  const error = el("span", { class: "error", id: `${id}-error`, role: "alert" });
+  const helpText = () => (spec.note ? `${spec.note} ` : "") + spec.help;
+  help.textContent = helpText();
+  for (const input of [range, number]) {
+    input.setAttribute("aria-describedby", `${help.id} ${error.id}`);
+    input.title = helpText();
+  }
+  const show = (/** @type {number | undefined} */ v) => {
+    const known = v !== undefined && v !== null && Number.isFinite(Number(v));
+    number.value = known ? Number(Number(v).toPrecision(6)) : "";
+    number.placeholder = known ? "" : (spec.placeholder ?? "from the rates");
+    range.value = known ? v : (spec.min + spec.max) / 2;
+  };
+  const enable = () => {
+    range.disabled = number.disabled = Boolean(spec.disabled);
+    row.classList.toggle("derived", Boolean(spec.disabled));
+  };
+  show(spec.value);
+  enable();
+  const apply = async (/** @type {number} */ v) => {
+    if (!Number.isFinite(v)) {
+      error.textContent = "a number, please";
+      return;
+    }
+    if (spec.before) spec.before();
+    if (spec.view) {
+      store.update((s) => withView(s, { scale: v }));
+      error.textContent = "";
+      return;
+    }
+    try {
+      await applyChange(/** @type {(v: number) => any} */ (spec.patch)(v));
+    } catch (e) {
+      show(spec.value);
+      // The row was rebuilt by nothing (the change was refused): its message stays beside it.
+      error.textContent = /** @type {Error} */ (e).message;
+    }
+  };
+  // A live row (the curvature dial) sends while it is dragged, at most one change in flight and
+  // one every liveInterval ms, the latest value winning; the slider is not moved under the
+  // pointer by the answers meanwhile.
+  // (The release's change event repeats the last input's value: not sent again while in force.)
+  let sending = false;
+  /** @type {number | null} */
+  let pending = null;
+  /** @type {number | undefined} */
+  let sent;
+  const live = async (/** @type {number} */ v) => {
+    pending = v;
+    if (sending) return;
+    sending = true;
+    while (pending !== null) {
+      const nextValue = pending;
+      pending = null;
+      if (nextValue === sent && nextValue === spec.value) continue;
+      sent = nextValue;
+      const started = performance.now();
+      await apply(nextValue);
+      await sleep(Math.max(0, liveInterval - (performance.now() - started)));
+    }
+    sending = false;
+    if (document.activeElement !== number) show(spec.value);
+  };
+  // The same row with the parameters now in force (its closures read spec).
+  updates.set(spec.key, (nextSpec) => {
+    spec = nextSpec;
+    if (document.activeElement !== number && !sending) show(spec.value);
+    help.textContent = helpText();
+    unit.textContent = spec.unit;
+    for (const input of [range, number]) input.title = helpText();
+    enable();
+  });
+  // The slider's value on its grid of steps (−2 + 200 × 0.01 is 0, not 1e-16).
+  const stepped = () => Number(Number(range.value).toFixed(6));
+  const typed = () => (number.value === "" ? NaN : Number(number.value));
+  range.addEventListener("input", () => {
+    number.value = stepped();
+    if (spec.live) live(stepped());
+  });
+  range.addEventListener("change", () => (spec.live ? live(stepped()) : apply(stepped())));
+  number.addEventListener("change", () => (spec.live && Number.isFinite(typed()) ? live(typed()) : apply(typed())));
+  row.append(label, range, number, unit, help, error);
+  return row;
+}
+
+/** The surface's kind; switching restarts the run. @param {AppState} s */
+function surfaceKindRow(s) {
+  const select = el("select", { id: "phys-surface", name: "phys.surface", "aria-describedby": "phys-surface-help" });
+  for (const [value, text] of [
+    ["sphere", "sphere (positive curvature)"],
+    ["pseudosphere", "hyperbolic plane (negative curvature)"],
+    ["plane", "flat plane (no curvature)"],
+  ])
+    select.add(new Option(text, value));
+  select.value = /** @type {import("./surface.js").ResolvedSurface} */ (s.surface).kind;
+  const help = el("small", {
+    class: "help",
+    id: "phys-surface-help",
+    text: "The curved surface the body lives on; switching restarts the run.",
+  });
+  select.title = help.textContent;
+  const error = el("span", { class: "error" });
+  select.addEventListener("change", async () => {
+    const { current, surface } = store.get();
+    try {
+      // From the curvature form: that form goes, the radius it implied stays (1 from the plane).
+      await applyChange({
+        surface: curvatureForm(current.surface)
+          ? { kind: select.value, radius: surface?.radius ?? 1, curvature: null }
+          : { kind: select.value },
+      });
+    } catch (e) {
+      error.textContent = /** @type {Error} */ (e).message;
+      select.value = store.get().surface?.kind;
+    }
+  });
+  return el("div", { class: "phys" }, el("label", { for: "phys-surface", text: "Surface ↺" }), select, help, error);
+}

@@ -1,0 +1,46 @@
+// @ts-check
+// The playback bar: play, pause, step, reset and the speed; its state badge and the picture's
+// play mark follow the store (the session's "playing" and "rate", and a run that stopped).
+import { $ } from "./dom.js";
+import { say } from "./readout.js";
+import { pause, play, reset, step } from "./session.js";
+import { mount, store } from "./state.js";
+
+/** @param {import("./state.js").AppState} s @param {import("./state.js").AppState} b */
+export function renderPlayback(s, b) {
+  const status = s.sample?.status;
+  if (s.playing === b.playing && s.rate === b.rate && status === b.sample?.status && b.phase === s.phase) return;
+  document.body.dataset.playing = String(s.playing);
+  $("play").setAttribute("aria-pressed", String(s.playing));
+  $("pause").setAttribute("aria-pressed", String(!s.playing));
+  const stopped = Boolean(s.sample) && status !== "ok";
+  const state = stopped ? "stopped" : s.playing ? "playing" : "paused";
+  $("state-badge").textContent = stopped ? `stopped: ${status}` : s.playing ? `playing at ${s.rate}×` : "paused";
+  $("state-badge").dataset.state = state;
+  $("play-state").textContent = stopped ? "■ stopped" : s.playing ? "▶" : "❚❚ paused";
+  $("play-state").dataset.state = state;
+  if (s.rate !== Number($("speed").value) && document.activeElement !== $("speed")) {
+    $("speed").value = s.rate;
+    $("speed-out").textContent = s.rate;
+  }
+}
+
+/** @param {() => Promise<unknown>} action */
+const reported = (action) => () => action().catch((e) => say(e.message));
+
+export function setupPlayback() {
+  mount(renderPlayback);
+  $("play").onclick = () => {
+    store.update({ rate: Number($("speed").value) });
+    play();
+  };
+  $("pause").onclick = reported(pause);
+  $("step").onclick = reported(step);
+  $("reset").onclick = reported(reset);
+  $("speed").oninput = () => ($("speed-out").textContent = $("speed").value);
+  // A new speed applies at once while playing; while paused it waits for Play.
+  $("speed").onchange = () => {
+    store.update({ rate: Number($("speed").value) });
+    if (store.get().playing) play();
+  };
+}

@@ -1,0 +1,102 @@
+// @ts-check
+// The view menu and the layer toggles: the server's views that exist on the surface shown (in its
+// order), the layers of GET /api/v1/view-parameters, rendered from the store.
+import { ProblemError, request } from "./api.js";
+import { $, el, clear } from "./dom.js";
+import { mount, store, withView } from "./state.js";
+import { fromAttributes, fromContract } from "./viewparams.js";
+
+/** @typedef {import("./state.js").AppState} AppState */
+
+/**
+ * The view controls from the server; from the page's own controls when the server has no
+ * GET /api/v1/view-parameters (TEMPORARY: see viewparams.js fromAttributes). Whether it has the
+ * route is read from its OpenAPI document first, so that a server without it costs no 404 (the
+ * browser logs every failed request in the console, which the browser tests require to be clean);
+ * remove that look-up with the fallback.
+ * @returns {Promise<import("./viewparams.js").ViewControls>}
+ */
+export async function loadViewParameters() {
+  const openapi = await request("GET", "/openapi.json");
+  if (openapi.paths?.["/api/v1/view-parameters"]) {
+    try {
+      return fromContract(await request("GET", "/view-parameters"));
+    } catch (e) {
+      if (!(e instanceof ProblemError) || e.status !== 404) throw e;
+    }
+  }
+  const layerBoxes = [...document.querySelectorAll("#layers input[type=checkbox]")].map((box) => ({
+    name: /** @type {HTMLInputElement} */ (box).name.replace(/^layer-/, ""),
+    checked: /** @type {HTMLInputElement} */ (box).defaultChecked,
+    title: /** @type {HTMLElement} */ (box.parentElement).title,
+  }));
+  return fromAttributes({ layerBoxes, data: { ...$("frame").dataset } });
+}
+
+/** The views offered on the surface shown. @param {AppState} s */
+const offered = (s) => s.views.filter((v) => v.surfaces.includes(s.surface?.kind));
+
+/**
+ * Keeps the view one the surface has: the first offered when the surface changed under it (the
+ * curvature dial across K = 0, a new scene).
+ * @param {AppState} s
+ */
+function keepViewOffered(s) {
+  if (!s.surface || !s.views.length) return;
+  const kinds = offered(s).map((v) => v.name);
+  if (kinds.length && !kinds.includes(/** @type {string} */ (s.view.kind)))
+    store.update((now) => withView(now, { kind: kinds[0], yaw: null, pitch: null, distance: null }));
+}
+
+/** @param {AppState} s @param {AppState} b */
+function renderViewMenu(s, b) {
+  if (s.views === b.views && s.view.kind === b.view.kind && s.surface?.kind === b.surface?.kind) return;
+  const select = clear($("view"));
+  for (const v of offered(s)) select.add(Object.assign(new Option(v.title, v.name), { title: v.description }));
+  if (s.view.kind) select.value = s.view.kind;
+}
+
+/** @param {AppState} s @param {AppState} b */
+function renderLayers(s, b) {
+  const box = $("layers");
+  if (s.viewParameters !== b.viewParameters && s.viewParameters?.source === "server") {
+    clear(box);
+    for (const layer of s.viewParameters.layers)
+      box.append(
+        el(
+          "label",
+          { title: layer.help },
+          el("input", { type: "checkbox", name: `layer-${layer.name}` }),
+          ` ${layer.name}`,
+        ),
+      );
+  }
+  for (const input of box.querySelectorAll("input"))
+    input.checked = s.view.layers.includes(input.name.replace(/^layer-/, ""));
+}
+
+export function setupViewControls() {
+  mount((s, b) => {
+    keepViewOffered(s);
+    renderViewMenu(s, b);
+    renderLayers(s, b);
+  });
+  $("view").addEventListener("change", () =>
+    store.update((s) => withView(s, { kind: $("view").value, yaw: null, pitch: null, distance: null })),
+  );
+  $("layers").addEventListener("change", (/** @type {Event} */ e) => {
+    const input = /** @type {HTMLInputElement} */ (e.target);
+    const layer = input.name.replace(/^layer-/, "");
+    store.update((s) => {
+      const layers = input.checked ? [...s.view.layers, layer] : s.view.layers.filter((l) => l !== layer);
+      return withView(s, { layers, hudChosen: s.view.hudChosen || layer === "hud" });
+    });
+  });
+}
+
+/** The curvature dial shows the conformal view (the one view on every side of K = 0). */
+export function showConformal() {
+  const s = store.get();
+  if (s.view.kind === "conformal" || !s.views.some((v) => v.name === "conformal")) return;
+  store.update((now) => withView(now, { kind: "conformal", yaw: null, pitch: null, distance: null }));
+}
