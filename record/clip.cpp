@@ -56,24 +56,6 @@ double frame_time(const Clip& c, long long k) {
   return c.t_start + static_cast<double>(k) * c.speed / c.fps;
 }
 
-TimelineReplay::TimelineReplay(const Scene& scene, std::vector<ParameterChange> changes, Trail trail)
-    : changes_(std::move(changes)), run_(start_simulation(scene)), trail_(std::move(trail)) {
-  trail_.points.clear();
-  trail_.companions.clear();
-  record_if_due(trail_, run_);
-}
-
-bool TimelineReplay::advance_to(double t, std::uint64_t max_attempts) {
-  // As replay() (engine/timeline.h): advance to each change, retune, advance on.
-  for (; next_ < changes_.size() && changes_[next_].t <= t; ++next_) {
-    if (!advance_recording(run_, trail_, changes_[next_].t, max_attempts) ||
-        run_.state.t != changes_[next_].t)
-      return false;
-    retune_recording(run_, trail_, changes_[next_].scene);
-  }
-  return advance_recording(run_, trail_, t, max_attempts) && run_.state.status == Status::ok;
-}
-
 namespace {
 
 render::Image draw(const ClipFrames& f, const TimelineReplay& replay, const RenderFrame& render) {
@@ -90,6 +72,12 @@ render::Image draw(const ClipFrames& f, const TimelineReplay& replay, const Rend
       image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4)
     throw RecordError("the renderer returned no frame");
   return image;
+}
+
+// Advances the replay to a frame's time: false when the run stopped (its status) or the step
+// attempts per frame ran out on the way.
+bool reached(TimelineReplay& replay, double t, std::uint64_t max_attempts) {
+  return replay.advance_to(t, max_attempts) && replay.run().state.status == Status::ok;
 }
 
 [[noreturn]] void stopped(const TimelineReplay& replay, double t) {
@@ -119,7 +107,7 @@ bool record_clip(const Clip& clip, const ClipFrames& f, Recorder& recorder, cons
     TimelineReplay replay(f.scene, f.changes, f.trail);
     for (const long long k : samples) {
       const double t = frame_time(clip, k);
-      if (!replay.advance_to(t, f.max_attempts)) stopped(replay, t);
+      if (!reached(replay, t, f.max_attempts)) stopped(replay, t);
       recorder.add_palette_sample(draw(f, replay, render).rgba.data());
       if (!step()) return false;
     }
@@ -127,7 +115,7 @@ bool record_clip(const Clip& clip, const ClipFrames& f, Recorder& recorder, cons
   TimelineReplay replay(f.scene, f.changes, f.trail);
   for (long long k = 0; k < n; ++k) {
     const double t = frame_time(clip, k);
-    if (!replay.advance_to(t, f.max_attempts)) stopped(replay, t);
+    if (!reached(replay, t, f.max_attempts)) stopped(replay, t);
     recorder.add(draw(f, replay, render).rgba.data());
     if (!step()) return false;
   }

@@ -14,6 +14,25 @@ namespace spinfold::record {
 
 enum class Format { gif, webm, mp4, png_zip };
 
+// The one table of recording formats: the name the API, the CLI and the UI use, the file's
+// extension and content type, and one line for a reader.
+struct FormatInfo {
+  std::string_view name;  // "png-zip"
+  Format format;
+  std::string_view extension;     // "zip"
+  std::string_view content_type;  // "application/zip"
+  std::string_view help;          // one line
+};
+inline constexpr FormatInfo kFormats[] = {
+    {"gif", Format::gif, "gif", "image/gif", "an animated GIF (giflib): one 256-colour palette for the clip"},
+    {"webm", Format::webm, "webm", "video/webm", "WebM video, VP9 (libvpx through FFmpeg), 4:2:0: even sides"},
+    {"mp4", Format::mp4, "mp4", "video/mp4", "MP4 video, H.264 (libx264 through FFmpeg), 4:2:0: even sides"},
+    {"png-zip", Format::png_zip, "zip", "application/zip", "a zip of lossless PNG frames (libzip)"},
+};
+const FormatInfo& format_info(Format format);
+// The names joined for a message or a help text: "gif, webm, mp4 or png-zip" with last = " or ".
+std::string joined_format_names(std::string_view separator, std::string_view last);
+
 std::optional<Format> parse_format(std::string_view name);  // "gif", "webm", "mp4", "png-zip"
 std::string_view format_name(Format format);
 std::string_view content_type(Format format);    // "image/gif", "video/webm", "video/mp4", "application/zip"

@@ -121,6 +121,8 @@ const char* type_name(ParamType type) {
   return "string";
 }
 
+}  // namespace
+
 ordered_json parameter_schema(const QueryParam& p) {
   ordered_json schema{{"type", type_name(p.type)}};
   if (p.type == ParamType::enumeration) schema["enum"] = p.values;
@@ -136,8 +138,6 @@ ordered_json parameter_schema(const QueryParam& p) {
   if (!p.unit.empty()) schema["x-unit"] = p.unit;
   return schema;
 }
-
-}  // namespace
 
 // ---- Query values.
 
