@@ -251,7 +251,8 @@ render::ViewOptions view_options(const render::ViewRequest& request, const Scene
   using namespace render;
   ViewOptions view;
   view.kind = request.view.value_or(default_view(scene.surface.kind));
-  if (const auto why = view_unsupported_reason(view.kind, scene.surface.kind)) throw BadInput{"--view: " + *why};
+  if (const auto why = view_unsupported_reason(view.kind, scene.surface.kind))
+    throw BadInput{"--view: " + *why};
   view.width = request.width;
   view.height = request.height;
   view.layers = request.layers;
@@ -341,10 +342,10 @@ int record_window(const RecordOptions& opt) {
   provenance["t_start"] = opt.clip.t_start;
   provenance["t_end"] = opt.clip.t_end;
   provenance["view"] = std::string(render::view_name(frames.view.kind));
-  const record::RecordingSpec spec{frames.view.width, frames.view.height, opt.clip.fps, provenance.dump()};
-  std::unique_ptr<record::Recorder> recorder;
+  const record::ClipWriterSpec spec{frames.view.width, frames.view.height, opt.clip.fps, provenance.dump()};
+  std::unique_ptr<record::ClipWriter> recorder;
   try {
-    recorder = record::open_recorder(*format, opt.render.out, spec);
+    recorder = record::open_clip_writer(*format, opt.render.out, spec);
   } catch (const record::RecordError& e) {
     throw BadInput{std::string("--out: ") + e.what()};
   }

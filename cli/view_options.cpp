@@ -14,7 +14,8 @@ namespace {
 std::string help_of(const render::ViewParameter& p) {
   std::string help(p.help);
   const render::ParameterType type = render::parameter_type(p);
-  if (type == render::ParameterType::enumeration) return "one of " + render::joined_view_names(" | ") + ": " + help;
+  if (type == render::ParameterType::enumeration)
+    return "one of " + render::joined_view_names(" | ") + ": " + help;
   if (type == render::ParameterType::list) {
     std::string names;
     for (const std::string_view n : render::layer_names()) {
@@ -48,6 +49,12 @@ void add_view_options(CLI::App& command, ViewArgs& args) {
     if (const auto fallback = render::default_value(p))
       option->default_str(std::holds_alternative<double>(*fallback) ? shortest(std::get<double>(*fallback))
                                                                     : std::get<std::string>(*fallback));
+    switch (render::parameter_type(p)) {
+      case render::ParameterType::integer: option->type_name("INT"); break;
+      case render::ParameterType::number: option->type_name("FLOAT"); break;
+      case render::ParameterType::enumeration: option->type_name("VIEW"); break;
+      case render::ParameterType::list: option->type_name("LIST"); break;
+    }
     args.options[name] = option;
   }
   command.add_option("--camera", args.camera,
@@ -65,7 +72,8 @@ render::ViewRequest view_request(const ViewArgs& args) {
     char extra = 0;
     if (std::sscanf(args.camera.c_str(), "%lf,%lf,%lf%c", &yaw, &pitch, &distance, &extra) != 3)
       refuse("--camera", args.camera, "must be yaw,pitch,distance (three numbers)");
-    for (const auto& [name, value] : {std::pair{"yaw", yaw}, std::pair{"pitch", pitch}, std::pair{"distance", distance}})
+    for (const auto& [name, value] :
+         {std::pair{"yaw", yaw}, std::pair{"pitch", pitch}, std::pair{"distance", distance}})
       if (const auto why = render::set_parameter(request, render::view_parameter(name), value))
         refuse("--camera", args.camera, std::string(name) + " " + *why);
   }

@@ -14,12 +14,12 @@ bool TimelineReplay::advance_to(double t, std::uint64_t max_attempts) {
   // Advance to each change, retune, advance on: the changes land at their own times exactly,
   // whatever times were asked for before (so every pattern of calls gives the same run).
   for (; next_ < changes_.size() && changes_[next_].t <= t; ++next_) {
-    if (!advance_recording(run_, trail_, changes_[next_].t, max_attempts) ||
+    if (!advance_sampling_trail(run_, trail_, changes_[next_].t, max_attempts) ||
         run_.state.t != changes_[next_].t)
       return false;
-    retune_recording(run_, trail_, changes_[next_].scene);
+    retune_carrying_trail(run_, trail_, changes_[next_].scene);
   }
-  return advance_recording(run_, trail_, t, max_attempts);
+  return advance_sampling_trail(run_, trail_, t, max_attempts);
 }
 
 bool replay(const Scene& scene, std::span<const ParameterChange> changes, double until, Simulation& run,

@@ -34,7 +34,7 @@ class TimelineReplay {
   TimelineReplay(const Scene& scene, std::vector<ParameterChange> changes, Trail trail = {});
   // Advances to `t` (not before the current time) through the changes up to it, recording the
   // trail. False when a change's time could not be reached or max_attempts ran out on the way to a
-  // change; else advance_recording's answer for the last stretch (true when the run stopped on its
+  // change; else advance_sampling_trail's answer for the last stretch (true when the run stopped on its
   // own: its status says so).
   bool advance_to(double t, std::uint64_t max_attempts = kNoStepLimit);
   const Simulation& run() const { return run_; }

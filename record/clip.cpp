@@ -90,12 +90,12 @@ bool reached(TimelineReplay& replay, double t, std::uint64_t max_attempts) {
 
 }  // namespace
 
-bool record_clip(const Clip& clip, const ClipFrames& f, Recorder& recorder, const RenderFrame& render,
+bool record_clip(const Clip& clip, const ClipFrames& f, ClipWriter& writer, const RenderFrame& render,
                  const Progress& progress) {
   const long long n = frame_count(clip);
   // Palette samples (GIF): frames spread evenly over the clip, first and last included.
   std::vector<long long> samples;
-  const int wanted = recorder.palette_samples();
+  const int wanted = writer.palette_samples();
   for (int j = 0; j < wanted; ++j) {
     const long long k = wanted == 1 ? 0 : (n - 1) * j / (wanted - 1);
     if (samples.empty() || samples.back() != k) samples.push_back(k);
@@ -108,7 +108,7 @@ bool record_clip(const Clip& clip, const ClipFrames& f, Recorder& recorder, cons
     for (const long long k : samples) {
       const double t = frame_time(clip, k);
       if (!reached(replay, t, f.max_attempts)) stopped(replay, t);
-      recorder.add_palette_sample(draw(f, replay, render).rgba.data());
+      writer.add_palette_sample(draw(f, replay, render).rgba.data());
       if (!step()) return false;
     }
   }
@@ -116,10 +116,10 @@ bool record_clip(const Clip& clip, const ClipFrames& f, Recorder& recorder, cons
   for (long long k = 0; k < n; ++k) {
     const double t = frame_time(clip, k);
     if (!reached(replay, t, f.max_attempts)) stopped(replay, t);
-    recorder.add(draw(f, replay, render).rgba.data());
+    writer.add(draw(f, replay, render).rgba.data());
     if (!step()) return false;
   }
-  recorder.finish();
+  writer.finish();
   return true;
 }
 

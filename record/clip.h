@@ -63,9 +63,9 @@ using RenderFrame = std::function<render::Image(render::Snapshot, const render::
 // to cancel.
 using Progress = std::function<bool(long long done, long long total)>;
 
-// Records the clip into `recorder` and finishes it; false when cancelled (the file is then
+// Records the clip into `writer` and finishes it; false when cancelled (the file is then
 // incomplete). RecordError with the reason when the run stops before the end, or the writer fails.
-bool record_clip(const Clip& clip, const ClipFrames& frames, Recorder& recorder, const RenderFrame& render,
+bool record_clip(const Clip& clip, const ClipFrames& frames, ClipWriter& writer, const RenderFrame& render,
                  const Progress& progress = {});
 
 }  // namespace spinfold::record

@@ -46,7 +46,8 @@ std::optional<std::string> size_unsupported_reason(Format format, int width, int
   return std::nullopt;
 }
 
-std::unique_ptr<Recorder> open_recorder(Format format, const std::string& path, const RecordingSpec& spec) {
+std::unique_ptr<ClipWriter> open_clip_writer(Format format, const std::string& path,
+                                             const ClipWriterSpec& spec) {
   // Before the file exists: the writers turn fps into integer delays and time bases.
   if (!(spec.fps >= kMinFps && spec.fps <= kMaxFps))
     throw RecordError("fps must be a number from 0.01 to 120 [frames/s]");

@@ -54,12 +54,13 @@ const ViewParameter& view_parameter(std::string_view name) {
 }
 
 ParameterType parameter_type(const ViewParameter& p) {
-  return std::visit(Overloaded{[](int ViewRequest::*) { return ParameterType::integer; },
-                               [](double ViewRequest::*) { return ParameterType::number; },
-                               [](std::optional<double> ViewRequest::*) { return ParameterType::number; },
-                               [](std::optional<ViewKind> ViewRequest::*) { return ParameterType::enumeration; },
-                               [](unsigned ViewRequest::*) { return ParameterType::list; }},
-                    p.member);
+  return std::visit(
+      Overloaded{[](int ViewRequest::*) { return ParameterType::integer; },
+                 [](double ViewRequest::*) { return ParameterType::number; },
+                 [](std::optional<double> ViewRequest::*) { return ParameterType::number; },
+                 [](std::optional<ViewKind> ViewRequest::*) { return ParameterType::enumeration; },
+                 [](unsigned ViewRequest::*) { return ParameterType::list; }},
+      p.member);
 }
 
 std::vector<std::string_view> choices(const ViewParameter& p) {
@@ -84,26 +85,26 @@ Range allowed_range(const ViewParameter& p, int max_image_side) {
 
 std::optional<std::variant<double, std::string>> default_value(const ViewParameter& p) {
   const ViewRequest defaults;
-  return std::visit(Overloaded{[&](int ViewRequest::*m) -> std::optional<std::variant<double, std::string>> {
-                                 return static_cast<double>(defaults.*m);
-                               },
-                               [&](double ViewRequest::*m) -> std::optional<std::variant<double, std::string>> {
-                                 return defaults.*m;
-                               },
-                               [&](std::optional<double> ViewRequest::*m)
-                                   -> std::optional<std::variant<double, std::string>> {
-                                 if (!(defaults.*m)) return std::nullopt;
-                                 return *(defaults.*m);
-                               },
-                               [&](std::optional<ViewKind> ViewRequest::*m)
-                                   -> std::optional<std::variant<double, std::string>> {
-                                 if (!(defaults.*m)) return std::nullopt;
-                                 return std::string(view_name(*(defaults.*m)));
-                               },
-                               [&](unsigned ViewRequest::*m) -> std::optional<std::variant<double, std::string>> {
-                                 return layer_list(defaults.*m);
-                               }},
-                    p.member);
+  return std::visit(
+      Overloaded{
+          [&](int ViewRequest::*m) -> std::optional<std::variant<double, std::string>> {
+            return static_cast<double>(defaults.*m);
+          },
+          [&](double ViewRequest::*m) -> std::optional<std::variant<double, std::string>> {
+            return defaults.*m;
+          },
+          [&](std::optional<double> ViewRequest::*m) -> std::optional<std::variant<double, std::string>> {
+            if (!(defaults.*m)) return std::nullopt;
+            return *(defaults.*m);
+          },
+          [&](std::optional<ViewKind> ViewRequest::*m) -> std::optional<std::variant<double, std::string>> {
+            if (!(defaults.*m)) return std::nullopt;
+            return std::string(view_name(*(defaults.*m)));
+          },
+          [&](unsigned ViewRequest::*m) -> std::optional<std::variant<double, std::string>> {
+            return layer_list(defaults.*m);
+          }},
+      p.member);
 }
 
 std::string default_layer_list() {
@@ -143,20 +144,20 @@ std::string expectation(const ViewParameter& p, int max_image_side) {
   return "must be text";
 }
 
-std::optional<std::string> set_parameter(ViewRequest& request, const ViewParameter& p, const GivenValue& value,
-                                         int max_image_side) {
+std::optional<std::string> set_parameter(ViewRequest& request, const ViewParameter& p,
+                                         const GivenValue& value, int max_image_side) {
   const ParameterType type = parameter_type(p);
   if (type == ParameterType::integer || type == ParameterType::number) {
     const std::optional<double> x = std::holds_alternative<double>(value)
                                         ? std::optional(std::get<double>(value))
                                         : number_in(std::get<std::string>(value));
     const Range r = allowed_range(p, max_image_side);
-    if (!x || !std::isfinite(*x) || !r.contains(*x) || (type == ParameterType::integer && *x != std::floor(*x)))
+    if (!x || !std::isfinite(*x) || !r.contains(*x) ||
+        (type == ParameterType::integer && *x != std::floor(*x)))
       return expectation(p, max_image_side);
     std::visit(Overloaded{[&](int ViewRequest::*m) { request.*m = static_cast<int>(*x); },
                           [&](double ViewRequest::*m) { request.*m = *x; },
-                          [&](std::optional<double> ViewRequest::*m) { request.*m = *x; },
-                          [](auto) {}},
+                          [&](std::optional<double> ViewRequest::*m) { request.*m = *x; }, [](auto) {}},
                p.member);
     return std::nullopt;
   }
@@ -177,22 +178,20 @@ std::optional<std::string> set_parameter(ViewRequest& request, const ViewParamet
 }
 
 std::optional<GivenValue> parameter_value(const ViewRequest& request, const ViewParameter& p) {
-  return std::visit(Overloaded{[&](int ViewRequest::*m) -> std::optional<GivenValue> {
-                                 return static_cast<double>(request.*m);
-                               },
-                               [&](double ViewRequest::*m) -> std::optional<GivenValue> { return request.*m; },
-                               [&](std::optional<double> ViewRequest::*m) -> std::optional<GivenValue> {
-                                 if (!(request.*m)) return std::nullopt;
-                                 return *(request.*m);
-                               },
-                               [&](std::optional<ViewKind> ViewRequest::*m) -> std::optional<GivenValue> {
-                                 if (!(request.*m)) return std::nullopt;
-                                 return std::string(view_name(*(request.*m)));
-                               },
-                               [&](unsigned ViewRequest::*m) -> std::optional<GivenValue> {
-                                 return layer_list(request.*m);
-                               }},
-                    p.member);
+  return std::visit(
+      Overloaded{
+          [&](int ViewRequest::*m) -> std::optional<GivenValue> { return static_cast<double>(request.*m); },
+          [&](double ViewRequest::*m) -> std::optional<GivenValue> { return request.*m; },
+          [&](std::optional<double> ViewRequest::*m) -> std::optional<GivenValue> {
+            if (!(request.*m)) return std::nullopt;
+            return *(request.*m);
+          },
+          [&](std::optional<ViewKind> ViewRequest::*m) -> std::optional<GivenValue> {
+            if (!(request.*m)) return std::nullopt;
+            return std::string(view_name(*(request.*m)));
+          },
+          [&](unsigned ViewRequest::*m) -> std::optional<GivenValue> { return layer_list(request.*m); }},
+      p.member);
 }
 
 // ---- the layer names (render/view.h), from the table ---------------------------------------------

@@ -26,13 +26,13 @@ namespace spinfold::render {
 
 // What the view parameters ask for, before the surface is known.
 struct ViewRequest {
-  int width = 640;                  // [pixels]
-  int height = 480;                 // [pixels]
-  std::optional<ViewKind> view{};   // absent: the surface's own (default_view)
+  int width = 640;                   // [pixels]
+  int height = 480;                  // [pixels]
+  std::optional<ViewKind> view{};    // absent: the surface's own (default_view)
   unsigned layers = kDefaultLayers;  // Layer bits
-  double scale = 0.25;  // the ellipse is the image of scale·(unit circle) under e_A [surface radii;
-                        // lengths in the conformal view: body_scale_length]
-  std::optional<double> yaw{};       // [rad] camera azimuth (3-D views); absent: aimed at the body
+  double scale = 0.25;          // the ellipse is the image of scale·(unit circle) under e_A [surface radii;
+                                // lengths in the conformal view: body_scale_length]
+  std::optional<double> yaw{};  // [rad] camera azimuth (3-D views); absent: aimed at the body
   std::optional<double> pitch{};     // [rad] camera elevation (3-D views); absent: aimed at the body
   std::optional<double> distance{};  // [surface radii] (3-D views); absent: aimed at the body
   std::optional<double> trail{};     // [time] the trail's span before now; absent: the whole run
@@ -46,13 +46,15 @@ enum class ParameterType {
   list,         // comma-separated items, each one of choices() (empty items are ignored)
 };
 
-using ViewMember = std::variant<int ViewRequest::*, double ViewRequest::*, std::optional<double> ViewRequest::*,
-                                std::optional<ViewKind> ViewRequest::*, unsigned ViewRequest::*>;
+using ViewMember =
+    std::variant<int ViewRequest::*, double ViewRequest::*, std::optional<double> ViewRequest::*,
+                 std::optional<ViewKind> ViewRequest::*, unsigned ViewRequest::*>;
 
 struct ViewParameter {
   std::string_view name;  // the query parameter, the recording body's key, the CLI's --NAME
   ViewMember member;      // what it sets (its type and default)
-  std::string_view unit;  // numbers: "pixels", "rad", "surface radii", "time"; "" for none
+  std::string_view unit;  // numbers: "pixels", "rad", "radii" (surface radii), "time"; "" for none
+                          // (scale: surface radii, or lengths in the conformal view, as its help says)
   Range range;            // numbers: the allowed values (a side's maximum: also Limits::max_image_side)
   std::string_view help;  // one line: what it does, and what its absence means
 };
@@ -64,20 +66,38 @@ inline constexpr Range kImageSide{.min = 16.0, .max = kMaxImageSide};
 inline constexpr ViewParameter kViewParameters[] = {
     {"width", &ViewRequest::width, "pixels", kImageSide, "image width"},
     {"height", &ViewRequest::height, "pixels", kImageSide, "image height"},
-    {"view", &ViewRequest::view, "", {},
+    {"view",
+     &ViewRequest::view,
+     "",
+     {},
      "the picture (GET /api/v1/views lists each with the surfaces it shows); default: the surface's own"},
-    {"layers", &ViewRequest::layers, "", {},
+    {"layers",
+     &ViewRequest::layers,
+     "",
+     {},
      "what is drawn: the shaded surface, its geodesic grid, the body's ellipse, the frame arrows, the "
      "trail, the text overlay, and (not by default) the action variables and frequencies in the text "
      "overlay"},
-    {"scale", &ViewRequest::scale, "surface radii", {.min = 0.0, .min_open = true, .max = 10.0},
+    {"scale",
+     &ViewRequest::scale,
+     "surface radii",
+     {.min = 0.0, .min_open = true, .max = 10.0},
      "the body's ellipse: the image of this many surface radii (lengths in the conformal view) of the "
      "unit circle under e_A"},
-    {"yaw", &ViewRequest::yaw, "rad", {.min = -100.0, .max = 100.0},
+    {"yaw",
+     &ViewRequest::yaw,
+     "rad",
+     {.min = -100.0, .max = 100.0},
      "camera azimuth (3-D views); default: aimed at the body"},
-    {"pitch", &ViewRequest::pitch, "rad", {.min = -1.55, .max = 1.55},
+    {"pitch",
+     &ViewRequest::pitch,
+     "rad",
+     {.min = -1.55, .max = 1.55},
      "camera elevation (3-D views); default: aimed at the body"},
-    {"distance", &ViewRequest::distance, "surface radii", {.min = 1.2, .max = 100.0},
+    {"distance",
+     &ViewRequest::distance,
+     "surface radii",
+     {.min = 1.2, .max = 100.0},
      "camera distance from the centre in surface radii (3-D views); default: aimed at the body"},
     {"trail", &ViewRequest::trail, "time", kNonNegative,
      "the trail's span: the path over this much simulated time before now; default: the whole run "
@@ -127,7 +147,7 @@ std::optional<std::variant<double, std::string>> default_value(const ViewParamet
 std::string default_layer_list();
 
 // Why a value is refused, in the words of every reader (query, body, CLI): "must be a whole number
-// from 16 to 4096 [pixels]", "must be a number in (0, 10] [surface radii]", "must be sphere, disk,
+// from 16 to 4096 [pixels]", "must be a number in (0, 10]", "must be sphere, disk,
 // … or conformal", "'sparkles' is not one of surface, grid, …, actions".
 std::string expectation(const ViewParameter& p, int max_image_side = kMaxImageSide);
 
@@ -136,8 +156,8 @@ using GivenValue = std::variant<double, std::string>;
 
 // Sets `p` in `request` from a value; nullopt when set, else the reason it is refused (the caller
 // names the field and the value). A text for a number is read as one (all of it, finite).
-std::optional<std::string> set_parameter(ViewRequest& request, const ViewParameter& p, const GivenValue& value,
-                                         int max_image_side = kMaxImageSide);
+std::optional<std::string> set_parameter(ViewRequest& request, const ViewParameter& p,
+                                         const GivenValue& value, int max_image_side = kMaxImageSide);
 
 // The request's value of `p` as the API writes it (the inverse of set_parameter; nullopt when absent).
 std::optional<GivenValue> parameter_value(const ViewRequest& request, const ViewParameter& p);

@@ -186,7 +186,8 @@ TEST(CliRender, WritesAPngOfTheRequestedSize) {
 // --camera is --yaw, --pitch and --distance at once: the same picture to the byte; one of them alone
 // replaces that part of the camera aimed at the body.
 TEST(CliRender, CameraIsTheThreeCameraOptionsAtOnce) {
-  const std::string base = std::filesystem::temp_directory_path() / ("spinfold_cam_" + std::to_string(getpid()));
+  const std::string base =
+      std::filesystem::temp_directory_path() / ("spinfold_cam_" + std::to_string(getpid()));
   const auto render = [&](const std::string& name, const std::string& camera) {
     const Result r = spinfold("render --scene spinning_rigid_sphere --t 1 --width 96 --height 72 " + camera +
                               " --out " + base + name);
@@ -229,9 +230,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadArgs{"render --scene spinning_rigid_sphere --pitch 2 --out /tmp/x.png",
                 "--pitch: must be a number from -1.55 to 1.55 [rad] (got '2')"},
         BadArgs{"render --scene spinning_rigid_sphere --camera 0.5,0.2,0.5 --out /tmp/x.png",
-                "--camera: distance must be a number from 1.2 to 100 [surface radii]"},
+                "--camera: distance must be a number from 1.2 to 100 [radii]"},
         BadArgs{"render --scene spinning_rigid_sphere --scale 11 --out /tmp/x.png", "(0, 10]"},
-        BadArgs{"record --t-end 1 --format gif --trail -1 --out /tmp/x.gif", "--trail: must be a number >= 0"},
+        BadArgs{"record --t-end 1 --format gif --trail -1 --out /tmp/x.gif",
+                "--trail: must be a number >= 0"},
         BadArgs{"render --scene spinning_rigid_sphere --t -1 --out /tmp/x.png", "--t"},
         BadArgs{"render --scene spinning_rigid_sphere", "--out"},
         BadArgs{"render --scene spinning_rigid_sphere --gl nonsense --out /tmp/x.png", "--gl"},

@@ -63,11 +63,11 @@ TEST_P(Replay, RebuiltRunEqualsTheLiveOneBitForBit) {
   std::size_t next = 0;
   for (double t = 0.1; t <= 5.0 + 1e-9; t += 0.1) {
     if (next < changes.size() && changes[next].t <= t) {
-      advance_recording(live, live_trail, changes[next].t);
-      retune_recording(live, live_trail, changes[next].scene);
+      advance_sampling_trail(live, live_trail, changes[next].t);
+      retune_carrying_trail(live, live_trail, changes[next].scene);
       ++next;
     }
-    advance_recording(live, live_trail, t);
+    advance_sampling_trail(live, live_trail, t);
   }
   ASSERT_EQ(live.state.status, Status::ok);
   Simulation rebuilt;
