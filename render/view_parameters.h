@@ -80,7 +80,7 @@ inline constexpr ViewParameter kViewParameters[] = {
      "overlay"},
     {"scale",
      &ViewRequest::scale,
-     "surface radii",
+     "",
      {.min = 0.0, .min_open = true, .max = 10.0},
      "the body's ellipse: the image of this many surface radii (lengths in the conformal view) of the "
      "unit circle under e_A"},
@@ -96,7 +96,7 @@ inline constexpr ViewParameter kViewParameters[] = {
      "camera elevation (3-D views); default: aimed at the body"},
     {"distance",
      &ViewRequest::distance,
-     "surface radii",
+     "radii",
      {.min = 1.2, .max = 100.0},
      "camera distance from the centre in surface radii (3-D views); default: aimed at the body"},
     {"trail", &ViewRequest::trail, "time", kNonNegative,
