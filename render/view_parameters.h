@@ -30,9 +30,10 @@ struct ViewRequest {
   int height = 480;                  // [pixels]
   std::optional<ViewKind> view{};    // absent: the surface's own (default_view)
   unsigned layers = kDefaultLayers;  // Layer bits
-  double scale = 0.25;          // the ellipse is the image of scale·(unit circle) under e_A [surface radii;
-                                // lengths in the conformal view: body_scale_length]
-  std::optional<double> yaw{};  // [rad] camera azimuth (3-D views); absent: aimed at the body
+  // [surface radii; lengths in the conformal view (body_scale_length)] the body's ellipse is the
+  // image of scale·(unit circle) under e_A
+  double scale = 0.25;
+  std::optional<double> yaw{};       // [rad] camera azimuth (3-D views); absent: aimed at the body
   std::optional<double> pitch{};     // [rad] camera elevation (3-D views); absent: aimed at the body
   std::optional<double> distance{};  // [surface radii] (3-D views); absent: aimed at the body
   std::optional<double> trail{};     // [time] the trail's span before now; absent: the whole run
