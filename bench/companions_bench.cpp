@@ -40,7 +40,7 @@ int run_companions_bench(int repeats, double until) {
           Simulation sim = start_simulation(scene);
           Trail t;
           if (trail)
-            advance_recording(sim, t, until);
+            advance_sampling_trail(sim, t, until);
           else
             advance_to(sim, until);
         });

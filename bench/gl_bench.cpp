@@ -53,7 +53,7 @@ BackendResult measure(render::GlBackend backend, int frames) {
   trail.spacing = 2.0 / 64;
   std::vector<render::Snapshot> snapshots;
   for (int i = 0; i < frames + 2; ++i) {
-    advance_recording(run, trail, 2.0 + 0.02 * i);
+    advance_sampling_trail(run, trail, 2.0 + 0.02 * i);
     snapshots.push_back(render::make_snapshot(run, trail, -1.0));
   }
   for (const auto& [w, h] : {std::pair{640, 480}, std::pair{1920, 1080}}) {

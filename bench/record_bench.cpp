@@ -68,7 +68,7 @@ int run_record_bench(const RecordBenchOptions& o) {
   for (const record::Format format :
        {record::Format::webm, record::Format::mp4, record::Format::gif, record::Format::png_zip}) {
     const std::string path = o.out_dir + "/clip." + std::string(record::file_extension(format));
-    auto recorder = record::open_recorder(format, path, {o.width, o.height, o.fps});
+    auto recorder = record::open_clip_writer(format, path, {o.width, o.height, o.fps});
     double render_s = 0.0;
     const auto start = Clock::now();
     record::record_clip(clip, frames, *recorder, [&](render::Snapshot s, const render::ViewOptions& v) {

@@ -47,7 +47,7 @@ render::Snapshot bench_snapshot(int trail_points = 513) {
   Trail trail;
   trail.spacing = 20.0 / 512;
   trail.max_points = static_cast<std::size_t>(trail_points);
-  advance_recording(run, trail, 20.0 * (trail_points - 1) / 512);
+  advance_sampling_trail(run, trail, 20.0 * (trail_points - 1) / 512);
   return render::make_snapshot(run, trail, -1.0);
 }
 
@@ -74,7 +74,7 @@ FanRun fan_run(int companions) {
   text += '}';
   FanRun fan{start_simulation(*parse_scene_text(text).scene), Trail{}};
   fan.trail.spacing = 20.0 / 512;
-  advance_recording(fan.run, fan.trail, 20.0);
+  advance_sampling_trail(fan.run, fan.trail, 20.0);
   return fan;
 }
 
@@ -111,7 +111,7 @@ std::vector<render::Snapshot> moving_snapshots(std::string_view preset, double t
   trail.spacing = t0 / 64;
   std::vector<render::Snapshot> out;
   for (int i = 0; i < count; ++i) {
-    advance_recording(run, trail, t0 + dt * i);
+    advance_sampling_trail(run, trail, t0 + dt * i);
     out.push_back(render::make_snapshot(run, trail, -1.0));
   }
   return out;

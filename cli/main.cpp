@@ -38,6 +38,7 @@
 #include "engine/integrator.h"
 #include "engine/simulation.h"
 #ifndef SPINFOLD_COMPUTE_ONLY  // the compute-only build: simulate and sweep, no GL, FFmpeg or HTTP
+#include "cli/view_options.h"
 #include "record/clip.h"
 #include "record/recorder.h"
 #include "render/renderer.h"
@@ -235,67 +236,62 @@ int simulate(const SimulateOptions& opt) {
 struct RenderOptions {
   SimulateOptions scene;
   double t = 0.0;
-  std::string view;
-  int width = 640, height = 480;
-  std::string layers = "surface,grid,body,frame,trail,hud";
-  std::string camera;  // "yaw,pitch,distance"; empty: look at the body
-  double scale = 0.25;
-  std::optional<double> trail;  // time span of the trail; default: the whole run
+  cli::ViewArgs view;  // --width … --trail, --camera (cli/view_options.h)
   std::string out;
 };
 
-render::ViewOptions view_options(const RenderOptions& opt, const Scene& scene) {
+// The view options as the table reads them; the view checked against the scene's surface.
+render::ViewRequest view_request(const RenderOptions& opt) {
+  try {
+    return cli::view_request(opt.view);
+  } catch (const cli::BadViewOption& e) {
+    throw BadInput{e.what()};
+  }
+}
+
+render::ViewOptions view_options(const render::ViewRequest& request, const Scene& scene) {
   using namespace render;
   ViewOptions view;
-  view.kind = default_view(scene.surface.kind);
-  if (!opt.view.empty()) {
-    const auto kind = parse_view(opt.view);
-    if (!kind)
-      throw BadInput{"--view: must be one of " + joined_view_names(", ") + " (got '" + opt.view + "')"};
-    view.kind = *kind;
-  }
+  view.kind = request.view.value_or(default_view(scene.surface.kind));
   if (const auto why = view_unsupported_reason(view.kind, scene.surface.kind))
     throw BadInput{"--view: " + *why};
-  if (opt.width < 16 || opt.width > kMaxImageSide || opt.height < 16 || opt.height > kMaxImageSide)
-    throw BadInput{"--width/--height: must be between 16 and 4096 pixels"};
-  view.width = opt.width;
-  view.height = opt.height;
-  std::string unknown;
-  const auto layers = parse_layers(opt.layers, &unknown);
-  if (!layers)
-    throw BadInput{"--layers: unknown layer '" + unknown + "' (surface, grid, body, frame, trail, hud)"};
-  view.layers = *layers;
-  if (!std::isfinite(opt.scale) || !(opt.scale > 0.0)) throw BadInput{"--scale: must be a finite number > 0"};
-  view.scale = opt.scale * render::body_scale_length(view.kind, scene.surface);
-  if (!opt.camera.empty()) {
-    double yaw = 0, pitch = 0, distance = 0;
-    char extra = 0;
-    if (std::sscanf(opt.camera.c_str(), "%lf,%lf,%lf%c", &yaw, &pitch, &distance, &extra) != 3 ||
-        !(distance > 0) || !std::isfinite(yaw) || !std::isfinite(pitch) || !std::isfinite(distance))
-      throw BadInput{"--camera: must be yaw,pitch,distance (radians, radians, radii > 0)"};
-    view.yaw = yaw;
-    view.pitch = pitch;
-    view.distance = distance;
-  }
+  view.width = request.width;
+  view.height = request.height;
+  view.layers = request.layers;
+  view.scale = request.scale * render::body_scale_length(view.kind, scene.surface);
   return view;
+}
+
+// The camera given in full (--camera, or --yaw, --pitch and --distance) is used as given; else the
+// camera is aimed at the body and the parts given replace the aimed ones (as a frame of the API).
+bool whole_camera(const render::ViewRequest& r) {
+  return r.yaw && r.pitch && r.distance;
 }
 
 int render_frame(const RenderOptions& opt, const std::string& format_option) {
   if (!std::isfinite(opt.t) || opt.t < 0.0) throw BadInput{"--t: must be a finite number >= 0"};
   if (opt.out.empty()) throw BadInput{"--out: the PNG file to write is required"};
   const render::FigureFormat format = cli::render_format(format_option, opt.out);  // before any work
-  if (opt.trail && (!std::isfinite(*opt.trail) || *opt.trail < 0.0)) throw BadInput{"--trail: must be >= 0"};
+  const render::ViewRequest request = view_request(opt);
   const Scene scene = load_scene(opt.scene);
-  render::ViewOptions view = view_options(opt, scene);
+  render::ViewOptions view = view_options(request, scene);
 
   Simulation run;
   const render::Snapshot snapshot =
-      render::snapshot_at(scene, opt.t, view.layers & render::kTrail, opt.trail, run);
+      render::snapshot_at(scene, opt.t, view.layers & render::kTrail, request.trail, run);
+  if (!whole_camera(request)) {
+    // A vector figure has no HUD box for the camera to keep clear of (its caption is below).
+    const unsigned layers = view.layers;
+    if (format != render::FigureFormat::png) view.layers &= ~static_cast<unsigned>(render::kHud);
+    render::aim_camera_at_body(view, snapshot);
+    view.layers = layers;
+  }
+  if (request.yaw) view.yaw = *request.yaw;
+  if (request.pitch) view.pitch = *request.pitch;
+  if (request.distance) view.distance = *request.distance;
   if (format != render::FigureFormat::png) {  // a vector figure (cli/figure_command.h)
-    cli::write_frame_figure(scene, snapshot, view, opt.camera.empty(), format, opt.out, opt.scene.command,
-                            opt.t);
+    cli::write_frame_figure(scene, snapshot, view, false, format, opt.out, opt.scene.command, opt.t);
   } else {
-    if (opt.camera.empty()) render::aim_camera_at_body(view, snapshot);
     render::Renderer renderer;
     const std::vector<render::PngText> texts =
         picture_texts(scene, opt.scene.command, opt.t, render::view_name(view.kind));
@@ -341,27 +337,28 @@ int record_window(const RecordOptions& opt) {
   for (const FieldError& e : record::clip_errors(opt.clip))
     throw BadInput{flag(e.field) + ": " + e.reason + " (got " + e.value + ")"};
   const auto format = record::parse_format(opt.format);
-  if (!format) throw BadInput{"--format: must be gif, webm, mp4 or png-zip (got '" + opt.format + "')"};
+  if (!format)
+    throw BadInput{"--format: must be " + record::joined_format_names(", ", " or ") + " (got '" + opt.format +
+                   "')"};
   if (opt.render.out.empty()) throw BadInput{"--out: the file to write is required"};
-  const auto& trail = opt.render.trail;
-  if (trail && (!std::isfinite(*trail) || *trail < 0.0)) throw BadInput{"--trail: must be >= 0"};
+  const render::ViewRequest request = view_request(opt.render);
   const Scene scene = load_scene(opt.render.scene);
-  record::ClipFrames frames{.scene = scene, .view = view_options(opt.render, scene), .trail_span = trail};
+  record::ClipFrames frames{.scene = scene,
+                            .view = view_options(request, scene),
+                            .yaw = request.yaw,
+                            .pitch = request.pitch,
+                            .distance = request.distance,
+                            .trail_span = request.trail};
   if (const auto why = record::size_unsupported_reason(*format, frames.view.width, frames.view.height))
     throw BadInput{"--width/--height: " + *why};
-  if (!opt.render.camera.empty()) {
-    frames.yaw = frames.view.yaw;
-    frames.pitch = frames.view.pitch;
-    frames.distance = frames.view.distance;
-  }
   nlohmann::ordered_json provenance = provenance_json(scene, opt.render.scene.command);
   provenance["t_start"] = opt.clip.t_start;
   provenance["t_end"] = opt.clip.t_end;
   provenance["view"] = std::string(render::view_name(frames.view.kind));
-  const record::RecordingSpec spec{frames.view.width, frames.view.height, opt.clip.fps, provenance.dump()};
-  std::unique_ptr<record::Recorder> recorder;
+  const record::ClipWriterSpec spec{frames.view.width, frames.view.height, opt.clip.fps, provenance.dump()};
+  std::unique_ptr<record::ClipWriter> recorder;
   try {
-    recorder = record::open_recorder(*format, opt.render.out, spec);
+    recorder = record::open_clip_writer(*format, opt.render.out, spec);
   } catch (const record::RecordError& e) {
     throw BadInput{std::string("--out: ") + e.what()};
   }
@@ -535,14 +532,7 @@ int main(int argc, char** argv) {
   render_cmd->add_option("scene_file", ren.scene.scene_file, "Scene JSON file (default: the default preset)");
   render_cmd->add_option("--scene", ren.scene.preset, "Render an embedded preset by name");
   render_cmd->add_option("--t", ren.t, "Time of the frame")->capture_default_str();
-  render_cmd->add_option("--view", ren.view, render::joined_view_names(" | ") + " (default: by surface)");
-  render_cmd->add_option("--width", ren.width, "Image width [pixels]")->capture_default_str();
-  render_cmd->add_option("--height", ren.height, "Image height [pixels]")->capture_default_str();
-  render_cmd->add_option("--layers", ren.layers, "Comma-separated layers")->capture_default_str();
-  render_cmd->add_option("--camera", ren.camera, "yaw,pitch,distance (3-D views; default: look at the body)");
-  render_cmd->add_option("--scale", ren.scale, "Ellipse display scale [surface radii]")
-      ->capture_default_str();
-  render_cmd->add_option("--trail", ren.trail, "Time span of the trail (default: the whole run)");
+  cli::add_view_options(*render_cmd, ren.view);
   render_cmd->add_option("--out", ren.out, "File to write (.png, .svg or .pdf)");
   std::string render_format;  // png | svg | pdf (cli/figure_command.h)
   render_cmd->add_option("--format", render_format,
@@ -563,18 +553,9 @@ int main(int argc, char** argv) {
   record_cmd->add_option("--fps", rec.clip.fps, "Frames per second of the file")->capture_default_str();
   record_cmd->add_option("--speed", rec.clip.speed, "Simulated time per second of the file")
       ->capture_default_str();
-  record_cmd->add_option("--format", rec.format, "gif | webm | mp4 | png-zip")->required();
+  record_cmd->add_option("--format", rec.format, record::joined_format_names(" | ", " | "))->required();
   record_cmd->add_option("--out", rec.render.out, "File to write")->required();
-  record_cmd->add_option("--view", rec.render.view,
-                         render::joined_view_names(" | ") + " (default: by surface)");
-  record_cmd->add_option("--width", rec.render.width, "Frame width [pixels]")->capture_default_str();
-  record_cmd->add_option("--height", rec.render.height, "Frame height [pixels]")->capture_default_str();
-  record_cmd->add_option("--layers", rec.render.layers, "Comma-separated layers")->capture_default_str();
-  record_cmd->add_option("--camera", rec.render.camera,
-                         "yaw,pitch,distance (3-D views; default: aimed at the body in every frame)");
-  record_cmd->add_option("--scale", rec.render.scale, "Ellipse display scale [surface radii]")
-      ->capture_default_str();
-  record_cmd->add_option("--trail", rec.render.trail, "Time span of the trail (default: the whole run)");
+  cli::add_view_options(*record_cmd, rec.render.view);
   record_cmd->add_option("--integrator", rec.render.scene.integrator, "Override the scene's integrator name");
   add_gl_option(record_cmd, gl_choice);
   record_cmd->add_flag("--quiet", rec.quiet, "No progress bar (there is none when stderr is not a terminal)");

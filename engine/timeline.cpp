@@ -4,14 +4,31 @@
 
 namespace spinfold {
 
+TimelineReplay::TimelineReplay(const Scene& scene, std::vector<ParameterChange> changes, Trail trail)
+    : changes_(std::move(changes)), run_(start_simulation(scene)), trail_(std::move(trail)) {
+  trail_.points.clear();
+  trail_.companions.clear();
+}
+
+bool TimelineReplay::advance_to(double t, std::uint64_t max_attempts) {
+  // Advance to each change, retune, advance on: the changes land at their own times exactly,
+  // whatever times were asked for before (so every pattern of calls gives the same run).
+  for (; next_ < changes_.size() && changes_[next_].t <= t; ++next_) {
+    if (!advance_sampling_trail(run_, trail_, changes_[next_].t, max_attempts) ||
+        run_.state.t != changes_[next_].t)
+      return false;
+    retune_carrying_trail(run_, trail_, changes_[next_].scene);
+  }
+  return advance_sampling_trail(run_, trail_, t, max_attempts);
+}
+
 bool replay(const Scene& scene, std::span<const ParameterChange> changes, double until, Simulation& run,
             Trail& trail, std::uint64_t max_attempts) {
-  run = start_simulation(scene);
-  for (const ParameterChange& change : changes) {
-    if (!advance_recording(run, trail, change.t, max_attempts) || run.state.t != change.t) return false;
-    retune_recording(run, trail, change.scene);
-  }
-  return advance_recording(run, trail, until, max_attempts);
+  TimelineReplay replay(scene, {changes.begin(), changes.end()}, std::move(trail));
+  const bool complete = replay.advance_to(until, max_attempts);
+  run = replay.take_run();
+  trail = replay.take_trail();
+  return complete;
 }
 
 bool replay_sampled(const Scene& scene, std::span<const ParameterChange> changes, double until, double every,

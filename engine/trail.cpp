@@ -32,7 +32,7 @@ double next_sample_time(const Trail& trail) {
   return static_cast<double>(next_index(trail)) * trail.spacing;
 }
 
-void record_if_due(Trail& trail, const Simulation& run) {
+void sample_trail_if_due(Trail& trail, const Simulation& run) {
   if (trail.companions.size() != run.companions.size()) {
     Trail fresh;
     fresh.spacing = trail.spacing;
@@ -40,18 +40,18 @@ void record_if_due(Trail& trail, const Simulation& run) {
     trail.companions.assign(run.companions.size(), fresh);
   }
   for (std::size_t i = 0; i < run.companions.size(); ++i)
-    record_if_due(trail.companions[i], run.companions[i]);
+    sample_trail_if_due(trail.companions[i], run.companions[i]);
   if (run.state.t != next_sample_time(trail)) return;
   trail.points.push_back({next_index(trail), run.state.t, global_embedding(run.scene, run.state).X});
   if (trail.points.size() > trail.max_points) halve(trail);
 }
 
-bool advance_recording(Simulation& run, Trail& trail, double t_end, std::uint64_t max_attempts) {
-  record_if_due(trail, run);
+bool advance_sampling_trail(Simulation& run, Trail& trail, double t_end, std::uint64_t max_attempts) {
+  sample_trail_if_due(trail, run);
   for (double ts = next_sample_time(trail); ts <= t_end; ts = next_sample_time(trail)) {
     const bool done = advance_within(run, ts, max_attempts);
     if (!done || run.state.status != Status::ok || run.state.t != ts) return done;
-    record_if_due(trail, run);
+    sample_trail_if_due(trail, run);
   }
   return advance_within(run, t_end, max_attempts);
 }
@@ -73,7 +73,7 @@ void carry(Trail& trail, const Surface& before, const Surface& after) {
 
 }  // namespace
 
-void retune_recording(Simulation& run, Trail& trail, const Scene& next) {
+void retune_carrying_trail(Simulation& run, Trail& trail, const Scene& next) {
   const Surface before = run.scene.surface;
   retune(run, next);
   carry(trail, before, next.surface);

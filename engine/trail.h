@@ -27,19 +27,20 @@ struct Trail {
 // The first sample time after the last one recorded (or 0) [time].
 double next_sample_time(const Trail& trail);
 
-// Records the run's current position if it is at a sample time not yet recorded, and each
-// companion's likewise (a companion that stopped records no more).
-void record_if_due(Trail& trail, const Simulation& run);
+// Samples the run's current position into the trail if it is at a sample time not yet taken, and
+// each companion's likewise (a companion that stopped is sampled no more). ("Sample", not "record":
+// a recording is a video file of the server's jobs, record/ and server/recordings.h.)
+void sample_trail_if_due(Trail& trail, const Simulation& run);
 
-// advance_to that records the trail's samples on the way to t_end (each is the state advance_to
+// advance_to that takes the trail's samples on the way to t_end (each is the state advance_to
 // gives at that time, so the trail is the same however the run was advanced).
-bool advance_recording(Simulation& run, Trail& trail, double t_end,
-                       std::uint64_t max_attempts = kNoStepLimit);
+bool advance_sampling_trail(Simulation& run, Trail& trail, double t_end,
+                            std::uint64_t max_attempts = kNoStepLimit);
 
 // retune (engine/simulation.h) that carries the trail along: after a curvature dial or a radius
 // change each recorded point moves as the body does (the same (r, φ), or the same place in units
 // of R), so the path drawn stays on the surface shown.
-void retune_recording(Simulation& run, Trail& trail, const Scene& next);
+void retune_carrying_trail(Simulation& run, Trail& trail, const Scene& next);
 
 // The points within the last `span` [time] before `t` (all of them for span < 0).
 std::vector<Vec3> trail_positions(const Trail& trail, double t, double span);

@@ -56,24 +56,6 @@ double frame_time(const Clip& c, long long k) {
   return c.t_start + static_cast<double>(k) * c.speed / c.fps;
 }
 
-TimelineReplay::TimelineReplay(const Scene& scene, std::vector<ParameterChange> changes, Trail trail)
-    : changes_(std::move(changes)), run_(start_simulation(scene)), trail_(std::move(trail)) {
-  trail_.points.clear();
-  trail_.companions.clear();
-  record_if_due(trail_, run_);
-}
-
-bool TimelineReplay::advance_to(double t, std::uint64_t max_attempts) {
-  // As replay() (engine/timeline.h): advance to each change, retune, advance on.
-  for (; next_ < changes_.size() && changes_[next_].t <= t; ++next_) {
-    if (!advance_recording(run_, trail_, changes_[next_].t, max_attempts) ||
-        run_.state.t != changes_[next_].t)
-      return false;
-    retune_recording(run_, trail_, changes_[next_].scene);
-  }
-  return advance_recording(run_, trail_, t, max_attempts) && run_.state.status == Status::ok;
-}
-
 namespace {
 
 render::Image draw(const ClipFrames& f, const TimelineReplay& replay, const RenderFrame& render) {
@@ -92,6 +74,12 @@ render::Image draw(const ClipFrames& f, const TimelineReplay& replay, const Rend
   return image;
 }
 
+// Advances the replay to a frame's time: false when the run stopped (its status) or the step
+// attempts per frame ran out on the way.
+bool reached(TimelineReplay& replay, double t, std::uint64_t max_attempts) {
+  return replay.advance_to(t, max_attempts) && replay.run().state.status == Status::ok;
+}
+
 [[noreturn]] void stopped(const TimelineReplay& replay, double t) {
   const Simulation& run = replay.run();
   throw RecordError("the run stopped at t = " + shortest(run.state.t) +
@@ -102,12 +90,12 @@ render::Image draw(const ClipFrames& f, const TimelineReplay& replay, const Rend
 
 }  // namespace
 
-bool record_clip(const Clip& clip, const ClipFrames& f, Recorder& recorder, const RenderFrame& render,
+bool record_clip(const Clip& clip, const ClipFrames& f, ClipWriter& writer, const RenderFrame& render,
                  const Progress& progress) {
   const long long n = frame_count(clip);
   // Palette samples (GIF): frames spread evenly over the clip, first and last included.
   std::vector<long long> samples;
-  const int wanted = recorder.palette_samples();
+  const int wanted = writer.palette_samples();
   for (int j = 0; j < wanted; ++j) {
     const long long k = wanted == 1 ? 0 : (n - 1) * j / (wanted - 1);
     if (samples.empty() || samples.back() != k) samples.push_back(k);
@@ -119,19 +107,19 @@ bool record_clip(const Clip& clip, const ClipFrames& f, Recorder& recorder, cons
     TimelineReplay replay(f.scene, f.changes, f.trail);
     for (const long long k : samples) {
       const double t = frame_time(clip, k);
-      if (!replay.advance_to(t, f.max_attempts)) stopped(replay, t);
-      recorder.add_palette_sample(draw(f, replay, render).rgba.data());
+      if (!reached(replay, t, f.max_attempts)) stopped(replay, t);
+      writer.add_palette_sample(draw(f, replay, render).rgba.data());
       if (!step()) return false;
     }
   }
   TimelineReplay replay(f.scene, f.changes, f.trail);
   for (long long k = 0; k < n; ++k) {
     const double t = frame_time(clip, k);
-    if (!replay.advance_to(t, f.max_attempts)) stopped(replay, t);
-    recorder.add(draw(f, replay, render).rgba.data());
+    if (!reached(replay, t, f.max_attempts)) stopped(replay, t);
+    writer.add(draw(f, replay, render).rgba.data());
     if (!step()) return false;
   }
-  recorder.finish();
+  writer.finish();
   return true;
 }
 

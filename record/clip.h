@@ -1,7 +1,8 @@
 // A clip: the frames of a recording and what each shows. Frame k shows simulated time
 // t_k = t_start + k·speed/fps, for k = 0 … n−1 with t_k < t_end, so n = ⌈(t_end − t_start)·fps/speed⌉
 // frames play for n/fps seconds. The run is replayed in a copy from t = 0 through the timeline's
-// parameter changes (the same run, bit for bit, as the session or `spinfold render`), and each
+// parameter changes by the engine's TimelineReplay (engine/timeline.h: the same run, bit for bit, as
+// the session or `spinfold render`), and each
 // frame is drawn like a frame of the session: every body, legend, HUD and trail.
 #pragma once
 
@@ -45,23 +46,6 @@ long long frame_count(const Clip& clip);
 // t_k = t_start + k·speed/fps [time].
 double frame_time(const Clip& clip, long long k);
 
-// Replays a timeline in a copy: the run and its trail as they stand at each time asked for.
-class TimelineReplay {
- public:
-  TimelineReplay(const Scene& scene, std::vector<ParameterChange> changes, Trail trail = {});
-  // Advances to `t` (not before the current time) through the changes up to it, recording the
-  // trail; false when the run stopped (status) or `max_attempts` ran out on the way.
-  bool advance_to(double t, std::uint64_t max_attempts = kNoStepLimit);
-  const Simulation& run() const { return run_; }
-  const Trail& trail() const { return trail_; }
-
- private:
-  std::vector<ParameterChange> changes_;
-  std::size_t next_ = 0;  // the first change not yet applied
-  Simulation run_;
-  Trail trail_;
-};
-
 // What every frame of a clip shows, and how.
 struct ClipFrames {
   Scene scene{};                                     // the parameters at t = 0
@@ -79,9 +63,9 @@ using RenderFrame = std::function<render::Image(render::Snapshot, const render::
 // to cancel.
 using Progress = std::function<bool(long long done, long long total)>;
 
-// Records the clip into `recorder` and finishes it; false when cancelled (the file is then
+// Records the clip into `writer` and finishes it; false when cancelled (the file is then
 // incomplete). RecordError with the reason when the run stops before the end, or the writer fails.
-bool record_clip(const Clip& clip, const ClipFrames& frames, Recorder& recorder, const RenderFrame& render,
+bool record_clip(const Clip& clip, const ClipFrames& frames, ClipWriter& writer, const RenderFrame& render,
                  const Progress& progress = {});
 
 }  // namespace spinfold::record

@@ -24,9 +24,9 @@ namespace {
 constexpr int kPaletteSamples = 8;
 constexpr int kColors = 256;
 
-class GifWriter final : public Recorder {
+class GifWriter final : public ClipWriter {
  public:
-  GifWriter(const std::string& path, const RecordingSpec& spec) : spec_(spec) {
+  GifWriter(const std::string& path, const ClipWriterSpec& spec) : spec_(spec) {
     file_ = std::fopen(path.c_str(), "wb");
     if (!file_) throw RecordError("cannot write '" + path + "'");
     int error = 0;
@@ -200,7 +200,7 @@ class GifWriter final : public Recorder {
     return static_cast<GifByteType>(best);
   }
 
-  RecordingSpec spec_;
+  ClipWriterSpec spec_;
   std::FILE* file_ = nullptr;
   GifFileType* gif_ = nullptr;
   std::size_t pixels_ = 0;
@@ -214,7 +214,7 @@ class GifWriter final : public Recorder {
 
 }  // namespace
 
-std::unique_ptr<Recorder> open_gif(const std::string& path, const RecordingSpec& spec) {
+std::unique_ptr<ClipWriter> open_gif(const std::string& path, const ClipWriterSpec& spec) {
   return std::make_unique<GifWriter>(path, spec);
 }
 

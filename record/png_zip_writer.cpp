@@ -15,9 +15,9 @@ namespace spinfold::record {
 
 namespace {
 
-class PngZipWriter final : public Recorder {
+class PngZipWriter final : public ClipWriter {
  public:
-  PngZipWriter(const std::string& path, const RecordingSpec& spec) : spec_(spec) {
+  PngZipWriter(const std::string& path, const ClipWriterSpec& spec) : spec_(spec) {
     int error = 0;
     zip_ = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &error);
     if (!zip_) {
@@ -73,7 +73,7 @@ class PngZipWriter final : public Recorder {
  private:
   [[noreturn]] void fail() { throw RecordError(std::string("libzip: ") + zip_strerror(zip_)); }
 
-  RecordingSpec spec_;
+  ClipWriterSpec spec_;
   zip_t* zip_ = nullptr;
   long long frames_ = 0;
   std::uint64_t held_ = 0;
@@ -81,7 +81,7 @@ class PngZipWriter final : public Recorder {
 
 }  // namespace
 
-std::unique_ptr<Recorder> open_png_zip(const std::string& path, const RecordingSpec& spec) {
+std::unique_ptr<ClipWriter> open_png_zip(const std::string& path, const ClipWriterSpec& spec) {
   return std::make_unique<PngZipWriter>(path, spec);
 }
 

@@ -1,45 +1,42 @@
 #include "record/recorder.h"
 
+#include <iterator>
+
 #include "record/clip.h"
 
 namespace spinfold::record {
 
+const FormatInfo& format_info(Format format) {
+  for (const FormatInfo& f : kFormats)
+    if (f.format == format) return f;
+  return kFormats[0];
+}
+
+std::string joined_format_names(std::string_view separator, std::string_view last) {
+  std::string names;
+  for (std::size_t i = 0; i < std::size(kFormats); ++i) {
+    if (i > 0) names += i + 1 == std::size(kFormats) ? last : separator;
+    names += kFormats[i].name;
+  }
+  return names;
+}
+
 std::optional<Format> parse_format(std::string_view name) {
-  if (name == "gif") return Format::gif;
-  if (name == "webm") return Format::webm;
-  if (name == "mp4") return Format::mp4;
-  if (name == "png-zip") return Format::png_zip;
+  for (const FormatInfo& f : kFormats)
+    if (f.name == name) return f.format;
   return std::nullopt;
 }
 
 std::string_view format_name(Format format) {
-  switch (format) {
-    case Format::gif: return "gif";
-    case Format::webm: return "webm";
-    case Format::mp4: return "mp4";
-    case Format::png_zip: return "png-zip";
-  }
-  return "gif";
+  return format_info(format).name;
 }
 
 std::string_view content_type(Format format) {
-  switch (format) {
-    case Format::gif: return "image/gif";
-    case Format::webm: return "video/webm";
-    case Format::mp4: return "video/mp4";
-    case Format::png_zip: return "application/zip";
-  }
-  return "application/octet-stream";
+  return format_info(format).content_type;
 }
 
 std::string_view file_extension(Format format) {
-  switch (format) {
-    case Format::gif: return "gif";
-    case Format::webm: return "webm";
-    case Format::mp4: return "mp4";
-    case Format::png_zip: return "zip";
-  }
-  return "bin";
+  return format_info(format).extension;
 }
 
 std::optional<std::string> size_unsupported_reason(Format format, int width, int height) {
@@ -49,7 +46,8 @@ std::optional<std::string> size_unsupported_reason(Format format, int width, int
   return std::nullopt;
 }
 
-std::unique_ptr<Recorder> open_recorder(Format format, const std::string& path, const RecordingSpec& spec) {
+std::unique_ptr<ClipWriter> open_clip_writer(Format format, const std::string& path,
+                                             const ClipWriterSpec& spec) {
   // Before the file exists: the writers turn fps into integer delays and time bases.
   if (!(spec.fps >= kMinFps && spec.fps <= kMaxFps))
     throw RecordError("fps must be a number from 0.01 to 120 [frames/s]");

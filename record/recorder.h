@@ -1,5 +1,5 @@
-// Recorders: RGBA frames in, one file out (GIF, WebM/VP9, MP4/H.264, a zip of PNGs). One writer per
-// format behind this interface, each on a library that does the encoding and the container (giflib,
+// Clip writers: RGBA frames in, one file out (GIF, WebM/VP9, MP4/H.264, a zip of PNGs). One writer
+// per format behind this interface, each on a library that does the encoding and the container (giflib,
 // FFmpeg's libavformat/libavcodec, libzip): docs/recording.md says why each. No GL, no physics.
 #pragma once
 
@@ -14,6 +14,26 @@ namespace spinfold::record {
 
 enum class Format { gif, webm, mp4, png_zip };
 
+// The one table of recording formats: the name the API, the CLI and the UI use, the file's
+// extension and content type, and one line for a reader.
+struct FormatInfo {
+  std::string_view name;  // "png-zip"
+  Format format;
+  std::string_view extension;     // "zip"
+  std::string_view content_type;  // "application/zip"
+  std::string_view help;          // one line
+};
+inline constexpr FormatInfo kFormats[] = {
+    {"gif", Format::gif, "gif", "image/gif", "an animated GIF (giflib): one 256-colour palette for the clip"},
+    {"webm", Format::webm, "webm", "video/webm",
+     "WebM video, VP9 (libvpx through FFmpeg), 4:2:0: even sides"},
+    {"mp4", Format::mp4, "mp4", "video/mp4", "MP4 video, H.264 (libx264 through FFmpeg), 4:2:0: even sides"},
+    {"png-zip", Format::png_zip, "zip", "application/zip", "a zip of lossless PNG frames (libzip)"},
+};
+const FormatInfo& format_info(Format format);
+// The names joined for a message or a help text: "gif, webm, mp4 or png-zip" with last = " or ".
+std::string joined_format_names(std::string_view separator, std::string_view last);
+
 std::optional<Format> parse_format(std::string_view name);  // "gif", "webm", "mp4", "png-zip"
 std::string_view format_name(Format format);
 std::string_view content_type(Format format);    // "image/gif", "video/webm", "video/mp4", "application/zip"
@@ -27,7 +47,7 @@ struct RecordError : std::runtime_error {
 };
 
 // What every writer is told before the first frame.
-struct RecordingSpec {
+struct ClipWriterSpec {
   int width = 640;    // [pixels]
   int height = 480;   // [pixels]
   double fps = 30.0;  // frames per second of the file (the playback rate, not the simulated rate)
@@ -36,9 +56,9 @@ struct RecordingSpec {
   std::string provenance{};
 };
 
-class Recorder {
+class ClipWriter {
  public:
-  virtual ~Recorder() = default;
+  virtual ~ClipWriter() = default;
   // Frames to show the writer before the first add() (GIF: its one palette is chosen from them);
   // 0 when it needs none. Give them in the order of the recording.
   virtual int palette_samples() const { return 0; }
@@ -52,11 +72,12 @@ class Recorder {
 };
 
 // The writer of a format, writing `path` (created or truncated). RecordError when it cannot start.
-std::unique_ptr<Recorder> open_recorder(Format format, const std::string& path, const RecordingSpec& spec);
+std::unique_ptr<ClipWriter> open_clip_writer(Format format, const std::string& path,
+                                             const ClipWriterSpec& spec);
 
 // The writers (gif_writer.cpp, video_writer.cpp, png_zip_writer.cpp).
-std::unique_ptr<Recorder> open_gif(const std::string& path, const RecordingSpec& spec);
-std::unique_ptr<Recorder> open_video(Format format, const std::string& path, const RecordingSpec& spec);
-std::unique_ptr<Recorder> open_png_zip(const std::string& path, const RecordingSpec& spec);
+std::unique_ptr<ClipWriter> open_gif(const std::string& path, const ClipWriterSpec& spec);
+std::unique_ptr<ClipWriter> open_video(Format format, const std::string& path, const ClipWriterSpec& spec);
+std::unique_ptr<ClipWriter> open_png_zip(const std::string& path, const ClipWriterSpec& spec);
 
 }  // namespace spinfold::record

@@ -26,9 +26,9 @@ std::string av_message(int code) {
   return text;
 }
 
-class VideoWriter final : public Recorder {
+class VideoWriter final : public ClipWriter {
  public:
-  VideoWriter(Format format, const std::string& path, const RecordingSpec& spec) : spec_(spec) {
+  VideoWriter(Format format, const std::string& path, const ClipWriterSpec& spec) : spec_(spec) {
     const bool webm = format == Format::webm;
     const char* muxer = webm ? "webm" : "mp4";
     const char* encoder = webm ? "libvpx-vp9" : "libx264";
@@ -150,7 +150,7 @@ class VideoWriter final : public Recorder {
     output_ = nullptr;
   }
 
-  RecordingSpec spec_;
+  ClipWriterSpec spec_;
   AVFormatContext* output_ = nullptr;
   AVStream* stream_ = nullptr;
   AVCodecContext* codec_ = nullptr;
@@ -163,7 +163,7 @@ class VideoWriter final : public Recorder {
 
 }  // namespace
 
-std::unique_ptr<Recorder> open_video(Format format, const std::string& path, const RecordingSpec& spec) {
+std::unique_ptr<ClipWriter> open_video(Format format, const std::string& path, const ClipWriterSpec& spec) {
   return std::make_unique<VideoWriter>(format, path, spec);
 }
 

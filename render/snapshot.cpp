@@ -67,7 +67,7 @@ Snapshot snapshot_at(const Scene& scene, double t, bool with_trail, std::optiona
     // a long run does not stop the run millions of times).
     trail.spacing = std::max(span / 512, t / 65536);
     trail.max_points = 65536 + 2;
-    advance_recording(run, trail, t);
+    advance_sampling_trail(run, trail, t);
   }
   advance_to(run, t);
   return make_snapshot(run, trail, span);

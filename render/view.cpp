@@ -8,23 +8,6 @@
 
 namespace spinfold::render {
 
-namespace {
-
-constexpr std::array<std::pair<std::string_view, unsigned>, 7> kLayers{{{"surface", kSurface},
-                                                                        {"grid", kGrid},
-                                                                        {"body", kBody},
-                                                                        {"frame", kFrame},
-                                                                        {"trail", kTrail},
-                                                                        {"hud", kHud},
-                                                                        {"actions", kActions}}};
-constexpr auto kLayerNames = [] {
-  std::array<std::string_view, kLayers.size()> names{};
-  for (std::size_t i = 0; i < kLayers.size(); ++i) names[i] = kLayers[i].first;
-  return names;
-}();
-
-}  // namespace
-
 ViewKind default_view(SurfaceKind surface) {
   switch (surface) {
     case SurfaceKind::sphere: return ViewKind::sphere;
@@ -32,10 +15,6 @@ ViewKind default_view(SurfaceKind surface) {
     case SurfaceKind::plane: return ViewKind::plane;
   }
   return ViewKind::sphere;
-}
-
-std::span<const std::string_view> layer_names() {
-  return kLayerNames;
 }
 
 std::string joined_view_names(std::string_view separator) {
@@ -81,24 +60,6 @@ std::optional<ViewKind> parse_view(std::string_view name) {
 
 std::string_view view_name(ViewKind view) {
   return view_info(view).name;
-}
-
-std::optional<unsigned> parse_layers(std::string_view list, std::string* unknown) {
-  unsigned mask = 0;
-  while (!list.empty()) {
-    const std::size_t comma = list.find(',');
-    const std::string_view item = list.substr(0, comma);
-    bool found = item.empty();
-    for (const auto& [n, bit] : kLayers)
-      if (n == item) mask |= bit, found = true;
-    if (!found) {
-      if (unknown) *unknown = std::string(item);
-      return std::nullopt;
-    }
-    if (comma == std::string_view::npos) break;
-    list.remove_prefix(comma + 1);
-  }
-  return mask;
 }
 
 double body_scale_length(ViewKind view, const Surface& surface) {

@@ -54,7 +54,8 @@ enum Layer : unsigned {
 // with K (the dial) — a sphere of R = 1e6 would otherwise draw a body the size of a continent.
 double body_scale_length(ViewKind view, const Surface& surface);
 
-// The one table of layer names ("surface", "grid", …, "actions"), in this order.
+// The layer names ("surface", "grid", …, "actions") in the order of the one table of layers,
+// kLayerTable (render/view_parameters.h, which defines these two).
 std::span<const std::string_view> layer_names();
 
 struct ViewOptions {

@@ -2,12 +2,15 @@
 
 #include <cstdio>
 #include <future>
+#include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "codec/provenance.h"
 #include "render/jpeg_encoder.h"
 #include "render/png_encoder.h"
 #include "render/snapshot.h"
+#include "render/view_parameters.h"
 #include "server/context.h"
 #include "server/problem.h"
 #include "server/route_table.h"
@@ -15,18 +18,6 @@
 namespace spinfold::server {
 
 namespace {
-
-std::vector<std::string> layer_names() {
-  std::vector<std::string> names;
-  for (const std::string_view name : render::layer_names()) names.emplace_back(name);
-  return names;
-}
-
-std::vector<std::string> view_names() {
-  std::vector<std::string> names;
-  for (const render::ViewInfo& v : render::views()) names.emplace_back(v.name);
-  return names;
-}
 
 // The snapshot and camera of a frame not yet made (null when the cache has or is making it).
 struct FrameJob {
@@ -57,64 +48,29 @@ struct Evicted {};
 }  // namespace
 
 std::vector<QueryParam> frame_params(const Limits& limits) {
-  const render::ViewOptions defaults;
-  const auto side = [&](const char* name, int fallback, const char* what) {
-    return QueryParam{.name = name,
-                      .type = ParamType::integer,
-                      .unit = "pixels",
-                      .minimum = 16,
-                      .maximum = limits.max_image_side,
-                      .default_value = static_cast<long long>(fallback),
-                      .description = what};
-  };
-  return {side("width", defaults.width, "image width"),
-          side("height", defaults.height, "image height"),
-          {.name = "view",
-           .type = ParamType::enumeration,
-           .values = view_names(),
-           .description = "the picture (GET /api/v1/views lists each with the surfaces it shows); "
-                          "default: the surface's own"},
-          {.name = "layers",
-           .type = ParamType::list,
-           .values = layer_names(),
-           .default_value = "surface,grid,body,frame,trail,hud",
-           .description = "what is drawn: the shaded surface, its geodesic grid, the body's "
-                          "ellipse, the frame arrows, the trail, the text overlay, and (not by "
-                          "default) the action variables and frequencies in the text overlay"},
-          {.name = "scale",
-           .type = ParamType::number,
-           .minimum = 0.0,
-           .maximum = 10.0,
-           .exclusive_minimum = true,
-           .default_value = 0.25,
-           .description = "the body's ellipse: the image of this many surface radii of the unit "
-                          "circle under e_A"},
-          {.name = "yaw",
-           .type = ParamType::number,
-           .unit = "rad",
-           .minimum = -100.0,
-           .maximum = 100.0,
-           .description = "camera azimuth (3-D views); default: aimed at the body"},
-          {.name = "pitch",
-           .type = ParamType::number,
-           .unit = "rad",
-           .minimum = -1.55,
-           .maximum = 1.55,
-           .description = "camera elevation (3-D views); default: aimed at the body"},
-          {.name = "distance",
-           .type = ParamType::number,
-           .unit = "radii",
-           .minimum = 1.2,
-           .maximum = 100.0,
-           .description = "camera distance from the centre in surface radii (3-D views); default: "
-                          "aimed at the body"},
-          {.name = "trail",
-           .type = ParamType::number,
-           .unit = "time",
-           .minimum = 0.0,
-           .description = "the trail's span: the path over this much simulated time before now; "
-                          "default: the whole run (sampled every 0.01, the spacing doubling past "
-                          "8192 samples)"}};
+  std::vector<QueryParam> params;
+  for (const render::ViewParameter& p : render::view_parameters()) {
+    const Range range = render::allowed_range(p, limits.max_image_side);
+    QueryParam q{.name = std::string(p.name), .unit = std::string(p.unit), .description = std::string(p.help)};
+    switch (render::parameter_type(p)) {
+      case render::ParameterType::integer: q.type = ParamType::integer; break;
+      case render::ParameterType::number: q.type = ParamType::number; break;
+      case render::ParameterType::enumeration: q.type = ParamType::enumeration; break;
+      case render::ParameterType::list: q.type = ParamType::list; break;
+    }
+    if (range.has_min()) q.minimum = range.min;
+    if (range.has_max()) q.maximum = range.max;
+    q.exclusive_minimum = range.min_open;
+    for (const std::string_view c : render::choices(p)) q.values.emplace_back(c);
+    if (const auto d = render::default_value(p)) {
+      if (const double* x = std::get_if<double>(&*d))
+        q.default_value = q.type == ParamType::integer ? QueryValue(static_cast<long long>(*x)) : QueryValue(*x);
+      else
+        q.default_value = std::get<std::string>(*d);
+    }
+    params.push_back(std::move(q));
+  }
+  return params;
 }
 
 QueryParam quality_param() {
@@ -128,18 +84,49 @@ QueryParam quality_param() {
               "the size/quality table in docs/performance.md"};
 }
 
+render::ViewRequest view_request(const FrameRequest& f) {
+  return {.width = f.view.width,
+          .height = f.view.height,
+          .view = f.view.kind,
+          .layers = f.view.layers,
+          .scale = f.scale,
+          .yaw = f.yaw,
+          .pitch = f.pitch,
+          .distance = f.distance,
+          .trail = f.trail};
+}
+
+void apply_view_query(const Query& q, FrameRequest& f, SurfaceKind surface) {
+  render::ViewRequest r = view_request(f);
+  for (const render::ViewParameter& p : render::view_parameters()) {
+    const std::string name(p.name);
+    std::optional<render::GivenValue> given;
+    if (render::parameter_type(p) == render::ParameterType::integer ||
+        render::parameter_type(p) == render::ParameterType::number) {
+      if (const auto x = q.number(name)) given = *x;
+    } else if (const auto text = q.text(name)) {
+      given = *text;
+    }
+    // Checked already by parse_query against the same table (frame_params): a refusal here is a bug.
+    if (given)
+      if (const auto why = render::set_parameter(r, p, *given, std::numeric_limits<int>::max()))
+        throw std::logic_error("query parameter " + name + " passed the route's check: " + *why);
+  }
+  f.view.kind = r.view.value_or(render::default_view(surface));
+  f.view.width = r.width;
+  f.view.height = r.height;
+  f.view.layers = r.layers;
+  f.scale = r.scale;
+  f.yaw = r.yaw;
+  f.pitch = r.pitch;
+  f.distance = r.distance;
+  f.trail = r.trail;
+}
+
 FrameRequest frame_request(const Query& q, SurfaceKind surface, bool jpeg) {
   FrameRequest f;
   f.view.kind = render::default_view(surface);
-  f.view.width = static_cast<int>(*q.integer("width"));
-  f.view.height = static_cast<int>(*q.integer("height"));
-  if (const auto v = q.text("view")) f.view.kind = *render::parse_view(*v);
-  if (const auto v = q.text("layers")) f.view.layers = *render::parse_layers(*v);
-  f.scale = *q.number("scale");
-  f.yaw = q.number("yaw");
-  f.pitch = q.number("pitch");
-  f.distance = q.number("distance");
-  f.trail = q.number("trail");
+  apply_view_query(q, f, surface);
   if (jpeg) f.jpeg_quality = static_cast<int>(*q.integer("quality"));
   check_view(f, surface);
   return f;

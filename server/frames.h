@@ -10,6 +10,7 @@
 
 #include "engine/surface.h"
 #include "render/view.h"
+#include "render/view_parameters.h"
 #include "server/frame_cache.h"
 
 namespace spinfold::server {
@@ -29,9 +30,16 @@ struct FrameRequest {
   std::optional<int> jpeg_quality;             // 1..100: a JPEG; absent: a PNG
 };
 
-// The query parameters of a frame (width … trail), and the JPEG quality's.
+// The query parameters of a frame (width … trail: one per row of render::view_parameters(), a side
+// at most limits.max_image_side), and the JPEG quality's.
 std::vector<QueryParam> frame_params(const Limits& limits);
 QueryParam quality_param();
+
+// The view parameters of a frame request (its view as given).
+render::ViewRequest view_request(const FrameRequest& f);
+// Sets the view parameters the query gives (checked by the route table against frame_params), the
+// others staying as they are in `f`; the view, when given none before, is the surface's own.
+void apply_view_query(const Query& q, FrameRequest& f, SurfaceKind surface);
 
 // From a query of frame_params (with quality when `jpeg`); ApiError 422 when the view cannot show
 // the surface.

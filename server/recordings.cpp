@@ -204,7 +204,7 @@ void Recordings::run(Entry& entry) {
     provenance["t_start"] = job.clip.t_start;
     provenance["t_end"] = job.clip.t_end;
     provenance["view"] = std::string(render::view_name(job.frames.view.kind));
-    auto recorder = record::open_recorder(
+    auto recorder = record::open_clip_writer(
         job.format, entry.path,
         {job.frames.view.width, job.frames.view.height, job.clip.fps, provenance.dump()});
     const auto render = [&](render::Snapshot snapshot, const render::ViewOptions& view) {

@@ -122,6 +122,8 @@ const char* type_name(ParamType type) {
   return "string";
 }
 
+}  // namespace
+
 ordered_json parameter_schema(const QueryParam& p) {
   ordered_json schema{{"type", type_name(p.type)}};
   if (p.type == ParamType::enumeration) schema["enum"] = p.values;
@@ -137,8 +139,6 @@ ordered_json parameter_schema(const QueryParam& p) {
   if (!p.unit.empty()) schema["x-unit"] = p.unit;
   return schema;
 }
-
-}  // namespace
 
 // ---- Query values.
 

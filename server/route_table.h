@@ -117,6 +117,10 @@ std::vector<Route> live_routes(const Limits& limits);
 std::vector<Route> recording_routes(const Limits& limits);
 std::vector<Route> work_precision_routes(const Limits& limits);
 
+// GET /api/v1/view-parameters: the view parameters (a side at most limits.max_image_side), the
+// layers and the recording formats, from their tables.
+nlohmann::ordered_json view_parameters_json(const Limits& limits);
+
 // The router regex of an OpenAPI path: "{id}" → a session id group, the rest literal.
 std::string path_regex(const std::string& path);
 
@@ -126,6 +130,10 @@ void register_routes(httplib::Server& http, ServerContext& server, const std::ve
 // The query of a request checked against a route: unknown names, duplicates, values of the wrong
 // type or out of range are ApiError 422 naming the parameter, the value and the reason.
 Query parse_query(const Route& route, const httplib::Request& req);
+
+// The JSON Schema of a query parameter's value (its type, enum or list pattern, bounds, default,
+// x-unit): the OpenAPI parameter's schema, and a recording body field's of the same name.
+nlohmann::ordered_json parameter_schema(const QueryParam& p);
 
 // The OpenAPI 3.1 document of the table: every operation (its operationId, query parameters, body
 // schema, answers; every error as application/problem+json of the shared Problem schema).

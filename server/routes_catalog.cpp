@@ -9,7 +9,10 @@
 #include "codec/scene_schema.h"
 #include "engine/integrator.h"
 #include "render/gl_context.h"
+#include "record/recorder.h"
 #include "render/view.h"
+#include "render/view_parameters.h"
+#include "server/api.h"
 #include "server/context.h"
 #include "server/problem.h"
 #include "server/route_table.h"
@@ -85,6 +88,12 @@ void get_views(ServerContext&, const Call&, httplib::Response& res) {
   send_json(res, list);
 }
 
+// The view-parameter, layer and recording-format tables (render/view_parameters.h,
+// record/recorder.h), as the UI builds its view controls from them.
+void get_view_parameters(ServerContext& server, const Call&, httplib::Response& res) {
+  send_json(res, view_parameters_json(server.options.limits));
+}
+
 void get_schema(ServerContext&, const Call&, httplib::Response& res) {
   send_json(res, scene_schema());
 }
@@ -109,6 +118,45 @@ std::string asset_operation_id(std::string_view path) {
 }
 
 }  // namespace
+
+ordered_json view_parameters_json(const Limits& limits) {
+  ordered_json parameters = ordered_json::array();
+  for (const render::ViewParameter& p : render::view_parameters()) {
+    ordered_json row{{"name", std::string(p.name)}};
+    const Range range = render::allowed_range(p, limits.max_image_side);
+    switch (render::parameter_type(p)) {
+      case render::ParameterType::integer: row["type"] = "integer"; break;
+      case render::ParameterType::number: row["type"] = "number"; break;
+      case render::ParameterType::enumeration: row["type"] = "enum"; break;
+      case render::ParameterType::list: row["type"] = "list"; break;
+    }
+    if (!p.unit.empty()) row["unit"] = std::string(p.unit);
+    if (range.has_min()) row["min"] = range.min;
+    if (range.min_open) row["exclusive_min"] = true;
+    if (range.has_max()) row["max"] = range.max;
+    if (range.max_open) row["exclusive_max"] = true;
+    if (const std::vector<std::string_view> choices = render::choices(p); !choices.empty()) {
+      row["choices"] = ordered_json::array();
+      for (const std::string_view c : choices) row["choices"].push_back(std::string(c));
+    }
+    const auto fallback = render::default_value(p);
+    row["default"] = !fallback                               ? ordered_json(nullptr)
+                     : std::holds_alternative<double>(*fallback) ? ordered_json(std::get<double>(*fallback))
+                                                                 : ordered_json(std::get<std::string>(*fallback));
+    row["help"] = std::string(p.help);
+    parameters.push_back(row);
+  }
+  ordered_json layers = ordered_json::array();
+  for (const render::LayerInfo& l : render::kLayerTable)
+    layers.push_back({{"name", std::string(l.name)}, {"default", l.on_by_default}, {"help", std::string(l.help)}});
+  ordered_json formats = ordered_json::array();
+  for (const record::FormatInfo& f : record::kFormats)
+    formats.push_back({{"name", std::string(f.name)},
+                       {"extension", std::string(f.extension)},
+                       {"content_type", std::string(f.content_type)},
+                       {"help", std::string(f.help)}});
+  return {{"parameters", parameters}, {"layers", layers}, {"formats", formats}};
+}
 
 std::vector<Route> catalog_routes(const Limits&) {
   std::vector<Route> routes = {
@@ -142,6 +190,15 @@ std::vector<Route> catalog_routes(const Limits&) {
        .handler = get_views,
        .summary = "The views a frame can be drawn in, the surfaces each shows, in the UI's order",
        .responses = {{200, "name, title, surfaces, three_d, description"}}},
+      {.method = "GET",
+       .path = "/api/v1/view-parameters",
+       .operation_id = "list_view_parameters",
+       .handler = get_view_parameters,
+       .summary = "The parameters of a picture (frame query, recording body, CLI options) with their units, "
+                  "ranges, defaults and help; the layers; the recording formats",
+       .responses = {{200,
+                      "{\"parameters\": [name, type, unit, min, max, default, choices, help], \"layers\": "
+                      "[name, default, help], \"formats\": [name, extension, content_type, help]}"}}},
       {.method = "GET",
        .path = "/api/v1/schema",
        .operation_id = "get_scene_schema",

@@ -224,15 +224,7 @@ void patch_live(ServerContext& server, const Call& call, httplib::Response& res)
   const Query& q = call.query;
   const std::lock_guard lock(viewer->mutex);
   FrameRequest f = viewer->request;
-  if (const auto v = q.integer("width")) f.view.width = static_cast<int>(*v);
-  if (const auto v = q.integer("height")) f.view.height = static_cast<int>(*v);
-  if (const auto v = q.text("view")) f.view.kind = *render::parse_view(*v);
-  if (const auto v = q.text("layers")) f.view.layers = *render::parse_layers(*v);
-  if (const auto v = q.number("scale")) f.scale = *v;
-  if (const auto v = q.number("yaw")) f.yaw = *v;
-  if (const auto v = q.number("pitch")) f.pitch = *v;
-  if (const auto v = q.number("distance")) f.distance = *v;
-  if (const auto v = q.number("trail")) f.trail = *v;
+  apply_view_query(q, f, surface);
   if (q.text("aim")) f.yaw = f.pitch = f.distance = std::nullopt;
   check_view(f, surface);  // 422, nothing changed
   viewer->request = f;

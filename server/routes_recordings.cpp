@@ -5,6 +5,8 @@
 #include "engine/number_text.h"
 #include "server/context.h"
 #include "server/problem.h"
+#include "render/view_parameters.h"
+#include "server/frames.h"
 #include "server/recordings.h"
 #include "server/route_table.h"
 
@@ -19,15 +21,19 @@ using nlohmann::ordered_json;
 namespace {
 
 const std::string kRecordings = "/api/v1/recordings";
-const std::vector<std::string> kFields = {"t_start", "t_end", "fps",    "speed",   "width",
-                                          "height",  "view",  "layers", "format",  "trail",
-                                          "scale",   "yaw",   "pitch",  "distance"};
+// The body's fields: the clip's, then one per view parameter (render/view_parameters.h).
+const std::vector<std::string> kClipFields = {"t_start", "t_end", "fps", "speed", "format"};
+std::vector<std::string> body_fields() {
+  std::vector<std::string> fields = kClipFields;
+  for (const render::ViewParameter& p : render::view_parameters()) fields.emplace_back(p.name);
+  return fields;
+}
 
 // The body's fields, each checked (every refusal named at once), into a job on the session's copy.
 RecordingJob recording_job(ServerContext& server, const Call& call, Session& s) {
   const json body = call.body();
   require_object(body);
-  refuse_unknown_keys(body, kFields);
+  refuse_unknown_keys(body, body_fields());
   const Limits& limits = server.options.limits;
   std::vector<FieldError> errors;
   const auto number = [&](const char* key, std::optional<double> fallback) -> std::optional<double> {
@@ -41,17 +47,6 @@ RecordingJob recording_job(ServerContext& server, const Call& call, Session& s) 
       return fallback;
     }
     return v.get<double>();
-  };
-  const auto side = [&](const char* key, int fallback) {
-    if (!body.contains(key)) return fallback;
-    const json& v = body[key];
-    if (!v.is_number_integer() || v.get<long long>() < 16 || v.get<long long>() > limits.max_image_side) {
-      errors.push_back(
-          {key, v.dump(),
-           "must be a whole number from 16 to " + std::to_string(limits.max_image_side) + " [pixels]"});
-      return fallback;
-    }
-    return static_cast<int>(v.get<long long>());
   };
   const auto text = [&](const char* key) -> std::optional<std::string> {
     if (!body.contains(key)) return std::nullopt;
@@ -78,54 +73,49 @@ RecordingJob recording_job(ServerContext& server, const Call& call, Session& s) 
     }
   if (!clip_named) errors.insert(errors.end(), clip_refusals.begin(), clip_refusals.end());
   const auto format = text("format");
+  const std::string formats = record::joined_format_names(", ", " or ");
   if (!format)
-    errors.push_back({"format", body.contains("format") ? body["format"].dump() : "",
-                      "is required: gif, webm, mp4 or png-zip"});
+    errors.push_back({"format", body.contains("format") ? body["format"].dump() : "", "is required: " + formats});
   else if (!record::parse_format(*format))
-    errors.push_back({"format", *format, "must be gif, webm, mp4 or png-zip"});
+    errors.push_back({"format", *format, "must be " + formats});
   else
     job.format = *record::parse_format(*format);
 
+  // The view parameters, each read and checked by its row of the table.
+  render::ViewRequest picture;
+  for (const render::ViewParameter& p : render::view_parameters()) {
+    const std::string key(p.name);
+    if (!body.contains(key)) continue;
+    const json& v = body[key];
+    const render::ParameterType type = render::parameter_type(p);
+    const bool numeric = type == render::ParameterType::integer || type == render::ParameterType::number;
+    std::optional<std::string> why = render::expectation(p, limits.max_image_side);  // a value of another JSON type
+    if (numeric && v.is_number())
+      why = render::set_parameter(picture, p, v.get<double>(), limits.max_image_side);
+    else if (!numeric && v.is_string())
+      why = render::set_parameter(picture, p, v.get<std::string>(), limits.max_image_side);
+    if (why) errors.push_back({key, v.is_string() ? v.get<std::string>() : v.dump(), *why});
+  }
   render::ViewOptions& view = job.frames.view;
-  view.width = side("width", 640);
-  view.height = side("height", 480);
+  view.width = picture.width;
+  view.height = picture.height;
+  view.layers = picture.layers;
   if (format && record::parse_format(*format))
     if (const auto why = record::size_unsupported_reason(job.format, view.width, view.height))
       errors.push_back({view.width % 2 ? "width" : "height",
                         std::to_string(view.width % 2 ? view.width : view.height), *why});
-  const auto view_name = text("view");
-  if (view_name && !render::parse_view(*view_name))
-    errors.push_back({"view", *view_name, "must be one of " + render::joined_view_names(", ")});
-  if (const auto layers = text("layers")) {
-    std::string unknown;
-    if (const auto mask = render::parse_layers(*layers, &unknown))
-      view.layers = *mask;
-    else
-      errors.push_back(
-          {"layers", *layers, "'" + unknown + "' is not one of surface, grid, body, frame, trail, hud"});
-  }
-  const double scale = *number("scale", 0.25);
-  if (!(scale > 0.0 && scale <= 10.0))
-    errors.push_back({"scale", shortest(scale), "must be a number in (0, 10]"});
-  job.frames.trail_span = body.contains("trail") ? number("trail", 0.0) : std::nullopt;
-  if (job.frames.trail_span && *job.frames.trail_span < 0.0)
-    errors.push_back({"trail", shortest(*job.frames.trail_span), "must be >= 0 [time]"});
-  job.frames.yaw = body.contains("yaw") ? number("yaw", 0.0) : std::nullopt;
-  job.frames.pitch = body.contains("pitch") ? number("pitch", 0.0) : std::nullopt;
-  job.frames.distance = body.contains("distance") ? number("distance", 3.4) : std::nullopt;
-  if (job.frames.pitch && std::abs(*job.frames.pitch) > 1.55)
-    errors.push_back({"pitch", shortest(*job.frames.pitch), "must be a number from -1.55 to 1.55 [rad]"});
-  if (job.frames.distance && (*job.frames.distance < 1.2 || *job.frames.distance > 100.0))
-    errors.push_back(
-        {"distance", shortest(*job.frames.distance), "must be a number from 1.2 to 100 [radii]"});
+  job.frames.trail_span = picture.trail;
+  job.frames.yaw = picture.yaw;
+  job.frames.pitch = picture.pitch;
+  job.frames.distance = picture.distance;
   if (!errors.empty()) throw ApiError{422, "Invalid value", errors, ""};
 
   // The copy: the parameters at t = 0 and the timeline, under the session's lock only to read them.
   const std::lock_guard lock(s.mutex);
-  view.kind = view_name ? *render::parse_view(*view_name) : render::default_view(s.run.scene.surface.kind);
+  view.kind = picture.view.value_or(render::default_view(s.run.scene.surface.kind));
   if (const auto why = render::view_unsupported_reason(view.kind, s.run.scene.surface.kind))
     throw bad(422, "Invalid value", "view", std::string(render::view_name(view.kind)), *why);
-  view.scale = scale * render::body_scale_length(view.kind, s.run.scene.surface);
+  view.scale = picture.scale * render::body_scale_length(view.kind, s.run.scene.surface);
   job.frames.scene = s.scene;
   job.frames.changes = s.changes;
   job.frames.max_attempts = static_cast<std::uint64_t>(limits.max_steps);
@@ -199,35 +189,24 @@ void delete_recording(ServerContext& server, const Call& call, httplib::Response
 }  // namespace
 
 std::vector<Route> recording_routes(const Limits& limits) {
-  const ordered_json number{{"type", "number"}};
-  ordered_json view_names = ordered_json::array();
-  for (const render::ViewInfo& v : render::views()) view_names.push_back(std::string(v.name));
-  const ordered_json body_schema{
-      {"type", "object"},
-      {"required", {"t_end", "format"}},
-      {"additionalProperties", false},
-      {"properties",
-       {{"t_start", {{"type", "number"}, {"minimum", 0}, {"default", 0}, {"x-unit", "time"}}},
-        {"t_end",
-         {{"type", "number"},
-          {"x-unit", "time"},
-          {"description", "end of the window (excluded), > t_start"}}},
-        {"fps",
-         {{"type", "number"}, {"minimum", record::kMinFps}, {"maximum", record::kMaxFps}, {"default", 30}}},
-        {"speed",
-         {{"type", "number"}, {"default", 1}, {"description", "simulated time per second of the file"}}},
-        {"width",
-         {{"type", "integer"}, {"minimum", 16}, {"maximum", limits.max_image_side}, {"default", 640}}},
-        {"height",
-         {{"type", "integer"}, {"minimum", 16}, {"maximum", limits.max_image_side}, {"default", 480}}},
-        {"view", {{"type", "string"}, {"enum", view_names}}},
-        {"layers", {{"type", "string"}, {"default", "surface,grid,body,frame,trail,hud"}}},
-        {"format", {{"type", "string"}, {"enum", {"gif", "webm", "mp4", "png-zip"}}}},
-        {"trail", {{"type", "number"}, {"minimum", 0}, {"x-unit", "time"}}},
-        {"scale", number},
-        {"yaw", number},
-        {"pitch", number},
-        {"distance", number}}}};
+  ordered_json formats = ordered_json::array();
+  for (const record::FormatInfo& f : record::kFormats) formats.push_back(std::string(f.name));
+  ordered_json properties{
+      {"t_start", {{"type", "number"}, {"minimum", 0}, {"default", 0}, {"x-unit", "time"}}},
+      {"t_end",
+       {{"type", "number"}, {"x-unit", "time"}, {"description", "end of the window (excluded), > t_start"}}},
+      {"fps", {{"type", "number"}, {"minimum", record::kMinFps}, {"maximum", record::kMaxFps}, {"default", 30}}},
+      {"speed", {{"type", "number"}, {"default", 1}, {"description", "simulated time per second of the file"}}},
+      {"format", {{"type", "string"}, {"enum", formats}}}};
+  // The picture: the frame's query parameters, the same table's rows (render/view_parameters.h).
+  for (const QueryParam& p : frame_params(limits)) {
+    properties[p.name] = parameter_schema(p);
+    properties[p.name]["description"] = p.description;
+  }
+  const ordered_json body_schema{{"type", "object"},
+                                 {"required", {"t_end", "format"}},
+                                 {"additionalProperties", false},
+                                 {"properties", properties}};
   return {
       {.method = "POST",
        .path = "/api/v1/sessions/{id}/recordings",

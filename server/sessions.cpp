@@ -42,12 +42,12 @@ void restart(Session& session, const Scene& scene) {
   session.changes.clear();
   session.run = start_simulation(scene);
   session.trail = Trail{};
-  record_if_due(session.trail, session.run);
+  sample_trail_if_due(session.trail, session.run);
   state_changed(session);
 }
 
 bool advance(Session& session, double t, std::uint64_t max_attempts) {
-  const bool complete = advance_recording(session.run, session.trail, t, max_attempts);
+  const bool complete = advance_sampling_trail(session.run, session.trail, t, max_attempts);
   state_changed(session);
   return complete;
 }
@@ -80,10 +80,10 @@ ChangeOutcome change(Session& session, const json& patch) {
     out.reason = "new parameters from t = 0";
     return out;
   }
-  retune_recording(session.run, session.trail, *parsed.scene);
+  retune_carrying_trail(session.run, session.trail, *parsed.scene);
   session.timeline.push_back({{"t", t}, {"patch", patch}});
   session.changes.push_back({t, *parsed.scene});
-  record_if_due(session.trail, session.run);
+  sample_trail_if_due(session.trail, session.run);
   state_changed(session);
   out.reason = "new parameters from t = " + shortest(t) + " on, continuing from the current state";
   return out;

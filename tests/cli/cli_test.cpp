@@ -183,6 +183,29 @@ TEST(CliRender, WritesAPngOfTheRequestedSize) {
   std::filesystem::remove(out);
 }
 
+// --camera is --yaw, --pitch and --distance at once: the same picture to the byte; one of them alone
+// replaces that part of the camera aimed at the body.
+TEST(CliRender, CameraIsTheThreeCameraOptionsAtOnce) {
+  const std::string base =
+      std::filesystem::temp_directory_path() / ("spinfold_cam_" + std::to_string(getpid()));
+  const auto render = [&](const std::string& name, const std::string& camera) {
+    const Result r = spinfold("render --scene spinning_rigid_sphere --t 1 --width 96 --height 72 " + camera +
+                              " --out " + base + name);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream in(base + name, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::filesystem::remove(base + name);
+    // The image data only: the text chunks hold the command line (provenance).
+    const std::size_t idat = bytes.find("IDAT");
+    return idat == std::string::npos ? std::string() : bytes.substr(idat);
+  };
+  const std::string whole = render("a.png", "--camera 0.3,0.2,4");
+  EXPECT_GT(whole.size(), 100u);
+  EXPECT_EQ(render("b.png", "--yaw 0.3 --pitch 0.2 --distance 4"), whole);
+  const std::string aimed = render("c.png", "");
+  EXPECT_NE(render("d.png", "--distance 8"), aimed);  // farther away than aimed
+}
+
 class CliRenderBadInput : public ::testing::TestWithParam<BadArgs> {};
 
 TEST_P(CliRenderBadInput, ExitsTwoWithAMessageAndNoOutput) {
@@ -200,6 +223,17 @@ INSTANTIATE_TEST_SUITE_P(
         BadArgs{"render --scene spinning_rigid_sphere --width 5000 --out /tmp/x.png", "--width"},
         BadArgs{"render --scene spinning_rigid_sphere --layers body,glitter --out /tmp/x.png", "glitter"},
         BadArgs{"render --scene spinning_rigid_sphere --camera 1,2 --out /tmp/x.png", "--camera"},
+        // The table's words, every layer listed (actions included), the ranges the API has.
+        BadArgs{"render --scene spinning_rigid_sphere --layers body,glitter --out /tmp/x.png",
+                "--layers: 'glitter' is not one of surface, grid, body, frame, trail, hud, actions (got "
+                "'body,glitter')"},
+        BadArgs{"render --scene spinning_rigid_sphere --pitch 2 --out /tmp/x.png",
+                "--pitch: must be a number from -1.55 to 1.55 [rad] (got '2')"},
+        BadArgs{"render --scene spinning_rigid_sphere --camera 0.5,0.2,0.5 --out /tmp/x.png",
+                "--camera: distance must be a number from 1.2 to 100 [radii]"},
+        BadArgs{"render --scene spinning_rigid_sphere --scale 11 --out /tmp/x.png", "(0, 10]"},
+        BadArgs{"record --t-end 1 --format gif --trail -1 --out /tmp/x.gif",
+                "--trail: must be a number >= 0"},
         BadArgs{"render --scene spinning_rigid_sphere --t -1 --out /tmp/x.png", "--t"},
         BadArgs{"render --scene spinning_rigid_sphere", "--out"},
         BadArgs{"render --scene spinning_rigid_sphere --gl nonsense --out /tmp/x.png", "--gl"},

@@ -144,9 +144,9 @@ TEST(CurvatureDial, ALiveDialContinuesThroughZero) {
   Simulation live = start_simulation(start);
   Trail trail;
   for (const ParameterChange& change : changes) {
-    ASSERT_TRUE(advance_recording(live, trail, change.t));
+    ASSERT_TRUE(advance_sampling_trail(live, trail, change.t));
     const GlobalBody before = global_body(live.scene, live.state);
-    retune_recording(live, trail, change.scene);
+    retune_carrying_trail(live, trail, change.scene);
     const GlobalBody after = global_body(live.scene, live.state);
     EXPECT_NEAR(after.r, before.r, 1e-12 * (1 + before.r)) << change.t;
     EXPECT_NEAR(std::remainder(after.phi - before.phi, 2 * std::numbers::pi), 0.0, 1e-12) << change.t;
@@ -161,7 +161,7 @@ TEST(CurvatureDial, ALiveDialContinuesThroughZero) {
       EXPECT_NEAR(got, expected, 1e-9 * (1 + std::abs(expected))) << change.t;
     }
   }
-  ASSERT_TRUE(advance_recording(live, trail, 3.5));
+  ASSERT_TRUE(advance_sampling_trail(live, trail, 3.5));
   EXPECT_EQ(live.scene.surface.kind, SurfaceKind::pseudosphere);
 
   Simulation rebuilt;

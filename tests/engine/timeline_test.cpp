@@ -63,11 +63,11 @@ TEST_P(Replay, RebuiltRunEqualsTheLiveOneBitForBit) {
   std::size_t next = 0;
   for (double t = 0.1; t <= 5.0 + 1e-9; t += 0.1) {
     if (next < changes.size() && changes[next].t <= t) {
-      advance_recording(live, live_trail, changes[next].t);
-      retune_recording(live, live_trail, changes[next].scene);
+      advance_sampling_trail(live, live_trail, changes[next].t);
+      retune_carrying_trail(live, live_trail, changes[next].scene);
       ++next;
     }
-    advance_recording(live, live_trail, t);
+    advance_sampling_trail(live, live_trail, t);
   }
   ASSERT_EQ(live.state.status, Status::ok);
   Simulation rebuilt;
@@ -77,6 +77,31 @@ TEST_P(Replay, RebuiltRunEqualsTheLiveOneBitForBit) {
   ASSERT_EQ(live_trail.points.size(), rebuilt_trail.points.size());
   for (std::size_t i = 0; i < live_trail.points.size(); ++i)
     EXPECT_EQ(live_trail.points[i].X, rebuilt_trail.points[i].X);
+}
+
+// The replay a recording draws its frames from, asked at frame times that straddle the changes
+// (never exactly at one), ends where replay() asked once ends, bit for bit, trail included; and a
+// change is applied at its own time, not at the first frame after it.
+TEST_P(Replay, StepwiseReplayEqualsTheReplayAskedOnce) {
+  const Scene scene = base(GetParam());
+  const auto changes = changes_of(scene);
+  TimelineReplay stepwise(scene, changes);
+  for (double t = 0.0; t <= 5.0 + 1e-9; t += 0.3) ASSERT_TRUE(stepwise.advance_to(t));
+  const double end = stepwise.run().state.t;
+  Simulation once;
+  Trail once_trail;
+  ASSERT_TRUE(replay(scene, changes, end, once, once_trail));
+  EXPECT_TRUE(same_bits(stepwise.run().state, once.state));
+  EXPECT_EQ(stepwise.run().scene.integrator.name, changes.back().scene.integrator.name);
+  ASSERT_EQ(stepwise.trail().points.size(), once_trail.points.size());
+  for (std::size_t i = 0; i < once_trail.points.size(); ++i)
+    EXPECT_EQ(stepwise.trail().points[i].X, once_trail.points[i].X);
+  // Up to a time before the first change, the run has the starting parameters still.
+  TimelineReplay early(scene, changes);
+  ASSERT_TRUE(early.advance_to(changes.front().t - 0.05));
+  EXPECT_EQ(early.run().scene.body.mass, scene.body.mass);
+  ASSERT_TRUE(early.advance_to(changes.front().t));
+  EXPECT_EQ(early.run().scene.body.mass, changes.front().scene.body.mass);
 }
 
 INSTANTIATE_TEST_SUITE_P(ExactAndStepping, Replay, ::testing::Values("auto", "dop853", "split6", "rk4"));

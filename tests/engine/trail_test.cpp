@@ -43,9 +43,9 @@ TEST_P(AnyIntegrator, OneAdvanceOrSixtyGiveTheSameStateAndTrail) {
   const Scene scene = spinning(GetParam());
   Simulation once = start_simulation(scene), many = start_simulation(scene);
   Trail trail_once, trail_many;
-  advance_recording(once, trail_once, 6.0);
-  for (int k = 1; k <= 60; ++k) advance_recording(many, trail_many, 0.1 * k);
-  advance_recording(many, trail_many, 6.0);
+  advance_sampling_trail(once, trail_once, 6.0);
+  for (int k = 1; k <= 60; ++k) advance_sampling_trail(many, trail_many, 0.1 * k);
+  advance_sampling_trail(many, trail_many, 6.0);
   ASSERT_EQ(once.state.status, Status::ok);
   EXPECT_TRUE(same_bits(once.state, many.state));
   EXPECT_TRUE(same_bits(once.grid.state, many.grid.state));
@@ -55,8 +55,8 @@ TEST_P(AnyIntegrator, OneAdvanceOrSixtyGiveTheSameStateAndTrail) {
   Simulation ragged = start_simulation(scene);
   Trail trail_ragged;
   for (double t = 0.0137; t < 6.0; t += 0.0137 + 0.05 * (t - std::floor(t)))
-    advance_recording(ragged, trail_ragged, t);
-  advance_recording(ragged, trail_ragged, 6.0);
+    advance_sampling_trail(ragged, trail_ragged, t);
+  advance_sampling_trail(ragged, trail_ragged, 6.0);
   EXPECT_TRUE(same_bits(once.state, ragged.state));
   EXPECT_TRUE(same_points(trail_once, trail_ragged));
 }
@@ -70,7 +70,7 @@ TEST(Trail, FollowsTheTruePathAtItsSpacing) {
   const Scene scene = spinning("dop853");
   Simulation run = start_simulation(scene);
   Trail trail;
-  advance_recording(run, trail, 2.0);
+  advance_sampling_trail(run, trail, 2.0);
   for (const std::size_t i : {std::size_t{1}, std::size_t{57}, std::size_t{200}}) {
     Simulation probe = start_simulation(scene);
     advance_to(probe, trail.points[i].t);
@@ -84,7 +84,7 @@ TEST(Trail, PastItsCapItKeepsTheWholeRunAtHalfTheResolution) {
   Simulation run = start_simulation(scene);
   Trail trail;
   trail.max_points = 100;
-  advance_recording(run, trail, 3.0);  // 301 samples at 0.01 → 76 at 0.04
+  advance_sampling_trail(run, trail, 3.0);  // 301 samples at 0.01 → 76 at 0.04
   EXPECT_LE(trail.points.size(), 100u);
   EXPECT_EQ(trail.spacing, 0.04);
   EXPECT_EQ(trail.points.front().t, 0.0);
@@ -93,7 +93,7 @@ TEST(Trail, PastItsCapItKeepsTheWholeRunAtHalfTheResolution) {
   Simulation coarse_run = start_simulation(scene);
   Trail coarse;
   coarse.spacing = 4 * Trail{}.spacing;
-  advance_recording(coarse_run, coarse, 3.0);
+  advance_sampling_trail(coarse_run, coarse, 3.0);
   EXPECT_TRUE(same_points(trail, coarse));
 }
 
@@ -101,7 +101,7 @@ TEST(Trail, SpanSelectsTheRecentPast) {
   const Scene scene = spinning("exact");
   Simulation run = start_simulation(scene);
   Trail trail;
-  advance_recording(run, trail, 1.0);
+  advance_sampling_trail(run, trail, 1.0);
   EXPECT_EQ(trail_positions(trail, 1.0, -1.0).size(), 101u);
   EXPECT_EQ(trail_positions(trail, 1.0, 0.5).size(), 51u);
 }

@@ -74,7 +74,7 @@ TEST(Clip, ReplayFrameByFrameIsTheTimelinesRun) {
   for (const double t : {0.1, 0.3, 0.35, 0.5, 0.8}) ASSERT_TRUE(replay.advance_to(t));
   Simulation run = start_simulation(start);
   Trail trail;
-  record_if_due(trail, run);
+  sample_trail_if_due(trail, run);
   ASSERT_TRUE(spinfold::replay(start, changes, 0.8, run, trail));
   const State& a = replay.run().state;
   EXPECT_EQ(a.t, run.state.t);
@@ -126,15 +126,15 @@ TEST_F(RecordingFixture, DecodedVideoFrameIsCloseToTheRenderedFrame) {
   const ClipFrames f = frames(160, 120);
   Simulation run = start_simulation(f.scene);
   Trail trail;
-  record_if_due(trail, run);
-  advance_recording(run, trail, frame_time(clip, 3));
+  sample_trail_if_due(trail, run);
+  advance_sampling_trail(run, trail, frame_time(clip, 3));
   render::ViewOptions view = f.view;
   render::Snapshot snapshot = render::make_snapshot(run, trail, -1.0);
   render::aim_camera_at_body(view, snapshot);
   const render::Image expected = renderer().render_image(snapshot, view);
   for (const Format format : {Format::mp4, Format::webm}) {
     const fs::path path = temp_file(std::string("clip.") + std::string(file_extension(format)));
-    auto recorder = open_recorder(format, path, {160, 120, clip.fps});
+    auto recorder = open_clip_writer(format, path, {160, 120, clip.fps});
     std::vector<std::vector<std::uint8_t>> seen;
     ASSERT_TRUE(record_clip(clip, f, *recorder, drawer(&seen)));
     ASSERT_EQ(seen.size(), 5u);
@@ -153,7 +153,7 @@ TEST_F(RecordingFixture, DecodedVideoFrameIsCloseToTheRenderedFrame) {
 TEST_F(RecordingFixture, GifOfAClipHasItsFramesAndSamplesCountInProgress) {
   const Clip clip{0.0, 0.6, 10.0, 1.0};  // 6 frames
   const fs::path path = temp_file("clip.gif");
-  auto recorder = open_recorder(Format::gif, path, {64, 48, clip.fps});
+  auto recorder = open_clip_writer(Format::gif, path, {64, 48, clip.fps});
   std::vector<long long> done;
   long long total = 0;
   ASSERT_TRUE(record_clip(clip, frames(64, 48), *recorder, drawer(), [&](long long d, long long t) {
@@ -171,14 +171,14 @@ TEST_F(RecordingFixture, GifOfAClipHasItsFramesAndSamplesCountInProgress) {
 
 TEST_F(RecordingFixture, CancelStopsAtTheFrameAndARunThatStopsIsAReason) {
   const Clip clip{0.0, 1.0, 10.0, 1.0};
-  auto recorder = open_recorder(Format::png_zip, temp_file("cancel.zip"), {64, 48, clip.fps});
+  auto recorder = open_clip_writer(Format::png_zip, temp_file("cancel.zip"), {64, 48, clip.fps});
   int calls = 0;
   EXPECT_FALSE(record_clip(clip, frames(64, 48), *recorder, drawer(),
                            [&](long long, long long) { return ++calls < 3; }));
   EXPECT_EQ(calls, 3);
   ClipFrames limited = frames(64, 48);
   limited.max_attempts = 1;  // not enough steps for one frame interval
-  auto other = open_recorder(Format::png_zip, temp_file("stopped.zip"), {64, 48, clip.fps});
+  auto other = open_clip_writer(Format::png_zip, temp_file("stopped.zip"), {64, 48, clip.fps});
   try {
     record_clip(clip, limited, *other, drawer());
     FAIL() << "expected RecordError";

@@ -49,7 +49,7 @@ fs::path temp_file(const std::string& name) {
 }
 
 void write(Format format, const fs::path& path, int frames, double fps, bool samples = true) {
-  auto recorder = open_recorder(format, path, {kW, kH, fps});
+  auto recorder = open_clip_writer(format, path, {kW, kH, fps});
   if (samples)
     for (int j = 0; j < recorder->palette_samples(); ++j)
       recorder->add_palette_sample(
@@ -142,7 +142,7 @@ TEST_P(RecorderVideo, FramesTimesDurationAndPicture) {
 INSTANTIATE_TEST_SUITE_P(WebmAndMp4, RecorderVideo, ::testing::Values(Format::webm, Format::mp4),
                          [](const auto& p) { return std::string(format_name(p.param)); });
 
-TEST(Recorder, FormatsNamesAndSizes) {
+TEST(ClipWriter, FormatsNamesAndSizes) {
   for (const Format f : {Format::gif, Format::webm, Format::mp4, Format::png_zip})
     EXPECT_EQ(parse_format(format_name(f)), f);
   EXPECT_FALSE(parse_format("avi"));
@@ -150,7 +150,7 @@ TEST(Recorder, FormatsNamesAndSizes) {
   EXPECT_TRUE(size_unsupported_reason(Format::webm, 65, 48));
   EXPECT_TRUE(size_unsupported_reason(Format::mp4, 64, 47));
   EXPECT_FALSE(size_unsupported_reason(Format::gif, 65, 47));
-  EXPECT_THROW(open_recorder(Format::gif, "/nonexistent-dir/x.gif", {kW, kH, 30}), RecordError);
+  EXPECT_THROW(open_clip_writer(Format::gif, "/nonexistent-dir/x.gif", {kW, kH, 30}), RecordError);
 }
 
 }  // namespace

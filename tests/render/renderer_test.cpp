@@ -37,7 +37,7 @@ Snapshot preset_snapshot(std::string_view name, double t, bool with_trail) {
   Trail trail;
   trail.spacing = t / 64;
   if (with_trail)
-    advance_recording(run, trail, t);
+    advance_sampling_trail(run, trail, t);
   else
     advance_to(run, t);
   return make_snapshot(run, trail, -1.0);
@@ -439,11 +439,11 @@ TEST(Renderer, AReplayedRunGivesTheLiveRunsBytes) {
   Simulation live = start_simulation(scene);
   Trail live_trail;
   live_trail.spacing = 3.0 / 64;
-  for (double t = 0.05; t < 1.3; t += 0.05) advance_recording(live, live_trail, t);
-  advance_recording(live, live_trail, 1.3);
-  retune_recording(live, live_trail, changed);
-  for (double t = 1.37; t < 3.0; t += 0.07) advance_recording(live, live_trail, t);
-  advance_recording(live, live_trail, 3.0);
+  for (double t = 0.05; t < 1.3; t += 0.05) advance_sampling_trail(live, live_trail, t);
+  advance_sampling_trail(live, live_trail, 1.3);
+  retune_carrying_trail(live, live_trail, changed);
+  for (double t = 1.37; t < 3.0; t += 0.07) advance_sampling_trail(live, live_trail, t);
+  advance_sampling_trail(live, live_trail, 3.0);
   Simulation rebuilt;
   Trail rebuilt_trail;
   rebuilt_trail.spacing = live_trail.spacing;
@@ -463,7 +463,7 @@ Snapshot on_surface(std::string_view preset, const Surface& surface, double t) {
   Simulation run = start_simulation(scene);
   Trail trail;
   trail.spacing = t / 64;
-  advance_recording(run, trail, t);
+  advance_sampling_trail(run, trail, t);
   return make_snapshot(run, trail, -1.0);
 }
 

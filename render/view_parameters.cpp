@@ -1,0 +1,229 @@
+#include "render/view_parameters.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+
+#include "engine/number_text.h"
+
+namespace spinfold::render {
+
+namespace {
+
+template <typename... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+
+std::string joined(const std::vector<std::string_view>& items, std::string_view last) {
+  std::string text;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i > 0) text += i + 1 == items.size() ? last : std::string_view(", ");
+    text += items[i];
+  }
+  return text;
+}
+
+std::vector<std::string_view> layer_choices() {
+  std::vector<std::string_view> names;
+  for (const LayerInfo& l : kLayerTable) names.push_back(l.name);
+  return names;
+}
+
+// A whole text as a finite number, or nullopt.
+std::optional<double> number_in(std::string_view text) {
+  double x = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || !std::isfinite(x))
+    return std::nullopt;
+  return x;
+}
+
+}  // namespace
+
+std::span<const ViewParameter> view_parameters() {
+  return kViewParameters;
+}
+
+const ViewParameter& view_parameter(std::string_view name) {
+  for (const ViewParameter& p : kViewParameters)
+    if (p.name == name) return p;
+  throw std::logic_error("no view parameter named " + std::string(name));
+}
+
+ParameterType parameter_type(const ViewParameter& p) {
+  return std::visit(
+      Overloaded{[](int ViewRequest::*) { return ParameterType::integer; },
+                 [](double ViewRequest::*) { return ParameterType::number; },
+                 [](std::optional<double> ViewRequest::*) { return ParameterType::number; },
+                 [](std::optional<ViewKind> ViewRequest::*) { return ParameterType::enumeration; },
+                 [](unsigned ViewRequest::*) { return ParameterType::list; }},
+      p.member);
+}
+
+std::vector<std::string_view> choices(const ViewParameter& p) {
+  switch (parameter_type(p)) {
+    case ParameterType::enumeration: {
+      std::vector<std::string_view> names;
+      for (const ViewInfo& v : views()) names.push_back(v.name);
+      return names;
+    }
+    case ParameterType::list: return layer_choices();
+    case ParameterType::integer:
+    case ParameterType::number: break;
+  }
+  return {};
+}
+
+Range allowed_range(const ViewParameter& p, int max_image_side) {
+  Range range = p.range;
+  if (p.unit == "pixels") range.max = std::min(range.max, static_cast<double>(max_image_side));
+  return range;
+}
+
+std::optional<std::variant<double, std::string>> default_value(const ViewParameter& p) {
+  const ViewRequest defaults;
+  return std::visit(
+      Overloaded{
+          [&](int ViewRequest::*m) -> std::optional<std::variant<double, std::string>> {
+            return static_cast<double>(defaults.*m);
+          },
+          [&](double ViewRequest::*m) -> std::optional<std::variant<double, std::string>> {
+            return defaults.*m;
+          },
+          [&](std::optional<double> ViewRequest::*m) -> std::optional<std::variant<double, std::string>> {
+            if (!(defaults.*m)) return std::nullopt;
+            return *(defaults.*m);
+          },
+          [&](std::optional<ViewKind> ViewRequest::*m) -> std::optional<std::variant<double, std::string>> {
+            if (!(defaults.*m)) return std::nullopt;
+            return std::string(view_name(*(defaults.*m)));
+          },
+          [&](unsigned ViewRequest::*m) -> std::optional<std::variant<double, std::string>> {
+            return layer_list(defaults.*m);
+          }},
+      p.member);
+}
+
+std::string default_layer_list() {
+  return layer_list(default_layers());
+}
+
+std::string layer_list(unsigned layers) {
+  std::string list;
+  for (const LayerInfo& l : kLayerTable)
+    if (layers & l.bit) {
+      if (!list.empty()) list += ',';
+      list += l.name;
+    }
+  return list;
+}
+
+std::string expectation(const ViewParameter& p, int max_image_side) {
+  const ParameterType type = parameter_type(p);
+  switch (type) {
+    case ParameterType::integer:
+    case ParameterType::number: {
+      const Range r = allowed_range(p, max_image_side);
+      std::string text = type == ParameterType::integer ? "must be a whole number" : "must be a number";
+      if (r.has_min() && r.has_max())
+        text += r.min_open ? " in (" + shortest(r.min) + ", " + shortest(r.max) + "]"
+                           : " from " + shortest(r.min) + " to " + shortest(r.max);
+      else if (r.has_min())
+        text += (r.min_open ? " > " : " >= ") + shortest(r.min);
+      else if (r.has_max())
+        text += " <= " + shortest(r.max);
+      if (!p.unit.empty()) text += " [" + std::string(p.unit) + "]";
+      return text;
+    }
+    case ParameterType::enumeration: return "must be " + joined(choices(p), " or ");
+    case ParameterType::list: return "must be a comma-separated list of " + joined(choices(p), ", ");
+  }
+  return "must be text";
+}
+
+std::optional<std::string> set_parameter(ViewRequest& request, const ViewParameter& p,
+                                         const GivenValue& value, int max_image_side) {
+  const ParameterType type = parameter_type(p);
+  if (type == ParameterType::integer || type == ParameterType::number) {
+    const std::optional<double> x = std::holds_alternative<double>(value)
+                                        ? std::optional(std::get<double>(value))
+                                        : number_in(std::get<std::string>(value));
+    const Range r = allowed_range(p, max_image_side);
+    if (!x || !std::isfinite(*x) || !r.contains(*x) ||
+        (type == ParameterType::integer && *x != std::floor(*x)))
+      return expectation(p, max_image_side);
+    std::visit(Overloaded{[&](int ViewRequest::*m) { request.*m = static_cast<int>(*x); },
+                          [&](double ViewRequest::*m) { request.*m = *x; },
+                          [&](std::optional<double> ViewRequest::*m) { request.*m = *x; }, [](auto) {}},
+               p.member);
+    return std::nullopt;
+  }
+  if (!std::holds_alternative<std::string>(value)) return expectation(p);
+  const std::string& text = std::get<std::string>(value);
+  if (type == ParameterType::enumeration) {
+    const std::optional<ViewKind> kind = parse_view(text);
+    if (!kind) return expectation(p);
+    std::visit(Overloaded{[&](std::optional<ViewKind> ViewRequest::*m) { request.*m = *kind; }, [](auto) {}},
+               p.member);
+    return std::nullopt;
+  }
+  std::string unknown;
+  const std::optional<unsigned> mask = parse_layers(text, &unknown);
+  if (!mask) return "'" + unknown + "' is not one of " + joined(choices(p), ", ");
+  std::visit(Overloaded{[&](unsigned ViewRequest::*m) { request.*m = *mask; }, [](auto) {}}, p.member);
+  return std::nullopt;
+}
+
+std::optional<GivenValue> parameter_value(const ViewRequest& request, const ViewParameter& p) {
+  return std::visit(
+      Overloaded{
+          [&](int ViewRequest::*m) -> std::optional<GivenValue> { return static_cast<double>(request.*m); },
+          [&](double ViewRequest::*m) -> std::optional<GivenValue> { return request.*m; },
+          [&](std::optional<double> ViewRequest::*m) -> std::optional<GivenValue> {
+            if (!(request.*m)) return std::nullopt;
+            return *(request.*m);
+          },
+          [&](std::optional<ViewKind> ViewRequest::*m) -> std::optional<GivenValue> {
+            if (!(request.*m)) return std::nullopt;
+            return std::string(view_name(*(request.*m)));
+          },
+          [&](unsigned ViewRequest::*m) -> std::optional<GivenValue> { return layer_list(request.*m); }},
+      p.member);
+}
+
+// ---- the layer names (render/view.h), from the table ---------------------------------------------
+
+namespace {
+constexpr auto kLayerNames = [] {
+  std::array<std::string_view, std::size(kLayerTable)> names{};
+  for (std::size_t i = 0; i < names.size(); ++i) names[i] = kLayerTable[i].name;
+  return names;
+}();
+}  // namespace
+
+std::span<const std::string_view> layer_names() {
+  return kLayerNames;
+}
+
+std::optional<unsigned> parse_layers(std::string_view list, std::string* unknown) {
+  unsigned mask = 0;
+  while (!list.empty()) {
+    const std::size_t comma = list.find(',');
+    const std::string_view item = list.substr(0, comma);
+    bool found = item.empty();
+    for (const LayerInfo& l : kLayerTable)
+      if (l.name == item) mask |= l.bit, found = true;
+    if (!found) {
+      if (unknown) *unknown = std::string(item);
+      return std::nullopt;
+    }
+    if (comma == std::string_view::npos) break;
+    list.remove_prefix(comma + 1);
+  }
+  return mask;
+}
+
+}  // namespace spinfold::render

@@ -1,0 +1,169 @@
+// The picture's vocabulary, named once: every parameter of a frame (its size, view, layers, the
+// body's display scale, the camera, the trail's span) with its unit, allowed range, default and
+// help, and the table of layers. The frame query parameters (server/frames.cpp), the recording
+// body (server/routes_recordings.cpp), the CLI's render and record options (cli/view_options.cpp),
+// the OpenAPI document and GET /api/v1/view-parameters all iterate these tables, so that a name,
+// a range or a default is written here only. Plain data, no JSON.
+//
+// A row points at the member of ViewRequest it sets; the default is ViewRequest's own in-class
+// default (as engine/scene_fields.h takes a scene field's from its struct), and the member's type
+// says the parameter's: int a whole number, double a number, std::optional<double> a number with no
+// default (its absence means something: "aimed at the body"), std::optional<ViewKind> one of the
+// views, unsigned a list of layers.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "engine/scene_fields.h"  // Range
+#include "render/view.h"
+
+namespace spinfold::render {
+
+// What the view parameters ask for, before the surface is known.
+struct ViewRequest {
+  int width = 640;                   // [pixels]
+  int height = 480;                  // [pixels]
+  std::optional<ViewKind> view{};    // absent: the surface's own (default_view)
+  unsigned layers = kDefaultLayers;  // Layer bits
+  // [surface radii; lengths in the conformal view (body_scale_length)] the body's ellipse is the
+  // image of scale·(unit circle) under e_A
+  double scale = 0.25;
+  std::optional<double> yaw{};       // [rad] camera azimuth (3-D views); absent: aimed at the body
+  std::optional<double> pitch{};     // [rad] camera elevation (3-D views); absent: aimed at the body
+  std::optional<double> distance{};  // [surface radii] (3-D views); absent: aimed at the body
+  std::optional<double> trail{};     // [time] the trail's span before now; absent: the whole run
+};
+
+// The kinds of value a parameter holds (from the member's type).
+enum class ParameterType {
+  integer,      // a whole number
+  number,       // a finite number
+  enumeration,  // one of choices()
+  list,         // comma-separated items, each one of choices() (empty items are ignored)
+};
+
+using ViewMember =
+    std::variant<int ViewRequest::*, double ViewRequest::*, std::optional<double> ViewRequest::*,
+                 std::optional<ViewKind> ViewRequest::*, unsigned ViewRequest::*>;
+
+struct ViewParameter {
+  std::string_view name;  // the query parameter, the recording body's key, the CLI's --NAME
+  ViewMember member;      // what it sets (its type and default)
+  std::string_view unit;  // numbers: "pixels", "rad", "radii" (surface radii), "time"; "" for none
+                          // (scale: surface radii, or lengths in the conformal view, as its help says)
+  Range range;            // numbers: the allowed values (a side's maximum: also Limits::max_image_side)
+  std::string_view help;  // one line: what it does, and what its absence means
+};
+
+// ---- the tables --------------------------------------------------------------------------------
+
+inline constexpr Range kImageSide{.min = 16.0, .max = kMaxImageSide};
+
+inline constexpr ViewParameter kViewParameters[] = {
+    {"width", &ViewRequest::width, "pixels", kImageSide, "image width"},
+    {"height", &ViewRequest::height, "pixels", kImageSide, "image height"},
+    {"view",
+     &ViewRequest::view,
+     "",
+     {},
+     "the picture (GET /api/v1/views lists each with the surfaces it shows); default: the surface's own"},
+    {"layers",
+     &ViewRequest::layers,
+     "",
+     {},
+     "what is drawn: the shaded surface, its geodesic grid, the body's ellipse, the frame arrows, the "
+     "trail, the text overlay, and (not by default) the action variables and frequencies in the text "
+     "overlay"},
+    {"scale",
+     &ViewRequest::scale,
+     "",
+     {.min = 0.0, .min_open = true, .max = 10.0},
+     "the body's ellipse: the image of this many surface radii (lengths in the conformal view) of the "
+     "unit circle under e_A"},
+    {"yaw",
+     &ViewRequest::yaw,
+     "rad",
+     {.min = -100.0, .max = 100.0},
+     "camera azimuth (3-D views); default: aimed at the body"},
+    {"pitch",
+     &ViewRequest::pitch,
+     "rad",
+     {.min = -1.55, .max = 1.55},
+     "camera elevation (3-D views); default: aimed at the body"},
+    {"distance",
+     &ViewRequest::distance,
+     "radii",
+     {.min = 1.2, .max = 100.0},
+     "camera distance from the centre in surface radii (3-D views); default: aimed at the body"},
+    {"trail", &ViewRequest::trail, "time", kNonNegative,
+     "the trail's span: the path over this much simulated time before now; default: the whole run "
+     "(sampled every 0.01, the spacing doubling past 8192 samples)"},
+};
+
+struct LayerInfo {
+  std::string_view name;  // as in the layers list
+  Layer bit;
+  bool on_by_default;     // in kDefaultLayers
+  std::string_view help;  // one line
+};
+
+// The one table of layers, in the order the lists name them.
+inline constexpr LayerInfo kLayerTable[] = {
+    {"surface", kSurface, true, "the shaded surface"},
+    {"grid", kGrid, true, "the geodesic grid"},
+    {"body", kBody, true, "the body's deformed-frame ellipse (and each companion's)"},
+    {"frame", kFrame, true, "the frame arrows e₁, e₂"},
+    {"trail", kTrail, true, "the path on the surface"},
+    {"hud", kHud, true, "the text overlay: scene, time, energy, invariants"},
+    {"actions", kActions, false, "the action variables and frequencies, added to the text overlay"},
+};
+
+constexpr unsigned default_layers() {
+  unsigned mask = 0;
+  for (const LayerInfo& l : kLayerTable)
+    if (l.on_by_default) mask |= l.bit;
+  return mask;
+}
+static_assert(default_layers() == kDefaultLayers, "kDefaultLayers is the table's layers on by default");
+
+// ---- reading the tables --------------------------------------------------------------------------
+
+std::span<const ViewParameter> view_parameters();
+// The row named `name`; std::logic_error when there is none (a programming error).
+const ViewParameter& view_parameter(std::string_view name);
+ParameterType parameter_type(const ViewParameter& p);
+// enumeration: the view names (the view table's order); list: the layer names; else empty.
+std::vector<std::string_view> choices(const ViewParameter& p);
+// The allowed values of a number, a side at most `max_image_side`.
+Range allowed_range(const ViewParameter& p, int max_image_side = kMaxImageSide);
+// The default as the API writes it: a number (integer, number), a text (the default layers,
+// "surface,grid,body,frame,trail,hud"), or none (its absence means what the help says).
+std::optional<std::variant<double, std::string>> default_value(const ViewParameter& p);
+// The layers on by default, joined by commas.
+std::string default_layer_list();
+
+// Why a value is refused, in the words of every reader (query, body, CLI): "must be a whole number
+// from 16 to 4096 [pixels]", "must be a number in (0, 10]", "must be sphere, disk,
+// … or conformal", "'sparkles' is not one of surface, grid, …, actions".
+std::string expectation(const ViewParameter& p, int max_image_side = kMaxImageSide);
+
+// A value as given: a number (JSON), or a text (a query value, a CLI option, a JSON string).
+using GivenValue = std::variant<double, std::string>;
+
+// Sets `p` in `request` from a value; nullopt when set, else the reason it is refused (the caller
+// names the field and the value). A text for a number is read as one (all of it, finite).
+std::optional<std::string> set_parameter(ViewRequest& request, const ViewParameter& p,
+                                         const GivenValue& value, int max_image_side = kMaxImageSide);
+
+// The request's value of `p` as the API writes it (the inverse of set_parameter; nullopt when absent).
+std::optional<GivenValue> parameter_value(const ViewRequest& request, const ViewParameter& p);
+
+// The layer list of a mask ("surface,grid,body"), in the table's order.
+std::string layer_list(unsigned layers);
+
+}  // namespace spinfold::render
