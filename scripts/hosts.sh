@@ -15,7 +15,8 @@
 #
 # Environment: HOSTS_STATE (state folder, default /tmp/spinfold-hosts), SPINFOLD_BIN (build/spinfold),
 # HOSTS_NET (the /24's first three numbers, default 10.251.0), HOSTS_FRONT_RATE (the front's requests
-# per second per address, default deploy/nginx/spinfold.conf's 100: a soak from one address raises it).
+# per second per address, default deploy/nginx/spinfold.conf's 100: a soak from one address raises it),
+# HOSTS_SERVE_ARGS (more `spinfold serve` options for every replica, e.g. --requests-per-second 0).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 state=${HOSTS_STATE:-/tmp/spinfold-hosts}
@@ -61,7 +62,7 @@ start_replica() {  # index
   local i=$1
   # setsid: its own process group, so kill-replica can end the host's processes.
   SPINFOLD_STORE=$(url) in_host "r$i" setsid "$bin" serve --host "$(replica_ip "$i")" --port "$port" \
-    --trusted-proxy "$front_ip" >> "$state/r$i.log" 2>&1 < /dev/null &
+    --trusted-proxy "$front_ip" ${HOSTS_SERVE_ARGS:-} >> "$state/r$i.log" 2>&1 < /dev/null &
   wait_http client "http://$(replica_ip "$i"):$port/api/v1/health"
 }
 
