@@ -102,11 +102,14 @@ void ClientQuotas::admit_request(const std::string& client) {
 }
 
 void ClientQuotas::add_session(const std::string& client, const std::string& id,
-                               const std::shared_ptr<Session>& session) {
+                               const std::shared_ptr<Session>& session,
+                               const std::function<bool(const std::string&)>& gone) {
   const std::lock_guard lock(mutex_);
   Client& c = client_locked(client);
   std::erase_if(c.sessions, [](const auto& entry) { return entry.second.expired(); });
   const int quota = limits_.max_sessions_per_client;
+  if (static_cast<int>(c.sessions.size()) >= quota && gone)
+    std::erase_if(c.sessions, [&gone](const auto& entry) { return gone(entry.first); });
   if (static_cast<int>(c.sessions.size()) >= quota)
     throw over_quota("max_sessions_per_client", quota,
                      "this client (" + client + ") has " + std::to_string(quota) +

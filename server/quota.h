@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -36,7 +37,10 @@ class ClientQuotas {
 
   // Counts a new session against its creator's quota, or ApiError 429 (then the caller drops it).
   // The session counts until release_session(id) or until it is gone (deleted, expired).
-  void add_session(const std::string& client, const std::string& id, const std::shared_ptr<Session>& session);
+  // `gone(id)`: whether another replica deleted a session this one counted (asked only at the
+  // quota, so that a client's sessions deleted through another replica count no more).
+  void add_session(const std::string& client, const std::string& id, const std::shared_ptr<Session>& session,
+                   const std::function<bool(const std::string&)>& gone = {});
   void release_session(const std::string& id);
 
   // An open event stream of the client, counted while the returned handle lives; ApiError 429 over

@@ -75,7 +75,9 @@ void create_session(ServerContext& server, const Call& call, httplib::Response& 
   if (!session)
     throw ApiError{503, "Too many sessions", {{"", "", "the session limit is reached; retry later"}}, "30"};
   try {
-    server.quotas.add_session(call.client, id, session);  // counted until deleted or expired
+    // Counted until deleted (here or, with a store, through another replica) or expired.
+    server.quotas.add_session(call.client, id, session,
+                              [&server](const std::string& other) { return server.sessions.deleted_elsewhere(other); });
   } catch (const ApiError&) {
     server.sessions.erase(id);
     throw;

@@ -195,6 +195,29 @@ void SessionStore::save_played(const std::string& id, Session& s, bool now) {
   }
 }
 
+bool SessionStore::deleted_elsewhere(const std::string& id) {
+  if (!db_) return false;
+  std::shared_ptr<Session> memory;
+  {
+    const std::lock_guard lock(mutex_);
+    const auto it = sessions_.find(id);
+    if (it != sessions_.end()) memory = it->second;
+  }
+  if (memory) {
+    const std::lock_guard lock(memory->mutex);
+    if (memory->stored_version == 0) return false;  // being created (or ahead of the store): not gone
+  }
+  try {
+    if (db_->version(id)) return false;
+  } catch (const StoreError& e) {
+    warn_store_error(e.what());
+    return false;
+  }
+  const std::lock_guard lock(mutex_);
+  sessions_.erase(id);
+  return true;
+}
+
 void SessionStore::flush() {
   for (const auto& [id, s] : entries()) {
     const std::lock_guard lock(s->mutex);

@@ -69,6 +69,9 @@ class SessionStore {
   void save_played(const std::string& id, Session& session, bool now = false);
   void flush();           // save_played(now) for every session: at shutdown
   std::size_t restore();  // loads every stored session (paused) at start; returns how many
+  // True when the store no longer has the session (another process deleted it or it expired): then
+  // this process forgets it too. False without a store, or when the store cannot be read.
+  bool deleted_elsewhere(const std::string& id);
 
  private:
   void expire_idle_locked();

@@ -1,36 +1,20 @@
 // @ts-check
 // The view menu and the layer toggles: the server's views that exist on the surface shown (in its
 // order), the layers of GET /api/v1/view-parameters, rendered from the store.
-import { ProblemError, request } from "./api.js";
+import { request } from "./api.js";
 import { $, el, clear } from "./dom.js";
 import { mount, store, withView } from "./state.js";
-import { fromAttributes, fromContract } from "./viewparams.js";
+import { fromContract } from "./viewparams.js";
 
 /** @typedef {import("./state.js").AppState} AppState */
 
 /**
- * The view controls from the server; from the page's own controls when the server has no
- * GET /api/v1/view-parameters (TEMPORARY: see viewparams.js fromAttributes). Whether it has the
- * route is read from its OpenAPI document first, so that a server without it costs no 404 (the
- * browser logs every failed request in the console, which the browser tests require to be clean);
- * remove that look-up with the fallback.
+ * The view controls from the server (GET /api/v1/view-parameters: the one table of view parameters
+ * and layers, render/view_parameters.h).
  * @returns {Promise<import("./viewparams.js").ViewControls>}
  */
 export async function loadViewParameters() {
-  const openapi = await request("GET", "/openapi.json");
-  if (openapi.paths?.["/api/v1/view-parameters"]) {
-    try {
-      return fromContract(await request("GET", "/view-parameters"));
-    } catch (e) {
-      if (!(e instanceof ProblemError) || e.status !== 404) throw e;
-    }
-  }
-  const layerBoxes = [...document.querySelectorAll("#layers input[type=checkbox]")].map((box) => ({
-    name: /** @type {HTMLInputElement} */ (box).name.replace(/^layer-/, ""),
-    checked: /** @type {HTMLInputElement} */ (box).defaultChecked,
-    title: /** @type {HTMLElement} */ (box.parentElement).title,
-  }));
-  return fromAttributes({ layerBoxes, data: { ...$("frame").dataset } });
+  return fromContract(await request("GET", "/view-parameters"));
 }
 
 /** The views offered on the surface shown. @param {AppState} s */
@@ -59,7 +43,7 @@ function renderViewMenu(s, b) {
 /** @param {AppState} s @param {AppState} b */
 function renderLayers(s, b) {
   const box = $("layers");
-  if (s.viewParameters !== b.viewParameters && s.viewParameters?.source === "server") {
+  if (s.viewParameters !== b.viewParameters && s.viewParameters) {
     clear(box);
     for (const layer of s.viewParameters.layers)
       box.append(

@@ -1,7 +1,7 @@
 // @ts-check
 // The view controls' ranges, defaults and layers: from GET /api/v1/view-parameters (the server's
 // one table of frame parameters, render/view_parameters.*) instead of clamps copied into the UI.
-// Pure: fromContract reads the route's answer, fromAttributes the page's own controls.
+// Pure: fromContract reads the route's answer.
 
 /**
  * A number parameter in the UI's units (angles in radians): min, max, default (null: none, e.g.
@@ -11,7 +11,7 @@
 /** @typedef {{name: string, default: boolean, help: string}} Layer */
 /**
  * @typedef {{ranges: Record<string, Range>, layers: Layer[], views: string[],
- *   source: "server" | "page"}} ViewControls
+ *   source: "server"}} ViewControls
  */
 
 const degree = Math.PI / 180;
@@ -53,28 +53,6 @@ export function fromContract(answer) {
     help: String(l.help ?? ""),
   }));
   return { ranges, layers, views, source: "server" };
-}
-
-/**
- * TEMPORARY fallback while the server has no GET /api/v1/view-parameters (one from before the
- * route; viewcontrols.js asks its OpenAPI document): the same shape read from the page's own controls — the layer checkboxes in #layers
- * (name, checked, title) and the camera's data-*-min/max attributes on the frame. Remove it, and
- * those attributes, once every server has the route.
- * @param {{layerBoxes: Array<{name: string, checked: boolean, title: string}>,
- *   data: Record<string, string | undefined>}} page
- * @returns {ViewControls}
- */
-export function fromAttributes(page) {
-  /** @type {Record<string, Range>} */
-  const ranges = {};
-  for (const [key, value] of Object.entries(page.data)) {
-    const match = /^(\w+?)(Min|Max)$/.exec(key);
-    if (!match || value === undefined || !Number.isFinite(Number(value))) continue;
-    const range = (ranges[match[1]] ??= { min: -Infinity, max: Infinity, default: null, toApi: 1, help: "" });
-    range[match[2] === "Min" ? "min" : "max"] = Number(value);
-  }
-  const layers = page.layerBoxes.map((b) => ({ name: b.name, default: b.checked, help: b.title }));
-  return { ranges, layers, views: [], source: "page" };
 }
 
 /**

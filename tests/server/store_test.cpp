@@ -240,6 +240,25 @@ TEST_P(StoreOn, TwoServersOnOneStoreServeTheSameSessions) {
   EXPECT_EQ(b.client().Delete((kSessions + "/" + id).c_str())->status, 404);
 }
 
+// A client's session quota is kept by the replica that created the sessions; those deleted through
+// another replica (the front hashes a session's requests elsewhere than its creation) count no more.
+TEST_P(StoreOn, SessionsDeletedThroughAnotherReplicaLeaveTheCreatorsQuota) {
+  Server a(args());
+  Server b(args());
+  ASSERT_GT(a.port(), 0) << a.err();
+  ASSERT_GT(b.port(), 0) << b.err();
+  std::vector<std::string> ids;
+  for (int i = 0; i < 48; ++i) ids.push_back(create(a, {{"preset", "spinning_rigid_sphere"}}));
+  const auto over = post(a, kSessions, {{"preset", "spinning_rigid_sphere"}});
+  ASSERT_TRUE(over);
+  EXPECT_EQ(over->status, 429) << "the quota of 48 sessions per client";
+  for (const std::string& id : ids) ASSERT_EQ(b.client().Delete((kSessions + "/" + id).c_str())->status, 204);
+  const auto again = post(a, kSessions, {{"preset", "spinning_rigid_sphere"}});
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->status, 201) << again->body;
+  EXPECT_EQ(status_of(a, ids.front()), 404);
+}
+
 INSTANTIATE_TEST_SUITE_P(Stores, StoreOn, testing::Values("sqlite", "postgresql"),
                          [](const testing::TestParamInfo<std::string>& p) { return p.param; });
 

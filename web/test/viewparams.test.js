@@ -2,7 +2,7 @@
 // (fixture below), the page's fallback, and the clamps and units the camera uses.
 import assert from "node:assert/strict";
 import { test } from "node:test";
-import { clampTo, fromAttributes, fromContract, toApi } from "../viewparams.js";
+import { clampTo, fromContract, toApi } from "../viewparams.js";
 
 // An answer of the route as the contract gives it (angles in degrees here, to check the units).
 const answer = {
@@ -75,22 +75,4 @@ test("clampTo keeps a value within its range, and leaves unnamed ones alone", ()
   assert.equal(clampTo(controls, "distance", 3), 3);
   assert.equal(clampTo(controls, "zoom", 1e6), 1e6);
   assert.equal(clampTo(null, "distance", 0.5), 0.5);
-});
-
-test("the page's fallback: data-*-min/max and the layer boxes, in the same shape", () => {
-  const controls = fromAttributes({
-    data: { pitchMin: "-1.5", pitchMax: "1.5", distanceMin: "1.2", distanceMax: "100", other: "x", scaleMax: "ten" },
-    layerBoxes: [
-      { name: "surface", checked: true, title: "the shaded surface" },
-      { name: "actions", checked: false, title: "the action variables" },
-    ],
-  });
-  assert.equal(controls.source, "page");
-  assert.deepEqual(
-    [controls.ranges.pitch.min, controls.ranges.pitch.max, controls.ranges.distance.max],
-    [-1.5, 1.5, 100],
-  );
-  assert.ok(!("scale" in controls.ranges)); // "ten" is not a number
-  assert.equal(clampTo(controls, "pitch", 2), 1.5);
-  assert.deepEqual(controls.layers[1], { name: "actions", default: false, help: "the action variables" });
 });
