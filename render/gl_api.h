@@ -1,7 +1,7 @@
 // The GL entry points the renderer and Dear ImGui's backend call, looked up through the backend
 // that made the current context (OSMesaGetProcAddress, eglGetProcAddress) instead of linked by
 // name: libOSMesa and GLVND's libOpenGL both export gl* symbols that dispatch only to their own
-// contexts, so a binary with both backends cannot call GL directly (platform-notes.md: linking
+// contexts, so a binary with both backends cannot call GL directly (docs/platform-notes.md: linking
 // -lGL beside OSMesa crashed). Include this instead of <GL/gl.h>: each glFoo below becomes a call
 // through the table of the context current on this thread.
 #pragma once

@@ -8,7 +8,7 @@ namespace spinfold::render {
 
 class OsmesaContext final : public GlContext {
  public:
-  // A GL 3.3+ core context with a 24-bit depth buffer (none unless asked: platform-notes.md),
+  // A GL 3.3+ core context with a 24-bit depth buffer (none unless asked: docs/platform-notes.md),
   // current at 64×64. Throws std::runtime_error when OSMesa cannot provide one.
   OsmesaContext();
   ~OsmesaContext() override;

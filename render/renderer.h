@@ -22,7 +22,7 @@ struct Image {
 class Renderer {
  public:
   // Creates the context (of gl_backend_setting()'s backend, or this one) on the calling thread and
-  // warms it up (shader JIT costs the first frame 20–70 ms: platform-notes.md). Use the renderer
+  // warms it up (shader JIT costs the first frame 20–70 ms: docs/platform-notes.md). Use the renderer
   // only from this thread.
   Renderer();
   explicit Renderer(GlBackend backend);

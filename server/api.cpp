@@ -63,7 +63,7 @@ struct ApiServer::State {
 
 ApiServer::ApiServer(ServerOptions options) : state_(std::make_unique<State>(std::move(options))) {
   auto& http = state_->http;
-  http.set_tcp_nodelay(true);  // without it every small response waits ~40 ms (platform-notes.md)
+  http.set_tcp_nodelay(true);  // without it every small response waits ~40 ms (docs/platform-notes.md)
   http.set_payload_max_length(state_->server.options.limits.max_body_bytes);
   const int threads = state_->server.options.threads;
   http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };

@@ -1,5 +1,5 @@
 // The render pool: N threads, each owning an OpenGL context (a context is bound to one thread, and
-// a dedicated thread costs ~30% less than binding it on whichever worker serves: platform-notes.md).
+// a dedicated thread costs ~30% less than binding it on whichever worker serves: docs/platform-notes.md).
 // Threads only render; the caller encodes the pixels, so a render thread never waits on encoding
 // or on a client. Frames with the same key (a session) are rendered one at a time, in the order
 // they were asked for; frames of different keys run in parallel. Background frames (recordings)
