@@ -43,6 +43,7 @@ void Player::loop() {
       sessions_.save_played(id, *s);  // with a store: about once a second, and when it stops
     }
     if (played && played_) played_();
+    sessions_.sweep_deleted_elsewhere();  // with a store: every 30 s
   }
 }
 

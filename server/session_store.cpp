@@ -218,6 +218,21 @@ bool SessionStore::deleted_elsewhere(const std::string& id) {
   return true;
 }
 
+void SessionStore::sweep_deleted_elsewhere() {
+  constexpr auto kSweepInterval = std::chrono::seconds(30);
+  if (!db_) return;
+  std::vector<std::string> idle;
+  {
+    const std::lock_guard lock(mutex_);
+    const auto now = Clock::now();
+    if (now - last_sweep_ < kSweepInterval) return;
+    last_sweep_ = now;
+    for (const auto& [id, s] : sessions_)
+      if (now - s->last_used > kSweepInterval) idle.push_back(id);
+  }
+  for (const std::string& id : idle) deleted_elsewhere(id);
+}
+
 void SessionStore::flush() {
   for (const auto& [id, s] : entries()) {
     const std::lock_guard lock(s->mutex);

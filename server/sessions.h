@@ -72,6 +72,9 @@ class SessionStore {
   // True when the store no longer has the session (another process deleted it or it expired): then
   // this process forgets it too. False without a store, or when the store cannot be read.
   bool deleted_elsewhere(const std::string& id);
+  // Every 30 s (called by the player's ticks): forgets the sessions unused here for that long whose
+  // rows are gone (deleted through another replica), so that memory does not hold them until expiry.
+  void sweep_deleted_elsewhere();
 
  private:
   void expire_idle_locked();
@@ -85,6 +88,7 @@ class SessionStore {
   std::chrono::seconds idle_expiry_;
   std::uint64_t next_id_ = 1;
   SessionDb* db_ = nullptr;
+  std::chrono::steady_clock::time_point last_sweep_{};  // guarded by mutex_
 };
 
 // A name of the session's state valid across the processes sharing its store and across CPUs
