@@ -1,5 +1,6 @@
 // The live stream (GET/PATCH …/live) and what it stands on: the render pool's order per session
-// and the frame cache's one render per frame. A real server in-process, real HTTP clients.
+// (the frame cache's one render per frame: frame_cache_test.cpp). A real server in-process, real
+// HTTP clients.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -18,7 +19,6 @@
 #include "decoded_image.h"
 #include "render/snapshot.h"
 #include "server/api.h"
-#include "server/frame_cache.h"
 #include "server/render_pool.h"
 
 // After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
@@ -331,33 +331,6 @@ TEST(RenderPool, FramesOfOneKeyInOrderOneAtATime) {
     last[key] = number;
   }
   EXPECT_EQ(started.size(), 12u);
-}
-
-// Eight viewers asking for one frame at once: one render, eight answers; a failed render reaches
-// everyone waiting and is made again at the next ask.
-TEST(FrameCache, OneRenderPerFrameForEveryoneAsking) {
-  FrameCache cache(4);
-  std::atomic<int> made{0};
-  const auto make = [&] {
-    ++made;
-    std::this_thread::sleep_for(50ms);
-    return std::make_shared<const std::vector<std::uint8_t>>(3, 7);
-  };
-  std::vector<std::thread> viewers;
-  std::atomic<int> answers{0};
-  for (int i = 0; i < 8; ++i)
-    viewers.emplace_back([&] { answers += cache.get("\"frame\"", make)->size() == 3; });
-  for (auto& v : viewers) v.join();
-  EXPECT_EQ(made.load(), 1);
-  EXPECT_EQ(answers.load(), 8);
-  EXPECT_TRUE(cache.contains("\"frame\""));
-
-  EXPECT_THROW(cache.get("\"broken\"", []() -> FrameBytes { throw std::runtime_error("no context"); }),
-               std::runtime_error);
-  EXPECT_FALSE(cache.contains("\"broken\""));
-  EXPECT_EQ(cache.get("\"broken\"", make)->size(), 3u);
-  for (const char* etag : {"\"1\"", "\"2\"", "\"3\"", "\"4\""}) cache.get(etag, make);
-  EXPECT_FALSE(cache.contains("\"frame\""));  // least recently used, beyond the capacity
 }
 
 }  // namespace
