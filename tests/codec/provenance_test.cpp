@@ -40,8 +40,10 @@ TEST(Provenance, SceneHashIsOfTheCanonicalJson) {
 
 // The same scene read from two texts with different spacing and key order has one hash.
 TEST(Provenance, SceneHashIgnoresTheFilesLayout) {
-  const SceneParse one = parse_scene_text(R"({"surface": {"kind": "sphere", "radius": 2}, "body": {"mass": 3}})");
-  const SceneParse two = parse_scene_text("{\"body\":{\"mass\":3.0},\n  \"surface\":{\"radius\":2,\"kind\":\"sphere\"}}");
+  const SceneParse one =
+      parse_scene_text(R"({"surface": {"kind": "sphere", "radius": 2}, "body": {"mass": 3}})");
+  const SceneParse two =
+      parse_scene_text("{\"body\":{\"mass\":3.0},\n  \"surface\":{\"radius\":2,\"kind\":\"sphere\"}}");
   ASSERT_TRUE(one.scene && two.scene);
   EXPECT_EQ(scene_hash(*one.scene), scene_hash(*two.scene));
 }
@@ -53,7 +55,8 @@ TEST(Provenance, JsonHasTheDocumentedFieldsInOrder) {
   const nlohmann::ordered_json p = provenance_json(s, "spinfold simulate x.json");
   std::vector<std::string> keys;
   for (const auto& [key, value] : p.items()) keys.push_back(key);
-  EXPECT_EQ(keys, (std::vector<std::string>{"software", "version", "commit", "scene_hash", "integrator", "command"}));
+  EXPECT_EQ(keys, (std::vector<std::string>{"software", "version", "commit", "scene_hash", "integrator",
+                                            "command"}));
   EXPECT_EQ(p["software"], "spinfold");
   EXPECT_EQ(p["version"], std::string(build_version()));
   EXPECT_EQ(p["commit"], std::string(build_commit()));
@@ -86,9 +89,9 @@ TEST(Provenance, SameSceneSameBytes) {
 
 TEST(Provenance, HeaderIsKeyValuePairsOnOneLine) {
   const Scene s = sphere_scene();
-  EXPECT_EQ(provenance_header(s), "version=" + std::string(build_version()) + "; commit=" +
-                                      std::string(build_commit()) + "; scene_hash=" + scene_hash(s) +
-                                      "; integrator=rk4; dt=0.005; tolerance=1e-09");
+  EXPECT_EQ(provenance_header(s),
+            "version=" + std::string(build_version()) + "; commit=" + std::string(build_commit()) +
+                "; scene_hash=" + scene_hash(s) + "; integrator=rk4; dt=0.005; tolerance=1e-09");
 }
 
 // PNG text chunks: Software names the build, Source is the record plus the frame's time and view.
@@ -97,8 +100,8 @@ TEST(Provenance, PictureTextsCarryTimeAndView) {
   const auto texts = picture_texts(s, "spinfold render", 2.25, "disk");
   ASSERT_EQ(texts.size(), 2u);
   EXPECT_EQ(texts[0].first, "Software");
-  EXPECT_EQ(texts[0].second, "spinfold " + std::string(build_version()) + " (commit " +
-                                 std::string(build_commit()) + ")");
+  EXPECT_EQ(texts[0].second,
+            "spinfold " + std::string(build_version()) + " (commit " + std::string(build_commit()) + ")");
   EXPECT_EQ(texts[0].second, "spinfold " + version_line());
   EXPECT_EQ(texts[1].first, "Source");
   const nlohmann::json source = nlohmann::json::parse(texts[1].second);

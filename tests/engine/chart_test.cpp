@@ -35,7 +35,8 @@ TEST(Chart, InitialStateEmbedsTheScenesValues) {
   for (const SurfaceKind kind : kKinds) {
     const Scene s = scene_on(kind);
     const ChartPoint p = chart_point(s.surface, s.initial.r, s.initial.phi);
-    const Mat2 L = rotation2(s.initial.alpha) * Eigen::Vector2d(1.1, 0.6).asDiagonal() * rotation2(s.initial.beta).transpose();
+    const Mat2 L = rotation2(s.initial.alpha) * Eigen::Vector2d(1.1, 0.6).asDiagonal() *
+                   rotation2(s.initial.beta).transpose();
     const EmbeddedBody body = global_embedding(s, initial_state(s));
     const Vec3 V = 0.2 * p.E1 + polar_S(s.surface, 1.2) * -0.3 * p.E2;
     EXPECT_LT((body.X - p.X).norm(), 1e-13) << static_cast<int>(kind);
@@ -137,11 +138,13 @@ TEST(Chart, Rotation2AndInverseLinear) {
   const Mat2 U = rotation2(std::numbers::pi / 2);
   EXPECT_LT((U * Eigen::Vector2d(1.0, 0.0) - Eigen::Vector2d(0.0, 1.0)).norm(), 1e-16);
   const Mat3 rotation = Eigen::AngleAxisd(0.7, Vec3(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
-  EXPECT_LT((inverse_linear({SurfaceKind::sphere, 1.0}, rotation) * rotation - Mat3::Identity()).norm(), 1e-15);
+  EXPECT_LT((inverse_linear({SurfaceKind::sphere, 1.0}, rotation) * rotation - Mat3::Identity()).norm(),
+            1e-15);
   const double w = 1.3;
   Mat3 boost;
   boost << std::cosh(w), 0.0, std::sinh(w), 0.0, 1.0, 0.0, std::sinh(w), 0.0, std::cosh(w);
-  EXPECT_LT((inverse_linear({SurfaceKind::pseudosphere, 1.0}, boost) * boost - Mat3::Identity()).norm(), 1e-14);
+  EXPECT_LT((inverse_linear({SurfaceKind::pseudosphere, 1.0}, boost) * boost - Mat3::Identity()).norm(),
+            1e-14);
 }
 
 }  // namespace

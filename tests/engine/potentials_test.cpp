@@ -28,8 +28,10 @@ TEST(Potentials, RadialPotentialIsStrengthOverRhoSquared) {
   const RadialPotential radial{0.3};
   const Surface sphere{SurfaceKind::sphere, 2.0}, h2{SurfaceKind::pseudosphere, 2.0};
   const double r = 1.1;
-  EXPECT_NEAR(radial_potential(sphere, radial, chart_point(sphere, r, 0.4).X), 0.3 / std::pow(std::sin(r / 2.0), 2), 1e-14);
-  EXPECT_NEAR(radial_potential(h2, radial, chart_point(h2, r, 0.4).X), 0.3 / std::pow(2.0 * std::sinh(r / 2.0), 2), 1e-14);
+  EXPECT_NEAR(radial_potential(sphere, radial, chart_point(sphere, r, 0.4).X),
+              0.3 / std::pow(std::sin(r / 2.0), 2), 1e-14);
+  EXPECT_NEAR(radial_potential(h2, radial, chart_point(h2, r, 0.4).X),
+              0.3 / std::pow(2.0 * std::sinh(r / 2.0), 2), 1e-14);
   EXPECT_DOUBLE_EQ(radial_potential({SurfaceKind::plane, 1.0}, radial, {3.0, 4.0, 0.0}), 0.3 / 25.0);
 }
 
@@ -43,7 +45,8 @@ TEST(Potentials, RadialGradientMatchesDifferences) {
   for (int i = 0; i < 3; ++i) {
     Vec3 step = Vec3::Zero();
     step[i] = h;
-    const double numeric = (radial_potential(s, radial, X + step) - radial_potential(s, radial, X - step)) / (2 * h);
+    const double numeric =
+        (radial_potential(s, radial, X + step) - radial_potential(s, radial, X - step)) / (2 * h);
     EXPECT_NEAR(gradient[i], numeric, 1e-7) << i;
   }
   EXPECT_EQ(gradient.z(), 0.0);
@@ -79,7 +82,8 @@ TEST(Potentials, DeformationDerivativesMatchDifferences) {
   const Mat2 L = matrix(1.3, 0.25, -0.15, 0.6);
   const double h = 1e-6;
   for (const DeformationPotential& potential :
-       {DeformationPotential{AbcPotential{0.02, 0.4, 0.3}}, DeformationPotential{PolarPotential{0.05, 0.1, PolarForm::cot2}},
+       {DeformationPotential{AbcPotential{0.02, 0.4, 0.3}},
+        DeformationPotential{PolarPotential{0.05, 0.1, PolarForm::cot2}},
         DeformationPotential{PolarPotential{0.05, 0.1, PolarForm::literal}}}) {
     const auto V = [&](const Mat2& M) {
       const DeformationInvariants ab = deformation_invariants(M);
@@ -88,17 +92,24 @@ TEST(Potentials, DeformationDerivativesMatchDifferences) {
     const DeformationInvariants ab = deformation_invariants(L);
     const DeformationEnergy e = deformation_potential(potential, ab.a, ab.b);
     EXPECT_NEAR(e.dV_da,
-                (deformation_potential(potential, ab.a + h, ab.b).value - deformation_potential(potential, ab.a - h, ab.b).value) / (2 * h),
-                1e-6 * (1 + std::abs(e.dV_da))) << potential.index();
+                (deformation_potential(potential, ab.a + h, ab.b).value -
+                 deformation_potential(potential, ab.a - h, ab.b).value) /
+                    (2 * h),
+                1e-6 * (1 + std::abs(e.dV_da)))
+        << potential.index();
     EXPECT_NEAR(e.dV_db,
-                (deformation_potential(potential, ab.a, ab.b + h).value - deformation_potential(potential, ab.a, ab.b - h).value) / (2 * h),
-                1e-6 * (1 + std::abs(e.dV_db))) << potential.index();
+                (deformation_potential(potential, ab.a, ab.b + h).value -
+                 deformation_potential(potential, ab.a, ab.b - h).value) /
+                    (2 * h),
+                1e-6 * (1 + std::abs(e.dV_db)))
+        << potential.index();
     const Mat2 gradient = deformation_gradient(e, L);
     for (int i = 0; i < 2; ++i)
       for (int j = 0; j < 2; ++j) {
         Mat2 step = Mat2::Zero();
         step(i, j) = h;
-        EXPECT_NEAR(gradient(i, j), (V(L + step) - V(L - step)) / (2 * h), 1e-6 * (1 + std::abs(gradient(i, j))))
+        EXPECT_NEAR(gradient(i, j), (V(L + step) - V(L - step)) / (2 * h),
+                    1e-6 * (1 + std::abs(gradient(i, j))))
             << potential.index() << " " << i << j;
       }
   }

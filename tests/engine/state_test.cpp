@@ -10,8 +10,9 @@
 namespace spinfold {
 namespace {
 
-constexpr Status kStatuses[] = {Status::ok,           Status::non_finite, Status::step_failed, Status::degenerate_frame,
-                                Status::out_of_range, Status::diverged,   Status::inconsistent};
+constexpr Status kStatuses[] = {
+    Status::ok,           Status::non_finite, Status::step_failed, Status::degenerate_frame,
+    Status::out_of_range, Status::diverged,   Status::inconsistent};
 
 // The names are the enumerators' own spelling (the API's status values).
 TEST(State, StatusNamesAreTheEnumerators) {

@@ -10,7 +10,8 @@
 namespace spinfold {
 namespace {
 
-const Surface kSurfaces[] = {{SurfaceKind::sphere, 2.0}, {SurfaceKind::pseudosphere, 2.0}, {SurfaceKind::plane, 2.0}};
+const Surface kSurfaces[] = {
+    {SurfaceKind::sphere, 2.0}, {SurfaceKind::pseudosphere, 2.0}, {SurfaceKind::plane, 2.0}};
 
 TEST(Surface, CurvatureIsSignOverRadiusSquared) {
   EXPECT_EQ(curvature_sign(kSurfaces[0]), 1.0);
@@ -94,8 +95,9 @@ TEST(Surface, PolarCoordinatesInvertTheChart) {
     EXPECT_NEAR(q.rho, std::abs(polar_S(s, 1.1)), 1e-14);
     EXPECT_LT((chart_point(s, -1.1, 0.7).X - chart_point(s, 1.1, 0.7 + std::numbers::pi).X).norm(), 1e-14);
   }
-  EXPECT_EQ(polar_coordinates(kSurfaces[0], {0.0, 0.0, 2.0}).r, 0.0);                   // the pole
-  EXPECT_NEAR(polar_coordinates(kSurfaces[0], {0.0, 0.0, -2.0}).r, 2.0 * std::numbers::pi, 1e-15);  // antipode
+  EXPECT_EQ(polar_coordinates(kSurfaces[0], {0.0, 0.0, 2.0}).r, 0.0);  // the pole
+  EXPECT_NEAR(polar_coordinates(kSurfaces[0], {0.0, 0.0, -2.0}).r, 2.0 * std::numbers::pi,
+              1e-15);  // antipode
 }
 
 // ⟨a, b⟩ is Minkowski (η = diag(1, 1, −1)) on H² only; raise applies η.

@@ -13,11 +13,14 @@ namespace spinfold {
 namespace {
 
 const FieldError* error_at(const std::vector<FieldError>& errors, const std::string& field) {
-  const auto it = std::find_if(errors.begin(), errors.end(), [&](const FieldError& e) { return e.field == field; });
+  const auto it =
+      std::find_if(errors.begin(), errors.end(), [&](const FieldError& e) { return e.field == field; });
   return it == errors.end() ? nullptr : &*it;
 }
 
-TEST(Validation, DefaultSceneIsValid) { EXPECT_TRUE(validate_scene(Scene{}).empty()); }
+TEST(Validation, DefaultSceneIsValid) {
+  EXPECT_TRUE(validate_scene(Scene{}).empty());
+}
 
 // Every bad field is reported in one pass, each with its path, its value as text and a reason.
 TEST(Validation, EveryBadFieldIsNamedWithItsValue) {

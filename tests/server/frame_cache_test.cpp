@@ -43,14 +43,22 @@ TEST(FrameCache, OneRenderPerFrameForEveryoneAsking) {
   EXPECT_FALSE(cache.contains("\"frame\""));  // least recently used, beyond the capacity
 }
 
-FrameBytes bytes(std::uint8_t value) { return std::make_shared<const std::vector<std::uint8_t>>(1, value); }
+FrameBytes bytes(std::uint8_t value) {
+  return std::make_shared<const std::vector<std::uint8_t>>(1, value);
+}
 
 // A hit is served from memory: `make` is not called again, and the bytes are the same object.
 TEST(FrameCache, HitServesTheKeptFrameWithoutMaking) {
   FrameCache cache(2);
   int made = 0;
-  const FrameBytes first = cache.get("\"a\"", [&] { ++made; return bytes(1); });
-  const FrameBytes again = cache.get("\"a\"", [&] { ++made; return bytes(2); });
+  const FrameBytes first = cache.get("\"a\"", [&] {
+    ++made;
+    return bytes(1);
+  });
+  const FrameBytes again = cache.get("\"a\"", [&] {
+    ++made;
+    return bytes(2);
+  });
   EXPECT_EQ(made, 1);
   EXPECT_EQ(again, first);
   EXPECT_EQ((*again)[0], 1);
@@ -68,7 +76,12 @@ TEST(FrameCache, EvictsTheLeastRecentlyUsedNotTheOldest) {
   EXPECT_FALSE(cache.contains("\"b\""));
   EXPECT_TRUE(cache.contains("\"c\""));
   int made = 0;
-  EXPECT_EQ((*cache.get("\"b\"", [&] { ++made; return bytes(4); }))[0], 4);  // made again
+  EXPECT_EQ((*cache.get("\"b\"",
+                        [&] {
+                          ++made;
+                          return bytes(4);
+                        }))[0],
+            4);  // made again
   EXPECT_EQ(made, 1);
 }
 

@@ -10,7 +10,9 @@
 namespace spinfold::server {
 namespace {
 
-Framing framing_of(const std::string& head) { return read_framing(head); }
+Framing framing_of(const std::string& head) {
+  return read_framing(head);
+}
 
 TEST(RequestFraming, AcceptedHeadsAndTheirBodies) {
   const std::string get = "GET /api/v1/health HTTP/1.1\r\nHost: x\r\n\r\n";
@@ -19,7 +21,8 @@ TEST(RequestFraming, AcceptedHeadsAndTheirBodies) {
   EXPECT_EQ(none.body, Framing::Body::none);
   EXPECT_EQ(none.head_bytes, get.size());  // the bytes after the head are not the head's
 
-  const Framing length = framing_of("POST /api/v1/sessions HTTP/1.1\r\nHost: x\r\nContent-Length: 42\r\n\r\n");
+  const Framing length =
+      framing_of("POST /api/v1/sessions HTTP/1.1\r\nHost: x\r\nContent-Length: 42\r\n\r\n");
   EXPECT_EQ(length.status, 0) << length.reason;
   EXPECT_EQ(length.body, Framing::Body::length);
   EXPECT_EQ(length.length, 42u);
@@ -39,20 +42,20 @@ TEST(RequestFraming, AmbiguousHeadsAreRefused) {
     const char* head;
     int status;
   } cases[] = {
-      {"GET / HTTP/1.1\nHost: x\r\n\r\n", 400},                                      // request line in LF
-      {"GET / HTTP/1.1\r\nHost: x\n\r\n", 400},                                      // header line in LF
-      {"GET / HTTP/1.1\r\nHost: x\r\n folded\r\n\r\n", 400},                         // obs-fold
-      {"GET / HTTP/1.1\r\nno colon here\r\n\r\n", 400},                              // no colon
-      {"GET / HTTP/1.1\r\nHost : x\r\n\r\n", 400},                                   // space before colon
-      {"POST / HTTP/1.1\r\nContent-Length: +14\r\n\r\n", 400},                       // sign
-      {"POST / HTTP/1.1\r\nContent-Length: -5\r\n\r\n", 400},                        // sign
-      {"POST / HTTP/1.1\r\nContent-Length: 5\r\nContent-Length: 6\r\n\r\n", 400},    // two lengths
+      {"GET / HTTP/1.1\nHost: x\r\n\r\n", 400},                                    // request line in LF
+      {"GET / HTTP/1.1\r\nHost: x\n\r\n", 400},                                    // header line in LF
+      {"GET / HTTP/1.1\r\nHost: x\r\n folded\r\n\r\n", 400},                       // obs-fold
+      {"GET / HTTP/1.1\r\nno colon here\r\n\r\n", 400},                            // no colon
+      {"GET / HTTP/1.1\r\nHost : x\r\n\r\n", 400},                                 // space before colon
+      {"POST / HTTP/1.1\r\nContent-Length: +14\r\n\r\n", 400},                     // sign
+      {"POST / HTTP/1.1\r\nContent-Length: -5\r\n\r\n", 400},                      // sign
+      {"POST / HTTP/1.1\r\nContent-Length: 5\r\nContent-Length: 6\r\n\r\n", 400},  // two lengths
       {"POST / HTTP/1.1\r\nContent-Length: 5\r\nTransfer-Encoding: chunked\r\n\r\n", 400},  // both
-      {"GET / HTTP/1.1\r\nContent-Length: 3\r\n\r\n", 400},                          // a GET body
-      {"POST / HTTP/1.1\r\nTransfer-Encoding: gzip\r\n\r\n", 501},                   // unknown coding
+      {"GET / HTTP/1.1\r\nContent-Length: 3\r\n\r\n", 400},                                 // a GET body
+      {"POST / HTTP/1.1\r\nTransfer-Encoding: gzip\r\n\r\n", 501},                          // unknown coding
       {"POST / HTTP/1.1\r\nTransfer-Encoding: gzip, chunked\r\n\r\n", 501},
-      {"GET /api/v1/sessions/a%2Fb HTTP/1.1\r\nHost: x\r\n\r\n", 404},                // encoded slash
-      {"GET / HTTP/1.1\r\nHost: x\r\n", 400},                                        // incomplete
+      {"GET /api/v1/sessions/a%2Fb HTTP/1.1\r\nHost: x\r\n\r\n", 404},  // encoded slash
+      {"GET / HTTP/1.1\r\nHost: x\r\n", 400},                           // incomplete
       {"", 400},
   };
   for (const auto& c : cases) {
@@ -81,7 +84,9 @@ TEST(RequestFraming, ChunkedBodies) {
 }
 
 // Outside a FramingServer connection there are no request bytes to see.
-TEST(RequestFraming, NoRequestBytesOutsideAConnection) { EXPECT_EQ(current_request_bytes(), nullptr); }
+TEST(RequestFraming, NoRequestBytesOutsideAConnection) {
+  EXPECT_EQ(current_request_bytes(), nullptr);
+}
 
 }  // namespace
 }  // namespace spinfold::server

@@ -38,7 +38,9 @@ httplib::Request request_of_type(const std::string& content_type) {
 // RFC 9457's members in order, with the errors array naming field, value and reason.
 TEST(Problem, SendErrorWritesProblemJson) {
   httplib::Response res;
-  send_error(res, ApiError{422, "Invalid value", {{"body.mass", "-1", "must be > 0"}, {"dt", "", "is missing"}}, ""});
+  send_error(
+      res,
+      ApiError{422, "Invalid value", {{"body.mass", "-1", "must be > 0"}, {"dt", "", "is missing"}}, ""});
   EXPECT_EQ(res.status, 422);
   EXPECT_EQ(res.get_header_value("Content-Type"), "application/problem+json");
   EXPECT_FALSE(res.has_header("Retry-After"));
@@ -65,15 +67,21 @@ TEST(Problem, RetryAfterIsSentWhenGiven) {
 // A value quoted back that is not UTF-8 is replaced, not a failed answer.
 TEST(Problem, InvalidUtf8InAValueStillGivesJson) {
   httplib::Response res;
-  send_error(res, bad(400, "Malformed request", "name", std::string("a\xff" "b"), "is not UTF-8"));
+  send_error(res, bad(400, "Malformed request", "name",
+                      std::string("a\xff"
+                                  "b"),
+                      "is not UTF-8"));
   const json body = json::parse(res.body);
-  EXPECT_EQ(body["errors"][0]["value"], "a\xEF\xBF\xBD" "b");  // U+FFFD
+  EXPECT_EQ(body["errors"][0]["value"],
+            "a\xEF\xBF\xBD"
+            "b");  // U+FFFD
 }
 
 // The detail cuts a long value to 80 bytes; the errors entry keeps it whole.
 TEST(Problem, DetailCutsLongValues) {
   const std::string long_value(200, 'x');
-  EXPECT_EQ(problem_detail({{"f", long_value, "is too long"}}), "f: is too long (got " + std::string(80, 'x') + "…)");
+  EXPECT_EQ(problem_detail({{"f", long_value, "is too long"}}),
+            "f: is too long (got " + std::string(80, 'x') + "…)");
   EXPECT_EQ(problem_detail({{"", "", "the body is empty"}}), "the body is empty");
   EXPECT_EQ(problem_detail({}), "");
 }
@@ -105,8 +113,9 @@ TEST(Problem, ParseBodyChecksTheMediaType) {
 TEST(Problem, ParseBodyRefusesWhatIsNotOneJsonValue) {
   const httplib::Request req = request_of_type("application/json");
   const std::vector<std::string> types{"application/json"};
-  for (const std::string& body : {std::string(""), std::string("{"), std::string("{} {}"),
-                                  std::string("{}") + '\0' + "x", std::string(40, '[') + std::string(40, ']')}) {
+  for (const std::string& body :
+       {std::string(""), std::string("{"), std::string("{} {}"), std::string("{}") + '\0' + "x",
+        std::string(40, '[') + std::string(40, ']')}) {
     const ApiError e = thrown_by([&] { parse_body(req, body, types); });
     EXPECT_EQ(e.status, 400) << body;
     EXPECT_EQ(e.title, "Malformed request") << body;
@@ -122,7 +131,9 @@ TEST(Problem, RequireObjectRefusesOtherValues) {
 // Every unknown key is named in one 422, with the known ones listed.
 TEST(Problem, UnknownKeysAreEachNamed) {
   EXPECT_NO_THROW(refuse_unknown_keys(json{{"dt", 1}}, {"dt", "t"}));
-  const ApiError e = thrown_by([] { refuse_unknown_keys(json{{"dt", 1}, {"x", 2}, {"y", "z"}}, {"dt", "t"}); });
+  const ApiError e = thrown_by([] {
+    refuse_unknown_keys(json{{"dt", 1}, {"x", 2}, {"y", "z"}}, {"dt", "t"});
+  });
   EXPECT_EQ(e.status, 422);
   ASSERT_EQ(e.errors.size(), 2u);
   EXPECT_EQ(e.errors[0].field, "x");
@@ -139,8 +150,9 @@ TEST(Problem, NumberFieldIsFiniteAndNamed) {
   EXPECT_EQ(text.errors[0].field, "dt");
   EXPECT_EQ(text.errors[0].reason, "must be a number");
   // nlohmann keeps an infinity it was given in code (JSON text cannot carry one).
-  const ApiError infinite =
-      thrown_by([] { number_field(json{{"dt", std::numeric_limits<double>::infinity()}}, "dt"); });
+  const ApiError infinite = thrown_by([] {
+    number_field(json{{"dt", std::numeric_limits<double>::infinity()}}, "dt");
+  });
   EXPECT_EQ(infinite.errors[0].reason, "must be finite");
 }
 
