@@ -188,8 +188,12 @@ double embedded_state_error(const Scene& scene, const State& a, const State& b) 
                              {x.e[0], y.e[0]},
                              {x.e[1], y.e[1]},
                              {x.W[0], y.W[0]},
-                             {x.W[1], y.W[1]}})
-    e = std::max(e, (u - v).cwiseAbs().maxCoeff() / std::max(1.0, v.norm()));
+                             {x.W[1], y.W[1]}}) {
+    const Vec3 d = u - v;
+    // maxCoeff and std::max both pass over a NaN: a state gone NaN would read as no error at all.
+    if (!d.allFinite()) return std::numeric_limits<double>::infinity();
+    e = std::max(e, d.cwiseAbs().maxCoeff() / std::max(1.0, v.norm()));
+  }
   return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
 }
 

@@ -10,27 +10,6 @@
 namespace spinfold {
 namespace {
 
-// Exactly one JSON value: nlohmann-json alone reads a NUL byte as the end of its input, so the
-// text after one would be ignored; a second value or trailing text is an error too.
-TEST(JsonText, OnlyExactlyOneValue) {
-  EXPECT_EQ(parse_json_text(" {\"a\": 1}\r\n\t ")["a"], 1);
-  for (const std::string& text :
-       {std::string("{\"a\": 1}") + '\0' + "garbage", std::string("{\"a\": 1}") + '\0',
-        '\0' + std::string("{}"), std::string("{\"a\": \"x") + '\0' + "y\"}", std::string("{\"a\": 1} x"),
-        std::string("{\"a\": 1}{\"a\": 2}"), std::string("1 2"), std::string(""),
-        std::string(40, '[') + std::string(40, ']')})
-    EXPECT_THROW(parse_json_text(text), JsonTextError) << text;
-  try {
-    parse_json_text(std::string("{}") + '\0');
-  } catch (const JsonTextError& e) {
-    EXPECT_NE(std::string(e.what()).find("NUL byte at byte 2"), std::string::npos) << e.what();
-  }
-  const SceneParse p = parse_scene_text(std::string(R"({"body": {"mass": 2.5}})") + '\0' + "garbage");
-  EXPECT_FALSE(p.scene);
-  ASSERT_EQ(p.errors.size(), 1u);
-  EXPECT_NE(p.errors[0].reason.find("NUL"), std::string::npos);
-}
-
 TEST(SceneJson, EmptyObjectGetsTheDocumentedDefaults) {
   const SceneParse p = parse_scene_text("{}");
   ASSERT_TRUE(p.errors.empty()) << describe_errors(p.errors);

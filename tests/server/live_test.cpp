@@ -1,5 +1,6 @@
-// The live stream (GET/PATCH …/live) and what it stands on: the render pool's order per session
-// and the frame cache's one render per frame. A real server in-process, real HTTP clients.
+// The live stream (GET/PATCH …/live). A real server in-process, real HTTP clients. What it stands
+// on has its own files: the render pool's order per session (render_pool_test.cpp) and the frame
+// cache's one render per frame (frame_cache_test.cpp).
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -18,7 +19,6 @@
 #include "decoded_image.h"
 #include "render/snapshot.h"
 #include "server/api.h"
-#include "server/frame_cache.h"
 #include "server/render_pool.h"
 
 // After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
@@ -295,69 +295,6 @@ TEST_F(Live, ASlowReaderGetsFewerNewerFramesNotAQueue) {
   std::printf("slow reader: %zu stale frames of %zu\n", stale, frames.size());
   // And after it read again, frames of the state now, not of the backlog.
   EXPECT_GE(std::stod(frames.back().frame.at("t")), t_before);
-}
-
-// The render pool renders a session's frames one at a time in the order asked for, frames of
-// other sessions meanwhile.
-TEST(RenderPool, FramesOfOneKeyInOrderOneAtATime) {
-  std::mutex mutex;
-  std::vector<std::pair<std::string, std::uint64_t>> started;
-  std::map<std::string, int> running;
-  bool overlapped = false;
-  RenderPool pool(2, [&](const std::string& key, std::uint64_t number, bool start) {
-    const std::lock_guard lock(mutex);
-    if (start) {
-      started.emplace_back(key, number);
-      overlapped |= ++running[key] > 1;
-    } else {
-      --running[key];
-    }
-  });
-  const Scene scene = *parse_scene_text(find_preset("spin_vs_geodesic_sphere")->json).scene;
-  const Simulation run = start_simulation(scene);
-  render::ViewOptions view;
-  view.width = 64;
-  view.height = 48;
-  std::vector<std::future<render::Image>> frames;
-  for (int i = 0; i < 12; ++i) {
-    const Trail trail;
-    frames.push_back(pool.render(i % 3 == 0 ? "b" : "a", render::make_snapshot(run, trail, -1.0), view));
-  }
-  for (auto& f : frames) EXPECT_EQ(f.get().rgba.size(), 64u * 48u * 4u);
-  EXPECT_FALSE(overlapped);
-  std::map<std::string, std::uint64_t> last;
-  for (const auto& [key, number] : started) {
-    EXPECT_GT(number, last[key]) << key;
-    last[key] = number;
-  }
-  EXPECT_EQ(started.size(), 12u);
-}
-
-// Eight viewers asking for one frame at once: one render, eight answers; a failed render reaches
-// everyone waiting and is made again at the next ask.
-TEST(FrameCache, OneRenderPerFrameForEveryoneAsking) {
-  FrameCache cache(4);
-  std::atomic<int> made{0};
-  const auto make = [&] {
-    ++made;
-    std::this_thread::sleep_for(50ms);
-    return std::make_shared<const std::vector<std::uint8_t>>(3, 7);
-  };
-  std::vector<std::thread> viewers;
-  std::atomic<int> answers{0};
-  for (int i = 0; i < 8; ++i)
-    viewers.emplace_back([&] { answers += cache.get("\"frame\"", make)->size() == 3; });
-  for (auto& v : viewers) v.join();
-  EXPECT_EQ(made.load(), 1);
-  EXPECT_EQ(answers.load(), 8);
-  EXPECT_TRUE(cache.contains("\"frame\""));
-
-  EXPECT_THROW(cache.get("\"broken\"", []() -> FrameBytes { throw std::runtime_error("no context"); }),
-               std::runtime_error);
-  EXPECT_FALSE(cache.contains("\"broken\""));
-  EXPECT_EQ(cache.get("\"broken\"", make)->size(), 3u);
-  for (const char* etag : {"\"1\"", "\"2\"", "\"3\"", "\"4\""}) cache.get(etag, make);
-  EXPECT_FALSE(cache.contains("\"frame\""));  // least recently used, beyond the capacity
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Recordings through the API in-process (tiny frames: this file runs under the sanitizers too): the
-// job's life, cancelling, a failure's reason, the limits, and the live session left as it was. And
-// the render pool's priorities, which keep recordings from taking render time from live viewers.
+// job's life, cancelling, a failure's reason, the limits, and the live session left as it was. (The
+// render pool's priorities, which keep recordings from taking render time from live viewers:
+// render_pool_test.cpp.)
 #include "server/recordings.h"
 
 #include <gtest/gtest.h>
@@ -23,52 +24,6 @@ namespace {
 
 using nlohmann::json;
 using namespace std::chrono_literals;
-
-// With one thread, a live frame asked after a background one is drawn first; with two, background
-// frames never take both threads, so a live frame starts while a background one is drawn.
-TEST(RenderPool, LiveFramesGoBeforeBackgroundOnes) {
-  const Scene scene = *parse_scene_text(find_preset("spin_vs_geodesic_sphere")->json).scene;
-  const Simulation run = start_simulation(scene);
-  render::ViewOptions view;
-  view.width = 32;
-  view.height = 24;
-  const auto snapshot = [&] { return render::make_snapshot(run, Trail{}, -1.0); };
-  for (const int threads : {1, 2}) {
-    std::mutex mutex;
-    std::condition_variable changed;
-    bool release = false;
-    std::vector<std::string> started;
-    RenderPool pool(threads, [&](const std::string& key, std::uint64_t, bool start) {
-      std::unique_lock lock(mutex);
-      if (!start) return;
-      started.push_back(key);
-      changed.notify_all();
-      if (key == "hold") changed.wait(lock, [&] { return release; });  // holds this thread
-    });
-    std::vector<std::future<render::Image>> frames;
-    const auto priority = threads == 1 ? RenderPriority::live : RenderPriority::background;
-    frames.push_back(pool.render("hold", snapshot(), view, priority));
-    {
-      std::unique_lock lock(mutex);
-      changed.wait(lock, [&] { return !started.empty(); });
-    }
-    frames.push_back(pool.render("recording", snapshot(), view, RenderPriority::background));
-    frames.push_back(pool.render("live", snapshot(), view, RenderPriority::live));
-    if (threads == 2) {  // the live frame gets the free thread; the background one waits for "hold"
-      std::unique_lock lock(mutex);
-      ASSERT_TRUE(changed.wait_for(lock, 20s, [&] { return started.size() == 2; }));
-      std::this_thread::sleep_for(50ms);  // the background frame would have started by now
-      EXPECT_EQ(started, (std::vector<std::string>{"hold", "live"}));
-    }
-    {
-      const std::lock_guard lock(mutex);
-      release = true;
-    }
-    changed.notify_all();
-    for (auto& f : frames) EXPECT_EQ(f.get().rgba.size(), 32u * 24u * 4u);
-    EXPECT_EQ(started, (std::vector<std::string>{"hold", "live", "recording"})) << threads << " threads";
-  }
-}
 
 // The disk allowance and the age limit, on the jobs alone (no HTTP).
 TEST(Recordings, PassingTheDiskAllowanceFailsWithTheReasonAndOldOnesAreDeleted) {
