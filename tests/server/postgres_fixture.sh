@@ -10,7 +10,7 @@
 #   postgres_fixture.sh url DIR     # the URL of its `postgres` database
 set -euo pipefail
 action=$1
-dir=$2
+dir=$(realpath -m "$2")  # absolute: the server resolves its socket folder from its data folder
 port=54329
 bin=$(ls -d /usr/lib/postgresql/*/bin 2> /dev/null | sort -V | tail -n 1)
 [[ -x $bin/initdb ]] || { echo "postgres_fixture.sh: PostgreSQL is missing: run scripts/setup.sh" >&2; exit 1; }
