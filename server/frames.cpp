@@ -62,11 +62,16 @@ std::vector<QueryParam> frame_params(const Limits& limits) {
     if (range.has_max()) q.maximum = range.max;
     q.exclusive_minimum = range.min_open;
     for (const std::string_view c : render::choices(p)) q.values.emplace_back(c);
+    // Built in place (GCC 12 at -O1 with ThreadSanitizer warns, wrongly, of an uninitialised
+    // string when a temporary variant is moved into the optional).
     if (const auto d = render::default_value(p)) {
-      if (const double* x = std::get_if<double>(&*d))
-        q.default_value = q.type == ParamType::integer ? QueryValue(static_cast<long long>(*x)) : QueryValue(*x);
+      const double* x = std::get_if<double>(&*d);
+      if (!x)
+        q.default_value.emplace(std::in_place_type<std::string>, std::get<std::string>(*d));
+      else if (q.type == ParamType::integer)
+        q.default_value.emplace(std::in_place_type<long long>, static_cast<long long>(*x));
       else
-        q.default_value = std::get<std::string>(*d);
+        q.default_value.emplace(std::in_place_type<double>, *x);
     }
     params.push_back(std::move(q));
   }
