@@ -393,28 +393,6 @@ std::string grid_line(const Snapshot& snapshot, const ViewOptions& view) {
   return "";
 }
 
-// Words of `text` in lines no wider than `width` [pt].
-std::vector<std::string> wrap(const std::string& text, double size, bool bold, double width) {
-  std::vector<std::string> lines;
-  std::string line;
-  std::size_t i = 0;
-  while (i < text.size()) {
-    std::size_t j = text.find(' ', i);
-    if (j == std::string::npos) j = text.size();
-    const std::string word = text.substr(i, j - i);
-    const std::string longer = line.empty() ? word : line + " " + word;
-    if (!line.empty() && text_width(longer, size, bold) > width) {
-      lines.push_back(line);
-      line = word;
-    } else {
-      line = longer;
-    }
-    i = j + 1;
-  }
-  if (!line.empty()) lines.push_back(line);
-  return lines;
-}
-
 }  // namespace
 
 FigureScale figure_scale(ViewKind view) {
@@ -553,7 +531,7 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
   const double text_right = legend.empty() ? w - kMargin : legend_x - 2 * kMargin;
   const double text_width_left = std::max(60.0, text_right - kMargin);
   const auto add_lines = [&](const std::string& text, double size, bool bold, const glm::dvec4& color) {
-    for (const std::string& l : wrap(text, size, bold, text_width_left)) {
+    for (const std::string& l : wrap_text(text, size, bold, text_width_left)) {
       y += size * kLineSpacing;
       page.texts.push_back({.at = {kMargin, y - 0.3 * size},
                             .text = l,

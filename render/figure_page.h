@@ -77,6 +77,8 @@ struct FigurePage {
 
 // The width of a text in the figure's font [pt] (cairo's toy text extents).
 double text_width(std::string_view text, double size, bool bold = false);
+// Words of `text` in lines no wider than `width` [pt] (text_width's measure).
+std::vector<std::string> wrap_text(const std::string& text, double size, bool bold, double width);
 
 // The page as an SVG or a PDF file's bytes. Throws std::runtime_error when cairo fails and
 // std::invalid_argument for FigureFormat::png.

@@ -22,28 +22,6 @@ std::string number(double v, const char* pattern = "%.4g") {
   return text;
 }
 
-// Words of `text` in lines no wider than `width` [pt].
-std::vector<std::string> wrap(const std::string& text, double size, bool bold, double width) {
-  std::vector<std::string> lines;
-  std::string line;
-  std::size_t i = 0;
-  while (i < text.size()) {
-    std::size_t j = text.find(' ', i);
-    if (j == std::string::npos) j = text.size();
-    const std::string word = text.substr(i, j - i);
-    const std::string longer = line.empty() ? word : line + " " + word;
-    if (!line.empty() && text_width(longer, size, bold) > width) {
-      lines.push_back(line);
-      line = word;
-    } else {
-      line = longer;
-    }
-    i = j + 1;
-  }
-  if (!line.empty()) lines.push_back(line);
-  return lines;
-}
-
 // One axis: the range shown and its ticks, in the axis's own coordinate (log10|y| when log).
 struct Axis {
   double lo = 0, hi = 1;
@@ -131,11 +109,11 @@ FigurePage series_page(const SeriesPlot& plot) {
   page.metadata = plot.metadata;
   const double left = kLeft, right = plot.width - kRight, plot_width = right - left;
   double y = kTop;
-  for (const std::string& line : wrap(plot.title, kTitleSize, true, right - left)) {
+  for (const std::string& line : wrap_text(plot.title, kTitleSize, true, right - left)) {
     y += kTitleSize * 1.3;
     page.texts.push_back({.at = {left, y}, .text = line, .size = kTitleSize, .bold = true, .role = "title"});
   }
-  for (const std::string& line : wrap(plot.description, kAxisSize, false, right - left)) {
+  for (const std::string& line : wrap_text(plot.description, kAxisSize, false, right - left)) {
     y += kAxisSize * 1.35;
     page.texts.push_back({.at = {left, y}, .text = line, .size = kAxisSize, .role = "title"});
   }
