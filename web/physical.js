@@ -242,9 +242,14 @@ function physicalRow(spec) {
     input.setAttribute("aria-describedby", `${help.id} ${error.id}`);
     input.title = helpText();
   }
+  // What this code last wrote into the number field: Chrome fires a trusted change when a focused
+  // field is left with a value other than the one it had on focus, even one the code wrote (a drag
+  // of the slider); that is not the user's edit, and sent later it would undo a newer change.
+  let written = "";
+  const fill = (/** @type {number | string} */ v) => (written = number.value = String(v));
   const show = (/** @type {number | undefined} */ v) => {
     const known = v !== undefined && v !== null && Number.isFinite(Number(v));
-    number.value = known ? Number(Number(v).toPrecision(6)) : "";
+    fill(known ? Number(Number(v).toPrecision(6)) : "");
     number.placeholder = known ? "" : (spec.placeholder ?? "from the rates");
     range.value = known ? v : (spec.min + spec.max) / 2;
   };
@@ -275,21 +280,25 @@ function physicalRow(spec) {
   };
   // A live row (the curvature dial) sends while it is dragged, at most one change in flight and
   // one every liveInterval ms, the latest value winning; the slider is not moved under the
-  // pointer by the answers meanwhile.
-  // (The release's change event repeats the last input's value: not sent again while in force.)
+  // pointer by the answers meanwhile. A value already sent or in force is not queued: the
+  // release's change event repeats the last input's, and queued while the interval runs out it
+  // would be sent after whatever changed meanwhile (the surface select's restart) and undo it.
   let sending = false;
   /** @type {number | null} */
   let pending = null;
   /** @type {number | undefined} */
   let sent;
   const live = async (/** @type {number} */ v) => {
-    pending = v;
-    if (sending) return;
+    if (sending) {
+      pending = v === sent ? null : v;
+      return;
+    }
+    if (v === sent && v === spec.value) return;
     sending = true;
+    pending = v;
     while (pending !== null) {
       const nextValue = pending;
       pending = null;
-      if (nextValue === sent && nextValue === spec.value) continue;
       sent = nextValue;
       const started = performance.now();
       await apply(nextValue);
@@ -311,11 +320,15 @@ function physicalRow(spec) {
   const stepped = () => Number(Number(range.value).toFixed(6));
   const typed = () => (number.value === "" ? NaN : Number(number.value));
   range.addEventListener("input", () => {
-    number.value = stepped();
+    fill(stepped());
     if (spec.live) live(stepped());
   });
   range.addEventListener("change", () => (spec.live ? live(stepped()) : apply(stepped())));
-  number.addEventListener("change", () => (spec.live && Number.isFinite(typed()) ? live(typed()) : apply(typed())));
+  number.addEventListener("change", () => {
+    if (number.value === written) return;
+    if (spec.live && Number.isFinite(typed())) live(typed());
+    else apply(typed());
+  });
   row.append(label, range, number, unit, help, error);
   return row;
 }
