@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config git ca-certificates
+  ccache                                          # compiler cache: scripts/test.sh's four builds
   libeigen3-dev                                   # engine
   libosmesa6-dev libegl-dev libegl-mesa0 libglm-dev libimgui-dev libpng-dev  # renderer (OSMesa, EGL)
   libdeflate-dev libturbojpeg0-dev                # frames: PNG compression, JPEG

@@ -8,6 +8,13 @@ cd "$(dirname "$0")/.."
 
 bash scripts/setup.sh
 jobs=$(nproc)
+# A compiler cache (Debian's ccache) under the four builds below: a second run on one machine
+# recompiles only what changed, also from another clone (paths relative to the repository).
+# Cold, on a new machine, the run takes its full time (docs/performance.md, "CI's time").
+if command -v ccache > /dev/null; then
+  export CMAKE_C_COMPILER_LAUNCHER=ccache CMAKE_CXX_COMPILER_LAUNCHER=ccache
+  export CCACHE_BASEDIR=$PWD CCACHE_NOHASHDIR=true
+fi
 started=$SECONDS
 stage() { echo "test.sh: $1 at +$((SECONDS - started)) s"; }  # where CI's time goes
 
