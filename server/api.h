@@ -54,6 +54,10 @@ struct Limits {
   long long max_recording_disk_bytes = 1LL << 30;  // the files of every recording kept [bytes]
   std::chrono::seconds recording_max_age{3600};    // a finished recording is deleted after this
   int recording_threads = 1;                       // recordings encoded at once (the rest wait, queued)
+  // With a store: a queued or running recording whose replica has not written its row for this long
+  // is failed (the replica was lost); each replica touches its rows every recording_heartbeat.
+  std::chrono::milliseconds recording_heartbeat{5000};
+  std::chrono::seconds recording_owner_lost{30};
 
   // Work-precision jobs (POST /api/v1/work-precision; server/work_precision_jobs.h), measured one at
   // a time on one background thread. A refused horizon is 422 naming t_end; a refused job is 429.

@@ -39,7 +39,7 @@ struct ServerContext {
   SessionStore sessions;
   RenderPool renderer{options.render_threads};
   FrameCache frames{128};
-  Recordings recordings{options.limits, renderer};  // after the pool: its jobs render there
+  Recordings recordings{options.limits, renderer, db.get()};  // after the pool and the store
   WorkPrecisionJobs work_precision{options.limits};
   ChangeSignal changes;              // bumped after every change of a session (live streams wait on it)
   std::atomic<int> open_streams{0};  // event and live streams now open

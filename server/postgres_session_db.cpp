@@ -27,6 +27,22 @@ constexpr const char* kMigrations[] = {
   rate      double precision NOT NULL,
   last_used bigint NOT NULL             -- the database's clock [ms since 1970]: one clock for all hosts
 ))sql",
+    // 2: recordings, so that every replica answers for every recording, and their files.
+    R"sql(CREATE TABLE recordings (
+  id      text PRIMARY KEY,
+  owner   text NOT NULL,    -- the replica recording it
+  status  text NOT NULL,    -- queued, running, done, failed, cancelled
+  json    text NOT NULL,    -- the API's view as the owner last wrote it
+  reason  text NOT NULL,    -- failed: why
+  bytes   bigint NOT NULL,  -- the file's size
+  updated bigint NOT NULL   -- the database's clock [ms] at the owner's last write or touch (or the cancel)
+);
+CREATE TABLE recording_chunks (
+  id   text NOT NULL,
+  idx  bigint NOT NULL,     -- 0, 1, …: kRecordingChunkBytes each, the last one shorter
+  data bytea NOT NULL,
+  PRIMARY KEY (id, idx)
+))sql",
 };
 static_assert(std::size(kMigrations) == PostgresSessionDb::kSchemaVersion);
 
@@ -97,6 +113,9 @@ class PostgresSessionDb::Result {
   std::string error() const { return trimmed(r_ ? PQresultErrorMessage(r_) : "out of memory"); }
   int rows() const { return PQntuples(r_); }
   const char* text(int row, int column) const { return PQgetvalue(r_, row, column); }
+  std::string bytes(int row, int column) const {
+    return std::string(text(row, column), static_cast<std::size_t>(PQgetlength(r_, row, column)));
+  }
   std::int64_t integer(int row, int column) const { return std::strtoll(text(row, column), nullptr, 10); }
   // Rows the INSERT, UPDATE or DELETE changed.
   long changed() const { return std::strtol(PQcmdTuples(r_), nullptr, 10); }
@@ -214,17 +233,18 @@ void PostgresSessionDb::migrate_locked() {
 }
 
 PostgresSessionDb::Result PostgresSessionDb::run(const char* sql, const std::vector<std::string>& params,
-                                                 Retry retry) {
+                                                 Retry retry, const std::vector<bool>& binary, bool binary_result) {
   std::vector<const char*> values;
-  std::vector<int> lengths;
-  for (const std::string& p : params) {
-    values.push_back(p.c_str());
-    lengths.push_back(static_cast<int>(p.size()));
+  std::vector<int> lengths, formats;
+  for (std::size_t i = 0; i < params.size(); ++i) {
+    values.push_back(params[i].c_str());
+    lengths.push_back(static_cast<int>(params[i].size()));
+    formats.push_back(i < binary.size() && binary[i] ? 1 : 0);
   }
   for (int attempt = 0;; ++attempt) {
     connect_locked();
     Result result(PQexecParams(conn_, sql, static_cast<int>(params.size()), nullptr, values.data(),
-                               lengths.data(), nullptr, 0));
+                               lengths.data(), formats.data(), binary_result ? 1 : 0));
     if (result.ok()) return result;
     const std::string error = result.error();
     if (PQstatus(conn_) == CONNECTION_BAD) {
@@ -310,6 +330,104 @@ bool PostgresSessionDb::reachable() {
   } catch (const StoreError&) {
     return false;
   }
+}
+
+namespace {
+// Queued or running: the rows an owner still writes.
+constexpr const char* kActive = "status IN ('queued', 'running')";
+}  // namespace
+
+bool PostgresSessionDb::save_recording(const StoredRecording& row) {
+  const std::lock_guard lock(mutex_);
+  // Only an active row changes: a cancel from another replica, or a deletion, is final.
+  static const std::string insert =
+      std::string("INSERT INTO recordings (id, owner, status, json, reason, bytes, updated) "
+                  "VALUES ($1, $2, $3, $4, $5, $6, ") +
+      kNowMs +
+      ") ON CONFLICT (id) DO UPDATE SET owner = $2, status = $3, json = $4, reason = $5, bytes = $6, "
+      "updated = " +
+      kNowMs + " WHERE recordings." + kActive;
+  static const std::string update = std::string(
+                                        "UPDATE recordings SET owner = $2, status = $3, json = $4, reason = $5, "
+                                        "bytes = $6, updated = ") +
+                                    kNowMs + " WHERE id = $1 AND " + kActive;
+  const Result r = run((row.status == "queued" ? insert : update).c_str(),
+                       {row.id, row.owner, row.status, row.json, row.reason, std::to_string(row.bytes)}, Retry::no);
+  return r.changed() == 1;
+}
+
+std::optional<StoredRecording> PostgresSessionDb::load_recording(const std::string& id) {
+  const std::lock_guard lock(mutex_);
+  static const std::string sql = std::string("SELECT id, owner, status, json, reason, bytes, ") + kNowMs +
+                                 " - updated FROM recordings WHERE id = $1";
+  const Result r = run(sql.c_str(), {id}, Retry::once);
+  if (r.rows() == 0) return std::nullopt;
+  return StoredRecording{.id = r.text(0, 0),
+                         .owner = r.text(0, 1),
+                         .status = r.text(0, 2),
+                         .json = r.bytes(0, 3),
+                         .reason = r.bytes(0, 4),
+                         .bytes = r.integer(0, 5),
+                         .silent_ms = r.integer(0, 6)};
+}
+
+bool PostgresSessionDb::cancel_recording(const std::string& id) {
+  const std::lock_guard lock(mutex_);
+  static const std::string sql =
+      std::string("UPDATE recordings SET status = 'cancelled', updated = ") + kNowMs + " WHERE id = $1 AND " + kActive;
+  return run(sql.c_str(), {id}, Retry::no).changed() == 1;
+}
+
+void PostgresSessionDb::save_recording_chunk(const std::string& id, std::int64_t index, std::string_view bytes) {
+  const std::lock_guard lock(mutex_);
+  run("INSERT INTO recording_chunks (id, idx, data) VALUES ($1, $2, $3) "
+      "ON CONFLICT (id, idx) DO UPDATE SET data = excluded.data",
+      {id, std::to_string(index), std::string(bytes)}, Retry::no, {false, false, true});
+}
+
+std::optional<std::string> PostgresSessionDb::load_recording_chunk(const std::string& id, std::int64_t index) {
+  const std::lock_guard lock(mutex_);
+  // Binary result: the bytea's bytes as they are (one column).
+  const Result r = run("SELECT data FROM recording_chunks WHERE id = $1 AND idx = $2::bigint",
+                       {id, std::to_string(index)}, Retry::once, {}, true);
+  if (r.rows() == 0) return std::nullopt;
+  return r.bytes(0, 0);
+}
+
+bool PostgresSessionDb::remove_recording(const std::string& id) {
+  const std::lock_guard lock(mutex_);
+  // One statement: the row and its file go together.
+  return run("WITH chunks AS (DELETE FROM recording_chunks WHERE id = $1) DELETE FROM recordings WHERE id = $1",
+             {id}, Retry::no)
+             .changed() > 0;
+}
+
+void PostgresSessionDb::touch_recordings(const std::string& owner) {
+  const std::lock_guard lock(mutex_);
+  static const std::string sql =
+      std::string("UPDATE recordings SET updated = ") + kNowMs + " WHERE owner = $1 AND " + kActive;
+  run(sql.c_str(), {owner}, Retry::once);
+}
+
+std::int64_t PostgresSessionDb::recording_bytes() {
+  const std::lock_guard lock(mutex_);
+  return run("SELECT coalesce(sum(bytes), 0) FROM recordings", {}, Retry::once).integer(0, 0);
+}
+
+void PostgresSessionDb::expire_recordings(std::chrono::seconds age, std::chrono::seconds lost,
+                                          const std::string& reason) {
+  const std::lock_guard lock(mutex_);
+  using std::chrono::milliseconds;
+  static const std::string fail = std::string("UPDATE recordings SET status = 'failed', reason = $2, bytes = 0, "
+                                              "updated = ") +
+                                  kNowMs + " WHERE updated < " + kNowMs + " - $1::bigint AND " + kActive;
+  run(fail.c_str(), {std::to_string(std::chrono::duration_cast<milliseconds>(lost).count()), reason}, Retry::once);
+  static const std::string old =
+      std::string("DELETE FROM recordings WHERE updated < ") + kNowMs + " - $1::bigint AND NOT " + kActive;
+  run(old.c_str(), {std::to_string(std::chrono::duration_cast<milliseconds>(age).count())}, Retry::once);
+  run("DELETE FROM recording_chunks WHERE id NOT IN "
+      "(SELECT id FROM recordings WHERE status IN ('queued', 'running', 'done'))",
+      {}, Retry::once);
 }
 
 }  // namespace spinfold::server

@@ -37,14 +37,25 @@ class PostgresSessionDb final : public SessionDb {
   std::int64_t count() override;
   void expire(std::chrono::seconds idle) override;
   bool reachable() override;
+  bool save_recording(const StoredRecording& row) override;
+  std::optional<StoredRecording> load_recording(const std::string& id) override;
+  bool cancel_recording(const std::string& id) override;
+  void save_recording_chunk(const std::string& id, std::int64_t index, std::string_view bytes) override;
+  std::optional<std::string> load_recording_chunk(const std::string& id, std::int64_t index) override;
+  bool remove_recording(const std::string& id) override;
+  void touch_recordings(const std::string& owner) override;
+  std::int64_t recording_bytes() override;
+  void expire_recordings(std::chrono::seconds age, std::chrono::seconds lost, const std::string& reason) override;
 
   // The schema version this build creates and reads.
-  static constexpr int kSchemaVersion = 1;
+  static constexpr int kSchemaVersion = 2;
 
  private:
   class Result;
   enum class Retry { no, once };  // reads may be repeated on a new connection; writes never are
-  Result run(const char* sql, const std::vector<std::string>& params, Retry retry);
+  // `binary`: the parameters sent as bytes (bytea), by index; `binary_result`: columns read as bytes.
+  Result run(const char* sql, const std::vector<std::string>& params, Retry retry,
+             const std::vector<bool>& binary = {}, bool binary_result = false);
   void connect_locked();
   void migrate_locked();
   void drop_connection_locked(const std::string& why);

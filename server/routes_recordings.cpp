@@ -1,7 +1,5 @@
 // Recordings: POST a time window of a session → 202 and a job (server/recordings.h); GET its status
 // and progress; GET its file; DELETE cancels or deletes it.
-#include <fstream>
-
 #include "engine/number_text.h"
 #include "server/context.h"
 #include "server/problem.h"
@@ -122,65 +120,35 @@ RecordingJob recording_job(ServerContext& server, const Call& call, Session& s) 
   return job;
 }
 
-ordered_json recording_json(const RecordingState& r) {
-  ordered_json out{{"id", r.id},
-                   {"status", status_name(r.status)},
-                   {"progress", r.progress},
-                   {"url", kRecordings + "/" + r.id},
-                   {"file", kRecordings + "/" + r.id + "/file"},
-                   {"session", r.job.session},
-                   {"format", record::format_name(r.job.format)},
-                   {"frames", r.frames},
-                   {"t_start", r.job.clip.t_start},
-                   {"t_end", r.job.clip.t_end},
-                   {"fps", r.job.clip.fps},
-                   {"speed", r.job.clip.speed},
-                   {"width", r.job.frames.view.width},
-                   {"height", r.job.frames.view.height},
-                   {"bytes", r.bytes}};
-  if (r.status == RecordingStatus::failed) out["reason"] = r.reason;
-  return out;
-}
-
 void create_recording(ServerContext& server, const Call& call, httplib::Response& res) {
   RecordingJob job = recording_job(server, call, *find_session(server, call.id));
   const std::string id = server.recordings.start(std::move(job));
   res.set_header("Location", kRecordings + "/" + id);
-  send_json(res, recording_json(server.recordings.state(id)), 202);
+  send_json(res, server.recordings.describe(id), 202);
 }
 
+// From the store when there is one: any replica answers for any recording (server/recordings.h).
 void get_recording(ServerContext& server, const Call& call, httplib::Response& res) {
   res.set_header("Cache-Control", "no-store");
-  send_json(res, recording_json(server.recordings.state(call.id)));
+  send_json(res, server.recordings.describe(call.id));
 }
 
 void get_recording_file(ServerContext& server, const Call& call, httplib::Response& res) {
-  const std::filesystem::path path = server.recordings.file(call.id);
-  const RecordingState r = server.recordings.state(call.id);
-  auto file = std::make_shared<std::ifstream>(path, std::ios::binary);  // readable even if deleted meanwhile
-  if (!*file) throw bad(404, "Unknown recording", "id", call.id, "the recording's file is gone");
-  char name[160];
-  std::snprintf(name, sizeof name, "spinfold-%s-t%s-%s.%s", r.job.session.substr(0, 8).c_str(),
-                shortest(r.job.clip.t_start).c_str(), shortest(r.job.clip.t_end).c_str(),
-                std::string(record::file_extension(r.job.format)).c_str());
-  res.set_header("Content-Disposition", std::string("attachment; filename=\"") + name + "\"");
+  const RecordingDownload file = server.recordings.file(call.id);
+  res.set_header("Content-Disposition", "attachment; filename=\"" + file.file_name + "\"");
   res.set_header("Cache-Control", "no-store");
-  res.set_content_provider(static_cast<std::size_t>(r.bytes), std::string(record::content_type(r.job.format)),
-                           [file](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
-                             char buffer[64 * 1024];
-                             file->seekg(static_cast<std::streamoff>(offset));
-                             file->read(buffer,
-                                        static_cast<std::streamsize>(std::min(length, sizeof buffer)));
-                             const auto got = file->gcount();
-                             if (got <= 0) return false;
-                             sink.write(buffer, static_cast<std::size_t>(got));
+  res.set_content_provider(static_cast<std::size_t>(file.bytes), file.content_type,
+                           [read = file.read](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+                             const std::string bytes = read(offset, length);
+                             if (bytes.empty()) return false;
+                             sink.write(bytes.data(), bytes.size());
                              return true;
                            });
 }
 
 void delete_recording(ServerContext& server, const Call& call, httplib::Response& res) {
   if (server.recordings.cancel_or_delete(call.id)) {
-    send_json(res, recording_json(server.recordings.state(call.id)));
+    send_json(res, server.recordings.describe(call.id));
     return;
   }
   res.status = 204;
@@ -217,14 +185,15 @@ std::vector<Route> recording_routes(const Limits& limits) {
        .body = RequestBody{.description = "the window, rate, picture and format", .schema = body_schema},
        .responses = {{202, "the recording, queued; Location"},
                      {422, "an invalid field, or over max_recording_frames / max_recording_pixels"},
-                     {429, "over max_recordings_per_client, max_recordings or max_recording_disk_bytes"}}},
+                     {429, "over max_recordings_per_client, max_recordings or max_recording_disk_bytes"},
+                     {503, "the session store is away (nothing started)"}}},
       {.method = "GET",
        .path = kRecordings + "/{id}",
        .operation_id = "get_recording",
        .handler = get_recording,
        .summary = "A recording's status (queued, running, done, failed with a reason, cancelled) and "
                   "progress 0…1",
-       .responses = {{200, "the recording"}, {404, "unknown recording"}}},
+       .responses = {{200, "the recording"}, {404, "unknown recording"}, {503, "the session store is away"}}},
       {.method = "GET",
        .path = kRecordings + "/{id}/file",
        .operation_id = "get_recording_file",
@@ -232,14 +201,18 @@ std::vector<Route> recording_routes(const Limits& limits) {
        .summary = "The recorded file, with its content type and a download file name",
        .responses = {{200, "image/gif, video/webm, video/mp4 or application/zip"},
                      {404, "unknown recording"},
-                     {409, "not done yet, or failed"}}},
+                     {409, "not done yet, or failed"},
+                     {503, "the session store is away"}}},
       {.method = "DELETE",
        .path = kRecordings + "/{id}",
        .operation_id = "delete_recording",
        .handler = delete_recording,
        .summary = "Cancels a queued or running recording (200, status cancelled), or deletes a "
                   "finished one and its file (204)",
-       .responses = {{200, "cancelled"}, {204, "deleted"}, {404, "unknown recording"}}}};
+       .responses = {{200, "cancelled"},
+                     {204, "deleted"},
+                     {404, "unknown recording"},
+                     {503, "the session store is away (nothing changed)"}}}};
 }
 
 }  // namespace spinfold::server

@@ -31,6 +31,23 @@ struct StoredSession {
   double rate = 1.0;         // simulated time per second of wall time while playing
 };
 
+// A recording's row: written by the replica that records it (its owner), read by any replica, so that
+// every replica answers for every recording; its finished file is in the store too, in chunks
+// (server/recordings.h says why the store and not a shared path).
+struct StoredRecording {
+  std::string id{};
+  std::string owner{};           // the replica recording it (Recordings::instance)
+  std::string status{};        // queued, running, done, failed or cancelled
+  std::string json{};          // the API's view of it as the owner last wrote it (its status and reason
+                               // are the columns': a cancel or a lost owner changes only those)
+  std::string reason{};        // failed: why
+  std::int64_t bytes = 0;      // the file's size: so far (running), in the store (done)
+  std::int64_t silent_ms = 0;  // read only: since the owner last wrote or touched the row (database clock)
+};
+
+// A recording's file is stored in chunks of this size [bytes] (the last one shorter).
+constexpr std::int64_t kRecordingChunkBytes = 1 << 20;
+
 // What every store does; each call is one atomic statement, safe from any thread. A call that cannot
 // reach the store throws StoreError (the server answers 503 and keeps nothing half-written).
 class SessionDb {
@@ -53,6 +70,24 @@ class SessionDb {
   virtual void expire(std::chrono::seconds idle) = 0;  // deletes rows unused for longer than `idle`
   // True when the store answers now (GET /health): a store that is away makes the replica unready.
   virtual bool reachable() = 0;
+
+  // Recordings. Inserts or updates the owner's row unless it is cancelled or gone meanwhile (false:
+  // a cancel from another replica, or a deletion; nothing written).
+  virtual bool save_recording(const StoredRecording& row) = 0;
+  virtual std::optional<StoredRecording> load_recording(const std::string& id) = 0;
+  // Queued or running → cancelled (true); false when it was neither (finished, or no such row).
+  virtual bool cancel_recording(const std::string& id) = 0;
+  // Chunk `index` (0, 1, …) of the file: written by the owner before its row says done.
+  virtual void save_recording_chunk(const std::string& id, std::int64_t index, std::string_view bytes) = 0;
+  virtual std::optional<std::string> load_recording_chunk(const std::string& id, std::int64_t index) = 0;
+  virtual bool remove_recording(const std::string& id) = 0;  // the row and its file; true when a row went
+  // Marks the owner's queued and running rows as alive now (its heartbeat).
+  virtual void touch_recordings(const std::string& owner) = 0;
+  virtual std::int64_t recording_bytes() = 0;  // the files in the store, all rows [bytes]
+  // Active rows whose owner was silent longer than `lost` become failed with `reason`; finished rows
+  // older than `age` are deleted with their files, and so are files whose row is neither active nor
+  // done (a cancel that came while the owner stored the file).
+  virtual void expire_recordings(std::chrono::seconds age, std::chrono::seconds lost, const std::string& reason) = 0;
 };
 
 // The store `spinfold serve` was asked for: `url` "postgresql://…" (or "postgres://…") is PostgreSQL;

@@ -14,7 +14,7 @@ namespace {
 
 // 'SPNF': the file is a Spinfold store (PRAGMA application_id), and the layout of its rows.
 constexpr int kApplicationId = 0x53504e46;
-constexpr int kSchemaVersion = 1;
+constexpr int kSchemaVersion = 2;  // 2: recordings and their files
 
 constexpr const char* kSchema = R"sql(
 CREATE TABLE IF NOT EXISTS sessions (
@@ -26,7 +26,25 @@ CREATE TABLE IF NOT EXISTS sessions (
   playing   INTEGER NOT NULL,
   rate      REAL NOT NULL,
   last_used INTEGER NOT NULL   -- Unix time [ms] of the last write or touch
-) WITHOUT ROWID)sql";
+) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS recordings (
+  id      TEXT PRIMARY KEY NOT NULL,
+  owner   TEXT NOT NULL,     -- the replica recording it
+  status  TEXT NOT NULL,     -- queued, running, done, failed, cancelled
+  json    TEXT NOT NULL,     -- the API's view as the owner last wrote it
+  reason  TEXT NOT NULL,     -- failed: why
+  bytes   INTEGER NOT NULL,  -- the file's size
+  updated INTEGER NOT NULL   -- Unix time [ms] of the owner's last write or touch (or the cancel)
+) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS recording_chunks (
+  id    TEXT NOT NULL,
+  idx   INTEGER NOT NULL,  -- 0, 1, …: kRecordingChunkBytes each, the last one shorter
+  data  BLOB NOT NULL,
+  PRIMARY KEY (id, idx)
+))sql";
+
+// Queued or running: the rows an owner still writes.
+constexpr const char* kActive = "status IN ('queued', 'running')";
 
 std::int64_t now_ms() {
   using namespace std::chrono;
@@ -50,6 +68,10 @@ struct SqliteSessionDb::Statement {
   }
   Statement& integer(int i, std::int64_t v) {
     sqlite3_bind_int64(stmt, i, v);
+    return *this;
+  }
+  Statement& blob(int i, std::string_view v) {
+    sqlite3_bind_blob64(stmt, i, v.data(), v.size(), SQLITE_TRANSIENT);
     return *this;
   }
   Statement& real(int i, double v) {
@@ -221,6 +243,114 @@ void SqliteSessionDb::expire(std::chrono::seconds idle) {
   Statement q(*this, "DELETE FROM sessions WHERE last_used < ?1");
   q.integer(1, now_ms() - std::chrono::duration_cast<std::chrono::milliseconds>(idle).count());
   q.step();
+}
+
+bool SqliteSessionDb::save_recording(const StoredRecording& row) {
+  const std::lock_guard lock(mutex_);
+  // Only an active row changes: a cancel from another replica, or a deletion, is final.
+  static const std::string insert =
+      std::string("INSERT INTO recordings (id, owner, status, json, reason, bytes, updated) "
+                  "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7) ON CONFLICT (id) DO UPDATE SET owner = ?2, status = ?3, "
+                  "json = ?4, reason = ?5, bytes = ?6, updated = ?7 WHERE recordings.") +
+      kActive;
+  static const std::string update =
+      std::string("UPDATE recordings SET owner = ?2, status = ?3, json = ?4, reason = ?5, bytes = ?6, "
+                  "updated = ?7 WHERE id = ?1 AND ") +
+      kActive;
+  Statement q(*this, row.status == "queued" ? insert.c_str() : update.c_str());
+  q.text(1, row.id).text(2, row.owner).text(3, row.status).text(4, row.json).text(5, row.reason);
+  q.integer(6, row.bytes).integer(7, now_ms());
+  q.step();
+  return sqlite3_changes(db_) == 1;
+}
+
+std::optional<StoredRecording> SqliteSessionDb::load_recording(const std::string& id) {
+  const std::lock_guard lock(mutex_);
+  Statement q(*this, "SELECT id, owner, status, json, reason, bytes, ?2 - updated FROM recordings WHERE id = ?1");
+  q.text(1, id).integer(2, now_ms());
+  if (!q.step()) return std::nullopt;
+  return StoredRecording{.id = q.column_text(0),
+                         .owner = q.column_text(1),
+                         .status = q.column_text(2),
+                         .json = q.column_text(3),
+                         .reason = q.column_text(4),
+                         .bytes = sqlite3_column_int64(q.stmt, 5),
+                         .silent_ms = sqlite3_column_int64(q.stmt, 6)};
+}
+
+bool SqliteSessionDb::cancel_recording(const std::string& id) {
+  const std::lock_guard lock(mutex_);
+  static const std::string sql =
+      std::string("UPDATE recordings SET status = 'cancelled', updated = ?2 WHERE id = ?1 AND ") + kActive;
+  Statement q(*this, sql.c_str());
+  q.text(1, id).integer(2, now_ms());
+  q.step();
+  return sqlite3_changes(db_) == 1;
+}
+
+void SqliteSessionDb::save_recording_chunk(const std::string& id, std::int64_t index, std::string_view bytes) {
+  const std::lock_guard lock(mutex_);
+  Statement q(*this, "INSERT OR REPLACE INTO recording_chunks (id, idx, data) VALUES (?1, ?2, ?3)");
+  q.text(1, id).integer(2, index).blob(3, bytes);
+  q.step();
+}
+
+std::optional<std::string> SqliteSessionDb::load_recording_chunk(const std::string& id, std::int64_t index) {
+  const std::lock_guard lock(mutex_);
+  Statement q(*this, "SELECT data FROM recording_chunks WHERE id = ?1 AND idx = ?2");
+  q.text(1, id).integer(2, index);
+  if (!q.step()) return std::nullopt;
+  const auto* p = static_cast<const char*>(sqlite3_column_blob(q.stmt, 0));
+  return std::string(p ? p : "", static_cast<std::size_t>(sqlite3_column_bytes(q.stmt, 0)));
+}
+
+bool SqliteSessionDb::remove_recording(const std::string& id) {
+  const std::lock_guard lock(mutex_);
+  // The row first: a file without its row is an orphan that expire_recordings removes.
+  Statement row(*this, "DELETE FROM recordings WHERE id = ?1");
+  row.text(1, id);
+  row.step();
+  const bool removed = sqlite3_changes(db_) > 0;
+  Statement chunks(*this, "DELETE FROM recording_chunks WHERE id = ?1");
+  chunks.text(1, id);
+  chunks.step();
+  return removed;
+}
+
+void SqliteSessionDb::touch_recordings(const std::string& owner) {
+  const std::lock_guard lock(mutex_);
+  static const std::string sql = std::string("UPDATE recordings SET updated = ?2 WHERE owner = ?1 AND ") + kActive;
+  Statement q(*this, sql.c_str());
+  q.text(1, owner).integer(2, now_ms());
+  q.step();
+}
+
+std::int64_t SqliteSessionDb::recording_bytes() {
+  const std::lock_guard lock(mutex_);
+  Statement q(*this, "SELECT coalesce(sum(bytes), 0) FROM recordings");
+  return q.step() ? sqlite3_column_int64(q.stmt, 0) : 0;
+}
+
+void SqliteSessionDb::expire_recordings(std::chrono::seconds age, std::chrono::seconds lost,
+                                        const std::string& reason) {
+  const std::lock_guard lock(mutex_);
+  using std::chrono::milliseconds;
+  const std::int64_t now = now_ms();
+  static const std::string fail = std::string(
+                                      "UPDATE recordings SET status = 'failed', reason = ?2, bytes = 0, updated = ?3 "
+                                      "WHERE updated < ?1 AND ") +
+                                  kActive;
+  Statement failed(*this, fail.c_str());
+  failed.integer(1, now - std::chrono::duration_cast<milliseconds>(lost).count()).text(2, reason).integer(3, now);
+  failed.step();
+  static const std::string old = std::string("DELETE FROM recordings WHERE updated < ?1 AND NOT ") + kActive;
+  Statement finished(*this, old.c_str());
+  finished.integer(1, now - std::chrono::duration_cast<milliseconds>(age).count());
+  finished.step();
+  Statement orphans(*this,
+                    "DELETE FROM recording_chunks WHERE id NOT IN "
+                    "(SELECT id FROM recordings WHERE status IN ('queued', 'running', 'done'))");
+  orphans.step();
 }
 
 }  // namespace spinfold::server

@@ -33,6 +33,15 @@ class SqliteSessionDb final : public SessionDb {
   std::int64_t count() override;
   void expire(std::chrono::seconds idle) override;
   bool reachable() override { return true; }  // a local file: errors are per call
+  bool save_recording(const StoredRecording& row) override;
+  std::optional<StoredRecording> load_recording(const std::string& id) override;
+  bool cancel_recording(const std::string& id) override;
+  void save_recording_chunk(const std::string& id, std::int64_t index, std::string_view bytes) override;
+  std::optional<std::string> load_recording_chunk(const std::string& id, std::int64_t index) override;
+  bool remove_recording(const std::string& id) override;
+  void touch_recordings(const std::string& owner) override;
+  std::int64_t recording_bytes() override;
+  void expire_recordings(std::chrono::seconds age, std::chrono::seconds lost, const std::string& reason) override;
 
  private:
   struct Statement;

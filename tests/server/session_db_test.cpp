@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 #include <libpq-fe.h>
+#include <sqlite3.h>
+
+#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include <atomic>
@@ -61,7 +64,7 @@ TEST_P(SessionDbConformance, TimesComeBackBitForBit) {
     if (std::isfinite(t)) times.push_back(t);
   }
   for (std::size_t i = 0; i < times.size(); ++i) {
-    StoredSession r = row("s" + std::to_string(i), times[i]);
+    StoredSession r = row(std::string("s").append(std::to_string(i)), times[i]);
     r.rate = times[times.size() - 1 - i];
     ASSERT_EQ(db_->save(r), 1);
   }
@@ -70,7 +73,7 @@ TEST_P(SessionDbConformance, TimesComeBackBitForBit) {
   const auto stored = [](double v) { return std::bit_cast<std::uint64_t>(v == 0.0 ? 0.0 : v); };
   const auto second = backend_->open();  // another process's view of the rows
   for (std::size_t i = 0; i < times.size(); ++i) {
-    const auto loaded = second->load("s" + std::to_string(i));
+    const auto loaded = second->load(std::string("s").append(std::to_string(i)));
     ASSERT_TRUE(loaded);
     EXPECT_EQ(std::bit_cast<std::uint64_t>(loaded->t), stored(times[i])) << times[i];
     EXPECT_EQ(std::bit_cast<std::uint64_t>(loaded->rate), stored(times[times.size() - 1 - i]));
@@ -149,6 +152,146 @@ TEST_P(SessionDbConformance, TouchRemoveCountAndExpire) {
   EXPECT_TRUE(db_->reachable());
 }
 
+// Recordings: a row the owner writes while it is active, a cancel from anywhere that is final, a
+// file in chunks that comes back byte for byte, a lost owner failed, old rows and orphan files gone.
+using spinfold::server::kRecordingChunkBytes;
+using spinfold::server::StoredRecording;
+
+StoredRecording recording(const std::string& id, const std::string& status, std::int64_t bytes = 0) {
+  return {.id = id,
+          .owner = "host:1:abc",
+          .status = status,
+          .json = nlohmann::json{{"id", id}, {"progress", 0.5}}.dump(),
+          .reason = "",
+          .bytes = bytes};
+}
+
+TEST(SqliteStore, AFileOfSchemaOneIsMigratedKeepingItsSessions) {
+  const fs::path dir = fs::temp_directory_path() / ("spinfold_sqlite_v1_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  {
+    // Schema 1 as the first SQLite release made it: sessions only.
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open((dir / "sessions.db").c_str(), &db), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(db,
+                           "PRAGMA application_id = 1397771846; PRAGMA user_version = 1; "
+                           "CREATE TABLE sessions (id TEXT PRIMARY KEY NOT NULL, version INTEGER NOT NULL, "
+                           "scene TEXT NOT NULL, timeline TEXT NOT NULL, t REAL NOT NULL, playing INTEGER NOT NULL, "
+                           "rate REAL NOT NULL, last_used INTEGER NOT NULL) WITHOUT ROWID; "
+                           "INSERT INTO sessions VALUES ('kept', 3, '{}', '[]', 2.5, 0, 1.0, 0)",
+                           nullptr, nullptr, nullptr),
+              SQLITE_OK);
+    sqlite3_close(db);
+  }
+  {
+    const auto db = open_session_db("", dir.string());
+    const auto kept = db->load("kept");
+    ASSERT_TRUE(kept);
+    EXPECT_EQ(kept->version, 3);
+    EXPECT_EQ(kept->t, 2.5);
+    EXPECT_TRUE(db->save_recording({.id = "r", .owner = "o", .status = "queued", .json = "{}"}));
+  }
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open((dir / "sessions.db").c_str(), &db), SQLITE_OK);
+  sqlite3_stmt* q = nullptr;
+  ASSERT_EQ(sqlite3_prepare_v2(db, "PRAGMA user_version", -1, &q, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_step(q), SQLITE_ROW);
+  EXPECT_EQ(sqlite3_column_int(q, 0), 2);
+  sqlite3_finalize(q);
+  sqlite3_close(db);
+  fs::remove_all(dir);
+}
+
+TEST_P(SessionDbConformance, ARecordingsRowChangesOnlyWhileActive) {
+  EXPECT_FALSE(db_->load_recording("r1"));
+  ASSERT_TRUE(db_->save_recording(recording("r1", "queued")));
+  EXPECT_FALSE(db_->save_recording(recording("ghost", "running"))) << "only a queued row is inserted";
+  EXPECT_FALSE(db_->load_recording("ghost"));
+  ASSERT_TRUE(db_->save_recording(recording("r1", "running", 1234)));
+  const auto second = backend_->open();  // another replica's view
+  auto r = second->load_recording("r1");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, "running");
+  EXPECT_EQ(r->owner, "host:1:abc");
+  EXPECT_EQ(r->json, R"({"id":"r1","progress":0.5})");
+  EXPECT_EQ(r->bytes, 1234);
+  EXPECT_GE(r->silent_ms, 0);
+  EXPECT_LT(r->silent_ms, 5000);
+  // Cancelled through the other replica: the owner's next write is refused, and says so.
+  EXPECT_TRUE(second->cancel_recording("r1"));
+  EXPECT_FALSE(second->cancel_recording("r1")) << "a cancel is final";
+  EXPECT_FALSE(db_->save_recording(recording("r1", "running", 2000)));
+  EXPECT_FALSE(db_->save_recording(recording("r1", "queued"))) << "not even re-queued";
+  r = db_->load_recording("r1");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, "cancelled");
+  EXPECT_EQ(r->bytes, 1234);
+  // A finished row is not changed either, nor cancelled.
+  ASSERT_TRUE(db_->save_recording(recording("r2", "queued")));
+  ASSERT_TRUE(db_->save_recording(recording("r2", "done", 10)));
+  EXPECT_FALSE(db_->save_recording(recording("r2", "running", 5)));
+  EXPECT_FALSE(second->cancel_recording("r2"));
+  EXPECT_EQ(db_->load_recording("r2")->status, "done");
+  EXPECT_EQ(db_->recording_bytes(), 1234 + 10);
+  EXPECT_TRUE(second->remove_recording("r2"));
+  EXPECT_FALSE(second->remove_recording("r2"));
+  EXPECT_FALSE(db_->load_recording("r2"));
+}
+
+TEST_P(SessionDbConformance, ARecordingsFileComesBackByteForByteInChunks) {
+  // Every byte value (NULs included), across a chunk boundary: 2.5 chunks of random bytes.
+  std::mt19937_64 random(26);
+  std::string file(static_cast<std::size_t>(kRecordingChunkBytes * 5 / 2), '\0');
+  for (char& c : file) c = static_cast<char>(random());
+  file[0] = '\0';
+  ASSERT_TRUE(db_->save_recording(recording("f", "queued")));
+  std::int64_t chunks = 0;
+  for (std::size_t at = 0; at < file.size(); at += kRecordingChunkBytes)
+    db_->save_recording_chunk("f", chunks++, std::string_view(file).substr(at, kRecordingChunkBytes));
+  ASSERT_TRUE(db_->save_recording(recording("f", "done", static_cast<std::int64_t>(file.size()))));
+  const auto second = backend_->open();
+  std::string back;
+  for (std::int64_t i = 0;; ++i) {
+    const auto chunk = second->load_recording_chunk("f", i);
+    if (!chunk) break;
+    back += *chunk;
+  }
+  EXPECT_EQ(chunks, 3);
+  EXPECT_TRUE(back == file) << back.size() << " bytes back of " << file.size();
+  EXPECT_TRUE(second->remove_recording("f"));
+  EXPECT_FALSE(db_->load_recording_chunk("f", 0)) << "the file goes with its row";
+}
+
+TEST_P(SessionDbConformance, ALostOwnersRecordingsFailAndOldOnesAndOrphanFilesGo) {
+  ASSERT_TRUE(db_->save_recording(recording("silent", "queued")));
+  ASSERT_TRUE(db_->save_recording(recording("old", "queued")));
+  ASSERT_TRUE(db_->save_recording(recording("old", "done", 3)));
+  db_->save_recording_chunk("old", 0, "abc");
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));
+  ASSERT_TRUE(db_->save_recording(recording("cancelled", "queued")));
+  db_->save_recording_chunk("cancelled", 0, "xyz");  // stored while a cancel came
+  ASSERT_TRUE(db_->cancel_recording("cancelled"));
+  StoredRecording alive = recording("alive", "queued");
+  alive.owner = "host:2:def";
+  ASSERT_TRUE(db_->save_recording(alive));
+  ASSERT_TRUE(db_->save_recording(recording("touched", "queued")));
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));
+  db_->touch_recordings("host:1:abc");  // "silent", "touched": alive again; the finished ones: not
+  db_->expire_recordings(std::chrono::seconds(2), std::chrono::seconds(1), "lost");
+  EXPECT_EQ(db_->load_recording("silent")->status, "queued") << "touched just now";
+  EXPECT_EQ(db_->load_recording("touched")->status, "queued");
+  const auto lost = db_->load_recording("alive");  // its owner silent 1.1 s > 1 s
+  ASSERT_TRUE(lost);
+  EXPECT_EQ(lost->status, "failed");
+  EXPECT_EQ(lost->reason, "lost");
+  EXPECT_FALSE(db_->load_recording("old")) << "finished 2.2 s ago, older than 2 s";
+  EXPECT_FALSE(db_->load_recording_chunk("old", 0));
+  EXPECT_TRUE(db_->load_recording("cancelled")) << "not old yet";
+  EXPECT_FALSE(db_->load_recording_chunk("cancelled", 0)) << "an orphan file: its row is not done";
+  EXPECT_FALSE(db_->save_recording(recording("alive", "running"))) << "a lost row stays failed";
+}
+
 INSTANTIATE_TEST_SUITE_P(Stores, SessionDbConformance, testing::Values("sqlite", "postgresql"),
                          [](const testing::TestParamInfo<std::string>& p) { return p.param; });
 
@@ -177,8 +320,10 @@ TEST_F(PostgresStore, MakesItsSchemaOnceAndRefusesANewerOne) {
     });
   for (auto& t : threads) t.join();
   EXPECT_EQ(failures, 0);
-  EXPECT_TRUE(admin(backend_->url(), "DO $$ BEGIN IF (SELECT count(*) FROM spinfold_schema) <> 1 OR "
-                                     "(SELECT max(version) FROM spinfold_schema) <> 1 THEN RAISE 'schema'; END IF; END $$"));
+  const std::string latest = std::to_string(spinfold::server::PostgresSessionDb::kSchemaVersion);
+  EXPECT_TRUE(admin(backend_->url(), "DO $$ BEGIN IF (SELECT count(*) FROM spinfold_schema) <> " + latest +
+                                         " OR (SELECT max(version) FROM spinfold_schema) <> " + latest +
+                                         " THEN RAISE 'schema'; END IF; END $$"));
   ASSERT_TRUE(admin(backend_->url(), "INSERT INTO spinfold_schema VALUES (99)"));
   try {
     backend_->open();
@@ -186,6 +331,24 @@ TEST_F(PostgresStore, MakesItsSchemaOnceAndRefusesANewerOne) {
   } catch (const StoreError& e) {
     EXPECT_NE(std::string(e.what()).find("newer Spinfold (schema 99"), std::string::npos) << e.what();
   }
+}
+
+TEST_F(PostgresStore, ADatabaseOfSchemaOneIsMigratedKeepingItsSessions) {
+  // Schema 1 as the first PostgreSQL release made it: sessions only.
+  ASSERT_TRUE(admin(backend_->url(),
+                    "CREATE TABLE spinfold_schema (version integer NOT NULL); INSERT INTO spinfold_schema VALUES (1); "
+                    "CREATE TABLE sessions (id text PRIMARY KEY, version bigint NOT NULL, scene text NOT NULL, "
+                    "timeline text NOT NULL, t double precision NOT NULL, playing boolean NOT NULL, "
+                    "rate double precision NOT NULL, last_used bigint NOT NULL); "
+                    "INSERT INTO sessions VALUES ('kept', 3, '{}', '[]', 2.5, false, 1, 0)"));
+  const auto db = backend_->open();
+  const auto kept = db->load("kept");
+  ASSERT_TRUE(kept);
+  EXPECT_EQ(kept->version, 3);
+  EXPECT_EQ(kept->t, 2.5);
+  EXPECT_TRUE(db->save_recording(recording("r", "queued")));
+  EXPECT_TRUE(admin(backend_->url(), "DO $$ BEGIN IF (SELECT max(version) FROM spinfold_schema) <> 2 "
+                                     "THEN RAISE 'not migrated'; END IF; END $$"));
 }
 
 TEST_F(PostgresStore, AMalformedUrlIsAnErrorAndMessagesHideThePassword) {
