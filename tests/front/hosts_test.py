@@ -1,5 +1,6 @@
 """Several hosts, for real on one machine (scripts/hosts.sh): sessions made through the front survive
-a replica host killed with SIGKILL mid-play, a database away for a few seconds, and the host's return.
+a replica host killed with SIGKILL mid-play (and so does a recording it made), a database away for a
+few seconds, and the host's return.
 
 Run on the `client` host by tests/front/hosts_test.sh (which brings the hosts up and down):
     python3 tests/front/hosts_test.py http://10.251.0.3:8080 scripts/hosts.sh
@@ -80,6 +81,22 @@ log(f"12 sessions on {len(replicas)} replicas: " + ", ".join(
 # 2. The replica host with the most sessions (and at least one playing) loses every process: SIGKILL.
 victim = max(replicas, key=lambda r: (any(owner[s] == r for s in playing), sum(o == r for o in owner.values())))
 index = int(victim.split(":")[0].rsplit(".", 1)[1]) - 10
+# A recording of one of its paused sessions, finished on it before the kill (its row and file are
+# in the database: any replica answers for it).
+recorded = next(s for s in ids if owner[s] == victim and s not in playing)
+status, _, body = call("POST", f"{SESSIONS}/{recorded}/recordings",
+                       {"t_end": 0.5, "fps": 10, "width": 64, "height": 48, "format": "gif"})
+check(status == 202, f"recording: {status} {body[:200]!r}")
+recording = FRONT + json.loads(body)["url"]
+for _ in range(300):
+    status, headers, body = call("GET", recording)
+    if json.loads(body)["status"] not in ("queued", "running"):
+        break
+    time.sleep(0.1)
+check(json.loads(body)["status"] == "done", f"the recording: {body[:200]!r}")
+check(headers.get("X-Spinfold-Replica") == victim, "the recording ran on its session's replica")
+status, _, recorded_file = call("GET", recording + "/file")
+check(status == 200 and recorded_file[:6] == b"GIF89a", f"the recording's file: {status}")
 time.sleep(1.5)  # play on; the player stores a playing session's time each second
 hosts("kill-replica", str(index))
 log(f"killed host r{index} ({victim}) with {sum(o == victim for o in owner.values())} sessions")
@@ -104,6 +121,13 @@ for sid in ids:
         frame = call("GET", f"{SESSIONS}/{sid}/frame.png?width=160&height=120")[2]
         check(frame == frames[sid], f"{sid}: frame bytes differ after the failover")
 log("every session continues on the surviving replicas (paused: same bytes; playing: no change lost)")
+status, headers, body = call("GET", recording)
+check(status == 200 and json.loads(body)["status"] == "done", f"the recording after the kill: {status} {body[:200]!r}")
+check(headers.get("X-Spinfold-Replica") not in ("", victim), "the recording answered by another replica")
+status, _, file_after = call("GET", recording + "/file")
+check(status == 200 and file_after == recorded_file, f"the recording's file after the kill: {status}, same bytes")
+check(call("DELETE", recording)[0] == 204 and call("GET", recording)[0] == 404, "deleted through another replica")
+log(f"the killed replica's recording: status and file ({len(file_after)} bytes, the same) from another replica")
 for sid in ids:
     status, _, body = patch(sid, 1.9)
     check(status == 200, f"{sid}: change after the failover: {status} {body[:200]!r}")
