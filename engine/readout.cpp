@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cctype>
 #include <cstdio>
 #include <utility>
 
@@ -11,10 +12,29 @@ namespace spinfold {
 
 namespace {
 
+// Each number that printed as a negative zero ("-0.0000", "-0.00e+00", "-0": a value that rounds
+// to zero, or −0 itself) without its sign: the readout says 0, not a direction it cannot resolve.
+std::string without_negative_zeros(std::string text) {
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '-' || (i > 0 && (digit(text[i - 1]) || std::isalpha(static_cast<unsigned char>(text[i - 1])))))
+      continue;
+    // The mantissa after the sign (an exponent after zeros, "-0.00e+00", leaves the number zero).
+    bool any_digit = false, all_zero = true;
+    for (std::size_t k = i + 1; k < text.size() && (digit(text[k]) || text[k] == '.'); ++k)
+      if (digit(text[k])) {
+        any_digit = true;
+        all_zero = all_zero && text[k] == '0';
+      }
+    if (any_digit && all_zero) text.erase(i, 1);
+  }
+  return text;
+}
+
 std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0) {
   char text[160];
   std::snprintf(text, sizeof text, pattern, a, b, c);
-  return text;
+  return without_negative_zeros(text);
 }
 
 }  // namespace

@@ -115,5 +115,26 @@ TEST(Readout, HudLinesAreMadeOfTheReadoutValues) {
   EXPECT_EQ(changed[5], format("spin = %.4f", r.spin + 1.0) + format("  det L = %.4f", r.det_L));
 }
 
+TEST(Readout, ANumberThatRoundsToZeroIsShownWithoutASign) {
+  Simulation run = start_simulation(deforming(SurfaceKind::sphere));
+  Readout r = readout(run);
+  r.t = -0.0;
+  r.spin = -1e-17;  // a spin that cancelled to round-off
+  r.det_L = -0.00004;
+  r.energy_error = -0.0;
+  std::vector<std::string> lines = readout_lines(run.scene, r);
+  EXPECT_EQ(lines[0], "t = 0.000");
+  EXPECT_EQ(lines[1], "energy error = 0.00e+00");
+  EXPECT_EQ(lines[5], "spin = 0.0000  det L = 0.0000");
+  // What is not zero keeps its sign: −0.5, −1e-17 in the exponent form, −0.0001.
+  r.spin = -0.5;
+  r.det_L = -0.0001;
+  r.energy_error = -1e-17;
+  lines = readout_lines(run.scene, r);
+  EXPECT_EQ(lines[1], "energy error = -1.00e-17");
+  EXPECT_EQ(lines[5], "spin = -0.5000  det L = -0.0001");
+  EXPECT_EQ(companion_readout_line("b", r), "b: spin = -0.5000  energy error = -1.00e-17");
+}
+
 }  // namespace
 }  // namespace spinfold
