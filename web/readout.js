@@ -86,11 +86,28 @@ let announced = 0;
 export function renderReadout(state, before) {
   const s = state.sample;
   if (!s || s === before.sample) return;
-  const readout = $("readout");
-  readout.textContent =
-    `t = ${num(s.t)}   r = ${num(s.r)}   phi = ${num(s.phi)}   lambda = ${num(s.lambda)}   mu = ${num(s.mu)}\n` +
-    `energy = ${num(s.energy)}   energy error = ${num(s.energy_error)}   spin = ${num(s.spin)}   ` +
-    `p_phi = ${num(s.p_phi)}   det L = ${num(s.det_L)}   integrator: ${s.integrator}   status: ${s.status}`;
+  const readout = clear($("readout"));
+  // Each "name = value" unbroken (a narrow screen wraps between them, never inside a number); the
+  // text is the same as one string's.
+  const pairs = [
+    [`t = ${num(s.t)}`, `r = ${num(s.r)}`, `phi = ${num(s.phi)}`, `lambda = ${num(s.lambda)}`, `mu = ${num(s.mu)}`],
+    [
+      `energy = ${num(s.energy)}`,
+      `energy error = ${num(s.energy_error)}`,
+      `spin = ${num(s.spin)}`,
+      `p_phi = ${num(s.p_phi)}`,
+      `det L = ${num(s.det_L)}`,
+      `integrator: ${s.integrator}`,
+      `status: ${s.status}`,
+    ],
+  ];
+  pairs.forEach((line, i) => {
+    if (i > 0) readout.append("\n");
+    line.forEach((text, k) => {
+      if (k > 0) readout.append("   ");
+      readout.append(el("span", { class: "pair", text }));
+    });
+  });
   readout.dataset.t = s.t;
   if ("actions" in s) renderActions(s);
   // Screen readers hear a short summary, at most once a second.

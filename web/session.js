@@ -55,12 +55,16 @@ export async function call(method, path, body) {
 /**
  * The store's fields from a session answer (create, change, reset): its scene, timeline and
  * parameters in force, and its play state. A preset whose surface the session no longer has stops
- * being its preset (its text would be wrong).
+ * being its preset (its text would be wrong). `answer`: the answer to a reset or a change, which
+ * does not touch the rate: while paused, the speed chosen here and not yet sent (it waits for
+ * Play) stays, even when the answer comes after it was chosen.
  * @param {AppState} s
  * @param {any} session
+ * @param {{answer?: boolean}} [how]
  * @returns {Partial<AppState>}
  */
-function adopted(s, session) {
+function adopted(s, session, { answer = false } = {}) {
+  const rate = answer && !session.playing ? s.rate : (session.rate ?? s.rate);
   const preset = s.presets.find((p) => p.name === s.preset);
   const samePreset = preset && writtenKind(preset.scene.surface) === session.surface.kind;
   return {
@@ -69,7 +73,7 @@ function adopted(s, session) {
     surface: session.surface,
     timeline: session.timeline,
     preset: samePreset ? s.preset : null,
-    ...(typeof session.playing === "boolean" ? { playing: session.playing, rate: session.rate ?? s.rate } : {}),
+    ...(typeof session.playing === "boolean" ? { playing: session.playing, rate } : {}),
   };
 }
 
@@ -217,7 +221,7 @@ export async function step() {
 
 export async function reset() {
   const res = await call("POST", `/sessions/${store.get().id}/reset`, {});
-  store.update((s) => ({ ...adopted(s, res), start: res.state }));
+  store.update((s) => ({ ...adopted(s, res, { answer: true }), start: res.state }));
   receive(res.state, { restart: true, from: "answer" });
   say("Back to t = 0 with the parameters in force.");
 }
@@ -233,7 +237,7 @@ export async function applyChange(patch) {
   document.querySelectorAll(".error").forEach((e) => (e.textContent = ""));
   const restarted = res.change.kind === "restarted";
   store.update((s) => ({
-    ...adopted(s, res),
+    ...adopted(s, res, { answer: true }),
     modified: s.modified || res.change.kind !== "unchanged",
     ...(restarted ? { start: res.state } : {}),
   }));

@@ -95,6 +95,24 @@ try {
     assert.equal(await page.textContent("#speed-out"), "5");
   });
 
+  // The reset's answer carries the server's rate; a speed chosen while it was on its way (paused:
+  // not sent until Play) stays. Made certain here by holding the answer back.
+  await test("a speed chosen while a reset's answer is on its way stays", async () => {
+    await page.route("**/reset", async (route) => {
+      const response = await route.fetch();
+      await new Promise((r) => setTimeout(r, 600));
+      await route.fulfill({ response });
+    });
+    await page.click("#reset");
+    await page.$eval("#speed", (el) => { el.value = "3"; el.dispatchEvent(new Event("input")); el.dispatchEvent(new Event("change")); });
+    await page.waitForFunction(() => /Back to t = 0/.test(document.querySelector("#status").textContent));
+    await page.unroute("**/reset");
+    assert.equal(await page.inputValue("#speed"), "3");
+    await page.click("#play");
+    await page.waitForFunction(() => /playing at 3×/.test(document.querySelector("#state-badge").textContent));
+    await page.click("#pause");
+  });
+
   await test("changing a field changes the state", async () => {
     await openAdvanced(page);
     await page.fill('[name="initial.r"]', "0.9");
