@@ -44,6 +44,7 @@ void Player::loop() {
     }
     if (played && played_) played_();
     sessions_.sweep_deleted_elsewhere();  // with a store: every 30 s
+    heap_trimmer_.tick(now);              // once a minute
   }
 }
 
