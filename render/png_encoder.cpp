@@ -5,8 +5,10 @@
 #include <array>
 #include <cstring>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string_view>
+#include <vector>
 
 namespace spinfold::render {
 
@@ -16,13 +18,44 @@ struct CompressorFree {
   void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
 };
 
-// One compressor per thread (render pool, server workers): allocating one costs more than a
-// small frame's compression.
-libdeflate_compressor* compressor() {
-  thread_local std::unique_ptr<libdeflate_compressor, CompressorFree> c(libdeflate_alloc_compressor(1));
-  if (!c) throw std::runtime_error("libdeflate: cannot allocate a compressor");
-  return c.get();
+using Compressor = std::unique_ptr<libdeflate_compressor, CompressorFree>;
+
+// Compressors kept between encodings (allocating one costs more than a small frame's compression),
+// shared by every thread rather than one per thread: a server has ~160 HTTP workers, and a
+// compressor is ~200 KiB (32 MiB of them in the soak, docs/performance.md). As many are kept as
+// have been encoding at once, up to kKept.
+constexpr std::size_t kKept = 16;
+std::mutex pool_mutex;
+std::vector<Compressor>& pool() {
+  static std::vector<Compressor> kept;
+  return kept;
 }
+
+// A compressor while in scope, back in the pool after.
+class Lease {
+ public:
+  Lease() {
+    {
+      const std::lock_guard lock(pool_mutex);
+      if (!pool().empty()) {
+        c_ = std::move(pool().back());
+        pool().pop_back();
+      }
+    }
+    if (!c_) c_.reset(libdeflate_alloc_compressor(1));
+    if (!c_) throw std::runtime_error("libdeflate: cannot allocate a compressor");
+  }
+  ~Lease() {
+    const std::lock_guard lock(pool_mutex);
+    if (pool().size() < kKept) pool().push_back(std::move(c_));
+  }
+  Lease(const Lease&) = delete;
+  Lease& operator=(const Lease&) = delete;
+  libdeflate_compressor* get() const { return c_.get(); }
+
+ private:
+  Compressor c_;
+};
 
 // Big-endian, as PNG writes every integer.
 void put32(std::uint8_t* at, std::uint32_t v) {
@@ -79,7 +112,8 @@ std::vector<std::uint8_t> encode_png(const std::uint8_t* rgba, int width, int he
       row[3 + 3 * x] = src[4 * x + 2];
     }
   }
-  libdeflate_compressor* c = compressor();
+  const Lease lease;
+  libdeflate_compressor* c = lease.get();
   std::vector<std::uint8_t> idat(libdeflate_zlib_compress_bound(c, raw.size()));
   const std::size_t compressed =
       libdeflate_zlib_compress(c, raw.data(), raw.size(), idat.data(), idat.size());
@@ -98,6 +132,11 @@ std::vector<std::uint8_t> encode_png(const std::uint8_t* rgba, int width, int he
   chunk(out, "IDAT", idat.data(), compressed);
   chunk(out, "IEND", nullptr, 0);
   return out;
+}
+
+std::size_t png_compressors_kept() {
+  const std::lock_guard lock(pool_mutex);
+  return pool().size();
 }
 
 }  // namespace spinfold::render

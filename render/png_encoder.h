@@ -4,6 +4,7 @@
 // (docs/performance.md).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -21,5 +22,9 @@ using PngText = std::pair<std::string, std::string>;
 // Deterministic: same pixels and texts, same bytes.
 std::vector<std::uint8_t> encode_png(const std::uint8_t* rgba, int width, int height,
                                      std::span<const PngText> texts = {});
+
+// The compressors kept for the next encodings (as many as have encoded at once, at most 16), shared
+// by all threads.
+std::size_t png_compressors_kept();
 
 }  // namespace spinfold::render
