@@ -34,6 +34,7 @@
 #include "render/scene_builder.h"
 #include "render/snapshot.h"
 #include "render/view.h"
+#include "render/view_parameters.h"
 
 namespace py = pybind11;
 using namespace spinfold;
@@ -470,6 +471,8 @@ PYBIND11_MODULE(_core, m) {
         py::arg("height"), py::arg("layers"), py::arg("camera"), py::arg("scale"), py::arg("trail"),
         py::arg("command"));
   m.def("encode_png", &png_bytes);
+  // The layers on by default, from the view-parameter table (render/view_parameters.h).
+  m.def("default_layers", &render::default_layer_list);
   m.def("engine_seconds", &engine_seconds);
   py::class_<PySimulation>(m, "Simulation")
       .def(py::init<const std::string&>())

@@ -405,16 +405,19 @@ def _decode_png(data: bytes) -> Frame:
 
 
 def render(scene: Any, t: float = 0.0, *, view: str | None = None, width: int = 640, height: int = 480,
-           layers: str | Sequence[str] = "surface,grid,body,frame,trail,hud",
+           layers: str | Sequence[str] | None = None,
            camera: tuple[float, float, float] | None = None, scale: float = 0.25,
            trail: float | None = None) -> Frame:
     """The picture ``spinfold render`` draws of the scene at time `t` (the same pixels).
 
     `view`: sphere, hyperboloid, disk, plane, klein, halfplane, tractricoid, conformal, …
-    (None: the surface's own); `layers`: a comma-separated string or a list; `camera`:
+    (None: the surface's own); `layers`: a comma-separated string or a list (None: the layers on
+    by default, as everywhere: the view-parameter table's); `camera`:
     (yaw, pitch, distance) for the 3-D views (None: aimed at the body).
     """
-    if not isinstance(layers, str):
+    if layers is None:
+        layers = _core.default_layers()
+    elif not isinstance(layers, str):
         layers = ",".join(layers)
     for name, value in (("width", width), ("height", height)):
         if not isinstance(value, (int, np.integer)):
