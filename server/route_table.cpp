@@ -255,6 +255,22 @@ namespace {
 // at the limit and the request is refused (413). The answer says `Connection: close`, which clients
 // heed; httplib itself keeps the connection and reads what follows as further (refused) requests,
 // holding one line at a time: bounding those is the front's job (README, security model).
+// httplib ends a chunked body early at a chunk not followed by CRLF, and says it was whole: the
+// bytes as they arrived decide (server/framing.h), before the body is acted on, and before any
+// other answer (a 405 too) is given to a request RFC 9112 says to refuse. ApiError 400 then.
+void refuse_malformed_chunks(const httplib::Request& req, httplib::Response& res) {
+  if (!req.has_header("Transfer-Encoding")) return;
+  const std::string* bytes = current_request_bytes();
+  if (!bytes) return;
+  const Framing f = read_framing(*bytes);
+  const ChunkedBody c = read_chunked(std::string_view(*bytes).substr(f.head_bytes));
+  if (f.status == 0 && c.verdict == ChunkedBody::Verdict::complete && c.bytes == bytes->size() - f.head_bytes)
+    return;
+  if (req.get_header_value("Connection") != "close") res.set_header("Connection", "close");
+  throw bad(400, "Malformed request", "Transfer-Encoding", "chunked",
+            "malformed chunked body: " + (c.reason.empty() ? std::string("it ended early") : c.reason));
+}
+
 std::string bounded_body(const httplib::Request& req, const httplib::ContentReader& reader, std::size_t limit,
                          httplib::Response& res) {
   const auto close_connection = [&] {
@@ -285,20 +301,10 @@ std::string bounded_body(const httplib::Request& req, const httplib::ContentRead
     if (!over) body.append(data, length);
     return !over;
   });
-  // httplib ends a chunked body early at a chunk not followed by CRLF, and says it was whole: the
-  // bytes as they arrived decide (server/framing.h), before the body is acted on.
-  if (whole && req.has_header("Transfer-Encoding"))
-    if (const std::string* bytes = current_request_bytes()) {
-      const Framing f = read_framing(*bytes);
-      const ChunkedBody c = read_chunked(std::string_view(*bytes).substr(f.head_bytes));
-      if (f.status != 0 || c.verdict != ChunkedBody::Verdict::complete ||
-          c.bytes != bytes->size() - f.head_bytes) {
-        close_connection();
-        throw bad(400, "Malformed request", "Transfer-Encoding", "chunked",
-                  "malformed chunked body: " + (c.reason.empty() ? std::string("it ended early") : c.reason));
-      }
-    }
-  if (whole) return body;
+  if (whole) {
+    refuse_malformed_chunks(req, res);
+    return body;
+  }
   close_connection();
   if (over)
     throw bad(413, "Payload too large", "", "",
@@ -360,6 +366,12 @@ void register_routes(httplib::Server& http, ServerContext& server, const std::ve
     for (const std::string& m : allowed) allow += (allow.empty() ? "" : ", ") + m;
     const auto refuse = [allow](const httplib::Request& req, httplib::Response& res) {
       res.set_header("X-Spinfold-Version", server_version());
+      try {
+        refuse_malformed_chunks(req, res);  // ambiguous framing first: 400, not 405 (RFC 9112)
+      } catch (const ApiError& e) {
+        send_error(res, e);
+        return;
+      }
       res.set_header("Allow", allow);
       send_error(res, bad(405, "Method not allowed", "method", req.method, "this path allows " + allow));
     };

@@ -483,6 +483,12 @@ std::vector<Framed> framing_cases() {
        400},
       {"a chunk not followed by CRLF",
        line + type + "Transfer-Encoding: chunked\r\n\r\nd\r\n" + body + "XX\r\n0\r\n\r\n", 400},
+      // Found by api_fuzzer: the path does not allow PATCH, and the 405 was answered without
+      // looking at the body's framing.
+      {"a chunk not followed by CRLF, with a method the path does not allow",
+       "PATCH /api/v1/sessions/{id}/advance HTTP/1.1\r\nHost: 127.0.0.1\r\n" + type +
+           "Transfer-Encoding: chunked\r\n\r\nd\r\n" + body + "XX\r\n0\r\n\r\n",
+       400},
       {"a chunk size with a sign",
        line + type + "Transfer-Encoding: chunked\r\n\r\n+d\r\n" + body + "\r\n0\r\n\r\n", 400},
       {"a header line ending in LF alone", line + type + "Content-Length: 13\n\r\n" + body, 400},
