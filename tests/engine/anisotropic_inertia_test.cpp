@@ -30,11 +30,7 @@ Scene anisotropic_scene() {
   return s;
 }
 
-Mat2 matrix(double a, double b, double c, double d) {
-  Mat2 m;
-  m << a, b, c, d;
-  return m;
-}
+using test::matrix;
 
 // W7 (physics.md §13, docs/physics_inertia_check.py): sphere R = 1, m = 2, no potential,
 // J = [[0.3, 0.05], [0.05, 0.1]], r = 1, φ = 0.5, ṙ = 0.2, φ̇ = −0.3, L = [[1.5, 0.2], [−0.1, 0.5]],

@@ -5,15 +5,12 @@
 #include <gtest/gtest.h>
 
 #include "engine/dynamics.h"
+#include "tests/engine/test_support.h"
 
 namespace spinfold {
 namespace {
 
-Mat2 matrix(double a, double b, double c, double d) {
-  Mat2 m;
-  m << a, b, c, d;
-  return m;
-}
+using test::matrix;
 
 Body anisotropic_body() {
   Body body;

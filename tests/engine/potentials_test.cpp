@@ -6,14 +6,12 @@
 
 #include <cmath>
 
+#include "tests/engine/test_support.h"
+
 namespace spinfold {
 namespace {
 
-Mat2 matrix(double a, double b, double c, double d) {
-  Mat2 m;
-  m << a, b, c, d;
-  return m;
-}
+using test::matrix;
 
 // Γ = g R² on S², g on H² and the plane.
 TEST(Potentials, RadialStrengthPerSurface) {

@@ -11,6 +11,13 @@
 
 namespace spinfold::test {
 
+// The 2×2 matrix [[a, b], [c, d]].
+inline Mat2 matrix(double a, double b, double c, double d) {
+  Mat2 m;
+  m << a, b, c, d;
+  return m;
+}
+
 inline Scene rigid_scene(SurfaceKind kind, double R, double m, double J, double lambda0) {
   Scene s;
   s.surface = {kind, R};
