@@ -21,6 +21,7 @@ packages=(
   libboost-dev gnuplot-nox                        # reference integrators (Boost.Odeint), plots
   python3-sympy                                   # docs/physics_inertia_check.py (a ctest)
   wrk curl                                        # HTTP load benchmark
+  stress-ng clang-format                          # flake hunts under load (scripts/flake_hunt.sh); C++ format check
   chromium                                        # browser tests of the web UI (playwright-core)
   nginx                                           # the front of the shared server (scripts/front.sh)
   slurm-wlm munge                                 # the Slurm job array test (scripts/slurm_sweep_test.sh)
