@@ -1,7 +1,5 @@
 #include "server/jobs/recordings.h"
 
-#include <sys/resource.h>
-#include <sys/syscall.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -29,7 +27,7 @@ const std::string kRecordings = "/api/v1/recordings";
 constexpr auto kProgressWriteInterval = std::chrono::milliseconds(200);
 
 ApiError over_limit(const std::string& limit, long long value, const std::string& reason) {
-  return {429, "Too many requests", {{"limits." + limit, std::to_string(value), reason}}, "10"};
+  return job_over_limit(limit, value, reason, "10");
 }
 
 ApiError unknown_recording(const std::string& id, const Limits& limits) {
@@ -55,6 +53,12 @@ std::string instance_name() {
   return std::string(host) + ":" + std::to_string(getpid()) + ":" + new_session_id().substr(0, 8);
 }
 
+std::filesystem::path new_directory() {
+  std::string pattern = (std::filesystem::temp_directory_path() / "spinfold-recordings-XXXXXX").string();
+  if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a directory for recordings");
+  return pattern;
+}
+
 std::string download_name(const std::string& session, double t_start, double t_end, record::Format format) {
   char name[160];
   std::snprintf(name, sizeof name, "spinfold-%s-t%s-%s.%s", session.substr(0, 8).c_str(), shortest(t_start).c_str(),
@@ -66,7 +70,7 @@ std::string download_name(const std::string& session, double t_start, double t_e
 
 nlohmann::ordered_json recording_json(const RecordingState& r) {
   nlohmann::ordered_json out{{"id", r.id},
-                             {"status", status_name(r.status)},
+                             {"status", job_status_name(r.status)},
                              {"progress", r.progress},
                              {"url", kRecordings + "/" + r.id},
                              {"file", kRecordings + "/" + r.id + "/file"},
@@ -84,46 +88,25 @@ nlohmann::ordered_json recording_json(const RecordingState& r) {
   return out;
 }
 
-std::string_view status_name(RecordingStatus status) {
-  switch (status) {
-    case RecordingStatus::queued: return "queued";
-    case RecordingStatus::running: return "running";
-    case RecordingStatus::done: return "done";
-    case RecordingStatus::failed: return "failed";
-    case RecordingStatus::cancelled: return "cancelled";
-  }
-  return "failed";
-}
-
-struct Recordings::Entry {
-  RecordingState state;  // guarded by Recordings::mutex_
-  std::filesystem::path path;
-  std::atomic<bool> cancel{false};
-  std::chrono::steady_clock::time_point finished;  // done, failed or cancelled at (guarded)
-  bool active() const {
-    return state.status == RecordingStatus::queued || state.status == RecordingStatus::running;
-  }
-};
-
 Recordings::Recordings(const Limits& limits, RenderPool& pool, Store* db)
-    : limits_(limits), pool_(pool), db_(db), instance_(instance_name()) {
-  std::string pattern = (std::filesystem::temp_directory_path() / "spinfold-recordings-XXXXXX").string();
-  if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a directory for recordings");
-  dir_ = pattern;
-  for (int i = 0; i < std::max(1, limits_.recording_threads); ++i) threads_.emplace_back([this] { work(); });
-  if (db_) heartbeat_ = std::thread([this] { heartbeat(); });
-}
+    : limits_(limits),
+      pool_(pool),
+      db_(db),
+      instance_(instance_name()),
+      dir_(new_directory()),
+      queue_({.threads = limits.recording_threads,
+              .nice = kRecordingNice,
+              .max_age = limits.recording_max_age,
+              .sync_every = limits.recording_heartbeat,
+              .sync = db ? std::function<void()>([this] { heartbeat(); }) : std::function<void()>()},
+             [this](Queue::Entry& entry) { run(entry); },
+             [](Queue::Entry& entry) {
+               std::error_code ignored;
+               if (!entry.extra.path.empty()) std::filesystem::remove(entry.extra.path, ignored);
+             }) {}
 
 Recordings::~Recordings() {
-  {
-    const std::lock_guard lock(mutex_);
-    stopping_ = true;
-    for (auto& [id, entry] : entries_) entry->cancel = true;
-  }
-  wake_.notify_all();
-  heartbeat_wake_.notify_all();
-  for (auto& thread : threads_) thread.join();
-  if (heartbeat_.joinable()) heartbeat_.join();
+  queue_.stop();  // before the directory goes
   std::error_code ignored;
   std::filesystem::remove_all(dir_, ignored);
 }
@@ -131,26 +114,20 @@ Recordings::~Recordings() {
 void Recordings::heartbeat() {
   const std::string lost = "the server recording it stopped answering (no word from it for " +
                            std::to_string(limits_.recording_owner_lost.count()) + " s): record again";
-  bool warned = false;
-  std::unique_lock lock(mutex_);
-  while (!heartbeat_wake_.wait_for(lock, limits_.recording_heartbeat, [this] { return stopping_; })) {
-    lock.unlock();
-    try {
-      db_->touch_recordings(instance_);
-      db_->expire_recordings(limits_.recording_max_age, limits_.recording_owner_lost, lost);
-      warned = false;
-    } catch (const StoreError& e) {
-      if (!warned) std::fprintf(stderr, "spinfold: recordings: %s\n", e.what());
-      warned = true;
-    }
-    lock.lock();
+  try {
+    db_->touch_recordings(instance_);
+    db_->expire_recordings(limits_.recording_max_age, limits_.recording_owner_lost, lost);
+    heartbeat_warned_ = false;
+  } catch (const StoreError& e) {
+    if (!heartbeat_warned_) std::fprintf(stderr, "spinfold: recordings: %s\n", e.what());
+    heartbeat_warned_ = true;
   }
 }
 
 bool Recordings::save_row(const RecordingState& state) {
   return db_->save_recording({.id = state.id,
                               .owner = instance_,
-                              .status = std::string(status_name(state.status)),
+                              .status = std::string(job_status_name(state.status)),
                               .json = recording_json(state).dump(),
                               .reason = state.reason,
                               .bytes = static_cast<std::int64_t>(state.bytes)});
@@ -168,66 +145,54 @@ std::string Recordings::start(RecordingJob job) {
     throw bad(422, "Invalid value", "width", std::to_string(job.frames.view.width),
               "width × height = " + std::to_string(pixels) + " pixels; at most " +
                   std::to_string(limits_.max_recording_pixels) + " (limits.max_recording_pixels)");
-  auto entry = std::make_shared<Entry>();
+  auto entry = std::make_shared<Queue::Entry>();
   // The session's id (22 characters) first: the front's consistent hashing sends the recording's
   // requests to the replica that records it, the one its session's go to (deploy/nginx/spinfold.conf).
   entry->state.id = job.session + new_session_id();
   entry->state.frames = frames;
-  entry->path = dir_ / (entry->state.id + "." + std::string(record::file_extension(job.format)));
+  entry->extra.path = dir_ / (entry->state.id + "." + std::string(record::file_extension(job.format)));
   entry->state.job = std::move(job);
-  {
-    const std::lock_guard lock(mutex_);
-    prune_locked();
-    int of_client = 0;
-    for (const auto& [id, e] : entries_)
-      of_client += e->active() && e->state.job.client == entry->state.job.client;
-    if (of_client >= limits_.max_recordings_per_client)
-      throw over_limit("max_recordings_per_client", limits_.max_recordings_per_client,
-                       "this address has that many recordings queued or running: wait for one to finish "
-                       "or cancel it (DELETE /api/v1/recordings/{id})");
-    if (static_cast<int>(entries_.size()) >= limits_.max_recordings)
-      throw over_limit("max_recordings", limits_.max_recordings,
-                       "the server keeps that many recordings: delete finished ones, or wait until they "
-                       "expire (" +
-                           std::to_string(limits_.recording_max_age.count()) + " s after finishing)");
-    if (disk_bytes_locked() >= static_cast<std::uint64_t>(limits_.max_recording_disk_bytes))
-      throw over_limit("max_recording_disk_bytes", limits_.max_recording_disk_bytes,
-                       "the recordings kept fill the disk space allowed to them: delete finished ones, or "
-                       "wait until they expire");
-    entries_[entry->state.id] = entry;
-  }
+  queue_.admit(entry,
+               {.per_client_limit = "max_recordings_per_client",
+                .per_client = limits_.max_recordings_per_client,
+                .per_client_reason = "this address has that many recordings queued or running: wait for one to "
+                                     "finish or cancel it (DELETE /api/v1/recordings/{id})",
+                .total_limit = "max_recordings",
+                .total = limits_.max_recordings,
+                .total_reason = "the server keeps that many recordings: delete finished ones, or wait until "
+                                "they expire (" +
+                                std::to_string(limits_.recording_max_age.count()) + " s after finishing)",
+                .retry_after = "10"},
+               [this](const Queue::Entries& entries) {
+                 if (disk_bytes(entries) >= static_cast<std::uint64_t>(limits_.max_recording_disk_bytes))
+                   throw over_limit("max_recording_disk_bytes", limits_.max_recording_disk_bytes,
+                                    "the recordings kept fill the disk space allowed to them: delete finished "
+                                    "ones, or wait until they expire");
+               });
   if (db_) {
     // The row before the job is queued (its first progress write updates it); the store's files
     // count against the same allowance.
     try {
       if (db_->recording_bytes() >= limits_.max_recording_disk_bytes) {
-        const std::lock_guard lock(mutex_);
-        entries_.erase(entry->state.id);
+        queue_.forget(entry->state.id);
         throw over_limit("max_recording_disk_bytes", limits_.max_recording_disk_bytes,
                          "the recordings kept in the store fill the space allowed to them: delete finished "
                          "ones, or wait until they expire");
       }
       save_row(entry->state);
     } catch (const StoreError& e) {
-      const std::lock_guard lock(mutex_);
-      entries_.erase(entry->state.id);
+      queue_.forget(entry->state.id);
       throw store_away(entry->state.id, e);
     }
   }
-  {
-    const std::lock_guard lock(mutex_);
-    queue_.push_back(entry);
-  }
-  wake_.notify_one();
+  queue_.enqueue(entry);
   return entry->state.id;
 }
 
 RecordingState Recordings::state(const std::string& id) {
-  const std::lock_guard lock(mutex_);
-  prune_locked();
-  const auto it = entries_.find(id);
-  if (it == entries_.end()) throw unknown_recording(id, limits_);
-  return it->second->state;
+  std::optional<RecordingState> s = queue_.find(id);
+  if (!s) throw unknown_recording(id, limits_);
+  return std::move(*s);
 }
 
 namespace {
@@ -267,12 +232,11 @@ nlohmann::ordered_json Recordings::describe(const std::string& id) {
 RecordingDownload Recordings::file(const std::string& id) {
   if (!db_) {
     const RecordingState s = state(id);
-    if (s.status != RecordingStatus::done) throw not_ready(std::string(status_name(s.status)), s.reason);
-    std::filesystem::path path;
-    {
-      const std::lock_guard lock(mutex_);
-      path = entries_.at(id)->path;
-    }
+    if (s.status != RecordingStatus::done) throw not_ready(std::string(job_status_name(s.status)), s.reason);
+    const std::filesystem::path path = queue_.locked([&](const Queue::Entries& entries) {
+      const auto it = entries.find(id);
+      return it == entries.end() ? std::filesystem::path() : it->second->extra.path;
+    });
     auto stream = std::make_shared<std::ifstream>(path, std::ios::binary);  // readable even if deleted meanwhile
     if (!*stream) throw bad(404, "Unknown recording", "id", id, "the recording's file is gone");
     return {.bytes = s.bytes,
@@ -328,93 +292,37 @@ bool Recordings::cancel_or_delete(const std::string& id) {
       if (!row) throw unknown_recording(id, limits_);
       if (active(row->status) && db_->cancel_recording(id)) {
         // Ours: stopped here at once; another replica's stops at its next row write.
-        const std::lock_guard lock(mutex_);
-        if (const auto it = entries_.find(id); it != entries_.end() && it->second->active()) {
-          it->second->cancel = true;
-          std::erase(queue_, it->second);
-          it->second->state.status = RecordingStatus::cancelled;
-          it->second->finished = std::chrono::steady_clock::now();
-        }
+        queue_.cancel(id);
         return true;
       }
       db_->remove_recording(id);
     } catch (const StoreError& e) {
       throw store_away(id, e);
     }
-    std::shared_ptr<Entry> entry;
-    {
-      const std::lock_guard lock(mutex_);
-      if (const auto it = entries_.find(id); it != entries_.end() && !it->second->active()) {
-        entry = it->second;
-        entries_.erase(it);
-      }
-    }
     std::error_code ignored;
-    if (entry) std::filesystem::remove(entry->path, ignored);
+    if (const Queue::Ptr entry = queue_.erase_finished(id)) std::filesystem::remove(entry->extra.path, ignored);
     return false;
   }
-  std::shared_ptr<Entry> entry;
-  {
-    const std::lock_guard lock(mutex_);
-    const auto it = entries_.find(id);
-    if (it == entries_.end())
-      throw bad(404, "Unknown recording", "id", id, "no recording with this id (it may have expired)");
-    entry = it->second;
-    if (entry->active()) {
-      // Cancelled now: a queued job never starts, a running one stops at its next frame and
-      // removes its file (whatever it was about to become).
-      entry->cancel = true;
-      std::erase(queue_, entry);
-      entry->state.status = RecordingStatus::cancelled;
-      entry->finished = std::chrono::steady_clock::now();
-      return true;
-    }
-    entries_.erase(it);
-  }
+  // Cancelled now: a queued job never starts, a running one stops at its next frame and removes
+  // its file (whatever it was about to become).
+  Queue::Ptr deleted;
+  const Queue::Removed removed = queue_.cancel_or_delete(id, &deleted);
+  if (removed == Queue::Removed::unknown)
+    throw bad(404, "Unknown recording", "id", id, "no recording with this id (it may have expired)");
+  if (removed == Queue::Removed::cancelled) return true;
   std::error_code ignored;
-  std::filesystem::remove(entry->path, ignored);
+  std::filesystem::remove(deleted->extra.path, ignored);
   return false;
 }
 
-void Recordings::prune_locked() {
-  const auto now = std::chrono::steady_clock::now();
-  for (auto it = entries_.begin(); it != entries_.end();) {
-    const Entry& e = *it->second;
-    if (!e.active() && now - e.finished >= limits_.recording_max_age) {
-      std::error_code ignored;
-      if (!e.path.empty()) std::filesystem::remove(e.path, ignored);
-      it = entries_.erase(it);
-    } else {
-      ++it;
-    }
-  }
-}
-
-std::uint64_t Recordings::disk_bytes_locked() const {
+std::uint64_t Recordings::disk_bytes(const Queue::Entries& entries) {
   std::uint64_t bytes = 0;
-  for (const auto& [id, e] : entries_)
-    if (!e->path.empty()) bytes += e->state.bytes;  // (a file in the store is counted there)
+  for (const auto& [id, e] : entries)
+    if (!e->extra.path.empty()) bytes += e->state.bytes;  // (a file in the store is counted there)
   return bytes;
 }
 
-void Recordings::work() {
-  // Linux: nice applies to this thread only (its own task id).
-  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kRecordingNice);
-  for (;;) {
-    std::shared_ptr<Entry> entry;
-    {
-      std::unique_lock lock(mutex_);
-      wake_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
-      if (stopping_) return;
-      entry = queue_.front();
-      queue_.pop_front();
-      entry->state.status = RecordingStatus::running;
-    }
-    run(*entry);
-  }
-}
-
-void Recordings::run(Entry& entry) {
+void Recordings::run(Queue::Entry& entry) {
   const RecordingJob& job = entry.state.job;  // not changed while running
   const std::string key = "recording:" + entry.state.id;
   RecordingStatus status = RecordingStatus::done;
@@ -425,7 +333,7 @@ void Recordings::run(Entry& entry) {
     provenance["t_end"] = job.clip.t_end;
     provenance["view"] = std::string(render::view_name(job.frames.view.kind));
     auto recorder = record::open_clip_writer(
-        job.format, entry.path,
+        job.format, entry.extra.path,
         {job.frames.view.width, job.frames.view.height, job.clip.fps, provenance.dump()});
     const auto render = [&](render::Snapshot snapshot, const render::ViewOptions& view) {
       try {
@@ -437,26 +345,24 @@ void Recordings::run(Entry& entry) {
     auto last_write = std::chrono::steady_clock::now() - kProgressWriteInterval;
     bool store_warned = false;
     const auto progress = [&](long long done, long long total) {
-      RecordingState snapshot;
-      {
-        const std::lock_guard lock(mutex_);
-        entry.state.progress =
-            std::max(entry.state.progress, static_cast<double>(done) / static_cast<double>(total));
+      queue_.progress(entry, static_cast<double>(done), static_cast<double>(total));
+      std::optional<RecordingState> snapshot = queue_.locked([&](const Queue::Entries& entries) {
         entry.state.bytes = recorder->bytes();
-        if (disk_bytes_locked() > static_cast<std::uint64_t>(limits_.max_recording_disk_bytes))
+        if (disk_bytes(entries) > static_cast<std::uint64_t>(limits_.max_recording_disk_bytes))
           throw record::RecordError("the recordings' files passed the disk space allowed to them (" +
                                     std::to_string(limits_.max_recording_disk_bytes) +
                                     " bytes, limits.max_recording_disk_bytes)");
         if (!db_ || std::chrono::steady_clock::now() - last_write < kProgressWriteInterval)
-          return !entry.cancel.load();
-        snapshot = entry.state;
-      }
+          return std::optional<RecordingState>();
+        return std::optional<RecordingState>(entry.state);
+      });
+      if (!snapshot) return !entry.cancel.load();
       // The row, for every replica (and a cancel or deletion through another one stops the job here).
       last_write = std::chrono::steady_clock::now();
       try {
-        if (!save_row(snapshot)) entry.cancel = true;
+        if (!save_row(*snapshot)) entry.cancel = true;
       } catch (const StoreError& e) {  // the store away for a moment: the job goes on
-        if (!store_warned) std::fprintf(stderr, "spinfold: recording %s: %s\n", snapshot.id.c_str(), e.what());
+        if (!store_warned) std::fprintf(stderr, "spinfold: recording %s: %s\n", snapshot->id.c_str(), e.what());
         store_warned = true;
       }
       return !entry.cancel.load();
@@ -468,45 +374,37 @@ void Recordings::run(Entry& entry) {
     reason = e.what();
   }
   if (entry.cancel) status = RecordingStatus::cancelled;  // a cancel is final, even one at the end
-  bool stopping = false;
-  {
-    const std::lock_guard lock(mutex_);
-    stopping = stopping_;
-  }
-  if (stopping && status == RecordingStatus::cancelled) {  // not the user's cancel: the server stopped
+  if (queue_.stopping() && status == RecordingStatus::cancelled) {  // not the user's cancel: the server stopped
     status = RecordingStatus::failed;
     reason = "the server recording it stopped: record again";
   }
   std::error_code error;
-  const auto size = status == RecordingStatus::done ? std::filesystem::file_size(entry.path, error) : 0;
+  const auto size = status == RecordingStatus::done ? std::filesystem::file_size(entry.extra.path, error) : 0;
   if (db_ && status == RecordingStatus::done) {
     // The file into the store (every replica serves it from there), then the row says done.
     try {
-      store_file(entry.state.id, entry.path);
+      store_file(entry.state.id, entry.extra.path);
     } catch (const StoreError& e) {
       status = RecordingStatus::failed;
       reason = std::string("the store could not take the file: ") + e.what();
     }
   }
-  if (status != RecordingStatus::done || db_) std::filesystem::remove(entry.path, error);
-  RecordingState snapshot;
-  {
-    const std::lock_guard lock(mutex_);
+  if (status != RecordingStatus::done || db_) std::filesystem::remove(entry.extra.path, error);
+  const RecordingState snapshot = queue_.locked([&](const Queue::Entries&) {
     entry.state.status = status;
     entry.state.reason = status == RecordingStatus::failed ? reason : "";
     entry.state.bytes = status == RecordingStatus::done ? size : 0;
-    if (db_) entry.path.clear();  // the file is the store's now (not this disk's allowance)
+    if (db_) entry.extra.path.clear();  // the file is the store's now (not this disk's allowance)
     if (status == RecordingStatus::done) entry.state.progress = 1.0;
     if (status != RecordingStatus::cancelled) entry.finished = std::chrono::steady_clock::now();
-    snapshot = entry.state;
-  }
+    return entry.state;
+  });
   if (!db_) return;
   try {
     if (!save_row(snapshot) && status == RecordingStatus::done) {
       // Cancelled through another replica while the file was stored: the row says cancelled, and
       // the next expiry sweep removes the file.
-      const std::lock_guard lock(mutex_);
-      entry.state.status = RecordingStatus::cancelled;
+      queue_.locked([&](const Queue::Entries&) { entry.state.status = RecordingStatus::cancelled; });
     }
   } catch (const StoreError& e) {
     // The row stays running until the owner's silence makes it failed (recording_owner_lost).

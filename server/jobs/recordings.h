@@ -2,7 +2,8 @@
 // copy of the session's timeline (the live session is never paused or changed), draw each frame in
 // the render pool at background priority (live frames go first) and encode it on a recording thread
 // of lower CPU priority, into a file in the server's temporary directory. Each job is queued →
-// running → done | failed (with a reason) | cancelled, its progress 0…1 never going back. Limits
+// running → done | failed (with a reason) | cancelled, its progress 0…1 never going back (a
+// JobQueue: server/jobs/job_queue.h, whose sync thread is the heartbeat below). Limits
 // (server::Limits): frames, pixels, jobs per client, jobs kept, disk bytes, age.
 //
 // With a session store (SQLite or PostgreSQL), each job also has a row there, and its finished file
@@ -15,22 +16,14 @@
 // the store's size (limits.max_recording_disk_bytes bounds it) and a copy of each file into it.
 #pragma once
 
-#include <atomic>
-#include <chrono>
-#include <condition_variable>
-#include <deque>
 #include <filesystem>
 #include <functional>
-#include <map>
-#include <memory>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <thread>
-#include <vector>
 
 #include "record/clip.h"
 #include "record/recorder.h"
+#include "server/jobs/job_queue.h"
 #include "server/options.h"
 #include "server/store/store.h"
 
@@ -38,8 +31,8 @@ namespace spinfold::server {
 
 class RenderPool;
 
-enum class RecordingStatus { queued, running, done, failed, cancelled };
-std::string_view status_name(RecordingStatus status);
+// A recording's status: the job queue's (server/jobs/job_queue.h).
+using RecordingStatus = JobStatus;
 
 // What to record: the window and rate, the format, and the frames (the timeline's copy, the view).
 struct RecordingJob {
@@ -101,31 +94,26 @@ class Recordings {
   const std::string& instance() const { return instance_; }
 
  private:
-  struct Entry;
-  void work();
-  void run(Entry& entry);
-  void heartbeat();
+  struct File {
+    std::filesystem::path path;  // the file being encoded or kept here ("" once it is the store's)
+  };
+  using Queue = JobQueue<RecordingState, File>;
+  void run(Queue::Entry& entry);
+  void heartbeat();  // with a store: touches this process's rows, expires everyone's
   // Writes the job's row (the store's copy of its state); false when it was cancelled or deleted
   // through another replica meanwhile. StoreError when the store is away.
   bool save_row(const RecordingState& state);
   // Copies the finished file into the store, in chunks (StoreError when it cannot).
   void store_file(const std::string& id, const std::filesystem::path& path);
-  void prune_locked();
-  std::uint64_t disk_bytes_locked() const;
+  static std::uint64_t disk_bytes(const Queue::Entries& entries);
 
   const Limits limits_;
   RenderPool& pool_;
   Store* db_;
   std::string instance_;
   std::filesystem::path dir_;
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  std::map<std::string, std::shared_ptr<Entry>> entries_;
-  std::deque<std::shared_ptr<Entry>> queue_;
-  bool stopping_ = false;
-  std::vector<std::thread> threads_;
-  std::thread heartbeat_;  // with a store: touches this process's rows, expires everyone's
-  std::condition_variable heartbeat_wake_;  // (its own: a notify_one for a job must reach a worker)
+  bool heartbeat_warned_ = false;  // (the heartbeat's own)
+  Queue queue_;                    // last: its threads use the members above
 };
 
 }  // namespace spinfold::server

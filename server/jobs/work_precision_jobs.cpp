@@ -1,7 +1,5 @@
 #include "server/jobs/work_precision_jobs.h"
 
-#include <sys/resource.h>
-#include <sys/syscall.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -23,10 +21,6 @@ namespace fs = std::filesystem;
 // Below the HTTP workers and the render threads, like the recordings: a sweep never slows the live
 // view (its timings then measure this thread's share of a core, which a busy server makes noisy).
 constexpr int kWorkPrecisionNice = 10;
-
-ApiError over_limit(const std::string& limit, long long value, const std::string& reason) {
-  return {429, "Too many requests", {{"limits." + limit, std::to_string(value), reason}}, "5"};
-}
 
 std::string read_file(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -67,71 +61,37 @@ void draw_plot(const WorkPrecisionJob& job, WorkPrecisionResult& result) {
 
 }  // namespace
 
-std::string_view job_status_name(JobStatus status) {
-  switch (status) {
-    case JobStatus::queued: return "queued";
-    case JobStatus::running: return "running";
-    case JobStatus::done: return "done";
-    case JobStatus::failed: return "failed";
-    case JobStatus::cancelled: return "cancelled";
-  }
-  return "failed";
-}
-
-struct WorkPrecisionJobs::Entry {
-  WorkPrecisionState state;  // guarded by WorkPrecisionJobs::mutex_
-  std::atomic<bool> cancel{false};
-  std::chrono::steady_clock::time_point finished;  // done, failed or cancelled at (guarded)
-  bool active() const { return state.status == JobStatus::queued || state.status == JobStatus::running; }
-};
-
-WorkPrecisionJobs::WorkPrecisionJobs(const Limits& limits) : limits_(limits), thread_([this] { work(); }) {}
-
-WorkPrecisionJobs::~WorkPrecisionJobs() {
-  {
-    const std::lock_guard lock(mutex_);
-    stopping_ = true;
-    for (auto& [id, entry] : entries_) entry->cancel = true;
-  }
-  wake_.notify_all();
-  thread_.join();
-}
+WorkPrecisionJobs::WorkPrecisionJobs(const Limits& limits)
+    : limits_(limits),
+      queue_({.threads = 1, .nice = kWorkPrecisionNice, .max_age = limits.work_precision_max_age},
+             [this](Queue::Entry& entry) { run(entry); }) {}
 
 std::string WorkPrecisionJobs::start(WorkPrecisionJob job) {
-  auto entry = std::make_shared<Entry>();
+  auto entry = std::make_shared<Queue::Entry>();
   entry->state.id = new_session_id();
   entry->state.job = std::move(job);
-  {
-    const std::lock_guard lock(mutex_);
-    prune_locked();
-    int of_client = 0;
-    for (const auto& [id, e] : entries_)
-      of_client += e->active() && e->state.job.client == entry->state.job.client;
-    if (of_client >= limits_.max_work_precision_jobs_per_client)
-      throw over_limit("max_work_precision_jobs_per_client", limits_.max_work_precision_jobs_per_client,
-                       "this address has a work-precision job queued or running: wait for it to finish or "
-                       "cancel it (DELETE /api/v1/work-precision/{id})");
-    if (static_cast<int>(entries_.size()) >= limits_.max_work_precision_jobs)
-      throw over_limit("max_work_precision_jobs", limits_.max_work_precision_jobs,
-                       "the server keeps that many work-precision jobs: delete finished ones, or wait until "
-                       "they expire (" +
-                           std::to_string(limits_.work_precision_max_age.count()) + " s after finishing)");
-    entries_[entry->state.id] = entry;
-    queue_.push_back(entry);
-  }
-  wake_.notify_one();
+  queue_.admit(entry, {.per_client_limit = "max_work_precision_jobs_per_client",
+                       .per_client = limits_.max_work_precision_jobs_per_client,
+                       .per_client_reason = "this address has a work-precision job queued or running: wait for it "
+                                            "to finish or cancel it (DELETE /api/v1/work-precision/{id})",
+                       .total_limit = "max_work_precision_jobs",
+                       .total = limits_.max_work_precision_jobs,
+                       .total_reason = "the server keeps that many work-precision jobs: delete finished ones, or "
+                                       "wait until they expire (" +
+                                       std::to_string(limits_.work_precision_max_age.count()) +
+                                       " s after finishing)",
+                       .retry_after = "5"});
+  queue_.enqueue(entry);
   return entry->state.id;
 }
 
 WorkPrecisionState WorkPrecisionJobs::state(const std::string& id) {
-  const std::lock_guard lock(mutex_);
-  prune_locked();
-  const auto it = entries_.find(id);
-  if (it == entries_.end())
+  std::optional<WorkPrecisionState> s = queue_.find(id);
+  if (!s)
     throw bad(404, "Unknown work-precision job", "id", id,
               "no work-precision job with this id (finished jobs are dropped after " +
                   std::to_string(limits_.work_precision_max_age.count()) + " s)");
-  return it->second->state;
+  return std::move(*s);
 }
 
 std::shared_ptr<const WorkPrecisionResult> WorkPrecisionJobs::result(const std::string& id) {
@@ -144,49 +104,15 @@ std::shared_ptr<const WorkPrecisionResult> WorkPrecisionJobs::result(const std::
 }
 
 bool WorkPrecisionJobs::cancel_or_delete(const std::string& id) {
-  const std::lock_guard lock(mutex_);
-  const auto it = entries_.find(id);
-  if (it == entries_.end())
+  // Cancelled now: a queued job never starts, a running one stops before its next run.
+  const Queue::Removed removed = queue_.cancel_or_delete(id);
+  if (removed == Queue::Removed::unknown)
     throw bad(404, "Unknown work-precision job", "id", id,
               "no work-precision job with this id (it may have expired)");
-  Entry& entry = *it->second;
-  if (entry.active()) {
-    // Cancelled now: a queued job never starts, a running one stops before its next run.
-    entry.cancel = true;
-    std::erase(queue_, it->second);
-    entry.state.status = JobStatus::cancelled;
-    entry.finished = std::chrono::steady_clock::now();
-    return true;
-  }
-  entries_.erase(it);
-  return false;
+  return removed == Queue::Removed::cancelled;
 }
 
-void WorkPrecisionJobs::prune_locked() {
-  const auto now = std::chrono::steady_clock::now();
-  std::erase_if(entries_, [&](const auto& kv) {
-    return !kv.second->active() && now - kv.second->finished >= limits_.work_precision_max_age;
-  });
-}
-
-void WorkPrecisionJobs::work() {
-  // Linux: nice applies to this thread only (its own task id).
-  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kWorkPrecisionNice);
-  for (;;) {
-    std::shared_ptr<Entry> entry;
-    {
-      std::unique_lock lock(mutex_);
-      wake_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
-      if (stopping_) return;
-      entry = queue_.front();
-      queue_.pop_front();
-      entry->state.status = JobStatus::running;
-    }
-    run(*entry);
-  }
-}
-
-void WorkPrecisionJobs::run(Entry& entry) {
+void WorkPrecisionJobs::run(Queue::Entry& entry) {
   const WorkPrecisionJob& job = entry.state.job;  // not changed while running
   auto result = std::make_shared<WorkPrecisionResult>();
   JobStatus status = JobStatus::done;
@@ -195,23 +121,18 @@ void WorkPrecisionJobs::run(Entry& entry) {
     const wp::Reference reference = wp::make_reference(job.scene, job.t_end);
     result->reference_kind = reference.kind;
     result->reference_description = reference.description;
-    {
-      const std::lock_guard lock(mutex_);
-      entry.state.reference_ready = true;
-    }
+    queue_.locked([&](auto&) { entry.state.reference_ready = true; });
     wp::SweepOptions options;
     options.t_end = job.t_end;
     options.integrators = job.integrators;
     options.max_seconds_per_run = limits_.work_precision_seconds_per_run;
     options.max_attempts_per_run = static_cast<std::uint64_t>(limits_.work_precision_steps_per_run);
     options.proceed = [&](std::size_t done, std::size_t methods) {
-      const std::lock_guard lock(mutex_);
-      entry.state.methods_done = done;
-      entry.state.methods = methods;
-      if (methods > 0)
-        entry.state.progress =
-            std::max(entry.state.progress, static_cast<double>(done) / static_cast<double>(methods));
-      return !entry.cancel.load();
+      queue_.locked([&](auto&) {
+        entry.state.methods_done = done;
+        entry.state.methods = methods;
+      });
+      return queue_.progress(entry, static_cast<double>(done), static_cast<double>(methods));
     };
     if (!entry.cancel) result->curves = wp::sweep(job.scene, reference, options);
     if (!entry.cancel) {
@@ -233,15 +154,11 @@ void WorkPrecisionJobs::run(Entry& entry) {
     status = JobStatus::failed;
     reason = e.what();
   }
-  const std::lock_guard lock(mutex_);
   if (entry.cancel) return;  // cancel_or_delete set the status and the time; a cancel is final
-  entry.state.status = status;
-  entry.state.reason = reason;
-  if (status == JobStatus::done) {
-    entry.state.progress = 1.0;
-    entry.state.result = std::move(result);
-  }
-  entry.finished = std::chrono::steady_clock::now();
+  queue_.finish(entry, status, [&](WorkPrecisionState& state, std::monostate&) {
+    state.reason = reason;
+    if (status == JobStatus::done) state.result = std::move(result);
+  });
 }
 
 }  // namespace spinfold::server

@@ -1,31 +1,23 @@
 // Work-precision jobs (POST /api/v1/work-precision): which integrator for a scene, measured by the
 // library the CLI uses (workprecision/work_precision.h) on one background thread of low CPU
-// priority, never on an HTTP worker. Each job is queued → running → done | failed (with a reason) |
+// priority, never on an HTTP worker (a JobQueue: server/jobs/job_queue.h). Each job is queued → running → done | failed (with a reason) |
 // cancelled; progress is the methods swept / the methods to sweep, never going back. A cancel
 // takes effect before the job's next run. Results (the curves, the recommendation, the CSV, the SVG
 // and PNG plots) are kept in memory only, and dropped `work_precision_max_age` after finishing.
 #pragma once
 
-#include <atomic>
-#include <chrono>
-#include <condition_variable>
-#include <deque>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "engine/scene.h"
+#include "server/jobs/job_queue.h"
 #include "server/options.h"
 #include "workprecision/work_precision.h"
 
 namespace spinfold::server {
-
-enum class JobStatus { queued, running, done, failed, cancelled };
-std::string_view job_status_name(JobStatus status);
 
 // What to measure (checked by the caller: the scene valid, the integrators known, T and the target
 // error within Limits).
@@ -65,7 +57,7 @@ struct WorkPrecisionState {
 class WorkPrecisionJobs {
  public:
   explicit WorkPrecisionJobs(const Limits& limits);
-  ~WorkPrecisionJobs();  // cancels every job, and waits for the one running to reach its next run
+  ~WorkPrecisionJobs() = default;  // cancels every job, and waits for the one running to reach its next run
   WorkPrecisionJobs(const WorkPrecisionJobs&) = delete;
   WorkPrecisionJobs& operator=(const WorkPrecisionJobs&) = delete;
 
@@ -80,18 +72,11 @@ class WorkPrecisionJobs {
   bool cancel_or_delete(const std::string& id);
 
  private:
-  struct Entry;
-  void work();
-  void run(Entry& entry);
-  void prune_locked();
+  using Queue = JobQueue<WorkPrecisionState>;
+  void run(Queue::Entry& entry);
 
   const Limits limits_;
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  std::map<std::string, std::shared_ptr<Entry>> entries_;
-  std::deque<std::shared_ptr<Entry>> queue_;
-  bool stopping_ = false;
-  std::thread thread_;  // one: the timings are wall-clock times, so jobs never run side by side
+  Queue queue_;  // one thread: the timings are wall-clock times, so jobs never run side by side
 };
 
 }  // namespace spinfold::server
