@@ -14,6 +14,7 @@
 
 #include "codec/presets.h"
 #include "codec/scene_json.h"
+#include "server/api.h"
 #include "server/frames/render_pool.h"
 #include "server/http/problem.h"
 #include "server/http/route_table.h"
