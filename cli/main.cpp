@@ -45,7 +45,7 @@
 #include "render/snapshot.h"
 #include "render/view.h"
 #include "server/api.h"
-#include "server/session_db.h"
+#include "server/store/store.h"
 #endif
 
 namespace {

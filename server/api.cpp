@@ -3,10 +3,10 @@
 #include <sys/socket.h>
 
 #include "server/context.h"
-#include "server/framing.h"
-#include "server/player.h"
-#include "server/problem.h"
-#include "server/route_table.h"
+#include "server/http/framing.h"
+#include "server/http/problem.h"
+#include "server/routes/routes.h"
+#include "server/sessions/player.h"
 
 // After Eigen: httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's parameter names.
 #include <httplib.h>
@@ -85,7 +85,7 @@ ApiServer::ApiServer(ServerOptions options) : state_(std::make_unique<State>(std
     state->listen_socket = sock;
   });
   register_routes(http, state_->server, route_table(state_->server.options.limits));
-  // Framing first, on the bytes as they arrived (server/framing.h): a refused head is answered and the
+  // Framing first, on the bytes as they arrived (server/http/framing.h): a refused head is answered and the
   // connection closed before any route, body or state is touched.
   http.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
     const std::string* bytes = current_request_bytes();

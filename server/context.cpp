@@ -8,7 +8,7 @@
 #include "engine/number_text.h"
 #include "engine/scene_fields.h"
 #include "engine/surface.h"
-#include "server/problem.h"
+#include "server/http/problem.h"
 
 // After Eigen: httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's parameter names.
 #include <httplib.h>
@@ -30,7 +30,7 @@ std::shared_ptr<Session> find_session(ServerContext& server, const std::string& 
 
 namespace {
 
-// Releases a stream slot (and the client's, server/quota.h) when destroyed.
+// Releases a stream slot (and the client's, server/http/quota.h) when destroyed.
 struct StreamSlot {
   std::atomic<int>& open;
   std::shared_ptr<void> client;

@@ -9,16 +9,16 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "server/api.h"
-#include "server/change_signal.h"
-#include "server/frame_cache.h"
-#include "server/frames.h"
-#include "server/quota.h"
-#include "server/recordings.h"
-#include "server/render_pool.h"
-#include "server/session_db.h"
-#include "server/sessions.h"
-#include "server/work_precision_jobs.h"
+#include "server/frames/frame_cache.h"
+#include "server/frames/frames.h"
+#include "server/frames/render_pool.h"
+#include "server/http/quota.h"
+#include "server/jobs/recordings.h"
+#include "server/jobs/work_precision_jobs.h"
+#include "server/options.h"
+#include "server/sessions/change_signal.h"
+#include "server/sessions/session_store.h"
+#include "server/store/store.h"
 
 namespace httplib {
 struct Response;
@@ -35,7 +35,7 @@ struct Viewer {
 
 struct ServerContext {
   ServerOptions options;
-  std::unique_ptr<SessionDb> db;  // the durable store (options.store, else options.data_dir), or none
+  std::unique_ptr<Store> db;  // the durable store (options.store, else options.data_dir), or none
   SessionStore sessions;
   RenderPool renderer{options.render_threads};
   FrameCache frames{128};
@@ -45,12 +45,12 @@ struct ServerContext {
   std::atomic<int> open_streams{0};  // event and live streams now open
   std::mutex viewers_mutex;          // guards viewers
   std::map<std::string, std::weak_ptr<Viewer>> viewers;  // by "session id/viewer"
-  ClientQuotas quotas{options.limits};                   // per client address (server/quota.h)
+  ClientQuotas quotas{options.limits};                   // per client address (server/http/quota.h)
   std::atomic<bool> stopping{false};                     // set by stop(): ends the event streams
 
   explicit ServerContext(ServerOptions o)
       : options(std::move(o)),
-        db(open_session_db(options.store, options.data_dir)),
+        db(open_store(options.store, options.data_dir)),
         sessions(options.limits.max_sessions, options.limits.idle_expiry, db.get()) {
     sessions.restore();
   }

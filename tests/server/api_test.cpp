@@ -25,7 +25,8 @@
 #include "decoded_image.h"
 #include "tests/render/figure_tools.h"
 // clang-format on
-#include "server/route_table.h"
+#include "server/http/route_table.h"
+#include "server/routes/routes.h"
 
 // After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
 #include <httplib.h>

@@ -19,7 +19,7 @@
 #include "decoded_image.h"
 #include "render/snapshot.h"
 #include "server/api.h"
-#include "server/render_pool.h"
+#include "server/frames/render_pool.h"
 
 // After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
 #include <httplib.h>

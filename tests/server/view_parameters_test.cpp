@@ -14,7 +14,7 @@
 #include "engine/number_text.h"
 #include "record/recorder.h"
 #include "server/api.h"
-#include "server/route_table.h"
+#include "server/http/route_table.h"
 
 // After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
 #include <httplib.h>

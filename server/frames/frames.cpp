@@ -1,0 +1,209 @@
+#include "server/frames/frames.h"
+
+#include <cstdio>
+#include <future>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "codec/provenance.h"
+#include "render/jpeg_encoder.h"
+#include "render/png_encoder.h"
+#include "render/snapshot.h"
+#include "render/view_parameters.h"
+#include "server/frames/render_pool.h"
+#include "server/http/problem.h"
+#include "server/http/route_table.h"
+#include "server/options.h"
+#include "server/sessions/session.h"
+
+namespace spinfold::server {
+
+namespace {
+
+// The snapshot and camera of a frame not yet made (null when the cache has or is making it).
+struct FrameJob {
+  std::string etag;
+  FrameInfo info;
+  std::optional<render::Snapshot> snapshot;
+  render::ViewOptions view;
+  std::vector<render::PngText> texts;  // the provenance of the state shown (PNG only)
+};
+
+FrameJob frame_job(FrameCache& cache, const std::string& id, Session& s, const FrameRequest& f) {
+  const std::lock_guard lock(s.mutex);
+  FrameJob job{frame_etag(id, state_tag(s), f), {s.version, s.run.state.t}, std::nullopt, f.view, {}};
+  if (!cache.contains(job.etag)) {
+    job.view.scale = f.scale * render::body_scale_length(f.view.kind, s.run.scene.surface);
+    static const Trail kNoTrail;  // trails are copied only when drawn
+    job.snapshot = render::make_snapshot(s.run, f.view.layers & render::kTrail ? s.trail : kNoTrail,
+                                         f.trail.value_or(-1.0));
+    if (!f.jpeg_quality)
+      job.texts = picture_texts(s.run.scene, "", s.run.state.t, render::view_name(f.view.kind));
+  }
+  return job;
+}
+
+// Thrown by a maker without a snapshot (the frame left the cache after it was looked up): ask again.
+struct Evicted {};
+
+}  // namespace
+
+std::vector<QueryParam> frame_params(const Limits& limits) {
+  std::vector<QueryParam> params;
+  for (const render::ViewParameter& p : render::view_parameters()) {
+    const Range range = render::allowed_range(p, limits.max_image_side);
+    QueryParam q{.name = std::string(p.name), .unit = std::string(p.unit), .description = std::string(p.help)};
+    switch (render::parameter_type(p)) {
+      case render::ParameterType::integer: q.type = ParamType::integer; break;
+      case render::ParameterType::number: q.type = ParamType::number; break;
+      case render::ParameterType::enumeration: q.type = ParamType::enumeration; break;
+      case render::ParameterType::list: q.type = ParamType::list; break;
+    }
+    if (range.has_min()) q.minimum = range.min;
+    if (range.has_max()) q.maximum = range.max;
+    q.exclusive_minimum = range.min_open;
+    for (const std::string_view c : render::choices(p)) q.values.emplace_back(c);
+    // Built in place (GCC 12 at -O1 with ThreadSanitizer warns, wrongly, of an uninitialised
+    // string when a temporary variant is moved into the optional).
+    if (const auto d = render::default_value(p)) {
+      const double* x = std::get_if<double>(&*d);
+      if (!x)
+        q.default_value.emplace(std::in_place_type<std::string>, std::get<std::string>(*d));
+      else if (q.type == ParamType::integer)
+        q.default_value.emplace(std::in_place_type<long long>, static_cast<long long>(*x));
+      else
+        q.default_value.emplace(std::in_place_type<double>, *x);
+    }
+    params.push_back(std::move(q));
+  }
+  return params;
+}
+
+QueryParam quality_param() {
+  return {.name = "quality",
+          .type = ParamType::integer,
+          .minimum = 1,
+          .maximum = 100,
+          .default_value = static_cast<long long>(render::kDefaultJpegQuality),
+          .description =
+              "JPEG quality (libjpeg-turbo, 4:2:0); the default is chosen from "
+              "the size/quality table in docs/performance.md"};
+}
+
+render::ViewRequest view_request(const FrameRequest& f) {
+  return {.width = f.view.width,
+          .height = f.view.height,
+          .view = f.view.kind,
+          .layers = f.view.layers,
+          .scale = f.scale,
+          .yaw = f.yaw,
+          .pitch = f.pitch,
+          .distance = f.distance,
+          .trail = f.trail};
+}
+
+void apply_view_query(const Query& q, FrameRequest& f, SurfaceKind surface) {
+  render::ViewRequest r = view_request(f);
+  for (const render::ViewParameter& p : render::view_parameters()) {
+    const std::string name(p.name);
+    std::optional<render::GivenValue> given;
+    if (render::parameter_type(p) == render::ParameterType::integer ||
+        render::parameter_type(p) == render::ParameterType::number) {
+      if (const auto x = q.number(name)) given = *x;
+    } else if (const auto text = q.text(name)) {
+      given = *text;
+    }
+    // Checked already by parse_query against the same table (frame_params): a refusal here is a bug.
+    if (given)
+      if (const auto why = render::set_parameter(r, p, *given, std::numeric_limits<int>::max()))
+        throw std::logic_error("query parameter " + name + " passed the route's check: " + *why);
+  }
+  f.view.kind = r.view.value_or(render::default_view(surface));
+  f.view.width = r.width;
+  f.view.height = r.height;
+  f.view.layers = r.layers;
+  f.scale = r.scale;
+  f.yaw = r.yaw;
+  f.pitch = r.pitch;
+  f.distance = r.distance;
+  f.trail = r.trail;
+}
+
+FrameRequest frame_request(const Query& q, SurfaceKind surface, bool jpeg) {
+  FrameRequest f;
+  f.view.kind = render::default_view(surface);
+  apply_view_query(q, f, surface);
+  if (jpeg) f.jpeg_quality = static_cast<int>(*q.integer("quality"));
+  check_view(f, surface);
+  return f;
+}
+
+void check_view(const FrameRequest& f, SurfaceKind surface) {
+  if (const auto why = render::view_unsupported_reason(f.view.kind, surface))
+    throw bad(422, "Invalid value", "view", std::string(render::view_name(f.view.kind)), *why);
+}
+
+std::string frame_etag(const std::string& id, const std::string& state, const FrameRequest& f) {
+  const auto camera = [](const std::optional<double>& v) {
+    char text[32] = "auto";  // aimed at the body
+    if (v) std::snprintf(text, sizeof text, "%.17g", *v);
+    return std::string(text);
+  };
+  char text[256];
+  std::snprintf(text, sizeof text, "W/\"%s-%s-%d-%dx%d-%u-%.17g-%s-%s-%s-%s-%s%d\"", id.c_str(),
+                state.c_str(), static_cast<int>(f.view.kind), f.view.width, f.view.height, f.view.layers,
+                f.scale, camera(f.yaw).c_str(), camera(f.pitch).c_str(), camera(f.distance).c_str(),
+                camera(f.trail).c_str(), f.jpeg_quality ? "jpeg" : "png", f.jpeg_quality.value_or(0));
+  return text;
+}
+
+bool etag_matches(const std::string& if_none_match, const std::string& etag) {
+  const auto opaque = [](std::string_view tag) {
+    while (!tag.empty() && (tag.front() == ' ' || tag.front() == '\t')) tag.remove_prefix(1);
+    while (!tag.empty() && (tag.back() == ' ' || tag.back() == '\t')) tag.remove_suffix(1);
+    if (tag.starts_with("W/")) tag.remove_prefix(2);
+    return tag;
+  };
+  std::string_view rest = if_none_match;
+  while (!rest.empty()) {
+    const std::size_t comma = rest.find(',');
+    const std::string_view one = opaque(rest.substr(0, comma));
+    if (one == "*" || (!one.empty() && one == opaque(etag))) return true;
+    if (comma == std::string_view::npos) break;
+    rest.remove_prefix(comma + 1);
+  }
+  return false;
+}
+
+FrameBytes session_frame(FrameCache& cache, RenderPool& renderer, const std::string& id, Session& s,
+                         const FrameRequest& f, std::string& etag, FrameInfo* info) {
+  for (int attempt = 0;; ++attempt) {
+    FrameJob job = frame_job(cache, id, s, f);
+    etag = job.etag;
+    if (info) *info = job.info;
+    try {
+      return cache.get(job.etag, [&]() -> FrameBytes {
+        if (!job.snapshot) throw Evicted{};
+        render::aim_camera_at_body(job.view, *job.snapshot);
+        if (f.yaw) job.view.yaw = *f.yaw;
+        if (f.pitch) job.view.pitch = *f.pitch;
+        if (f.distance) job.view.distance = *f.distance;
+        const render::Image image = renderer.render(id, std::move(*job.snapshot), job.view).get();
+        return std::make_shared<const std::vector<std::uint8_t>>(
+            f.jpeg_quality
+                ? render::encode_jpeg(image.rgba.data(), image.width, image.height, *f.jpeg_quality)
+                : render::encode_png(image.rgba.data(), image.width, image.height, job.texts));
+      });
+    } catch (const Evicted&) {
+      if (attempt == 3)
+        throw ApiError{503, "Rendering unavailable", {{"", "", "the frame cache is too busy"}}, "1"};
+    } catch (const ApiError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw ApiError{503, "Rendering unavailable", {{"", "", e.what()}}, "5"};
+    }
+  }
+}
+
+}  // namespace spinfold::server

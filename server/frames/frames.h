@@ -1,0 +1,68 @@
+// Frames of a session, shared by the frame routes and the live stream: what a request asks to see,
+// the ETag naming it, and the frame itself (rendered in the pool, encoded on the caller's thread,
+// kept in the frame cache).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/surface.h"
+#include "render/view.h"
+#include "render/view_parameters.h"
+#include "server/frames/frame_cache.h"
+
+namespace spinfold::server {
+
+struct Limits;
+struct QueryParam;
+class RenderPool;
+struct Session;
+class Query;
+
+// What the picture shows (checked by the route table; the view against the surface by frame_request).
+struct FrameRequest {
+  render::ViewOptions view;                    // kind, width, height, layers; the rest is set per frame
+  double scale = 0.25;                         // [surface radii per unit of e_A]
+  std::optional<double> yaw, pitch, distance;  // absent: the camera is aimed at the body
+  std::optional<double> trail;                 // [time] span of the trail; absent: the whole run
+  std::optional<int> jpeg_quality;             // 1..100: a JPEG; absent: a PNG
+};
+
+// The query parameters of a frame (width … trail: one per row of render::view_parameters(), a side
+// at most limits.max_image_side), and the JPEG quality's.
+std::vector<QueryParam> frame_params(const Limits& limits);
+QueryParam quality_param();
+
+// The view parameters of a frame request (its view as given).
+render::ViewRequest view_request(const FrameRequest& f);
+// Sets the view parameters the query gives (checked by the route table against frame_params), the
+// others staying as they are in `f`; the view, when given none before, is the surface's own.
+void apply_view_query(const Query& q, FrameRequest& f, SurfaceKind surface);
+
+// From a query of frame_params (with quality when `jpeg`); ApiError 422 when the view cannot show
+// the surface.
+FrameRequest frame_request(const Query& q, SurfaceKind surface, bool jpeg);
+void check_view(const FrameRequest& f, SurfaceKind surface);
+
+// Names the session's state (state_tag) and every parameter of the picture: a weak ETag, since
+// replicas on other CPUs render the same state within the golden frames' tolerance, not to the same
+// bytes (on one CPU class: equal ETags, equal bytes).
+std::string frame_etag(const std::string& id, const std::string& state, const FrameRequest& f);
+// Whether an If-None-Match value names this ETag (weak comparison, RFC 9110 §8.8.3.2; "*" or a list).
+bool etag_matches(const std::string& if_none_match, const std::string& etag);
+
+// The state a frame shows.
+struct FrameInfo {
+  std::uint64_t version = 0;  // Session::version
+  double t = 0;               // [time]
+};
+
+// The frame of the session as it is now. Takes the session's lock only to read it; waits for the
+// render (ApiError 503 when rendering is unavailable). `etag` gets the frame's ETag; `info`, when
+// given, the state it shows.
+FrameBytes session_frame(FrameCache& cache, RenderPool& renderer, const std::string& id, Session& s,
+                         const FrameRequest& f, std::string& etag, FrameInfo* info = nullptr);
+
+}  // namespace spinfold::server
