@@ -23,8 +23,9 @@
 #include <string>
 #include <thread>
 
-#include "cli/run_loop.h"
 #include "cli/sweep.h"
+#include "codec/scene_source.h"
+#include "engine/sampling.h"
 #ifndef SPINFOLD_COMPUTE_ONLY
 #include "cli/figure_command.h"
 #include "cli/work_precision_command.h"
@@ -78,42 +79,14 @@ struct SimulateOptions {
   std::string command;  // the command line, for the provenance
 };
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw BadInput{"cannot read scene file '" + path + "'"};
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::string preset_names() {
-  std::string names;
-  for (const PresetSource& p : preset_sources()) names += (names.empty() ? "" : ", ") + std::string(p.name);
-  return names;
-}
-
+// The one scene rule (codec/scene_source.h): a file if one has that name, else a preset.
 Scene load_scene(const SimulateOptions& opt) {
-  if (!opt.scene_file.empty() && !opt.preset.empty())
-    throw BadInput{"give either a scene file or --scene, not both"};
-  std::string text;
-  if (!opt.scene_file.empty()) {
-    text = read_file(opt.scene_file);
-  } else {
-    const std::string name = opt.preset.empty() ? std::string(kDefaultPreset) : opt.preset;
-    const PresetSource* preset = find_preset(name);
-    if (!preset) throw BadInput{"--scene: no preset named '" + name + "' (presets: " + preset_names() + ")"};
-    text = preset->json;
+  try {
+    return spinfold::load_scene(scene_source(opt.scene_file, opt.preset),
+                                {.name = opt.integrator, .dt = opt.dt, .tolerance = opt.tolerance});
+  } catch (const SceneSourceError& e) {
+    throw BadInput{e.what()};
   }
-  SceneParse parsed = parse_scene_text(text);
-  if (!parsed.errors.empty()) throw BadInput{describe_errors(parsed.errors)};
-  // Command-line overrides go through the same validation as the scene file.
-  nlohmann::json document = scene_to_json(*parsed.scene);
-  if (opt.integrator) document["integrator"]["name"] = *opt.integrator;
-  if (opt.dt) document["integrator"]["dt"] = *opt.dt;
-  if (opt.tolerance) document["integrator"]["tolerance"] = *opt.tolerance;
-  parsed = parse_scene(document);
-  if (!parsed.errors.empty()) throw BadInput{describe_errors(parsed.errors)};
-  return *parsed.scene;
 }
 
 // "t = 41.5 / 100 (41%)  123456 steps  2.1 s", redrawn in place on stderr.
@@ -203,7 +176,7 @@ int simulate(const SimulateOptions& opt) {
       }
     }
   };
-  cli::sample_run(run, opt.t_end, opt.every, advance, emit);
+  sample_run(run, opt.t_end, opt.every, advance, emit);
   if (show && drawn_at > 0.0) {
     draw_run_progress(run, opt.t_end, elapsed());
     std::fputc('\n', stderr);
@@ -505,7 +478,7 @@ int main(int argc, char** argv) {
 
   SimulateOptions sim;
   CLI::App* simulate_cmd = app.add_subcommand("simulate", "Simulate a scene and print JSON Lines samples");
-  simulate_cmd->add_option("scene_file", sim.scene_file, "Scene JSON file (default: the default preset)");
+  simulate_cmd->add_option("scene_file", sim.scene_file, "A scene file, or a preset's name if no file has it (default: the default preset)");
   simulate_cmd->add_option("--scene", sim.preset,
                            "Simulate an embedded preset by name (see `spinfold scenes`)");
   simulate_cmd->add_option("--t-end", sim.t_end, "Simulated time to reach")->capture_default_str();
@@ -529,7 +502,7 @@ int main(int argc, char** argv) {
   RenderOptions ren;
   CLI::App* render_cmd =
       app.add_subcommand("render", "Render the state at time T as a PNG, or an SVG or PDF figure");
-  render_cmd->add_option("scene_file", ren.scene.scene_file, "Scene JSON file (default: the default preset)");
+  render_cmd->add_option("scene_file", ren.scene.scene_file, "A scene file, or a preset's name if no file has it (default: the default preset)");
   render_cmd->add_option("--scene", ren.scene.preset, "Render an embedded preset by name");
   render_cmd->add_option("--t", ren.t, "Time of the frame")->capture_default_str();
   cli::add_view_options(*render_cmd, ren.view);
@@ -545,7 +518,7 @@ int main(int argc, char** argv) {
   CLI::App* record_cmd =
       app.add_subcommand("record", "Record a time window as a GIF, WebM, MP4 or a zip of PNGs");
   record_cmd->add_option("scene_file", rec.render.scene.scene_file,
-                         "Scene JSON file (default: the default preset)");
+                         "A scene file, or a preset's name if no file has it (default: the default preset)");
   record_cmd->add_option("--scene", rec.render.scene.preset, "Record an embedded preset by name");
   record_cmd->add_option("--t-start", rec.clip.t_start, "Simulated time of the first frame")
       ->capture_default_str();
