@@ -28,6 +28,8 @@ SceneSource find_scene(std::string_view name, std::string_view option) {
     return {text.str(), std::filesystem::path(path).filename().string(), true};
   }
   if (const PresetSource* preset = find_preset(name)) return {std::string(preset->json), path, false};
+  if (path.find('/') != std::string::npos || path.ends_with(".json"))  // meant as a file
+    throw SceneSourceError("cannot read scene file '" + path + "'");
   throw SceneSourceError(std::string(option) + ": no scene file and no preset named '" + path +
                          "' (presets: " + preset_name_list() + ")");
 }

@@ -26,7 +26,8 @@ struct SceneSource {
 };
 
 // `name` a file path or a preset's name ("" the default preset); `option` begins the messages
-// ("--scene", "base").
+// ("--scene", "scene"). A name with a '/' or ending in .json that is no file is "cannot read scene
+// file"; another name that is neither is "no scene file and no preset named".
 SceneSource find_scene(std::string_view name, std::string_view option);
 
 // A command's two ways to name its scene: positionally or with --scene, at most one of them.

@@ -19,7 +19,7 @@ README = pathlib.Path(__file__).resolve().parents[2] / "README.md"
 def readme_examples():
     """The CLI's sweep command and Python's spinfold.sweep call, as README.md has them."""
     text = README.read_text(encoding="utf-8")
-    cli = re.search(r"^spinfold sweep spinning_rigid_sphere [^\n]*(?:\\\n[^\n]*)*", text, re.M).group(0)
+    cli = re.search(r"^spinfold sweep spinning_rigid_sphere (?:[^\n]*\\\n)*[^\n]*", text, re.M).group(0)
     start = text.index("table = spinfold.sweep(")
     depth, end = 0, start
     for end in range(text.index("(", start), len(text)):
