@@ -6,12 +6,13 @@
 #include <iostream>
 #include <sstream>
 
-#include "cli/run_loop.h"
 #include "codec/presets.h"
 #include "codec/provenance.h"
 #include "codec/sample_json.h"
 #include "codec/sample_table.h"
 #include "codec/scene_json.h"
+#include "codec/scene_source.h"
+#include "engine/sampling.h"
 #include "engine/simulation.h"
 #include "render/figure.h"
 #include "render/scene_builder.h"
@@ -38,32 +39,15 @@ std::string extension_of(const std::string& out) {
   return dot == std::string::npos ? "" : name.substr(dot);
 }
 
-// The scene of `plot`, with the command line's overrides checked as the scene file is.
+// The scene of `plot`, with the command line's overrides checked as the scene file is (the one
+// scene rule, codec/scene_source.h).
 Scene load_plot_scene(const PlotOptions& opt) {
-  if (!opt.scene_file.empty() && !opt.preset.empty())
-    throw FigureInputError("give either a scene file or --scene, not both");
-  std::string text;
-  if (!opt.scene_file.empty()) {
-    std::ifstream in(opt.scene_file, std::ios::binary);
-    if (!in) throw FigureInputError("cannot read scene file '" + opt.scene_file + "'");
-    std::ostringstream read;
-    read << in.rdbuf();
-    text = read.str();
-  } else {
-    const std::string name = opt.preset.empty() ? std::string(kDefaultPreset) : opt.preset;
-    const PresetSource* preset = find_preset(name);
-    if (!preset) throw FigureInputError("--scene: no preset named '" + name + "' (see `spinfold scenes`)");
-    text = preset->json;
+  try {
+    return load_scene(scene_source(opt.scene_file, opt.preset),
+                      {.name = opt.integrator, .dt = opt.dt, .tolerance = opt.tolerance});
+  } catch (const SceneSourceError& e) {
+    throw FigureInputError(e.what());
   }
-  SceneParse parsed = parse_scene_text(text);
-  if (!parsed.errors.empty()) throw FigureInputError(describe_errors(parsed.errors));
-  nlohmann::json document = scene_to_json(*parsed.scene);
-  if (opt.integrator) document["integrator"]["name"] = *opt.integrator;
-  if (opt.dt) document["integrator"]["dt"] = *opt.dt;
-  if (opt.tolerance) document["integrator"]["tolerance"] = *opt.tolerance;
-  parsed = parse_scene(document);
-  if (!parsed.errors.empty()) throw FigureInputError(describe_errors(parsed.errors));
-  return *parsed.scene;
 }
 
 std::vector<std::string> split(const std::string& list) {
@@ -199,7 +183,7 @@ void write_frame_figure(const Scene& scene, const render::Snapshot& snapshot, re
 CLI::App* add_plot_command(CLI::App& app, PlotOptions& opt) {
   CLI::App* cmd = app.add_subcommand(
       "plot", "Plot quantities of a run against time (or another field) as an SVG or PDF figure for a paper");
-  cmd->add_option("scene_file", opt.scene_file, "Scene JSON file (default: the default preset)");
+  cmd->add_option("scene_file", opt.scene_file, "A scene file, or a preset's name if no file has it (default: the default preset)");
   cmd->add_option("--scene", opt.preset, "Plot an embedded preset by name (see `spinfold scenes`)");
   cmd->add_option(
          "--fields", opt.fields,

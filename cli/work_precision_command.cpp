@@ -6,10 +6,10 @@
 #include <iostream>
 #include <sstream>
 
-#include "cli/sweep.h"
 #include "codec/presets.h"
 #include "codec/provenance.h"
 #include "codec/scene_json.h"
+#include "codec/scene_source.h"
 #include "engine/integrator.h"
 #include "engine/simulation.h"
 #include "workprecision/work_precision.h"
@@ -52,32 +52,19 @@ std::vector<std::string> parse_integrators(const std::string& list) {
   return names;
 }
 
-// The scene and the name it goes by in the outputs.
+// The scene and the name it goes by in the outputs (the one scene rule, codec/scene_source.h).
 std::pair<Scene, std::string> load_scene(const WorkPrecisionOptions& opt) {
-  if (opt.scene_file.empty() == opt.preset.empty())
-    throw BadInput{"give either a scene file or --scene PRESET (see `spinfold scenes`)"};
-  std::string text, label;
-  if (!opt.scene_file.empty()) {
-    std::ifstream in(opt.scene_file, std::ios::binary);
-    if (!in) throw BadInput{"cannot read scene file '" + opt.scene_file + "'"};
-    std::ostringstream read;
-    read << in.rdbuf();
-    text = read.str();
-    label = fs::path(opt.scene_file).filename().string();
-  } else {
-    const PresetSource* preset = find_preset(opt.preset);
-    if (!preset) {
-      std::string names;
-      for (const PresetSource& p : preset_sources())
-        names += (names.empty() ? "" : ", ") + std::string(p.name);
-      throw BadInput{"--scene: no preset named '" + opt.preset + "' (presets: " + names + ")"};
-    }
-    text = preset->json;
-    label = opt.preset;
+  SceneSource source;
+  try {
+    source = scene_source(opt.scene_file, opt.preset, /*required=*/true);
+  } catch (const SceneSourceError& e) {
+    throw BadInput{e.what()};
   }
-  SceneParse parsed = parse_scene_text(text);
-  if (!parsed.errors.empty()) throw BadInput{"the scene " + label + ": " + describe_errors(parsed.errors)};
-  return {*parsed.scene, label};
+  try {
+    return {spinfold::load_scene(source), source.label};
+  } catch (const SceneSourceError& e) {
+    throw BadInput{"the scene " + source.label + ": " + e.what()};
+  }
 }
 
 int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
@@ -155,7 +142,7 @@ int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
 CLI::App* add_work_precision_command(CLI::App& app, WorkPrecisionOptions& opt) {
   CLI::App* cmd = app.add_subcommand(
       "work-precision", "Run time against error for each integrator on a scene (CSV, plot, recommendation)");
-  cmd->add_option("scene_file", opt.scene_file, "Scene JSON file");
+  cmd->add_option("scene_file", opt.scene_file, "A scene file, or a preset's name if no file has it");
   cmd->add_option("--scene", opt.preset, "An embedded preset by name (see `spinfold scenes`)");
   cmd->add_option("--integrators", opt.integrators,
                   "Comma-separated catalog names and/or auto (default: all, auto at the scene's tolerance)");

@@ -317,18 +317,34 @@ json geodesic_base(const Scene& main) {
             {"spin", 0.0}}}};
 }
 
-// A merge patch (RFC 7396) of the initial block that sets one form of a degree of freedom drops
-// the other form inherited from the base, so that a companion's own value wins.
-void merge_initial(json& base, const json& patch) {
-  static const std::pair<std::vector<std::string>, std::vector<std::string>> kForms[] = {
-      {{"spin"}, {"alpha_dot"}}, {{"speed", "heading"}, {"r_dot", "phi_dot"}}};
-  if (!patch.is_object() || !base.is_object()) return;
-  for (const auto& [physical, rates] : kForms)
-    for (const auto* set : {&physical, &rates}) {
-      const auto* other = set == &physical ? &rates : &physical;
-      if (std::any_of(set->begin(), set->end(), [&](const std::string& k) { return patch.contains(k); }))
-        for (const std::string& k : *other) base.erase(k);
+// The stand-in relation of the tables (Field::replaces), for a merge patch (RFC 7396): a patch of
+// a block that sets an optional number drops the fields it stands in for from the base, and one
+// that sets any of those drops it (spin ↔ alpha_dot; speed, heading ↔ r_dot, phi_dot; curvature ↔
+// kind, radius), so that the patch's value wins instead of clashing. Nested sections likewise.
+template <typename S>
+void drop_replaced(json& base, const json& patch) {
+  if (!base.is_object() || !patch.is_object()) return;
+  for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    const std::string name(field.name);
+    if constexpr (OptionalNumber<T>) {
+      const auto in_patch = [&](std::string_view r) { return !r.empty() && patch.contains(std::string(r)); };
+      if (patch.contains(name)) {
+        for (const std::string_view r : field.replaces)
+          if (!r.empty()) base.erase(std::string(r));
+      } else if (std::any_of(field.replaces.begin(), field.replaces.end(), in_patch)) {
+        base.erase(name);
+      }
+    } else if constexpr (HasFields<T> || OptionalSection<T>) {
+      const auto p = patch.find(name);
+      const auto b = base.find(name);
+      if (p == patch.end() || b == base.end()) return;
+      if constexpr (HasFields<T>)
+        drop_replaced<T>(*b, *p);
+      else
+        drop_replaced<typename T::value_type>(*b, *p);
     }
+  });
 }
 
 // "#rrggbb" or [r, g, b] in [0, 1].
@@ -382,7 +398,7 @@ std::optional<Companion> read_companion(Reader& in, const json& entry, const jso
     }
   if (const auto it = entry.find("initial"); it != entry.end()) {
     if (!merged.contains("initial")) merged["initial"] = json::object();
-    merge_initial(merged["initial"], *it);
+    drop_replaced<InitialState>(merged["initial"], *it);
     merged["initial"].merge_patch(*it);
   }
   Scene scene;
@@ -575,9 +591,7 @@ json scene_to_json(const Scene& scene) {
 }
 
 void merge_scene_patch(json& document, const json& patch) {
-  if (patch.is_object() && document.is_object())
-    if (const auto initial = patch.find("initial"); initial != patch.end() && document.contains("initial"))
-      merge_initial(document["initial"], *initial);
+  drop_replaced<Scene>(document, patch);
   document.merge_patch(patch);
 }
 

@@ -26,9 +26,10 @@ SceneParse parse_scene(const nlohmann::json& document);
 
 nlohmann::json scene_to_json(const Scene& scene);
 
-// Applies a JSON merge patch (RFC 7396) to a scene document, except that a patch of `initial` that
-// sets one form of a degree of freedom drops the other form already there (spin ↔ alpha_dot;
-// speed, heading ↔ r_dot, phi_dot): the patch's value wins instead of clashing with it.
+// Applies a JSON merge patch (RFC 7396) to a scene document, except that a patch that sets one
+// form of a value drops the other form already there, by the tables' stand-in relation
+// (Field::replaces, engine/scene_fields.h: spin ↔ alpha_dot; speed, heading ↔ r_dot, phi_dot;
+// surface.curvature ↔ kind, radius): the patch's value wins instead of clashing with it.
 void merge_scene_patch(nlohmann::json& document, const nlohmann::json& patch);
 
 // Why a merge patch taking the scene `before` to `after` cannot continue the run (retune) and

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "engine/sampling.h"
+
 namespace spinfold {
 
 TimelineReplay::TimelineReplay(const Scene& scene, std::vector<ParameterChange> changes, Trail trail)
@@ -43,14 +45,11 @@ bool replay_sampled(const Scene& scene, std::span<const ParameterChange> changes
     return true;
   };
   if (!changes_up_to(0.0)) return false;
-  sample(run);
-  // The loop of cli/run_loop.h: the same sample times to the bit.
-  for (long k = 1; run.state.status == Status::ok && run.state.t < until; ++k) {
-    const double t = std::min(static_cast<double>(k) * every, until);
-    if (!changes_up_to(t) || !advance_within(run, t, max_attempts)) return false;
-    sample(run);
-  }
-  return true;
+  // The one sampling loop (engine/sampling.h): the sample times of `spinfold simulate` to the bit.
+  return sample_run(
+      run, until, every,
+      [&](double t) { return changes_up_to(t) && advance_within(run, t, max_attempts); },
+      [&] { sample(run); });
 }
 
 }  // namespace spinfold

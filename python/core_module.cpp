@@ -1,6 +1,6 @@
 // spinfold._core: the engine, the codec and the renderer for Python (pybind11). The public API is
 // python/spinfold/__init__.py, which turns what this module returns into NumPy arrays, mappings and
-// frames. Runs release the GIL; each run takes the CLI's sampling loop (cli/run_loop.h), so its
+// frames. Runs release the GIL; each run takes the one sampling loop (engine/sampling.h), so its
 // numbers are `spinfold simulate`'s to the bit.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -17,7 +17,6 @@
 #include <thread>
 #include <vector>
 
-#include "cli/run_loop.h"
 #include "codec/json_text.h"
 #include "codec/presets.h"
 #include "codec/provenance.h"
@@ -27,6 +26,7 @@
 #include "engine/integrator.h"
 #include "engine/number_text.h"
 #include "engine/readout.h"
+#include "engine/sampling.h"
 #include "engine/simulation.h"
 #include "engine/timeline.h"
 #include "render/png_encoder.h"
@@ -38,6 +38,10 @@
 
 namespace py = pybind11;
 using namespace spinfold;
+
+namespace spinfold::python {
+void add_sweep(py::module_& m);  // python/sweep_module.cpp
+}
 
 namespace {
 
@@ -136,7 +140,7 @@ struct RunColumns {
   }
 };
 
-// `spinfold simulate`'s run: samples at 0, every, 2·every, … and t_end (cli/run_loop.h).
+// `spinfold simulate`'s run: samples at 0, every, 2·every, … and t_end (engine/sampling.h).
 RunColumns run_columns(const Scene& scene, double t_end, double every,
                        std::optional<std::uint64_t> max_steps) {
   RunColumns out;
@@ -144,7 +148,7 @@ RunColumns run_columns(const Scene& scene, double t_end, double every,
   Simulation run = start_simulation(scene);
   double since = -1.0;
   std::uint64_t attempts = max_steps.value_or(kNoStepLimit);
-  cli::sample_run(
+  sample_run(
       run, t_end, every,
       [&](double t) {
         return out.budget_left = max_steps ? advance_within(run, t, attempts) : advance_to(run, t);
@@ -474,6 +478,7 @@ PYBIND11_MODULE(_core, m) {
   // The layers on by default, from the view-parameter table (render/view_parameters.h).
   m.def("default_layers", &render::default_layer_list);
   m.def("engine_seconds", &engine_seconds);
+  python::add_sweep(m);
   py::class_<PySimulation>(m, "Simulation")
       .def(py::init<const std::string&>())
       .def("advance", &PySimulation::advance, py::arg("until"), py::arg("max_steps") = std::nullopt)

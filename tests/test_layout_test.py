@@ -7,7 +7,7 @@ import pathlib
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-SOURCE_DIRS = ["cli", "codec", "engine", "record", "render", "server", "workprecision"]
+SOURCE_DIRS = ["cli", "codec", "engine", "record", "render", "server", "sweep", "workprecision"]
 EXEMPTIONS = ROOT / "tests" / "mirror_exemptions.txt"
 
 

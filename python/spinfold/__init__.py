@@ -15,8 +15,6 @@ reasons of sample i and ``result.reasons`` every reason met in the run.
 
 from __future__ import annotations
 
-import builtins
-import itertools
 import json
 import os
 from typing import Any, Iterable, Iterator, Mapping, Sequence
@@ -34,6 +32,8 @@ __all__ = [
     "simulate",
     "run_many",
     "sweep",
+    "sweep_fields",
+    "grid",
     "Result",
     "Simulation",
     "render",
@@ -68,7 +68,8 @@ def field_names() -> list[str]:
 
 
 def _scene_text(scene: Any, field: str = "scene") -> str:
-    """JSON text of a scene given as a preset name, a path, JSON text or a mapping."""
+    """JSON text of a scene given as a mapping, JSON text, or a name: a scene file if a file has
+    that name, else a preset's name (the one rule of every CLI command, codec/scene_source.h)."""
     if isinstance(scene, Mapping):
         try:
             return json.dumps(scene, allow_nan=False)
@@ -78,15 +79,9 @@ def _scene_text(scene: Any, field: str = "scene") -> str:
         scene = os.fspath(scene)
     if not isinstance(scene, str):
         raise TypeError(f"{field}: must be a preset name, a path, JSON text or a dict (got {type(scene).__name__})")
-    stripped = scene.lstrip()
-    if stripped.startswith("{"):
+    if scene.lstrip().startswith("{"):
         return scene
-    if scene in _PRESETS:
-        return _PRESETS[scene][1]
-    if os.path.isfile(scene):
-        with open(scene, encoding="utf-8") as file:
-            return file.read()
-    raise ValueError(f"{field}: '{scene}' is neither a preset ({', '.join(presets())}) nor a scene file")
+    return _core.scene_text(scene, field)
 
 
 def _with_overrides(text: str, overrides: Mapping[str, Any]) -> str:
@@ -221,40 +216,63 @@ def run_many(scenes: Iterable[Any], t_end: float = 10.0, every: float = 0.5, *,
     return [Result(r) for r in raw]
 
 
-def sweep(base: Any, vary: Mapping[str, Sequence[Any]], t_end: float = 10.0, every: float = 0.5, *,
-          fields: Sequence[str] = ("t", "r", "phi", "energy_error"), zip: bool = False,
+def grid(a: float, b: float, n: int) -> np.ndarray:
+    """The values of a sweep's ``a:b:n`` (``spinfold sweep --set FIELD=a:b:n``): n values from a to
+    b, value k = a + (b − a)·k/(n − 1) and the last b exactly. Not ``np.linspace``, which differs in
+    the last bit for some values."""
+    return np.array(_core.grid(float(a), float(b), int(n)))
+
+
+def sweep_fields() -> list[str]:
+    """The names `fields` of :func:`sweep` accepts (``spinfold sweep --list-fields``)."""
+    return list(_core.sweep_fields())
+
+
+def sweep(base: Any, vary: Mapping[str, Any], t_end: float = 10.0, every: float = 0.5, *,
+          fields: str | Sequence[str] | None = None, zip: bool = False, max_steps: int | None = None,
           threads: int | None = None) -> dict[str, np.ndarray]:
-    """``spinfold sweep`` from Python: `base` with the fields of `vary` (a scene path such as
-    ``"initial.spin"`` -> its values) set to each combination (the Cartesian product, or paired with
-    `zip`), run on C++ threads. Returns columns: the varied fields, the final values of `fields`,
-    ``status`` and ``steps``, one row per run in order (the last field varies fastest).
+    """``spinfold sweep`` from Python, through the same library: the same definition gives the
+    CLI's rows to the bit. `base` with the fields of `vary` (a scene path such as ``"initial.spin"``
+    -> its values: a text as ``--set`` takes it, ``"0:2:40"`` (:func:`grid`) or ``"auto,dop853"``,
+    or a sequence of values) set to each combination (the Cartesian product, the last field varying
+    fastest, or paired with `zip`), run on C++ threads with the GIL released. `fields`: the CLI's
+    ``--fields`` (None: its default; :func:`sweep_fields`). Returns the CLI's columns, one row per
+    run in order: ``index``, the varied fields, `fields`, ``events``, ``status``, ``detail``,
+    ``steps``, ``seconds`` (numbers as float arrays, NaN where undefined; counts as integers).
+    Bad input (an unknown field, a value out of range, more than 10⁷ runs) raises ValueError naming
+    it before anything runs.
     """
-    unknown = [f for f in fields if f not in _VALUE_NAMES]
-    if unknown:
-        raise ValueError(f"fields: unknown {unknown} (see spinfold.field_names())")
-    if not vary:
-        raise ValueError("vary: give at least one field and its values")
-    paths = list(vary)
-    value_lists = [list(vary[p]) for p in paths]
-    if any(len(v) == 0 for v in value_lists):
-        raise ValueError("vary: every field needs at least one value")
-    if zip:
-        if len({len(v) for v in value_lists}) != 1:
-            raise ValueError("vary: with zip=True every field needs as many values")
-        combos = list(builtins.zip(*value_lists))
-    else:
-        combos = list(itertools.product(*value_lists))
-    text = _scene_text(base, "base")
-    scenes = [_with_overrides(text, {p.replace(".", "__"): v for p, v in builtins.zip(paths, c)}) for c in combos]
-    results = run_many(scenes, t_end, every, threads=threads)
+    if not isinstance(vary, Mapping):
+        raise TypeError(f"vary: must be a mapping of field paths to values (got {type(vary).__name__})")
+    if fields is None:
+        fields = _core.default_sweep_fields()
+    elif not isinstance(fields, str):
+        fields = ",".join(fields)
+    if threads is not None and (not isinstance(threads, int) or threads < 1):
+        raise ValueError(f"threads: must be a whole number >= 1 or None (got {threads!r})")
+    axes = []
+    for path, values in vary.items():
+        if isinstance(values, str):
+            axes.append((str(path), values, None))
+            continue
+        if isinstance(values, np.ndarray):
+            values = values.tolist()
+        try:
+            text = json.dumps([v.item() if isinstance(v, np.generic) else v for v in values], allow_nan=False)
+        except (TypeError, ValueError) as error:
+            raise ValueError(f"vary['{path}']: not a list of numbers or names ({error})") from None
+        axes.append((str(path), None, text))
+    names, rows = _core.sweep(_scene_text(base, "base"), axes, bool(zip), float(t_end), float(every), fields,
+                              max_steps, threads or 0, "python: spinfold.sweep")
     out: dict[str, np.ndarray] = {}
-    for j, p in enumerate(paths):
-        out[p] = np.array([c[j] for c in combos])
-    index = {n: i for i, n in enumerate(_VALUE_NAMES)}
-    for f in fields:
-        out[f] = np.array([r.table()[-1, index[f]] for r in results])
-    out["status"] = np.array([r.status for r in results], dtype="U32")
-    out["steps"] = np.array([r["steps"][-1] for r in results], dtype=np.uint64)
+    for j, name in enumerate(names):
+        column = [row[j] for row in rows]
+        if all(isinstance(v, int) for v in column) and column:
+            out[name] = np.array(column, dtype=np.uint64 if all(v >= 0 for v in column) else np.int64)
+        elif all(v is None or isinstance(v, (int, float)) for v in column):
+            out[name] = np.array([np.nan if v is None else float(v) for v in column], dtype=np.float64)
+        else:
+            out[name] = np.array(["" if v is None else str(v) for v in column], dtype=str)
     return out
 
 

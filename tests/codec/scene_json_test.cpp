@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include "codec/presets.h"
 #include "codec/scene_schema.h"
 #include "engine/initial_rates.h"
@@ -348,6 +350,27 @@ TEST(SceneJson, APatchSwapsSpinForAlphaDot) {
   ASSERT_TRUE(swapped.errors.empty()) << describe_errors(swapped.errors);
   EXPECT_EQ(swapped.scene->initial.alpha_dot, 1.0);
   EXPECT_FALSE(swapped.scene->initial.spin.has_value());
+}
+
+// merge_scene_patch applies the tables' stand-in relation (Field::replaces) in every block: the
+// patch's form wins, in initial (spin, speed/heading) and in surface (curvature ↔ kind, radius).
+TEST(SceneJson, MergeScenePatchDropsTheFormsAValueStandsInFor) {
+  const nlohmann::json base = scene_to_json(*parse_scene_text(R"({"initial": {"spin": 0.2}})").scene);
+  for (const auto& [patch, gone, kept] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {R"({"initial": {"alpha_dot": 1}})", "/initial/spin", "/initial/alpha_dot"},
+           {R"({"initial": {"speed": 1, "heading": 0}})", "/initial/r_dot", "/initial/speed"},
+           {R"({"surface": {"curvature": -1}})", "/surface/kind", "/surface/curvature"},
+       }) {
+    nlohmann::json document = base;
+    merge_scene_patch(document, nlohmann::json::parse(patch));
+    EXPECT_FALSE(document.contains(nlohmann::json::json_pointer(gone))) << patch;
+    EXPECT_TRUE(document.contains(nlohmann::json::json_pointer(kept))) << patch;
+    const SceneParse parsed = parse_scene(document);
+    EXPECT_TRUE(parsed.errors.empty()) << patch << ": " << describe_errors(parsed.errors);
+  }
+  nlohmann::json dialled = scene_to_json(*parse_scene_text(R"({"surface": {"curvature": 1}})").scene);
+  merge_scene_patch(dialled, nlohmann::json::parse(R"({"surface": {"kind": "pseudosphere"}})"));
+  EXPECT_FALSE(dialled["surface"].contains("curvature"));
 }
 
 TEST(SceneJson, SchemaDescribesTheRulesOfSpinSpeedAndHeading) {

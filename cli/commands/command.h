@@ -1,0 +1,38 @@
+// The subcommands of `spinfold`, one file each (cli/commands/<name>.cpp): register_<name> adds the
+// subcommand and its options to the app and returns what runs it once parsed. cli/main.cpp has the
+// table of them. A command translates its options and calls the libraries; it decides nothing.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
+
+namespace spinfold::cli {
+
+inline constexpr int kExitBadInput = 2;
+inline constexpr int kExitRunStopped = 3;
+
+// Bad input: main prints "spinfold: MESSAGE" on stderr and exits 2.
+struct BadInput {
+  std::string message;
+};
+
+// A registered subcommand: run(argc, argv) when it is the one parsed (argv for the provenance).
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int(int argc, char** argv)> run;
+};
+
+Command register_simulate(CLI::App& app);
+Command register_sweep(CLI::App& app);
+Command register_scenes(CLI::App& app);
+Command register_integrators(CLI::App& app);
+#ifndef SPINFOLD_COMPUTE_ONLY
+Command register_render(CLI::App& app);
+Command register_record(CLI::App& app);
+Command register_work_precision(CLI::App& app);
+Command register_plot(CLI::App& app);
+Command register_serve(CLI::App& app);
+#endif
+
+}  // namespace spinfold::cli

@@ -1,0 +1,117 @@
+// `spinfold render`: one frame at time T as a PNG (GL), or an SVG or PDF figure
+// (cli/figure_command.h).
+#include "cli/commands/render.h"
+
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <vector>
+
+#include "cli/commands/command.h"
+#include "cli/commands/gl_option.h"
+#include "cli/figure_command.h"
+#include "codec/provenance.h"
+#include "render/renderer.h"
+#include "render/snapshot.h"
+
+namespace spinfold::cli {
+
+// The view options as the table reads them; the view checked against the scene's surface.
+render::ViewRequest view_request(const RenderOptions& opt) {
+  try {
+    return cli::view_request(opt.view);
+  } catch (const BadViewOption& e) {
+    throw BadInput{e.what()};
+  }
+}
+
+render::ViewOptions view_options(const render::ViewRequest& request, const Scene& scene) {
+  using namespace render;
+  ViewOptions view;
+  view.kind = request.view.value_or(default_view(scene.surface.kind));
+  if (const auto why = view_unsupported_reason(view.kind, scene.surface.kind))
+    throw BadInput{"--view: " + *why};
+  view.width = request.width;
+  view.height = request.height;
+  view.layers = request.layers;
+  view.scale = request.scale * render::body_scale_length(view.kind, scene.surface);
+  return view;
+}
+
+namespace {
+
+struct RenderCommandOptions : RenderOptions {
+  std::string format;  // png | svg | pdf (cli/figure_command.h)
+  std::string gl;
+};
+
+// The camera given in full (--camera, or --yaw, --pitch and --distance) is used as given; else the
+// camera is aimed at the body and the parts given replace the aimed ones (as a frame of the API).
+bool whole_camera(const render::ViewRequest& r) {
+  return r.yaw && r.pitch && r.distance;
+}
+
+int render_frame(const RenderOptions& opt, const std::string& format_option) {
+  if (!std::isfinite(opt.t) || opt.t < 0.0) throw BadInput{"--t: must be a finite number >= 0"};
+  if (opt.out.empty()) throw BadInput{"--out: the PNG file to write is required"};
+  const render::FigureFormat format = render_format(format_option, opt.out);  // before any work
+  const render::ViewRequest request = view_request(opt);
+  const Scene scene = load_scene(opt.scene);
+  render::ViewOptions view = view_options(request, scene);
+
+  Simulation run;
+  const render::Snapshot snapshot =
+      render::snapshot_at(scene, opt.t, view.layers & render::kTrail, request.trail, run);
+  if (!whole_camera(request)) {
+    // A vector figure has no HUD box for the camera to keep clear of (its caption is below).
+    const unsigned layers = view.layers;
+    if (format != render::FigureFormat::png) view.layers &= ~static_cast<unsigned>(render::kHud);
+    render::aim_camera_at_body(view, snapshot);
+    view.layers = layers;
+  }
+  if (request.yaw) view.yaw = *request.yaw;
+  if (request.pitch) view.pitch = *request.pitch;
+  if (request.distance) view.distance = *request.distance;
+  if (format != render::FigureFormat::png) {  // a vector figure (cli/figure_command.h)
+    write_frame_figure(scene, snapshot, view, false, format, opt.out, opt.scene.command, opt.t);
+  } else {
+    render::Renderer renderer;
+    const std::vector<render::PngText> texts =
+        picture_texts(scene, opt.scene.command, opt.t, render::view_name(view.kind));
+    const std::vector<std::uint8_t> png = renderer.render_png(snapshot, view, texts);
+    std::ofstream file(opt.out, std::ios::binary);
+    if (!file) throw BadInput{"--out: cannot write '" + opt.out + "'"};
+    file.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+  }
+  if (run.state.status != Status::ok) {
+    std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << status_name(run.state.status)
+              << "\n";
+    return kExitRunStopped;
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command register_render(CLI::App& app) {
+  auto options = std::make_shared<RenderCommandOptions>();
+  CLI::App* render_cmd =
+      app.add_subcommand("render", "Render the state at time T as a PNG, or an SVG or PDF figure");
+  render_cmd->add_option("scene_file", options->scene.scene_file, "A scene file, or a preset's name if no file has it (default: the default preset)");
+  render_cmd->add_option("--scene", options->scene.preset, "Render an embedded preset by name");
+  render_cmd->add_option("--t", options->t, "Time of the frame")->capture_default_str();
+  add_view_options(*render_cmd, options->view);
+  render_cmd->add_option("--out", options->out, "File to write (.png, .svg or .pdf)");
+  render_cmd->add_option("--format", options->format,
+                         "png | svg | pdf: the GL frame, or a vector figure for a paper (default: by --out's "
+                         "extension, else png)");
+  render_cmd->add_option("--integrator", options->scene.integrator, "Override the scene's integrator name");
+  add_gl_option(render_cmd, options->gl);
+  return {render_cmd, [options](int argc, char** argv) {
+            apply_gl_choice(options->gl);
+            options->scene.command = command_line(argc, argv);
+            return render_frame(*options, options->format);
+          }};
+}
+
+}  // namespace spinfold::cli

@@ -1,0 +1,192 @@
+// `spinfold simulate`: a scene's samples as JSON Lines or CSV, in the one sampling loop
+// (engine/sampling.h), with budgets of steps and wall time.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "cli/commands/command.h"
+#include "cli/commands/scene_options.h"
+#include "codec/provenance.h"
+#include "codec/sample_json.h"
+#include "codec/sample_table.h"
+#include "engine/sampling.h"
+#include "engine/simulation.h"
+
+namespace spinfold::cli {
+
+namespace {
+
+constexpr double kMaxSamples = 1e7;
+
+struct SimulateOptions {
+  SceneOptions scene;
+  double t_end = 10.0;
+  double every = 0.5;
+  // simulate's output (codec/sample_table.h) and its budgets
+  std::string format;  // jsonl | csv; "": by --out's extension, else jsonl
+  std::string fields;  // table columns; "": all (CSV), the whole sample (JSON Lines)
+  std::string out;     // "" or "-": stdout
+  std::optional<std::uint64_t> max_steps;
+  std::optional<double> max_seconds;
+  bool quiet = false;
+  bool list_fields = false;
+};
+
+// "t = 41.5 / 100 (41%)  123456 steps  2.1 s", redrawn in place on stderr.
+void draw_run_progress(const Simulation& run, double t_end, double seconds) {
+  std::fprintf(stderr, "\rt = %.6g / %.6g (%.0f%%)  %llu steps  %.1f s ", run.state.t, t_end,
+               t_end > 0 ? 100.0 * run.state.t / t_end : 100.0, static_cast<unsigned long long>(run.steps),
+               seconds);
+}
+
+// Why a run ended before t_end without trouble of its own: a budget the user set.
+enum class Budget { left, steps, seconds };
+
+int simulate(const SimulateOptions& opt) {
+  if (!std::isfinite(opt.t_end) || opt.t_end < 0.0) throw BadInput{"--t-end: must be a finite number >= 0"};
+  if (!std::isfinite(opt.every) || !(opt.every > 0.0)) throw BadInput{"--every: must be a finite number > 0"};
+  if (opt.t_end / opt.every > kMaxSamples) throw BadInput{"--every: more than 1e7 samples requested"};
+  if (opt.max_steps && *opt.max_steps == 0) throw BadInput{"--max-steps: must be at least 1"};
+  if (opt.max_seconds && (!std::isfinite(*opt.max_seconds) || !(*opt.max_seconds > 0.0)))
+    throw BadInput{"--max-seconds: must be a finite number > 0"};
+  const bool to_stdout = opt.out.empty() || opt.out == "-";
+  std::string format = opt.format;
+  if (format.empty()) format = !to_stdout && opt.out.ends_with(".csv") ? "csv" : "jsonl";
+  if (format != "jsonl" && format != "csv")
+    throw BadInput{"--format: must be jsonl or csv (got '" + format + "')"};
+  const bool csv = format == "csv";
+  const Scene scene = load_scene(opt.scene);
+
+  Simulation run = start_simulation(scene);
+  SampleTable table;
+  try {
+    table = make_sample_table(opt.fields, sample_to_json(run, -1.0));
+  } catch (const std::invalid_argument& e) {
+    throw BadInput{std::string("--fields: ") + e.what()};
+  }
+  FILE* out = stdout;
+  if (!to_stdout) {
+    out = std::fopen(opt.out.c_str(), "w");
+    if (!out) throw BadInput{"--out: cannot write '" + opt.out + "'"};
+  }
+  // Line by line: a run killed at a cluster's time limit leaves whole lines only.
+  std::setvbuf(out, nullptr, _IOLBF, 1 << 16);
+  const auto write = [&](const std::string& line) { std::fputs(line.c_str(), out); };
+
+  const nlohmann::ordered_json provenance = provenance_json(scene, opt.scene.command);
+  if (csv) {
+    write("# spinfold simulate " + version_line() + "\n# provenance: " + provenance.dump() + "\n");
+    write(table.csv_header());
+  } else {
+    write(nlohmann::ordered_json{{"provenance", provenance}}.dump() + "\n");
+  }
+  double reported_until = -1.0;  // events up to this time were printed
+  const auto emit = [&] {
+    const nlohmann::ordered_json sample = sample_to_json(run, reported_until);
+    if (csv)
+      write(table.csv_row(sample));
+    else
+      write((opt.fields.empty() ? sample : table.json_row(sample)).dump() + "\n");
+    reported_until = run.state.t;
+  };
+
+  // Advanced in slices of step attempts so that the clock, the progress line and --max-steps are
+  // looked at between them; a run's numbers do not depend on where it was stopped (advance_to).
+  constexpr std::uint64_t kSlice = 4096;
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const bool show = !opt.quiet && isatty(fileno(stderr));
+  double drawn_at = 0.0;
+  std::uint64_t steps_left = opt.max_steps.value_or(kNoStepLimit);
+  Budget budget = Budget::left;
+  const auto advance = [&](double t) {
+    while (true) {
+      if (opt.max_seconds && elapsed() > *opt.max_seconds) {
+        budget = Budget::seconds;
+        return false;
+      }
+      std::uint64_t slice = std::min(kSlice, steps_left);
+      const std::uint64_t before = slice;
+      const bool reached = advance_within(run, t, slice);
+      steps_left -= before - slice;
+      if (show && elapsed() - drawn_at > 0.25) draw_run_progress(run, opt.t_end, drawn_at = elapsed());
+      if (reached) return true;
+      if (steps_left == 0) {
+        budget = Budget::steps;
+        return false;
+      }
+    }
+  };
+  sample_run(run, opt.t_end, opt.every, advance, emit);
+  if (show && drawn_at > 0.0) {
+    draw_run_progress(run, opt.t_end, elapsed());
+    std::fputc('\n', stderr);
+  }
+  int code = 0;
+  std::string stopped;
+  if (budget != Budget::left) {
+    stopped = budget == Budget::steps ? "max_steps (the step budget --max-steps ran out)"
+                                      : "max_seconds (the time budget --max-seconds ran out)";
+    code = kExitRunStopped;
+  } else if (run.state.status != Status::ok) {
+    stopped = std::string(status_name(run.state.status));
+    code = kExitRunStopped;
+  }
+  if (budget != Budget::left) {  // the last sample is not at the run's end: say where it got to
+    const nlohmann::ordered_json end = {{"stopped", budget == Budget::steps ? "max_steps" : "max_seconds"},
+                                        {"t", run.state.t},
+                                        {"steps", run.steps}};
+    write(csv ? "# stopped: " + end.dump() + "\n" : end.dump() + "\n");
+  }
+  if (!to_stdout)
+    std::fclose(out);
+  else
+    std::fflush(out);
+  if (code != 0) std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << stopped << "\n";
+  return code;
+}
+
+}  // namespace
+
+Command register_simulate(CLI::App& app) {
+  auto options = std::make_shared<SimulateOptions>();
+  SimulateOptions& sim = *options;
+  CLI::App* simulate_cmd = app.add_subcommand("simulate", "Simulate a scene and print JSON Lines samples");
+  simulate_cmd->add_option("scene_file", sim.scene.scene_file, "A scene file, or a preset's name if no file has it (default: the default preset)");
+  simulate_cmd->add_option("--scene", sim.scene.preset,
+                           "Simulate an embedded preset by name (see `spinfold scenes`)");
+  simulate_cmd->add_option("--t-end", sim.t_end, "Simulated time to reach")->capture_default_str();
+  simulate_cmd->add_option("--every", sim.every, "Sample interval")->capture_default_str();
+  simulate_cmd->add_option("--integrator", sim.scene.integrator, "Override the scene's integrator name");
+  simulate_cmd->add_option("--dt", sim.scene.dt, "Override the step (fixed-step) or first trial step");
+  simulate_cmd->add_option("--tolerance", sim.scene.tolerance, "Override the error tolerance per step");
+  simulate_cmd->add_option("--format", sim.format, "jsonl | csv (default: by --out's extension, else jsonl)");
+  simulate_cmd->add_option("--fields", sim.fields,
+                           "Comma-separated columns (see `spinfold simulate --list-fields`; default: all)");
+  simulate_cmd->add_option("--out", sim.out, "File to write (default: stdout)");
+  simulate_cmd->add_option("--max-steps", sim.max_steps, "Stop after this many step attempts (exit 3)");
+  simulate_cmd->add_option("--max-seconds", sim.max_seconds, "Stop after this much wall time (exit 3)");
+  simulate_cmd->add_flag("--quiet", sim.quiet,
+                         "No progress line (there is none when stderr is not a terminal)");
+  simulate_cmd->add_flag("--list-fields", sim.list_fields, "Print the column names --fields takes, and exit");
+  return {simulate_cmd, [options](int argc, char** argv) {
+            if (options->list_fields) {
+              for (const std::string& name : sample_column_names()) std::printf("%s\n", name.c_str());
+              return 0;
+            }
+            options->scene.command = command_line(argc, argv);
+            return simulate(*options);
+          }};
+}
+
+}  // namespace spinfold::cli

@@ -1,0 +1,130 @@
+#include "sweep/plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include "codec/sample_table.h"
+#include "codec/scene_json.h"
+
+namespace spinfold::sweep {
+
+using json = nlohmann::json;
+
+namespace {
+
+constexpr double kMaxSamples = 1e7;
+
+std::vector<Column> parse_columns(const std::string& list, Door door) {
+  std::vector<Column> columns;
+  const auto names = sample_value_names();
+  for (const std::string& f : split(list, ',')) {
+    if (f.empty()) continue;
+    const bool drift = f.starts_with("drift.");
+    const std::string key = drift ? f.substr(6) : f;
+    const bool known = std::find(names.begin(), names.end(), key) != names.end() ||
+                       (!drift && (key == "integrator" || key == "status_detail"));
+    if (!known)
+      throw SweepError(
+          option_name(door, "--fields") + ": unknown field '" + f + "' (" +
+          (door == Door::cli ? "see `spinfold sweep --list-fields`" : "see spinfold.sweep_fields()") + ")");
+    columns.push_back({f, drift, key});
+  }
+  return columns;
+}
+
+}  // namespace
+
+std::vector<std::string> field_names() {
+  std::vector<std::string> names(sample_value_names().begin(), sample_value_names().end());
+  names.push_back("integrator");
+  names.push_back("status_detail");
+  for (const std::string& n : sample_value_names()) names.push_back("drift." + n);
+  return names;
+}
+
+std::string option_name(Door door, std::string_view cli_flag) {
+  if (door == Door::cli) return std::string(cli_flag);
+  std::string name(cli_flag.substr(cli_flag.starts_with("--") ? 2 : 0));
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
+
+void apply_values(json& document, const std::vector<const FieldPath*>& fields, const std::vector<json>& values) {
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    const auto segments = split(fields[i]->path, '.');
+    json patch = values[i];
+    for (auto s = segments.rbegin(); s != segments.rend(); ++s) patch = json{{*s, std::move(patch)}};
+    merge_scene_patch(document, patch);  // a field that stands in for others drops them
+  }
+}
+
+Plan make_plan(Definition def) {
+  const Door door = def.door;
+  const auto option = [&](std::string_view flag) { return option_name(door, flag); };
+  if (!std::isfinite(def.t_end) || def.t_end < 0.0)
+    throw SweepError(option("--t-end") + ": must be a finite number >= 0");
+  if (!std::isfinite(def.every) || !(def.every > 0.0))
+    throw SweepError(option("--every") + ": must be a finite number > 0");
+  if (def.t_end / def.every > kMaxSamples)
+    throw SweepError(option("--every") + ": more than 1e7 samples requested");
+  if (def.max_steps && *def.max_steps == 0) throw SweepError(option("--max-steps") + ": must be >= 1");
+  Plan plan;
+  {
+    const SceneParse parsed = parse_scene_text(def.base_text);
+    if (!parsed.errors.empty()) throw SweepError("the base scene: " + describe_errors(parsed.errors));
+    plan.base = scene_to_json(*parsed.scene);
+  }
+  if (def.axes.empty())
+    throw SweepError(door == Door::cli ? "sweep: nothing to vary (give --set FIELD=... or --table FILE)"
+                                       : "vary: give at least one field and its values");
+  plan.columns = parse_columns(def.fields, door);
+  std::set<std::string> seen;
+  for (const Axis& a : def.axes)
+    for (const FieldPath* f : a.fields)
+      if (!seen.insert(f->path).second) throw SweepError(a.label + ": " + f->path + " is varied twice");
+  // The run limit before anything per run is made.
+  plan.total = run_count(def.axes, def.zip, option("--zip"));
+  // A value its field refuses whatever the rest (out of its range, not one of its names) was
+  // refused with its axis; a path that the base scene has no place for (ghat in an abc
+  // deformation) is refused here, each value alone on the base. A rule that ties fields together
+  // (a rigid body's mu = lambda, r <= πR) is checked for the combination each run makes: its
+  // status invalid_scene.
+  for (const Axis& a : def.axes)
+    for (const auto& values : a.values) {
+      json document = plan.base;
+      apply_values(document, a.fields, values);
+      std::vector<FieldError> structural;
+      for (const FieldError& e : parse_scene(document).errors)
+        if (e.reason == "is not a known field here") structural.push_back(e);
+      if (!structural.empty()) throw SweepError(a.label + ": " + describe_errors(structural));
+    }
+  if (!def.trajectories.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(def.trajectories, ec);
+    if (!std::filesystem::is_directory(def.trajectories))
+      throw SweepError(option("--trajectories") + ": cannot create the directory '" + def.trajectories + "'");
+  }
+  plan.def = std::move(def);
+  return plan;
+}
+
+json run_document(const Plan& plan, std::size_t index) {
+  json document = plan.base;
+  const auto steps = axis_steps(plan.def.axes, plan.def.zip, index);
+  for (std::size_t a = 0; a < plan.def.axes.size(); ++a)
+    apply_values(document, plan.def.axes[a].fields, plan.def.axes[a].values[steps[a]]);
+  return document;
+}
+
+std::vector<std::pair<std::string, json>> varied_values(const Plan& plan, std::size_t index) {
+  std::vector<std::pair<std::string, json>> out;
+  const auto steps = axis_steps(plan.def.axes, plan.def.zip, index);
+  for (std::size_t a = 0; a < plan.def.axes.size(); ++a)
+    for (std::size_t f = 0; f < plan.def.axes[a].fields.size(); ++f)
+      out.emplace_back(plan.def.axes[a].fields[f]->path, plan.def.axes[a].values[steps[a]][f]);
+  return out;
+}
+
+}  // namespace spinfold::sweep

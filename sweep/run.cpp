@@ -1,0 +1,137 @@
+#include "sweep/run.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "codec/provenance.h"
+#include "codec/sample_json.h"
+#include "codec/sample_table.h"
+#include "codec/scene_json.h"
+#include "engine/sampling.h"
+#include "engine/simulation.h"
+
+namespace spinfold::sweep {
+
+using json = nlohmann::json;
+using ojson = nlohmann::ordered_json;
+
+Row run_one(const Plan& plan, std::size_t index) {
+  const auto start = std::chrono::steady_clock::now();
+  Row row{.index = index, .cells = {}, .ok = false};
+  for (auto& [name, value] : varied_values(plan, index)) row.cells.emplace_back(name, ojson(value));
+  std::map<std::string, ojson> first, last;
+  std::string status, detail;
+  std::uint64_t steps = 0, events = 0;
+  const Definition& def = plan.def;
+  try {
+    const SceneParse parsed = parse_scene(run_document(plan, index));
+    if (!parsed.errors.empty()) {
+      status = "invalid_scene";
+      detail = describe_errors(parsed.errors);
+      while (!detail.empty() && detail.back() == '\n') detail.pop_back();
+      std::replace(detail.begin(), detail.end(), '\n', ';');
+    } else {
+      // `spinfold simulate`'s loop: samples at k·every up to t_end, the same advances.
+      std::unique_ptr<std::ofstream> trajectory;
+      if (!def.trajectories.empty())
+        trajectory = std::make_unique<std::ofstream>(std::filesystem::path(def.trajectories) /
+                                                     (std::to_string(index) + ".jsonl"));
+      if (trajectory)  // as `spinfold simulate` writes: the provenance record, then the samples
+        *trajectory << ojson{{"provenance", provenance_json(*parsed.scene,
+                                                            def.command + " # run " + std::to_string(index))}}
+                           .dump()
+                    << '\n';
+      Simulation run = start_simulation(*parsed.scene);
+      double reported_until = -1.0;
+      const auto sample = [&](std::map<std::string, ojson>* into) {
+        if (trajectory || into) {
+          const ojson s = sample_to_json(run, reported_until);
+          events += s["events"].size();
+          if (trajectory) *trajectory << s.dump() << '\n';
+          if (into) *into = flatten_sample(s);
+        } else {
+          events += events_after(run, reported_until).size();
+        }
+        reported_until = run.state.t;
+      };
+      std::uint64_t attempts = def.max_steps.value_or(kNoStepLimit);
+      bool started = false;
+      const bool budget_left = sample_run(
+          run, def.t_end, def.every,
+          [&](double t) { return def.max_steps ? advance_within(run, t, attempts) : advance_to(run, t); },
+          [&] {
+            const bool final = run.state.status != Status::ok || run.state.t >= def.t_end;
+            sample(!started ? &first : final ? &last : nullptr);
+            started = true;
+          });
+      if (last.empty()) last = flatten_sample(sample_to_json(run, reported_until));
+      status = budget_left ? last["status"].get<std::string>() : "max_steps";
+      detail = budget_left ? last["status_detail"].get<std::string>()
+                           : "the step budget (" + option_name(def.door, "--max-steps") + ") ran out";
+      steps = run.steps;
+    }
+  } catch (const std::exception& e) {
+    status = "error";
+    detail = e.what();
+  }
+  for (const Column& c : plan.columns) {
+    ojson value;
+    const auto f = last.find(c.key);
+    if (f != last.end()) value = f->second;
+    if (c.drift) {
+      const auto i = first.find(c.key);
+      value = (value.is_number() && i != first.end() && i->second.is_number())
+                  ? ojson(value.get<double>() - i->second.get<double>())
+                  : ojson(nullptr);
+    }
+    row.cells.emplace_back(c.name, value);
+  }
+  row.ok = status == "ok";
+  row.cells.emplace_back("events", events);
+  row.cells.emplace_back("status", status);
+  row.cells.emplace_back("detail", detail);
+  row.cells.emplace_back("steps", steps);
+  row.cells.emplace_back("seconds",
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return row;
+}
+
+void run_all(const Plan& plan, std::span<const std::size_t> runs, unsigned jobs,
+             const std::function<void(Row&&)>& on_row,
+             const std::function<void(const Progress&)>& on_progress) {
+  // Workers take runs in order; rows go out in run order as soon as all before them are done.
+  if (jobs == 0) jobs = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::optional<Row>> rows(runs.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex mutex;
+  std::size_t written = 0;
+  Progress progress{.done = 0, .not_ok = 0, .total = runs.size()};
+  const auto work = [&] {
+    for (std::size_t k; (k = next++) < runs.size();) {
+      Row row = run_one(plan, runs[k]);
+      std::lock_guard lock(mutex);
+      ++progress.done;
+      progress.not_ok += row.ok ? 0 : 1;
+      rows[k] = std::move(row);
+      for (; written < rows.size() && rows[written]; ++written) {
+        on_row(std::move(*rows[written]));
+        rows[written].reset();
+      }
+      if (on_progress) on_progress(progress);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (unsigned j = 1; j < std::min<std::size_t>(jobs, runs.size()); ++j) threads.emplace_back(work);
+  work();
+  for (std::thread& t : threads) t.join();
+}
+
+}  // namespace spinfold::sweep

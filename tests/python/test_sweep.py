@@ -1,0 +1,100 @@
+"""spinfold.sweep and `spinfold sweep` are two doors to one library (sweep/): the README's two sweep
+examples give the same rows to the bit, and bad input is refused the same way."""
+
+import csv
+import math
+import pathlib
+import re
+import shlex
+import subprocess
+
+import numpy as np
+import pytest
+
+import spinfold
+
+README = pathlib.Path(__file__).resolve().parents[2] / "README.md"
+
+
+def readme_examples():
+    """The CLI's sweep command and Python's spinfold.sweep call, as README.md has them."""
+    text = README.read_text(encoding="utf-8")
+    cli = re.search(r"^spinfold sweep spinning_rigid_sphere (?:[^\n]*\\\n)*[^\n]*", text, re.M).group(0)
+    start = text.index("table = spinfold.sweep(")
+    depth, end = 0, start
+    for end in range(text.index("(", start), len(text)):
+        depth += {"(": 1, ")": -1}.get(text[end], 0)
+        if depth == 0:
+            break
+    return cli.replace("\\\n", " "), text[start + len("table = "):end + 1]
+
+
+def read_cli_rows(path):
+    with open(path, newline="") as file:
+        lines = [line for line in file if not line.startswith("#")]
+    rows = list(csv.reader(lines))
+    return rows[0], rows[1:]
+
+
+def same_cell(cell, value):
+    if isinstance(value, (float, np.floating)):
+        if math.isnan(value):
+            return cell == ""
+        return cell != "" and float(cell) == value
+    if isinstance(value, (int, np.integer)):
+        return int(cell) == int(value)
+    return cell == str(value)
+
+
+def test_the_readme_examples_give_the_same_rows_to_the_bit(binary, tmp_path):
+    command, call = readme_examples()
+    args = shlex.split(command)
+    assert args[:2] == ["spinfold", "sweep"] and "--out" in args
+    args[args.index("--out") + 1] = str(tmp_path / "spins.csv")
+    subprocess.run([binary, *args[1:], "--quiet"], check=True)
+    columns, rows = read_cli_rows(tmp_path / "spins.csv")
+    table = eval(call, {"spinfold": spinfold, "np": np})  # noqa: S307 - the README's own line
+    assert list(table) == columns
+    assert len(rows) == len(table["index"]) == 80
+    for j, name in enumerate(columns):
+        if name == "seconds":
+            continue
+        for i, row in enumerate(rows):
+            assert same_cell(row[j], table[name][i]), (name, i, row[j], table[name][i])
+    # Bit for bit: the values read back from the CLI's shortest text are the same doubles.
+    spins = np.array([float(row[columns.index("initial.spin")]) for row in rows])
+    assert np.array_equal(spins.view(np.uint64), table["initial.spin"].view(np.uint64))
+    assert set(table["status"]) == {"ok"}
+
+
+def test_the_grid_is_the_cli_grid_not_linspace():
+    values = spinfold.grid(0, 2, 40)
+    assert values[-1] == 2.0 and len(values) == 40
+    assert all(values[k] == 0 + (2 - 0) * k / 39 for k in range(39))
+    rows = spinfold.sweep("spinning_rigid_sphere", {"initial.spin": "0:2:5"}, t_end=0.5, every=0.5)
+    assert list(rows["initial.spin"]) == list(spinfold.grid(0, 2, 5))
+
+
+def test_python_refuses_like_the_cli_naming_the_field():
+    with pytest.raises(ValueError, match=r"vary\['initial.lambda'\]: initial.lambda: must be > 0"):
+        spinfold.sweep("spinning_rigid_sphere", {"initial.lambda": [-1.0, 1.0]})
+    with pytest.raises(ValueError, match=r"vary\['initial.phi'\]: the sweep would be more than 10000000 runs"):
+        spinfold.sweep("spinning_rigid_sphere", {"initial.r": "1:2:10000", "initial.phi": "0:1:10000"})
+    with pytest.raises(ValueError, match=r"vary\['initial.r'\]: a range is a:b:n"):
+        spinfold.sweep("spinning_rigid_sphere", {"initial.r": "0:1:20000000"})
+    with pytest.raises(ValueError, match="no scene field 'initial.nope'"):
+        spinfold.sweep("spinning_rigid_sphere", {"initial.nope": [1]})
+    with pytest.raises(ValueError, match="t_end: must be"):
+        spinfold.sweep("spinning_rigid_sphere", {"initial.r": [1]}, t_end=-1)
+    with pytest.raises(ValueError, match="zip: every varied field"):
+        spinfold.sweep("spinning_rigid_sphere", {"initial.r": [1, 2], "initial.phi": [0]}, zip=True)
+
+
+def test_default_columns_are_the_clis(binary, tmp_path):
+    out = tmp_path / "rows.csv"
+    subprocess.run([binary, "sweep", "spinning_rigid_sphere", "--set", "initial.r=1,1.5", "--t-end", "1",
+                    "--out", str(out)], check=True)
+    columns, rows = read_cli_rows(out)
+    table = spinfold.sweep("spinning_rigid_sphere", {"initial.r": [1, 1.5]}, t_end=1)
+    assert list(table) == columns
+    assert "drift.p_phi" in table and "seconds" in table

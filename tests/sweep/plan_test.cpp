@@ -1,0 +1,81 @@
+// A sweep's definition made a plan: the rules both front doors share, with each door's names.
+#include "sweep/plan.h"
+
+#include <gtest/gtest.h>
+
+#include "codec/presets.h"
+
+namespace spinfold::sweep {
+namespace {
+
+Definition definition(Door door = Door::cli) {
+  Definition def;
+  def.base_text = std::string(find_preset("spinning_rigid_sphere")->json);
+  def.axes.push_back(axis_from_spec("initial.r", "1,1.5", "--set initial.r"));
+  def.door = door;
+  return def;
+}
+
+std::string error_of(Definition def) {
+  try {
+    make_plan(std::move(def));
+  } catch (const SweepError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(SweepPlan, DefaultColumnsAndRunDocuments) {
+  const Plan plan = make_plan(definition());
+  EXPECT_EQ(plan.total, 2u);
+  ASSERT_EQ(plan.columns.size(), 9u);  // kDefaultFields
+  EXPECT_EQ(plan.columns.back().name, "drift.p_phi");
+  EXPECT_TRUE(plan.columns.back().drift);
+  EXPECT_EQ(run_document(plan, 1)["initial"]["r"], 1.5);
+  EXPECT_EQ(varied_values(plan, 0)[0].first, "initial.r");
+}
+
+TEST(SweepPlan, RulesAreRefusedInTheDoorsNames) {
+  Definition bad = definition();
+  bad.t_end = -1;
+  EXPECT_EQ(error_of(bad), "--t-end: must be a finite number >= 0");
+  bad.door = Door::python;
+  EXPECT_EQ(error_of(bad), "t_end: must be a finite number >= 0");
+  Definition fields = definition(Door::python);
+  fields.fields = "t,bogus";
+  EXPECT_NE(error_of(fields).find("fields: unknown field 'bogus'"), std::string::npos);
+  Definition none = definition();
+  none.axes.clear();
+  EXPECT_NE(error_of(none).find("nothing to vary"), std::string::npos);
+  Definition twice = definition();
+  twice.axes.push_back(axis_from_spec("initial.r", "2", "--set initial.r"));
+  EXPECT_NE(error_of(twice).find("initial.r is varied twice"), std::string::npos);
+  Definition many = definition(Door::python);
+  many.axes = {axis_from_spec("initial.r", "1:2:5000", "vary['initial.r']"),
+               axis_from_spec("initial.phi", "0:1:5000", "vary['initial.phi']")};
+  EXPECT_NE(error_of(many).find("vary['initial.phi']: the sweep would be more than 10000000 runs"),
+            std::string::npos);
+  Definition structural = definition();
+  structural.axes = {axis_from_spec("potential.deformation.ghat", "1", "--set potential.deformation.ghat")};
+  EXPECT_NE(error_of(structural).find("is not a known field here"), std::string::npos);
+}
+
+TEST(SweepPlan, AFieldThatStandsInForOthersReplacesThem) {
+  nlohmann::json document = {{"surface", {{"kind", "sphere"}, {"radius", 1.0}}}};
+  apply_values(document, {&scene_field("surface.curvature", "test")}, {-1.0});
+  EXPECT_FALSE(document["surface"].contains("kind"));
+  EXPECT_EQ(document["surface"]["curvature"], -1.0);
+  apply_values(document, {&scene_field("surface.radius", "test")}, {2.0});
+  EXPECT_FALSE(document["surface"].contains("curvature"));
+}
+
+TEST(SweepPlan, FieldNamesAndDoorNames) {
+  const auto names = field_names();
+  EXPECT_NE(std::find(names.begin(), names.end(), "drift.casimir"), names.end());
+  EXPECT_NE(std::find(names.begin(), names.end(), "integrator"), names.end());
+  EXPECT_EQ(option_name(Door::python, "--max-steps"), "max_steps");
+  EXPECT_EQ(option_name(Door::cli, "--max-steps"), "--max-steps");
+}
+
+}  // namespace
+}  // namespace spinfold::sweep
