@@ -26,8 +26,8 @@ TEST(SweepGrid, ValuesAreTheDocumentedFormulaWithTheLastExactlyB) {
   EXPECT_EQ(v.back(), 2.0);
   EXPECT_EQ(grid_values(0.1, 0.7, 1), std::vector<double>{0.1});
   // b exactly even where a + (b − a) rounds off.
-  EXPECT_NE(0.1 + (0.7 - 0.1), 0.7);
-  EXPECT_EQ(grid_values(0.1, 0.7, 3).back(), 0.7);
+  EXPECT_NE(0.7 + (0.1 - 0.7), 0.1);
+  EXPECT_EQ(grid_values(0.7, 0.1, 3).back(), 0.1);
   // NumPy's linspace (a + k·step) gives other doubles for some values: the grid is one formula.
   int differ = 0;
   for (std::size_t k = 0; k < v.size(); ++k) differ += v[k] != 0.0 + static_cast<double>(k) * (2.0 / 39.0);

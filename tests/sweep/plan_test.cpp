@@ -56,6 +56,7 @@ TEST(SweepPlan, RulesAreRefusedInTheDoorsNames) {
   EXPECT_NE(error_of(many).find("vary['initial.phi']: the sweep would be more than 10000000 runs"),
             std::string::npos);
   Definition structural = definition();
+  structural.base_text = std::string(find_preset("breathing_ellipse_sphere")->json);
   structural.axes = {axis_from_spec("potential.deformation.ghat", "1", "--set potential.deformation.ghat")};
   EXPECT_NE(error_of(structural).find("is not a known field here"), std::string::npos);
 }
