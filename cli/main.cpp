@@ -36,6 +36,7 @@
 #include "codec/scene_json.h"
 #include "engine/chart.h"
 #include "engine/integrator.h"
+#include "engine/run_limits.h"
 #include "engine/simulation.h"
 #ifndef SPINFOLD_COMPUTE_ONLY  // the compute-only build: simulate and sweep, no GL, FFmpeg or HTTP
 #include "cli/view_options.h"
@@ -54,7 +55,6 @@ using namespace spinfold;
 
 constexpr int kExitBadInput = 2;
 constexpr int kExitRunStopped = 3;
-constexpr double kMaxSamples = 1e7;
 
 struct BadInput {
   std::string message;
@@ -72,6 +72,7 @@ struct SimulateOptions {
   std::string format;  // jsonl | csv; "": by --out's extension, else jsonl
   std::string fields;  // table columns; "": all (CSV), the whole sample (JSON Lines)
   std::string out;     // "" or "-": stdout
+  std::optional<std::string> max_steps_text;  // read by run_limit_value (engine/run_limits.h)
   std::optional<std::uint64_t> max_steps;
   std::optional<double> max_seconds;
   bool quiet = false;
@@ -126,13 +127,28 @@ void draw_run_progress(const Simulation& run, double t_end, double seconds) {
 // Why a run ended before t_end without trouble of its own: a budget the user set.
 enum class Budget { left, steps, seconds };
 
-int simulate(const SimulateOptions& opt) {
-  if (!std::isfinite(opt.t_end) || opt.t_end < 0.0) throw BadInput{"--t-end: must be a finite number >= 0"};
-  if (!std::isfinite(opt.every) || !(opt.every > 0.0)) throw BadInput{"--every: must be a finite number > 0"};
-  if (opt.t_end / opt.every > kMaxSamples) throw BadInput{"--every: more than 1e7 samples requested"};
-  if (opt.max_steps && *opt.max_steps == 0) throw BadInput{"--max-steps: must be at least 1"};
-  if (opt.max_seconds && (!std::isfinite(*opt.max_seconds) || !(*opt.max_seconds > 0.0)))
-    throw BadInput{"--max-seconds: must be a finite number > 0"};
+// A run limit as given (engine/run_limits.h): the row's rule and words, exit 2 naming the option.
+void check_run_limit(std::string_view name, double value) {
+  const RunLimit& limit = run_limit(name);
+  if (!allows(limit.rule, value))
+    throw BadInput{refused(run_limit_option(name), must_be(limit.rule), "'" + shortest(value) + "'")};
+}
+
+// A run limit given as text, read by the one number reader (engine/number_rule.h).
+double run_limit_value(std::string_view name, const std::string& text) {
+  const RunLimit& limit = run_limit(name);
+  const std::optional<double> x = number_from_text(text);
+  if (!x || !allows(limit.rule, *x))
+    throw BadInput{refused(run_limit_option(name), must_be(limit.rule), "'" + text + "'")};
+  return *x;
+}
+
+int simulate(SimulateOptions opt) {
+  if (opt.max_steps_text) opt.max_steps = static_cast<std::uint64_t>(run_limit_value("max_steps", *opt.max_steps_text));
+  check_run_limit("t_end", opt.t_end);
+  check_run_limit("every", opt.every);
+  if (const auto why = samples_refusal(opt.t_end, opt.every)) throw BadInput{"--every: " + *why};
+  if (opt.max_seconds) check_run_limit("max_seconds", *opt.max_seconds);
   const bool to_stdout = opt.out.empty() || opt.out == "-";
   std::string format = opt.format;
   if (format.empty()) format = !to_stdout && opt.out.ends_with(".csv") ? "csv" : "jsonl";
@@ -249,27 +265,17 @@ render::ViewRequest view_request(const RenderOptions& opt) {
   }
 }
 
+// The view of the request on the scene's surface (render::view_options: the one resolver).
 render::ViewOptions view_options(const render::ViewRequest& request, const Scene& scene) {
-  using namespace render;
-  ViewOptions view;
-  view.kind = request.view.value_or(default_view(scene.surface.kind));
-  if (const auto why = view_unsupported_reason(view.kind, scene.surface.kind))
-    throw BadInput{"--view: " + *why};
-  view.width = request.width;
-  view.height = request.height;
-  view.layers = request.layers;
-  view.scale = request.scale * render::body_scale_length(view.kind, scene.surface);
-  return view;
-}
-
-// The camera given in full (--camera, or --yaw, --pitch and --distance) is used as given; else the
-// camera is aimed at the body and the parts given replace the aimed ones (as a frame of the API).
-bool whole_camera(const render::ViewRequest& r) {
-  return r.yaw && r.pitch && r.distance;
+  try {
+    return render::view_options(request, scene.surface);
+  } catch (const render::ViewRefused& e) {
+    throw BadInput{"--" + e.parameter + ": " + e.what()};
+  }
 }
 
 int render_frame(const RenderOptions& opt, const std::string& format_option) {
-  if (!std::isfinite(opt.t) || opt.t < 0.0) throw BadInput{"--t: must be a finite number >= 0"};
+  check_run_limit("t", opt.t);
   if (opt.out.empty()) throw BadInput{"--out: the PNG file to write is required"};
   const render::FigureFormat format = cli::render_format(format_option, opt.out);  // before any work
   const render::ViewRequest request = view_request(opt);
@@ -279,16 +285,9 @@ int render_frame(const RenderOptions& opt, const std::string& format_option) {
   Simulation run;
   const render::Snapshot snapshot =
       render::snapshot_at(scene, opt.t, view.layers & render::kTrail, request.trail, run);
-  if (!whole_camera(request)) {
-    // A vector figure has no HUD box for the camera to keep clear of (its caption is below).
-    const unsigned layers = view.layers;
-    if (format != render::FigureFormat::png) view.layers &= ~static_cast<unsigned>(render::kHud);
-    render::aim_camera_at_body(view, snapshot);
-    view.layers = layers;
-  }
-  if (request.yaw) view.yaw = *request.yaw;
-  if (request.pitch) view.pitch = *request.pitch;
-  if (request.distance) view.distance = *request.distance;
+  // The camera aimed at the body, the parts given replacing the aimed ones (as every front door).
+  render::place_camera(view, request, snapshot,
+                       format == render::FigureFormat::png ? render::Picture::frame : render::Picture::figure);
   if (format != render::FigureFormat::png) {  // a vector figure (cli/figure_command.h)
     cli::write_frame_figure(scene, snapshot, view, false, format, opt.out, opt.scene.command, opt.t);
   } else {
@@ -517,7 +516,7 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("--fields", sim.fields,
                            "Comma-separated columns (see `spinfold simulate --list-fields`; default: all)");
   simulate_cmd->add_option("--out", sim.out, "File to write (default: stdout)");
-  simulate_cmd->add_option("--max-steps", sim.max_steps, "Stop after this many step attempts (exit 3)");
+  simulate_cmd->add_option("--max-steps", sim.max_steps_text, "Stop after this many step attempts (exit 3)");
   simulate_cmd->add_option("--max-seconds", sim.max_seconds, "Stop after this much wall time (exit 3)");
   simulate_cmd->add_flag("--quiet", sim.quiet,
                          "No progress line (there is none when stderr is not a terminal)");

@@ -23,6 +23,7 @@
 #include "codec/sample_json.h"
 #include "codec/sample_table.h"
 #include "codec/scene_json.h"
+#include "engine/run_limits.h"
 #include "engine/scene_fields.h"
 #include "engine/simulation.h"
 #include "engine/validation.h"
@@ -35,8 +36,7 @@ using json = nlohmann::json;
 using ojson = nlohmann::ordered_json;
 
 constexpr int kExitBadInput = 2;
-constexpr std::size_t kMaxRuns = 10'000'000;
-constexpr double kMaxSamples = 1e7;
+// kMaxRuns, kMaxSamples: engine/run_limits.h (Python's spinfold.sweep checks the same).
 
 struct BadInput {
   std::string message;
@@ -118,14 +118,11 @@ const FieldPath& find_path(const std::string& path, const std::string& flag) {
 // ---- values ----------------------------------------------------------------------------------
 
 std::optional<double> parse_number(std::string_view text) {
-  double v = 0.0;
+  // The list's syntax (spaces around an item, a '+') here; the number: the one reader.
   while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
   while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || ec != std::errc{} || end != text.data() + text.size() || !std::isfinite(v))
-    return std::nullopt;
-  return v;
+  return number_from_text(text);
 }
 
 std::string number_text(double v) {  // shortest round-trip text, "1" not "1.0"
