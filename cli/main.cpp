@@ -144,7 +144,8 @@ double run_limit_value(std::string_view name, const std::string& text) {
 }
 
 int simulate(SimulateOptions opt) {
-  if (opt.max_steps_text) opt.max_steps = static_cast<std::uint64_t>(run_limit_value("max_steps", *opt.max_steps_text));
+  if (opt.max_steps_text)
+    opt.max_steps = static_cast<std::uint64_t>(run_limit_value("max_steps", *opt.max_steps_text));
   check_run_limit("t_end", opt.t_end);
   check_run_limit("every", opt.every);
   if (const auto why = samples_refusal(opt.t_end, opt.every)) throw BadInput{"--every: " + *why};
