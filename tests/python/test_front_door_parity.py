@@ -131,8 +131,10 @@ def cli_refusal(binary, kind, field, text, tmp_path):
     if kind == "view":
         result = cli(binary, "render", "--scene", SCENE, "--t", "0.1", "--out", out, f"{cli_flag(field)}={text}")
     elif kind == "run":
-        result = cli(binary, "simulate", "--scene", SCENE, "--t-end", "0.1", "--every", "0.1", "--quiet",
-                     f"{cli_flag(field)}={text}")
+        base = {"t_end": "0.1", "every": "0.1"}
+        base[field] = text
+        result = cli(binary, "simulate", "--scene", SCENE, "--quiet",
+                     *(f"{cli_flag(key)}={value}" for key, value in base.items()))
     elif field in ("integrator.dt", "integrator.tolerance"):
         flag = "--" + field.split(".")[1]
         result = cli(binary, "simulate", "--scene", SCENE, "--t-end", "0.1", "--quiet", f"{flag}={text}")
