@@ -16,6 +16,7 @@
 #include "engine/simulation.h"
 #include "render/figure.h"
 #include "render/scene_builder.h"
+#include "render/view_parameters.h"
 #include "render/series_plot.h"
 
 namespace spinfold::cli {
@@ -161,13 +162,7 @@ render::FigureFormat render_format(const std::string& format_option, const std::
 void write_frame_figure(const Scene& scene, const render::Snapshot& snapshot, render::ViewOptions view,
                         bool aim, render::FigureFormat format, const std::string& out,
                         const std::string& command, double t) {
-  if (aim) {  // with no HUD box for the camera to keep clear of
-    render::ViewOptions aimed = view;
-    aimed.layers &= ~static_cast<unsigned>(render::kHud);
-    render::aim_camera_at_body(aimed, snapshot);
-    aimed.layers = view.layers;  // the hud layer asks for the caption
-    view = aimed;
-  }
+  if (aim) render::place_camera(view, {}, snapshot, render::Picture::figure);  // aimed at the body
   render::FigureCaption caption;
   caption.title = scene.name.empty() ? "Spinfold scene" : scene.name;
   caption.description = scene.description;

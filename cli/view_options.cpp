@@ -1,9 +1,10 @@
 #include "cli/view_options.h"
 
-#include <cstdio>
+#include <string_view>
 #include <variant>
+#include <vector>
 
-#include "engine/number_text.h"
+#include "engine/number_rule.h"
 
 namespace spinfold::cli {
 
@@ -65,17 +66,22 @@ void add_view_options(CLI::App& command, ViewArgs& args) {
 render::ViewRequest view_request(const ViewArgs& args) {
   render::ViewRequest request;
   const auto refuse = [](const std::string& flag, const std::string& value, const std::string& why) {
-    throw BadViewOption(flag + ": " + why + " (got '" + value + "')");
+    throw BadViewOption(refused(flag, why, "'" + value + "'"));
   };
   if (!args.camera.empty()) {
-    double yaw = 0, pitch = 0, distance = 0;
-    char extra = 0;
-    if (std::sscanf(args.camera.c_str(), "%lf,%lf,%lf%c", &yaw, &pitch, &distance, &extra) != 3)
-      refuse("--camera", args.camera, "must be yaw,pitch,distance (three numbers)");
-    for (const auto& [name, value] :
-         {std::pair{"yaw", yaw}, std::pair{"pitch", pitch}, std::pair{"distance", distance}})
-      if (const auto why = render::set_parameter(request, render::view_parameter(name), value))
-        refuse("--camera", args.camera, std::string(name) + " " + *why);
+    // Three items, each read by the one number reader (engine/number_rule.h) and its row's rule.
+    std::vector<std::string> items;
+    for (std::string_view rest = args.camera;;) {
+      const std::size_t comma = rest.find(',');
+      items.emplace_back(rest.substr(0, comma));
+      if (comma == std::string_view::npos) break;
+      rest.remove_prefix(comma + 1);
+    }
+    if (items.size() != 3) refuse("--camera", args.camera, "must be yaw,pitch,distance (three numbers)");
+    const char* names[] = {"yaw", "pitch", "distance"};
+    for (std::size_t i = 0; i < 3; ++i)
+      if (const auto why = render::set_parameter(request, render::view_parameter(names[i]), items[i]))
+        refuse("--camera", args.camera, std::string(names[i]) + " " + *why);
   }
   for (const render::ViewParameter& p : render::view_parameters()) {
     const std::string name(p.name);

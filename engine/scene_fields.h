@@ -22,6 +22,7 @@
 #include <variant>
 #include <vector>
 
+#include "engine/number_rule.h"
 #include "engine/scene.h"
 
 namespace spinfold {
@@ -96,25 +97,7 @@ std::vector<std::string_view> integrator_names();
 
 // ---- numbers: allowed values -------------------------------------------------------------------
 
-// An interval of allowed values, each end open or closed; an infinite end is no bound. Every number
-// must also be finite and at most kMaxSceneMagnitude in magnitude, and one that must be > 0 at least
-// kMinScenePositive (engine/validation.h).
-struct Range {
-  double min = -std::numeric_limits<double>::infinity();
-  bool min_open = false;
-  double max = std::numeric_limits<double>::infinity();
-  bool max_open = false;
-
-  constexpr bool has_min() const { return min != -std::numeric_limits<double>::infinity(); }
-  constexpr bool has_max() const { return max != std::numeric_limits<double>::infinity(); }
-  constexpr bool contains(double v) const {
-    return (min_open ? v > min : v >= min) && (max_open ? v < max : v <= max);
-  }
-};
-
-inline constexpr Range kAnyNumber{};
-inline constexpr Range kPositive{.min = 0.0, .min_open = true};
-inline constexpr Range kNonNegative{.min = 0.0};
+// Range, kAnyNumber, kPositive, kNonNegative: engine/number_rule.h (every number given by a person).
 
 // What a text field may hold.
 enum class TextRule {

@@ -24,7 +24,8 @@
 #include "codec/sample_table.h"
 #include "codec/scene_json.h"
 #include "engine/integrator.h"
-#include "engine/number_text.h"
+#include "engine/number_rule.h"
+#include "engine/run_limits.h"
 #include "engine/readout.h"
 #include "engine/sampling.h"
 #include "engine/simulation.h"
@@ -45,8 +46,6 @@ void add_sweep(py::module_& m);  // python/sweep_module.cpp
 
 namespace {
 
-constexpr double kMaxSamples = 1e7;  // as `spinfold simulate`
-
 // A scene from JSON text, or ValueError naming every field that is wrong.
 Scene scene_of(const std::string& text) {
   const SceneParse parsed = parse_scene_text(text);
@@ -54,12 +53,103 @@ Scene scene_of(const std::string& text) {
   return *parsed.scene;
 }
 
+// A run limit (engine/run_limits.h): ValueError in its row's words, as the CLI's --NAME refusal.
+void check_limit(std::string_view name, double value) {
+  const RunLimit& limit = run_limit(name);
+  if (!allows(limit.rule, value)) throw py::value_error(refused(name, must_be(limit.rule), shortest(value)));
+}
+
 void check_times(double t_end, double every) {
-  if (!std::isfinite(t_end) || t_end < 0.0)
-    throw py::value_error("t_end: must be a finite number >= 0 (got " + shortest(t_end) + ")");
-  if (!std::isfinite(every) || !(every > 0.0))
-    throw py::value_error("every: must be a finite number > 0 (got " + shortest(every) + ")");
-  if (t_end / every > kMaxSamples) throw py::value_error("every: more than 1e7 samples requested");
+  check_limit("t_end", t_end);
+  check_limit("every", every);
+  if (const auto why = samples_refusal(t_end, every)) throw py::value_error("every: " + *why);
+}
+
+std::optional<std::uint64_t> max_steps_of(std::optional<double> max_steps) {
+  if (!max_steps) return std::nullopt;
+  check_limit("max_steps", *max_steps);
+  return static_cast<std::uint64_t>(*max_steps);
+}
+
+// A Python value as JSON, for a scene override or patch: numbers as numbers (NaN and infinities
+// kept, for the scene's validation to refuse in its words, as the CLI's --dt nan is), text, None,
+// True/False, lists (a NumPy array or scalar as its list or number) and mappings; TypeError naming
+// `path` otherwise.
+nlohmann::json json_of(const py::handle& value, const std::string& path) {
+  if (value.is_none()) return nullptr;
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
+  if (py::isinstance<py::int_>(value)) {
+    int overflow = 0;
+    const long long n = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+    if (overflow == 0) return n;
+    double x = PyLong_AsDouble(value.ptr());  // beyond 64 bits: as a double (1e300; inf beyond)
+    if (x == -1.0 && PyErr_Occurred()) {
+      PyErr_Clear();
+      x = overflow > 0 ? HUGE_VAL : -HUGE_VAL;
+    }
+    return x;
+  }
+  if (py::isinstance<py::float_>(value)) return value.cast<double>();
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  const py::module_ numpy = py::module_::import("numpy");
+  if (py::isinstance(value, numpy.attr("ndarray")) || py::isinstance(value, numpy.attr("generic")))
+    return json_of(value.attr("tolist")(), path);
+  if (py::isinstance<py::dict>(value) || py::hasattr(value, "keys")) {
+    nlohmann::json object = nlohmann::json::object();
+    for (const py::handle key : value.attr("keys")()) {
+      if (!py::isinstance<py::str>(key))
+        throw py::type_error((path.empty() ? std::string("changes") : path) + ": keys must be text (got " +
+                             py::repr(key).cast<std::string>() + ")");
+      const std::string k = key.cast<std::string>();
+      object[k] = json_of(value[key], path.empty() ? k : path + "." + k);
+    }
+    return object;
+  }
+  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    nlohmann::json array = nlohmann::json::array();
+    for (const py::handle item : value) array.push_back(json_of(item, path));
+    return array;
+  }
+  throw py::type_error((path.empty() ? std::string("value") : path) +
+                       ": must be a number, text, a list or a mapping (got " +
+                       value.get_type().attr("__name__").cast<std::string>() + ")");
+}
+
+// The scene text with overrides (dotted path -> value) merged in and checked as the CLI's --dt,
+// --integrator and sweep's --set are: the scene's validation names each refused field.
+std::string apply_overrides(const std::string& text,
+                            const std::vector<std::pair<std::string, py::object>>& overrides) {
+  nlohmann::json document = parse_json_text(text);
+  nlohmann::json patch = nlohmann::json::object();
+  for (const auto& [path, value] : overrides) {
+    nlohmann::json* node = &patch;
+    std::string_view rest = path;
+    for (std::size_t dot; (dot = rest.find('.')) != std::string_view::npos; rest.remove_prefix(dot + 1)) {
+      nlohmann::json& next = (*node)[std::string(rest.substr(0, dot))];
+      if (!next.is_object()) next = nlohmann::json::object();
+      node = &next;
+    }
+    (*node)[std::string(rest)] = json_of(value, path);
+  }
+  merge_scene_patch(document, patch);
+  const SceneParse parsed = parse_scene(document);
+  if (!parsed.errors.empty()) throw py::value_error(describe_errors(parsed.errors));
+  return document.dump();
+}
+
+// A value as a refusal shows it: a number as the shortest decimal, a text quoted.
+std::string shown(const render::GivenValue& value) {
+  return std::holds_alternative<double>(value) ? shortest(std::get<double>(value))
+                                               : "'" + std::get<std::string>(value) + "'";
+}
+
+// Sets the view parameter `name` in `request`: nullopt, or why the value is refused (the table's
+// words: render::set_parameter); an unknown name is refused too.
+std::optional<std::string> view_refusal_of(const std::string& name, const render::GivenValue& value,
+                                           render::ViewRequest& request) {
+  for (const render::ViewParameter& p : render::view_parameters())
+    if (p.name == name) return render::set_parameter(request, p, value);
+  return "is not a view parameter";
 }
 
 // One body's samples as columns, filled without the GIL (reserved up front: no regrowth).
@@ -204,9 +294,9 @@ py::dict run_dict(RunColumns&& run, const Scene& scene, const std::string& comma
 }
 
 py::dict simulate(const std::string& scene_text, double t_end, double every,
-                  std::optional<std::uint64_t> max_steps, const std::string& command) {
+                  std::optional<double> max_steps_given, const std::string& command) {
   check_times(t_end, every);
-  if (max_steps && *max_steps == 0) throw py::value_error("max_steps: must be at least 1");
+  const std::optional<std::uint64_t> max_steps = max_steps_of(max_steps_given);
   const Scene scene = scene_of(scene_text);
   RunColumns columns;
   {
@@ -230,10 +320,11 @@ double engine_seconds(const std::string& scene_text, double t_end, double every,
 }
 
 // Many runs on `threads` C++ threads (0: one per core), the GIL released; results in input order.
-py::list run_many(const std::vector<std::string>& scene_texts, double t_end, double every, int threads,
-                  const std::string& command) {
+py::list run_many(const std::vector<std::string>& scene_texts, double t_end, double every,
+                  std::optional<double> threads_given, const std::string& command) {
   check_times(t_end, every);
-  if (threads < 0) throw py::value_error("threads: must be >= 0 (0: one per core)");
+  if (threads_given) check_limit("threads", *threads_given);
+  const unsigned threads = threads_given ? static_cast<unsigned>(*threads_given) : 0u;
   std::vector<Scene> scenes;
   for (std::size_t i = 0; i < scene_texts.size(); ++i) {
     const SceneParse parsed = parse_scene_text(scene_texts[i]);
@@ -246,7 +337,7 @@ py::list run_many(const std::vector<std::string>& scene_texts, double t_end, dou
     py::gil_scoped_release release;
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
     const std::size_t workers =
-        std::min<std::size_t>(scenes.size(), threads == 0 ? cores : static_cast<unsigned>(threads));
+        std::min<std::size_t>(scenes.size(), threads == 0 ? cores : threads);
     std::atomic<std::size_t> next{0};
     const auto work = [&] {
       for (std::size_t i; (i = next++) < scenes.size();)
@@ -271,11 +362,11 @@ class PySimulation {
     run_ = start_simulation(base_);
   }
 
-  bool advance(double until, std::optional<std::uint64_t> max_steps) {
+  bool advance(double until, std::optional<double> max_steps_given) {
     if (!std::isfinite(until) || until < run_.state.t)
       throw py::value_error("until: must be a finite time not before the run's t = " +
                             shortest(run_.state.t) + " (got " + shortest(until) + ")");
-    if (max_steps && *max_steps == 0) throw py::value_error("max_steps: must be at least 1");
+    const std::optional<std::uint64_t> max_steps = max_steps_of(max_steps_given);
     py::gil_scoped_release release;
     return advance_to(run_, until, max_steps.value_or(kNoStepLimit));
   }
@@ -294,12 +385,16 @@ class PySimulation {
   // A JSON merge patch of the scene in force: continues the run (retune) where the server's session
   // would, else starts over at t = 0. Returns (kind, reason); kind is continued, restarted or
   // unchanged. A refused patch raises ValueError and changes nothing.
-  std::pair<std::string, std::string> patch(const std::string& patch_text) {
+  std::pair<std::string, std::string> patch(const py::object& changes) {
     nlohmann::json patch;
-    try {
-      patch = parse_json_text(patch_text);
-    } catch (const JsonTextError& e) {
-      throw py::value_error(std::string("changes: ") + e.what());
+    if (py::isinstance<py::str>(changes)) {  // JSON text
+      try {
+        patch = parse_json_text(changes.cast<std::string>());
+      } catch (const JsonTextError& e) {
+        throw py::value_error(std::string("changes: ") + e.what());
+      }
+    } else {
+      patch = json_of(changes, "");  // NaN kept for the validation to name the field
     }
     if (!patch.is_object())
       throw py::type_error("changes: must be a mapping (a JSON merge patch of the scene)");
@@ -353,51 +448,33 @@ class PySimulation {
   double since_ = -1.0;
 };
 
-// The still `spinfold render` draws, as RGBA rows top-down, on this thread's GL context.
-py::dict render_still(const std::string& scene_text, double t, const std::string& view_name, int width,
-                      int height, const std::string& layers_text,
-                      std::optional<std::tuple<double, double, double>> camera, double scale,
-                      std::optional<double> trail, const std::string& command) {
-  if (!std::isfinite(t) || t < 0.0)
-    throw py::value_error("t: must be a finite number >= 0 (got " + shortest(t) + ")");
-  if (trail && (!std::isfinite(*trail) || *trail < 0.0)) throw py::value_error("trail: must be >= 0");
-  if (width < 16 || width > 4096 || height < 16 || height > 4096)
-    throw py::value_error("width/height: must be between 16 and 4096 pixels");
-  if (!std::isfinite(scale) || !(scale > 0.0)) throw py::value_error("scale: must be a finite number > 0");
+// The still `spinfold render` draws, as RGBA rows top-down, on this thread's GL context. `given`:
+// the view parameters given (name -> a number or a text), each checked by its row of the view
+// table (render/view_parameters.h) in the CLI's words; the request resolved by the one resolver.
+py::dict render_still(const std::string& scene_text, double t,
+                      const std::vector<std::pair<std::string, render::GivenValue>>& given,
+                      const std::string& command) {
+  check_limit("t", t);
+  render::ViewRequest request;
+  for (const auto& [name, value] : given) {
+    if (const auto why = view_refusal_of(name, value, request))
+      throw py::value_error(refused(name, *why, shown(value)));
+  }
   const Scene scene = scene_of(scene_text);
   render::ViewOptions view;
-  view.kind = render::default_view(scene.surface.kind);
-  if (!view_name.empty()) {
-    const auto kind = render::parse_view(view_name);
-    if (!kind)
-      throw py::value_error("view: must be one of " + render::joined_view_names(", ") + " (got '" +
-                            view_name + "')");
-    view.kind = *kind;
-  }
-  if (const auto why = render::view_unsupported_reason(view.kind, scene.surface.kind))
-    throw py::value_error("view: " + *why);
-  view.width = width;
-  view.height = height;
-  std::string unknown;
-  const auto layers = render::parse_layers(layers_text, &unknown);
-  if (!layers) throw py::value_error("layers: unknown layer '" + unknown + "'");
-  view.layers = *layers;
-  view.scale = scale * render::body_scale_length(view.kind, scene.surface);
-  if (camera) {
-    const auto [yaw, pitch, distance] = *camera;
-    if (!std::isfinite(yaw) || !std::isfinite(pitch) || !std::isfinite(distance) || !(distance > 0))
-      throw py::value_error("camera: must be (yaw, pitch, distance) in rad, rad, radii > 0");
-    view.yaw = yaw;
-    view.pitch = pitch;
-    view.distance = distance;
+  try {
+    view = render::view_options(request, scene.surface);
+  } catch (const render::ViewRefused& e) {
+    throw py::value_error(refused(e.parameter, e.what(), "'" + e.value + "'"));
   }
   render::Image image;
   std::string status;
   {
     py::gil_scoped_release release;
     Simulation run;
-    const render::Snapshot snapshot = render::snapshot_at(scene, t, view.layers & render::kTrail, trail, run);
-    if (!camera) render::aim_camera_at_body(view, snapshot);
+    const render::Snapshot snapshot =
+        render::snapshot_at(scene, t, request.layers & render::kTrail, request.trail, run);
+    render::place_camera(view, request, snapshot);
     thread_local render::Renderer renderer;  // one GL context per thread, made at its first frame
     image = renderer.render_image(snapshot, view);
     status = status_name(run.state.status);
@@ -471,9 +548,28 @@ PYBIND11_MODULE(_core, m) {
         py::arg("command"));
   m.def("run_many", &run_many, py::arg("scenes"), py::arg("t_end"), py::arg("every"), py::arg("threads"),
         py::arg("command"));
-  m.def("render", &render_still, py::arg("scene"), py::arg("t"), py::arg("view"), py::arg("width"),
-        py::arg("height"), py::arg("layers"), py::arg("camera"), py::arg("scale"), py::arg("trail"),
-        py::arg("command"));
+  m.def("render", &render_still, py::arg("scene"), py::arg("t"), py::arg("given"), py::arg("command"));
+  // The one rule of each value the front doors share, for the Python layer's checks (the reason in
+  // the table's words, or None): a view parameter (render/view_parameters.h), a run limit
+  // (engine/run_limits.h).
+  m.def("view_refusal", [](const std::string& name, const render::GivenValue& value) {
+    render::ViewRequest request;
+    return view_refusal_of(name, value, request);
+  });
+  m.def("view_expectation", [](const std::string& name) {
+    return render::expectation(render::view_parameter(name));
+  });
+  m.def("view_parameter_names", [] {
+    std::vector<std::string> names;
+    for (const render::ViewParameter& p : render::view_parameters()) names.emplace_back(p.name);
+    return names;
+  });
+  m.def("run_limit_refusal", [](const std::string& name, double value) {
+    return refusal(run_limit(name).rule, value);
+  });
+  m.def("run_limit_expectation", [](const std::string& name) { return must_be(run_limit(name).rule); });
+  m.def("runs_refusal", [](double runs) { return runs_refusal(runs); });
+  m.def("apply_overrides", &apply_overrides);
   m.def("encode_png", &png_bytes);
   // The layers on by default, from the view-parameter table (render/view_parameters.h).
   m.def("default_layers", &render::default_layer_list);

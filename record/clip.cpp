@@ -7,6 +7,7 @@
 #include "engine/integer_cast.h"
 #include "engine/number_text.h"
 #include "render/scene_builder.h"
+#include "render/view_parameters.h"
 
 namespace spinfold::record {
 
@@ -22,15 +23,14 @@ double frames_exact(const Clip& c) {
 
 std::vector<FieldError> clip_errors(const Clip& c) {
   std::vector<FieldError> errors;
-  const auto refuse = [&](const char* field, double value, const char* reason) {
+  const auto refuse = [&](const char* field, double value, const std::string& reason) {
     errors.push_back({field, shortest(value), reason});
   };
   if (!std::isfinite(c.t_start) || c.t_start < 0.0)
     refuse("t_start", c.t_start, "must be a finite number >= 0");
   if (!std::isfinite(c.t_end) || !(c.t_end > c.t_start))
     refuse("t_end", c.t_end, "must be a finite number > t_start");
-  if (!std::isfinite(c.fps) || !(c.fps >= kMinFps) || c.fps > kMaxFps)
-    refuse("fps", c.fps, "must be a number from 0.01 to 120 [frames/s]");
+  if (const auto why = refusal(kFpsRule, c.fps)) refuse("fps", c.fps, *why);
   if (!std::isfinite(c.speed) || !(c.speed > 0.0))
     refuse("speed", c.speed, "must be a finite number > 0 [simulated time per second]");
   if (errors.empty()) {
@@ -63,10 +63,11 @@ render::Image draw(const ClipFrames& f, const TimelineReplay& replay, const Rend
   render::Snapshot snapshot = render::make_snapshot(
       replay.run(), f.view.layers & render::kTrail ? replay.trail() : kNoTrail, f.trail_span.value_or(-1.0));
   render::ViewOptions view = f.view;
-  render::aim_camera_at_body(view, snapshot);
-  if (f.yaw) view.yaw = *f.yaw;
-  if (f.pitch) view.pitch = *f.pitch;
-  if (f.distance) view.distance = *f.distance;
+  render::ViewRequest camera;  // the parts given; the rest aimed at the body
+  camera.yaw = f.yaw;
+  camera.pitch = f.pitch;
+  camera.distance = f.distance;
+  render::place_camera(view, camera, snapshot);
   render::Image image = render(std::move(snapshot), view);
   if (image.width != f.view.width || image.height != f.view.height ||
       image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4)

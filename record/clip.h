@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "engine/number_rule.h"
 #include "engine/timeline.h"
 #include "engine/trail.h"
 #include "engine/validation.h"
@@ -32,6 +33,8 @@ inline constexpr double kMaxFps = 120.0;
 // A GIF's delay is 16-bit hundredths of a second (at most 655 s a frame) and FFmpeg's frame rate a
 // fraction of integers: 0.01 frames/s (100 s a frame) keeps both exact.
 inline constexpr double kMinFps = 0.01;
+// fps as a rule (engine/number_rule.h): "must be a number from 0.01 to 120 [frames/s]".
+inline constexpr NumberRule kFpsRule{.range = {.min = kMinFps, .max = kMaxFps}, .unit = "frames/s"};
 // Frames in one clip, whoever records it (the server's limits.max_recording_frames is lower): the
 // count is computed in double and checked against this before it becomes an integer.
 inline constexpr double kMaxClipFrames = 1e7;

@@ -49,8 +49,7 @@ std::optional<std::string> size_unsupported_reason(Format format, int width, int
 std::unique_ptr<ClipWriter> open_clip_writer(Format format, const std::string& path,
                                              const ClipWriterSpec& spec) {
   // Before the file exists: the writers turn fps into integer delays and time bases.
-  if (!(spec.fps >= kMinFps && spec.fps <= kMaxFps))
-    throw RecordError("fps must be a number from 0.01 to 120 [frames/s]");
+  if (const auto why = refusal(kFpsRule, spec.fps)) throw RecordError("fps " + *why);
   switch (format) {
     case Format::gif: return open_gif(path, spec);
     case Format::webm:

@@ -6,7 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "engine/number_text.h"
+#include "engine/number_rule.h"
+#include "render/scene_builder.h"
 
 namespace spinfold::render {
 
@@ -32,15 +33,6 @@ std::vector<std::string_view> layer_choices() {
   std::vector<std::string_view> names;
   for (const LayerInfo& l : kLayerTable) names.push_back(l.name);
   return names;
-}
-
-// A whole text as a finite number, or nullopt.
-std::optional<double> number_in(std::string_view text) {
-  double x = 0.0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
-  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || !std::isfinite(x))
-    return std::nullopt;
-  return x;
 }
 
 }  // namespace
@@ -85,6 +77,12 @@ Range allowed_range(const ViewParameter& p, int max_image_side) {
   return range;
 }
 
+NumberRule number_rule(const ViewParameter& p, int max_image_side) {
+  return {.whole = parameter_type(p) == ParameterType::integer,
+          .range = allowed_range(p, max_image_side),
+          .unit = p.unit};
+}
+
 std::optional<std::variant<double, std::string>> default_value(const ViewParameter& p) {
   const ViewRequest defaults;
   return std::visit(
@@ -127,19 +125,7 @@ std::string expectation(const ViewParameter& p, int max_image_side) {
   const ParameterType type = parameter_type(p);
   switch (type) {
     case ParameterType::integer:
-    case ParameterType::number: {
-      const Range r = allowed_range(p, max_image_side);
-      std::string text = type == ParameterType::integer ? "must be a whole number" : "must be a number";
-      if (r.has_min() && r.has_max())
-        text += r.min_open ? " in (" + shortest(r.min) + ", " + shortest(r.max) + "]"
-                           : " from " + shortest(r.min) + " to " + shortest(r.max);
-      else if (r.has_min())
-        text += (r.min_open ? " > " : " >= ") + shortest(r.min);
-      else if (r.has_max())
-        text += " <= " + shortest(r.max);
-      if (!p.unit.empty()) text += " [" + std::string(p.unit) + "]";
-      return text;
-    }
+    case ParameterType::number: return must_be(number_rule(p, max_image_side));
     case ParameterType::enumeration: return "must be " + joined(choices(p), " or ");
     case ParameterType::list: return "must be a comma-separated list of " + joined(choices(p), ", ");
   }
@@ -152,11 +138,8 @@ std::optional<std::string> set_parameter(ViewRequest& request, const ViewParamet
   if (type == ParameterType::integer || type == ParameterType::number) {
     const std::optional<double> x = std::holds_alternative<double>(value)
                                         ? std::optional(std::get<double>(value))
-                                        : number_in(std::get<std::string>(value));
-    const Range r = allowed_range(p, max_image_side);
-    if (!x || !std::isfinite(*x) || !r.contains(*x) ||
-        (type == ParameterType::integer && *x != std::floor(*x)))
-      return expectation(p, max_image_side);
+                                        : number_from_text(std::get<std::string>(value));
+    if (!x || !allows(number_rule(p, max_image_side), *x)) return expectation(p, max_image_side);
     std::visit(Overloaded{[&](int ViewRequest::*m) { request.*m = static_cast<int>(*x); },
                           [&](double ViewRequest::*m) { request.*m = *x; },
                           [&](std::optional<double> ViewRequest::*m) { request.*m = *x; }, [](auto) {}},
@@ -226,6 +209,40 @@ std::optional<unsigned> parse_layers(std::string_view list, std::string* unknown
     list.remove_prefix(comma + 1);
   }
   return mask;
+}
+
+// ---- resolving a request (the one place) --------------------------------------------------------
+
+std::optional<std::string> view_refusal(const ViewRequest& request, SurfaceKind surface) {
+  return view_unsupported_reason(request.view.value_or(default_view(surface)), surface);
+}
+
+ViewOptions view_options(const ViewRequest& request, const Surface& surface) {
+  ViewOptions view;
+  view.kind = request.view.value_or(default_view(surface.kind));
+  if (const auto why = view_unsupported_reason(view.kind, surface.kind))
+    throw ViewRefused("view", std::string(view_name(view.kind)), *why);
+  view.width = request.width;
+  view.height = request.height;
+  view.layers = request.layers;
+  view.scale = request.scale * body_scale_length(view.kind, surface);
+  return view;
+}
+
+void place_camera(ViewOptions& view, const ViewRequest& request, const Snapshot& snapshot, Picture picture) {
+  const unsigned layers = view.layers;
+  if (picture == Picture::figure) view.layers &= ~static_cast<unsigned>(kHud);
+  aim_camera_at_body(view, snapshot);
+  view.layers = layers;
+  if (request.yaw) view.yaw = *request.yaw;
+  if (request.pitch) view.pitch = *request.pitch;
+  if (request.distance) view.distance = *request.distance;
+}
+
+ViewOptions resolve_view(const ViewRequest& request, const Snapshot& snapshot, Picture picture) {
+  ViewOptions view = view_options(request, snapshot.surface);
+  place_camera(view, request, snapshot, picture);
+  return view;
 }
 
 }  // namespace spinfold::render

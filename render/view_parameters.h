@@ -14,12 +14,14 @@
 
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <variant>
 #include <vector>
 
-#include "engine/scene_fields.h"  // Range
+#include "engine/number_rule.h"  // Range, NumberRule
+#include "engine/surface.h"
 #include "render/view.h"
 
 namespace spinfold::render {
@@ -141,6 +143,8 @@ ParameterType parameter_type(const ViewParameter& p);
 std::vector<std::string_view> choices(const ViewParameter& p);
 // The allowed values of a number, a side at most `max_image_side`.
 Range allowed_range(const ViewParameter& p, int max_image_side = kMaxImageSide);
+// A number's rule (engine/number_rule.h): whole or not, its allowed range, its unit.
+NumberRule number_rule(const ViewParameter& p, int max_image_side = kMaxImageSide);
 // The default as the API writes it: a number (integer, number), a text (the default layers,
 // "surface,grid,body,frame,trail,hud"), or none (its absence means what the help says).
 std::optional<std::variant<double, std::string>> default_value(const ViewParameter& p);
@@ -165,5 +169,40 @@ std::optional<GivenValue> parameter_value(const ViewRequest& request, const View
 
 // The layer list of a mask ("surface,grid,body"), in the table's order.
 std::string layer_list(unsigned layers);
+
+// ---- resolving a request: the one place -------------------------------------------------------
+// A picture request becomes a ViewOptions here and nowhere else: the server's frames and figures,
+// its recordings (record/clip.cpp), the CLI's render and record, the CLI's figures and Python's
+// render. The view is the request's (the surface's own when none); the body's scale is given in
+// the view's length (body_scale_length); the camera is aimed at the bodies and each part the request
+// gives (yaw, pitch, distance) replaces the aimed one — all three given replace all three, the point
+// the camera orbits staying the one it was aimed at.
+
+struct Snapshot;
+
+// The view cannot show the surface: the parameter ("view"), its value and the reason.
+struct ViewRefused : std::invalid_argument {
+  ViewRefused(std::string name, std::string given, const std::string& reason)
+      : std::invalid_argument(reason), parameter(std::move(name)), value(std::move(given)) {}
+  std::string parameter, value;
+};
+
+// Why the request's view cannot show the surface, or nullopt.
+std::optional<std::string> view_refusal(const ViewRequest& request, SurfaceKind surface);
+
+// Everything the request sets but the camera: the view, the size, the layers, the body's scale [the
+// view's length]. ViewRefused when the view cannot show the surface.
+ViewOptions view_options(const ViewRequest& request, const Surface& surface);
+
+// What the picture is: a raster frame (the camera keeps the bodies clear of the HUD box) or a vector
+// figure (its caption is below the picture: no HUD box to keep clear of).
+enum class Picture { frame, figure };
+
+// The camera: aimed at the snapshot's bodies, then the parts the request gives replace the aimed ones.
+void place_camera(ViewOptions& view, const ViewRequest& request, const Snapshot& snapshot,
+                  Picture picture = Picture::frame);
+
+// Both: the picture the request asks for of the snapshot (view_options, then place_camera).
+ViewOptions resolve_view(const ViewRequest& request, const Snapshot& snapshot, Picture picture = Picture::frame);
 
 }  // namespace spinfold::render

@@ -73,14 +73,11 @@ const FieldPath& scene_field(const std::string& path, const std::string& where) 
 // ---- values ----------------------------------------------------------------------------------
 
 std::optional<double> parse_number(std::string_view text) {
-  double v = 0.0;
+  // The list's syntax (spaces around an item, a '+') here; the number: the one reader.
   while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
   while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || ec != std::errc{} || end != text.data() + text.size() || !std::isfinite(v))
-    return std::nullopt;
-  return v;
+  return number_from_text(text);
 }
 
 std::string number_text(double v) {

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/run_limits.h"  // kMaxRuns: Python and the CLI refuse alike
 #include "engine/scene_paths.h"
 
 namespace spinfold::sweep {
@@ -21,8 +22,8 @@ struct SweepError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// A sweep is at most this many runs (refused before anything is allocated for them).
-inline constexpr std::size_t kMaxRuns = 10'000'000;
+// A sweep is at most kMaxRuns runs (engine/run_limits.h), refused before anything is allocated.
+using spinfold::kMaxRuns;
 
 // The grid `a:b:n`: n values from a to b, both included. Value k is a + (b − a)·k/(n − 1) for
 // k < n − 1 and the last is b exactly (not a + (b − a), which can round off); n = 1 is a alone.

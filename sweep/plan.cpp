@@ -14,8 +14,6 @@ using json = nlohmann::json;
 
 namespace {
 
-constexpr double kMaxSamples = 1e7;
-
 std::vector<Column> parse_columns(const std::string& list, Door door) {
   std::vector<Column> columns;
   const auto names = sample_value_names();

@@ -6,6 +6,11 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <string>
+#include <optional>
+#include <string_view>
+
+#include "engine/number_text.h"
+#include "engine/run_limits.h"
 
 namespace spinfold::cli {
 
@@ -16,6 +21,22 @@ inline constexpr int kExitRunStopped = 3;
 struct BadInput {
   std::string message;
 };
+
+// A run limit as given (engine/run_limits.h): the row's rule and words, BadInput naming the option.
+inline void check_run_limit(std::string_view name, double value) {
+  const RunLimit& limit = run_limit(name);
+  if (!allows(limit.rule, value))
+    throw BadInput{refused(run_limit_option(name), must_be(limit.rule), "'" + shortest(value) + "'")};
+}
+
+// A run limit given as text, read by the one number reader (engine/number_rule.h).
+inline double run_limit_value(std::string_view name, const std::string& text) {
+  const RunLimit& limit = run_limit(name);
+  const std::optional<double> x = number_from_text(text);
+  if (!x || !allows(limit.rule, *x))
+    throw BadInput{refused(run_limit_option(name), must_be(limit.rule), "'" + text + "'")};
+  return *x;
+}
 
 // A registered subcommand: run(argc, argv) when it is the one parsed (argv for the provenance).
 struct Command {

@@ -13,6 +13,7 @@
 #include "codec/provenance.h"
 #include "render/renderer.h"
 #include "render/snapshot.h"
+#include "render/view_parameters.h"
 
 namespace spinfold::cli {
 
@@ -25,17 +26,13 @@ render::ViewRequest view_request(const RenderOptions& opt) {
   }
 }
 
+// The view of the request on the scene's surface (render::view_options: the one resolver).
 render::ViewOptions view_options(const render::ViewRequest& request, const Scene& scene) {
-  using namespace render;
-  ViewOptions view;
-  view.kind = request.view.value_or(default_view(scene.surface.kind));
-  if (const auto why = view_unsupported_reason(view.kind, scene.surface.kind))
-    throw BadInput{"--view: " + *why};
-  view.width = request.width;
-  view.height = request.height;
-  view.layers = request.layers;
-  view.scale = request.scale * render::body_scale_length(view.kind, scene.surface);
-  return view;
+  try {
+    return render::view_options(request, scene.surface);
+  } catch (const render::ViewRefused& e) {
+    throw BadInput{"--" + e.parameter + ": " + e.what()};
+  }
 }
 
 namespace {
@@ -45,14 +42,8 @@ struct RenderCommandOptions : RenderOptions {
   std::string gl;
 };
 
-// The camera given in full (--camera, or --yaw, --pitch and --distance) is used as given; else the
-// camera is aimed at the body and the parts given replace the aimed ones (as a frame of the API).
-bool whole_camera(const render::ViewRequest& r) {
-  return r.yaw && r.pitch && r.distance;
-}
-
 int render_frame(const RenderOptions& opt, const std::string& format_option) {
-  if (!std::isfinite(opt.t) || opt.t < 0.0) throw BadInput{"--t: must be a finite number >= 0"};
+  check_run_limit("t", opt.t);
   if (opt.out.empty()) throw BadInput{"--out: the PNG file to write is required"};
   const render::FigureFormat format = render_format(format_option, opt.out);  // before any work
   const render::ViewRequest request = view_request(opt);
@@ -62,16 +53,9 @@ int render_frame(const RenderOptions& opt, const std::string& format_option) {
   Simulation run;
   const render::Snapshot snapshot =
       render::snapshot_at(scene, opt.t, view.layers & render::kTrail, request.trail, run);
-  if (!whole_camera(request)) {
-    // A vector figure has no HUD box for the camera to keep clear of (its caption is below).
-    const unsigned layers = view.layers;
-    if (format != render::FigureFormat::png) view.layers &= ~static_cast<unsigned>(render::kHud);
-    render::aim_camera_at_body(view, snapshot);
-    view.layers = layers;
-  }
-  if (request.yaw) view.yaw = *request.yaw;
-  if (request.pitch) view.pitch = *request.pitch;
-  if (request.distance) view.distance = *request.distance;
+  // The camera aimed at the body, the parts given replacing the aimed ones (as every front door).
+  render::place_camera(view, request, snapshot,
+                       format == render::FigureFormat::png ? render::Picture::frame : render::Picture::figure);
   if (format != render::FigureFormat::png) {  // a vector figure (cli/figure_command.h)
     write_frame_figure(scene, snapshot, view, false, format, opt.out, opt.scene.command, opt.t);
   } else {

@@ -24,7 +24,6 @@ namespace spinfold::cli {
 
 namespace {
 
-constexpr double kMaxSamples = 1e7;
 
 struct SimulateOptions {
   SceneOptions scene;
@@ -34,6 +33,7 @@ struct SimulateOptions {
   std::string format;  // jsonl | csv; "": by --out's extension, else jsonl
   std::string fields;  // table columns; "": all (CSV), the whole sample (JSON Lines)
   std::string out;     // "" or "-": stdout
+  std::optional<std::string> max_steps_text;  // read by run_limit_value (engine/run_limits.h)
   std::optional<std::uint64_t> max_steps;
   std::optional<double> max_seconds;
   bool quiet = false;
@@ -50,13 +50,13 @@ void draw_run_progress(const Simulation& run, double t_end, double seconds) {
 // Why a run ended before t_end without trouble of its own: a budget the user set.
 enum class Budget { left, steps, seconds };
 
-int simulate(const SimulateOptions& opt) {
-  if (!std::isfinite(opt.t_end) || opt.t_end < 0.0) throw BadInput{"--t-end: must be a finite number >= 0"};
-  if (!std::isfinite(opt.every) || !(opt.every > 0.0)) throw BadInput{"--every: must be a finite number > 0"};
-  if (opt.t_end / opt.every > kMaxSamples) throw BadInput{"--every: more than 1e7 samples requested"};
-  if (opt.max_steps && *opt.max_steps == 0) throw BadInput{"--max-steps: must be at least 1"};
-  if (opt.max_seconds && (!std::isfinite(*opt.max_seconds) || !(*opt.max_seconds > 0.0)))
-    throw BadInput{"--max-seconds: must be a finite number > 0"};
+int simulate(SimulateOptions opt) {
+  if (opt.max_steps_text)
+    opt.max_steps = static_cast<std::uint64_t>(run_limit_value("max_steps", *opt.max_steps_text));
+  check_run_limit("t_end", opt.t_end);
+  check_run_limit("every", opt.every);
+  if (const auto why = samples_refusal(opt.t_end, opt.every)) throw BadInput{"--every: " + *why};
+  if (opt.max_seconds) check_run_limit("max_seconds", *opt.max_seconds);
   const bool to_stdout = opt.out.empty() || opt.out == "-";
   std::string format = opt.format;
   if (format.empty()) format = !to_stdout && opt.out.ends_with(".csv") ? "csv" : "jsonl";
@@ -174,7 +174,7 @@ Command register_simulate(CLI::App& app) {
   simulate_cmd->add_option("--fields", sim.fields,
                            "Comma-separated columns (see `spinfold simulate --list-fields`; default: all)");
   simulate_cmd->add_option("--out", sim.out, "File to write (default: stdout)");
-  simulate_cmd->add_option("--max-steps", sim.max_steps, "Stop after this many step attempts (exit 3)");
+  simulate_cmd->add_option("--max-steps", sim.max_steps_text, "Stop after this many step attempts (exit 3)");
   simulate_cmd->add_option("--max-seconds", sim.max_seconds, "Stop after this much wall time (exit 3)");
   simulate_cmd->add_flag("--quiet", sim.quiet,
                          "No progress line (there is none when stderr is not a terminal)");

@@ -15,7 +15,10 @@ reasons of sample i and ``result.reasons`` every reason met in the run.
 
 from __future__ import annotations
 
+import builtins
 import json
+import math
+import numbers
 import os
 from typing import Any, Iterable, Iterator, Mapping, Sequence
 
@@ -85,20 +88,69 @@ def _scene_text(scene: Any, field: str = "scene") -> str:
 
 
 def _with_overrides(text: str, overrides: Mapping[str, Any]) -> str:
-    """Applies `integrator=`, `dt=`, `tolerance=` (as the CLI's flags) and dotted paths."""
+    """Applies `integrator=`, `dt=`, `tolerance=` (as the CLI's flags) and dotted paths, checked by the
+    scene's validation (ValueError naming each refused field, NaN and infinities included)."""
     if not overrides:
         return text
-    patch: dict[str, Any] = {}
+    pairs = []
     for key, value in overrides.items():
         path = {"integrator": "integrator.name", "dt": "integrator.dt", "tolerance": "integrator.tolerance"}.get(
             key, key.replace("__", ".")
         )
-        node = patch
-        parts = path.split(".")
-        for part in parts[:-1]:
-            node = node.setdefault(part, {})
-        node[parts[-1]] = value
-    return _core.merge_patch(text, json.dumps(patch))
+        pairs.append((path, value))
+    return _core.apply_overrides(text, pairs)
+
+
+# ---- arguments: Python's syntax here, the rules in C++ ------------------------------------------
+# Each number is checked by the rule every front door shares (the view-parameter table,
+# render/view_parameters.h, and the run limits, engine/run_limits.h), refused in its words:
+# ``pitch: must be a number from -1.55 to 1.55 [rad] (got 3.0)`` as the CLI's ``--pitch: … (got '3')``.
+# A value of the wrong type (a string for a number, None) is a TypeError naming the argument; it is
+# never converted.
+
+
+def _real(value: Any) -> float | None:
+    """A number as a float (an int beyond a float's range as ±inf), or None for a non-number."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        return None
+    try:
+        return float(value)
+    except OverflowError:
+        return math.inf if value > 0 else -math.inf
+
+
+def _run_limit(name: str, value: Any) -> float:
+    """A run limit (t_end, every, t, max_steps, threads) checked by its row (engine/run_limits.h)."""
+    x = _real(value)
+    if x is None:
+        raise TypeError(f"{name}: {_core.run_limit_expectation(name)} (got {value!r} of type {type(value).__name__})")
+    why = _core.run_limit_refusal(name, x)
+    if why:
+        raise ValueError(f"{name}: {why} (got {value!r})")
+    return x
+
+
+def _view_number(name: str, value: Any, label: str | None = None) -> float:
+    """A number of the view-parameter table checked by its row; `label` names the argument it came
+    in (camera) when that is not `name`."""
+    x = _real(value)
+    prefix = f"{label}: {name}" if label else f"{name}:"
+    if x is None or (name in ("width", "height") and not isinstance(value, (int, np.integer))):
+        raise TypeError(f"{prefix} {_core.view_expectation(name)} (got {value!r})")
+    why = _core.view_refusal(name, x)
+    if why:
+        raise ValueError(f"{prefix} {why} (got {value!r})")
+    return x
+
+
+def _view_text(name: str, value: Any) -> str:
+    """A text of the view-parameter table (view, layers) checked by its row."""
+    if not isinstance(value, str):
+        raise TypeError(f"{name}: {_core.view_expectation(name)} (got {value!r})")
+    why = _core.view_refusal(name, value)
+    if why:
+        raise ValueError(f"{name}: {why} (got {value!r})")
+    return value
 
 
 class Result(Mapping[str, np.ndarray]):
@@ -198,8 +250,10 @@ def simulate(scene: Any, t_end: float = 10.0, every: float = 0.5, *, max_steps: 
     (``initial__spin=1.5``). The numbers are those of ``spinfold simulate`` to the bit.
     `max_steps` bounds the step attempts (``result.complete`` is False when they ran out).
     """
+    t_end, every = _run_limit("t_end", t_end), _run_limit("every", every)
+    steps = None if max_steps is None else _run_limit("max_steps", max_steps)
     text = _with_overrides(_scene_text(scene), overrides)
-    return Result(_core.simulate(text, float(t_end), float(every), max_steps, "python: spinfold.simulate"))
+    return Result(_core.simulate(text, t_end, every, steps, "python: spinfold.simulate"))
 
 
 def run_many(scenes: Iterable[Any], t_end: float = 10.0, every: float = 0.5, *,
@@ -209,10 +263,12 @@ def run_many(scenes: Iterable[Any], t_end: float = 10.0, every: float = 0.5, *,
     Each run is what ``simulate`` gives for that scene. A refused scene raises ValueError naming its
     index before anything runs.
     """
+    if isinstance(scenes, (str, bytes, Mapping)) or not isinstance(scenes, Iterable):
+        raise TypeError(f"scenes: must be an iterable of scenes (got {type(scenes).__name__})")
+    t_end, every = _run_limit("t_end", t_end), _run_limit("every", every)
+    count = None if threads is None else _run_limit("threads", threads)
     texts = [_scene_text(s, f"scenes[{i}]") for i, s in enumerate(scenes)]
-    if threads is not None and (not isinstance(threads, int) or threads < 1):
-        raise ValueError(f"threads: must be a whole number >= 1 or None (got {threads!r})")
-    raw = _core.run_many(texts, float(t_end), float(every), threads or 0, "python: spinfold.run_many")
+    raw = _core.run_many(texts, t_end, every, count, "python: spinfold.run_many")
     return [Result(r) for r in raw]
 
 
@@ -248,8 +304,12 @@ def sweep(base: Any, vary: Mapping[str, Any], t_end: float = 10.0, every: float 
         fields = _core.default_sweep_fields()
     elif not isinstance(fields, str):
         fields = ",".join(fields)
-    if threads is not None and (not isinstance(threads, int) or threads < 1):
-        raise ValueError(f"threads: must be a whole number >= 1 or None (got {threads!r})")
+    if threads is not None:
+        _run_limit("threads", threads)
+    if max_steps is not None:
+        _run_limit("max_steps", max_steps)
+    _run_limit("t_end", t_end)
+    _run_limit("every", every)
     axes = []
     for path, values in vary.items():
         if isinstance(values, str):
@@ -291,7 +351,10 @@ class Simulation:
 
     def advance(self, until: float, *, max_steps: int | None = None) -> bool:
         """Advances to `until` (False when `max_steps` attempts ran out first; call again to go on)."""
-        return self._run.advance(float(until), max_steps)
+        if _real(until) is None:
+            raise TypeError(f"until: must be a number (got {until!r})")
+        steps = None if max_steps is None else _run_limit("max_steps", max_steps)
+        return self._run.advance(float(until), steps)
 
     @property
     def state(self) -> dict[str, Any]:
@@ -313,7 +376,7 @@ class Simulation:
         (``("restarted", reason)``). A refused patch raises ValueError and changes nothing."""
         if not isinstance(changes, Mapping):
             raise TypeError(f"changes: must be a mapping (got {type(changes).__name__})")
-        kind, reason = self._run.patch(json.dumps(changes, allow_nan=False))
+        kind, reason = self._run.patch(dict(changes))  # NaN, NumPy values: checked in C++, naming the field
         return kind, reason
 
     def reset(self) -> None:
@@ -323,7 +386,7 @@ class Simulation:
     def trajectory(self, every: float = 0.5) -> Result:
         """The samples at 0, every, … up to now, replayed from the changes: the same however the
         run was advanced."""
-        return Result(self._run.trajectory(float(every)))
+        return Result(self._run.trajectory(_run_limit("every", every)))
 
     def __repr__(self) -> str:
         return f"<spinfold.Simulation t = {self.t:g}>"
@@ -425,23 +488,47 @@ def _decode_png(data: bytes) -> Frame:
 def render(scene: Any, t: float = 0.0, *, view: str | None = None, width: int = 640, height: int = 480,
            layers: str | Sequence[str] | None = None,
            camera: tuple[float, float, float] | None = None, scale: float = 0.25,
-           trail: float | None = None) -> Frame:
+           trail: float | None = None, yaw: float | None = None, pitch: float | None = None,
+           distance: float | None = None) -> Frame:
     """The picture ``spinfold render`` draws of the scene at time `t` (the same pixels).
 
     `view`: sphere, hyperboloid, disk, plane, klein, halfplane, tractricoid, conformal, …
     (None: the surface's own); `layers`: a comma-separated string or a list (None: the layers on
-    by default, as everywhere: the view-parameter table's); `camera`:
-    (yaw, pitch, distance) for the 3-D views (None: aimed at the body).
+    by default, as everywhere: the view-parameter table's); `camera`: (yaw, pitch, distance) for the
+    3-D views, or `yaw`, `pitch`, `distance` one by one (None: aimed at the body; a part given
+    replaces that part of the aimed camera, as the CLI's ``--camera`` and ``--yaw``).
+
+    Each value is checked by the view-parameter table (render/view_parameters.h) and refused in the
+    CLI's and the API's words: ValueError naming the parameter (``pitch: must be a number from
+    -1.55 to 1.55 [rad] (got 3.0)``); TypeError for a value of the wrong type (never converted).
     """
-    if layers is None:
-        layers = _core.default_layers()
-    elif not isinstance(layers, str):
-        layers = ",".join(layers)
-    for name, value in (("width", width), ("height", height)):
-        if not isinstance(value, (int, np.integer)):
-            raise TypeError(f"{name}: must be a whole number of pixels (got {value!r})")
-    raw = _core.render(_scene_text(scene), float(t), view or "", int(width), int(height), layers,
-                       None if camera is None else tuple(float(c) for c in camera), float(scale),
-                       None if trail is None else float(trail), "python: spinfold.render")
+    t = _run_limit("t", t)
+    given: list[tuple[str, Any]] = [("width", _view_number("width", width)),
+                                    ("height", _view_number("height", height))]
+    if view is not None:
+        given.append(("view", _view_text("view", view)))
+    if layers is not None:
+        if not isinstance(layers, str):
+            if isinstance(layers, (bytes, Mapping)) or not isinstance(layers, Iterable):
+                raise TypeError(f"layers: {_core.view_expectation('layers')} (got {layers!r})")
+            items = list(layers)
+            if not all(isinstance(item, str) for item in items):
+                raise TypeError(f"layers: {_core.view_expectation('layers')} (got {layers!r})")
+            layers = ",".join(items)
+        given.append(("layers", _view_text("layers", layers)))
+    given.append(("scale", _view_number("scale", scale)))
+    if camera is not None:
+        shape = "must be (yaw, pitch, distance), three numbers"
+        if isinstance(camera, (str, bytes, Mapping)) or not isinstance(camera, Iterable):
+            raise TypeError(f"camera: {shape} (got {camera!r})")
+        parts = list(camera)
+        if len(parts) != 3:
+            raise ValueError(f"camera: {shape} (got {camera!r})")
+        for name, value in builtins.zip(("yaw", "pitch", "distance"), parts):
+            given.append((name, _view_number(name, value, "camera")))
+    for name, value in (("yaw", yaw), ("pitch", pitch), ("distance", distance), ("trail", trail)):
+        if value is not None:
+            given.append((name, _view_number(name, value)))
+    raw = _core.render(_scene_text(scene), t, given, "python: spinfold.render")
     pixels = np.frombuffer(raw["rgba"], dtype=np.uint8).reshape(raw["height"], raw["width"], 4).copy()
     return Frame(pixels, [tuple(t) for t in raw["texts"]], raw["status"])

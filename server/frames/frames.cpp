@@ -34,7 +34,7 @@ FrameJob frame_job(FrameCache& cache, const std::string& id, Session& s, const F
   const std::lock_guard lock(s.mutex);
   FrameJob job{frame_etag(id, state_tag(s), f), {s.version, s.run.state.t}, std::nullopt, f.view, {}};
   if (!cache.contains(job.etag)) {
-    job.view.scale = f.scale * render::body_scale_length(f.view.kind, s.run.scene.surface);
+    job.view = render::view_options(view_request(f), s.run.scene.surface);
     static const Trail kNoTrail;  // trails are copied only when drawn
     job.snapshot = render::make_snapshot(s.run, f.view.layers & render::kTrail ? s.trail : kNoTrail,
                                          f.trail.value_or(-1.0));
@@ -185,10 +185,7 @@ FrameBytes session_frame(FrameCache& cache, RenderPool& renderer, const std::str
     try {
       return cache.get(job.etag, [&]() -> FrameBytes {
         if (!job.snapshot) throw Evicted{};
-        render::aim_camera_at_body(job.view, *job.snapshot);
-        if (f.yaw) job.view.yaw = *f.yaw;
-        if (f.pitch) job.view.pitch = *f.pitch;
-        if (f.distance) job.view.distance = *f.distance;
+        render::place_camera(job.view, view_request(f), *job.snapshot);
         const render::Image image = renderer.render(id, std::move(*job.snapshot), job.view).get();
         return std::make_shared<const std::vector<std::uint8_t>>(
             f.jpeg_quality

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "codec/scene_schema.h"
+#include "engine/number_rule.h"
 #include "engine/number_text.h"
 #include "server/http/problem.h"  // (Eigen, through the engine: before httplib.h)
 // clang-format off
@@ -36,22 +37,20 @@ std::string joined(const std::vector<std::string>& items, const std::string& las
   return text;
 }
 
+// A number parameter's rule (engine/number_rule.h).
+NumberRule number_rule(const QueryParam& p) {
+  Range range;
+  if (p.minimum) range.min = *p.minimum;
+  range.min_open = p.exclusive_minimum;
+  if (p.maximum) range.max = *p.maximum;
+  return {.whole = p.type == ParamType::integer, .range = range, .unit = p.unit};
+}
+
 // Why a value of this parameter is refused, e.g. "must be a whole number from 16 to 4096 [pixels]".
 std::string expectation(const QueryParam& p) {
   switch (p.type) {
     case ParamType::integer:
-    case ParamType::number: {
-      std::string text = p.type == ParamType::integer ? "must be a whole number" : "must be a number";
-      if (p.minimum && p.maximum)
-        text += p.exclusive_minimum ? " in (" + shortest(*p.minimum) + ", " + shortest(*p.maximum) + "]"
-                                    : " from " + shortest(*p.minimum) + " to " + shortest(*p.maximum);
-      else if (p.minimum)
-        text += (p.exclusive_minimum ? " > " : " >= ") + shortest(*p.minimum);
-      else if (p.maximum)
-        text += " <= " + shortest(*p.maximum);
-      if (!p.unit.empty()) text += " [" + p.unit + "]";
-      return text;
-    }
+    case ParamType::number: return must_be(number_rule(p));
     case ParamType::enumeration: return "must be " + joined(p.values, " or ");
     case ParamType::list: return "must be a comma-separated list of " + joined(p.values, ", ");
     case ParamType::string: break;
@@ -59,29 +58,18 @@ std::string expectation(const QueryParam& p) {
   return "must be text";
 }
 
-bool in_range(const QueryParam& p, double x) {
-  if (p.minimum && (p.exclusive_minimum ? !(x > *p.minimum) : !(x >= *p.minimum))) return false;
-  return !(p.maximum && !(x <= *p.maximum));
-}
-
 // The value of one parameter, or the reason it is refused.
 std::variant<QueryValue, std::string> parse_value(const QueryParam& p, const std::string& text) {
-  const char* first = text.data();
-  const char* last = text.data() + text.size();
   switch (p.type) {
-    case ParamType::integer: {
-      long long n = 0;
-      const auto [end, ec] = std::from_chars(first, last, n);
-      if (text.empty() || ec != std::errc() || end != last || !in_range(p, static_cast<double>(n)))
-        return expectation(p);
-      return QueryValue(n);
+    case ParamType::integer: {  // the one reader and rule (engine/number_rule.h): 16.0 and 1e3 are whole
+      const std::optional<double> x = number_from_text(text);
+      if (!x || !allows(number_rule(p), *x)) return expectation(p);
+      return QueryValue(static_cast<long long>(*x));
     }
     case ParamType::number: {
-      double x = 0.0;
-      const auto [end, ec] = std::from_chars(first, last, x);
-      if (text.empty() || ec != std::errc() || end != last || !std::isfinite(x) || !in_range(p, x))
-        return expectation(p);
-      return QueryValue(x);
+      const std::optional<double> x = number_from_text(text);
+      if (!x || !allows(number_rule(p), *x)) return expectation(p);
+      return QueryValue(*x);
     }
     case ParamType::enumeration:
       for (const std::string& v : p.values)

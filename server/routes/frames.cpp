@@ -61,7 +61,6 @@ void send_figure(ServerContext& server, const Call& call, httplib::Response& res
     etag.insert(etag.size() - 1, suffix);
     res.set_header("X-Spinfold-Provenance", provenance(*s));
     if (!etag_matches(call.http.get_header_value("If-None-Match"), etag)) {
-      f.view.scale = f.scale * render::body_scale_length(f.view.kind, s->run.scene.surface);
       static const Trail kNoTrail;  // trails are copied only when drawn
       snapshot = render::make_snapshot(s->run, f.view.layers & render::kTrail ? s->trail : kNoTrail,
                                        f.trail.value_or(-1.0));
@@ -83,13 +82,8 @@ void send_figure(ServerContext& server, const Call& call, httplib::Response& res
     res.status = 304;
     return;
   }
-  render::ViewOptions view = f.view;
-  view.layers &= ~static_cast<unsigned>(render::kHud);  // no HUD box for the camera to keep clear of
-  render::aim_camera_at_body(view, *snapshot);
-  view.layers = f.view.layers;  // the hud layer asks for the caption
-  if (f.yaw) view.yaw = *f.yaw;
-  if (f.pitch) view.pitch = *f.pitch;
-  if (f.distance) view.distance = *f.distance;
+  // The caption is below the figure: no HUD box for the camera to keep clear of.
+  const render::ViewOptions view = render::resolve_view(view_request(f), *snapshot, render::Picture::figure);
   const std::vector<std::uint8_t> bytes =
       render::draw_figure(render::figure_page(*snapshot, view, caption), format);
   res.body.assign(bytes.begin(), bytes.end());

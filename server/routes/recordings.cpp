@@ -110,10 +110,11 @@ RecordingJob recording_job(ServerContext& server, const Call& call, Session& s) 
 
   // The copy: the parameters at t = 0 and the timeline, under the session's lock only to read them.
   const std::lock_guard lock(s.mutex);
-  view.kind = picture.view.value_or(render::default_view(s.run.scene.surface.kind));
-  if (const auto why = render::view_unsupported_reason(view.kind, s.run.scene.surface.kind))
-    throw bad(422, "Invalid value", "view", std::string(render::view_name(view.kind)), *why);
-  view.scale = picture.scale * render::body_scale_length(view.kind, s.run.scene.surface);
+  try {
+    view = render::view_options(picture, s.run.scene.surface);
+  } catch (const render::ViewRefused& e) {
+    throw bad(422, "Invalid value", e.parameter, e.value, e.what());
+  }
   job.frames.scene = s.scene;
   job.frames.changes = s.changes;
   job.frames.max_attempts = static_cast<std::uint64_t>(limits.max_steps);

@@ -7,7 +7,7 @@
 #include "codec/presets.h"
 #include "codec/scene_json.h"
 #include "engine/integrator.h"
-#include "engine/number_text.h"
+#include "engine/number_rule.h"
 #include "server/context.h"
 #include "server/http/problem.h"
 #include "server/routes/routes.h"
@@ -120,10 +120,9 @@ WorkPrecisionJob work_precision_job(ServerContext& server, const Call& call) {
   if (body.contains("target_error")) {
     const json& v = body["target_error"];
     const double e = v.is_number() ? v.get<double>() : NAN;
-    if (!(e >= kMinTargetError && e <= kMaxTargetError))
-      errors.push_back(
-          {"target_error", v.dump(),
-           "must be a number from " + shortest(kMinTargetError) + " to " + shortest(kMaxTargetError)});
+    constexpr NumberRule kTargetError{.range = {.min = kMinTargetError, .max = kMaxTargetError}};
+    if (const auto why = refusal(kTargetError, e))
+      errors.push_back({"target_error", v.dump(), *why});
     else
       job.target_error = e;
   }

@@ -5,6 +5,12 @@
 
 #include <set>
 
+#include "codec/presets.h"
+#include "codec/scene_json.h"
+#include "engine/simulation.h"
+#include "render/scene_builder.h"
+#include "render/snapshot.h"
+
 namespace spinfold::render {
 namespace {
 
@@ -107,6 +113,89 @@ TEST(ViewParameters, LayerTableDefinesTheNamesAndTheDefaultMask) {
   std::string unknown;
   EXPECT_FALSE(parse_layers("grid,,glitter", &unknown));
   EXPECT_EQ(unknown, "glitter");
+}
+
+// ---- the one resolver (view_options, place_camera, resolve_view) ---------------------------------
+
+Snapshot snapshot_of(const std::string& preset, double t) {
+  const Scene scene = *parse_scene_text(find_preset(preset)->json).scene;
+  Simulation run;
+  return snapshot_at(scene, t, true, std::nullopt, run);
+}
+
+// Nothing given: the surface's own view, the body's scale in the view's length, the camera aimed
+// at the body, exactly as the front doors did it by hand before (so every golden frame stands).
+TEST(ResolveView, NothingGivenIsTheAimedDefaultView) {
+  for (const char* preset : {"spinning_rigid_sphere", "spin_vs_geodesic_sphere"}) {
+    const Snapshot s = snapshot_of(preset, 1.0);
+    ViewOptions by_hand;
+    by_hand.kind = default_view(s.surface.kind);
+    by_hand.scale = 0.25 * body_scale_length(by_hand.kind, s.surface);
+    aim_camera_at_body(by_hand, s);
+    const ViewOptions resolved = resolve_view(ViewRequest{}, s);
+    EXPECT_EQ(resolved.kind, by_hand.kind) << preset;
+    EXPECT_EQ(resolved.scale, by_hand.scale) << preset;
+    EXPECT_EQ(resolved.yaw, by_hand.yaw) << preset;
+    EXPECT_EQ(resolved.pitch, by_hand.pitch) << preset;
+    EXPECT_EQ(resolved.distance, by_hand.distance) << preset;
+    EXPECT_EQ(resolved.target, by_hand.target) << preset;
+  }
+}
+
+// Each part given replaces the aimed one; all three replace all three, the target staying aimed.
+TEST(ResolveView, EachCameraPartGivenReplacesTheAimedOne) {
+  const Snapshot s = snapshot_of("spinning_rigid_sphere", 1.0);
+  const ViewOptions aimed = resolve_view(ViewRequest{}, s);
+  ViewRequest r;
+  r.pitch = 0.3;
+  const ViewOptions pitched = resolve_view(r, s);
+  EXPECT_EQ(pitched.pitch, 0.3);
+  EXPECT_EQ(pitched.yaw, aimed.yaw);
+  EXPECT_EQ(pitched.distance, aimed.distance);
+  r.yaw = 0.1;
+  r.distance = 4.0;
+  const ViewOptions whole = resolve_view(r, s);
+  EXPECT_EQ(whole.yaw, 0.1);
+  EXPECT_EQ(whole.pitch, 0.3);
+  EXPECT_EQ(whole.distance, 4.0);
+  EXPECT_EQ(whole.target, aimed.target);
+}
+
+TEST(ResolveView, AViewThatCannotShowTheSurfaceIsRefusedNamingTheView) {
+  const Snapshot s = snapshot_of("spinning_rigid_sphere", 0.0);
+  ViewRequest r;
+  r.view = ViewKind::hyperboloid;
+  EXPECT_TRUE(view_refusal(r, s.surface.kind));
+  try {
+    (void)resolve_view(r, s);
+    FAIL() << "no refusal";
+  } catch (const ViewRefused& e) {
+    EXPECT_EQ(e.parameter, "view");
+    EXPECT_EQ(e.value, "hyperboloid");
+    EXPECT_EQ(std::string(e.what()), *view_refusal(r, s.surface.kind));
+  }
+}
+
+// The one reader of numbers as text and the one writer of what a number must be (number_rule.h).
+TEST(NumberRule, OneReaderAndOneWriter) {
+  EXPECT_EQ(number_from_text("2.5"), 2.5);
+  EXPECT_EQ(number_from_text("1e3"), 1000.0);
+  for (const char* bad : {"", "nan", "inf", "-inf", "1x", " 1", "+1", "1e999"})
+    EXPECT_FALSE(number_from_text(bad)) << bad;
+  const NumberRule side{.whole = true, .range = {.min = 16, .max = 4096}, .unit = "pixels"};
+  EXPECT_EQ(must_be(side), "must be a whole number from 16 to 4096 [pixels]");
+  EXPECT_TRUE(allows(side, 16.0));
+  EXPECT_FALSE(allows(side, 16.5));
+  EXPECT_FALSE(allows(side, 1099511627776.0));
+  EXPECT_EQ(must_be({.range = {.min = 0, .min_open = true, .max = 10}}), "must be a number in (0, 10]");
+  EXPECT_EQ(must_be({.range = kNonNegative, .unit = "time"}), "must be a number >= 0 [time]");
+  const NumberRule steps{.whole = true, .range = {.min = 1, .max = kMaxWholeNumber}};
+  EXPECT_FALSE(allows(steps, 18446744073709551616.0));  // 2^64
+  EXPECT_FALSE(allows(steps, -1.0));
+  EXPECT_EQ(refused("--pitch", "must be a number from -1.55 to 1.55 [rad]", "'2'"),
+            "--pitch: must be a number from -1.55 to 1.55 [rad] (got '2')");
+  // The view table says it with the same writer.
+  EXPECT_EQ(expectation(view_parameter("width")), must_be(side));
 }
 
 }  // namespace
