@@ -7,6 +7,7 @@
 // No physics here.
 import { api } from "./api.js";
 import { el } from "./dom.js";
+import { begin, latest, refused } from "./edits.js";
 import { jobs } from "./jobs.js";
 
 // 3 significant digits, small ones as 1e-5 (not 0.00001), as the recommendation writes them.
@@ -18,11 +19,12 @@ function short(x) {
 // "tol 1e-6", "dt 0.0123": a setting.
 const setting = (/** @type {{parameter: string, value: number}} */ p) => `${p.parameter} ${short(p.value)}`;
 
-// Builds the panel in `box`. `app` gives: session() → its id; apply(patch) → the app's PATCH of the
-// session (its controls and status line follow), a promise.
+// Builds the panel in `box`. `app` gives: session() → its id; apply(patch, edit) → the app's PATCH
+// of the session (its controls and status line follow), a promise.
 /**
  * @param {HTMLElement} box
- * @param {{session: () => string | null, apply: (patch: any) => Promise<unknown>}} app
+ * @param {{session: () => string | null,
+ *   apply: (patch: any, edit: import("./edits.js").Edit) => Promise<unknown>}} app
  */
 export function setupWorkPrecision(box, app) {
   /** @param {string} id @returns {any} */
@@ -160,13 +162,17 @@ export function setupWorkPrecision(box, app) {
 
   $("wp-cancel").onclick = () => measurements.cancel();
 
+  // Its answer is shown beside the button like a control's (edits.js: only the latest click's).
   $("wp-use").onclick = async () => {
     if (!recommended) return;
+    const chosen = recommended;
+    const line = $("wp-use-status");
+    const edit = begin(line);
     try {
-      await app.apply({ integrator: recommended.integrator });
-      $("wp-use-status").textContent = `The session now runs ${recommended.method} at ${setting(recommended)}.`;
+      await app.apply({ integrator: chosen.integrator }, edit);
+      if (latest(edit)) line.textContent = `The session now runs ${chosen.method} at ${setting(chosen)}.`;
     } catch (e) {
-      $("wp-use-status").textContent = /** @type {Error} */ (e).message;
+      refused(edit, /** @type {Error} */ (e).message);
     }
   };
 }
