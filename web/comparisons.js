@@ -1,7 +1,9 @@
 // @ts-check
 // The comparisons: the geodesic companion (one click or G) and a fan of spins (vary). The legend is
-// drawn in the picture by the server (the hud layer).
+// drawn in the picture by the server (the hud layer). A refusal is said in the status line, unless
+// a newer edit's answer is there already (edits.js).
 import { $ } from "./dom.js";
+import { begin, told } from "./edits.js";
 import { say } from "./readout.js";
 import { applyChange } from "./session.js";
 import { mount, store, withView } from "./state.js";
@@ -24,13 +26,14 @@ export async function toggleGeodesic() {
   const next = hasGeodesic(s)
     ? companions.filter((/** @type {any} */ c) => !c.geodesic)
     : [...companions, { geodesic: true, label: "geodesic (s = 0)" }];
+  const edit = begin();
   try {
-    await applyChange({ companions: next.length ? next : null });
+    await applyChange({ companions: next.length ? next : null }, edit);
     store.update((now) =>
       now.view.layers.includes("hud") ? {} : withView(now, { layers: [...now.view.layers, "hud"], hudChosen: true }),
     );
   } catch (e) {
-    say(/** @type {Error} */ (e).message);
+    if (told(edit)) say(/** @type {Error} */ (e).message);
   }
 }
 
@@ -42,18 +45,20 @@ async function addFan() {
   const values = Array.from({ length: count }, (_, i) =>
     Number((from + ((to - from) * i) / (count - 1)).toPrecision(6)),
   );
+  const edit = begin();
   try {
-    await applyChange({ vary: { field: "initial.spin", values } });
+    await applyChange({ vary: { field: "initial.spin", values } }, edit);
   } catch (e) {
-    say(`The fan was refused: ${/** @type {Error} */ (e).message}`);
+    if (told(edit)) say(`The fan was refused: ${/** @type {Error} */ (e).message}`);
   }
 }
 
 async function clearComparisons() {
+  const edit = begin();
   try {
-    await applyChange({ companions: null, vary: null });
+    await applyChange({ companions: null, vary: null }, edit);
   } catch (e) {
-    say(/** @type {Error} */ (e).message);
+    if (told(edit)) say(/** @type {Error} */ (e).message);
   }
 }
 

@@ -1,9 +1,11 @@
 // @ts-check
 // The advanced panel of every scene parameter: built from the scene's JSON Schema (GET /api/v1/schema).
 // A change is a merge PATCH; a refusal shows the server's message beside the field and the value
-// goes back. Rendered from the store: rebuilt when the set of fields changes (another deformation
-// kind, a field given in its other form), otherwise its values updated in place.
+// goes back (while it is the field's latest edit: edits.js). Rendered from the store: rebuilt when
+// the set of fields changes (another deformation kind, a field given in its other form), otherwise
+// its values updated in place.
 import { $, el, clear } from "./dom.js";
+import { begin, refused } from "./edits.js";
 import { applyChange } from "./session.js";
 import { store } from "./state.js";
 import { curvatureForm } from "./surface.js";
@@ -127,6 +129,7 @@ function fieldRow(f) {
   const error = el("span", { class: "error", id: `${id}-error` });
   input.setAttribute("aria-describedby", error.id);
   input.addEventListener("change", async () => {
+    const edit = begin(error);
     const { current, surface } = store.get();
     /** @type {any} */
     const patch = {};
@@ -139,7 +142,7 @@ function fieldRow(f) {
           ? JSON.parse(input.value)
           : Number(input.value);
     } catch {
-      error.textContent = `${name}: write a number or a matrix such as [[0.6, 0.1], [0.1, 0.3]] (got ${input.value})`;
+      refused(edit, `${name}: write a number or a matrix such as [[0.6, 0.1], [0.1, 0.3]] (got ${input.value})`);
       return;
     }
     // A deformation field needs its kind: the scene's, or abc when there is none yet.
@@ -153,10 +156,10 @@ function fieldRow(f) {
         curvature: null,
       });
     try {
-      await applyChange(patch);
+      await applyChange(patch, edit);
     } catch (e) {
-      error.textContent = /** @type {Error} */ (e).message;
-      input.value = shown({ ...f, value: lookup(store.get().current, path), replaced: false });
+      if (refused(edit, /** @type {Error} */ (e).message))
+        input.value = shown({ ...f, value: lookup(store.get().current, path), replaced: false });
     }
   });
   return el("div", { class: "field" }, el("label", { for: id, text: path[path.length - 1] + unit }), input, error);
@@ -171,6 +174,7 @@ function deformationKindField(kinds, value) {
   input.value = value;
   const error = el("span", { class: "error" });
   input.addEventListener("change", async () => {
+    const edit = begin(error);
     const deformation = store.get().current.potential?.deformation;
     let replacement = null;
     if (input.value !== "none") {
@@ -180,10 +184,9 @@ function deformationKindField(kinds, value) {
       replacement = next;
     }
     try {
-      await applyChange({ potential: { deformation: replacement } });
+      await applyChange({ potential: { deformation: replacement } }, edit);
     } catch (e) {
-      error.textContent = /** @type {Error} */ (e).message;
-      input.value = deformation?.kind ?? "none";
+      if (refused(edit, /** @type {Error} */ (e).message)) input.value = deformation?.kind ?? "none";
     }
   });
   return el("div", { class: "field" }, el("label", { for: input.id, text: "deformation kind" }), input, error);

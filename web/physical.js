@@ -6,6 +6,7 @@
 // model or potential), otherwise updated in place, so that focus and a dragged slider stay put.
 import { sleep } from "./api.js";
 import { $, el, clear } from "./dom.js";
+import { begin, refused } from "./edits.js";
 import { applyChange } from "./session.js";
 import { store, withView } from "./state.js";
 import { curvatureForm, shownRadius } from "./surface.js";
@@ -260,22 +261,23 @@ function physicalRow(spec) {
   show(spec.value);
   enable();
   const apply = async (/** @type {number} */ v) => {
+    const edit = begin(error);
     if (!Number.isFinite(v)) {
-      error.textContent = "a number, please";
+      refused(edit, "a number, please");
       return;
     }
     if (spec.before) spec.before();
     if (spec.view) {
       store.update((s) => withView(s, { scale: v }));
-      error.textContent = "";
+      refused(edit, "");
       return;
     }
     try {
-      await applyChange(/** @type {(v: number) => any} */ (spec.patch)(v));
+      await applyChange(/** @type {(v: number) => any} */ (spec.patch)(v), edit);
     } catch (e) {
-      show(spec.value);
-      // The row was rebuilt by nothing (the change was refused): its message stays beside it.
-      error.textContent = /** @type {Error} */ (e).message;
+      // The row was rebuilt by nothing (the change was refused): its message stays beside it, and
+      // the value in force comes back, unless the row was edited again meanwhile (edits.js).
+      if (refused(edit, /** @type {Error} */ (e).message)) show(spec.value);
     }
   };
   // A live row (the curvature dial) sends while it is dragged, at most one change in flight and
@@ -351,17 +353,20 @@ function surfaceKindRow(s) {
   select.title = help.textContent;
   const error = el("span", { class: "error" });
   select.addEventListener("change", async () => {
+    const edit = begin(error);
     const { current, surface } = store.get();
     try {
       // From the curvature form: that form goes, the radius it implied stays (1 from the plane).
-      await applyChange({
-        surface: curvatureForm(current.surface)
-          ? { kind: select.value, radius: surface?.radius ?? 1, curvature: null }
-          : { kind: select.value },
-      });
+      await applyChange(
+        {
+          surface: curvatureForm(current.surface)
+            ? { kind: select.value, radius: surface?.radius ?? 1, curvature: null }
+            : { kind: select.value },
+        },
+        edit,
+      );
     } catch (e) {
-      error.textContent = /** @type {Error} */ (e).message;
-      select.value = store.get().surface?.kind;
+      if (refused(edit, /** @type {Error} */ (e).message)) select.value = store.get().surface?.kind;
     }
   });
   return el("div", { class: "phys" }, el("label", { for: "phys-surface", text: "Surface ↺" }), select, help, error);

@@ -2,9 +2,11 @@
 // Recording from the browser: the view as shown, over a chosen window of the session's time
 // (the last N seconds, or from–to), as WebM, MP4, GIF or a zip of PNGs. POST …/recordings starts a
 // job on the server (a copy of the timeline: the live view goes on undisturbed), a progress bar
-// follows GET /recordings/{id}, and a download link appears when it is done. No physics here.
+// follows GET /recordings/{id} (jobs.js), and a download link appears when it is done. No physics
+// here.
 import { api } from "./api.js";
 import { el } from "./dom.js";
+import { jobs } from "./jobs.js";
 
 // The "GIF for slides" preset: small enough to paste into slides and chat.
 const slidesPreset = { format: "gif", width: 640, height: 480, fps: 15 };
@@ -98,10 +100,24 @@ export function setupRecording(box, app) {
     ),
   );
 
-  /** @type {string | null} */
-  let current = null; // the recording followed now: its url
   const say = (/** @type {string} */ text) => ($("record-status").textContent = text);
   const number = (/** @type {string} */ id) => Number($(id).value);
+  const recordings = jobs({
+    start: $("record-start"),
+    cancel: $("record-cancel"),
+    progress: $("record-progress"),
+    say,
+    every: 250,
+    queued: "Waiting for another recording to finish…",
+    running: (r) => `Recording… ${Math.round(r.progress * 100)}% of ${r.frames} frames`,
+    done(r) {
+      const link = $("record-download");
+      link.href = r.file;
+      link.textContent = `Download ${r.format.toUpperCase()} (${(r.bytes / 1e6).toFixed(2)} MB)`;
+      link.hidden = false;
+      return `Done: ${r.frames} frames.`;
+    },
+  });
 
   $("record-slides").onclick = () => {
     $("record-format").value = slidesPreset.format;
@@ -137,62 +153,11 @@ export function setupRecording(box, app) {
     return out;
   }
 
-  /** @param {string} url */
-  async function follow(url) {
-    for (;;) {
-      if (current !== url) return;
-      const res = await fetch(url);
-      const r = await res.json();
-      if (!res.ok) {
-        say(r.detail || r.title);
-        break;
-      }
-      $("record-progress").value = r.progress;
-      if (r.status === "queued") say("Waiting for another recording to finish…");
-      else if (r.status === "running") say(`Recording… ${Math.round(r.progress * 100)}% of ${r.frames} frames`);
-      else {
-        if (r.status === "done") {
-          const link = $("record-download");
-          link.href = r.file;
-          link.textContent = `Download ${r.format.toUpperCase()} (${(r.bytes / 1e6).toFixed(2)} MB)`;
-          link.hidden = false;
-          say(`Done: ${r.frames} frames.`);
-        } else {
-          say(r.status === "failed" ? `Failed: ${r.reason}` : "Cancelled.");
-        }
-        break;
-      }
-      await new Promise((resolve) => setTimeout(resolve, 250));
-    }
-    $("record-start").disabled = false;
-    $("record-cancel").hidden = true;
-  }
-
   $("record-start").onclick = async () => {
     if (!app.session()) return;
     $("record-download").hidden = true;
-    $("record-progress").hidden = false;
-    $("record-progress").value = 0;
-    $("record-start").disabled = true;
-    say("Starting…");
-    try {
-      const res = await fetch(`${api}/sessions/${app.session()}/recordings`, {
-        method: "POST",
-        headers: { "Content-Type": "application/json" },
-        body: JSON.stringify(body()),
-      });
-      const r = await res.json();
-      if (!res.ok) throw new Error(r.detail || r.title);
-      current = r.url;
-      $("record-cancel").hidden = false;
-      await follow(r.url);
-    } catch (e) {
-      say(/** @type {Error} */ (e).message);
-      $("record-start").disabled = false;
-    }
+    await recordings.start(`${api}/sessions/${app.session()}/recordings`, body);
   };
 
-  $("record-cancel").onclick = async () => {
-    if (current) await fetch(current, { method: "DELETE" });
-  };
+  $("record-cancel").onclick = () => recordings.cancel();
 }

@@ -6,6 +6,7 @@
 // reload re-attaches to the session when the server still has it and rebuilds it bit for bit when
 // it does not.
 import { api, request, sleep, withRetry } from "./api.js";
+import { accepted, begin, told } from "./edits.js";
 import { can, next, replacing } from "./lifecycle.js";
 import { clearHistory } from "./plots.js";
 import { num, receive, say } from "./readout.js";
@@ -229,12 +230,16 @@ export async function reset() {
 /**
  * A change of parameters (a merge patch): continues the run from now (a mark on the plots), or
  * restarts it at t = 0 when the start, the surface or the comparisons changed; the server says
- * which, and so does the status line. A good edit clears every refusal still shown.
+ * which, and so does the status line. `edit` (edits.js) is the control's numbered edit: its answer
+ * speaks for it alone, whatever the order the answers come back in. A good answer clears the
+ * refusals of the edits made before it, never one made after it; a refusal is thrown, for the
+ * caller to show with refused(edit, …).
  * @param {any} patch
+ * @param {import("./edits.js").Edit} [edit]
  */
-export async function applyChange(patch) {
+export async function applyChange(patch, edit = begin()) {
   const res = await call("PATCH", `/sessions/${store.get().id}`, patch);
-  document.querySelectorAll(".error").forEach((e) => (e.textContent = ""));
+  accepted(edit);
   const restarted = res.change.kind === "restarted";
   store.update((s) => ({
     ...adopted(s, res, { answer: true }),
@@ -242,8 +247,8 @@ export async function applyChange(patch) {
     ...(restarted ? { start: res.state } : {}),
   }));
   receive(res.state, { restart: restarted, from: "answer" });
-  if (restarted) say(`Restarted at t = 0: ${res.change.reason}`);
-  else if (res.change.kind === "continued")
+  if (restarted && told(edit)) say(`Restarted at t = 0: ${res.change.reason}`);
+  else if (res.change.kind === "continued" && told(edit))
     say(`Changed at t = ${num(res.change.t)}, continuing: ${res.change.reason}`);
   return res;
 }

@@ -2,10 +2,13 @@
 // "Which integrator for this scene?": POST /api/v1/work-precision with the session's id starts a job
 // on the server that runs each integrator on the scene as it is now (from its start) at tightening
 // tolerances or steps, measures its error at T against an independent reference and times it. A
-// progress bar follows GET …/{id}; then the plot (the job's SVG), the recommendation, and a button
-// that sets the recommended integrator on the session through the app's own PATCH. No physics here.
+// progress bar follows GET …/{id} (jobs.js); then the plot (the job's SVG), the recommendation,
+// and a button that sets the recommended integrator on the session through the app's own PATCH.
+// No physics here.
 import { api } from "./api.js";
 import { el } from "./dom.js";
+import { begin, latest, refused } from "./edits.js";
+import { jobs } from "./jobs.js";
 
 // 3 significant digits, small ones as 1e-5 (not 0.00001), as the recommendation writes them.
 /** @param {number} x */
@@ -16,11 +19,12 @@ function short(x) {
 // "tol 1e-6", "dt 0.0123": a setting.
 const setting = (/** @type {{parameter: string, value: number}} */ p) => `${p.parameter} ${short(p.value)}`;
 
-// Builds the panel in `box`. `app` gives: session() → its id; apply(patch) → the app's PATCH of the
-// session (its controls and status line follow), a promise.
+// Builds the panel in `box`. `app` gives: session() → its id; apply(patch, edit) → the app's PATCH
+// of the session (its controls and status line follow), a promise.
 /**
  * @param {HTMLElement} box
- * @param {{session: () => string | null, apply: (patch: any) => Promise<unknown>}} app
+ * @param {{session: () => string | null,
+ *   apply: (patch: any, edit: import("./edits.js").Edit) => Promise<unknown>}} app
  */
 export function setupWorkPrecision(box, app) {
   /** @param {string} id @returns {any} */
@@ -92,11 +96,26 @@ export function setupWorkPrecision(box, app) {
     ),
   );
 
-  /** @type {string | null} */
-  let current = null; // the job followed now: its url
   /** @type {any} */
   let recommended = null; // the result's recommended setting, with the integrator PATCH takes
   const say = (/** @type {string} */ text) => ($("wp-status").textContent = text);
+  const measurements = jobs({
+    start: $("wp-start"),
+    cancel: $("wp-cancel"),
+    progress: $("wp-progress"),
+    say,
+    every: 300,
+    queued: "Waiting for another measurement to finish…",
+    running: (job) =>
+      job.stage === "reference"
+        ? `Computing the reference at T = ${short(job.t_end)}…`
+        : `Measuring… ${job.methods_done} of ${job.methods} integrators done`,
+    done(job) {
+      show(job);
+      return `Done: ${job.result.points.length} runs of ${job.methods} integrators over T = ${short(job.t_end)}.`;
+    },
+    hideProgress: true,
+  });
 
   function body() {
     /** @type {{session: string | null, t_end?: number, target_error?: number}} */
@@ -135,76 +154,25 @@ export function setupWorkPrecision(box, app) {
     $("wp-result").hidden = false;
   }
 
-  /** @param {string} url */
-  async function follow(url) {
-    for (;;) {
-      if (current !== url) return;
-      const res = await fetch(url);
-      const job = await res.json();
-      if (!res.ok) {
-        say(job.detail || job.title);
-        break;
-      }
-      $("wp-progress").value = job.progress;
-      if (job.status === "queued") say("Waiting for another measurement to finish…");
-      else if (job.status === "running")
-        say(
-          job.stage === "reference"
-            ? `Computing the reference at T = ${short(job.t_end)}…`
-            : `Measuring… ${job.methods_done} of ${job.methods} integrators done`,
-        );
-      else {
-        if (job.status === "done") {
-          show(job);
-          say(`Done: ${job.result.points.length} runs of ${job.methods} integrators over T = ${short(job.t_end)}.`);
-        } else {
-          say(job.status === "failed" ? `Failed: ${job.reason}` : "Cancelled.");
-        }
-        break;
-      }
-      await new Promise((resolve) => setTimeout(resolve, 300));
-    }
-    $("wp-start").disabled = false;
-    $("wp-cancel").hidden = true;
-    $("wp-progress").hidden = true;
-  }
-
   $("wp-start").onclick = async () => {
     if (!app.session()) return;
     $("wp-result").hidden = true;
-    $("wp-progress").hidden = false;
-    $("wp-progress").value = 0;
-    $("wp-start").disabled = true;
-    say("Starting…");
-    try {
-      const res = await fetch(`${api}/work-precision`, {
-        method: "POST",
-        headers: { "Content-Type": "application/json" },
-        body: JSON.stringify(body()),
-      });
-      const job = await res.json();
-      if (!res.ok) throw new Error(job.detail || job.title);
-      current = job.url;
-      $("wp-cancel").hidden = false;
-      await follow(job.url);
-    } catch (e) {
-      say(/** @type {Error} */ (e).message);
-      $("wp-start").disabled = false;
-      $("wp-progress").hidden = true;
-    }
+    await measurements.start(`${api}/work-precision`, body);
   };
 
-  $("wp-cancel").onclick = async () => {
-    if (current) await fetch(current, { method: "DELETE" });
-  };
+  $("wp-cancel").onclick = () => measurements.cancel();
 
+  // Its answer is shown beside the button like a control's (edits.js: only the latest click's).
   $("wp-use").onclick = async () => {
     if (!recommended) return;
+    const chosen = recommended;
+    const line = $("wp-use-status");
+    const edit = begin(line);
     try {
-      await app.apply({ integrator: recommended.integrator });
-      $("wp-use-status").textContent = `The session now runs ${recommended.method} at ${setting(recommended)}.`;
+      await app.apply({ integrator: chosen.integrator }, edit);
+      if (latest(edit)) line.textContent = `The session now runs ${chosen.method} at ${setting(chosen)}.`;
     } catch (e) {
-      $("wp-use-status").textContent = /** @type {Error} */ (e).message;
+      refused(edit, /** @type {Error} */ (e).message);
     }
   };
 }

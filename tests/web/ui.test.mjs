@@ -222,6 +222,89 @@ try {
     await page.waitForFunction(() => [...document.querySelectorAll(".error")].every((e) => e.textContent === ""));
   });
 
+  // Answers come back in any order: a good answer that arrives after a later edit's refusal must
+  // not wipe that refusal (it once cleared every message on the page: seen by hand 19 times in
+  // 20), and a refusal that arrives after a later good edit of the same field must not show. Made
+  // certain here: the first edit's answer is held back (at least 600 ms, and until the test has
+  // seen the second edit answered), then let through.
+  const isChange = (r) => r.method() === "PATCH" && /\/api\/v1\/sessions\/[^/?]+$/.test(new URL(r.url()).pathname);
+  async function holdFirstChange(page, matches) {
+    let release, landed;
+    const held = {
+      landed: false,
+      released: new Promise((r) => (release = r)),
+      release: () => release(),
+      done: new Promise((r) => (landed = r)),  // the answer is the page's
+    };
+    await page.route("**/api/v1/sessions/*", async (route) => {
+      const r = route.request();
+      if (held.request || !isChange(r) || !matches(JSON.parse(r.postData()))) return route.fallback();
+      held.request = r;
+      const response = await route.fetch();
+      await Promise.all([held.released, new Promise((resolve) => setTimeout(resolve, 600))]);
+      await route.fulfill({ response });
+      held.landed = true;
+      landed();
+    });
+    return held;
+  }
+  const edit = async (page, name, value) => {
+    await page.fill(`[name="${name}"]`, String(value));
+    await page.dispatchEvent(`[name="${name}"]`, "change");
+  };
+  const massError = (page) => page.textContent("#field-body-mass-error");
+  const massRefused = () => /must be > 0/.test(document.querySelector("#field-body-mass-error").textContent);
+
+  await test("a late good answer to an earlier edit leaves a later refusal shown (another field's, the same field's)", async () => {
+    await openAdvanced(page);
+    // initial.r = 0.85 (a restart), its answer held back; meanwhile body.mass = −2, refused.
+    let held = await holdFirstChange(page, (patch) => patch.initial?.r === 0.85);
+    await edit(page, "initial.r", 0.85);
+    await edit(page, "body.mass", -2);
+    await page.waitForFunction(massRefused);
+    assert.equal(held.landed, false);
+    held.release();
+    await held.done;
+    // The late answer is shown (the status line says its restart; the event stream may have shown
+    // r = 0.85 before it), and the refusal stays.
+    await page.waitForFunction(() => /Restarted at t = 0/.test(document.querySelector("#status").textContent));
+    assert.match(await page.textContent("#readout"), /r = 0\.850000/);
+    assert.match(await massError(page), /must be > 0/);
+    await page.unroute("**/api/v1/sessions/*");
+    // The same field: body.mass = 1.3, its answer held back; meanwhile body.mass = −2, refused (the
+    // field shows the value in force again).
+    held = await holdFirstChange(page, (patch) => patch.body?.mass === 1.3);
+    await edit(page, "body.mass", 1.3);
+    await edit(page, "body.mass", -2);
+    await page.waitForFunction(massRefused);
+    assert.notEqual(await page.inputValue('[name="body.mass"]'), "-2");
+    assert.equal(held.landed, false);
+    held.release();
+    await held.done;
+    await page.waitForFunction(() => /continuing/.test(document.querySelector("#status").textContent));
+    assert.match(await massError(page), /must be > 0/);
+    await page.unroute("**/api/v1/sessions/*");
+  });
+
+  await test("a late refusal of an earlier edit is not shown over a later good edit of the same field", async () => {
+    const mass = async () => (await (await fetch(await page.$eval("#export-state", (a) => a.href))).json()).current.body.mass;
+    // body.mass = −2, its refusal held back; meanwhile body.mass = 1.4, accepted.
+    const held = await holdFirstChange(page, (patch) => patch.body?.mass === -2);
+    await edit(page, "body.mass", -2);
+    await edit(page, "body.mass", 1.4);
+    // Its answer clears the refusal the last test left (an earlier edit's).
+    await page.waitForFunction(() => document.querySelector("#field-body-mass-error").textContent === "");
+    assert.equal(await mass(), 1.4);
+    assert.equal(held.landed, false);
+    held.release();
+    await held.done;
+    // A round trip of the page's own after the refusal came in: the page has handled it by then.
+    await page.evaluate(async () => (await fetch("/api/v1/health")).ok);
+    assert.equal(await massError(page), "");
+    assert.equal(await page.inputValue('[name="body.mass"]'), "1.4");
+    await page.unroute("**/api/v1/sessions/*");
+  });
+
   await test("the energy plot: labelled decades, zeros on the floor, a growing rk4 error, history across a change", async () => {
     // The default preset may be open already: wait for the new session, not for the card.
     const before = await sessionId(page);

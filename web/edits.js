@@ -1,0 +1,84 @@
+// @ts-check
+// The edits of the session's parameters and what the page says about them, one rule in one place.
+// Answers come back in any order (a slow good answer after a quick refusal), so every edit is
+// numbered as it is made, and an answer speaks only for its own edit:
+// - a refusal is shown in the message line of the control that made the edit, and the value goes
+//   back, only while that edit is the control's latest (a later edit of the control decides);
+// - a good answer clears the refusals of the edits made before it (their values went back; the
+//   newer good edit supersedes them), never the refusal of an edit made after it;
+// - the status line says the answer to the newest edit that says one, never an older edit's answer
+//   that arrives after a newer one's.
+// No physics, requests or imports here (a pure module, unit-tested in test/edits.test.js):
+// session.js's applyChange sends the edits.
+
+/**
+ * One edit: its number in the page's order of edits, and the message line (a `.error` element) of
+ * the control that made it; null for one whose refusal goes to the status line (a comparison).
+ * @typedef {{n: number, line: HTMLElement | null}} Edit
+ */
+
+/** The number of the last edit made. */
+let made = 0;
+/** Each control's latest edit, by its message line. @type {WeakMap<HTMLElement, number>} */
+const latestOf = new WeakMap();
+/** The lines that show a refusal, with the edit it was for. @type {Map<HTMLElement, number>} */
+const shown = new Map();
+/** The newest edit whose answer the status line said (0: none yet). */
+let said = 0;
+
+/**
+ * A new edit by the control with this message line: from now on the control's older edits no
+ * longer write into the line.
+ * @param {HTMLElement | null} [line]
+ * @returns {Edit}
+ */
+export function begin(line = null) {
+  const edit = { n: ++made, line };
+  if (line) latestOf.set(line, edit.n);
+  return edit;
+}
+
+/**
+ * Whether this edit is still its control's latest (an edit without a line is always its own latest).
+ * @param {Edit} edit
+ */
+export const latest = (edit) => !edit.line || latestOf.get(edit.line) === edit.n;
+
+/**
+ * The edit was refused (by the server, or by the page before sending it: not a number): its
+ * message in the control's line (`""` clears it), when the edit is still the control's latest.
+ * Returns whether it was shown, that is whether the control should show its value in force again.
+ * (An edit without a line says its refusal in the status line: see told.)
+ * @param {Edit} edit
+ * @param {string} message
+ */
+export function refused(edit, message) {
+  if (!edit.line || !latest(edit)) return false;
+  edit.line.textContent = message;
+  if (message) shown.set(edit.line, edit.n);
+  else shown.delete(edit.line);
+  return true;
+}
+
+/**
+ * The edit was accepted: the refusals of the edits made before it go, those of later edits stay.
+ * @param {Edit} edit
+ */
+export function accepted(edit) {
+  for (const [line, n] of shown)
+    if (n < edit.n) {
+      line.textContent = "";
+      shown.delete(line);
+    }
+}
+
+/**
+ * Whether the status line may say the answer to this edit: not when it already says the answer to
+ * a newer edit. A yes counts as said.
+ * @param {Edit} edit
+ */
+export function told(edit) {
+  if (edit.n < said) return false;
+  said = edit.n;
+  return true;
+}

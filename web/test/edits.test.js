@@ -1,0 +1,60 @@
+// The numbered edits (web/edits.js): whatever the order their answers come back in, an answer
+// speaks for its own edit only.
+import assert from "node:assert/strict";
+import { test } from "node:test";
+import { accepted, begin, latest, refused, told } from "../edits.js";
+
+// A control's message line as edits.js uses it.
+const line = () => /** @type {HTMLElement} */ (/** @type {unknown} */ ({ textContent: "" }));
+
+test("an earlier edit's late good answer leaves another control's later refusal", () => {
+  const r = line(),
+    mass = line();
+  const first = begin(r),
+    second = begin(mass);
+  assert.equal(refused(second, "body.mass: must be > 0"), true);
+  accepted(first);
+  assert.equal(mass.textContent, "body.mass: must be > 0");
+});
+
+test("the same control: a late good answer leaves the later refusal, a late refusal is not shown", () => {
+  const mass = line();
+  const good = begin(mass),
+    bad = begin(mass);
+  assert.equal(refused(bad, "must be > 0"), true);
+  accepted(good);
+  assert.equal(mass.textContent, "must be > 0");
+  const bad2 = begin(mass),
+    good2 = begin(mass);
+  accepted(good2);
+  assert.equal(mass.textContent, "", "the newer good edit clears the older refusal");
+  assert.equal(latest(bad2), false);
+  assert.equal(refused(bad2, "must be > 0"), false, "the late refusal is not the control's to show");
+  assert.equal(mass.textContent, "");
+});
+
+test("a good answer clears the refusals of earlier edits, of any control", () => {
+  const mass = line(),
+    gamma = line();
+  const bad = begin(mass);
+  refused(bad, "must be > 0");
+  accepted(begin(gamma));
+  assert.equal(mass.textContent, "");
+});
+
+test("an empty message clears the control's own line only", () => {
+  const mass = line(),
+    scale = line();
+  refused(begin(mass), "must be > 0");
+  assert.equal(refused(begin(scale), ""), true);
+  assert.equal(mass.textContent, "must be > 0");
+});
+
+test("the status line says the newest answered edit, not an older one that comes after it", () => {
+  const older = begin(),
+    newer = begin();
+  assert.equal(told(newer), true);
+  assert.equal(told(older), false);
+  assert.equal(told(newer), true, "the same edit may say more");
+  assert.equal(told(begin()), true);
+});
