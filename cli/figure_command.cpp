@@ -16,8 +16,8 @@
 #include "engine/simulation.h"
 #include "render/figure.h"
 #include "render/scene_builder.h"
-#include "render/view_parameters.h"
 #include "render/series_plot.h"
+#include "render/view_parameters.h"
 
 namespace spinfold::cli {
 
@@ -178,7 +178,8 @@ void write_frame_figure(const Scene& scene, const render::Snapshot& snapshot, re
 CLI::App* add_plot_command(CLI::App& app, PlotOptions& opt) {
   CLI::App* cmd = app.add_subcommand(
       "plot", "Plot quantities of a run against time (or another field) as an SVG or PDF figure for a paper");
-  cmd->add_option("scene_file", opt.scene_file, "A scene file, or a preset's name if no file has it (default: the default preset)");
+  cmd->add_option("scene_file", opt.scene_file,
+                  "A scene file, or a preset's name if no file has it (default: the default preset)");
   cmd->add_option("--scene", opt.preset, "Plot an embedded preset by name (see `spinfold scenes`)");
   cmd->add_option(
          "--fields", opt.fields,

@@ -24,17 +24,12 @@ using Registrar = cli::Command (*)(CLI::App&);
 
 // The subcommands, in the order --help lists them.
 constexpr Registrar kCommands[] = {
-    cli::register_simulate,
-    cli::register_sweep,
+    cli::register_simulate, cli::register_sweep,
 #ifndef SPINFOLD_COMPUTE_ONLY
-    cli::register_render,
-    cli::register_record,
-    cli::register_work_precision,
-    cli::register_plot,
-    cli::register_serve,
+    cli::register_render,   cli::register_record,      cli::register_work_precision,
+    cli::register_plot,     cli::register_serve,
 #endif
-    cli::register_scenes,
-    cli::register_integrators,
+    cli::register_scenes,   cli::register_integrators,
 };
 
 }  // namespace
@@ -44,7 +39,8 @@ int main(int argc, char** argv) {
 #ifdef SPINFOLD_COMPUTE_ONLY
   app.set_version_flag("--version", "spinfold " + version_line());
 #else
-  app.set_version_flag("--version", [] { return "spinfold " + version_line() + "\n" + cli::gl_version_lines(); });
+  app.set_version_flag("--version",
+                       [] { return "spinfold " + version_line() + "\n" + cli::gl_version_lines(); });
 #endif
   app.require_subcommand(1);
   std::vector<cli::Command> commands;

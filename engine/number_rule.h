@@ -44,8 +44,8 @@ inline constexpr double kMaxWholeNumber = 9007199254740992.0;
 
 // What a number given by a person must be: a whole number or any number, in `range`, in `unit`.
 struct NumberRule {
-  bool whole = false;      // a whole number (an integer value; 16.0 and 1e3 are whole)
-  Range range{};           // also finite; whole numbers at most kMaxWholeNumber in magnitude
+  bool whole = false;       // a whole number (an integer value; 16.0 and 1e3 are whole)
+  Range range{};            // also finite; whole numbers at most kMaxWholeNumber in magnitude
   std::string_view unit{};  // "pixels", "rad", "time", …; "" for none
 };
 
@@ -71,8 +71,8 @@ inline std::string must_be(const NumberRule& rule) {
   const Range& r = rule.range;
   std::string text = rule.whole ? "must be a whole number" : "must be a number";
   if (r.has_min() && r.has_max())
-    text += r.min_open || r.max_open ? std::string(" in ") + (r.min_open ? "(" : "[") + shortest(r.min) + ", " +
-                                           shortest(r.max) + (r.max_open ? ")" : "]")
+    text += r.min_open || r.max_open ? std::string(" in ") + (r.min_open ? "(" : "[") + shortest(r.min) +
+                                           ", " + shortest(r.max) + (r.max_open ? ")" : "]")
                                      : " from " + shortest(r.min) + " to " + shortest(r.max);
   else if (r.has_min())
     text += (r.min_open ? " > " : " >= ") + shortest(r.min);

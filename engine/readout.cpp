@@ -1,8 +1,8 @@
 #include "engine/readout.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <utility>
 
@@ -17,7 +17,8 @@ namespace {
 std::string without_negative_zeros(std::string text) {
   const auto digit = [](char c) { return c >= '0' && c <= '9'; };
   for (std::size_t i = 0; i < text.size(); ++i) {
-    if (text[i] != '-' || (i > 0 && (digit(text[i - 1]) || std::isalpha(static_cast<unsigned char>(text[i - 1])))))
+    if (text[i] != '-' ||
+        (i > 0 && (digit(text[i - 1]) || std::isalpha(static_cast<unsigned char>(text[i - 1])))))
       continue;
     // The mantissa after the sign (an exponent after zeros, "-0.00e+00", leaves the number zero).
     bool any_digit = false, all_zero = true;

@@ -31,7 +31,9 @@ inline constexpr RunLimit kRunLimits[] = {
     {"t", {.range = kNonNegative, .unit = "time"}, "the time of the picture"},
     {"max_steps", {.whole = true, .range = {.min = 1.0, .max = kMaxWholeNumber}}, "step attempts at most"},
     {"max_seconds", {.range = kPositive, .unit = "s"}, "wall time at most"},
-    {"threads", {.whole = true, .range = {.min = 1.0, .max = 4096.0}}, "threads of a batch (none: one per core)"},
+    {"threads",
+     {.whole = true, .range = {.min = 1.0, .max = 4096.0}},
+     "threads of a batch (none: one per core)"},
 };
 
 inline const RunLimit& run_limit(std::string_view name) {

@@ -47,8 +47,7 @@ bool replay_sampled(const Scene& scene, std::span<const ParameterChange> changes
   if (!changes_up_to(0.0)) return false;
   // The one sampling loop (engine/sampling.h): the sample times of `spinfold simulate` to the bit.
   return sample_run(
-      run, until, every,
-      [&](double t) { return changes_up_to(t) && advance_within(run, t, max_attempts); },
+      run, until, every, [&](double t) { return changes_up_to(t) && advance_within(run, t, max_attempts); },
       [&] { sample(run); });
 }
 

@@ -11,7 +11,8 @@
 namespace {
 
 [[noreturn]] void violated(const char* what, std::string_view text) {
-  std::fprintf(stderr, "property violated: %s\ninput: %.*s\n", what, static_cast<int>(text.size()), text.data());
+  std::fprintf(stderr, "property violated: %s\ninput: %.*s\n", what, static_cast<int>(text.size()),
+               text.data());
   std::abort();
 }
 
@@ -33,6 +34,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const nlohmann::json written = scene_to_json(*parsed.scene);
   const SceneParse reread = parse_scene_text(written.dump());
   if (!reread.scene) violated("the scene's own JSON is rejected", text);
-  if (scene_to_json(*reread.scene) != written) violated("the scene's JSON does not read back to itself", text);
+  if (scene_to_json(*reread.scene) != written)
+    violated("the scene's JSON does not read back to itself", text);
   return 0;
 }

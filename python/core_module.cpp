@@ -25,8 +25,8 @@
 #include "codec/scene_json.h"
 #include "engine/integrator.h"
 #include "engine/number_rule.h"
-#include "engine/run_limits.h"
 #include "engine/readout.h"
+#include "engine/run_limits.h"
 #include "engine/sampling.h"
 #include "engine/simulation.h"
 #include "engine/timeline.h"
@@ -154,8 +154,8 @@ std::optional<std::string> view_refusal_of(const std::string& name, const render
 
 // One body's samples as columns, filled without the GIL (reserved up front: no regrowth).
 struct BodyColumns {
-  std::string label;           // companions: their label
-  std::vector<double> values;  // rows × sample_value_names().size(), row-major
+  std::string label;                 // companions: their label
+  std::vector<double> values;        // rows × sample_value_names().size(), row-major
   std::vector<std::uint8_t> status;  // index into status_names
   std::vector<std::string> status_names;
   std::vector<std::uint64_t> steps;
@@ -308,7 +308,8 @@ py::dict simulate(const std::string& scene_text, double t_end, double every,
 
 // The seconds simulate() spends in C++ for the scene (the run, its read-outs and columns), without
 // making Python objects: bench/python_bench.py's yardstick of the binding's overhead.
-double engine_seconds(const std::string& scene_text, double t_end, double every, const std::string& integrator) {
+double engine_seconds(const std::string& scene_text, double t_end, double every,
+                      const std::string& integrator) {
   check_times(t_end, every);
   nlohmann::json document = parse_json_text(scene_text);
   if (!integrator.empty()) document["integrator"]["name"] = integrator;
@@ -336,8 +337,7 @@ py::list run_many(const std::vector<std::string>& scene_texts, double t_end, dou
   {
     py::gil_scoped_release release;
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const std::size_t workers =
-        std::min<std::size_t>(scenes.size(), threads == 0 ? cores : threads);
+    const std::size_t workers = std::min<std::size_t>(scenes.size(), threads == 0 ? cores : threads);
     std::atomic<std::size_t> next{0};
     const auto work = [&] {
       for (std::size_t i; (i = next++) < scenes.size();)
@@ -556,17 +556,15 @@ PYBIND11_MODULE(_core, m) {
     render::ViewRequest request;
     return view_refusal_of(name, value, request);
   });
-  m.def("view_expectation", [](const std::string& name) {
-    return render::expectation(render::view_parameter(name));
-  });
+  m.def("view_expectation",
+        [](const std::string& name) { return render::expectation(render::view_parameter(name)); });
   m.def("view_parameter_names", [] {
     std::vector<std::string> names;
     for (const render::ViewParameter& p : render::view_parameters()) names.emplace_back(p.name);
     return names;
   });
-  m.def("run_limit_refusal", [](const std::string& name, double value) {
-    return refusal(run_limit(name).rule, value);
-  });
+  m.def("run_limit_refusal",
+        [](const std::string& name, double value) { return refusal(run_limit(name).rule, value); });
   m.def("run_limit_expectation", [](const std::string& name) { return must_be(run_limit(name).rule); });
   m.def("runs_refusal", [](double runs) { return runs_refusal(runs); });
   m.def("apply_overrides", &apply_overrides);

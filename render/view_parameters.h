@@ -203,6 +203,7 @@ void place_camera(ViewOptions& view, const ViewRequest& request, const Snapshot&
                   Picture picture = Picture::frame);
 
 // Both: the picture the request asks for of the snapshot (view_options, then place_camera).
-ViewOptions resolve_view(const ViewRequest& request, const Snapshot& snapshot, Picture picture = Picture::frame);
+ViewOptions resolve_view(const ViewRequest& request, const Snapshot& snapshot,
+                         Picture picture = Picture::frame);
 
 }  // namespace spinfold::render

@@ -49,7 +49,8 @@ std::string option_name(Door door, std::string_view cli_flag) {
   return name;
 }
 
-void apply_values(json& document, const std::vector<const FieldPath*>& fields, const std::vector<json>& values) {
+void apply_values(json& document, const std::vector<const FieldPath*>& fields,
+                  const std::vector<json>& values) {
   for (std::size_t i = 0; i < fields.size(); ++i) {
     const auto segments = split(fields[i]->path, '.');
     json patch = values[i];

@@ -5,8 +5,8 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
-#include <string>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "engine/number_text.h"

@@ -114,9 +114,11 @@ Command register_record(CLI::App& app) {
   record_cmd->add_option("--format", options->format, record::joined_format_names(" | ", " | "))->required();
   record_cmd->add_option("--out", options->render.out, "File to write")->required();
   add_view_options(*record_cmd, options->render.view);
-  record_cmd->add_option("--integrator", options->render.scene.integrator, "Override the scene's integrator name");
+  record_cmd->add_option("--integrator", options->render.scene.integrator,
+                         "Override the scene's integrator name");
   add_gl_option(record_cmd, options->gl);
-  record_cmd->add_flag("--quiet", options->quiet, "No progress bar (there is none when stderr is not a terminal)");
+  record_cmd->add_flag("--quiet", options->quiet,
+                       "No progress bar (there is none when stderr is not a terminal)");
   return {record_cmd, [options](int argc, char** argv) {
             apply_gl_choice(options->gl);
             options->render.scene.command = command_line(argc, argv);

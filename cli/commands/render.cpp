@@ -54,8 +54,9 @@ int render_frame(const RenderOptions& opt, const std::string& format_option) {
   const render::Snapshot snapshot =
       render::snapshot_at(scene, opt.t, view.layers & render::kTrail, request.trail, run);
   // The camera aimed at the body, the parts given replacing the aimed ones (as every front door).
-  render::place_camera(view, request, snapshot,
-                       format == render::FigureFormat::png ? render::Picture::frame : render::Picture::figure);
+  render::place_camera(
+      view, request, snapshot,
+      format == render::FigureFormat::png ? render::Picture::frame : render::Picture::figure);
   if (format != render::FigureFormat::png) {  // a vector figure (cli/figure_command.h)
     write_frame_figure(scene, snapshot, view, false, format, opt.out, opt.scene.command, opt.t);
   } else {
@@ -81,7 +82,8 @@ Command register_render(CLI::App& app) {
   auto options = std::make_shared<RenderCommandOptions>();
   CLI::App* render_cmd =
       app.add_subcommand("render", "Render the state at time T as a PNG, or an SVG or PDF figure");
-  render_cmd->add_option("scene_file", options->scene.scene_file, "A scene file, or a preset's name if no file has it (default: the default preset)");
+  render_cmd->add_option("scene_file", options->scene.scene_file,
+                         "A scene file, or a preset's name if no file has it (default: the default preset)");
   render_cmd->add_option("--scene", options->scene.preset, "Render an embedded preset by name");
   render_cmd->add_option("--t", options->t, "Time of the frame")->capture_default_str();
   add_view_options(*render_cmd, options->view);

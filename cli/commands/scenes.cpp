@@ -22,7 +22,8 @@ int list_scenes() {
 }  // namespace
 
 Command register_scenes(CLI::App& app) {
-  return {app.add_subcommand("scenes", "List the embedded preset scenes"), [](int, char**) { return list_scenes(); }};
+  return {app.add_subcommand("scenes", "List the embedded preset scenes"),
+          [](int, char**) { return list_scenes(); }};
 }
 
 }  // namespace spinfold::cli

@@ -61,7 +61,7 @@ int serve(const server::ServerOptions& options) {
             << "  default scene '" << kDefaultPreset << "': " << base << "/api/v1/sessions/" << id << "\n"
             << "  its frame:  " << base << "/api/v1/sessions/" << id << "/frame.png\n"
             << "  sessions: "
-            << (!options.store.empty()      ? "stored in " + server::store_url_for_messages(options.store)
+            << (!options.store.empty()     ? "stored in " + server::store_url_for_messages(options.store)
                 : options.data_dir.empty() ? "in memory only"
                                            : "stored in " + options.data_dir + "/sessions.db")
             << std::endl;
@@ -99,7 +99,8 @@ Command register_serve(CLI::App& app) {
       ->capture_default_str();
   serve_cmd
       ->add_option("--trusted-proxy", options->server.trusted_proxy,
-                   "Address (or IPv4 network a.b.c.d/n) of the reverse proxy whose X-Forwarded-For names the client ('' never trusts it)")
+                   "Address (or IPv4 network a.b.c.d/n) of the reverse proxy whose X-Forwarded-For names the "
+                   "client ('' never trusts it)")
       ->capture_default_str();
   serve_cmd
       ->add_option("--requests-per-second", options->server.limits.requests_per_second_per_client,

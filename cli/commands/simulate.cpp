@@ -24,15 +24,14 @@ namespace spinfold::cli {
 
 namespace {
 
-
 struct SimulateOptions {
   SceneOptions scene;
   double t_end = 10.0;
   double every = 0.5;
   // simulate's output (codec/sample_table.h) and its budgets
-  std::string format;  // jsonl | csv; "": by --out's extension, else jsonl
-  std::string fields;  // table columns; "": all (CSV), the whole sample (JSON Lines)
-  std::string out;     // "" or "-": stdout
+  std::string format;                         // jsonl | csv; "": by --out's extension, else jsonl
+  std::string fields;                         // table columns; "": all (CSV), the whole sample (JSON Lines)
+  std::string out;                            // "" or "-": stdout
   std::optional<std::string> max_steps_text;  // read by run_limit_value (engine/run_limits.h)
   std::optional<std::uint64_t> max_steps;
   std::optional<double> max_seconds;
@@ -162,7 +161,9 @@ Command register_simulate(CLI::App& app) {
   auto options = std::make_shared<SimulateOptions>();
   SimulateOptions& sim = *options;
   CLI::App* simulate_cmd = app.add_subcommand("simulate", "Simulate a scene and print JSON Lines samples");
-  simulate_cmd->add_option("scene_file", sim.scene.scene_file, "A scene file, or a preset's name if no file has it (default: the default preset)");
+  simulate_cmd->add_option(
+      "scene_file", sim.scene.scene_file,
+      "A scene file, or a preset's name if no file has it (default: the default preset)");
   simulate_cmd->add_option("--scene", sim.scene.preset,
                            "Simulate an embedded preset by name (see `spinfold scenes`)");
   simulate_cmd->add_option("--t-end", sim.t_end, "Simulated time to reach")->capture_default_str();

@@ -1,8 +1,9 @@
 // `spinfold sweep`: registered here, translated in cli/sweep.cpp (the sweep library's front door).
+#include "cli/sweep.h"
+
 #include <memory>
 
 #include "cli/commands/command.h"
-#include "cli/sweep.h"
 
 namespace spinfold::cli {
 

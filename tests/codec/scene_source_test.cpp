@@ -43,17 +43,21 @@ TEST(SceneSource, AFileByThatNameElseAPresetElseTheDefault) {
 }
 
 TEST(SceneSource, RefusalsNameTheOptionAndTheName) {
-  EXPECT_NE(error_of([] { scene_source("", "nosuch"); }).find("--scene: no scene file and no preset named 'nosuch'"),
+  EXPECT_NE(error_of([] {
+              scene_source("", "nosuch");
+            }).find("--scene: no scene file and no preset named 'nosuch'"),
             std::string::npos);
-  EXPECT_NE(error_of([] { scene_source("nosuch", ""); }).find("scene: no scene file and no preset named 'nosuch'"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of([] { scene_source("nosuch", ""); }).find("scene: no scene file and no preset named 'nosuch'"),
+      std::string::npos);
   EXPECT_EQ(error_of([] { scene_source("/nonexistent/scene.json", ""); }),
             "cannot read scene file '/nonexistent/scene.json'");
   EXPECT_EQ(error_of([] { scene_source("a.json", "b"); }), "give either a scene file or --scene, not both");
   EXPECT_NE(error_of([] { scene_source("", "", true); }).find("give either a scene file or --scene PRESET"),
             std::string::npos);
-  EXPECT_NE(error_of([] { load_scene(scene_source("", ""), {.name = "nosuch", .dt = {}, .tolerance = {}}); })
-                .find("integrator.name"),
+  EXPECT_NE(error_of([] {
+              load_scene(scene_source("", ""), {.name = "nosuch", .dt = {}, .tolerance = {}});
+            }).find("integrator.name"),
             std::string::npos);
 }
 

@@ -25,7 +25,8 @@ TEST(ScenePaths, EveryLeafOnceWithItsRangeOrNames) {
   // The deformation's kind comes before its coefficients, and shared coefficients once.
   const auto at = [](std::string_view path) {
     const auto& all = scene_paths();
-    return std::find_if(all.begin(), all.end(), [&](const ScenePath& p) { return p.path == path; }) - all.begin();
+    return std::find_if(all.begin(), all.end(), [&](const ScenePath& p) { return p.path == path; }) -
+           all.begin();
   };
   ASSERT_NE(find_scene_path("potential.deformation.kind"), nullptr);
   EXPECT_LT(at("potential.deformation.kind"), at("potential.deformation.A"));

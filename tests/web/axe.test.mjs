@@ -9,13 +9,14 @@ import { createRequire } from "node:module";
 import path from "node:path";
 import { fileURLToPath } from "node:url";
 
-import { launchBrowser, results, startServer, test } from "./harness.mjs";
+import { runSuite, startServer, test } from "./harness.mjs";
 
 const require = createRequire(path.join(path.dirname(fileURLToPath(import.meta.url)), "../../web/package.json"));
 const { default: AxeBuilder } = await import(require.resolve("@axe-core/playwright"));
 
 const [binary, screenshots] = process.argv.slice(2);
-const { server, base, ready } = startServer(binary, 25000);
+const started = startServer(binary, 25000);
+const { base } = started;
 
 const describe = (violations) =>
   violations.map((v) => `${v.id} (${v.impact}): ${v.help}\n` +
@@ -33,9 +34,7 @@ async function opened(browser, width, height, colorScheme = "light") {
   return page;
 }
 
-try {
-  await ready();
-  const browser = await launchBrowser();
+await runSuite(started, async (browser) => {
   for (const [width, height, scheme] of [[1366, 900, "light"], [390, 844, "light"], [1366, 900, "dark"]]) {
     await test(`axe-core: no violations at ${width}×${height} (${scheme}), a preset selected and then modified`, async () => {
       const page = await opened(browser, width, height, scheme);
@@ -57,8 +56,4 @@ try {
       await page.screenshot({ path: path.join(screenshots, `page-${width}x${height}.png`), fullPage: width === 390 });
       await page.context().close();
     }
-  await browser.close();
-} finally {
-  server.kill();
-}
-process.exit(results.failed ? 1 : 0);
+});

@@ -8,10 +8,11 @@
 import assert from "node:assert/strict";
 import path from "node:path";
 
-import { launchBrowser, results, startServer, test } from "./harness.mjs";
+import { runSuite, startServer, test } from "./harness.mjs";
 
 const [binary, screenshots] = process.argv.slice(2);
-const { server, base, ready } = startServer(binary, 20000);
+const started = startServer(binary, 20000);
+const { base } = started;
 
 const readoutT = (page) => page.$eval("#readout", (el) => Number(el.dataset.t));
 const sessionHref = (page) => page.$eval("#export-state", (a) => a.href);
@@ -56,9 +57,7 @@ async function settled(page, patches, K) {
   throw new Error(`the server never answered with curvature ${K} (${patches.answers.length} answers)`);
 }
 
-try {
-  await ready();
-  const browser = await launchBrowser();
+await runSuite(started, async (browser) => {
   // bypassCSP: playwright-core 1.49's waitForFunction evaluates strings in the page (see ui.test.mjs).
   const page = await browser.newPage({ viewport: { width: 1366, height: 900 }, bypassCSP: true });
   watchConsole(page, "dial page");
@@ -215,11 +214,4 @@ try {
   await test("the console has no errors", async () => {
     assert.deepEqual(consoleErrors, []);
   });
-  await browser.close();
-} catch (e) {
-  results.failed = true;
-  console.log(e.stack);
-} finally {
-  server.kill();
-}
-process.exit(results.failed ? 1 : 0);
+});

@@ -44,3 +44,20 @@ export async function test(name, body) {
     console.log(`FAIL ${name}\n${e.stack}`);
   }
 }
+
+// A test file's run: waits for its server, gives `body` a browser, and exits 1 on any failure (a
+// test() that failed or an error thrown outside one), the server stopped either way.
+export async function runSuite({ server, ready }, body) {
+  try {
+    await ready();
+    const browser = await launchBrowser();
+    await body(browser);
+    await browser.close();
+  } catch (e) {
+    results.failed = true;
+    console.log(e.stack);
+  } finally {
+    server.kill();
+  }
+  process.exit(results.failed ? 1 : 0);
+}

@@ -6,14 +6,13 @@ import assert from "node:assert/strict";
 import fs from "node:fs";
 import path from "node:path";
 
-import { launchBrowser, results, startServer, test } from "./harness.mjs";
+import { runSuite, startServer, test } from "./harness.mjs";
 
 const [binary, screenshots] = process.argv.slice(2);
-const { server, base, ready } = startServer(binary, 19000);
+const started = startServer(binary, 19000);
+const { base } = started;
 
-try {
-  await ready();
-  const browser = await launchBrowser();
+await runSuite(started, async (browser) => {
   // Under the page's own policy (no bypassCSP): waits use selectors, not evaluated strings.
   const context = await browser.newContext({ acceptDownloads: true, viewport: { width: 1280, height: 1000 } });
   const page = await context.newPage();
@@ -66,11 +65,4 @@ try {
     await page.screenshot({ path: path.join(screenshots, "record-panel.png") });
   }
   await test("no page or console errors", async () => assert.deepEqual(errors, []));
-  await browser.close();
-} catch (e) {
-  results.failed = true;
-  console.log(e.stack);
-} finally {
-  server.kill();
-}
-process.exit(results.failed ? 1 : 0);
+});

@@ -9,10 +9,11 @@
 import assert from "node:assert/strict";
 import path from "node:path";
 
-import { launchBrowser, results, startServer, test } from "./harness.mjs";
+import { results, runSuite, startServer, test } from "./harness.mjs";
 
 const [binary, screenshots] = process.argv.slice(2);
-const { server, base, ready } = startServer(binary, 18000);
+const started = startServer(binary, 18000);
+const { base } = started;
 
 const readoutT = (page) => page.$eval("#readout", (el) => Number(el.dataset.t));
 const health = async () => (await (await fetch(base + "api/v1/health")).json()).sessions;
@@ -28,9 +29,7 @@ function watchConsole(page, name, allowed = /status of 422/) {
   page.on("pageerror", (e) => consoleErrors.push(`${name}: ${e.message}`));
 }
 
-try {
-  await ready();
-  const browser = await launchBrowser();
+await runSuite(started, async (browser) => {
   // The UI under its Content-Security-Policy: it loads, shows its thumbnails and frame (blob: URLs)
   // and plays (EventSource) without a violation. The page driven below bypasses the policy, because
   // playwright-core 1.49's waitForFunction evaluates strings in the page, which the policy forbids
@@ -749,11 +748,4 @@ try {
     await e.screenshot({ path: path.join(screenshots, "embed.png") });
     await e.close();
   }
-  await browser.close();
-} catch (e) {
-  results.failed = true;
-  console.log(e.stack);
-} finally {
-  server.kill();
-}
-process.exit(results.failed ? 1 : 0);
+});

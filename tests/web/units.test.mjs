@@ -5,10 +5,11 @@
 // Usage: node units.test.mjs SPINFOLD_BINARY
 import assert from "node:assert/strict";
 
-import { launchBrowser, results, startServer, test } from "./harness.mjs";
+import { runSuite, startServer, test } from "./harness.mjs";
 
 const [binary] = process.argv.slice(2);
-const { server, base, ready } = startServer(binary, 26000);
+const started = startServer(binary, 26000);
+const { base } = started;
 
 // The schema of a scene field by its dotted path (a deformation field: the abc branch's).
 function schemaField(schema, path) {
@@ -64,10 +65,8 @@ async function checkAdvanced(page, schema) {
   return numbers;
 }
 
-try {
-  await ready();
+await runSuite(started, async (browser) => {
   const schema = await (await fetch(base + "api/v1/schema")).json();
-  const browser = await launchBrowser();
   const page = await browser.newPage({ viewport: { width: 1366, height: 900 }, bypassCSP: true });
   await page.goto(base);
   await page.waitForSelector("body[data-ready=true]", { timeout: 20000 });
@@ -90,8 +89,4 @@ try {
     assert.equal(unit("mu"), "pure number");
     assert.equal(unit("gamma"), "energy (sphere); energy·length² (pseudosphere, plane)");
   });
-  await browser.close();
-} finally {
-  server.kill();
-}
-process.exit(results.failed ? 1 : 0);
+});

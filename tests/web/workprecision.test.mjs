@@ -10,18 +10,17 @@ import { createRequire } from "node:module";
 import path from "node:path";
 import { fileURLToPath } from "node:url";
 
-import { launchBrowser, results, startServer, test } from "./harness.mjs";
+import { runSuite, startServer, test } from "./harness.mjs";
 
 const require = createRequire(path.join(path.dirname(fileURLToPath(import.meta.url)), "../../web/package.json"));
 const { default: AxeBuilder } = await import(require.resolve("@axe-core/playwright"));
 
 const [binary, screenshots] = process.argv.slice(2);
-const { server, base, ready } = startServer(binary, 27000);
+const started = startServer(binary, 27000);
+const { base } = started;
 
-try {
-  await ready();
+await runSuite(started, async (browser) => {
   if (screenshots) fs.mkdirSync(screenshots, { recursive: true });
-  const browser = await launchBrowser();
   const context = await browser.newContext({ viewport: { width: 1366, height: 900 } });
   const page = await context.newPage();
   const errors = [];
@@ -92,11 +91,4 @@ try {
   });
 
   await test("no page or console errors", async () => assert.deepEqual(errors, []));
-  await browser.close();
-} catch (e) {
-  results.failed = true;
-  console.log(e.stack);
-} finally {
-  server.kill();
-}
-process.exit(results.failed ? 1 : 0);
+});
