@@ -22,7 +22,8 @@ std::shared_ptr<Session> find_session(ServerContext& server, const std::string& 
   } catch (const StoreError& e) {
     // Not in this process's memory and the store is away: unknown is not the same as gone.
     std::fprintf(stderr, "spinfold: %s\n", e.what());
-    throw ApiError{503, "Store unavailable", {{"id", id, "the session store cannot be read now; retry later"}}, "2"};
+    throw ApiError{
+        503, "Store unavailable", {{"id", id, "the session store cannot be read now; retry later"}}, "2"};
   }
   if (!s) throw unknown_session(id);
   return s;

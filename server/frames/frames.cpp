@@ -53,7 +53,8 @@ std::vector<QueryParam> frame_params(const Limits& limits) {
   std::vector<QueryParam> params;
   for (const render::ViewParameter& p : render::view_parameters()) {
     const Range range = render::allowed_range(p, limits.max_image_side);
-    QueryParam q{.name = std::string(p.name), .unit = std::string(p.unit), .description = std::string(p.help)};
+    QueryParam q{
+        .name = std::string(p.name), .unit = std::string(p.unit), .description = std::string(p.help)};
     switch (render::parameter_type(p)) {
       case render::ParameterType::integer: q.type = ParamType::integer; break;
       case render::ParameterType::number: q.type = ParamType::number; break;

@@ -36,7 +36,9 @@ namespace spinfold::server {
 enum class JobStatus { queued, running, done, failed, cancelled };
 // "queued", "running", "done", "failed", "cancelled" (the API's names).
 std::string_view job_status_name(JobStatus status);
-inline bool job_active(JobStatus status) { return status == JobStatus::queued || status == JobStatus::running; }
+inline bool job_active(JobStatus status) {
+  return status == JobStatus::queued || status == JobStatus::running;
+}
 
 struct JobQueueOptions {
   int threads = 1;  // jobs run at once (the rest wait, queued)
@@ -70,16 +72,16 @@ template <class State, class Extra = std::monostate>
 class JobQueue {
  public:
   struct Entry {
-    State state;  // guarded by the queue's lock (locked())
-    Extra extra;  // guarded too
-    std::atomic<bool> cancel{false};                  // set by a cancel and at stop: polled by the job
+    State state;                                     // guarded by the queue's lock (locked())
+    Extra extra;                                     // guarded too
+    std::atomic<bool> cancel{false};                 // set by a cancel and at stop: polled by the job
     std::chrono::steady_clock::time_point finished;  // done, failed or cancelled at (guarded)
     bool active() const { return job_active(state.status); }
   };
   using Ptr = std::shared_ptr<Entry>;
   using Entries = std::map<std::string, Ptr>;
-  using Run = std::function<void(Entry&)>;    // runs a job on a worker (status running; not locked)
-  using Drop = std::function<void(Entry&)>;   // a finished job expired (locked): remove its files
+  using Run = std::function<void(Entry&)>;   // runs a job on a worker (status running; not locked)
+  using Drop = std::function<void(Entry&)>;  // a finished job expired (locked): remove its files
 
   // Starts the workers and, with options.sync, the sync thread. Declare the queue after whatever
   // `run` and `sync` use, and stop() it first in the owner's destructor.
@@ -117,9 +119,11 @@ class JobQueue {
     const std::lock_guard lock(mutex_);
     prune_locked();
     int of_client = 0;
-    for (const auto& [id, e] : entries_) of_client += e->active() && e->state.job.client == entry->state.job.client;
+    for (const auto& [id, e] : entries_)
+      of_client += e->active() && e->state.job.client == entry->state.job.client;
     if (of_client >= quota.per_client)
-      throw job_over_limit(quota.per_client_limit, quota.per_client, quota.per_client_reason, quota.retry_after);
+      throw job_over_limit(quota.per_client_limit, quota.per_client, quota.per_client_reason,
+                           quota.retry_after);
     if (static_cast<int>(entries_.size()) >= quota.total)
       throw job_over_limit(quota.total_limit, quota.total, quota.total_reason, quota.retry_after);
     if (check) check(entries_);

@@ -39,7 +39,10 @@ ApiError unknown_recording(const std::string& id, const Limits& limits) {
 // The store is away: nothing was started, changed or deleted.
 ApiError store_away(const std::string& id, const StoreError& e) {
   std::fprintf(stderr, "spinfold: %s\n", e.what());
-  return ApiError{503, "Store unavailable", {{"id", id, "the store of recordings cannot be reached now; retry later"}}, "2"};
+  return ApiError{503,
+                  "Store unavailable",
+                  {{"id", id, "the store of recordings cannot be reached now; retry later"}},
+                  "2"};
 }
 
 bool active(std::string_view status) {
@@ -61,8 +64,9 @@ std::filesystem::path new_directory() {
 
 std::string download_name(const std::string& session, double t_start, double t_end, record::Format format) {
   char name[160];
-  std::snprintf(name, sizeof name, "spinfold-%s-t%s-%s.%s", session.substr(0, 8).c_str(), shortest(t_start).c_str(),
-                shortest(t_end).c_str(), std::string(record::file_extension(format)).c_str());
+  std::snprintf(name, sizeof name, "spinfold-%s-t%s-%s.%s", session.substr(0, 8).c_str(),
+                shortest(t_start).c_str(), shortest(t_end).c_str(),
+                std::string(record::file_extension(format)).c_str());
   return name;
 }
 
@@ -94,16 +98,17 @@ Recordings::Recordings(const Limits& limits, RenderPool& pool, Store* db)
       db_(db),
       instance_(instance_name()),
       dir_(new_directory()),
-      queue_({.threads = limits.recording_threads,
-              .nice = kRecordingNice,
-              .max_age = limits.recording_max_age,
-              .sync_every = limits.recording_heartbeat,
-              .sync = db ? std::function<void()>([this] { heartbeat(); }) : std::function<void()>()},
-             [this](Queue::Entry& entry) { run(entry); },
-             [](Queue::Entry& entry) {
-               std::error_code ignored;
-               if (!entry.extra.path.empty()) std::filesystem::remove(entry.extra.path, ignored);
-             }) {}
+      queue_(
+          {.threads = limits.recording_threads,
+           .nice = kRecordingNice,
+           .max_age = limits.recording_max_age,
+           .sync_every = limits.recording_heartbeat,
+           .sync = db ? std::function<void()>([this] { heartbeat(); }) : std::function<void()>()},
+          [this](Queue::Entry& entry) { run(entry); },
+          [](Queue::Entry& entry) {
+            std::error_code ignored;
+            if (!entry.extra.path.empty()) std::filesystem::remove(entry.extra.path, ignored);
+          }) {}
 
 Recordings::~Recordings() {
   queue_.stop();  // before the directory goes
@@ -152,23 +157,24 @@ std::string Recordings::start(RecordingJob job) {
   entry->state.frames = frames;
   entry->extra.path = dir_ / (entry->state.id + "." + std::string(record::file_extension(job.format)));
   entry->state.job = std::move(job);
-  queue_.admit(entry,
-               {.per_client_limit = "max_recordings_per_client",
-                .per_client = limits_.max_recordings_per_client,
-                .per_client_reason = "this address has that many recordings queued or running: wait for one to "
-                                     "finish or cancel it (DELETE /api/v1/recordings/{id})",
-                .total_limit = "max_recordings",
-                .total = limits_.max_recordings,
-                .total_reason = "the server keeps that many recordings: delete finished ones, or wait until "
-                                "they expire (" +
-                                std::to_string(limits_.recording_max_age.count()) + " s after finishing)",
-                .retry_after = "10"},
-               [this](const Queue::Entries& entries) {
-                 if (disk_bytes(entries) >= static_cast<std::uint64_t>(limits_.max_recording_disk_bytes))
-                   throw over_limit("max_recording_disk_bytes", limits_.max_recording_disk_bytes,
-                                    "the recordings kept fill the disk space allowed to them: delete finished "
-                                    "ones, or wait until they expire");
-               });
+  queue_.admit(
+      entry,
+      {.per_client_limit = "max_recordings_per_client",
+       .per_client = limits_.max_recordings_per_client,
+       .per_client_reason = "this address has that many recordings queued or running: wait for one to "
+                            "finish or cancel it (DELETE /api/v1/recordings/{id})",
+       .total_limit = "max_recordings",
+       .total = limits_.max_recordings,
+       .total_reason = "the server keeps that many recordings: delete finished ones, or wait until "
+                       "they expire (" +
+                       std::to_string(limits_.recording_max_age.count()) + " s after finishing)",
+       .retry_after = "10"},
+      [this](const Queue::Entries& entries) {
+        if (disk_bytes(entries) >= static_cast<std::uint64_t>(limits_.max_recording_disk_bytes))
+          throw over_limit("max_recording_disk_bytes", limits_.max_recording_disk_bytes,
+                           "the recordings kept fill the disk space allowed to them: delete finished "
+                           "ones, or wait until they expire");
+      });
   if (db_) {
     // The row before the job is queued (its first progress write updates it); the store's files
     // count against the same allowance.
@@ -198,8 +204,9 @@ RecordingState Recordings::state(const std::string& id) {
 namespace {
 
 ApiError not_ready(const std::string& status, const std::string& reason) {
-  return bad(409, "Not ready", "status", status,
-             status == "failed" ? "the recording failed: " + reason : "the file is there once the status is done");
+  return bad(
+      409, "Not ready", "status", status,
+      status == "failed" ? "the recording failed: " + reason : "the file is there once the status is done");
 }
 
 }  // namespace
@@ -237,7 +244,8 @@ RecordingDownload Recordings::file(const std::string& id) {
       const auto it = entries.find(id);
       return it == entries.end() ? std::filesystem::path() : it->second->extra.path;
     });
-    auto stream = std::make_shared<std::ifstream>(path, std::ios::binary);  // readable even if deleted meanwhile
+    auto stream =
+        std::make_shared<std::ifstream>(path, std::ios::binary);  // readable even if deleted meanwhile
     if (!*stream) throw bad(404, "Unknown recording", "id", id, "the recording's file is gone");
     return {.bytes = s.bytes,
             .content_type = std::string(record::content_type(s.job.format)),
@@ -300,7 +308,8 @@ bool Recordings::cancel_or_delete(const std::string& id) {
       throw store_away(id, e);
     }
     std::error_code ignored;
-    if (const Queue::Ptr entry = queue_.erase_finished(id)) std::filesystem::remove(entry->extra.path, ignored);
+    if (const Queue::Ptr entry = queue_.erase_finished(id))
+      std::filesystem::remove(entry->extra.path, ignored);
     return false;
   }
   // Cancelled now: a queued job never starts, a running one stops at its next frame and removes
@@ -362,7 +371,8 @@ void Recordings::run(Queue::Entry& entry) {
       try {
         if (!save_row(*snapshot)) entry.cancel = true;
       } catch (const StoreError& e) {  // the store away for a moment: the job goes on
-        if (!store_warned) std::fprintf(stderr, "spinfold: recording %s: %s\n", snapshot->id.c_str(), e.what());
+        if (!store_warned)
+          std::fprintf(stderr, "spinfold: recording %s: %s\n", snapshot->id.c_str(), e.what());
         store_warned = true;
       }
       return !entry.cancel.load();
@@ -374,7 +384,8 @@ void Recordings::run(Queue::Entry& entry) {
     reason = e.what();
   }
   if (entry.cancel) status = RecordingStatus::cancelled;  // a cancel is final, even one at the end
-  if (queue_.stopping() && status == RecordingStatus::cancelled) {  // not the user's cancel: the server stopped
+  if (queue_.stopping() &&
+      status == RecordingStatus::cancelled) {  // not the user's cancel: the server stopped
     status = RecordingStatus::failed;
     reason = "the server recording it stopped: record again";
   }

@@ -70,17 +70,17 @@ std::string WorkPrecisionJobs::start(WorkPrecisionJob job) {
   auto entry = std::make_shared<Queue::Entry>();
   entry->state.id = new_session_id();
   entry->state.job = std::move(job);
-  queue_.admit(entry, {.per_client_limit = "max_work_precision_jobs_per_client",
-                       .per_client = limits_.max_work_precision_jobs_per_client,
-                       .per_client_reason = "this address has a work-precision job queued or running: wait for it "
-                                            "to finish or cancel it (DELETE /api/v1/work-precision/{id})",
-                       .total_limit = "max_work_precision_jobs",
-                       .total = limits_.max_work_precision_jobs,
-                       .total_reason = "the server keeps that many work-precision jobs: delete finished ones, or "
-                                       "wait until they expire (" +
-                                       std::to_string(limits_.work_precision_max_age.count()) +
-                                       " s after finishing)",
-                       .retry_after = "5"});
+  queue_.admit(
+      entry, {.per_client_limit = "max_work_precision_jobs_per_client",
+              .per_client = limits_.max_work_precision_jobs_per_client,
+              .per_client_reason = "this address has a work-precision job queued or running: wait for it "
+                                   "to finish or cancel it (DELETE /api/v1/work-precision/{id})",
+              .total_limit = "max_work_precision_jobs",
+              .total = limits_.max_work_precision_jobs,
+              .total_reason = "the server keeps that many work-precision jobs: delete finished ones, or "
+                              "wait until they expire (" +
+                              std::to_string(limits_.work_precision_max_age.count()) + " s after finishing)",
+              .retry_after = "5"});
   queue_.enqueue(entry);
   return entry->state.id;
 }

@@ -1,9 +1,9 @@
 // Work-precision jobs (POST /api/v1/work-precision): which integrator for a scene, measured by the
 // library the CLI uses (workprecision/work_precision.h) on one background thread of low CPU
-// priority, never on an HTTP worker (a JobQueue: server/jobs/job_queue.h). Each job is queued → running → done | failed (with a reason) |
-// cancelled; progress is the methods swept / the methods to sweep, never going back. A cancel
-// takes effect before the job's next run. Results (the curves, the recommendation, the CSV, the SVG
-// and PNG plots) are kept in memory only, and dropped `work_precision_max_age` after finishing.
+// priority, never on an HTTP worker (a JobQueue: server/jobs/job_queue.h). Each job is queued → running →
+// done | failed (with a reason) | cancelled; progress is the methods swept / the methods to sweep, never
+// going back. A cancel takes effect before the job's next run. Results (the curves, the recommendation, the
+// CSV, the SVG and PNG plots) are kept in memory only, and dropped `work_precision_max_age` after finishing.
 #pragma once
 
 #include <map>

@@ -8,8 +8,8 @@
 #include "codec/scene_json.h"
 #include "codec/scene_schema.h"
 #include "engine/integrator.h"
-#include "render/gl_context.h"
 #include "record/recorder.h"
+#include "render/gl_context.h"
 #include "render/view.h"
 #include "render/view_parameters.h"
 #include "server/context.h"
@@ -32,19 +32,20 @@ void get_health(ServerContext& server, const Call&, httplib::Response& res) {
   // A replica whose store is away cannot take changes: 503, so that a readiness probe (Kubernetes)
   // takes it out of the Service until the store answers again.
   const bool store_ok = !server.db || server.db->reachable();
-  send_json(res, {{"status", store_ok ? "ok" : "store unavailable"},
-                  {"version", server_version()},
-                  {"commit", std::string(build_commit())},
-                  {"sessions", server.sessions.size()},
-                  {"streams", server.open_streams.load()},
-                  {"render_threads", server.renderer.threads()},
-                  {"render_threads_started", server.renderer.started()},
-                  // The render threads' GL backend and GL_RENDERER ("" until one has made its context).
-                  {"gl", {{"backend", gl.backend}, {"renderer", gl.renderer}}},
-                  {"store",
-                   {{"kind", server.db ? std::string(server.db->kind()) : "memory"},
-                    {"where", server.db ? server.db->path() : ""},
-                    {"reachable", store_ok}}}},
+  send_json(res,
+            {{"status", store_ok ? "ok" : "store unavailable"},
+             {"version", server_version()},
+             {"commit", std::string(build_commit())},
+             {"sessions", server.sessions.size()},
+             {"streams", server.open_streams.load()},
+             {"render_threads", server.renderer.threads()},
+             {"render_threads_started", server.renderer.started()},
+             // The render threads' GL backend and GL_RENDERER ("" until one has made its context).
+             {"gl", {{"backend", gl.backend}, {"renderer", gl.renderer}}},
+             {"store",
+              {{"kind", server.db ? std::string(server.db->kind()) : "memory"},
+               {"where", server.db ? server.db->path() : ""},
+               {"reachable", store_ok}}}},
             store_ok ? 200 : 503);
 }
 
@@ -139,15 +140,17 @@ ordered_json view_parameters_json(const Limits& limits) {
       for (const std::string_view c : choices) row["choices"].push_back(std::string(c));
     }
     const auto fallback = render::default_value(p);
-    row["default"] = !fallback                               ? ordered_json(nullptr)
-                     : std::holds_alternative<double>(*fallback) ? ordered_json(std::get<double>(*fallback))
-                                                                 : ordered_json(std::get<std::string>(*fallback));
+    row["default"] = !fallback ? ordered_json(nullptr)
+                     : std::holds_alternative<double>(*fallback)
+                         ? ordered_json(std::get<double>(*fallback))
+                         : ordered_json(std::get<std::string>(*fallback));
     row["help"] = std::string(p.help);
     parameters.push_back(row);
   }
   ordered_json layers = ordered_json::array();
   for (const render::LayerInfo& l : render::kLayerTable)
-    layers.push_back({{"name", std::string(l.name)}, {"default", l.on_by_default}, {"help", std::string(l.help)}});
+    layers.push_back(
+        {{"name", std::string(l.name)}, {"default", l.on_by_default}, {"help", std::string(l.help)}});
   ordered_json formats = ordered_json::array();
   for (const record::FormatInfo& f : record::kFormats)
     formats.push_back({{"name", std::string(f.name)},
@@ -165,12 +168,14 @@ std::vector<Route> catalog_routes(const Limits&) {
        .handler = get_health,
        .summary = "Readiness, version, sessions, open streams, render threads and their GL backend, the "
                   "session store",
-       .responses = {{200,
-                      "{\"status\": \"ok\", \"version\", \"sessions\", \"streams\", \"render_threads\", "
-                      "\"render_threads_started\", \"gl\": {\"backend\", \"renderer\"}, \"store\": {\"kind\", "
-                      "\"where\", \"reachable\"}}"},
-                     {503, "the same, with \"status\": \"store unavailable\": the session store does not "
-                           "answer (the replica is not ready)"}}},
+       .responses =
+           {{200,
+             "{\"status\": \"ok\", \"version\", \"sessions\", \"streams\", \"render_threads\", "
+             "\"render_threads_started\", \"gl\": {\"backend\", \"renderer\"}, \"store\": {\"kind\", "
+             "\"where\", \"reachable\"}}"},
+            {503,
+             "the same, with \"status\": \"store unavailable\": the session store does not "
+             "answer (the replica is not ready)"}}},
       {.method = "GET",
        .path = "/api/v1/scenes",
        .operation_id = "list_scenes",

@@ -1,6 +1,8 @@
 // Frames: a session's state as a PNG (lossless) or a JPEG (motion frames: a third of the bytes),
 // rendered in the render pool and cached by ETag (server/frames/frames.h); or as an SVG or PDF figure for a
 // paper (render/figure.h), drawn without GL on the request's thread.
+#include "server/frames/frames.h"
+
 #include <cstdio>
 #include <optional>
 
@@ -9,7 +11,6 @@
 #include "render/jpeg_encoder.h"
 #include "render/snapshot.h"
 #include "server/context.h"
-#include "server/frames/frames.h"
 #include "server/http/problem.h"
 #include "server/routes/routes.h"
 #include "server/sessions/session_store.h"
@@ -37,7 +38,8 @@ void send_frame(ServerContext& server, const Call& call, httplib::Response& res,
     res.status = 304;
     return;
   }
-  const FrameBytes frame = session_frame(server.frames, server.renderer, call.id, *s, f, etag);  // the state may have moved on
+  const FrameBytes frame =
+      session_frame(server.frames, server.renderer, call.id, *s, f, etag);  // the state may have moved on
   res.set_header("ETag", etag);
   res.body.assign(frame->begin(), frame->end());
   res.set_header("Content-Type", jpeg ? "image/jpeg" : "image/png");

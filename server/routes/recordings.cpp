@@ -1,11 +1,12 @@
 // Recordings: POST a time window of a session → 202 and a job (server/jobs/recordings.h); GET its status
 // and progress; GET its file; DELETE cancels or deletes it.
+#include "server/jobs/recordings.h"
+
 #include "engine/number_text.h"
 #include "render/view_parameters.h"
 #include "server/context.h"
 #include "server/frames/frames.h"
 #include "server/http/problem.h"
-#include "server/jobs/recordings.h"
 #include "server/routes/routes.h"
 
 // After Eigen: httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's parameter names.
@@ -73,7 +74,8 @@ RecordingJob recording_job(ServerContext& server, const Call& call, Session& s) 
   const auto format = text("format");
   const std::string formats = record::joined_format_names(", ", " or ");
   if (!format)
-    errors.push_back({"format", body.contains("format") ? body["format"].dump() : "", "is required: " + formats});
+    errors.push_back(
+        {"format", body.contains("format") ? body["format"].dump() : "", "is required: " + formats});
   else if (!record::parse_format(*format))
     errors.push_back({"format", *format, "must be " + formats});
   else
@@ -87,7 +89,8 @@ RecordingJob recording_job(ServerContext& server, const Call& call, Session& s) 
     const json& v = body[key];
     const render::ParameterType type = render::parameter_type(p);
     const bool numeric = type == render::ParameterType::integer || type == render::ParameterType::number;
-    std::optional<std::string> why = render::expectation(p, limits.max_image_side);  // a value of another JSON type
+    std::optional<std::string> why =
+        render::expectation(p, limits.max_image_side);  // a value of another JSON type
     if (numeric && v.is_number())
       why = render::set_parameter(picture, p, v.get<double>(), limits.max_image_side);
     else if (!numeric && v.is_string())
@@ -138,13 +141,14 @@ void get_recording_file(ServerContext& server, const Call& call, httplib::Respon
   const RecordingDownload file = server.recordings.file(call.id);
   res.set_header("Content-Disposition", "attachment; filename=\"" + file.file_name + "\"");
   res.set_header("Cache-Control", "no-store");
-  res.set_content_provider(static_cast<std::size_t>(file.bytes), file.content_type,
-                           [read = file.read](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
-                             const std::string bytes = read(offset, length);
-                             if (bytes.empty()) return false;
-                             sink.write(bytes.data(), bytes.size());
-                             return true;
-                           });
+  res.set_content_provider(
+      static_cast<std::size_t>(file.bytes), file.content_type,
+      [read = file.read](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+        const std::string bytes = read(offset, length);
+        if (bytes.empty()) return false;
+        sink.write(bytes.data(), bytes.size());
+        return true;
+      });
 }
 
 void delete_recording(ServerContext& server, const Call& call, httplib::Response& res) {
@@ -164,8 +168,10 @@ std::vector<Route> recording_routes(const Limits& limits) {
       {"t_start", {{"type", "number"}, {"minimum", 0}, {"default", 0}, {"x-unit", "time"}}},
       {"t_end",
        {{"type", "number"}, {"x-unit", "time"}, {"description", "end of the window (excluded), > t_start"}}},
-      {"fps", {{"type", "number"}, {"minimum", record::kMinFps}, {"maximum", record::kMaxFps}, {"default", 30}}},
-      {"speed", {{"type", "number"}, {"default", 1}, {"description", "simulated time per second of the file"}}},
+      {"fps",
+       {{"type", "number"}, {"minimum", record::kMinFps}, {"maximum", record::kMaxFps}, {"default", 30}}},
+      {"speed",
+       {{"type", "number"}, {"default", 1}, {"description", "simulated time per second of the file"}}},
       {"format", {{"type", "string"}, {"enum", formats}}}};
   // The picture: the frame's query parameters, the same table's rows (render/view_parameters.h).
   for (const QueryParam& p : frame_params(limits)) {

@@ -76,8 +76,9 @@ void create_session(ServerContext& server, const Call& call, httplib::Response& 
     throw ApiError{503, "Too many sessions", {{"", "", "the session limit is reached; retry later"}}, "30"};
   try {
     // Counted until deleted (here or, with a store, through another replica) or expired.
-    server.quotas.add_session(call.client, id, session,
-                              [&server](const std::string& other) { return server.sessions.deleted_elsewhere(other); });
+    server.quotas.add_session(call.client, id, session, [&server](const std::string& other) {
+      return server.sessions.deleted_elsewhere(other);
+    });
   } catch (const ApiError&) {
     server.sessions.erase(id);
     throw;

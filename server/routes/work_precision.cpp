@@ -1,6 +1,8 @@
 // Work-precision: POST a scene (given, a preset, or a session's) → 202 and a job
 // (server/jobs/work_precision_jobs.h); GET its status, progress and result; GET its plot (SVG, PNG) and
 // CSV; DELETE cancels or deletes it.
+#include "workprecision/work_precision.h"
+
 #include <cmath>
 #include <set>
 
@@ -11,7 +13,6 @@
 #include "server/context.h"
 #include "server/http/problem.h"
 #include "server/routes/routes.h"
-#include "workprecision/work_precision.h"
 
 // After Eigen: httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's parameter names.
 #include <httplib.h>

@@ -79,7 +79,8 @@ std::string store_url_for_messages(const std::string& url) {
     if (std::strcmp(o->keyword, "dbname") == 0) db = o->val;
   }
   PQconninfoFree(options);
-  return "postgresql://" + (user.empty() ? "" : user + "@") + host + (port.empty() ? "" : ":" + port) + "/" + db;
+  return "postgresql://" + (user.empty() ? "" : user + "@") + host + (port.empty() ? "" : ":" + port) + "/" +
+         db;
 }
 
 namespace {
@@ -171,8 +172,13 @@ void PostgresStore::connect_locked() {
   }
   PQfinish(conn_);
   // The URL last: its own settings win over these defaults (expand_dbname = 1).
-  const char* keys[] = {"connect_timeout", "tcp_user_timeout", "keepalives_idle", "client_encoding",
-                        "application_name", "dbname", nullptr};
+  const char* keys[] = {"connect_timeout",
+                        "tcp_user_timeout",
+                        "keepalives_idle",
+                        "client_encoding",
+                        "application_name",
+                        "dbname",
+                        nullptr};
   const char* values[] = {"3", "10000", "10", "UTF8", "spinfold", url_.c_str(), nullptr};
   conn_ = PQconnectdbParams(keys, values, 1);
   if (PQstatus(conn_) != CONNECTION_OK) {
@@ -222,8 +228,8 @@ void PostgresStore::migrate_locked() {
   const int version = stored.empty() ? 0 : std::atoi(stored.c_str());
   if (version > kSchemaVersion) {
     PQclear(PQexec(conn_, "ROLLBACK"));
-    throw StoreError(path_ + ": made by a newer Spinfold (schema " + std::to_string(version) + ", this one reads " +
-                     std::to_string(kSchemaVersion) + ")");
+    throw StoreError(path_ + ": made by a newer Spinfold (schema " + std::to_string(version) +
+                     ", this one reads " + std::to_string(kSchemaVersion) + ")");
   }
   for (int step = version; step < kSchemaVersion; ++step) {
     exec(kMigrations[step]);
@@ -232,8 +238,8 @@ void PostgresStore::migrate_locked() {
   exec("COMMIT");
 }
 
-PostgresStore::Result PostgresStore::run(const char* sql, const std::vector<std::string>& params,
-                                                 Retry retry, const std::vector<bool>& binary, bool binary_result) {
+PostgresStore::Result PostgresStore::run(const char* sql, const std::vector<std::string>& params, Retry retry,
+                                         const std::vector<bool>& binary, bool binary_result) {
   std::vector<const char*> values;
   std::vector<int> lengths, formats;
   for (std::size_t i = 0; i < params.size(); ++i) {
@@ -284,15 +290,21 @@ std::int64_t PostgresStore::save(const StoredSession& row) {
   const std::lock_guard lock(mutex_);
   // One statement is one transaction: the version test and the write are atomic across replicas.
   static const std::string insert =
-      std::string("INSERT INTO sessions (id, version, scene, timeline, t, playing, rate, last_used) "
-                  "VALUES ($1, 1, $2, $3, $4, $5, $6, ") +
+      std::string(
+          "INSERT INTO sessions (id, version, scene, timeline, t, playing, rate, last_used) "
+          "VALUES ($1, 1, $2, $3, $4, $5, $6, ") +
       kNowMs + ") ON CONFLICT (id) DO NOTHING";
   static const std::string update =
-      std::string("UPDATE sessions SET version = version + 1, scene = $2, timeline = $3, t = $4, playing = $5, "
-                  "rate = $6, last_used = ") +
+      std::string(
+          "UPDATE sessions SET version = version + 1, scene = $2, timeline = $3, t = $4, playing = $5, "
+          "rate = $6, last_used = ") +
       kNowMs + " WHERE id = $1 AND version = $7";
-  std::vector<std::string> params = {row.id, row.scene, row.timeline, number_text(row.t),
-                                     row.playing ? "true" : "false", number_text(row.rate)};
+  std::vector<std::string> params = {row.id,
+                                     row.scene,
+                                     row.timeline,
+                                     number_text(row.t),
+                                     row.playing ? "true" : "false",
+                                     number_text(row.rate)};
   if (row.version != 0) params.push_back(std::to_string(row.version));
   const Result r = run((row.version == 0 ? insert : update).c_str(), params, Retry::no);
   return r.changed() == 1 ? row.version + 1 : 0;
@@ -341,18 +353,21 @@ bool PostgresStore::save_recording(const StoredRecording& row) {
   const std::lock_guard lock(mutex_);
   // Only an active row changes: a cancel from another replica, or a deletion, is final.
   static const std::string insert =
-      std::string("INSERT INTO recordings (id, owner, status, json, reason, bytes, updated) "
-                  "VALUES ($1, $2, $3, $4, $5, $6, ") +
+      std::string(
+          "INSERT INTO recordings (id, owner, status, json, reason, bytes, updated) "
+          "VALUES ($1, $2, $3, $4, $5, $6, ") +
       kNowMs +
       ") ON CONFLICT (id) DO UPDATE SET owner = $2, status = $3, json = $4, reason = $5, bytes = $6, "
       "updated = " +
       kNowMs + " WHERE recordings." + kActive;
-  static const std::string update = std::string(
-                                        "UPDATE recordings SET owner = $2, status = $3, json = $4, reason = $5, "
-                                        "bytes = $6, updated = ") +
-                                    kNowMs + " WHERE id = $1 AND " + kActive;
-  const Result r = run((row.status == "queued" ? insert : update).c_str(),
-                       {row.id, row.owner, row.status, row.json, row.reason, std::to_string(row.bytes)}, Retry::no);
+  static const std::string update =
+      std::string(
+          "UPDATE recordings SET owner = $2, status = $3, json = $4, reason = $5, "
+          "bytes = $6, updated = ") +
+      kNowMs + " WHERE id = $1 AND " + kActive;
+  const Result r =
+      run((row.status == "queued" ? insert : update).c_str(),
+          {row.id, row.owner, row.status, row.json, row.reason, std::to_string(row.bytes)}, Retry::no);
   return r.changed() == 1;
 }
 
@@ -373,8 +388,8 @@ std::optional<StoredRecording> PostgresStore::load_recording(const std::string& 
 
 bool PostgresStore::cancel_recording(const std::string& id) {
   const std::lock_guard lock(mutex_);
-  static const std::string sql =
-      std::string("UPDATE recordings SET status = 'cancelled', updated = ") + kNowMs + " WHERE id = $1 AND " + kActive;
+  static const std::string sql = std::string("UPDATE recordings SET status = 'cancelled', updated = ") +
+                                 kNowMs + " WHERE id = $1 AND " + kActive;
   return run(sql.c_str(), {id}, Retry::no).changed() == 1;
 }
 
@@ -397,7 +412,8 @@ std::optional<std::string> PostgresStore::load_recording_chunk(const std::string
 bool PostgresStore::remove_recording(const std::string& id) {
   const std::lock_guard lock(mutex_);
   // One statement: the row and its file go together.
-  return run("WITH chunks AS (DELETE FROM recording_chunks WHERE id = $1) DELETE FROM recordings WHERE id = $1",
+  return run("WITH chunks AS (DELETE FROM recording_chunks WHERE id = $1) DELETE FROM recordings WHERE id = "
+             "$1",
              {id}, Retry::no)
              .changed() > 0;
 }
@@ -415,13 +431,15 @@ std::int64_t PostgresStore::recording_bytes() {
 }
 
 void PostgresStore::expire_recordings(std::chrono::seconds age, std::chrono::seconds lost,
-                                          const std::string& reason) {
+                                      const std::string& reason) {
   const std::lock_guard lock(mutex_);
   using std::chrono::milliseconds;
-  static const std::string fail = std::string("UPDATE recordings SET status = 'failed', reason = $2, bytes = 0, "
-                                              "updated = ") +
+  static const std::string fail = std::string(
+                                      "UPDATE recordings SET status = 'failed', reason = $2, bytes = 0, "
+                                      "updated = ") +
                                   kNowMs + " WHERE updated < " + kNowMs + " - $1::bigint AND " + kActive;
-  run(fail.c_str(), {std::to_string(std::chrono::duration_cast<milliseconds>(lost).count()), reason}, Retry::once);
+  run(fail.c_str(), {std::to_string(std::chrono::duration_cast<milliseconds>(lost).count()), reason},
+      Retry::once);
   static const std::string old =
       std::string("DELETE FROM recordings WHERE updated < ") + kNowMs + " - $1::bigint AND NOT " + kActive;
   run(old.c_str(), {std::to_string(std::chrono::duration_cast<milliseconds>(age).count())}, Retry::once);

@@ -45,7 +45,8 @@ class PostgresStore final : public Store {
   bool remove_recording(const std::string& id) override;
   void touch_recordings(const std::string& owner) override;
   std::int64_t recording_bytes() override;
-  void expire_recordings(std::chrono::seconds age, std::chrono::seconds lost, const std::string& reason) override;
+  void expire_recordings(std::chrono::seconds age, std::chrono::seconds lost,
+                         const std::string& reason) override;
 
   // The schema version this build creates and reads.
   static constexpr int kSchemaVersion = 2;

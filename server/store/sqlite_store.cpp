@@ -249,13 +249,15 @@ bool SqliteStore::save_recording(const StoredRecording& row) {
   const std::lock_guard lock(mutex_);
   // Only an active row changes: a cancel from another replica, or a deletion, is final.
   static const std::string insert =
-      std::string("INSERT INTO recordings (id, owner, status, json, reason, bytes, updated) "
-                  "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7) ON CONFLICT (id) DO UPDATE SET owner = ?2, status = ?3, "
-                  "json = ?4, reason = ?5, bytes = ?6, updated = ?7 WHERE recordings.") +
+      std::string(
+          "INSERT INTO recordings (id, owner, status, json, reason, bytes, updated) "
+          "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7) ON CONFLICT (id) DO UPDATE SET owner = ?2, status = ?3, "
+          "json = ?4, reason = ?5, bytes = ?6, updated = ?7 WHERE recordings.") +
       kActive;
   static const std::string update =
-      std::string("UPDATE recordings SET owner = ?2, status = ?3, json = ?4, reason = ?5, bytes = ?6, "
-                  "updated = ?7 WHERE id = ?1 AND ") +
+      std::string(
+          "UPDATE recordings SET owner = ?2, status = ?3, json = ?4, reason = ?5, bytes = ?6, "
+          "updated = ?7 WHERE id = ?1 AND ") +
       kActive;
   Statement q(*this, row.status == "queued" ? insert.c_str() : update.c_str());
   q.text(1, row.id).text(2, row.owner).text(3, row.status).text(4, row.json).text(5, row.reason);
@@ -266,7 +268,8 @@ bool SqliteStore::save_recording(const StoredRecording& row) {
 
 std::optional<StoredRecording> SqliteStore::load_recording(const std::string& id) {
   const std::lock_guard lock(mutex_);
-  Statement q(*this, "SELECT id, owner, status, json, reason, bytes, ?2 - updated FROM recordings WHERE id = ?1");
+  Statement q(*this,
+              "SELECT id, owner, status, json, reason, bytes, ?2 - updated FROM recordings WHERE id = ?1");
   q.text(1, id).integer(2, now_ms());
   if (!q.step()) return std::nullopt;
   return StoredRecording{.id = q.column_text(0),
@@ -319,7 +322,8 @@ bool SqliteStore::remove_recording(const std::string& id) {
 
 void SqliteStore::touch_recordings(const std::string& owner) {
   const std::lock_guard lock(mutex_);
-  static const std::string sql = std::string("UPDATE recordings SET updated = ?2 WHERE owner = ?1 AND ") + kActive;
+  static const std::string sql =
+      std::string("UPDATE recordings SET updated = ?2 WHERE owner = ?1 AND ") + kActive;
   Statement q(*this, sql.c_str());
   q.text(1, owner).integer(2, now_ms());
   q.step();
@@ -332,16 +336,19 @@ std::int64_t SqliteStore::recording_bytes() {
 }
 
 void SqliteStore::expire_recordings(std::chrono::seconds age, std::chrono::seconds lost,
-                                        const std::string& reason) {
+                                    const std::string& reason) {
   const std::lock_guard lock(mutex_);
   using std::chrono::milliseconds;
   const std::int64_t now = now_ms();
-  static const std::string fail = std::string(
-                                      "UPDATE recordings SET status = 'failed', reason = ?2, bytes = 0, updated = ?3 "
-                                      "WHERE updated < ?1 AND ") +
-                                  kActive;
+  static const std::string fail =
+      std::string(
+          "UPDATE recordings SET status = 'failed', reason = ?2, bytes = 0, updated = ?3 "
+          "WHERE updated < ?1 AND ") +
+      kActive;
   Statement failed(*this, fail.c_str());
-  failed.integer(1, now - std::chrono::duration_cast<milliseconds>(lost).count()).text(2, reason).integer(3, now);
+  failed.integer(1, now - std::chrono::duration_cast<milliseconds>(lost).count())
+      .text(2, reason)
+      .integer(3, now);
   failed.step();
   static const std::string old = std::string("DELETE FROM recordings WHERE updated < ?1 AND NOT ") + kActive;
   Statement finished(*this, old.c_str());

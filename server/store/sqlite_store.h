@@ -17,7 +17,7 @@ class SqliteStore final : public Store {
   // (PRAGMA quick_check); StoreError when the directory is unwritable or the file is not a sound
   // Spinfold database, or stays locked past `busy_timeout`.
   explicit SqliteStore(const std::string& dir,
-                           std::chrono::milliseconds busy_timeout = std::chrono::seconds(5));
+                       std::chrono::milliseconds busy_timeout = std::chrono::seconds(5));
   ~SqliteStore() override;
   SqliteStore(const SqliteStore&) = delete;
   SqliteStore& operator=(const SqliteStore&) = delete;
@@ -41,7 +41,8 @@ class SqliteStore final : public Store {
   bool remove_recording(const std::string& id) override;
   void touch_recordings(const std::string& owner) override;
   std::int64_t recording_bytes() override;
-  void expire_recordings(std::chrono::seconds age, std::chrono::seconds lost, const std::string& reason) override;
+  void expire_recordings(std::chrono::seconds age, std::chrono::seconds lost,
+                         const std::string& reason) override;
 
  private:
   struct Statement;

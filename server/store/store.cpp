@@ -14,7 +14,8 @@ bool is_postgres_url(const std::string& url) {
 std::unique_ptr<Store> open_store(const std::string& url, const std::string& data_dir) {
   if (!url.empty()) {
     if (!is_postgres_url(url))
-      throw StoreError("--store '" + url + "': not a postgresql:// URL (leave it out for SQLite in --data-dir)");
+      throw StoreError("--store '" + url +
+                       "': not a postgresql:// URL (leave it out for SQLite in --data-dir)");
     return std::make_unique<PostgresStore>(url);
   }
   if (data_dir.empty()) return nullptr;

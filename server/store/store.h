@@ -36,7 +36,7 @@ struct StoredSession {
 // (server/jobs/recordings.h says why the store and not a shared path).
 struct StoredRecording {
   std::string id{};
-  std::string owner{};           // the replica recording it (Recordings::instance)
+  std::string owner{};         // the replica recording it (Recordings::instance)
   std::string status{};        // queued, running, done, failed or cancelled
   std::string json{};          // the API's view of it as the owner last wrote it (its status and reason
                                // are the columns': a cancel or a lost owner changes only those)
@@ -87,7 +87,8 @@ class Store {
   // Active rows whose owner was silent longer than `lost` become failed with `reason`; finished rows
   // older than `age` are deleted with their files, and so are files whose row is neither active nor
   // done (a cancel that came while the owner stored the file).
-  virtual void expire_recordings(std::chrono::seconds age, std::chrono::seconds lost, const std::string& reason) = 0;
+  virtual void expire_recordings(std::chrono::seconds age, std::chrono::seconds lost,
+                                 const std::string& reason) = 0;
 };
 
 // The store `spinfold serve` was asked for: `url` "postgresql://…" (or "postgres://…") is PostgreSQL;

@@ -36,8 +36,13 @@ struct TestState {
 using Queue = JobQueue<TestState>;
 
 JobQuota quota(int per_client, int total) {
-  return {.per_client_limit = "max_tests_per_client", .per_client = per_client, .per_client_reason = "one each",
-          .total_limit = "max_tests", .total = total, .total_reason = "that many", .retry_after = "7"};
+  return {.per_client_limit = "max_tests_per_client",
+          .per_client = per_client,
+          .per_client_reason = "one each",
+          .total_limit = "max_tests",
+          .total = total,
+          .total_reason = "that many",
+          .retry_after = "7"};
 }
 
 // Runs a job: `polls` steps of 1 ms, each raising the progress; done unless cancelled.

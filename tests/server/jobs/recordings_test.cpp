@@ -102,8 +102,10 @@ class Recording : public ::testing::TestWithParam<std::string> {
       shared_store = r.store.get();
     }
     if (shared_store) {
-      if (kind == "sqlite") o.data_dir = shared_store->serve_args()[1];
-      else o.store = shared_store->url();
+      if (kind == "sqlite")
+        o.data_dir = shared_store->serve_args()[1];
+      else
+        o.store = shared_store->url();
     }
     r.server = std::make_unique<ApiServer>(o);
     r.port = r.server->bind();
@@ -347,8 +349,10 @@ class RecordingAcrossReplicas : public Recording {
 };
 
 TEST_P(RecordingAcrossReplicas, TheOtherReplicaServesItsStatusAndTheFileByteForByte) {
-  const json clip{{"t_start", 0.5}, {"t_end", 1.7}, {"fps", 10}, {"width", 64}, {"height", 48}, {"format", "gif"}};
-  auto created = on("a").Post("/api/v1/sessions", R"({"preset": "spin_vs_geodesic_sphere"})", "application/json");
+  const json clip{{"t_start", 0.5}, {"t_end", 1.7}, {"fps", 10},
+                  {"width", 64},    {"height", 48}, {"format", "gif"}};
+  auto created =
+      on("a").Post("/api/v1/sessions", R"({"preset": "spin_vs_geodesic_sphere"})", "application/json");
   ASSERT_EQ(created->status, 201);
   const std::string session = json::parse(created->body)["id"];
   auto res = on("a").Post("/api/v1/sessions/" + session + "/recordings", clip.dump(), "application/json");
@@ -361,7 +365,8 @@ TEST_P(RecordingAcrossReplicas, TheOtherReplicaServesItsStatusAndTheFileByteForB
   ASSERT_EQ(file->status, 200);
   EXPECT_EQ(file->get_header_value("Content-Type"), "image/gif");
   EXPECT_EQ(file->body.size(), done["bytes"].get<std::size_t>());
-  EXPECT_EQ(file->get_header_value("Content-Disposition"), on("a").Get(url + "/file")->get_header_value("Content-Disposition"));
+  EXPECT_EQ(file->get_header_value("Content-Disposition"),
+            on("a").Get(url + "/file")->get_header_value("Content-Disposition"));
   // The independent check: the same clip recorded by a server without a store, from its own file on
   // disk (no store, no chunks), has the same bytes.
   if (!servers_.count("memory")) start("memory", "memory", options());
@@ -373,7 +378,8 @@ TEST_P(RecordingAcrossReplicas, TheOtherReplicaServesItsStatusAndTheFileByteForB
   const std::string local_url = json::parse(local->body)["url"];
   for (int i = 0; i < 6000 && json::parse(alone.Get(local_url)->body)["status"] != "done"; ++i)
     std::this_thread::sleep_for(5ms);
-  EXPECT_TRUE(alone.Get(local_url + "/file")->body == file->body) << "the store's file differs from the disk's";
+  EXPECT_TRUE(alone.Get(local_url + "/file")->body == file->body)
+      << "the store's file differs from the disk's";
   // Deleted through A: gone on B, file and all.
   EXPECT_EQ(on("a").Delete(url)->status, 204);
   EXPECT_EQ(on("b").Get(url)->status, 404);
@@ -382,11 +388,13 @@ TEST_P(RecordingAcrossReplicas, TheOtherReplicaServesItsStatusAndTheFileByteForB
 }
 
 TEST_P(RecordingAcrossReplicas, ACancelThroughTheOtherReplicaStopsTheJobWhereItRuns) {
-  auto created = on("a").Post("/api/v1/sessions", R"({"preset": "spin_vs_geodesic_sphere"})", "application/json");
+  auto created =
+      on("a").Post("/api/v1/sessions", R"({"preset": "spin_vs_geodesic_sphere"})", "application/json");
   const std::string session = json::parse(created->body)["id"];
   // 1,800 frames: minutes of work if it were not stopped.
   const json long_clip{{"t_end", 60.0}, {"fps", 30}, {"width", 64}, {"height", 48}, {"format", "webm"}};
-  auto res = on("a").Post("/api/v1/sessions/" + session + "/recordings", long_clip.dump(), "application/json");
+  auto res =
+      on("a").Post("/api/v1/sessions/" + session + "/recordings", long_clip.dump(), "application/json");
   ASSERT_EQ(res->status, 202) << res->body;
   const std::string url = json::parse(res->body)["url"];
   for (int i = 0; i < 4000 && json::parse(on("b").Get(url)->body)["status"] != "running"; ++i)
@@ -397,9 +405,10 @@ TEST_P(RecordingAcrossReplicas, ACancelThroughTheOtherReplicaStopsTheJobWhereItR
   // A's only recording thread is free again: a short recording there is done well before the long
   // one could have been.
   const auto start = std::chrono::steady_clock::now();
-  auto next = on("a").Post("/api/v1/sessions/" + session + "/recordings",
-                           json{{"t_end", 0.2}, {"fps", 10}, {"width", 64}, {"height", 48}, {"format", "gif"}}.dump(),
-                           "application/json");
+  auto next =
+      on("a").Post("/api/v1/sessions/" + session + "/recordings",
+                   json{{"t_end", 0.2}, {"fps", 10}, {"width", 64}, {"height", 48}, {"format", "gif"}}.dump(),
+                   "application/json");
   ASSERT_EQ(next->status, 202) << next->body;
   EXPECT_EQ(follow_on("a", json::parse(next->body)["url"])["status"], "done");
   const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -412,9 +421,13 @@ TEST_P(RecordingAcrossReplicas, ACancelThroughTheOtherReplicaStopsTheJobWhereItR
 TEST_P(RecordingAcrossReplicas, ARecordingWhoseReplicaWentSilentFailsSayingWhy) {
   // A row as a replica that was lost (SIGKILL, its host gone) leaves it: running, never touched again.
   const auto db = store_->open();
-  ASSERT_TRUE(db->save_recording({.id = "lostrecording", .owner = "gone:1:x", .status = "queued",
+  ASSERT_TRUE(db->save_recording({.id = "lostrecording",
+                                  .owner = "gone:1:x",
+                                  .status = "queued",
                                   .json = R"({"id":"lostrecording","status":"queued","progress":0})"}));
-  ASSERT_TRUE(db->save_recording({.id = "lostrecording", .owner = "gone:1:x", .status = "running",
+  ASSERT_TRUE(db->save_recording({.id = "lostrecording",
+                                  .owner = "gone:1:x",
+                                  .status = "running",
                                   .json = R"({"id":"lostrecording","status":"running","progress":0.25})"}));
   const std::string url = "/api/v1/recordings/lostrecording";
   EXPECT_EQ(json::parse(on("b").Get(url)->body)["status"], "running");

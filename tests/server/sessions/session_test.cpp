@@ -1,9 +1,9 @@
 // The session store: its limit and the expiry of idle sessions.
-#include "server/sessions/session_store.h"
-
 #include <gtest/gtest.h>
 
 #include <thread>
+
+#include "server/sessions/session_store.h"
 
 namespace spinfold::server {
 namespace {

@@ -6,8 +6,6 @@
 #include <gtest/gtest.h>
 #include <libpq-fe.h>
 #include <sqlite3.h>
-
-#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include <atomic>
@@ -16,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <string>
 #include <thread>
@@ -28,12 +27,12 @@ namespace {
 
 using spinfold::server::open_store;
 using spinfold::server::Store;
+using spinfold::server::StoredSession;
+using spinfold::server::StoreError;
 using spinfold::test::admin;
 using spinfold::test::Backend;
 using spinfold::test::fixture;
 using spinfold::test::postgres_dir;
-using spinfold::server::StoredSession;
-using spinfold::server::StoreError;
 namespace fs = std::filesystem;
 
 class StoreConformance : public testing::TestWithParam<std::string> {
@@ -56,8 +55,14 @@ StoredSession row(const std::string& id, double t = 0.0) {
 
 TEST_P(StoreConformance, TimesComeBackBitForBit) {
   // Times a session reaches: thirds, subnormals, extremes, negative zero, random bit patterns.
-  std::vector<double> times = {1.0 / 3.0, 0.1, -0.0, std::numeric_limits<double>::denorm_min(),
-                               std::numeric_limits<double>::max(), 1e-300, 2.5, 123456.789e10};
+  std::vector<double> times = {1.0 / 3.0,
+                               0.1,
+                               -0.0,
+                               std::numeric_limits<double>::denorm_min(),
+                               std::numeric_limits<double>::max(),
+                               1e-300,
+                               2.5,
+                               123456.789e10};
   std::mt19937_64 random(27);
   for (int i = 0; i < 200; ++i) {
     const double t = std::bit_cast<double>(random());
@@ -121,8 +126,10 @@ TEST_P(StoreConformance, ConcurrentWritersLoseNoChange) {
       for (int done = 0; done < kEach;) {
         StoredSession r = *db->load("counter");
         r.t += 1.0;  // each write adds one: a lost update would show in the sum
-        if (db->save(r) != 0) ++done;
-        else ++conflicts;
+        if (db->save(r) != 0)
+          ++done;
+        else
+          ++conflicts;
       }
     });
   for (auto& t : threads) t.join();
@@ -174,13 +181,14 @@ TEST(SqliteStore, AFileOfSchemaOneIsMigratedKeepingItsSessions) {
     // Schema 1 as the first SQLite release made it: sessions only.
     sqlite3* db = nullptr;
     ASSERT_EQ(sqlite3_open((dir / "sessions.db").c_str(), &db), SQLITE_OK);
-    ASSERT_EQ(sqlite3_exec(db,
-                           "PRAGMA application_id = 1397771846; PRAGMA user_version = 1; "
-                           "CREATE TABLE sessions (id TEXT PRIMARY KEY NOT NULL, version INTEGER NOT NULL, "
-                           "scene TEXT NOT NULL, timeline TEXT NOT NULL, t REAL NOT NULL, playing INTEGER NOT NULL, "
-                           "rate REAL NOT NULL, last_used INTEGER NOT NULL) WITHOUT ROWID; "
-                           "INSERT INTO sessions VALUES ('kept', 3, '{}', '[]', 2.5, 0, 1.0, 0)",
-                           nullptr, nullptr, nullptr),
+    ASSERT_EQ(sqlite3_exec(
+                  db,
+                  "PRAGMA application_id = 1397771846; PRAGMA user_version = 1; "
+                  "CREATE TABLE sessions (id TEXT PRIMARY KEY NOT NULL, version INTEGER NOT NULL, "
+                  "scene TEXT NOT NULL, timeline TEXT NOT NULL, t REAL NOT NULL, playing INTEGER NOT NULL, "
+                  "rate REAL NOT NULL, last_used INTEGER NOT NULL) WITHOUT ROWID; "
+                  "INSERT INTO sessions VALUES ('kept', 3, '{}', '[]', 2.5, 0, 1.0, 0)",
+                  nullptr, nullptr, nullptr),
               SQLITE_OK);
     sqlite3_close(db);
   }
@@ -335,20 +343,22 @@ TEST_F(PostgresStore, MakesItsSchemaOnceAndRefusesANewerOne) {
 
 TEST_F(PostgresStore, ADatabaseOfSchemaOneIsMigratedKeepingItsSessions) {
   // Schema 1 as the first PostgreSQL release made it: sessions only.
-  ASSERT_TRUE(admin(backend_->url(),
-                    "CREATE TABLE spinfold_schema (version integer NOT NULL); INSERT INTO spinfold_schema VALUES (1); "
-                    "CREATE TABLE sessions (id text PRIMARY KEY, version bigint NOT NULL, scene text NOT NULL, "
-                    "timeline text NOT NULL, t double precision NOT NULL, playing boolean NOT NULL, "
-                    "rate double precision NOT NULL, last_used bigint NOT NULL); "
-                    "INSERT INTO sessions VALUES ('kept', 3, '{}', '[]', 2.5, false, 1, 0)"));
+  ASSERT_TRUE(admin(
+      backend_->url(),
+      "CREATE TABLE spinfold_schema (version integer NOT NULL); INSERT INTO spinfold_schema VALUES (1); "
+      "CREATE TABLE sessions (id text PRIMARY KEY, version bigint NOT NULL, scene text NOT NULL, "
+      "timeline text NOT NULL, t double precision NOT NULL, playing boolean NOT NULL, "
+      "rate double precision NOT NULL, last_used bigint NOT NULL); "
+      "INSERT INTO sessions VALUES ('kept', 3, '{}', '[]', 2.5, false, 1, 0)"));
   const auto db = backend_->open();
   const auto kept = db->load("kept");
   ASSERT_TRUE(kept);
   EXPECT_EQ(kept->version, 3);
   EXPECT_EQ(kept->t, 2.5);
   EXPECT_TRUE(db->save_recording(recording("r", "queued")));
-  EXPECT_TRUE(admin(backend_->url(), "DO $$ BEGIN IF (SELECT max(version) FROM spinfold_schema) <> 2 "
-                                     "THEN RAISE 'not migrated'; END IF; END $$"));
+  EXPECT_TRUE(admin(backend_->url(),
+                    "DO $$ BEGIN IF (SELECT max(version) FROM spinfold_schema) <> 2 "
+                    "THEN RAISE 'not migrated'; END IF; END $$"));
 }
 
 TEST_F(PostgresStore, AMalformedUrlIsAnErrorAndMessagesHideThePassword) {
