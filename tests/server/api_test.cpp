@@ -31,6 +31,8 @@
 // After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
 #include <httplib.h>
 
+#include "test_server.h"
+
 namespace spinfold::server {
 namespace {
 
@@ -51,24 +53,10 @@ class Api : public ::testing::Test {
     options.limits.requests_per_second_per_client = 0.0;
     return options;
   }
-  static void SetUpTestSuite() {
-    server_ = new ApiServer(test_options());
-    port_ = server_->bind();
-    ASSERT_GT(port_, 0);
-    thread_ = new std::thread([] { server_->listen(); });
-  }
-  static void TearDownTestSuite() {
-    server_->stop();
-    thread_->join();
-    delete thread_;
-    delete server_;
-  }
+  static void SetUpTestSuite() { server_.start(test_options()); }
+  static void TearDownTestSuite() { server_.stop(); }
 
-  static httplib::Client client() {
-    httplib::Client c("127.0.0.1", port_);
-    c.set_read_timeout(30, 0);
-    return c;
-  }
+  static httplib::Client client() { return server_.client(30); }
   static std::string create(const std::string& body) {
     auto res = client().Post("/api/v1/sessions", body, "application/json");
     EXPECT_TRUE(res);
@@ -77,14 +65,10 @@ class Api : public ::testing::Test {
   }
   static void remove(const std::string& id) { client().Delete("/api/v1/sessions/" + id); }
 
-  static ApiServer* server_;
-  static std::thread* thread_;
-  static int port_;
+  static test::TestServer server_;
 };
 
-ApiServer* Api::server_ = nullptr;
-std::thread* Api::thread_ = nullptr;
-int Api::port_ = 0;
+test::TestServer Api::server_;
 
 TEST_F(Api, HealthScenesAndIntegrators) {
   auto c = client();
@@ -645,7 +629,7 @@ TEST_F(Api, DroppedClientsDoNotHurtTheServer) {
     const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
     sockaddr_in address{};
     address.sin_family = AF_INET;
-    address.sin_port = htons(static_cast<std::uint16_t>(port_));
+    address.sin_port = htons(static_cast<std::uint16_t>(server_.port()));
     address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
     const std::string request = "GET " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n";
@@ -973,7 +957,7 @@ TEST_F(Api, APostWithoutContentLengthIsToldWhy) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
   sockaddr_in address{};
   address.sin_family = AF_INET;
-  address.sin_port = htons(static_cast<std::uint16_t>(port_));
+  address.sin_port = htons(static_cast<std::uint16_t>(server_.port()));
   address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
   const std::string request =

@@ -24,6 +24,8 @@
 // After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
 #include <httplib.h>
 
+#include "test_server.h"
+
 namespace spinfold::server {
 namespace {
 
@@ -85,22 +87,10 @@ class Live : public ::testing::Test {
     options.threads = 16;
     options.render_threads = 2;
     options.limits.requests_per_second_per_client = 0.0;
-    server_ = new ApiServer(options);
-    port_ = server_->bind();
-    ASSERT_GT(port_, 0);
-    thread_ = new std::thread([] { server_->listen(); });
+    server_.start(options);
   }
-  static void TearDownTestSuite() {
-    server_->stop();
-    thread_->join();
-    delete thread_;
-    delete server_;
-  }
-  static httplib::Client client() {
-    httplib::Client c("127.0.0.1", port_);
-    c.set_read_timeout(30, 0);
-    return c;
-  }
+  static void TearDownTestSuite() { server_.stop(); }
+  static httplib::Client client() { return server_.client(30); }
   static std::string create() {
     auto res = client().Post("/api/v1/sessions", "{}", "application/json");
     EXPECT_EQ(res->status, 201);
@@ -119,7 +109,7 @@ class Live : public ::testing::Test {
     std::thread thread;
     Watch(const std::string& path, std::chrono::seconds silence) {
       thread = std::thread([this, path, silence] {
-        httplib::Client c("127.0.0.1", port_);
+        httplib::Client c("127.0.0.1", server_.port());
         c.set_read_timeout(silence);
         auto res = c.Get(
             path,
@@ -149,14 +139,10 @@ class Live : public ::testing::Test {
     }
   };
 
-  static ApiServer* server_;
-  static std::thread* thread_;
-  static int port_;
+  static test::TestServer server_;
 };
 
-ApiServer* Live::server_ = nullptr;
-std::thread* Live::thread_ = nullptr;
-int Live::port_ = 0;
+test::TestServer Live::server_;
 
 // A paused session: its still frame (a PNG) at once, then nothing at all.
 TEST_F(Live, PausedSessionSendsOneStillFrameThenNothing) {
@@ -254,7 +240,7 @@ TEST_F(Live, ASlowReaderGetsFewerNewerFramesNotAQueue) {
   ::setsockopt(sock, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
   sockaddr_in address{};
   address.sin_family = AF_INET;
-  address.sin_port = htons(static_cast<std::uint16_t>(port_));
+  address.sin_port = htons(static_cast<std::uint16_t>(server_.port()));
   address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   ASSERT_EQ(::connect(sock, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
   const std::string request = "GET " + session + "/live?viewer=slow HTTP/1.1\r\nHost: x\r\n\r\n";

@@ -19,6 +19,8 @@
 // After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
 #include <httplib.h>
 
+#include "test_server.h"
+
 namespace spinfold::server {
 namespace {
 
@@ -39,41 +41,25 @@ class ViewParameterTable : public ::testing::Test {
     return options;
   }
   static void SetUpTestSuite() {
-    server_ = new ApiServer(options());
-    port_ = server_->bind();
-    ASSERT_GT(port_, 0);
-    thread_ = new std::thread([] { server_->listen(); });
+    server_.start(options());
     auto res =
         client().Post("/api/v1/sessions", R"({"preset": "spin_vs_geodesic_sphere"})", "application/json");
     ASSERT_EQ(res->status, 201) << res->body;
     session_ = json::parse(res->body)["id"];
   }
-  static void TearDownTestSuite() {
-    server_->stop();
-    thread_->join();
-    delete thread_;
-    delete server_;
-  }
-  static httplib::Client client() {
-    httplib::Client c("127.0.0.1", port_);
-    c.set_read_timeout(60, 0);
-    return c;
-  }
+  static void TearDownTestSuite() { server_.stop(); }
+  static httplib::Client client() { return server_.client(60); }
   static json get(const std::string& path) {
     auto res = client().Get(path);
     EXPECT_TRUE(res);
     EXPECT_EQ(res->status, 200) << path;
     return json::parse(res->body);
   }
-  static ApiServer* server_;
-  static std::thread* thread_;
-  static int port_;
+  static test::TestServer server_;
   static std::string session_;
 };
 
-ApiServer* ViewParameterTable::server_ = nullptr;
-std::thread* ViewParameterTable::thread_ = nullptr;
-int ViewParameterTable::port_ = 0;
+test::TestServer ViewParameterTable::server_;
 std::string ViewParameterTable::session_;
 
 std::set<std::string> table_names() {

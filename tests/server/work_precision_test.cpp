@@ -15,6 +15,8 @@
 // After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
 #include <httplib.h>
 
+#include "test_server.h"
+
 namespace spinfold::server {
 namespace {
 
@@ -31,22 +33,10 @@ class WorkPrecision : public ::testing::Test {
     options.threads = 8;
     options.render_threads = 1;
     options.limits.requests_per_second_per_client = 0.0;
-    server_ = new ApiServer(options);
-    port_ = server_->bind();
-    ASSERT_GT(port_, 0);
-    thread_ = new std::thread([] { server_->listen(); });
+    server_.start(options);
   }
-  static void TearDownTestSuite() {
-    server_->stop();
-    thread_->join();
-    delete thread_;
-    delete server_;
-  }
-  static httplib::Client client() {
-    httplib::Client c("127.0.0.1", port_);
-    c.set_read_timeout(60, 0);
-    return c;
-  }
+  static void TearDownTestSuite() { server_.stop(); }
+  static httplib::Client client() { return server_.client(60); }
   static httplib::Result post(const json& body) {
     return client().Post(kPath, body.dump(), "application/json");
   }
@@ -73,14 +63,10 @@ class WorkPrecision : public ::testing::Test {
     return json::parse(res->body)["errors"][0]["field"];
   }
 
-  static ApiServer* server_;
-  static std::thread* thread_;
-  static int port_;
+  static test::TestServer server_;
 };
 
-ApiServer* WorkPrecision::server_ = nullptr;
-std::thread* WorkPrecision::thread_ = nullptr;
-int WorkPrecision::port_ = 0;
+test::TestServer WorkPrecision::server_;
 
 TEST_F(WorkPrecision, AJobOnAUserSceneIsDoneWithFallingErrorsAPlotAndTheCsv) {
   auto res = post({{"scene", user_scene()}, {"integrators", {"dop853", "rk4"}}, {"t_end", 2}});
