@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/commands/command.h"
 #include "codec/presets.h"
 #include "codec/provenance.h"
 #include "codec/sample_json.h"
@@ -23,8 +24,6 @@ namespace spinfold::cli {
 
 namespace {
 
-constexpr int kExitBadInput = 2;
-constexpr int kExitRunStopped = 3;
 constexpr double kMaxPlotSamples = 1e6;
 
 void write_bytes(const std::string& out, const std::vector<std::uint8_t>& bytes) {
@@ -131,12 +130,7 @@ int plot(const PlotOptions& opt, int argc, char** argv) {
   plot.provenance = provenance_header(scene) + "; command=" + command;
   plot.metadata = provenance_json(scene, command).dump();
   write_bytes(opt.out, render::draw_figure(render::series_page(plot), format));
-  if (run.state.status != Status::ok) {
-    std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << status_name(run.state.status)
-              << "\n";
-    return kExitRunStopped;
-  }
-  return 0;
+  return run_exit_code(run.state);
 }
 
 }  // namespace

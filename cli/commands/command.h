@@ -5,12 +5,14 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <iostream>
 #include <optional>
 #include <string>
 #include <string_view>
 
 #include "engine/number_text.h"
 #include "engine/run_limits.h"
+#include "engine/state.h"
 
 namespace spinfold::cli {
 
@@ -36,6 +38,14 @@ inline double run_limit_value(std::string_view name, const std::string& text) {
   if (!x || !allows(limit.rule, *x))
     throw BadInput{refused(run_limit_option(name), must_be(limit.rule), "'" + text + "'")};
   return *x;
+}
+
+// The exit code of a run that reached its end or stopped: 0, or kExitRunStopped with the reason on
+// stderr (render, plot).
+inline int run_exit_code(const State& state) {
+  if (state.status == Status::ok) return 0;
+  std::cerr << "spinfold: run stopped at t = " << state.t << ": " << status_name(state.status) << "\n";
+  return kExitRunStopped;
 }
 
 // A registered subcommand: run(argc, argv) when it is the one parsed (argv for the provenance).

@@ -68,12 +68,7 @@ int render_frame(const RenderOptions& opt, const std::string& format_option) {
     if (!file) throw BadInput{"--out: cannot write '" + opt.out + "'"};
     file.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
   }
-  if (run.state.status != Status::ok) {
-    std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << status_name(run.state.status)
-              << "\n";
-    return kExitRunStopped;
-  }
-  return 0;
+  return run_exit_code(run.state);
 }
 
 }  // namespace
