@@ -317,6 +317,11 @@ def sweep(base: Any, vary: Mapping[str, Any], t_end: float = 10.0, every: float 
             continue
         if isinstance(values, np.ndarray):
             values = values.tolist()
+        values = [v.item() if isinstance(v, np.generic) else v for v in values]
+        if any(isinstance(v, float) and not math.isfinite(v) for v in values):
+            # JSON has no NaN or inf: the values as --set writes them, refused by the library's rule.
+            axes.append((str(path), ",".join(repr(v) for v in values), None))
+            continue
         try:
             text = json.dumps([v.item() if isinstance(v, np.generic) else v for v in values], allow_nan=False)
         except (TypeError, ValueError) as error:

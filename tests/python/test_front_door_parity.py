@@ -244,11 +244,12 @@ def test_python_refuses_what_the_cli_refuses_by_the_same_rules(binary):
         spinfold.run_many([SCENE], t_end=0.1, threads=2**40)
     with pytest.raises(TypeError, match="^scenes: must be an iterable"):
         spinfold.run_many(None)
-    with pytest.raises(ValueError, match="initial.spin: must be a finite number"):
+    # The sweep library's words, as the CLI's --set initial.spin=nan says them.
+    with pytest.raises(ValueError, match="initial.spin: not a finite number \\(got 'nan'\\)"):
         spinfold.sweep(SCENE, {"initial.spin": [1.0, math.nan]}, t_end=0.1)
     # The CLI's sweep limit (engine/run_limits.h), refused before anything is allocated.
-    with pytest.raises(ValueError, match="^vary: more than 10000000 runs"):
-        spinfold.sweep(SCENE, {"initial.spin": range(10**4), "body.mass": range(10**4)})
+    with pytest.raises(ValueError, match="more than 10000000 runs"):
+        spinfold.sweep(SCENE, {"initial.spin": range(10**4), "body.mass": range(1, 10**4 + 1)})
 
 
 def test_simulation_patch_names_the_field():
