@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "codec/presets.h"
+#include "tests/error_of.h"
 
 namespace spinfold {
 namespace {
@@ -16,12 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string error_of(const auto& call) {
-  try {
-    call();
-  } catch (const SceneSourceError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::error_of<SceneSourceError>(call);
 }
 
 TEST(SceneSource, AFileByThatNameElseAPresetElseTheDefault) {

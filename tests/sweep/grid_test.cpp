@@ -6,16 +6,13 @@
 
 #include <string>
 
+#include "tests/error_of.h"
+
 namespace spinfold::sweep {
 namespace {
 
 std::string error_of(const auto& call) {
-  try {
-    call();
-  } catch (const SweepError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::error_of<SweepError>(call);
 }
 
 TEST(SweepGrid, ValuesAreTheDocumentedFormulaWithTheLastExactlyB) {

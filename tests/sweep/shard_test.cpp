@@ -10,6 +10,7 @@
 
 #include "codec/presets.h"
 #include "sweep/rows.h"
+#include "tests/error_of.h"
 
 namespace spinfold::sweep {
 namespace {
@@ -17,12 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string error_of(const auto& call) {
-  try {
-    call();
-  } catch (const SweepError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::error_of<SweepError>(call);
 }
 
 TEST(SweepShard, ParseAndRuns) {
