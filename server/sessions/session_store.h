@@ -62,7 +62,6 @@ class SessionStore {
   std::map<std::string, std::shared_ptr<Session>> sessions_;
   std::size_t max_sessions_;
   std::chrono::seconds idle_expiry_;
-  std::uint64_t next_id_ = 1;
   Store* db_ = nullptr;
   std::chrono::steady_clock::time_point last_sweep_{};  // guarded by mutex_
 };
