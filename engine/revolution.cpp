@@ -1,0 +1,56 @@
+#include "engine/revolution.h"
+
+#include <Eigen/Dense>
+#include <array>
+#include <cmath>
+
+namespace spinfold {
+
+std::span<const RevolutionEntry> revolution_catalog() {
+  static const std::array<RevolutionEntry, 4> table{torus_entry, spheroid_entry, bump_entry, catenoid_entry};
+  return table;
+}
+
+const RevolutionEntry& revolution_entry(RevolutionKind kind) {
+  for (const RevolutionEntry& entry : revolution_catalog())
+    if (entry.kind == kind) return entry;
+  return revolution_catalog().front();  // unreachable: every kind has its row
+}
+
+const RevolutionEntry* find_revolution(std::string_view name) {
+  for (const RevolutionEntry& entry : revolution_catalog())
+    if (entry.name == name) return &entry;
+  return nullptr;
+}
+
+ProfileMetric profile_metric(const ProfilePoint& p) {
+  ProfileMetric m;
+  m.f = std::hypot(p.rho_u, p.z_u);
+  m.f_u = (p.rho_u * p.rho_uu + p.z_u * p.z_uu) / m.f;
+  m.C = p.rho_u / m.f;
+  m.C_u = (p.rho_uu * m.f - p.rho_u * m.f_u) / (m.f * m.f);
+  return m;
+}
+
+RevolutionFrame revolution_frame(const RevolutionSurface& surface, double u, double phi) {
+  const ProfilePoint p = revolution_entry(surface.kind).profile(surface, u);
+  const double f = std::hypot(p.rho_u, p.z_u);
+  const double c = std::cos(phi), s = std::sin(phi);
+  RevolutionFrame frame;
+  frame.X = Vec3(p.rho * c, p.rho * s, p.z);
+  frame.E1 = Vec3(p.rho_u * c, p.rho_u * s, p.z_u) / f;
+  frame.E2 = Vec3(-s, c, 0.0);
+  frame.n = Vec3(-p.z_u * c, -p.z_u * s, p.rho_u) / f;
+  return frame;
+}
+
+double bordered_hessian_curvature(const ImplicitPoint& p) {
+  Eigen::Matrix4d bordered = Eigen::Matrix4d::Zero();
+  bordered.topLeftCorner<3, 3>() = p.hessian;
+  bordered.topRightCorner<3, 1>() = p.gradient;
+  bordered.bottomLeftCorner<1, 3>() = p.gradient.transpose();
+  const double g2 = p.gradient.squaredNorm();
+  return -bordered.determinant() / (g2 * g2);
+}
+
+}  // namespace spinfold
