@@ -370,7 +370,12 @@ bool FramingServer::process_and_close_socket(socket_t sock) {
     std::array<char, 65536> sink{};
     while (std::chrono::steady_clock::now() < until) {
       pollfd p{sock, POLLIN, 0};
-      if (::poll(&p, 1, 200) <= 0 || ::recv(sock, sink.data(), sink.size(), 0) <= 0) break;
+      const int ready = ::poll(&p, 1, 200);
+      if (ready < 0 && errno == EINTR) continue;  // a signal is not the end of the input
+      if (ready <= 0) break;
+      const ssize_t got = ::recv(sock, sink.data(), sink.size(), 0);
+      if (got < 0 && errno == EINTR) continue;
+      if (got <= 0) break;
     }
   }
   ::shutdown(sock, SHUT_RDWR);
