@@ -9,6 +9,7 @@
 #include <sstream>
 #include <thread>
 
+#include "cli/commands/command.h"
 #include "codec/provenance.h"
 #include "codec/scene_source.h"
 #include "sweep/grid.h"
@@ -20,8 +21,6 @@
 namespace spinfold::cli {
 
 namespace {
-
-constexpr int kExitBadInput = 2;
 
 using sweep::SweepError;
 
@@ -58,12 +57,14 @@ int run_sweep(const SweepOptions& opt, const std::string& command) {
   const sweep::Format format = sweep::format_of(opt.out);
   if (opt.jobs < 0 || opt.jobs > 1024) throw SweepError("--jobs: must be 0..1024 (0: one per core)");
   const sweep::Shard shard = sweep::parse_shard(opt.shard);
+  std::optional<std::uint64_t> max_steps;  // read as simulate reads it: "-1" is refused, not wrapped
+  if (opt.max_steps) max_steps = static_cast<std::uint64_t>(run_limit_value("max_steps", *opt.max_steps));
   sweep::Definition def{.base_text = base_text(opt),
                         .axes = {},
                         .zip = opt.zip,
                         .t_end = opt.t_end,
                         .every = opt.every,
-                        .max_steps = opt.max_steps,
+                        .max_steps = max_steps,
                         .fields = opt.fields,
                         .trajectories = opt.trajectories,
                         .command = command,
@@ -150,6 +151,9 @@ int run_sweep_command(const SweepOptions& opt, int argc, char** argv) {
   } catch (const SweepError& e) {
     const std::string message = e.what();
     std::fprintf(stderr, "spinfold: %s%s", message.c_str(), message.ends_with('\n') ? "" : "\n");
+    return kExitBadInput;
+  } catch (const BadInput& e) {
+    std::fprintf(stderr, "spinfold: %s\n", e.message.c_str());
     return kExitBadInput;
   }
 }

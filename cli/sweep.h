@@ -19,13 +19,13 @@ struct SweepOptions {
   bool zip = false;               // pair the varied values instead of their Cartesian product
   double t_end = 10.0;
   double every = 0.5;
-  std::string fields;              // the final-state and drift columns (sweep::field_names())
-  int jobs = 0;                    // 0: one per core
-  std::string out;                 // FILE.csv or FILE.jsonl; "" or "-": CSV on stdout
-  std::string shard;               // "I/N"
-  std::vector<std::string> merge;  // shard outputs to join
-  std::string trajectories;        // a directory: each run's samples as `simulate` prints them
-  std::optional<std::uint64_t> max_steps;
+  std::string fields;                    // the final-state and drift columns (sweep::field_names())
+  int jobs = 0;                          // 0: one per core
+  std::string out;                       // FILE.csv or FILE.jsonl; "" or "-": CSV on stdout
+  std::string shard;                     // "I/N"
+  std::vector<std::string> merge;        // shard outputs to join
+  std::string trajectories;              // a directory: each run's samples as `simulate` prints them
+  std::optional<std::string> max_steps;  // as given: read by run_limit_value (engine/run_limits.h)
   bool quiet = false;
   bool list_fields = false;
 };

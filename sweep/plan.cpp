@@ -7,6 +7,8 @@
 
 #include "codec/sample_table.h"
 #include "codec/scene_json.h"
+#include "engine/number_rule.h"
+#include "engine/run_limits.h"
 
 namespace spinfold::sweep {
 
@@ -62,13 +64,19 @@ void apply_values(json& document, const std::vector<const FieldPath*>& fields,
 Plan make_plan(Definition def) {
   const Door door = def.door;
   const auto option = [&](std::string_view flag) { return option_name(door, flag); };
-  if (!std::isfinite(def.t_end) || def.t_end < 0.0)
-    throw SweepError(option("--t-end") + ": must be a finite number >= 0");
-  if (!std::isfinite(def.every) || !(def.every > 0.0))
-    throw SweepError(option("--every") + ": must be a finite number > 0");
-  if (def.t_end / def.every > kMaxSamples)
-    throw SweepError(option("--every") + ": more than 1e7 samples requested");
-  if (def.max_steps && *def.max_steps == 0) throw SweepError(option("--max-steps") + ": must be >= 1");
+  // The run limits' rows (engine/run_limits.h), in the words simulate and Python's simulate use.
+  const auto check = [&](std::string_view name, double value) {
+    const RunLimit& limit = run_limit(name);
+    if (allows(limit.rule, value)) return;
+    std::string given = shortest(value);
+    if (door == Door::cli) given = std::string("'").append(given).append("'");  // as --set quotes it
+    throw SweepError(refused(option(run_limit_option(name)), must_be(limit.rule), given));
+  };
+  check("t_end", def.t_end);
+  check("every", def.every);
+  if (const auto why = samples_refusal(def.t_end, def.every))
+    throw SweepError(option("--every") + ": " + *why);
+  if (def.max_steps) check("max_steps", static_cast<double>(*def.max_steps));
   Plan plan;
   {
     const SceneParse parsed = parse_scene_text(def.base_text);

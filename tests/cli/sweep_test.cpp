@@ -297,6 +297,9 @@ TEST(Sweep, BadFieldsAndValuesAreExitTwoNamingThem) {
            {"--set initial.r=1,2 --set initial.phi=1 --zip", "--zip"},
            {"--set initial.r=1 --shard 3/3", "--shard"},
            {"--set initial.r=1 --out rows.txt", "--out"},
+           // The run limits in simulate's words (engine/run_limits.h); -1 was a whole run.
+           {"--set initial.r=1 --max-steps -1", "--max-steps: must be a whole number from 1 to"},
+           {"--set initial.r=1 --t-end -1", "--t-end: must be a number >= 0 [time] (got '-1')"},
        }) {
     const auto r = run((c.args.find("deformation") != std::string::npos ? "sweep breathing_ellipse_sphere "
                                                                         : "sweep spinning_rigid_sphere ") +

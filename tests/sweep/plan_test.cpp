@@ -38,9 +38,13 @@ TEST(SweepPlan, DefaultColumnsAndRunDocuments) {
 TEST(SweepPlan, RulesAreRefusedInTheDoorsNames) {
   Definition bad = definition();
   bad.t_end = -1;
-  EXPECT_EQ(error_of(bad), "--t-end: must be a finite number >= 0");
+  // In the words of simulate's --t-end and Python's simulate (engine/run_limits.h).
+  EXPECT_EQ(error_of(bad), "--t-end: must be a number >= 0 [time] (got '-1')");
   bad.door = Door::python;
-  EXPECT_EQ(error_of(bad), "t_end: must be a finite number >= 0");
+  EXPECT_EQ(error_of(bad), "t_end: must be a number >= 0 [time] (got -1)");
+  Definition steps = definition();
+  steps.max_steps = 0;
+  EXPECT_EQ(error_of(steps), "--max-steps: must be a whole number from 1 to 9007199254740992 (got '0')");
   Definition fields = definition(Door::python);
   fields.fields = "t,bogus";
   EXPECT_NE(error_of(fields).find("fields: unknown field 'bogus'"), std::string::npos);
