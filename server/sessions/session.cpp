@@ -5,6 +5,7 @@
 
 #include "codec/sample_json.h"
 #include "codec/scene_json.h"
+#include "codec/timeline_json.h"
 #include "engine/number_text.h"
 #include "server/sessions/session_id.h"
 
@@ -90,57 +91,17 @@ ChangeOutcome change(Session& session, const json& patch) {
 
 Rebuild rebuild(Session& session, const Scene& scene, const json& timeline, double until,
                 std::uint64_t max_attempts) {
+  TimelineParse parsed = parse_timeline(scene, timeline, until);
   Rebuild out;
-  const auto refuse = [&out](const std::string& field, const json& value, const std::string& reason) {
-    out.errors.push_back({field, value.dump(-1, ' ', false, json::error_handler_t::replace), reason});
+  if (!parsed.errors.empty()) {
+    out.errors = std::move(parsed.errors);
     return out;
-  };
-  if (!timeline.is_array()) return refuse("timeline", timeline, "must be an array of {\"t\", \"patch\"}");
-  std::vector<ParameterChange> changes;
-  ordered_json entries = ordered_json::array();
-  json current = scene_to_json(scene);
-  Scene current_scene = scene;
-  double previous = 0.0;
-  for (std::size_t i = 0; i < timeline.size(); ++i) {
-    const json& entry = timeline[i];
-    const std::string at = "timeline[" + std::to_string(i) + "]";
-    if (!entry.is_object()) return refuse(at, entry, "must be an object {\"t\", \"patch\"}");
-    for (const auto& [key, value] : entry.items())
-      if (key != "t" && key != "patch")
-        return refuse(at + "." + key, value, "is not a known field (t, patch)");
-    const auto t = entry.find("t");
-    if (t == entry.end() || !t->is_number())
-      return refuse(at + ".t", entry.value("t", json()), "must be a number");
-    const double time = t->get<double>();
-    if (!std::isfinite(time) || time < previous || time > until)
-      return refuse(at + ".t", *t,
-                    "must be finite, not before the previous change (" + shortest(previous) +
-                        ") and not after until (" + shortest(until) + ")");
-    const auto patch = entry.find("patch");
-    if (patch == entry.end() || !patch->is_object())
-      return refuse(at + ".patch", entry.value("patch", json()),
-                    "must be a JSON merge patch of the scene (an object)");
-    json merged = current;
-    merge_scene_patch(merged, *patch);
-    SceneParse parsed = parse_scene(merged);
-    if (!parsed.scene) {
-      for (FieldError& e : parsed.errors) e.field = at + ".patch." + e.field;
-      out.errors = parsed.errors;
-      return out;
-    }
-    if (const std::string why = restart_reason(*patch, current_scene, *parsed.scene); !why.empty())
-      return refuse(at + ".patch", *patch, "restarts the run (" + why + "): put it in the scene instead");
-    current = scene_to_json(*parsed.scene);  // as the live session merges: onto the parsed scene
-    current_scene = *parsed.scene;
-    changes.push_back({time, *parsed.scene});
-    entries.push_back({{"t", time}, {"patch", *patch}});
-    previous = time;
   }
   session.scene = scene;
-  session.timeline = entries;
-  session.changes = changes;
+  session.timeline = std::move(parsed.entries);
+  session.changes = std::move(parsed.changes);
   session.trail = Trail{};
-  out.complete = replay(scene, changes, until, session.run, session.trail, max_attempts);
+  out.complete = replay(scene, session.changes, until, session.run, session.trail, max_attempts);
   state_changed(session);
   return out;
 }
