@@ -10,6 +10,7 @@
 #include "bench/share_link_bench.h"
 #include "bench/soak.h"
 #include "bench/stress.h"
+#include "bench/surfaces_bench.h"
 #include "bench/work_precision.h"
 
 int main(int argc, char** argv) {
@@ -74,6 +75,14 @@ int main(int argc, char** argv) {
   cross_cmd->add_option("--scenes", cross.scenes, "Presets")->capture_default_str();
   cross_cmd->add_option("--tunable", cross.tunable, "GLIBC_TUNABLES of the other CPU")->capture_default_str();
   cross_cmd->add_flag("--dump", cross.dump, "Print this process's ends (hex floats) and stop");
+  spinfold::bench::SurfacesBenchOptions surfaces;
+  CLI::App* surfaces_cmd = app.add_subcommand(
+      "surfaces", "A torus scene: the engine's stepping of the chart-free equations against Boost.Odeint's");
+  surfaces_cmd->add_option("--t-end", surfaces.t_end, "Simulated time")->capture_default_str();
+  surfaces_cmd->add_option("--target", surfaces.target_error, "Error at which methods are compared")
+      ->capture_default_str();
+  surfaces_cmd->add_option("--repeats", surfaces.repeats, "Timings per point (median)")
+      ->capture_default_str();
   spinfold::bench::OracleSweepOptions sweep;
   CLI::App* sweep_cmd = app.add_subcommand(
       "oracle-sweep",
@@ -87,6 +96,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   if (cross_cmd->parsed()) return spinfold::bench::run_cross_cpu(cross);
   if (sweep_cmd->parsed()) return spinfold::bench::run_oracle_sweep(sweep);
+  if (surfaces_cmd->parsed()) return spinfold::bench::run_surfaces_bench(surfaces);
   if (record_cmd->parsed()) return spinfold::bench::run_record_bench(record);
   if (companions_cmd->parsed())
     return spinfold::bench::run_companions_bench(companions_repeats, companions_until);

@@ -7,7 +7,10 @@
 namespace spinfold {
 
 void StepProblem::operator()(const Coords& y, Coords& dydt) const {
-  vector_field(scene, chart, y, dydt);
+  if (field)
+    (*field)(y, dydt);
+  else
+    vector_field(scene, chart, y, dydt);
 }
 
 std::span<const CatalogEntry> integrator_catalog() {

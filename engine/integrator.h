@@ -1,6 +1,7 @@
 // The integrator interface and the catalog (one entry per integrator_<name>.cpp).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <span>
 #include <string_view>
@@ -10,11 +11,18 @@
 
 namespace spinfold {
 
+// A vector field dy/dt = f(y) given as a function.
+using VectorField = std::function<void(const Coords& y, Coords& dydt)>;
+
 // What a step integrates: Hamilton's equations of `scene` in `chart` (dynamics.h), callable as the
-// autonomous vector field dy/dt = f(y). Splitting methods also use the scene's structure.
+// autonomous vector field dy/dt = f(y); or, when `field` is set, that field (the chart-free
+// equations of a surface whose curvature varies, engine/embedded_dynamics.h), which every method
+// that asks only for f steps alike. Splitting methods also use the scene's structure, so they take
+// only the first kind.
 struct StepProblem {
   const Scene& scene;
   const Chart& chart;
+  const VectorField* field = nullptr;
   void operator()(const Coords& y, Coords& dydt) const;
 };
 
@@ -25,6 +33,9 @@ struct IntegratorInfo {
   bool adaptive = false;    // chooses its own step from the tolerance
   bool exact = false;       // closed-form solution, no stepping error
   std::string_view summary;
+  // Composes the constant-curvature chart's exact flows (a splitting method): it steps only the
+  // scene's chart equations, not a field given as a function (StepProblem::field).
+  bool chart_flows_only = false;
 };
 
 struct StepResult {

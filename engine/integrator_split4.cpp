@@ -6,7 +6,8 @@
 namespace spinfold {
 
 const IntegratorInfo split4_info{
-    "split4", 4, true, false, false, "exact orbit/internal flows + potential kicks, triple-jump composition"};
+    "split4", 4, true, false, false, "exact orbit/internal flows + potential kicks, triple-jump composition",
+    true};
 
 std::unique_ptr<Integrator> make_split4() {
   const double w1 = 1.0 / (2.0 - std::cbrt(2.0)), w0 = 1.0 - 2.0 * w1;

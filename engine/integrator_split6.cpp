@@ -6,7 +6,8 @@ namespace spinfold {
 
 const IntegratorInfo split6_info{
     "split6", 6,     true,
-    false,    false, "exact orbit/internal flows + potential kicks, Yoshida order-6 composition"};
+    false,    false, "exact orbit/internal flows + potential kicks, Yoshida order-6 composition",
+    true};
 
 std::unique_ptr<Integrator> make_split6() {
   const double w1 = -1.17767998417887, w2 = 0.235573213359357, w3 = 0.784513610477560;

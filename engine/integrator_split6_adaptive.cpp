@@ -16,7 +16,8 @@ namespace spinfold {
 
 const IntegratorInfo split6_adaptive_info{
     "split6", 6,     false,
-    true,     false, "split6 steps sized by step doubling to the tolerance (auto, incompressible body)"};
+    true,     false, "split6 steps sized by step doubling to the tolerance (auto, incompressible body)",
+    true};
 
 namespace {
 

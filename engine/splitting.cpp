@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "engine/chart.h"
 #include "engine/exact_solution.h"
@@ -83,6 +84,9 @@ void rattle(const Scene& scene, double h, BodyKinematics& body) {
 
 StepResult SplittingComposition::try_step(const StepProblem& problem, const Coords& y, double h,
                                           double /*tolerance*/, Coords& increment) {
+  // The flows it composes are the constant-curvature chart's (physics.md §10): a field given as a
+  // function (a surface whose curvature varies) is not theirs to split.
+  if (problem.field) throw std::logic_error("a splitting method steps only the scene's chart equations");
   const Scene& scene = problem.scene;
   AbcPotential internal;  // the part of V_def inside the exact flow (isotropic J only, physics.md §13)
   if (const auto* abc = std::get_if<AbcPotential>(&scene.potential.deformation))

@@ -12,7 +12,9 @@ namespace spinfold {
 //   affine: [r, φ, p_r, p_φ, L₁₁, L₁₂, L₂₁, L₂₂, P₁₁, P₁₂, P₂₁, P₂₂]   (physics.md §4, (L, P) form)
 //   rigid:  [r, φ, p_r, p_φ, θ, s]                                    (physics.md §8.8)
 // L is the internal matrix in the chart's frame (E₁, E₂), P = J(L̇ + Cφ̇εL) its momentum, s the spin.
-using Coords = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 12, 1>;
+// Room for 18: the chart-free state [X, V, e₁, e₂, W₁, W₂] on a surface whose curvature varies
+// (engine/embedded_dynamics.h), which the same integrators step.
+using Coords = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 18, 1>;
 
 namespace coord {
 inline constexpr int r = 0, phi = 1, p_r = 2, p_phi = 3;

@@ -1,0 +1,157 @@
+#include "bench/surfaces_bench.h"
+
+#include <boost/numeric/odeint.hpp>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "bench/timing.h"
+#include "engine/embedded_dynamics.h"
+#include "engine/field_stepping.h"
+#include "engine/integrator.h"
+#include "engine/revolution_chart.h"
+
+namespace spinfold::bench {
+namespace {
+
+namespace odeint = boost::numeric::odeint;
+using OdeState = std::vector<double>;
+
+// physics-surfaces.md §11 WS1's torus, gravity and abc, with an isotropic body (J = 0.5): a regular
+// internal motion, so that the error at T measures the methods and not a Lyapunov exponent.
+RevolutionModel torus_model() {
+  RevolutionModel model;
+  model.surface.kind = RevolutionKind::torus;
+  model.surface.tube_radius = 1.0;
+  model.surface.center_radius = 3.0;
+  model.body.mass = 2.0;
+  Body body;
+  body.inertia = 0.5;
+  model.body.inertia = inertia_of(body);
+  model.body.height = {HeightPotential::Kind::gravity, 0.5, 0.0};
+  model.body.deformation = AbcPotential{0.01, 0.02, 0.2};
+  return model;
+}
+
+Embedded torus_start(const RevolutionModel& model) {
+  RevolutionRates r;
+  r.u = 0.7;
+  r.phi = 0.3;
+  r.L << 1.2, 0.1, -0.2, 0.9;
+  r.u_dot = 0.4;
+  r.phi_dot = -0.2;
+  r.L_dot << 0.05, 0.3, -0.1, 0.2;
+  return embed(model, revolution_coords(model, r));
+}
+
+struct Point {
+  double tolerance, error, ms;
+  long evaluations;
+};
+
+struct Method {
+  std::string name;
+  std::vector<Point> points;
+};
+
+double distance(const Coords& a, const Embedded& b) {
+  double worst = 0.0;
+  for (int i = 0; i < 18; ++i) worst = std::max(worst, std::abs(a(i) - b(i)) / (1.0 + std::abs(b(i))));
+  return worst;
+}
+
+}  // namespace
+
+int run_surfaces_bench(const SurfacesBenchOptions& options) {
+  const RevolutionModel model = torus_model();
+  const RevolutionImplicit torus(model.surface);
+  const EmbeddedModel em{torus, model.body};
+  const Embedded start = torus_start(model);
+  long evaluations = 0;
+  const VectorField field = [&](const Coords& y, Coords& dy) {
+    Embedded d;
+    embedded_vector_field(em, y, d);
+    dy = d;
+    ++evaluations;
+  };
+  const Scene unused_scene;
+  const Chart unused_chart;
+  const StepProblem problem{unused_scene, unused_chart, &field};
+  const auto engine_run = [&](const char* name, double tolerance) {
+    std::unique_ptr<Integrator> integrator = find_integrator(name)->make();
+    return step_field(*integrator, problem, start, options.t_end, 1e-3, tolerance).y;
+  };
+  const auto odeint_run = [&](const std::string& stepper, double tolerance) {
+    OdeState x(start.data(), start.data() + 18);
+    const auto system = [&](const OdeState& in, OdeState& out, double) {
+      Coords y = Eigen::Map<const Eigen::VectorXd>(in.data(), 18), d;
+      field(y, d);
+      out.assign(d.data(), d.data() + 18);
+    };
+    if (stepper == "odeint_dopri5")
+      odeint::integrate_adaptive(
+          odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_dopri5<OdeState>()), system, x,
+          0.0, options.t_end, 1e-3);
+    else if (stepper == "odeint_fehlberg78")
+      odeint::integrate_adaptive(
+          odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_fehlberg78<OdeState>()), system,
+          x, 0.0, options.t_end, 1e-3);
+    else
+      odeint::integrate_adaptive(odeint::bulirsch_stoer<OdeState>(tolerance, tolerance), system, x, 0.0,
+                                 options.t_end, 1e-3);
+    Coords y = Eigen::Map<const Eigen::VectorXd>(x.data(), 18);
+    return y;
+  };
+
+  // The reference: dop853 at 1e-15, checked against Odeint's Bulirsch–Stoer at 1e-15.
+  const Coords dop_ref = engine_run("dop853", 1e-15);
+  Embedded reference = dop_ref;
+  const double reference_spread = distance(odeint_run("odeint_bulirsch_stoer", 1e-15), reference);
+  std::printf("torus (a = 1, c = 3), WS1's body with J = 0.5, gravity, abc; T = %g\n", options.t_end);
+  std::printf(
+      "reference: dop853 at 1e-15; Odeint's Bulirsch-Stoer at 1e-15 differs by %.2g (relative, max)\n\n",
+      reference_spread);
+
+  std::vector<Method> methods;
+  for (const std::string name : {"dop853", "odeint_dopri5", "odeint_fehlberg78", "odeint_bulirsch_stoer"}) {
+    Method method{name, {}};
+    for (double exponent = 5.0; exponent <= 14.0; exponent += 0.5) {
+      const double tolerance = std::pow(10.0, -exponent);
+      Coords end;
+      evaluations = 0;
+      const double ms = median_ms(options.repeats, [&] {
+        end = name == "dop853" ? engine_run("dop853", tolerance) : odeint_run(name, tolerance);
+      });
+      const long evals = evaluations / options.repeats;
+      method.points.push_back({tolerance, distance(end, reference), ms, evals});
+    }
+    methods.push_back(method);
+  }
+
+  std::printf("| method | tolerance | error at T | ms | evaluations |\n| --- | --- | --- | --- | --- |\n");
+  double engine_best = std::numeric_limits<double>::infinity(), odeint_best = engine_best;
+  std::string odeint_best_name;
+  for (const Method& m : methods) {
+    const Point* best = nullptr;
+    for (const Point& p : m.points)
+      if (p.error <= options.target_error && (!best || p.ms < best->ms)) best = &p;
+    for (const Point& p : m.points)
+      std::printf("| %s | %.1e | %.2e | %.3f | %ld |%s\n", m.name.c_str(), p.tolerance, p.error, p.ms,
+                  p.evaluations, &p == best ? " (cheapest within the target)" : "");
+    if (!best) continue;
+    if (m.name == "dop853")
+      engine_best = best->ms;
+    else if (best->ms < odeint_best) {
+      odeint_best = best->ms;
+      odeint_best_name = m.name;
+    }
+  }
+  std::printf("\nat error <= %.0e: engine dop853 %.3f ms, Odeint's best (%s) %.3f ms: ratio %.2f\n",
+              options.target_error, engine_best, odeint_best_name.c_str(), odeint_best,
+              odeint_best / engine_best);
+  return 0;
+}
+
+}  // namespace spinfold::bench
