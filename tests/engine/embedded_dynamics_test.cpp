@@ -13,31 +13,16 @@
 #include "engine/field_stepping.h"
 #include "engine/integrator.h"
 #include "engine/revolution_chart.h"
-#include "tests/engine/test_support.h"
+#include "tests/engine/revolution_examples.h"
 
 namespace spinfold {
 namespace {
 
 namespace odeint = boost::numeric::odeint;
+using test::inertia_matrix;
 using test::matrix;
-
-Inertia inertia_matrix(double J11, double J12, double J22) {
-  Body body;
-  body.inertia_matrix = InertiaMatrix{J11, J12, J12, J22};
-  return inertia_of(body);
-}
-
-RevolutionModel ws1_model() {
-  RevolutionModel model;
-  model.surface.kind = RevolutionKind::torus;
-  model.surface.tube_radius = 1.0;
-  model.surface.center_radius = 3.0;
-  model.body.mass = 2.0;
-  model.body.inertia = inertia_matrix(0.6, 0.1, 0.4);
-  model.body.height = {HeightPotential::Kind::gravity, 0.5, 0.0};
-  model.body.deformation = AbcPotential{0.01, 0.02, 0.2};
-  return model;
-}
+using test::ws1_model;
+using test::ws1_rates;
 
 Embedded ws1_state() {
   Embedded Y;
@@ -79,14 +64,7 @@ TEST(EmbeddedDynamics, WorkedNumbersWS1) {
   const RevolutionModel model = ws1_model();
   const RevolutionImplicit torus(model.surface);
   const EmbeddedModel em{torus, model.body};
-  RevolutionRates rates;
-  rates.u = 0.7;
-  rates.phi = 0.3;
-  rates.L = matrix(1.2, 0.1, -0.2, 0.9);
-  rates.u_dot = 0.4;
-  rates.phi_dot = -0.2;
-  rates.L_dot = matrix(0.05, 0.3, -0.1, 0.2);
-  const Embedded Y = embed(model, revolution_coords(model, rates));
+  const Embedded Y = embed(model, revolution_coords(model, ws1_rates()));
   expect_close(Y, ws1_state(), 1e-15);
   Embedded dY;
   embedded_vector_field(em, Y, dY);
