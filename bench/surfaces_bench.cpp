@@ -30,7 +30,7 @@ RevolutionModel torus_model() {
   Body body;
   body.inertia = 0.5;
   model.body.inertia = inertia_of(body);
-  model.body.height = {HeightPotential::Kind::gravity, 0.5, 0.0};
+  model.body.height = GravityPotential{0.5};
   model.body.deformation = AbcPotential{0.01, 0.02, 0.2};
   return model;
 }

@@ -38,22 +38,25 @@ json sample_to_json(const Simulation& run, double events_since) {
 json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_events) {
   const PaperCoordinates& c = r.coordinates;
   json j;
+  // Where the curvature varies the chart is (u, φ): u, u_dot and p_u stand where r, r_dot and p_r
+  // stand elsewhere, and K follows det_L.
+  const bool profile = r.curvature.has_value();
   j["t"] = number(r.t);
-  j["r"] = number(c.r);
+  j[profile ? "u" : "r"] = number(c.r);
   j["phi"] = number(c.phi);
   j["alpha"] = number(c.alpha);
   j["beta"] = number(c.beta);
   j["theta"] = number(c.theta);
   j["lambda"] = number(c.lambda);
   j["mu"] = number(c.mu);
-  j["r_dot"] = number(c.r_dot);
+  j[profile ? "u_dot" : "r_dot"] = number(c.r_dot);
   j["phi_dot"] = number(c.phi_dot);
   j["alpha_dot"] = number(c.alpha_dot);
   j["beta_dot"] = number(c.beta_dot);
   j["theta_dot"] = number(c.theta_dot);
   j["lambda_dot"] = number(c.lambda_dot);
   j["mu_dot"] = number(c.mu_dot);
-  j["p_r"] = number(c.p_r);
+  j[profile ? "p_u" : "p_r"] = number(c.p_r);
   // p_φ far out on H² is computed but has lost its digits: null, with the reason under undefined.
   const bool p_phi_lost = std::any_of(c.undefined.begin(), c.undefined.end(),
                                       [](const UndefinedValue& u) { return u.field == "p_phi"; });
@@ -67,6 +70,7 @@ json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_event
       c.L ? json{{number((*c.L)(0, 0)), number((*c.L)(0, 1))}, {number((*c.L)(1, 0)), number((*c.L)(1, 1))}}
           : json(nullptr);
   j["det_L"] = number(r.det_L);
+  if (profile) j["K"] = number(*r.curvature);
 
   j["energy"] = number(r.energy);
   j["energy_error"] = number(r.energy_error);
@@ -130,24 +134,28 @@ void sample_values(const Readout& r, std::span<double> out) {
   const bool p_phi_lost = std::any_of(c.undefined.begin(), c.undefined.end(),
                                       [](const UndefinedValue& u) { return u.field == "p_phi"; });
   const ActionVariables* a = r.actions ? &*r.actions : nullptr;
+  const bool profile = r.curvature.has_value();  // (u, φ): u, u̇, p_u in the last columns
+  const auto chart = [&](bool polar, const std::optional<double>& v) {
+    return polar == !profile ? optional(v) : nan;
+  };
   // In the order of sample_value_names(); a test holds the two to the same names and numbers.
   const double values[] = {
       finite(r.t),
-      optional(c.r),
+      chart(true, c.r),
       optional(c.phi),
       optional(c.alpha),
       optional(c.beta),
       optional(c.theta),
       optional(c.lambda),
       optional(c.mu),
-      optional(c.r_dot),
+      chart(true, c.r_dot),
       optional(c.phi_dot),
       optional(c.alpha_dot),
       optional(c.beta_dot),
       optional(c.theta_dot),
       optional(c.lambda_dot),
       optional(c.mu_dot),
-      optional(c.p_r),
+      chart(true, c.p_r),
       p_phi_lost ? nan : optional(c.p_phi),
       optional(c.p_alpha),
       optional(c.p_beta),
@@ -186,6 +194,10 @@ void sample_values(const Readout& r, std::span<double> out) {
       a ? optional(a->nu_phi) : nan,
       a ? optional(a->nu_x) : nan,
       a ? optional(a->nu_y) : nan,
+      chart(false, c.r),
+      chart(false, c.r_dot),
+      chart(false, c.p_r),
+      optional(r.curvature),
   };
   std::copy(std::begin(values), std::end(values), out.begin());
 }

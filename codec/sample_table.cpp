@@ -69,6 +69,8 @@ const std::vector<std::string>& value_names() {
     for (const char* a : {"J_r", "J_phi", "J_alpha", "J_beta", "J_x", "J_y"})
       n.push_back(std::string("actions.") + a);
     for (const char* f : {"r", "phi", "x", "y"}) n.push_back(std::string("frequencies.") + f);
+    // Where the curvature varies: the chart (u, φ) in place of (r, φ), and the curvature at the body.
+    for (const char* f : {"u", "u_dot", "p_u", "K"}) n.push_back(f);
     return n;
   }();
   return names;
@@ -182,7 +184,14 @@ SampleTable make_sample_table(std::string_view fields, const ordered_json& first
   SampleTable table;
   const std::vector<std::string> known = sample_column_names();
   if (fields.empty()) {
-    table.columns = known;
+    // The chart's columns that this scene's samples have: (u, φ) and K where the curvature varies,
+    // (r, φ) elsewhere; every other column always.
+    const bool profile = first_sample.contains("u");
+    for (const std::string& name : known) {
+      const bool polar_only = name == "r" || name == "r_dot" || name == "p_r";
+      const bool profile_only = name == "u" || name == "u_dot" || name == "p_u" || name == "K";
+      if (profile ? !polar_only : !profile_only) table.columns.push_back(name);
+    }
   } else {
     std::size_t start = 0;
     while (start <= fields.size()) {

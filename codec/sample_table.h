@@ -26,7 +26,8 @@ std::vector<std::string> sample_column_names();
 // count of events and "undefined" the names joined by ';'. Companions are left out.
 std::map<std::string, nlohmann::ordered_json> flatten_sample(const nlohmann::ordered_json& sample);
 
-// The columns of a table: the names chosen (empty: all of sample_column_names()), then the same
+// The columns of a table: the names chosen (empty: all of sample_column_names() that the scene's
+// chart has: r, r_dot, p_r or u, u_dot, p_u, K), then the same
 // columns of each companion named "LABEL.name".
 struct SampleTable {
   std::vector<std::string> columns;

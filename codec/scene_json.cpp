@@ -115,8 +115,10 @@ void read_section(Reader& in, const json& j, const std::string& path, S& out) {
   if (in.object(j, path, keys_of<S>())) read_fields(in, j, path, out);
 }
 
-// {"kind": name, fields of that kind...}: the alternative of DeformationPotential named by kind.
-void read_deformation(Reader& in, const json& j, const std::string& path, DeformationPotential& out) {
+// {"kind": name, fields of that kind...}: the alternative of a section chosen by kind (KindVariant:
+// the deformation or height potential) that the kind names.
+template <KindVariant V>
+void read_kind_section(Reader& in, const json& j, const std::string& path, V& out) {
   if (!j.is_object()) {
     in.error(path, j, "must be a JSON object");
     return;
@@ -125,9 +127,9 @@ void read_deformation(Reader& in, const json& j, const std::string& path, Deform
   const std::string name = kind != j.end() && kind->is_string() ? kind->get<std::string>() : "";
   bool known = false;
   std::string allowed;
-  for_each_deformation_kind([&](auto index, auto alternative) {
+  for_each_kind<V>([&](auto index, auto alternative) {
     using Alternative = typename decltype(alternative)::type;
-    const std::string_view kind_name = kDeformationKindNames[index];
+    const std::string_view kind_name = kind_names(std::type_identity<V>{})[index];
     allowed += (allowed.empty() ? "" : ", ") + std::string(kind_name);
     if (known || name != kind_name) return;
     known = true;
@@ -181,8 +183,8 @@ void read_table(Reader& in, const json& j, const std::string& path, S& out) {
         value.emplace();
         read_section(in, *it, sub, *value);
       } else {
-        static_assert(std::is_same_v<T, DeformationPotential>, "a field type the reader does not know");
-        read_deformation(in, *it, sub, value);
+        static_assert(KindVariant<T>, "a field type the reader does not know");
+        read_kind_section(in, *it, sub, value);
       }
     }
   });
@@ -222,6 +224,43 @@ void refuse_both_forms(Reader& in, const json& j, const std::string& path) {
   });
 }
 
+// The kinds a mask of surface_bit names, "sphere, pseudosphere or plane".
+std::string surface_names(unsigned surfaces) {
+  std::vector<std::string_view> names;
+  for (const EnumName<SurfaceKind>& n : kSurfaceKindNames)
+    if (surfaces & surface_bit(n.value)) names.push_back(n.name);
+  std::string text;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    text += std::string(i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + std::string(names[i]);
+  return text;
+}
+
+// A key of `j` (an object read as S, nested sections included) whose field does not belong to the
+// surface `kind` (Field::surfaces): one error each, naming the kinds it belongs to.
+template <typename S>
+void refuse_other_surfaces(Reader& in, const json& j, const std::string& path, SurfaceKind kind) {
+  if (!j.is_object()) return;
+  for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
+    using T = typename std::remove_cvref_t<decltype(field)>::Value;
+    const auto it = j.find(field.name);
+    if (it == j.end()) return;
+    const std::string sub = Reader::join(path, field.name);
+    if (!belongs_to(field, kind)) {
+      std::string reason = "is not defined on the " + std::string(enum_name(kind)) + ": only on the " +
+                           surface_names(field.surfaces);
+      if (std::is_same_v<S, InitialState>)
+        reason += curvature_varies(kind) ? " (here the position is initial.u, its rate initial.u_dot)"
+                                         : " (here the position is initial.r, its rate initial.r_dot)";
+      in.error(sub, *it, reason);
+      return;
+    }
+    if constexpr (HasFields<T>)
+      refuse_other_surfaces<T>(in, *it, sub, kind);
+    else if constexpr (OptionalSection<T>)
+      refuse_other_surfaces<typename T::value_type>(in, *it, sub, kind);
+  });
+}
+
 // The fields of S that a set optional number stands in for (alpha_dot when spin is set).
 template <typename S>
 std::vector<std::string_view> replaced_fields(const S& in) {
@@ -239,14 +278,16 @@ std::vector<std::string_view> replaced_fields(const S& in) {
 // The JSON of every field of the table of S (informational text only when not empty, absent
 // optional numbers, optional sections and deformations omitted, and a number omitted when a set
 // optional number stands in for it: the scene is written as it was given).
+// Fields that do not belong to the surface `kind` (Field::surfaces) are left out.
 template <typename S>
-json write_fields(const S& in) {
+json write_fields(const S& in, SurfaceKind kind) {
   json j = json::object();
   const std::vector<std::string_view> replaced = replaced_fields(in);
   for_each_field(fields_of(std::type_identity<S>{}), [&](const auto& field) {
     using T = typename std::remove_cvref_t<decltype(field)>::Value;
     const T& value = in.*field.member;
     const std::string key(field.name);
+    if (!belongs_to(field, kind)) return;
     if constexpr (std::is_same_v<T, double>) {
       if (std::find(replaced.begin(), replaced.end(), field.name) == replaced.end()) j[key] = value;
     } else if constexpr (OptionalNumber<T>) {
@@ -257,17 +298,17 @@ json write_fields(const S& in) {
       if (std::find(replaced.begin(), replaced.end(), field.name) == replaced.end())
         j[key] = enum_name(value);
     } else if constexpr (HasFields<T>) {
-      j[key] = write_fields(value);
+      j[key] = write_fields(value, kind);
     } else if constexpr (OptionalSection<T>) {
-      if (value) j[key] = write_fields(*value);
+      if (value) j[key] = write_fields(*value, kind);
     } else {
-      static_assert(std::is_same_v<T, DeformationPotential>, "a field type the writer does not know");
+      static_assert(KindVariant<T>, "a field type the writer does not know");
       std::visit(
           [&](const auto& alternative) {
             using Alternative = std::remove_cvref_t<decltype(alternative)>;
             if constexpr (HasFields<Alternative>) {
-              json d = write_fields(alternative);
-              d["kind"] = kDeformationKindNames[value.index()];
+              json d = write_fields(alternative, kind);
+              d["kind"] = kind_names(std::type_identity<T>{})[value.index()];
               j[key] = d;
             }
           },
@@ -304,17 +345,17 @@ json companion_base(const json& document) {
 json geodesic_base(const Scene& main) {
   const InitialState& in = main.initial;
   const double scale = std::sqrt(in.lambda * in.mu);
+  json initial = {{"phi", in.phi},   {"phi_dot", in.phi_dot}, {"alpha", in.alpha}, {"beta", in.beta},
+                  {"lambda", scale}, {"mu", scale},           {"spin", 0.0}};
+  if (curvature_varies(main.surface.kind)) {
+    initial["u"] = in.u;
+    initial["u_dot"] = in.u_dot;
+  } else {
+    initial["r"] = in.r;
+    initial["r_dot"] = in.r_dot;
+  }
   return {{"body", {{"mass", main.body.mass}, {"inertia", main.body.inertia}, {"model", "rigid"}}},
-          {"initial",
-           {{"r", in.r},
-            {"phi", in.phi},
-            {"r_dot", in.r_dot},
-            {"phi_dot", in.phi_dot},
-            {"alpha", in.alpha},
-            {"beta", in.beta},
-            {"lambda", scale},
-            {"mu", scale},
-            {"spin", 0.0}}}};
+          {"initial", initial}};
 }
 
 // The stand-in relation of the tables (Field::replaces), for a merge patch (RFC 7396): a patch of
@@ -397,6 +438,7 @@ std::optional<Companion> read_companion(Reader& in, const json& entry, const jso
       merged[key].merge_patch(*it);
     }
   if (const auto it = entry.find("initial"); it != entry.end()) {
+    refuse_other_surfaces<InitialState>(in, *it, Reader::join(path, "initial"), main.surface.kind);
     if (!merged.contains("initial")) merged["initial"] = json::object();
     drop_replaced<InitialState>(merged["initial"], *it);
     merged["initial"].merge_patch(*it);
@@ -410,7 +452,7 @@ std::optional<Companion> read_companion(Reader& in, const json& entry, const jso
     read_section(in, *it, Reader::join(path, "integrator"), scene.integrator);
   if (const auto p = merged.find("potential"); p != merged.end() && p->is_object())
     if (const auto d = p->find("deformation"); d != p->end() && !d->is_null())
-      read_deformation(in, *d, Reader::join(path, "potential.deformation"), scene.potential.deformation);
+      read_kind_section(in, *d, Reader::join(path, "potential.deformation"), scene.potential.deformation);
   if (in.count() != errors_before) return std::nullopt;
   // Its own spin, speed and heading on its own body and the shared surface.
   scene.surface = main.surface;
@@ -448,7 +490,7 @@ std::vector<json> fan_entries(Reader& in, const json& vary) {
     return std::find(keys.begin(), keys.end(), key) != keys.end();
   };
   std::vector<std::string_view> deformation_keys;
-  for_each_deformation_kind([&](auto, auto alternative) {
+  for_each_kind<DeformationPotential>([&](auto, auto alternative) {
     for (std::string_view k : keys_of<typename decltype(alternative)::type>()) deformation_keys.push_back(k);
   });
   const bool numeric =
@@ -533,6 +575,7 @@ SceneParse parse_scene(const json& document) {
   if (!in.object(document, "", keys)) return result;
   read_fields(in, document, "", scene);
   resolve_curvature(scene.surface);
+  refuse_other_surfaces<Scene>(in, document, "", scene.surface.kind);
 
   // The rates from spin, speed and heading; then value errors too, except for fields already named
   // (whose structure was wrong, or which could not be converted).
@@ -566,7 +609,8 @@ SceneParse parse_scene_text(std::string_view text) {
 }
 
 json scene_to_json(const Scene& scene) {
-  json j = write_fields(scene);
+  const SurfaceKind kind = scene.surface.kind;
+  json j = write_fields(scene, kind);
   if (!scene.companions_source.empty()) {
     const json source = json::parse(scene.companions_source);
     for (auto it = source.begin(); it != source.end(); ++it) j[it.key()] = it.value();
@@ -574,12 +618,12 @@ json scene_to_json(const Scene& scene) {
   }
   // Companions made in code: each written whole (a merge patch that sets every field).
   for (const Companion& c : scene.companions) {
-    json entry = {{"body", write_fields(c.body)},
-                  {"initial", write_fields(c.initial)},
-                  {"integrator", write_fields(c.integrator)}};
+    json entry = {{"body", write_fields(c.body, kind)},
+                  {"initial", write_fields(c.initial, kind)},
+                  {"integrator", write_fields(c.integrator, kind)}};
     Scene holder;
     holder.potential.deformation = c.deformation;
-    const json potential = write_fields(holder.potential);
+    const json potential = write_fields(holder.potential, kind);
     entry["potential"] = {
         {"deformation", potential.contains("deformation") ? potential["deformation"] : json(nullptr)}};
     if (!c.label.empty()) entry["label"] = c.label;
@@ -610,6 +654,10 @@ std::string restart_reason(const json& patch, const Scene& before, const Scene& 
   if (patch.contains("companions") || patch.contains("vary") ||
       before.companions.size() != after.companions.size())
     return "the companions changed: the run starts over at t = 0";
+  if (curvature_varies(before.surface.kind) && before.surface.kind == after.surface.kind &&
+      scene_to_json(before)["surface"] != scene_to_json(after)["surface"])
+    return "the surface's shape changed: the run starts over at t = 0 on the new " +
+           std::string(enum_name(after.surface.kind));
   if (before.surface.kind != after.surface.kind && !dialled(before.surface, after.surface))
     return "the surface changed kind: the run starts over at t = 0 on the new surface (give "
            "surface.curvature "

@@ -50,7 +50,24 @@ json section() {
 
 // The schema of one field, from its table entry.
 template <typename Field>
+json property_of(const Field& field);
+
+// property_of, with "x-surfaces": the surface kinds a field belongs to when not every kind (the
+// reader refuses it on the others; the browser shows it only there).
+template <typename Field>
 json property(const Field& field) {
+  json p = property_of(field);
+  if (field.surfaces != ~0u) {
+    json kinds = json::array();
+    for (const EnumName<SurfaceKind>& n : kSurfaceKindNames)
+      if (belongs_to(field, n.value)) kinds.push_back(n.name);
+    p["x-surfaces"] = kinds;
+  }
+  return p;
+}
+
+template <typename Field>
+json property_of(const Field& field) {
   using T = typename Field::Value;
   if constexpr (std::is_same_v<T, double> || OptionalNumber<T>) {
     json n{{"type", "number"}, {"title", field.label}};
@@ -74,11 +91,11 @@ json property(const Field& field) {
   } else if constexpr (OptionalSection<T>) {
     return section<typename T::value_type>();
   } else {
-    static_assert(std::is_same_v<T, DeformationPotential>, "a field type the schema does not know");
+    static_assert(KindVariant<T>, "a field type the schema does not know");
     json kinds = json::array();
-    for_each_deformation_kind([&](auto index, auto alternative) {
+    for_each_kind<T>([&](auto index, auto alternative) {
       using Alternative = typename decltype(alternative)::type;
-      const json kind{{"kind", {{"const", kDeformationKindNames[index]}}}};
+      const json kind{{"kind", {{"const", kind_names(std::type_identity<T>{})[index]}}}};
       kinds.push_back(object(properties_of<Alternative>(kind), {"kind"}));
     });
     return {{"oneOf", kinds}};

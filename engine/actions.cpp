@@ -40,6 +40,9 @@ double deformation_period(double J, double C) {
 }  // namespace
 
 std::optional<std::string> actions_unsupported_reason(const Scene& scene) {
+  if (curvature_varies(scene.surface.kind))
+    return "action variables are computed where the curvature is constant (physics.md §8); here the orbit "
+           "does not separate";
   if (scene.surface.kind == SurfaceKind::plane)
     return "the flat limit has no action formulas here (physics.md §8.9, §8.10 are for S² and H²)";
   if (has_deformation_potential(scene.potential) && !abc_of(scene))

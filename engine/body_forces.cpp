@@ -2,22 +2,27 @@
 
 namespace spinfold {
 
+namespace {
+
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+
+}  // namespace
+
 double height_energy(const HeightPotential& height, double mass, double z) {
-  switch (height.kind) {
-    case HeightPotential::Kind::none: return 0.0;
-    case HeightPotential::Kind::gravity: return mass * height.g * z;
-    case HeightPotential::Kind::spring: return 0.5 * height.k * z * z;
-  }
-  return 0.0;
+  return std::visit(Overloaded{[](std::monostate) { return 0.0; },
+                               [&](const GravityPotential& p) { return mass * p.g * z; },
+                               [&](const SpringPotential& p) { return 0.5 * p.k * z * z; }},
+                    height);
 }
 
 double height_slope(const HeightPotential& height, double mass, double z) {
-  switch (height.kind) {
-    case HeightPotential::Kind::none: return 0.0;
-    case HeightPotential::Kind::gravity: return mass * height.g;
-    case HeightPotential::Kind::spring: return height.k * z;
-  }
-  return 0.0;
+  return std::visit(
+      Overloaded{[](std::monostate) { return 0.0; }, [&](const GravityPotential& p) { return mass * p.g; },
+                 [&](const SpringPotential& p) { return p.k * z; }},
+      height);
 }
 
 }  // namespace spinfold

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "engine/dynamics.h"
+#include "engine/embedded_run.h"
 #include "engine/inertia.h"
 
 namespace spinfold {
@@ -198,6 +199,7 @@ double embedded_state_error(const Scene& scene, const State& a, const State& b) 
 }
 
 EmbeddedBody global_embedding(const Scene& scene, const State& state) {
+  if (curvature_varies(scene.surface.kind)) return embedded_body(EmbeddedScene(scene), state.y);
   const BodyKinematics body = chart_kinematics(scene, state.y);
   const Mat3& A = state.chart.A;
   const Vec3 F2 = rotate_quarter(scene.surface, body.X, body.F1);
@@ -242,6 +244,11 @@ State place_body(const Scene& scene, const PlacedBody& p) {
 
 State initial_state(const Scene& scene) {
   const InitialState& q = scene.initial;
+  if (curvature_varies(scene.surface.kind)) {  // the chart-free state (engine/embedded_run.h)
+    State state;
+    state.y = embedded_start(EmbeddedScene(scene), q);
+    return state;
+  }
   if (!chart_well_conditioned(scene.surface, q.r)) {
     const BodyKinematics body = initial_kinematics(scene);
     const double v_phi = polar_S(scene.surface, q.r) * q.phi_dot;

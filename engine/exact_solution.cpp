@@ -12,6 +12,7 @@
 #include "engine/integrator.h"
 #include "engine/invariants.h"
 #include "engine/potentials.h"
+#include "engine/scene_fields.h"
 
 namespace spinfold {
 
@@ -241,6 +242,9 @@ std::pair<Vec2, Vec2> plane_motion_at(const PlaneMotion& m, double t) {
 }
 
 std::optional<std::string> exact_unsupported_reason(const Scene& scene) {
+  if (curvature_varies(scene.surface.kind))
+    return "the closed forms hold where the curvature is constant (physics.md §8); on the " +
+           std::string(enum_name(scene.surface.kind)) + " use an integrator";
   if (std::holds_alternative<PolarPotential>(scene.potential.deformation))
     return "the polar deformation potential has no closed form in time (physics.md §8.7): use an integrator";
   if (scene.body.model == BodyModel::incompressible)

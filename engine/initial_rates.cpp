@@ -7,6 +7,7 @@
 
 #include "engine/inertia.h"
 #include "engine/number_text.h"
+#include "engine/revolution.h"
 #include "engine/surface.h"
 
 namespace spinfold {
@@ -21,6 +22,31 @@ bool finite(double v) {
 // (where R sin(r/R) rounds to ~1e-16 R, not 0).
 bool at_pole(const Surface& surface, double r) {
   return r == 0.0 || (surface.kind == SurfaceKind::sphere && r == std::numbers::pi * surface.radius);
+}
+
+// The start's place as the rates see it: V = f q̇ E₁ + S φ̇ E₂ with q = r (f = 1, S = S(r), C = C(r))
+// or, where the curvature varies, q = u (f, S = ρ(u), C = ρ_u/f; physics-surfaces.md §1).
+struct StartPlace {
+  bool pole;  // S = 0: E₂'s rate φ̇ undefined
+  double S, C, f;
+  double q, q_dot;         // r or u, and its rate
+  const char* q_dot_name;  // "r_dot" or "u_dot"
+};
+StartPlace start_place(const Scene& scene) {
+  const InitialState& q = scene.initial;
+  if (curvature_varies(scene.surface.kind)) {
+    if (!finite(q.u)) return {false, 0.0, 0.0, 1.0, q.u, q.u_dot, "u_dot"};
+    const ProfilePlace p = profile_place(revolution_surface(scene.surface), q.u);
+    return {p.axis, p.rho, p.C, p.f, q.u, q.u_dot, "u_dot"};
+  }
+  if (!finite(q.r)) return {false, 0.0, 0.0, 1.0, q.r, q.r_dot, "r_dot"};
+  return {at_pole(scene.surface, q.r),
+          polar_S(scene.surface, q.r),
+          polar_C(scene.surface, q.r),
+          1.0,
+          q.r,
+          q.r_dot,
+          "r_dot"};
 }
 
 // sin h is zero up to its rounding at a multiple of π (sin(π) = 1.2e-16 in double).
@@ -55,9 +81,10 @@ SpinLine spin_line(const InitialState& q, const Mat2& J) {
 std::vector<FieldError> resolve_initial_rates(Scene& scene) {
   std::vector<FieldError> errors;
   const InitialState& q = scene.initial;
-  double r_dot = q.r_dot, phi_dot = q.phi_dot, alpha_dot = q.alpha_dot;
+  const StartPlace place = start_place(scene);
+  double q_dot = place.q_dot, phi_dot = q.phi_dot, alpha_dot = q.alpha_dot;
 
-  // Speed and heading: V = v(cos h E₁ + sin h E₂) = ṙ E₁ + Sφ̇ E₂ (physics.md §1, §3).
+  // Speed and heading: V = v(cos h E₁ + sin h E₂) = f q̇ E₁ + Sφ̇ E₂ (physics.md §1, §3).
   if (q.speed.has_value() != q.heading.has_value()) {
     if (q.speed)
       errors.push_back({"initial.heading", "null",
@@ -65,29 +92,35 @@ std::vector<FieldError> resolve_initial_rates(Scene& scene) {
                         "towards E2, rad)"});
     else
       errors.push_back({"initial.speed", "null", "is missing: heading comes with speed (|velocity| >= 0)"});
-  } else if (q.speed && finite(*q.speed) && finite(*q.heading) && finite(q.r)) {
+  } else if (q.speed && finite(*q.speed) && finite(*q.heading) && finite(place.q)) {
     const double v = *q.speed, h = *q.heading;
-    const bool pole = at_pole(scene.surface, q.r);
+    const bool pole = place.pole;
     if (pole && v != 0.0 && !along_E1(h)) {
       errors.push_back(
           {"initial.heading", shortest(h),
-           "cannot be converted at a pole (S(r) = 0, where E2 = (1/S) d/dphi is undefined): with "
-           "speed > 0 give heading 0 or pi, or r_dot and phi_dot, or start away from the pole"});
+           curvature_varies(scene.surface.kind)
+               ? "cannot be converted at an axis point (rho(u) = 0, where E2 = X_phi/rho is "
+                 "undefined): with speed > 0 give heading 0 or pi, or u_dot and phi_dot, or start "
+                 "away from the axis"
+               : "cannot be converted at a pole (S(r) = 0, where E2 = (1/S) d/dphi is undefined): "
+                 "with speed > 0 give heading 0 or pi, or r_dot and phi_dot, or start away from "
+                 "the pole"});
     } else {
-      r_dot = v * std::cos(h);
-      phi_dot = pole ? 0.0 : v * std::sin(h) / polar_S(scene.surface, q.r);
-      if (!finite(r_dot) || !finite(phi_dot))
+      q_dot = v * std::cos(h) / place.f;
+      phi_dot = pole ? 0.0 : v * std::sin(h) / place.S;
+      if (!finite(q_dot) || !finite(phi_dot))
         errors.push_back({"initial.speed", shortest(v),
-                          "gives a rate r_dot or phi_dot that is not a finite number: use a smaller speed"});
+                          "gives a rate " + std::string(place.q_dot_name) +
+                              " or phi_dot that is not a finite number: use a smaller speed"});
     }
   }
 
   // Spin: s = J[(λ² + μ²)(α̇ + Cφ̇) − 2λμβ̇] solved for α̇ (physics.md §3), with the φ̇ above.
   const Inertia inertia = inertia_of(scene.body);
   if (q.spin && finite(*q.spin) && finite(inertia.J) && inertia.J > 0.0 && finite(q.lambda) && finite(q.mu) &&
-      finite(q.beta_dot) && finite(phi_dot) && finite(q.r)) {
+      finite(q.beta_dot) && finite(phi_dot) && finite(place.q)) {
     const double J = inertia.J, l = q.lambda, m = q.mu;
-    const double C = polar_C(scene.surface, q.r);
+    const double C = place.C;
     if (inertia.isotropic || scene.body.model == BodyModel::rigid) {
       alpha_dot = (*q.spin / J + 2.0 * l * m * q.beta_dot) / (l * l + m * m) - C * phi_dot;
     } else {
@@ -101,7 +134,7 @@ std::vector<FieldError> resolve_initial_rates(Scene& scene) {
   }
 
   if (!errors.empty()) return errors;
-  scene.initial.r_dot = r_dot;
+  (curvature_varies(scene.surface.kind) ? scene.initial.u_dot : scene.initial.r_dot) = q_dot;
   scene.initial.phi_dot = phi_dot;
   scene.initial.alpha_dot = alpha_dot;
   return errors;
@@ -109,7 +142,7 @@ std::vector<FieldError> resolve_initial_rates(Scene& scene) {
 
 double spin_of(const Scene& scene) {
   const InitialState& q = scene.initial;
-  const double chi = q.alpha_dot + polar_C(scene.surface, q.r) * q.phi_dot;  // χ = α̇ + Cφ̇
+  const double chi = q.alpha_dot + start_place(scene).C * q.phi_dot;  // χ = α̇ + Cφ̇
   const Inertia inertia = inertia_of(scene.body);
   if (!inertia.isotropic && scene.body.model == BodyModel::affine) {
     const SpinLine line = spin_line(q, inertia.matrix);
@@ -119,13 +152,13 @@ double spin_of(const Scene& scene) {
 }
 
 double speed_of(const Scene& scene) {
-  const InitialState& q = scene.initial;
-  return std::hypot(q.r_dot, polar_S(scene.surface, q.r) * q.phi_dot);
+  const StartPlace p = start_place(scene);
+  return std::hypot(p.f * p.q_dot, p.S * scene.initial.phi_dot);
 }
 
 double heading_of(const Scene& scene) {
-  const InitialState& q = scene.initial;
-  return std::atan2(polar_S(scene.surface, q.r) * q.phi_dot, q.r_dot);
+  const StartPlace p = start_place(scene);
+  return std::atan2(p.S * scene.initial.phi_dot, p.f * p.q_dot);
 }
 
 }  // namespace spinfold

@@ -5,6 +5,7 @@
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
+#include "engine/embedded_run.h"
 #include "engine/inertia.h"
 #include "engine/potentials.h"
 
@@ -47,10 +48,16 @@ GlobalBody global_body(const Scene& scene, const State& state) {
 }
 
 double energy(const Scene& scene, const State& state) {
+  if (curvature_varies(scene.surface.kind)) {
+    const EnergyParts e = embedded_energy_parts(EmbeddedScene(scene), state.y);
+    return e.kinetic + e.potential;
+  }
   return hamiltonian(scene, state.chart, state.y);
 }
 
 double orbital_energy(const Scene& scene, const State& state) {
+  if (curvature_varies(scene.surface.kind))
+    return embedded_energy_split(EmbeddedScene(scene), state.y).orbital;
   const double m = scene.body.mass, r = state.y[coord::r];
   const double S = polar_S(scene.surface, r), C = polar_C(scene.surface, r);
   const double Pi = state.y[coord::p_phi] - C * spin_of(scene, state.y);
@@ -60,6 +67,8 @@ double orbital_energy(const Scene& scene, const State& state) {
 }
 
 double deformation_energy(const Scene& scene, const State& state) {
+  if (curvature_varies(scene.surface.kind))
+    return embedded_energy_split(EmbeddedScene(scene), state.y).deformation;
   const Inertia inertia = inertia_of(scene.body);
   const InternalState in = internal_state(scene, state.y);
   // ½ tr(M J Mᵀ) (physics.md §13); the rigid body is the isotropic one with J = tr(J)/2.
@@ -74,6 +83,7 @@ double deformation_energy(const Scene& scene, const State& state) {
 }
 
 double spin(const Scene& scene, const State& state) {
+  if (curvature_varies(scene.surface.kind)) return embedded_spin_of(EmbeddedScene(scene), state.y);
   return spin_of(scene, state.y);
 }
 
@@ -122,6 +132,7 @@ bool well_conditioned(double rounding, double scale) {
 }
 
 double angular_momentum(const Scene& scene, const State& state) {
+  if (curvature_varies(scene.surface.kind)) return embedded_p_phi(EmbeddedScene(scene), state.y);
   if (state.chart.global) return state.y[coord::p_phi];
   if (scene.surface.kind != SurfaceKind::plane) return chart_momentum(scene, state).global.z();  // M₃
   const GlobalBody g = global_body(scene, state);
@@ -137,6 +148,7 @@ double angular_momentum_rounding(const Scene& scene, const State& state) {
 std::optional<SeparatedEnergies> separated_energies(const Scene& scene, const State& state) {
   // C_x and C_y separate only for isotropic J (physics.md §13), and not under det L = c (§15).
   if (scene.body.model != BodyModel::affine || !isotropic_inertia(scene.body)) return std::nullopt;
+  if (curvature_varies(scene.surface.kind)) return std::nullopt;  // not computed there (yet)
   AbcPotential abc;
   if (const auto* p = std::get_if<AbcPotential>(&scene.potential.deformation))
     abc = *p;
@@ -155,7 +167,8 @@ std::optional<SeparatedEnergies> separated_energies(const Scene& scene, const St
 }
 
 std::optional<Vec3> momentum_map(const Scene& scene, const State& state) {
-  if (scene.potential.radial) return std::nullopt;
+  if (scene.potential.radial || curvature_varies(scene.surface.kind))
+    return std::nullopt;  // no SO(3)/SO(2,1)
   const Surface& surface = scene.surface;
   if (surface.kind != SurfaceKind::plane) return chart_momentum(scene, state).global;
   const GlobalBody g = global_body(scene, state);

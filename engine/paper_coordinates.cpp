@@ -39,10 +39,63 @@ double wrap(double angle) {
 
 }  // namespace
 
+void set_internal_coordinates(PaperCoordinates& out, const Mat2& L, const Mat2& L_dot, const Mat2& M,
+                              const Inertia& inertia, BodyModel model, bool frame_defined) {
+  const double J = inertia.J;
+  const double scale = std::sqrt(L.squaredNorm());
+  const PolarPart x = polar_part(0.5 * (L(0, 0) - L(1, 1)), 0.5 * (L(0, 1) + L(1, 0)),
+                                 0.5 * (L_dot(0, 0) - L_dot(1, 1)), 0.5 * (L_dot(0, 1) + L_dot(1, 0)), scale);
+  const PolarPart y = polar_part(0.5 * (L(0, 0) + L(1, 1)), 0.5 * (L(1, 0) - L(0, 1)),
+                                 0.5 * (L_dot(0, 0) + L_dot(1, 1)), 0.5 * (L_dot(1, 0) - L_dot(0, 1)), scale);
+  out.lambda = (x.magnitude + y.magnitude) / std::numbers::sqrt2;
+  out.mu = (y.magnitude - x.magnitude) / std::numbers::sqrt2;
+  out.lambda_dot = (x.magnitude_dot + y.magnitude_dot) / std::numbers::sqrt2;
+  out.mu_dot = (y.magnitude_dot - x.magnitude_dot) / std::numbers::sqrt2;
+  out.p_lambda = J * out.lambda_dot;
+  out.p_mu = J * out.mu_dot;
+  if (!inertia.isotropic && model == BodyModel::affine) {
+    if (x.angle_defined && y.angle_defined) {
+      // p_λ = tr((∂L/∂λ)ᵀP) = (U(α)ᵀ P U(β))₁₁, p_μ = (…)₂₂ with P = MJ (physics.md §13); the same in
+      // any frame (a frame rotation turns L and P alike and shifts only α).
+      const Mat2 P = momentum_from_rate(inertia, M);
+      const Mat2 D =
+          rotation2(0.5 * (x.angle + y.angle)).transpose() * P * rotation2(0.5 * (x.angle - y.angle));
+      out.p_lambda = D(0, 0);
+      out.p_mu = D(1, 1);
+    } else {
+      for (const char* f : {"p_lambda", "p_mu"})
+        out.undefined.push_back(
+            {f,
+             "with anisotropic inertia p_lambda and p_mu need alpha and beta, undefined at lambda = +-mu"});
+    }
+  }
+  if (!frame_defined) return;
+  out.L = L;
+  // γ = α + β lives in the anticonformal plane (x), δ = α − β in the conformal plane (y).
+  if (y.angle_defined) {
+    out.theta = y.angle;
+    out.theta_dot = y.angle_dot;
+  } else {
+    for (const char* f : {"theta", "theta_dot"})
+      out.undefined.push_back({f, "lambda = -mu (y = 0): only alpha + beta is defined"});
+  }
+  if (x.angle_defined && y.angle_defined) {
+    out.alpha = wrap(0.5 * (x.angle + y.angle));
+    out.beta = wrap(0.5 * (x.angle - y.angle));
+    out.alpha_dot = 0.5 * (x.angle_dot + y.angle_dot);
+    out.beta_dot = 0.5 * (x.angle_dot - y.angle_dot);
+  } else {
+    const std::string why = x.angle_defined
+                                ? "lambda = -mu (y = 0): alpha and beta are not separately defined"
+                                : "lambda = mu (isotropic frame): only theta = alpha - beta is defined";
+    for (const char* f : {"alpha", "beta", "alpha_dot", "beta_dot"}) out.undefined.push_back({f, why});
+  }
+}
+
 PaperCoordinates paper_coordinates(const Scene& scene, const State& state) {
   const GlobalBody g = global_body(scene, state);
   const Inertia inertia = inertia_of(scene.body);
-  const double J = inertia.J, m = scene.body.mass;
+  const double m = scene.body.mass;
   PaperCoordinates out;
   out.r = g.r;
   out.X = g.X;
@@ -68,38 +121,11 @@ PaperCoordinates paper_coordinates(const Scene& scene, const State& state) {
     eps_L << -L(1, 0), -L(1, 1), L(0, 0), L(0, 1);
     L_dot -= g.C * g.phi_dot * eps_L;
   }
-  const double scale = std::sqrt(L.squaredNorm());
-  const PolarPart x = polar_part(0.5 * (L(0, 0) - L(1, 1)), 0.5 * (L(0, 1) + L(1, 0)),
-                                 0.5 * (L_dot(0, 0) - L_dot(1, 1)), 0.5 * (L_dot(0, 1) + L_dot(1, 0)), scale);
-  const PolarPart y = polar_part(0.5 * (L(0, 0) + L(1, 1)), 0.5 * (L(1, 0) - L(0, 1)),
-                                 0.5 * (L_dot(0, 0) + L_dot(1, 1)), 0.5 * (L_dot(1, 0) - L_dot(0, 1)), scale);
-  out.lambda = (x.magnitude + y.magnitude) / std::numbers::sqrt2;
-  out.mu = (y.magnitude - x.magnitude) / std::numbers::sqrt2;
-  out.lambda_dot = (x.magnitude_dot + y.magnitude_dot) / std::numbers::sqrt2;
-  out.mu_dot = (y.magnitude_dot - x.magnitude_dot) / std::numbers::sqrt2;
-  out.p_lambda = J * out.lambda_dot;
-  out.p_mu = J * out.mu_dot;
-  if (!inertia.isotropic && scene.body.model == BodyModel::affine) {
-    if (x.angle_defined && y.angle_defined) {
-      // p_λ = tr((∂L/∂λ)ᵀP) = (U(α)ᵀ P U(β))₁₁, p_μ = (…)₂₂ with P = MJ (physics.md §13); the same in
-      // any frame (a frame rotation turns L and P alike and shifts only α).
-      const Mat2 P = momentum_from_rate(inertia, g.M);
-      const Mat2 D =
-          rotation2(0.5 * (x.angle + y.angle)).transpose() * P * rotation2(0.5 * (x.angle - y.angle));
-      out.p_lambda = D(0, 0);
-      out.p_mu = D(1, 1);
-    } else {
-      for (const char* f : {"p_lambda", "p_mu"})
-        out.undefined.push_back(
-            {f,
-             "with anisotropic inertia p_lambda and p_mu need alpha and beta, undefined at lambda = +-mu"});
-    }
-  }
-
+  set_internal_coordinates(out, L, L_dot, g.M, inertia, scene.body.model, !g.at_pole);
   if (g.at_pole) {
     const std::string why = "the body is at a pole of the scene's chart, where phi and E1 are undefined";
-    for (const char* f : {"phi", "phi_dot", "r_dot", "p_r", "alpha", "beta", "theta", "alpha_dot", "beta_dot",
-                          "theta_dot", "L"})
+    for (const char* f : {"phi", "phi_dot", "r_dot", "p_r"}) out.undefined.push_back({f, why});
+    for (const char* f : {"alpha", "beta", "theta", "alpha_dot", "beta_dot", "theta_dot", "L"})
       out.undefined.push_back({f, why});
     return out;
   }
@@ -107,26 +133,6 @@ PaperCoordinates paper_coordinates(const Scene& scene, const State& state) {
   out.phi_dot = g.phi_dot;
   out.r_dot = g.r_dot;
   out.p_r = m * g.r_dot;
-  out.L = L;
-  // γ = α + β lives in the anticonformal plane (x), δ = α − β in the conformal plane (y).
-  if (y.angle_defined) {
-    out.theta = y.angle;
-    out.theta_dot = y.angle_dot;
-  } else {
-    for (const char* f : {"theta", "theta_dot"})
-      out.undefined.push_back({f, "lambda = -mu (y = 0): only alpha + beta is defined"});
-  }
-  if (x.angle_defined && y.angle_defined) {
-    out.alpha = wrap(0.5 * (x.angle + y.angle));
-    out.beta = wrap(0.5 * (x.angle - y.angle));
-    out.alpha_dot = 0.5 * (x.angle_dot + y.angle_dot);
-    out.beta_dot = 0.5 * (x.angle_dot - y.angle_dot);
-  } else {
-    const std::string why = x.angle_defined
-                                ? "lambda = -mu (y = 0): alpha and beta are not separately defined"
-                                : "lambda = mu (isotropic frame): only theta = alpha - beta is defined";
-    for (const char* f : {"alpha", "beta", "alpha_dot", "beta_dot"}) out.undefined.push_back({f, why});
-  }
   return out;
 }
 

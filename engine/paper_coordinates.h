@@ -36,4 +36,11 @@ struct PaperCoordinates {
 
 PaperCoordinates paper_coordinates(const Scene& scene, const State& state);
 
+struct Inertia;
+// The internal coordinates of L = U(α)diag(λ, μ)U(β)ᵀ and L̇ given in one frame: λ, μ and their rates
+// and momenta always; with frame_defined also L, α, β, θ and their rates (each undefined where
+// physics.md §2 says, with the reason). M = De_A/Dt in that frame gives p_λ, p_μ for anisotropic J.
+void set_internal_coordinates(PaperCoordinates& out, const Mat2& L, const Mat2& L_dot, const Mat2& M,
+                              const Inertia& inertia, BodyModel model, bool frame_defined);
+
 }  // namespace spinfold

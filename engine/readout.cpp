@@ -40,15 +40,38 @@ std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0
 
 }  // namespace
 
-Readout readout(const Simulation& run) {
+namespace {
+
+// The read-out where the curvature varies (engine/embedded_run.h): the chart (u, φ) and K.
+void read_profile(const Simulation& run, Readout& r) {
+  const EmbeddedScene& model = *run.embedded;
+  const Coords& y = run.state.y;
+  const ProfileReadout p = profile_readout(model, y);
+  r.coordinates = p.coordinates;
+  r.curvature = p.K;
+  const EnergyParts parts = embedded_energy_parts(model, y);
+  r.energy = parts.kinetic + parts.potential;
+  const EmbeddedEnergy split = embedded_energy_split(model, y);
+  r.energy_orbital = split.orbital;
+  r.energy_deformation = r.energy - split.orbital;
+  r.spin = p.coordinates.p_alpha;
+  r.speed = p.speed;
+  r.heading = p.heading;
+  r.vorticity = p.coordinates.p_beta;
+  r.det_L = p.coordinates.det_L;
+  r.actions_unsupported = *actions_unsupported_reason(run.scene);
+}
+
+}  // namespace
+
+namespace {
+
+// The read-out on a constant-curvature surface: the paper's coordinates of its polar chart.
+void read_chart(const Simulation& run, Readout& r) {
   const Scene& scene = run.scene;
   const State& state = run.state;
-  Readout r;
-  r.t = state.t;
   r.coordinates = paper_coordinates(scene, state);
   r.energy = energy(scene, state);
-  r.energy_error = (r.energy - run.initial_energy) / std::max(std::abs(run.initial_energy), 1e-300);
-  r.energy_reference_t = run.segment_start;
   r.energy_orbital = orbital_energy(scene, state);
   r.energy_deformation = deformation_energy(scene, state);
   r.spin = r.coordinates.p_alpha;
@@ -86,6 +109,20 @@ Readout readout(const Simulation& run) {
            "the body's chart and stays exact)"});
     }
   }
+}
+
+}  // namespace
+
+Readout readout(const Simulation& run) {
+  const State& state = run.state;
+  Readout r;
+  r.t = state.t;
+  if (run.embedded)
+    read_profile(run, r);
+  else
+    read_chart(run, r);
+  r.energy_error = (r.energy - run.initial_energy) / std::max(std::abs(run.initial_energy), 1e-300);
+  r.energy_reference_t = run.segment_start;
   r.status = state.status;
   r.status_name = status_name(state.status);
   r.status_detail = status_description(state.status);
@@ -110,7 +147,9 @@ std::vector<std::string> readout_lines(const Scene& scene, const Readout& readou
       format("t = %.3f", readout.t),
       format("energy error = %.2e", readout.energy_error),
       "integrator: " + std::string(readout.integrator) + (readout.status == Status::ok ? "" : "  [stopped]"),
-      std::string(enum_name(scene.surface.kind)) + format("  R = %g", scene.surface.radius),
+      std::string(enum_name(scene.surface.kind)) +
+          (curvature_varies(scene.surface.kind) ? format("  K = %.4f", readout.curvature.value_or(0.0))
+                                                : format("  R = %g", scene.surface.radius)),
       format("m = %g  ", scene.body.mass) + inertia_text(scene.body) + "  " +
           std::string(enum_name(scene.body.model)),
       format("spin = %.4f  det L = %.4f", readout.spin, readout.det_L),

@@ -34,6 +34,9 @@ struct Readout {
   std::optional<double> casimir;               // MᵀηM, on S² and H² without a radial potential
   // Values computed but not shown because they lost their digits (M far out on H²), with the reason.
   std::vector<UndefinedValue> undefined;
+  // Where the curvature varies: the Gaussian curvature K at the body [1/length²], and
+  // coordinates.r, r_dot, p_r hold u, u̇, p_u (the sample names them so); none elsewhere.
+  std::optional<double> curvature;
   // Action variables and frequencies of the separable scenes (engine/actions.h); none with the
   // reason in actions_unsupported otherwise.
   std::optional<ActionVariables> actions;

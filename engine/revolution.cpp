@@ -3,8 +3,28 @@
 #include <Eigen/Dense>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 
 namespace spinfold {
+
+RevolutionSurface revolution_surface(const Surface& surface) {
+  RevolutionSurface r;
+  switch (surface.kind) {
+    case SurfaceKind::torus: r.kind = RevolutionKind::torus; break;
+    case SurfaceKind::spheroid: r.kind = RevolutionKind::spheroid; break;
+    case SurfaceKind::bump: r.kind = RevolutionKind::bump; break;
+    case SurfaceKind::catenoid: r.kind = RevolutionKind::catenoid; break;
+    default: throw std::logic_error("revolution_surface: a constant-curvature surface");
+  }
+  r.tube_radius = surface.tube_radius;
+  r.center_radius = surface.center_radius;
+  r.equatorial_radius = surface.equatorial_radius;
+  r.polar_radius = surface.polar_radius;
+  r.height = surface.height;
+  r.width = surface.width;
+  r.neck_radius = surface.neck_radius;
+  return r;
+}
 
 std::span<const RevolutionEntry> revolution_catalog() {
   static const std::array<RevolutionEntry, 4> table{torus_entry, spheroid_entry, bump_entry, catenoid_entry};
@@ -42,6 +62,15 @@ RevolutionFrame revolution_frame(const RevolutionSurface& surface, double u, dou
   frame.E2 = Vec3(-s, c, 0.0);
   frame.n = Vec3(-p.z_u * c, -p.z_u * s, p.rho_u) / f;
   return frame;
+}
+
+ProfilePlace profile_place(const RevolutionSurface& surface, double u) {
+  const RevolutionEntry& entry = revolution_entry(surface.kind);
+  const ProfilePoint p = entry.profile(surface, u);
+  const ProfileMetric m = profile_metric(p);
+  const ProfileDomain d = entry.domain(surface);
+  const bool axis = p.rho == 0.0 || (d.axis_at_min && u == d.u_min) || (d.axis_at_max && u == d.u_max);
+  return {axis ? 0.0 : p.rho, m.C, m.f, axis};
 }
 
 double bordered_hessian_curvature(const ImplicitPoint& p) {

@@ -74,6 +74,10 @@ struct RevolutionEntry {
   ProfileDomain (*domain)(const RevolutionSurface& surface);
 };
 
+// The scene's surface (engine/surface.h) as these functions read it; std::logic_error for a
+// constant-curvature kind.
+RevolutionSurface revolution_surface(const Surface& surface);
+
 std::span<const RevolutionEntry> revolution_catalog();
 const RevolutionEntry& revolution_entry(RevolutionKind kind);
 const RevolutionEntry* find_revolution(std::string_view name);
@@ -109,6 +113,14 @@ struct RevolutionFrame {
   Vec3 X, E1, E2, n;
 };
 RevolutionFrame revolution_frame(const RevolutionSurface& surface, double u, double phi);
+
+// The local geometry at u that converting rates needs: ρ, C = ρ_u/f, f, and whether u is an axis
+// point (ρ = 0: an end of the domain marked as one), where φ and E₂'s rates are undefined.
+struct ProfilePlace {
+  double rho = 0.0, C = 1.0, f = 1.0;
+  bool axis = false;
+};
+ProfilePlace profile_place(const RevolutionSurface& surface, double u);
 
 // K = −det[[Hess F, ∇F], [∇Fᵀ, 0]] / |∇F|⁴ at X: the chart-free Gaussian curvature (§1), for any F.
 double bordered_hessian_curvature(const ImplicitPoint& p);

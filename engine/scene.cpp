@@ -8,7 +8,8 @@ Scene companion_scene(const Scene& scene, std::size_t i) {
   out.name = scene.name;
   out.surface = scene.surface;
   out.body = c.body;
-  out.potential = {scene.potential.radial, c.deformation};
+  out.potential = {scene.potential.radial, c.deformation, scene.potential.height};
+  out.friction = scene.friction;
   out.initial = c.initial;
   out.integrator = c.integrator;
   out.on_degenerate = scene.on_degenerate;

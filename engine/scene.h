@@ -63,9 +63,28 @@ struct PolarPotential {
 
 using DeformationPotential = std::variant<std::monostate, AbcPotential, PolarPotential>;
 
+// V_h = m g z: uniform gravity along −z, z the embedded height (physics-surfaces.md §5).
+struct GravityPotential {
+  double g = 0.0;  // [length/time²]
+};
+// V_h = k z²/2: a spring pulling the body towards the plane z = 0.
+struct SpringPotential {
+  double k = 0.0;  // [energy/length²]
+};
+using HeightPotential = std::variant<std::monostate, GravityPotential, SpringPotential>;
+
 struct Potentials {
   std::optional<RadialPotential> radial;  // absent: no radial force
   DeformationPotential deformation;       // monostate: no deformation force
+  HeightPotential height;                 // monostate: none (only on a surface whose curvature varies)
+};
+
+// Rayleigh's dissipation R = γ_t/2 |V|² + γ_i/2 Σ_A |De_A/Dt|² (physics-surfaces.md §13): viscous
+// friction in translation and in the internal motion, relative to parallel transport. dE/dt = −2R.
+struct Friction {
+  double translational = 0.0;  // γ_t [mass/time]
+  double internal = 0.0;       // γ_i [mass·length²/time]
+  bool any() const { return translational != 0.0 || internal != 0.0; }
 };
 
 // Initial state in the paper's coordinates: L = U(α) diag(λ, μ) U(β)ᵀ in the frame
@@ -76,6 +95,9 @@ struct Potentials {
 // set, the reader has filled alpha_dot (from spin) or r_dot and phi_dot (from speed and heading)
 // with engine/initial_rates.h's resolve_initial_rates, and the writer writes them back instead of
 // those rates. A scene built in code that sets them calls resolve_initial_rates itself.
+//
+// On a surface whose curvature varies the position along the profile is u (with u_dot) instead of
+// r, and the frame is E₁ = X_u/f, E₂ = X_φ/ρ (physics-surfaces.md §1).
 struct InitialState {
   double r = 1.0;           // geodesic distance from the pole [length]
   double phi = 0.0;         // [rad]
@@ -95,6 +117,10 @@ struct InitialState {
   std::optional<double> speed = std::nullopt;
   // angle of the velocity from E₁ = ∂/∂r towards E₂ = (1/S)∂/∂φ [rad], with speed
   std::optional<double> heading = std::nullopt;
+  // Where the curvature varies, in place of r and r_dot (last, so that positional initialisers of
+  // the constant-curvature fields keep their meaning):
+  double u = 0.0;      // the profile parameter (physics-surfaces.md §1) [rad or length]
+  double u_dot = 0.0;  // [per time]
 };
 
 struct IntegratorSettings {
@@ -108,10 +134,10 @@ enum class OnDegenerate {
   stop,    // stop with status degenerate_frame and keep the last state with det L > 0
 };
 
-// A second body on the same surface under the same radial potential, with its own body,
-// deformation potential, initial state and integrator (test bodies do not interact: each is its
-// own run). The scene format writes it as a JSON merge patch over the main body's blocks
-// (codec/scene_json.h); here it is the expanded result.
+// A second body on the same surface under the same radial or height potential and friction, with its own
+// body, deformation potential, initial state and integrator (test bodies do not interact: each is its own
+// run). The scene format writes it as a JSON merge patch over the main body's blocks (codec/scene_json.h);
+// here it is the expanded result.
 struct Companion {
   std::string label;                           // legend text ("" → "body N")
   std::optional<std::array<double, 3>> color;  // sRGB in [0, 1]; none: the renderer's palette
@@ -130,6 +156,7 @@ struct Scene {
   Surface surface;
   Body body;
   Potentials potential;
+  std::optional<Friction> friction;  // absent: none (only on a surface whose curvature varies)
   InitialState initial;
   IntegratorSettings integrator;
   OnDegenerate on_degenerate = OnDegenerate::report;
@@ -140,8 +167,8 @@ struct Scene {
   std::string companions_source;
 };
 
-// Companion i as a scene of its own: the main scene's surface, radial potential and degenerate
-// policy with the companion's body, deformation potential, initial state and integrator.
+// Companion i as a scene of its own: the main scene's surface, radial and height potentials, friction
+// and degenerate policy with the companion's body, deformation potential, initial state and integrator.
 Scene companion_scene(const Scene& scene, std::size_t i);
 
 // Companion i's label: its own, else "body i+2" (the main body is body 1).

@@ -40,6 +40,14 @@ inline constexpr EnumName<SurfaceKind> kSurfaceKindNames[] = {
     {"sphere", SurfaceKind::sphere, "S², curvature +1/R²"},
     {"pseudosphere", SurfaceKind::pseudosphere, "H² (Minkowski hyperboloid), curvature -1/R²"},
     {"plane", SurfaceKind::plane, "the flat plane, the curvature-zero limit"},
+    {"torus", SurfaceKind::torus,
+     "a torus (tube_radius a, center_radius c > a): K > 0 on the outer band, < 0 on the inner"},
+    {"spheroid", SurfaceKind::spheroid,
+     "an ellipsoid of revolution (equatorial_radius a, polar_radius b): oblate a > b, prolate a < b"},
+    {"bump", SurfaceKind::bump,
+     "a Gaussian bump z = h exp(-ρ²/(2w²)) on the plane: K > 0 on top, < 0 round it"},
+    {"catenoid", SurfaceKind::catenoid,
+     "the catenoid ρ = c cosh(z/c) (neck_radius c): a minimal surface, K < 0"},
 };
 inline constexpr EnumName<BodyModel> kBodyModelNames[] = {
     {"affine", BodyModel::affine, "L free: 4 internal degrees of freedom"},
@@ -86,10 +94,20 @@ constexpr std::optional<Enum> enum_value(std::string_view name) {
   return std::nullopt;
 }
 
-// The kinds of deformation potential, indexed like the alternatives of DeformationPotential (the
-// monostate, "no deformation potential", has no name: it is written by omission).
+// A section chosen by its "kind" is a std::variant whose first alternative, std::monostate, is
+// "absent" (written by omission, so it has no name) and whose others each have a table: its names,
+// indexed like the alternatives.
 inline constexpr std::string_view kDeformationKindNames[] = {"", "abc", "polar"};
 static_assert(std::size(kDeformationKindNames) == std::variant_size_v<DeformationPotential>);
+inline constexpr std::string_view kHeightKindNames[] = {"", "gravity", "spring"};
+static_assert(std::size(kHeightKindNames) == std::variant_size_v<HeightPotential>);
+
+constexpr std::span<const std::string_view> kind_names(std::type_identity<DeformationPotential>) {
+  return kDeformationKindNames;
+}
+constexpr std::span<const std::string_view> kind_names(std::type_identity<HeightPotential>) {
+  return kHeightKindNames;
+}
 
 // "auto" followed by the integrator catalog's names (engine/integrator.h): what integrator.name
 // may hold.
@@ -128,19 +146,46 @@ struct Field {
   // Optional numbers: the fields of S that this one stands in for when set (a scene gives one or
   // the other, never both; the writer writes this one instead), and the field it comes with ("" for
   // none: given alone).
-  std::array<std::string_view, 2> replaces{};
+  std::array<std::string_view, 3> replaces{};
   std::string_view partner{};
   std::string_view label{};  // numbers: a short name for people, the schema's title ("Spin s")
+  // The surface kinds (bits of SurfaceKind) the field belongs to: a scene on another kind may not
+  // give it (the reader names the kinds it belongs to) and the writer leaves it out.
+  unsigned surfaces = ~0u;
 
   // The default: the struct's own in-class default.
   T fallback() const { return S{}.*member; }
 };
 
+// The bit of one surface kind, and the two families (engine/surface.h).
+constexpr unsigned surface_bit(SurfaceKind kind) {
+  return 1u << static_cast<unsigned>(kind);
+}
+inline constexpr unsigned kConstantCurvatureSurfaces = surface_bit(SurfaceKind::sphere) |
+                                                       surface_bit(SurfaceKind::pseudosphere) |
+                                                       surface_bit(SurfaceKind::plane);
+inline constexpr unsigned kVaryingCurvatureSurfaces =
+    surface_bit(SurfaceKind::torus) | surface_bit(SurfaceKind::spheroid) | surface_bit(SurfaceKind::bump) |
+    surface_bit(SurfaceKind::catenoid);
+
+// Whether a field belongs to a surface kind (Field::surfaces).
+template <typename F>
+constexpr bool belongs_to(const F& field, SurfaceKind kind) {
+  return (field.surfaces & surface_bit(kind)) != 0;
+}
+
+// `field` restricted to the surface kinds `surfaces` (a mask of surface_bit).
+template <typename F>
+constexpr F only_on(unsigned surfaces, F field) {
+  field.surfaces = surfaces;
+  return field;
+}
+
 template <typename S>
 constexpr Field<S, double> number_field(std::string_view name, double S::*member, std::string_view label,
                                         std::string_view unit, Range range, std::string_view description,
                                         std::string_view range_note = {}) {
-  return {name, member, unit, range, description, range_note, TextRule::any, {}, {}, label};
+  return {name, member, unit, range, description, range_note, TextRule::any, {}, {}, label, ~0u};
 }
 // An optional number in place of the fields `replaces` (see Field), given together with `partner`.
 template <typename S>
@@ -148,28 +193,57 @@ constexpr Field<S, std::optional<double>> optional_number_field(std::string_view
                                                                 std::optional<double> S::*member,
                                                                 std::string_view label, std::string_view unit,
                                                                 Range range, std::string_view description,
-                                                                std::array<std::string_view, 2> replaces,
+                                                                std::array<std::string_view, 3> replaces,
                                                                 std::string_view partner = {}) {
-  return {name, member, unit, range, description, {}, TextRule::any, replaces, partner, label};
+  return {name, member, unit, range, description, {}, TextRule::any, replaces, partner, label, ~0u};
 }
 template <typename S, typename T>
 constexpr Field<S, T> value_field(std::string_view name, T S::*member, std::string_view description,
                                   TextRule text_rule = TextRule::any) {
-  return {name, member, {}, {}, description, {}, text_rule};
+  return {name, member, {}, {}, description, {}, text_rule, {}, {}, {}, ~0u};
 }
 
 // ---- the tables --------------------------------------------------------------------------------
 
 inline constexpr std::tuple kSurfaceFields{
-    value_field("kind", &Surface::kind, "the surface: sphere, pseudosphere or plane"),
-    number_field("radius", &Surface::radius, "Surface radius R", "length", kPositive,
-                 "the size of the surface: curvature K = +1/R² on the sphere, −1/R² on the pseudosphere; a "
-                 "larger radius is a flatter surface (on the plane only a length scale)"),
-    optional_number_field(
-        "curvature", &Surface::curvature_given, "Curvature K", "1/length²", kAnyNumber,
-        "K instead of kind and radius: K > 0 a sphere of radius 1/√K, 0 the flat plane, K < 0 "
-        "the pseudosphere of radius 1/√−K; changed mid-run it continues through 0",
-        {"kind", "radius"}),
+    value_field(
+        "kind", &Surface::kind,
+        "the surface: sphere, pseudosphere or plane (constant curvature), or torus, spheroid, bump or "
+        "catenoid (curvature that varies)"),
+    only_on(kConstantCurvatureSurfaces,
+            number_field(
+                "radius", &Surface::radius, "Surface radius R", "length", kPositive,
+                "the size of the surface: curvature K = +1/R² on the sphere, −1/R² on the pseudosphere; a "
+                "larger radius is a flatter surface (on the plane only a length scale)")),
+    only_on(kConstantCurvatureSurfaces,
+            optional_number_field(
+                "curvature", &Surface::curvature_given, "Curvature K", "1/length²", kAnyNumber,
+                "K instead of kind and radius: K > 0 a sphere of radius 1/√K, 0 the flat plane, K < 0 "
+                "the pseudosphere of radius 1/√−K; changed mid-run it continues through 0",
+                {"kind", "radius"})),
+    only_on(surface_bit(SurfaceKind::torus),
+            number_field("tube_radius", &Surface::tube_radius, "Tube radius a", "length", kPositive,
+                         "the torus's tube: the profile circle of radius a about the centre circle (a < c)")),
+    only_on(
+        surface_bit(SurfaceKind::torus),
+        number_field("center_radius", &Surface::center_radius, "Centre radius c", "length", kPositive,
+                     "the torus's centre circle, c > a: K = cos u/(a(c + a cos u)), from (c+a)⁻¹/a outside "
+                     "to −(c−a)⁻¹/a inside")),
+    only_on(surface_bit(SurfaceKind::spheroid),
+            number_field("equatorial_radius", &Surface::equatorial_radius, "Equatorial radius a", "length",
+                         kPositive, "the spheroid's equator: oblate when a > b, prolate when a < b")),
+    only_on(surface_bit(SurfaceKind::spheroid),
+            number_field("polar_radius", &Surface::polar_radius, "Polar radius b", "length", kPositive,
+                         "the spheroid's half axis along z; a = b is the sphere")),
+    only_on(surface_bit(SurfaceKind::bump),
+            number_field("height", &Surface::height, "Bump height h", "length", kAnyNumber,
+                         "z = h exp(−ρ²/(2w²)): a hill (h > 0) or a dip (h < 0); 0 is the plane")),
+    only_on(surface_bit(SurfaceKind::bump),
+            number_field("width", &Surface::width, "Bump width w", "length", kPositive,
+                         "the bump's width: K > 0 inside ρ = w, < 0 outside")),
+    only_on(surface_bit(SurfaceKind::catenoid),
+            number_field("neck_radius", &Surface::neck_radius, "Neck radius c", "length", kPositive,
+                         "the catenoid ρ = c cosh(z/c): its narrowest circle; K = −1/(c² cosh⁴(z/c))")),
 };
 
 // body.inertia: the number below (isotropic J), or a symmetric positive-definite matrix
@@ -214,16 +288,47 @@ inline constexpr std::tuple kPolarPotentialFields{
     value_field("form", &PolarPotential::form, "W(epsilon): cot2 (the paper's action variable) or literal"),
 };
 
+inline constexpr std::tuple kGravityPotentialFields{
+    number_field("g", &GravityPotential::g, "Gravity g", "length/time²", kAnyNumber,
+                 "V = m g z: a uniform pull along −z (g > 0), z the embedded height"),
+};
+
+inline constexpr std::tuple kSpringPotentialFields{
+    number_field("k", &SpringPotential::k, "Height spring k", "energy/length²", kAnyNumber,
+                 "V = k z²/2: pulls the body towards the plane z = 0 (k > 0)"),
+};
+
 inline constexpr std::tuple kPotentialsFields{
-    value_field("radial", &Potentials::radial, "the radial potential V_r (absent: none)"),
+    only_on(kConstantCurvatureSurfaces,
+            value_field("radial", &Potentials::radial,
+                        "the radial potential V_r (absent: none); only where the curvature is constant")),
     value_field("deformation", &Potentials::deformation,
                 "the deformation potential, abc or polar (absent: none)"),
+    only_on(kVaryingCurvatureSurfaces,
+            value_field(
+                "height", &Potentials::height,
+                "a potential of the embedded height z, gravity (m g z) or spring (k z²/2) (absent: none)")),
+};
+
+inline constexpr std::tuple kFrictionFields{
+    number_field("translational", &Friction::translational, "Translational friction γ_t", "mass/time",
+                 kNonNegative, "viscous drag on the velocity: −γ_t V"),
+    number_field("internal", &Friction::internal, "Internal friction γ_i", "mass·length²/time", kNonNegative,
+                 "viscous drag on the frame's rates relative to parallel transport: −γ_i De_A/Dt"),
 };
 
 inline constexpr std::tuple kInitialStateFields{
-    number_field("r", &InitialState::r, "Distance r", "length", kNonNegative,
-                 "geodesic distance from the pole (<= pi R on the sphere)",
-                 "geodesic distance from the pole"),
+    only_on(kConstantCurvatureSurfaces,
+            number_field("r", &InitialState::r, "Distance r", "length", kNonNegative,
+                         "geodesic distance from the pole (<= pi R on the sphere)",
+                         "geodesic distance from the pole")),
+    only_on(kVaryingCurvatureSurfaces,
+            number_field(
+                "u", &InitialState::u, "Profile position u", "rad (torus, spheroid); length (bump, catenoid)",
+                kAnyNumber,
+                "where along the profile: the torus's tube angle (0 the outer equator, −π/2 the top "
+                "circle), the spheroid's polar angle from the north pole (0 to π), the distance from the "
+                "bump's axis (>= 0), −z on the catenoid")),
     number_field("phi", &InitialState::phi, "Polar angle φ", "rad", kAnyNumber, "polar angle"),
     number_field("alpha", &InitialState::alpha, "Rotation α", "rad", kAnyNumber,
                  "left rotation angle of L = U(α) diag(λ, μ) U(β)ᵀ"),
@@ -233,7 +338,12 @@ inline constexpr std::tuple kInitialStateFields{
                  "a rigid body's size"),
     number_field("mu", &InitialState::mu, "Stretch μ", "1", kPositive,
                  "the ellipse's second axis relative to the reference body (= λ for a rigid body)"),
-    number_field("r_dot", &InitialState::r_dot, "Rate ṙ", "length/time", kAnyNumber, "rate of r"),
+    only_on(kConstantCurvatureSurfaces,
+            number_field("r_dot", &InitialState::r_dot, "Rate ṙ", "length/time", kAnyNumber, "rate of r")),
+    only_on(
+        kVaryingCurvatureSurfaces,
+        number_field("u_dot", &InitialState::u_dot, "Rate u̇",
+                     "rad/time (torus, spheroid); length/time (bump, catenoid)", kAnyNumber, "rate of u")),
     number_field("phi_dot", &InitialState::phi_dot, "Rate φ̇", "rad/time", kAnyNumber, "rate of phi"),
     number_field("alpha_dot", &InitialState::alpha_dot, "Rate α̇", "rad/time", kAnyNumber, "rate of alpha"),
     number_field("beta_dot", &InitialState::beta_dot, "Rate β̇", "rad/time", kAnyNumber, "rate of beta"),
@@ -246,14 +356,16 @@ inline constexpr std::tuple kInitialStateFields{
                           "geodesic without potentials): s = J[(λ² + μ²)(α̇ + C(r) φ̇) − 2λμ β̇], instead of "
                           "alpha_dot",
                           {"alpha_dot"}),
-    optional_number_field("speed", &InitialState::speed, "Speed v", "length/time", kNonNegative,
-                          "how fast the body moves along the surface at the start: v = √(ṙ² + S² φ̇²), with "
-                          "heading instead of r_dot and phi_dot",
-                          {"r_dot", "phi_dot"}, "heading"),
-    optional_number_field("heading", &InitialState::heading, "Heading", "rad", kAnyNumber,
-                          "the start velocity's direction: 0 straight away from the pole, π/2 sideways "
-                          "(increasing φ); with speed",
-                          {"r_dot", "phi_dot"}, "speed"),
+    optional_number_field(
+        "speed", &InitialState::speed, "Speed v", "length/time", kNonNegative,
+        "how fast the body moves along the surface at the start: v = √(ṙ² + S² φ̇²) (√(f²u̇² + "
+        "ρ²φ̇²) where the curvature varies), with heading instead of r_dot (u_dot) and phi_dot",
+        {"r_dot", "u_dot", "phi_dot"}, "heading"),
+    optional_number_field(
+        "heading", &InitialState::heading, "Heading", "rad", kAnyNumber,
+        "the start velocity's direction: 0 straight away from the pole (along increasing u where "
+        "the curvature varies), π/2 sideways (increasing φ); with speed",
+        {"r_dot", "u_dot", "phi_dot"}, "speed"),
 };
 
 inline constexpr std::tuple kIntegratorSettingsFields{
@@ -271,6 +383,9 @@ inline constexpr std::tuple kSceneFields{
     value_field("surface", &Scene::surface, "the surface the body moves on"),
     value_field("body", &Scene::body, "mass, inertia and model of the body"),
     value_field("potential", &Scene::potential, "the potentials acting on the body"),
+    only_on(kVaryingCurvatureSurfaces,
+            value_field("friction", &Scene::friction,
+                        "Rayleigh friction in translation and internal motion (absent: none): dE/dt = −2R")),
     value_field("initial", &Scene::initial, "the initial state in the paper's coordinates"),
     value_field("integrator", &Scene::integrator, "the integrator and its step and tolerance"),
     value_field("on_degenerate", &Scene::on_degenerate, "what happens when det L reaches 0"),
@@ -291,6 +406,15 @@ constexpr const auto& fields_of(std::type_identity<AbcPotential>) {
 }
 constexpr const auto& fields_of(std::type_identity<PolarPotential>) {
   return kPolarPotentialFields;
+}
+constexpr const auto& fields_of(std::type_identity<GravityPotential>) {
+  return kGravityPotentialFields;
+}
+constexpr const auto& fields_of(std::type_identity<SpringPotential>) {
+  return kSpringPotentialFields;
+}
+constexpr const auto& fields_of(std::type_identity<Friction>) {
+  return kFrictionFields;
 }
 constexpr const auto& fields_of(std::type_identity<Potentials>) {
   return kPotentialsFields;
@@ -335,16 +459,32 @@ constexpr void for_each_field(const Table& table, Fn&& fn) {
   std::apply([&](const auto&... field) { (fn(field), ...); }, table);
 }
 
+// A section chosen by its "kind" (DeformationPotential, HeightPotential): a variant with names.
+template <typename T>
+concept KindVariant = requires {
+  kind_names(std::type_identity<T>{});
+};
+
 // Calls fn(std::integral_constant<std::size_t, i>{}, std::type_identity<Alternative>{}) for every
-// named deformation kind (index 1 on).
-template <typename Fn>
-constexpr void for_each_deformation_kind(Fn&& fn) {
+// named kind of the variant V (index 1 on).
+template <KindVariant V, typename Fn>
+constexpr void for_each_kind(Fn&& fn) {
   [&]<std::size_t... i>(std::index_sequence<i...>) {
     (fn(std::integral_constant<std::size_t, i + 1>{},
-        std::type_identity<std::variant_alternative_t<i + 1, DeformationPotential>>{}),
+        std::type_identity<std::variant_alternative_t<i + 1, V>>{}),
      ...);
   }
-  (std::make_index_sequence<std::variant_size_v<DeformationPotential> - 1>{});
+  (std::make_index_sequence<std::variant_size_v<V> - 1>{});
+}
+
+// The names table that holds `kind` (a deformation's or a height potential's), empty if none does.
+constexpr std::span<const std::string_view> kind_family(std::string_view kind) {
+  for (const std::span<const std::string_view> names :
+       {kind_names(std::type_identity<DeformationPotential>{}),
+        kind_names(std::type_identity<HeightPotential>{})})
+    for (std::string_view n : names)
+      if (!n.empty() && n == kind) return names;
+  return {};
 }
 
 }  // namespace spinfold

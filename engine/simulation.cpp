@@ -10,6 +10,7 @@
 namespace spinfold {
 
 double det_L(const Scene& scene, const State& state) {
+  if (curvature_varies(scene.surface.kind)) return embedded_det(EmbeddedScene(scene), state.y);
   return internal_state(scene, state.y).L.determinant();
 }
 
@@ -32,8 +33,25 @@ double energy_scale(const EnergyParts& e) {
 
 namespace {
 
+// H of a state of the run, split (the chart's Hamiltonian, or the chart-free energy).
+EnergyParts parts_of(const Simulation& run, const State& state) {
+  if (run.embedded) return embedded_energy_parts(*run.embedded, state.y);
+  return energy_parts(run.scene, state.chart, state.y);
+}
+
+// The run's model and field for a scene whose curvature varies (none otherwise).
+void use_surface(Simulation& run) {
+  if (!curvature_varies(run.scene.surface.kind)) {
+    run.embedded.reset();
+    run.field.reset();
+    return;
+  }
+  run.embedded = make_embedded_scene(run.scene);
+  run.field = std::make_shared<const VectorField>(embedded_field(run.embedded));
+}
+
 void measure_energy_from_here(Simulation& run) {
-  const EnergyParts now = energy_parts(run.scene, run.state.chart, run.state.y);
+  const EnergyParts now = parts_of(run, run.state);
   run.initial_energy = now.kinetic + now.potential;  // = energy(): the same sum
   run.energy_scale = energy_scale(now);
   run.segment_start = run.state.t;
@@ -166,7 +184,11 @@ Simulation start_simulation(const Scene& scene, double start_time) {
   for (std::size_t i = 0; i < scene.companions.size(); ++i)
     run.companions.push_back(start_simulation(companion_scene(scene, i), start_time));
   run.scene = scene;
-  run.state = initial_state(scene);
+  use_surface(run);
+  if (run.embedded)
+    run.state.y = embedded_start(*run.embedded, scene.initial);
+  else
+    run.state = initial_state(scene);
   run.state.t = start_time;
   run.start_time = start_time;
   use_integrator(run);
@@ -179,13 +201,16 @@ Simulation start_simulation(const Scene& scene, double start_time) {
 
 namespace {
 
-double det_of(const Coords& y) {
+// det L of the chart's L, or det[e₁, e₂, n] where the curvature varies.
+double det_of(const Simulation& run, const Coords& y) {
+  if (run.embedded) return embedded_det(*run.embedded, y);
   return y[coord::L] * y[coord::L + 3] - y[coord::L + 1] * y[coord::L + 2];
 }
 
 // det L of y has the sign `positive` however it is rounded (det_of and det_L may differ by an ulp).
-bool det_on_side(const Scene& scene, const Coords& y, bool positive) {
-  const double a = det_of(y), b = internal_state(scene, y).L.determinant();
+bool det_on_side(const Simulation& run, const Coords& y, bool positive) {
+  const double a = det_of(run, y);
+  const double b = run.embedded ? a : internal_state(run.scene, y).L.determinant();
   return positive ? a > 0.0 && b > 0.0 : a < 0.0 && b < 0.0;
 }
 
@@ -196,17 +221,16 @@ struct Crossing {
   double before = 0.0;  // offset of `y`, ≤ 1e-14 h before it [time]
   Coords y;             // the state there (the integrator's sub-step from y)
 };
-Crossing locate_degenerate(Integrator& integrator, const StepProblem& f, const Coords& y, double h,
-                           double tolerance) {
-  const Scene& scene = f.scene;
-  const double det0 = det_of(y);
+Crossing locate_degenerate(const Simulation& run, Integrator& integrator, const StepProblem& f,
+                           const Coords& y, double h, double tolerance) {
+  const double det0 = det_of(run, y);
   double lo = 0.0, hi = h;
   Coords trial;
   for (int i = 0; i < 60 && hi - lo > 1e-14 * h; ++i) {
     const double mid = 0.5 * (lo + hi);
     integrator.try_step(f, y, mid, tolerance, trial);
     trial += y;
-    if ((det_of(trial) > 0.0) == (det0 > 0.0))
+    if ((det_of(run, trial) > 0.0) == (det0 > 0.0))
       lo = mid;
     else
       hi = mid;
@@ -216,7 +240,7 @@ Crossing locate_degenerate(Integrator& integrator, const StepProblem& f, const C
   for (int k = 0; c.before > 0.0; ++k) {
     integrator.try_step(f, y, c.before, tolerance, trial);
     c.y = y + trial;
-    if (det_on_side(scene, c.y, det0 > 0.0) || k == 50) break;
+    if (det_on_side(run, c.y, det0 > 0.0) || k == 50) break;
     c.before = std::max(0.0, lo - std::ldexp(1e-15 * h, k));
     c.y = y;
   }
@@ -236,10 +260,14 @@ constexpr std::uint64_t kCheckEvery = 16;
 // overflows: the energy error is then as large as the energy scale at the last change and as the
 // current one; a body that legitimately speeds up, C < 0, has an error far below the current
 // scale), non_finite, out_of_range (far out on H²) or ok.
+//
+// With friction the energy only falls (dE/dt = −2R, physics-surfaces.md §13): a fall is physics, so
+// only a rise counts as divergence.
 Status health(const Simulation& run, const State& state) {
-  const EnergyParts now = energy_parts(run.scene, state.chart, state.y);
+  const EnergyParts now = parts_of(run, state);
   const double E = now.kinetic + now.potential;
-  const double error = std::abs(E - run.initial_energy);
+  const bool dissipative = run.scene.friction && run.scene.friction->any();
+  const double error = dissipative ? E - run.initial_energy : std::abs(E - run.initial_energy);
   if (!std::isfinite(E)) return Status::non_finite;
   if (error > run.energy_scale && error > 0.5 * energy_scale(now)) return Status::diverged;
   if (run.scene.surface.kind == SurfaceKind::pseudosphere &&
@@ -265,7 +293,7 @@ void advance_exact(Simulation& run, double t_end) {
     return;
   }
   // The sign before the next crossing (only the affine body has crossings, and L in its state).
-  bool positive = run.scene.body.model == BodyModel::affine && det_of(run.state.y) > 0.0;
+  bool positive = run.scene.body.model == BodyModel::affine && det_of(run, run.state.y) > 0.0;
   for (const double tau :
        degenerate_times(*run.exact, run.state.t - run.segment_start, t_end - run.segment_start)) {
     const double t = run.segment_start + tau;
@@ -277,7 +305,7 @@ void advance_exact(Simulation& run, double t_end) {
     // The stop lands just before the crossing, where det L keeps its sign, and lists the event at
     // its own time (≤ ~1e-15 t before the root).
     State stop = at(t);
-    for (int k = 0; k < 50 && !det_on_side(run.scene, stop.y, positive); ++k) {
+    for (int k = 0; k < 50 && !det_on_side(run, stop.y, positive); ++k) {
       const double t_before = t - std::ldexp(1e-15 * std::max(1.0, std::abs(t)), k);
       if (!(t_before > run.state.t)) break;
       stop = at(t_before);
@@ -306,7 +334,7 @@ bool step_toward(Simulation& run, StepPoint& p, double t_end, Mode mode, std::ui
   const bool affine = scene.body.model == BodyModel::affine;
   const bool sequence = mode == Mode::sequence;
   const double tolerance = scene.integrator.tolerance;
-  const StepProblem f{scene, state.chart};
+  const StepProblem f{scene, state.chart, run.field.get()};
   Coords increment, y_next;
   if (p.carry.size() != state.y.size()) p.carry = Coords::Zero(state.y.size());
   while (state.status == Status::ok && state.t < t_end) {
@@ -338,8 +366,8 @@ bool step_toward(Simulation& run, StepPoint& p, double t_end, Mode mode, std::ui
       continue;
     }
 
-    if (affine && (det_of(state.y) > 0.0) != (det_of(y_next) > 0.0)) {
-      const Crossing crossing = locate_degenerate(*run.integrator, f, state.y, h, tolerance);
+    if (affine && (det_of(run, state.y) > 0.0) != (det_of(run, y_next) > 0.0)) {
+      const Crossing crossing = locate_degenerate(run, *run.integrator, f, state.y, h, tolerance);
       const bool stop = scene.on_degenerate == OnDegenerate::stop;
       // A stop reports the event at its own time (≤ 1e-14 h before the crossing's midpoint), so
       // the stopped sample lists it.
@@ -372,7 +400,7 @@ bool step_toward(Simulation& run, StepPoint& p, double t_end, Mode mode, std::ui
     // A step shortened to land on t_end says nothing about the step the solution allows.
     if (adaptive) p.h_next = (last && h < h_planned) ? h_planned : result.h_next;
     const State before_chart_move = state;
-    if (maintain_chart(scene, state)) {
+    if (!run.embedded && maintain_chart(scene, state)) {
       if (!all_finite(state)) {
         state = before_chart_move;
         state.status = Status::non_finite;
@@ -530,7 +558,13 @@ void retune(Simulation& run, const Scene& next) {
   State here = run.state;
   here.status = Status::ok;
   const Surface& before = run.scene.surface;
-  if (dialled(before, next.surface)) {
+  if (curvature_varies(before.kind)) {
+    // The chart-free state keeps X, V, e_A and W_A (so the velocities and frame rates); the rigid
+    // body's spin follows its rate s/I with the new inertia I = |e₁|² tr J.
+    if (run.embedded->rigid)
+      here.y(embedded::spin) *=
+          inertia_of(next.body).matrix.trace() / run.embedded->body.inertia.matrix.trace();
+  } else if (dialled(before, next.surface)) {
     // The same geodesic polar place (r, φ), velocity and frame in (E₁, E₂) on the new surface.
     const GlobalBody g = global_body(run.scene, here);
     PlacedBody p{g.r, g.phi, g.r_dot, g.S * g.phi_dot, g.L, g.M, 0.0};
@@ -560,6 +594,7 @@ void retune(Simulation& run, const Scene& next) {
                            next.integrator.tolerance == run.scene.integrator.tolerance;
   const double h_next = same_method && run.info->adaptive ? run.grid.h_next : next.integrator.dt;
   run.scene = next;
+  use_surface(run);
   if (!same_method || !run.integrator) use_integrator(run);
   run.state = here;
   run.view_events.clear();

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "engine/embedded_run.h"
 #include "engine/exact_solution.h"
 #include "engine/integrator.h"
 #include "engine/invariants.h"
@@ -48,7 +49,11 @@ struct Simulation {
   // from it by a cut step (or a few), which is recomputed, never kept: replay is bit-exact.
   StepPoint grid;
   StepPoint checked;  // the last grid point whose energy and range were checked and found good
-  const IntegratorInfo* info = nullptr;    // the integrator that runs (auto resolved)
+  const IntegratorInfo* info = nullptr;  // the integrator that runs (auto resolved)
+  // Where the curvature varies (engine/embedded_run.h): the scene's model and the chart-free field
+  // that the integrator steps; null on the sphere, pseudosphere and plane (their chart equations).
+  std::shared_ptr<const EmbeddedScene> embedded;
+  std::shared_ptr<const VectorField> field;
   std::unique_ptr<Integrator> integrator;  // null when the exact solution runs
   std::optional<ExactSolution> exact;      // from the state at segment_start
   ExactCheck exact_check;                  // what the closed form is checked against (exact only)

@@ -1,16 +1,26 @@
 #include "engine/surface.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace spinfold {
+
+namespace {
+
+// A constant-curvature formula asked of a surface whose curvature varies: a caller's mistake.
+[[noreturn]] void not_constant(const Surface&) {
+  throw std::logic_error("a constant-curvature formula on a surface whose curvature varies");
+}
+
+}  // namespace
 
 double curvature_sign(const Surface& surface) {
   switch (surface.kind) {
     case SurfaceKind::sphere: return 1.0;
     case SurfaceKind::pseudosphere: return -1.0;
     case SurfaceKind::plane: return 0.0;
+    default: not_constant(surface);
   }
-  return 0.0;
 }
 
 void resolve_curvature(Surface& surface) {
@@ -36,8 +46,8 @@ double polar_S(const Surface& surface, double r) {
     case SurfaceKind::sphere: return R * std::sin(r / R);
     case SurfaceKind::pseudosphere: return R * std::sinh(r / R);
     case SurfaceKind::plane: return r;
+    default: not_constant(surface);
   }
-  return r;
 }
 
 double polar_C(const Surface& surface, double r) {
@@ -46,8 +56,8 @@ double polar_C(const Surface& surface, double r) {
     case SurfaceKind::sphere: return std::cos(r / R);
     case SurfaceKind::pseudosphere: return std::cosh(r / R);
     case SurfaceKind::plane: return 1.0;
+    default: not_constant(surface);
   }
-  return 1.0;
 }
 
 double dot(const Surface& surface, const Vec3& a, const Vec3& b) {
@@ -92,6 +102,7 @@ ChartPoint chart_point(const Surface& surface, double r, double phi) {
       p.X = {r * c, r * s, 0.0};
       p.E1 = {c, s, 0.0};
       break;
+    default: not_constant(surface);
   }
   return p;
 }
@@ -104,8 +115,8 @@ PolarCoordinates polar_coordinates(const Surface& surface, const Vec3& X) {
     case SurfaceKind::sphere: return {R * std::atan2(rho, X.z()), phi, rho};
     case SurfaceKind::pseudosphere: return {R * std::asinh(rho / R), phi, rho};
     case SurfaceKind::plane: return {rho, phi, rho};
+    default: not_constant(surface);
   }
-  return {rho, phi, rho};
 }
 
 }  // namespace spinfold

@@ -1,4 +1,7 @@
-// Surfaces of constant curvature and their polar chart (physics.md §1).
+// The surfaces a body moves on. Sphere, pseudosphere and plane have constant curvature and the polar
+// chart of physics.md §1 (the functions below); the torus, spheroid, bump and catenoid are surfaces of
+// revolution whose curvature varies (engine/revolution.h, physics-surfaces.md §1), run by the
+// chart-free equations (engine/embedded_dynamics.h).
 #pragma once
 
 #include <Eigen/Dense>
@@ -10,9 +13,17 @@ using Vec3 = Eigen::Vector3d;
 using Mat2 = Eigen::Matrix2d;
 using Mat3 = Eigen::Matrix3d;
 
-// The three surfaces form a closed set that differs only in the sign σ of the curvature, so one
-// struct with a kind serves every formula (K = σ/R²) without a visitor per function.
-enum class SurfaceKind { sphere, pseudosphere, plane };
+// The three constant-curvature surfaces differ only in the sign σ of the curvature, so one struct
+// with a kind serves every formula (K = σ/R²) without a visitor per function. The four after them
+// are the surfaces of revolution of engine/revolution.h, one file each behind its table; the
+// constant-curvature functions below are not defined on them (std::logic_error).
+enum class SurfaceKind { sphere, pseudosphere, plane, torus, spheroid, bump, catenoid };
+
+// True for the torus, spheroid, bump and catenoid (physics-surfaces.md), false for S², H², the plane.
+constexpr bool curvature_varies(SurfaceKind kind) {
+  return kind == SurfaceKind::torus || kind == SurfaceKind::spheroid || kind == SurfaceKind::bump ||
+         kind == SurfaceKind::catenoid;
+}
 
 // Farthest a body may go on H², in units of R: the global embedding grows as R e^{r/R}/2 and the
 // outputs built from it (X, p_φ, the paper's frame) must stay finite in double (e^250 ≈ 1e108).
@@ -24,6 +35,14 @@ struct Surface {
 
   SurfaceKind kind = SurfaceKind::sphere;
   double radius = 1.0;  // R [length]; on the plane only the length scale for charts and display
+  // The surfaces of revolution's parameters (physics-surfaces.md §1) [length]; each kind reads its own.
+  double tube_radius = 1.0;        // torus: a
+  double center_radius = 2.5;      // torus: c > a
+  double equatorial_radius = 1.0;  // spheroid: a (oblate a > b, prolate a < b)
+  double polar_radius = 0.6;       // spheroid: b
+  double height = 1.0;             // bump: h, either sign (z = h exp(−ρ²/(2w²)))
+  double width = 1.0;              // bump: w > 0
+  double neck_radius = 1.0;        // catenoid: c
   // K [1/length²] when the scene gave the curvature instead of kind and radius (a dial through 0):
   // resolve_curvature sets kind and radius from it; kept to write the scene back as given.
   std::optional<double> curvature_given;

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "engine/chart.h"
+#include "engine/embedded_run.h"
 #include "engine/exact_solution.h"
 #include "engine/integrator.h"
 #include "engine/invariants.h"
@@ -109,7 +110,7 @@ void check_fields(Checker& c, const std::string& path, const S& value) {
     } else if constexpr (OptionalSection<T>) {
       if (v) check_fields(c, name, *v);
     } else {
-      static_assert(std::is_same_v<T, DeformationPotential>, "a field type the validator does not know");
+      static_assert(KindVariant<T>, "a field type the validator does not know");
       std::visit(
           [&](const auto& alternative) {
             if constexpr (HasFields<std::remove_cvref_t<decltype(alternative)>>)
@@ -122,9 +123,66 @@ void check_fields(Checker& c, const std::string& path, const S& value) {
 
 // The rules that tie fields together (the fields' own ranges are in scene_fields.h).
 
+// A surface whose curvature varies (physics-surfaces.md §1): its parameters together, u on the
+// profile's domain, and what runs only where the curvature is constant.
+void check_varying_surface(const Scene& scene, Checker& c) {
+  const Surface& surface = scene.surface;
+  const std::string kind(enum_name(surface.kind));
+  if (surface.kind == SurfaceKind::torus && std::isfinite(surface.tube_radius) &&
+      std::isfinite(surface.center_radius) && !(surface.center_radius > surface.tube_radius))
+    c.add("surface.center_radius", surface.center_radius,
+          "must be > tube_radius (" + shortest(surface.tube_radius) +
+              "): the tube would cross the axis and the torus intersect itself");
+  const double u = scene.initial.u;
+  if (std::isfinite(u) && std::abs(u) <= kMaxSceneMagnitude) {
+    const ProfileDomain d =
+        revolution_entry(revolution_surface(surface).kind).domain(revolution_surface(surface));
+    if (!d.periodic && (u < d.u_min || u > d.u_max))
+      c.add("initial.u", u,
+            "must be in [" + shortest(d.u_min) + ", " + (std::isfinite(d.u_max) ? shortest(d.u_max) : "inf") +
+                "] on the " + kind +
+                (surface.kind == SurfaceKind::spheroid ? " (the polar angle from the north pole)"
+                 : surface.kind == SurfaceKind::bump   ? " (the distance from the axis)"
+                                                       : ""));
+  }
+  if (scene.body.model == BodyModel::incompressible)
+    c.add_text(
+        "body.model", "incompressible",
+        "runs only under split4/split6 (RATTLE on det L), which compose the constant-curvature chart's "
+        "flows: on the " +
+            kind + " use affine or rigid");
+  if (scene.potential.radial)
+    c.add_text("potential.radial", "present",
+               "is defined about the pole of a constant-curvature surface, not on the " + kind +
+                   ": use potential.height (gravity or spring)");
+  const std::string& name = scene.integrator.name;
+  if (const CatalogEntry* entry = find_integrator(name); entry && entry->info.chart_flows_only)
+    c.add_text("integrator.name", name,
+               "composes the constant-curvature chart's exact flows; on the " + kind +
+                   " use dop853, rk4, gauss4, gauss6, implicit_midpoint or auto");
+}
+
+// Height potential and friction act only where the curvature varies (on the sphere, plane and
+// pseudosphere the engine has no term for them yet; a spheroid with a = b is the sphere).
+void check_constant_surface(const Scene& scene, Checker& c) {
+  if (!std::holds_alternative<std::monostate>(scene.potential.height))
+    c.add_text("potential.height", "present",
+               "acts only on the torus, spheroid, bump and catenoid so far: for gravity on a sphere use a "
+               "spheroid with equatorial_radius = polar_radius");
+  if (scene.friction)
+    c.add_text("friction", "present",
+               "acts only on the torus, spheroid, bump and catenoid so far: for friction on a sphere use a "
+               "spheroid with equatorial_radius = polar_radius");
+}
+
 void check_initial(const Scene& scene, Checker& c) {
   const InitialState& q = scene.initial;
   const Surface& surface = scene.surface;
+  if (curvature_varies(surface.kind)) {
+    check_varying_surface(scene, c);
+    return;
+  }
+  check_constant_surface(scene, c);
   if (!std::isfinite(q.r) || std::abs(q.r) > kMaxSceneMagnitude || !std::isfinite(surface.radius) ||
       !(surface.radius > 0.0))
     return;
@@ -201,7 +259,7 @@ void check_potentials(const Scene& scene, Checker& c) {
   const Potentials& pot = scene.potential;
   const InitialState& q = scene.initial;
   const bool isotropic = q.lambda == q.mu;
-  if (pot.radial) {
+  if (pot.radial && !curvature_varies(scene.surface.kind)) {
     const bool at_pole = q.r == 0.0 || (scene.surface.kind == SurfaceKind::sphere &&
                                         q.r == std::numbers::pi * scene.surface.radius);
     if (pot.radial->gamma > 0.0 && at_pole)
@@ -221,6 +279,12 @@ void check_potentials(const Scene& scene, Checker& c) {
 }
 
 bool finite_start(const Scene& scene) {
+  if (curvature_varies(scene.surface.kind)) {
+    const EmbeddedScene model(scene);
+    const Coords y = embedded_start(model, scene.initial);
+    const EnergyParts e = embedded_energy_parts(model, y);
+    return y.allFinite() && std::isfinite(e.kinetic + e.potential);
+  }
   const State start = initial_state(scene);
   return start.y.allFinite() && std::isfinite(energy(scene, start));
 }
@@ -236,6 +300,7 @@ void check_finite_start(const Scene& scene, Checker& c) {
   };
   const Candidate candidates[] = {
       {"initial.r_dot", [](Scene& s) -> double& { return s.initial.r_dot; }, 0.0},
+      {"initial.u_dot", [](Scene& s) -> double& { return s.initial.u_dot; }, 0.0},
       {"initial.phi_dot", [](Scene& s) -> double& { return s.initial.phi_dot; }, 0.0},
       {"initial.alpha_dot", [](Scene& s) -> double& { return s.initial.alpha_dot; }, 0.0},
       {"initial.beta_dot", [](Scene& s) -> double& { return s.initial.beta_dot; }, 0.0},

@@ -3,6 +3,7 @@
 #include <array>
 #include <utility>
 
+#include "engine/scene_fields.h"
 #include "render/view_table.h"
 #include "render/views/view_model.h"
 
@@ -13,8 +14,8 @@ ViewKind default_view(SurfaceKind surface) {
     case SurfaceKind::sphere: return ViewKind::sphere;
     case SurfaceKind::pseudosphere: return ViewKind::disk;
     case SurfaceKind::plane: return ViewKind::plane;
+    default: return ViewKind::sphere;  // no view draws it yet: view_unsupported_reason says so
   }
-  return ViewKind::sphere;
 }
 
 std::string joined_view_names(std::string_view separator) {
@@ -36,13 +37,17 @@ bool shows(const ViewInfo& v, SurfaceKind surface) {
     case SurfaceKind::sphere: return v.sphere;
     case SurfaceKind::pseudosphere: return v.pseudosphere;
     case SurfaceKind::plane: return v.plane;
+    default: return false;
   }
-  return false;
 }
 }  // namespace
 
 std::optional<std::string> view_unsupported_reason(ViewKind view, SurfaceKind surface) {
   if (shows(view_info(view), surface)) return std::nullopt;
+  if (curvature_varies(surface))
+    return "no view draws the " + std::string(enum_name(surface)) +
+           " yet (its 3-D and chart views are the next step of the surfaces whose curvature varies): "
+           "simulate, sweep, work-precision, Python and the API's trajectory run it";
   std::string names;
   for (const ViewInfo& v : views())
     if (shows(v, surface)) names += (names.empty() ? "" : ", ") + std::string(v.name);

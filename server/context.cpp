@@ -99,9 +99,15 @@ nlohmann::ordered_json session_json(const std::string& id, const Session& s) {
   // 0: the server's kFlatCurvature decides the plane), and K = σ/R² [1/length²]; the UI reads these
   // rather than re-deriving them.
   const Surface& surface = s.run.scene.surface;
+  // Where the curvature varies there is no one radius or K: the kind alone (K at the body is in the
+  // state, "K").
   for (const auto& kind : kSurfaceKindNames)
     if (kind.value == surface.kind)
-      j["surface"] = {{"kind", kind.name}, {"radius", surface.radius}, {"curvature", curvature(surface)}};
+      j["surface"] =
+          curvature_varies(surface.kind)
+              ? nlohmann::ordered_json{{"kind", kind.name}}
+              : nlohmann::ordered_json{
+                    {"kind", kind.name}, {"radius", surface.radius}, {"curvature", curvature(surface)}};
   return j;
 }
 

@@ -78,11 +78,14 @@ Plan make_plan(Definition def) {
     throw SweepError(option("--every") + ": " + *why);
   if (def.max_steps) check("max_steps", static_cast<double>(*def.max_steps));
   Plan plan;
+  bool profile = false;  // the base's curvature varies: its chart is (u, φ)
   {
     const SceneParse parsed = parse_scene_text(def.base_text);
     if (!parsed.errors.empty()) throw SweepError("the base scene: " + describe_errors(parsed.errors));
     plan.base = scene_to_json(*parsed.scene);
+    profile = curvature_varies(parsed.scene->surface.kind);
   }
+  if (profile && def.fields == kDefaultFields) def.fields = std::string(kDefaultProfileFields);
   if (def.axes.empty())
     throw SweepError(door == Door::cli ? "sweep: nothing to vary (give --set FIELD=... or --table FILE)"
                                        : "vary: give at least one field and its values");
@@ -98,13 +101,20 @@ Plan make_plan(Definition def) {
   // deformation) is refused here, each value alone on the base. A rule that ties fields together
   // (a rigid body's mu = lambda, r <= πR) is checked for the combination each run makes: its
   // status invalid_scene.
+  bool kind_varied = false;
+  for (const Axis& a : def.axes)
+    for (const FieldPath* f : a.fields) kind_varied = kind_varied || f->path == "surface.kind";
   for (const Axis& a : def.axes)
     for (const auto& values : a.values) {
       json document = plan.base;
       apply_values(document, a.fields, values);
       std::vector<FieldError> structural;
+      // A field of another surface family (initial.r on a torus) is structural too, unless an axis
+      // varies the surface's kind (then each run's combination decides).
       for (const FieldError& e : parse_scene(document).errors)
-        if (e.reason == "is not a known field here") structural.push_back(e);
+        if (e.reason == "is not a known field here" ||
+            (!kind_varied && e.reason.starts_with("is not defined on the ")))
+          structural.push_back(e);
       if (!structural.empty()) throw SweepError(a.label + ": " + describe_errors(structural));
     }
   if (!def.trajectories.empty()) {

@@ -17,6 +17,9 @@ namespace spinfold::sweep {
 // The columns a sweep writes by default after the varied fields (CLI and Python alike).
 inline constexpr std::string_view kDefaultFields =
     "t,r,phi,lambda,mu,energy,energy_error,drift.energy,drift.p_phi";
+// The same where the base scene's curvature varies: its chart's u in place of r, and K at the end.
+inline constexpr std::string_view kDefaultProfileFields =
+    "t,u,phi,lambda,mu,energy,energy_error,drift.energy,drift.p_phi,K";
 
 // The names `fields` accepts: final-state values of a sample (nested ones flattened with dots:
 // X.0, L.0.1, actions.J_r, frequencies.r), integrator, status_detail, and drift.NAME (final minus

@@ -13,6 +13,11 @@ import { curvatureForm } from "./surface.js";
 /** @typedef {import("./state.js").AppState} AppState */
 /** @typedef {{path: string[], spec: any, value: any, replaced: boolean}} Field */
 
+// A field the schema marks as belonging to some surface kinds only ("x-surfaces": the torus's
+// tube_radius, initial.u where the curvature varies, r where it is constant) shows on those only.
+const belongs = (/** @type {any} */ spec, /** @type {string} */ kind) =>
+  !spec["x-surfaces"] || spec["x-surfaces"].includes(kind);
+
 /** @param {any} object @param {string[]} path */
 const lookup = (object, path) => path.reduce((node, key) => (node ? node[key] : undefined), object);
 
@@ -35,6 +40,7 @@ function shown(f) {
 function sections(s) {
   const props = s.schema.properties;
   const current = s.current;
+  const kind = /** @type {import("./surface.js").ResolvedSurface} */ (s.surface)?.kind ?? "sphere";
   /** @param {string[]} path @param {any} spec @param {any} [value] */
   const field = (path, spec, value = lookup(current, path)) => ({ path, spec, value, replaced: false });
   const result = [];
@@ -46,21 +52,26 @@ function sections(s) {
       if (lookup(current, [section, given]) !== undefined)
         for (const alternative of /** @type {any} */ (rule).not?.anyOf ?? [])
           alternative.required.forEach((/** @type {string} */ k) => replaced.add(k));
-    const fields = Object.entries(props[section].properties).map(([key, spec]) => ({
-      ...field([section, key], spec),
-      replaced: replaced.has(key),
-    }));
+    const fields = Object.entries(props[section].properties)
+      .filter(([, spec]) => belongs(spec, kind))
+      .map(([key, spec]) => ({
+        ...field([section, key], spec),
+        replaced: replaced.has(key),
+      }));
     result.push({ legend: section, fields });
   }
   const deformation = lookup(current, ["potential", "deformation"]);
   const branches = props.potential.properties.deformation.oneOf;
-  const fields = [
-    field(
-      ["potential", "radial", "gamma"],
-      props.potential.properties.radial.properties.gamma,
-      lookup(current, ["potential", "radial", "gamma"]) ?? 0,
-    ),
-  ];
+  const radial = props.potential.properties.radial;
+  const fields = belongs(radial, kind)
+    ? [
+        field(
+          ["potential", "radial", "gamma"],
+          radial.properties.gamma,
+          lookup(current, ["potential", "radial", "gamma"]) ?? 0,
+        ),
+      ]
+    : [];
   for (const branch of branches) {
     if (deformation && deformation.kind !== branch.properties.kind.const) continue;
     for (const [key, spec] of Object.entries(branch.properties))
@@ -97,12 +108,14 @@ export function renderControls(s, b) {
   clear(form);
   for (const section of all) {
     const set = el("fieldset", {}, el("legend", { text: section.legend }));
+    // The deformation's kind goes before its coefficients (after the radial potential, if any).
+    const kindAt = section.fields.findIndex((f) => f.path[1] === "deformation");
     section.fields.forEach((f, i) => {
-      if (section.deformationKinds && i === 1)
+      if (section.deformationKinds && i === kindAt)
         set.append(deformationKindField(section.deformationKinds, deformationKind));
       set.append(fieldRow(f));
     });
-    if (section.deformationKinds && section.fields.length === 1)
+    if (section.deformationKinds && kindAt < 0)
       set.append(deformationKindField(section.deformationKinds, deformationKind));
     form.append(set);
   }

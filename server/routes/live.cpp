@@ -118,12 +118,14 @@ bool live_step(ServerContext& server, LiveStream& live, httplib::DataSink& sink)
   }
   // The session changed surface under the viewer: its own view until the viewer picks another.
   if (render::view_unsupported_reason(f.view.kind, surface)) f.view.kind = render::default_view(surface);
+  // No view draws it (a surface whose curvature varies, for now): no frames to ask for.
+  const bool drawable = !render::view_unsupported_reason(f.view.kind, surface);
   const auto now = Clock::now();
   const bool first = live.asked_version == ~std::uint64_t{0};
   const bool changed = version != live.asked_version || camera != live.asked_camera;
   const auto next_ask = live.last_ask + live.min_interval;  // paced to `fps`
   const bool still = !changed && live.still_due && now >= live.last_change + kStillDelay;
-  if (((changed && now >= next_ask) || still) && live.in_flight.size() < kInFlight) {
+  if (drawable && ((changed && now >= next_ask) || still) && live.in_flight.size() < kInFlight) {
     if (changed) live.last_change = now;
     // Motion frames while things move; the first frame of a paused session is its still frame.
     const bool motion = changed && !(first && !playing);

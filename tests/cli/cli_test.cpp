@@ -153,7 +153,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(Cli, BadSceneFileNamesTheField) {
   const std::string path =
       std::filesystem::temp_directory_path() / ("spinfold_bad_scene_" + std::to_string(getpid()) + ".json");
-  std::ofstream(path) << R"({"body": {"mass": -1}, "surface": {"kind": "torus"}})";
+  std::ofstream(path) << R"({"body": {"mass": -1}, "surface": {"kind": "klein_bottle"}})";
   const Result r = spinfold("simulate " + path);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(r.out.empty());

@@ -41,8 +41,12 @@ TEST(SampleTable, EveryValueOfASampleHasAColumnAndEveryColumnAValue) {
   // casimir): each key of a sample is a column, and each column is a key of some sample.
   const std::vector<std::string> names = sample_column_names();
   std::set<std::string> seen;
-  for (const PresetSource& preset : preset_sources()) {
-    Simulation run = start_simulation(*parse_scene_text(preset.json).scene);
+  // And a torus, whose chart is (u, φ) and whose samples carry K.
+  std::vector<std::string> scenes{
+      R"({"surface": {"kind": "torus"}, "initial": {"u": 0.3, "u_dot": 0.2, "phi_dot": 0.4, "mu": 0.7}})"};
+  for (const PresetSource& preset : preset_sources()) scenes.emplace_back(preset.json);
+  for (const std::string& json : scenes) {
+    Simulation run = start_simulation(*parse_scene_text(json).scene);
     advance_to(run, 0.5);
     for (const auto& [key, value] : flatten_sample(sample_to_json(run, -1.0))) {
       EXPECT_NE(std::find(names.begin(), names.end(), key), names.end()) << "no column for " << key;
@@ -111,7 +115,15 @@ TEST(SampleTable, UnknownFieldsAreRefusedByName) {
     EXPECT_NE(std::string(e.what()).find("'rr'"), std::string::npos) << e.what();
   }
   EXPECT_THROW(make_sample_table(",", sample), std::invalid_argument);
-  EXPECT_EQ(make_sample_table("", sample).columns, sample_column_names());
+  // By default every column of the scene's chart: (r, φ) here, (u, φ) and K where the curvature varies.
+  const auto without = [](std::set<std::string> dropped) {
+    std::vector<std::string> names = sample_column_names();
+    std::erase_if(names, [&](const std::string& n) { return dropped.contains(n); });
+    return names;
+  };
+  EXPECT_EQ(make_sample_table("", sample).columns, without({"u", "u_dot", "p_u", "K"}));
+  const Simulation torus = start_simulation(*parse_scene_text(R"({"surface": {"kind": "torus"}})").scene);
+  EXPECT_EQ(make_sample_table("", sample_to_json(torus, -1.0)).columns, without({"r", "r_dot", "p_r"}));
 }
 
 TEST(SampleTable, CellsNeverBreakALine) {

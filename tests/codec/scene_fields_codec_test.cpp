@@ -27,23 +27,36 @@ std::vector<std::string> split(const std::string& path) {
 }
 
 // A base in which every field may take a test value alone: λ ≠ μ (for the barriers at λ = μ), except
-// for a rigid body, which needs μ = λ.
+// for a rigid body, which needs μ = λ; on a surface the field belongs to (`surfaces`).
 template <typename T>
-Scene base_scene(const T& value) {
+Scene base_scene(const T& value, unsigned surfaces) {
   Scene s;
+  s.surface.kind = testing_support::home_surface(surfaces);
   if constexpr (!std::is_same_v<T, BodyModel>) s.initial.mu = 0.5;
   (void)value;
   return s;
 }
 
-// A document holding `value` at `path` (with the deformation's kind) over base_scene.
+// The path of the section that holds `path` ("potential.height" for "potential.height.g").
+std::string section_of(const std::string& path) {
+  return path.substr(0, path.rfind('.'));
+}
+
+// A document holding `value` at `path` (with its section's kind) over base_scene.
 template <typename T>
-json document(const std::string& path, std::string_view kind, const T& value, const json& text) {
-  json doc = {{"initial", {{"mu", base_scene(value).initial.mu}}}};
+json document(const std::string& path, std::string_view kind, const T& value, const json& text,
+              unsigned surfaces) {
+  const Scene base = base_scene(value, surfaces);
+  json doc = {{"initial", {{"mu", base.initial.mu}}}};
+  if (base.surface.kind != SurfaceKind::sphere) doc["surface"]["kind"] = enum_name(base.surface.kind);
   json* at = &doc;
   for (const std::string& part : split(path)) at = &(*at)[part];
   *at = text;
-  if (!kind.empty()) doc["potential"]["deformation"]["kind"] = kind;
+  if (!kind.empty()) {
+    json* section = &doc;
+    for (const std::string& part : split(section_of(path))) section = &(*section)[part];
+    (*section)["kind"] = kind;
+  }
   return doc;
 }
 
@@ -116,7 +129,7 @@ TEST(SceneFieldsCodec, EveryFieldIsRead) {
   for_each_scene_field([&](const std::string& path, std::string_view kind, const auto& field, auto place) {
     const auto value = test_value(field);
     const SceneParse parsed =
-        parse_scene(with_partner(document(path, kind, value, as_json(value)), path, field));
+        parse_scene(with_partner(document(path, kind, value, as_json(value), field.surfaces), path, field));
     ASSERT_TRUE(parsed.errors.empty()) << path << ": " << describe_errors(parsed.errors);
     Scene scene = *parsed.scene;
     EXPECT_EQ(place(scene), value) << path;
@@ -127,7 +140,8 @@ TEST(SceneFieldsCodec, EveryFieldIsRead) {
 TEST(SceneFieldsCodec, EveryFieldWithAWrongTypeIsNamed) {
   for_each_scene_field([&](const std::string& path, std::string_view kind, const auto& field, auto) {
     using T = typename std::remove_cvref_t<decltype(field)>::Value;
-    const SceneParse parsed = parse_scene(document(path, kind, field.fallback(), json::array()));
+    const SceneParse parsed =
+        parse_scene(document(path, kind, field.fallback(), json::array(), field.surfaces));
     ASSERT_FALSE(parsed.errors.empty()) << path;
     EXPECT_EQ(parsed.errors[0].field, path);
     EXPECT_EQ(parsed.errors[0].value, "[]");
@@ -151,20 +165,21 @@ TEST(SceneFieldsCodec, EveryFieldWithAWrongTypeIsNamed) {
 TEST(SceneFieldsCodec, EveryFieldIsWrittenAndReadBack) {
   for_each_scene_field([&](const std::string& path, std::string_view kind, const auto& field, auto place) {
     const auto value = test_value(field);
-    Scene scene = base_scene(value);
+    Scene scene = base_scene(value, field.surfaces);
     place(scene) = value;
     using T = typename std::remove_cvref_t<decltype(field)>::Value;
     if constexpr (OptionalNumber<T>) testing_support::set_partner(scene, field, kPartnerValue);
     const json written = scene_to_json(scene);
     EXPECT_EQ(at_path(written, path), as_json(value)) << path;
     if (!kind.empty()) {
-      EXPECT_EQ(written["potential"]["deformation"]["kind"], kind) << path;
+      EXPECT_EQ(at_path(written, section_of(path) + ".kind"), kind) << path;
     }
     const SceneParse again = parse_scene(written);
     ASSERT_TRUE(again.errors.empty()) << path << ": " << describe_errors(again.errors);
     EXPECT_EQ(scene_to_json(*again.scene), written) << path;
     // Defaults are written too (informational text only when set; an optional number is absent).
     Scene defaults;
+    defaults.surface.kind = testing_support::home_surface(field.surfaces);
     place(defaults);  // the field present, at its default
     if constexpr (std::is_same_v<T, std::string>)
       if (field.text_rule == TextRule::any) return;

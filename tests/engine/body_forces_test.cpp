@@ -7,8 +7,8 @@ namespace spinfold {
 namespace {
 
 TEST(BodyForces, HeightPotentialsAndTheirSlopes) {
-  const HeightPotential gravity{HeightPotential::Kind::gravity, 9.8, 0.0};
-  const HeightPotential spring{HeightPotential::Kind::spring, 0.0, 0.7};
+  const HeightPotential gravity = GravityPotential{9.8};
+  const HeightPotential spring = SpringPotential{0.7};
   EXPECT_DOUBLE_EQ(height_energy(gravity, 2.0, 0.5), 2.0 * 9.8 * 0.5);  // m g z
   EXPECT_DOUBLE_EQ(height_energy(spring, 2.0, 0.5), 0.5 * 0.7 * 0.25);  // k z²/2, whatever m
   EXPECT_EQ(height_energy(HeightPotential{}, 2.0, 0.5), 0.0);

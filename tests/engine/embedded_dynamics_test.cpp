@@ -23,16 +23,7 @@ using test::inertia_matrix;
 using test::matrix;
 using test::ws1_model;
 using test::ws1_rates;
-
-Embedded ws1_state() {
-  Embedded Y;
-  Y << 3.5966911173123304, 1.1125869412336418, -0.644217687237691, -0.02366047717658104, -0.7954899610894152,
-      -0.3059368749137954, -0.6794295549376602, -0.41952251070596835, -0.9178106247413862,
-      -0.32751265235103294, 0.8407649058063081, -0.07648421872844885, -0.06277046859916074,
-      0.037748273508739924, -0.05795110396399363, -0.17617856648064523, 0.16833862120799897,
-      -0.1407621804863851;
-  return Y;
-}
+using test::ws1_state;
 
 void expect_close(const Eigen::VectorXd& got, const Eigen::VectorXd& want, double tolerance) {
   ASSERT_EQ(got.size(), want.size());
@@ -140,7 +131,8 @@ TEST(EmbeddedDynamics, ChartFlowPushesForwardToTheEmbeddedField) {
   RevolutionModel model = ws1_model();
   model.body.friction = {0.07, 0.03};
   for (const RevolutionEntry& entry : revolution_catalog())
-    for (const auto height : {HeightPotential::Kind::gravity, HeightPotential::Kind::spring}) {
+    for (const HeightPotential height :
+         {HeightPotential{GravityPotential{0.4}}, HeightPotential{SpringPotential{0.9}}}) {
       model.surface.kind = entry.kind;
       model.surface.tube_radius = 0.8;
       model.surface.center_radius = 2.0;
@@ -149,7 +141,7 @@ TEST(EmbeddedDynamics, ChartFlowPushesForwardToTheEmbeddedField) {
       model.surface.height = 1.2;
       model.surface.width = 0.8;
       model.surface.neck_radius = 0.7;
-      model.body.height = {height, 0.4, 0.9};
+      model.body.height = height;
       RevolutionRates rates;
       rates.u = 0.6;
       rates.phi = -0.4;
@@ -178,7 +170,7 @@ TEST(EmbeddedDynamics, WorkedNumbersWS2Rigid) {
   model.surface.polar_radius = 1.0;
   model.body.mass = 1.0;
   model.body.inertia = inertia_matrix(0.5, 0.0, 0.5);
-  model.body.height = {HeightPotential::Kind::spring, 0.0, 0.7};
+  model.body.height = SpringPotential{0.7};
   const RevolutionImplicit spheroid(model.surface);
   const EmbeddedModel em{spheroid, model.body};
   EmbeddedRigid Y;

@@ -65,7 +65,7 @@ TEST(RevolutionChart, WorkedNumbersWS2Rigid) {
   model.surface.polar_radius = 1.0;
   model.body.mass = 1.0;
   model.body.inertia = inertia_matrix(0.5, 0.0, 0.5);
-  model.body.height = {HeightPotential::Kind::spring, 0.0, 0.7};
+  model.body.height = SpringPotential{0.7};
   const ProfilePoint p = spheroid_entry.profile(model.surface, 1.0);
   const ProfileMetric m = profile_metric(p);
   EXPECT_NEAR(p.K, 0.284208011477352, 1e-15);

@@ -31,6 +31,15 @@ double other_number(const Field<S, std::optional<double>>& field) {
   return r.has_min() ? r.min + 0.25 : 0.25;
 }
 
+// The surface a field is tried on: the sphere when it belongs there, else the first kind it belongs
+// to (Field::surfaces, as the walk narrows it).
+inline SurfaceKind home_surface(unsigned surfaces) {
+  if (surfaces & surface_bit(SurfaceKind::sphere)) return SurfaceKind::sphere;
+  for (const EnumName<SurfaceKind>& n : kSurfaceKindNames)
+    if (surfaces & surface_bit(n.value)) return n.value;
+  return SurfaceKind::sphere;
+}
+
 // Sets the partner of an optional number (speed for heading) in `scene.initial`, the struct that
 // holds them, to `value`; nothing for a field without one (surface.curvature).
 template <typename S>

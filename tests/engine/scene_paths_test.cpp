@@ -18,7 +18,16 @@ TEST(ScenePaths, EveryLeafOnceWithItsRangeOrNames) {
   EXPECT_TRUE(r->range.has_min());
   const ScenePath* kind = find_scene_path("surface.kind");
   ASSERT_NE(kind, nullptr);
-  EXPECT_EQ(kind->names, (std::vector<std::string>{"sphere", "pseudosphere", "plane"}));
+  EXPECT_EQ(kind->names, (std::vector<std::string>{"sphere", "pseudosphere", "plane", "torus", "spheroid",
+                                                   "bump", "catenoid"}));
+  // A leaf knows the surfaces it belongs to: r the constant-curvature ones, u the others.
+  EXPECT_EQ(r->surfaces, kConstantCurvatureSurfaces);
+  ASSERT_NE(find_scene_path("initial.u"), nullptr);
+  EXPECT_EQ(find_scene_path("initial.u")->surfaces, kVaryingCurvatureSurfaces);
+  ASSERT_NE(find_scene_path("potential.height.g"), nullptr);
+  EXPECT_EQ(find_scene_path("potential.height.g")->surfaces, kVaryingCurvatureSurfaces);
+  EXPECT_EQ(find_scene_path("surface.tube_radius")->surfaces, surface_bit(SurfaceKind::torus));
+  EXPECT_EQ(find_scene_path("body.mass")->surfaces, ~0u);
   const ScenePath* integrator = find_scene_path("integrator.name");
   ASSERT_NE(integrator, nullptr);
   EXPECT_NE(std::find(integrator->names.begin(), integrator->names.end(), "dop853"), integrator->names.end());
@@ -41,7 +50,7 @@ TEST(ScenePaths, TheWalkReachesEveryPathThroughItsPlace) {
     EXPECT_NE(find_scene_path(path), nullptr) << path;
     ++leaves;
   });
-  EXPECT_GE(leaves, scene_paths().size() - 1);  // all but the synthetic deformation kind
+  EXPECT_GE(leaves, scene_paths().size() - 2);  // all but the synthetic kinds (deformation, height)
 }
 
 }  // namespace

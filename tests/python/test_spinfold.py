@@ -74,6 +74,21 @@ def test_simulate_equals_the_cli_to_the_bit(binary, preset):
         assert_same_numbers(companion, [s["companions"][i] for s in samples])
 
 
+def test_a_torus_scene_equals_the_cli_to_the_bit(binary, tmp_path):
+    # A surface whose curvature varies: its chart's u, u_dot, p_u and K are columns, r is NaN.
+    scene = {"surface": {"kind": "torus", "tube_radius": 0.6, "center_radius": 2.0},
+             "potential": {"height": {"kind": "gravity", "g": 0.5}, "deformation": {"kind": "abc", "C": 0.3}},
+             "friction": {"internal": 0.02},
+             "initial": {"u": 0.3, "lambda": 1.2, "mu": 0.8, "speed": 1, "heading": 1.2, "spin": 0.4}}
+    path = tmp_path / "torus.json"
+    path.write_text(json.dumps(scene))
+    result = spinfold.simulate(scene, t_end=2, every=0.5)
+    assert_same_numbers(result, cli_samples(binary, str(path), "--t-end", "2", "--every", "0.5"))
+    assert np.isnan(result["r"]).all() and not np.isnan(result["u"]).any() and not np.isnan(result["K"]).any()
+    with pytest.raises(ValueError, match="initial.r"):
+        spinfold.simulate(scene, t_end=1, initial__r=1.0)
+
+
 def test_a_scene_as_dict_json_path_or_preset_and_overrides_run_the_same(binary, tmp_path):
     scene = {"surface": {"kind": "sphere"}, "initial": {"r": 0.8, "spin": 1.2}}
     path = tmp_path / "scene.json"

@@ -498,7 +498,7 @@ TEST(ConformalView, TheMapIsContinuousInKThroughZero) {
   EXPECT_EQ(conformal_radius(0.0, 7.25), 7.25);
   // And the points of surfaces of radius 1e6 land where the plane's do.
   const Surface plane{SurfaceKind::plane, 1.0};
-  for (const Surface surface : {Surface{SurfaceKind::sphere, 1e6}, Surface{SurfaceKind::pseudosphere, 1e6}})
+  for (const Surface& surface : {Surface{SurfaceKind::sphere, 1e6}, Surface{SurfaceKind::pseudosphere, 1e6}})
     for (const auto& [r, phi] : {std::pair{0.0, 0.0}, {0.7, 2.0}, {3.0, -1.0}, {10.0, 3.1}}) {
       const glm::dvec2 w = conformal_point(surface, chart_point(surface, r, phi).X);
       const glm::dvec2 flat = conformal_point(plane, chart_point(plane, r, phi).X);

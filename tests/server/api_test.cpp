@@ -250,6 +250,48 @@ TEST_F(Api, TheSessionNamesItsSurfaceResolved) {
   EXPECT_DOUBLE_EQ(sphere["curvature"].get<double>(), 4.0);
 }
 
+// A session on a surface whose curvature varies: it runs, patches and replays like any other; its
+// state says u and K; its trajectory is the run's; a frame is refused saying no view draws it yet.
+TEST_F(Api, TorusSessionRunsAndItsFramesAreRefusedWithTheReason) {
+  auto c = client();
+  auto created = c.Post("/api/v1/sessions",
+                        R"({"surface": {"kind": "torus", "tube_radius": 0.6, "center_radius": 2},
+                            "potential": {"height": {"kind": "gravity", "g": 0.5}},
+                            "friction": {"translational": 0.05},
+                            "initial": {"u": 0.3, "speed": 1, "heading": 1.2, "spin": 0.4, "mu": 0.8}})",
+                        "application/json");
+  ASSERT_TRUE(created);
+  ASSERT_EQ(created->status, 201) << created->body;
+  const std::string id = json::parse(created->body)["id"];
+  auto advanced = c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 2})", "application/json");
+  ASSERT_TRUE(advanced);
+  ASSERT_EQ(advanced->status, 200) << advanced->body;
+  const json state = json::parse(advanced->body)["state"];
+  EXPECT_EQ(state["status"], "ok");
+  EXPECT_TRUE(state.contains("u") && state.contains("K") && !state.contains("r")) << state.dump();
+  EXPECT_LT(state["energy_error"].get<double>(), 0.0);  // friction: the energy fell
+  auto patched = c.Patch("/api/v1/sessions/" + id, R"({"friction": {"translational": 0.2}})",
+                         "application/merge-patch+json");
+  ASSERT_TRUE(patched);
+  EXPECT_EQ(patched->status, 200) << patched->body;
+  EXPECT_EQ(json::parse(patched->body)["change"]["kind"], "continued") << patched->body;
+  auto wrong = c.Patch("/api/v1/sessions/" + id, R"({"initial": {"r": 1}})", "application/merge-patch+json");
+  ASSERT_TRUE(wrong);
+  EXPECT_EQ(wrong->status, 422);
+  EXPECT_NE(wrong->body.find("initial.r"), std::string::npos) << wrong->body;
+  auto trajectory = c.Get("/api/v1/sessions/" + id + "/trajectory?format=csv&fields=t,u,phi,K");
+  ASSERT_TRUE(trajectory);
+  EXPECT_EQ(trajectory->status, 200) << trajectory->body;
+  EXPECT_NE(trajectory->body.find("t,u,phi,K"), std::string::npos) << trajectory->body.substr(0, 300);
+  auto frame = c.Get("/api/v1/sessions/" + id + "/frame.png");
+  ASSERT_TRUE(frame);
+  EXPECT_EQ(frame->status, 422);
+  EXPECT_NE(frame->body.find("no view draws the torus yet"), std::string::npos) << frame->body;
+  auto deleted = c.Delete("/api/v1/sessions/" + id);
+  ASSERT_TRUE(deleted);
+  EXPECT_EQ(deleted->status, 204);
+}
+
 TEST_F(Api, SessionLifecycle) {
   auto c = client();
   auto created = c.Post("/api/v1/sessions", R"({"preset": "separable_radial_abc"})", "application/json");

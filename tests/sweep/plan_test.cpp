@@ -35,6 +35,24 @@ TEST(SweepPlan, DefaultColumnsAndRunDocuments) {
   EXPECT_EQ(varied_values(plan, 0)[0].first, "initial.r");
 }
 
+// On a torus: the default columns are its chart's (u, and K), a field of the other family is
+// refused with its axis before any run, and the torus's own parameters sweep.
+TEST(SweepPlan, ATorusBaseSweepsItsOwnFields) {
+  Definition def;
+  def.base_text = R"({"surface": {"kind": "torus"}, "initial": {"u": 0.3, "phi_dot": 0.5}})";
+  def.axes.push_back(axis_from_spec("surface.tube_radius", "0.3:0.9:7", "--set surface.tube_radius"));
+  const Plan plan = make_plan(def);
+  EXPECT_EQ(plan.total, 7u);
+  ASSERT_EQ(plan.columns.size(), 10u);  // kDefaultProfileFields
+  EXPECT_EQ(plan.columns[1].name, "u");
+  EXPECT_EQ(plan.columns.back().name, "K");
+  EXPECT_EQ(run_document(plan, 6)["surface"]["tube_radius"], 0.9);
+  Definition wrong = def;
+  wrong.axes = {axis_from_spec("initial.r", "1,1.5", "--set initial.r")};
+  const std::string error = error_of(wrong);
+  EXPECT_NE(error.find("initial.r: is not defined on the torus"), std::string::npos) << error;
+}
+
 TEST(SweepPlan, RulesAreRefusedInTheDoorsNames) {
   Definition bad = definition();
   bad.t_end = -1;

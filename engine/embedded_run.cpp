@@ -1,0 +1,217 @@
+#include "engine/embedded_run.h"
+
+#include <cmath>
+
+#include "engine/chart.h"
+#include "engine/inertia.h"
+
+namespace spinfold {
+
+namespace {
+
+SurfaceBody surface_body(const Scene& scene) {
+  SurfaceBody body;
+  body.mass = scene.body.mass;
+  body.inertia = inertia_of(scene.body);
+  body.height = scene.potential.height;
+  body.deformation = scene.potential.deformation;
+  body.friction = scene.friction.value_or(Friction{});
+  return body;
+}
+
+Embedded affine_of(const Coords& y) {
+  return Embedded(y.head<18>());
+}
+EmbeddedRigid rigid_of(const Coords& y) {
+  return EmbeddedRigid(y.head<10>());
+}
+
+}  // namespace
+
+EmbeddedScene::EmbeddedScene(const Scene& scene)
+    : surface(revolution_surface(scene.surface)),
+      implicit(surface),
+      body(surface_body(scene)),
+      rigid(scene.body.model == BodyModel::rigid) {}
+
+std::shared_ptr<const EmbeddedScene> make_embedded_scene(const Scene& scene) {
+  return std::make_shared<const EmbeddedScene>(scene);
+}
+
+Coords embedded_start(const EmbeddedScene& model, const InitialState& q) {
+  // §7 "Conversions", with no division by ρ (regular at an axis point): V = f u̇ E₁ + ρ φ̇ E₂,
+  // e_A = E_B L_BA, W_A = E_B M_BA with M = L̇ + Cφ̇εL and L̇ = α̇εL − β̇Lε + U(α)diag(λ̇, μ̇)U(β)ᵀ.
+  const Mat2 Ua = rotation2(q.alpha), Ub = rotation2(q.beta), eps = epsilon();
+  const Mat2 L = Ua * Eigen::Vector2d(q.lambda, q.mu).asDiagonal() * Ub.transpose();
+  const Mat2 L_dot = q.alpha_dot * eps * L - q.beta_dot * L * eps +
+                     Ua * Eigen::Vector2d(q.lambda_dot, q.mu_dot).asDiagonal() * Ub.transpose();
+  const ProfilePoint p = revolution_entry(model.surface.kind).profile(model.surface, q.u);
+  const ProfileMetric metric = profile_metric(p);
+  const RevolutionFrame frame = revolution_frame(model.surface, q.u, q.phi);
+  const Mat2 M = L_dot + metric.C * q.phi_dot * eps * L;
+  const Vec3 V = metric.f * q.u_dot * frame.E1 + p.rho * q.phi_dot * frame.E2;
+  if (model.rigid) {
+    EmbeddedRigid Y;
+    Y << frame.X, V, L(0, 0) * frame.E1 + L(1, 0) * frame.E2, spin_from_rate(model.body.inertia, L, M);
+    return Coords(Y);
+  }
+  Embedded Y;
+  Y.segment<3>(embedded::X) = frame.X;
+  Y.segment<3>(embedded::V) = V;
+  for (int A = 0; A < 2; ++A) {
+    Y.segment<3>(embedded::e1 + 3 * A) = L(0, A) * frame.E1 + L(1, A) * frame.E2;
+    Y.segment<3>(embedded::W1 + 3 * A) = M(0, A) * frame.E1 + M(1, A) * frame.E2;
+  }
+  return Coords(Y);
+}
+
+VectorField embedded_field(std::shared_ptr<const EmbeddedScene> model) {
+  return [model](const Coords& y, Coords& dydt) {
+    if (model->rigid) {
+      EmbeddedRigid d;
+      embedded_rigid_vector_field(model->model(), rigid_of(y), d);
+      dydt = d;
+    } else {
+      Embedded d;
+      embedded_vector_field(model->model(), affine_of(y), d);
+      dydt = d;
+    }
+  };
+}
+
+EnergyParts embedded_energy_parts(const EmbeddedScene& model, const Coords& y) {
+  const SurfaceBody& body = model.body;
+  const double orbital_kinetic = 0.5 * body.mass * y.segment<3>(embedded::V).squaredNorm();
+  if (model.rigid) {
+    const double total = embedded_rigid_energy(model.model(), rigid_of(y));
+    const double potential = height_energy(body.height, body.mass, y(embedded::X + 2));
+    return {total - potential, potential};
+  }
+  const Mat2& J = body.inertia.matrix;
+  double internal_kinetic = 0.0;
+  for (int A = 0; A < 2; ++A)
+    for (int B = 0; B < 2; ++B)
+      internal_kinetic +=
+          J(A, B) * y.segment<3>(embedded::W1 + 3 * A).dot(y.segment<3>(embedded::W1 + 3 * B));
+  const double kinetic = orbital_kinetic + 0.5 * internal_kinetic;
+  return {kinetic, embedded_energy(model.model(), affine_of(y)).total() - kinetic};
+}
+
+EmbeddedEnergy embedded_energy_split(const EmbeddedScene& model, const Coords& y) {
+  if (!model.rigid) return embedded_energy(model.model(), affine_of(y));
+  const SurfaceBody& body = model.body;
+  EmbeddedEnergy e;
+  e.orbital = 0.5 * body.mass * y.segment<3>(embedded::V).squaredNorm() +
+              height_energy(body.height, body.mass, y(embedded::X + 2));
+  e.deformation = embedded_rigid_energy(model.model(), rigid_of(y)) - e.orbital;
+  return e;
+}
+
+double embedded_det(const EmbeddedScene& model, const Coords& y) {
+  if (model.rigid) return y.segment<3>(embedded::e1).squaredNorm();
+  return embedded_det_L(model.model(), affine_of(y));
+}
+
+double embedded_spin_of(const EmbeddedScene& model, const Coords& y) {
+  if (model.rigid) return y(embedded::spin);
+  return embedded_spin(model.model(), affine_of(y));
+}
+
+double embedded_p_phi(const EmbeddedScene& model, const Coords& y) {
+  const Vec3 X = y.segment<3>(embedded::X), V = y.segment<3>(embedded::V);
+  return model.body.mass * X.cross(V).z() +
+         embedded_spin_of(model, y) * embedded_normal(model.implicit, X).z();
+}
+
+double embedded_dissipation(const EmbeddedScene& model, const Coords& y) {
+  const Friction& f = model.body.friction;
+  if (model.rigid) {
+    // W_A = (s/I) n × e_A: Σ|W_A|² = 2|e₁|² s²/I², I = |e₁|² tr J.
+    const double e2 = y.segment<3>(embedded::e1).squaredNorm(), s = y(embedded::spin);
+    const double I = e2 * model.body.inertia.matrix.trace();
+    return 0.5 * f.translational * y.segment<3>(embedded::V).squaredNorm() +
+           f.internal * e2 * s * s / (I * I);
+  }
+  return embedded_rayleigh(model.model(), affine_of(y));
+}
+
+EmbeddedBody embedded_body(const EmbeddedScene& model, const Coords& y) {
+  EmbeddedBody b;
+  b.X = y.segment<3>(embedded::X);
+  b.V = y.segment<3>(embedded::V);
+  if (model.rigid) {
+    const Vec3 n = embedded_normal(model.implicit, b.X);
+    b.e[0] = y.segment<3>(embedded::e1);
+    b.e[1] = n.cross(b.e[0]);
+    const double I = b.e[0].squaredNorm() * model.body.inertia.matrix.trace();
+    for (int A = 0; A < 2; ++A) b.W[A] = (y(embedded::spin) / I) * n.cross(b.e[A]);
+    return b;
+  }
+  for (int A = 0; A < 2; ++A) {
+    b.e[A] = y.segment<3>(embedded::e1 + 3 * A);
+    b.W[A] = y.segment<3>(embedded::W1 + 3 * A);
+  }
+  return b;
+}
+
+double profile_curvature(const Surface& surface, double u) {
+  const RevolutionSurface s = revolution_surface(surface);
+  return revolution_entry(s.kind).profile(s, u).K;
+}
+
+ProfileReadout profile_readout(const EmbeddedScene& model, const Coords& y) {
+  const RevolutionEntry& entry = revolution_entry(model.surface.kind);
+  const Vec3 X = y.segment<3>(embedded::X), V = y.segment<3>(embedded::V);
+  const double u = entry.u_of(model.surface, X);
+  const double phi = std::atan2(X.y(), X.x());
+  const ProfilePoint p = entry.profile(model.surface, u);
+  const ProfileMetric metric = profile_metric(p);
+  const RevolutionFrame frame = revolution_frame(model.surface, u, phi);
+  const bool axis = std::hypot(X.x(), X.y()) == 0.0 || p.rho == 0.0;
+  const double m = model.body.mass;
+
+  const EmbeddedBody body = embedded_body(model, y);
+  const Vec3(&e)[2] = body.e;
+  const Vec3(&W)[2] = body.W;
+  const Vec3 E[2] = {frame.E1, frame.E2};
+  Mat2 L, M;
+  for (int A = 0; A < 2; ++A)
+    for (int B = 0; B < 2; ++B) {
+      L(B, A) = E[B].dot(e[A]);
+      M(B, A) = E[B].dot(W[A]);
+    }
+  const double v1 = V.dot(frame.E1), v2 = V.dot(frame.E2);
+
+  ProfileReadout out;
+  PaperCoordinates& c = out.coordinates;
+  c.r = u;
+  c.X = X;
+  c.det_L = embedded_det(model, y);
+  c.p_alpha = embedded_spin_of(model, y);
+  c.p_phi = embedded_p_phi(model, y);
+  // p_β = −tr((Lε)ᵀP), P = MJ: the frame-independent vorticity (physics.md §3).
+  c.p_beta = -(L * epsilon()).cwiseProduct(momentum_from_rate(model.body.inertia, M)).sum();
+  out.K = p.K;
+  out.speed = V.norm();
+  c.r_dot = v1 / metric.f;
+  c.p_r = m * metric.f * v1;  // p_u = m f² u̇
+  // L̇ = M − Cφ̇εL in (E₁, E₂); at an axis point φ̇ and the frame's angles are undefined.
+  Mat2 L_dot = M;
+  const double phi_dot = axis ? 0.0 : v2 / p.rho;
+  if (!axis) L_dot -= metric.C * phi_dot * epsilon() * L;
+  const BodyModel body_model = model.rigid ? BodyModel::rigid : BodyModel::affine;
+  set_internal_coordinates(c, L, L_dot, M, model.body.inertia, body_model, !axis);
+  if (axis) {
+    const std::string why = "the body is on the axis (rho = 0), where phi and E2 = X_phi/rho are undefined";
+    for (const char* f : {"phi", "phi_dot", "heading"}) c.undefined.push_back({f, why});
+    for (const char* f : {"alpha", "beta", "theta", "alpha_dot", "beta_dot", "theta_dot", "L"})
+      c.undefined.push_back({f, why});
+    return out;
+  }
+  c.phi = phi;
+  c.phi_dot = phi_dot;
+  out.heading = std::atan2(v2, v1);
+  return out;
+}
+
+}  // namespace spinfold
