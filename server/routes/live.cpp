@@ -29,6 +29,10 @@ using Clock = std::chrono::steady_clock;
 
 constexpr auto kStillDelay =
     std::chrono::milliseconds(70);  // motion stopped → lossless frame (≤ 150 ms on screen)
+// While the session plays, a pause between its steps is not the motion stopping: a busy machine can
+// space the player's ticks beyond kStillDelay, and a lossless frame then would only slow the
+// stream. A playing run that stopped (its status) still gets its still frame after this.
+constexpr auto kPlayingStillDelay = std::chrono::seconds(1);
 constexpr auto kHeartbeat = std::chrono::seconds(5);  // a client gone is found within two
 constexpr const char* kBoundary = "spinfold-frame";
 
@@ -124,7 +128,8 @@ bool live_step(ServerContext& server, LiveStream& live, httplib::DataSink& sink)
   const bool first = live.asked_version == ~std::uint64_t{0};
   const bool changed = version != live.asked_version || camera != live.asked_camera;
   const auto next_ask = live.last_ask + live.min_interval;  // paced to `fps`
-  const bool still = !changed && live.still_due && now >= live.last_change + kStillDelay;
+  const bool still =
+      !changed && live.still_due && now >= live.last_change + (playing ? kPlayingStillDelay : kStillDelay);
   if (drawable && ((changed && now >= next_ask) || still) && live.in_flight.size() < kInFlight) {
     if (changed) live.last_change = now;
     // Motion frames while things move; the first frame of a paused session is its still frame.
@@ -166,7 +171,8 @@ bool live_step(ServerContext& server, LiveStream& live, httplib::DataSink& sink)
     if (!write_part(sink, "text/plain", "X-Spinfold-Heartbeat: 1\r\n", {})) return false;  // the client left?
     live.last_write = now;
   }
-  const auto deadline = live.still_due ? live.last_change + kStillDelay : live.last_write + kHeartbeat;
+  const auto deadline = live.still_due ? live.last_change + (playing ? kPlayingStillDelay : kStillDelay)
+                                       : live.last_write + kHeartbeat;
   server.changes.wait(seen, std::min(deadline, now + std::chrono::seconds(1)));  // and check `stopping`
   return true;
 }
