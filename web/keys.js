@@ -13,8 +13,13 @@ import { store } from "./state.js";
 const orbitStep = 0.12; // radians per arrow key
 const dragRate = 0.01; // radians per CSS pixel dragged
 
+// The keys' actions run one after another: → pressed while R's reset is on its way must not send
+// its step before the reset's answer is in (the answers could come back in the other order, and the
+// late reset would put t = 0 back over the step's state).
+/** @type {Promise<unknown>} */
+let queue = Promise.resolve();
 /** @param {() => Promise<unknown>} action */
-const run = (action) => action().catch((e) => say(e.message));
+const run = (action) => (queue = queue.then(action).catch((e) => say(e.message)));
 
 /** Orbits, or says where orbiting works. @param {number} dYaw @param {number} dPitch */
 function orbitOrSay(dYaw, dPitch) {

@@ -156,8 +156,10 @@ await runSuite(started, async (browser) => {
   });
 
   await test("a parameter change continues the run: no teleport, the initial fields untouched", async () => {
+    // The step's answer, not a fixed wait (a busy machine takes longer than any guess).
+    const before = await readoutT(page);
     await page.click("#step");
-    await page.waitForTimeout(300);
+    await page.waitForFunction((b) => Number(document.querySelector("#readout").dataset.t) > b, before, { timeout: 20000 });
     const t = await readoutT(page);
     const r = await page.inputValue('[name="initial.r"]');
     await page.fill('[name="body.mass"]', "1.5");
@@ -173,8 +175,10 @@ await runSuite(started, async (browser) => {
   });
 
   await test("a share URL reproduces the same state", async () => {
+    // The step's answer, not a fixed wait (a busy machine takes longer than any guess).
+    const before = await readoutT(page);
     await page.click("#step");
-    await page.waitForTimeout(300);
+    await page.waitForFunction((b) => Number(document.querySelector("#readout").dataset.t) > b, before, { timeout: 20000 });
     const t = await readoutT(page);
     const readout = await page.textContent("#readout");
     await page.click("#share");
