@@ -399,7 +399,14 @@ await runSuite(started, async (browser) => {
     await page.fill("#fan-count", "4");
     await page.click("#fan");
     await page.waitForFunction(() => /companions changed|vary/.test(document.querySelector("#status").textContent));
-    let session = await (await fetch(await page.$eval("#export-state", (a) => a.href))).json();
+    // The server's session once the fan's change is in (the status line may still show an earlier
+    // change's words on a busy machine): polled, bounded.
+    const url = await page.$eval("#export-state", (a) => a.href);
+    let session = await (await fetch(url)).json();
+    for (let i = 0; i < 200 && session.current.vary === undefined; i++) {
+      await page.waitForTimeout(100);
+      session = await (await fetch(url)).json();
+    }
     assert.deepEqual(session.current.vary, { field: "initial.spin", values: [0, 0.5, 1, 1.5] });
     assert.equal(session.state.companions.length, 4);
     await page.click("#fan-clear");
