@@ -1,15 +1,8 @@
 #include "engine/body_forces.h"
 
+#include "engine/overloaded.h"
+
 namespace spinfold {
-
-namespace {
-
-template <class... F>
-struct Overloaded : F... {
-  using F::operator()...;
-};
-
-}  // namespace
 
 double height_energy(const HeightPotential& height, double mass, double z) {
   return std::visit(Overloaded{[](std::monostate) { return 0.0; },

@@ -7,18 +7,12 @@
 #include <stdexcept>
 
 #include "engine/number_rule.h"
+#include "engine/overloaded.h"
 #include "render/scene_builder.h"
 
 namespace spinfold::render {
 
 namespace {
-
-template <typename... F>
-struct Overloaded : F... {
-  using F::operator()...;
-};
-template <class... F>
-Overloaded(F...) -> Overloaded<F...>;  // clang 14 (the fuzz build) deduces no aggregate's arguments
 
 std::string joined(const std::vector<std::string_view>& items, std::string_view last) {
   std::string text;
