@@ -62,6 +62,14 @@ struct ProfileDomain {
   bool axis_at_min = false, axis_at_max = false;
 };
 
+// The part of the surface a picture shows and its lengths: the whole of a closed surface, a finite
+// piece of an unbounded one (the bump's plane to ρ = 4w, the catenoid to |z| = 2c).
+struct ProfilePicture {
+  double u_min = 0.0, u_max = 0.0;  // the drawn range of u
+  double length = 1.0;   // [length] the picture's unit: the drawn piece lies within a ball of about this radius
+  double feature = 1.0;  // [length] the smallest feature (the torus's tube, the bump's width): a body's scale
+};
+
 // One table row per surface: the functions its file defines.
 struct RevolutionEntry {
   RevolutionKind kind;
@@ -72,6 +80,7 @@ struct RevolutionEntry {
   // u of an embedded point on the surface (the inverse maps of §1); φ = atan2(y, x) for every kind.
   double (*u_of)(const RevolutionSurface& surface, const Vec3& X);
   ProfileDomain (*domain)(const RevolutionSurface& surface);
+  ProfilePicture (*picture)(const RevolutionSurface& surface);
 };
 
 // The scene's surface (engine/surface.h) as these functions read it; std::logic_error for a

@@ -157,17 +157,6 @@ struct Field {
   T fallback() const { return S{}.*member; }
 };
 
-// The bit of one surface kind, and the two families (engine/surface.h).
-constexpr unsigned surface_bit(SurfaceKind kind) {
-  return 1u << static_cast<unsigned>(kind);
-}
-inline constexpr unsigned kConstantCurvatureSurfaces = surface_bit(SurfaceKind::sphere) |
-                                                       surface_bit(SurfaceKind::pseudosphere) |
-                                                       surface_bit(SurfaceKind::plane);
-inline constexpr unsigned kVaryingCurvatureSurfaces =
-    surface_bit(SurfaceKind::torus) | surface_bit(SurfaceKind::spheroid) | surface_bit(SurfaceKind::bump) |
-    surface_bit(SurfaceKind::catenoid);
-
 // Whether a field belongs to a surface kind (Field::surfaces).
 template <typename F>
 constexpr bool belongs_to(const F& field, SurfaceKind kind) {

@@ -25,6 +25,17 @@ constexpr bool curvature_varies(SurfaceKind kind) {
          kind == SurfaceKind::catenoid;
 }
 
+// The bit of one surface kind in a set of kinds (a scene field's or a view's), and the two families.
+constexpr unsigned surface_bit(SurfaceKind kind) {
+  return 1u << static_cast<unsigned>(kind);
+}
+inline constexpr unsigned kConstantCurvatureSurfaces = surface_bit(SurfaceKind::sphere) |
+                                                       surface_bit(SurfaceKind::pseudosphere) |
+                                                       surface_bit(SurfaceKind::plane);
+inline constexpr unsigned kVaryingCurvatureSurfaces =
+    surface_bit(SurfaceKind::torus) | surface_bit(SurfaceKind::spheroid) | surface_bit(SurfaceKind::bump) |
+    surface_bit(SurfaceKind::catenoid);
+
 // Farthest a body may go on H², in units of R: the global embedding grows as R e^{r/R}/2 and the
 // outputs built from it (X, p_φ, the paper's frame) must stay finite in double (e^250 ≈ 1e108).
 inline constexpr double kMaxHyperbolicDistance = 250.0;

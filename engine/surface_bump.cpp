@@ -1,6 +1,7 @@
 // A Gaussian bump on the plane: z = h exp(−ρ²/(2w²)), height h of either sign, width w > 0
 // (physics-surfaces.md §1). u is the distance ρ from the axis, u ≥ 0; the top (u = 0) is an axis point.
 // K > 0 for u < w, K < 0 beyond, K → 0 like e^{−u²/w²}.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -49,6 +50,11 @@ ProfileDomain bump_domain(const RevolutionSurface&) {
   return {0.0, std::numeric_limits<double>::infinity(), false, true, false};
 }
 
+// The plane out to ρ = 4w, where the bump has fallen to e⁻⁸ of its height.
+ProfilePicture bump_picture(const RevolutionSurface& s) {
+  return {0.0, 4.0 * s.width, std::max(4.0 * s.width, std::abs(s.height)), s.width};
+}
+
 }  // namespace
 
 const RevolutionEntry bump_entry{
@@ -58,6 +64,7 @@ const RevolutionEntry bump_entry{
     bump_profile,
     bump_implicit,
     bump_u,
-    bump_domain};
+    bump_domain,
+    bump_picture};
 
 }  // namespace spinfold

@@ -43,11 +43,16 @@ ProfileDomain catenoid_domain(const RevolutionSurface&) {
   return {-inf, inf, false, false, false};
 }
 
+// |z| ≤ 2c, where ρ = c cosh 2 ≈ 3.8c.
+ProfilePicture catenoid_picture(const RevolutionSurface& s) {
+  return {-2.0 * s.neck_radius, 2.0 * s.neck_radius, 3.0 * s.neck_radius, s.neck_radius};
+}
+
 }  // namespace
 
 const RevolutionEntry catenoid_entry{
     RevolutionKind::catenoid, "catenoid",        "neck radius c; K < 0 everywhere, most negative on the neck",
     catenoid_profile,         catenoid_implicit, catenoid_u,
-    catenoid_domain};
+    catenoid_domain,    catenoid_picture};
 
 }  // namespace spinfold

@@ -1,6 +1,7 @@
 // The spheroid: equatorial radius a, polar radius b (oblate a > b, prolate a < b, a = b the sphere;
 // physics-surfaces.md §1). u is the polar angle θ from the north pole, u ∈ [0, π]; both poles are axis
 // points (§8).
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -45,6 +46,11 @@ ProfileDomain spheroid_domain(const RevolutionSurface&) {
   return {0.0, std::numbers::pi, false, true, true};
 }
 
+ProfilePicture spheroid_picture(const RevolutionSurface& s) {
+  return {0.0, std::numbers::pi, std::max(s.equatorial_radius, s.polar_radius),
+          std::min(s.equatorial_radius, s.polar_radius)};
+}
+
 }  // namespace
 
 const RevolutionEntry spheroid_entry{RevolutionKind::spheroid,
@@ -53,6 +59,7 @@ const RevolutionEntry spheroid_entry{RevolutionKind::spheroid,
                                      spheroid_profile,
                                      spheroid_implicit,
                                      spheroid_u,
-                                     spheroid_domain};
+                                     spheroid_domain,
+                                     spheroid_picture};
 
 }  // namespace spinfold

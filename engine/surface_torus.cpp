@@ -47,6 +47,10 @@ ProfileDomain torus_domain(const RevolutionSurface&) {
   return {-std::numbers::pi, std::numbers::pi, true, false, false};
 }
 
+ProfilePicture torus_picture(const RevolutionSurface& s) {
+  return {-std::numbers::pi, std::numbers::pi, s.center_radius + s.tube_radius, s.tube_radius};
+}
+
 }  // namespace
 
 const RevolutionEntry torus_entry{
@@ -56,6 +60,7 @@ const RevolutionEntry torus_entry{
     torus_profile,
     torus_implicit,
     torus_u,
-    torus_domain};
+    torus_domain,
+    torus_picture};
 
 }  // namespace spinfold

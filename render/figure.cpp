@@ -217,10 +217,15 @@ void add_triangles(FigurePage& page, const Camera& camera, const ViewOptions& vi
     return std::array<glm::dvec2, 3>{to_page(*v[0]), to_page(*v[1]), to_page(*v[2])};
   };
   const auto color_of = [&](std::size_t t) {
-    if constexpr (std::is_same_v<V, Vertex>)
+    if constexpr (std::is_same_v<V, Vertex>) {
       return color.value_or(glm::dvec4(triangles[t].color));
-    else
-      return *color;
+    } else {  // no colour given: the curvature layer's tint, the face's mean in steps of 1/16 (fewer paths)
+      if (color) return *color;
+      const glm::dvec3 mean =
+          (glm::dvec3(triangles[t].tint) + glm::dvec3(triangles[t + 1].tint) + glm::dvec3(triangles[t + 2].tint)) /
+          3.0;
+      return glm::dvec4(glm::round(mean * 16.0) / 16.0, 1.0);
+    }
   };
   for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
     const auto p = corners(t);
@@ -389,6 +394,11 @@ std::string grid_line(const Snapshot& snapshot, const ViewOptions& view) {
       return "Grid: the image of a square grid of geodesic normal coordinates, every " +
              format("%g", kPlaneGridSpacing * body_scale_length(view.kind, snapshot.surface)) +
              " length units.";
+    case ViewKind::revolution:
+      return std::string("Grid: meridians every 30 degrees and parallels; the K = 0 parallels darker.") +
+             (view.layers & kCurvature ? " Colour: the Gaussian curvature K, warm where K > 0, cool where K < 0, "
+                                         "white where K = 0, full at the largest |K| drawn."
+                                       : "");
   }
   return "";
 }
@@ -454,7 +464,8 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
     add_triangles(page, camera, view, scene.backdrop, std::nullopt, false, "surface");
   // The surface's fill: its visible faces (hidden ones lie under them) in one flat colour.
   if (scene.statics && scene.draw_surface)
-    add_triangles(page, camera, view, scene.statics->surface, glm::dvec4(scene.surface_color), three_d,
+    add_triangles(page, camera, view, scene.statics->surface,
+                  scene.tint_by_curvature ? std::nullopt : std::optional(glm::dvec4(scene.surface_color)), three_d,
                   "surface");
   if (scene.statics && scene.draw_grid)
     add_segments(page, camera, view, scene.statics->grid, grid_width, "grid");

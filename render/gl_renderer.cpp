@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <glm/gtc/type_ptr.hpp>
 #include <stdexcept>
@@ -56,6 +57,12 @@ void upload(unsigned vao, unsigned vbo, const void* data, std::size_t bytes, boo
   glEnableVertexAttribArray(1);
   glVertexAttribPointer(1, lit ? 3 : 4, GL_FLOAT, GL_FALSE, stride,
                         reinterpret_cast<void*>(sizeof(glm::vec3)));
+  if (lit) {  // the curvature layer's tint
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(LitVertex, tint)));
+  } else {
+    glDisableVertexAttribArray(2);
+  }
 }
 
 }  // namespace
@@ -103,6 +110,7 @@ bool GlRenderer::BackgroundKey::operator==(const BackgroundKey& o) const {
   // Bitwise on the floats: the same camera gives the same matrix bits, and only then may the
   // cached pixels stand in for drawn ones.
   return statics == o.statics && surface == o.surface && grid == o.grid && depth_test == o.depth_test &&
+         tint == o.tint &&
          std::memcmp(&view_projection, &o.view_projection, sizeof view_projection) == 0 &&
          std::memcmp(&surface_color, &o.surface_color, sizeof surface_color) == 0 &&
          std::memcmp(&clear_color, &o.clear_color, sizeof clear_color) == 0 && width == o.width &&
@@ -184,10 +192,17 @@ const GlRenderer::Working& GlRenderer::working_target(int width, int height, int
   return working_.front();
 }
 
-const GlRenderer::Mesh& GlRenderer::static_mesh(std::map<const StaticGeometry*, Mesh>& meshes,
+const GlRenderer::Mesh& GlRenderer::static_mesh(std::map<std::uint64_t, Mesh>& meshes,
                                                 const StaticGeometry& g, const void* data, std::size_t count,
                                                 bool lit) {
-  auto [it, fresh] = meshes.try_emplace(&g);
+  if (meshes.size() >= kMaxMeshes && !meshes.contains(g.id)) {
+    for (auto& [id, mesh] : meshes) {
+      glDeleteBuffers(1, &mesh.vbo);
+      glDeleteVertexArrays(1, &mesh.vao);
+    }
+    meshes.clear();
+  }
+  auto [it, fresh] = meshes.try_emplace(g.id);
   if (fresh) {
     glGenVertexArrays(1, &it->second.vao);
     glGenBuffers(1, &it->second.vbo);
@@ -264,6 +279,7 @@ void GlRenderer::draw_background(const FrameScene& scene, float grid_width) {
     const glm::vec3 towards_camera = headlight(scene);
     glUniform3fv(glGetUniformLocation(lit_program_, "light_direction"), 1, glm::value_ptr(towards_camera));
     glUniform1f(glGetUniformLocation(lit_program_, "ambient"), scene.depth_test ? 0.35f : 1.0f);
+    glUniform1f(glGetUniformLocation(lit_program_, "tint_mix"), scene.tint_by_curvature ? 1.0f : 0.0f);
     glBindVertexArray(mesh.vao);
     glDrawArrays(GL_TRIANGLES, 0, mesh.count);
     if (smooth_) {  // without multisampling, smooth the surface's outline with a line over it
@@ -364,7 +380,8 @@ void GlRenderer::background_into(const Target& target, const FrameScene& scene, 
     return;
   }
   BackgroundKey key;
-  key.statics = scene.statics;
+  key.statics = scene.statics->id;
+  key.tint = scene.tint_by_curvature;
   key.surface = scene.draw_surface;
   key.grid = scene.draw_grid;
   key.depth_test = scene.depth_test;

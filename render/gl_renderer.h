@@ -80,8 +80,8 @@ class GlRenderer {
   };
   // Everything the background's pixels depend on.
   struct BackgroundKey {
-    const StaticGeometry* statics = nullptr;
-    bool surface = false, grid = false, depth_test = false;
+    std::uint64_t statics = 0;  // StaticGeometry::id
+    bool surface = false, grid = false, depth_test = false, tint = false;
     glm::mat4 view_projection{1.0f};
     glm::vec4 surface_color{0.0f}, clear_color{0.0f};
     int width = 0, height = 0, samples = 0;
@@ -101,7 +101,7 @@ class GlRenderer {
   // Static geometry is uploaded once per surface and view and kept.
   const Mesh& static_surface(const StaticGeometry& g);
   const Mesh& static_grid(const StaticGeometry& g);
-  const Mesh& static_mesh(std::map<const StaticGeometry*, Mesh>& meshes, const StaticGeometry& g,
+  const Mesh& static_mesh(std::map<std::uint64_t, Mesh>& meshes, const StaticGeometry& g,
                           const void* data, std::size_t count, bool lit);
   void draw_flat(const std::vector<Vertex>& vertices, unsigned mode);
 
@@ -131,7 +131,10 @@ class GlRenderer {
   unsigned lit_program_ = 0, flat_program_ = 0, line_program_ = 0;
   unsigned line_vao_ = 0;  // the line program's attributes, pointed at a mesh's buffer per draw
   Mesh dynamic_;
-  std::map<const StaticGeometry*, Mesh> surfaces_, grids_;
+  // Uploaded static geometry by StaticGeometry::id; emptied when it passes kMaxMeshes (a surface
+  // whose shape changes frame after frame must not fill the GPU's memory).
+  static constexpr std::size_t kMaxMeshes = 24;
+  std::map<std::uint64_t, Mesh> surfaces_, grids_;
   std::list<Working> working_;            // most recently used first, at most 2
   bool smooth_ = false;                   // this frame's lines are anti-aliased quads
   const Target* readback_ = nullptr;      // the last frame's, until finish()

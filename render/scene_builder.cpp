@@ -1,11 +1,14 @@
 #include "render/scene_builder.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <tuple>
 
 #include "engine/integer_cast.h"
+#include "engine/surface_geodesics.h"
 #include "render/view_table.h"
 #include "render/views/drawing.h"
 #include "render/views/view_model.h"
@@ -21,6 +24,16 @@ namespace {
 // Points along the geodesic-like path between two nearby embedded points (chords pushed back onto
 // the surface), so that a trail follows the surface instead of cutting through it.
 void append_path(std::vector<Vec3>& out, const Surface& surface, const Vec3& a, const Vec3& b) {
+  if (curvature_varies(surface.kind)) {  // chords of 1/32 of the smallest feature, pushed back onto it
+    const RevolutionSurface shape = revolution_surface(surface);
+    const RevolutionImplicit implicit(shape);
+    const double feature = revolution_entry(shape.kind).picture(shape).feature;
+    const int n = clamped_integer(std::ceil(32.0 * (b - a).norm() / feature), 1, 16);
+    for (int i = 1; i < n; ++i)
+      out.push_back(project_onto_surface(implicit, a + (b - a) * (static_cast<double>(i) / n)));
+    out.push_back(b);
+    return;
+  }
   const double R = surface.radius;
   if (std::max(a.norm(), b.norm()) > 1e3 * R) {  // far out on H²: η-norms cancel; a chord will do
     out.push_back(b);
@@ -74,6 +87,12 @@ glm::vec3 headlight(const FrameScene& scene) {
   return glm::normalize(glm::vec3(inverse * glm::vec4(0, 0, -1, 0)));
 }
 
+glm::vec4 lit_color(const FrameScene& scene, const LitVertex& v, const glm::vec3& light, float ambient) {
+  const float diffuse = std::abs(glm::dot(v.normal, light));
+  const glm::vec3 base = scene.tint_by_curvature ? v.tint : glm::vec3(scene.surface_color);
+  return glm::vec4(base * (ambient + (1.0f - ambient) * diffuse), scene.surface_color.a);
+}
+
 std::vector<Vertex> silhouette(const StaticGeometry& g, const FrameScene& scene) {
   std::vector<Vertex> lines;
   // The camera: the point the projection sends to w = 0; for an orthographic projection a
@@ -84,11 +103,7 @@ std::vector<Vertex> silhouette(const StaticGeometry& g, const FrameScene& scene)
   const glm::dvec3 towards_camera = perspective ? glm::dvec3(0.0) : -glm::dvec3(h);
   const glm::vec3 light = headlight(scene);
   const float ambient = scene.depth_test ? 0.35f : 1.0f;
-  const auto shaded = [&](const LitVertex& v) {  // lit.vert's colour
-    const float diffuse = std::abs(glm::dot(v.normal, light));
-    return glm::vec4(glm::vec3(scene.surface_color) * (ambient + (1.0f - ambient) * diffuse),
-                     scene.surface_color.a);
-  };
+  const auto shaded = [&](const LitVertex& v) { return lit_color(scene, v, light, ambient); };
   for (const SurfaceEdge& e : g.edges) {
     const glm::dvec3 a(g.surface[e.a].position);
     const glm::dvec3 view = perspective ? eye - a : towards_camera;
@@ -101,17 +116,66 @@ std::vector<Vertex> silhouette(const StaticGeometry& g, const FrameScene& scene)
   return lines;
 }
 
+namespace {
+
+std::uint64_t next_static_id() {
+  static std::atomic<std::uint64_t> next{1};
+  return next++;
+}
+
+StaticGeometry built_static(const Surface& surface, ViewKind view) {
+  StaticGeometry g = view_model(view).build_static(surface);
+  add_edges(g);
+  g.id = next_static_id();
+  return g;
+}
+
+// A varying surface's shape: its kind and every parameter a profile reads.
+using ShapeKey = std::tuple<SurfaceKind, ViewKind, std::array<double, 7>>;
+ShapeKey shape_key(const Surface& s, ViewKind view) {
+  return {s.kind, view,
+          {s.tube_radius, s.center_radius, s.equatorial_radius, s.polar_radius, s.height, s.width,
+           s.neck_radius}};
+}
+
+}  // namespace
+
 const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view) {
   static std::mutex mutex;
   static std::map<std::pair<SurfaceKind, ViewKind>, StaticGeometry> cache;
   const std::lock_guard lock(mutex);
   auto it = cache.find({surface, view});
-  if (it == cache.end()) {
-    StaticGeometry g = view_model(view).build_static(surface);
-    add_edges(g);
-    it = cache.emplace(std::pair{surface, view}, std::move(g)).first;
-  }
+  if (it == cache.end()) it = cache.emplace(std::pair{surface, view}, built_static(Surface{surface, 1.0}, view)).first;
   return it->second;
+}
+
+std::shared_ptr<const StaticGeometry> static_geometry(const Surface& surface, ViewKind view) {
+  if (!curvature_varies(surface.kind))  // kept for ever: a shared_ptr that frees nothing
+    return std::shared_ptr<const StaticGeometry>(std::shared_ptr<void>(), &static_geometry(surface.kind, view));
+  static std::mutex mutex;
+  static std::vector<std::pair<ShapeKey, std::shared_ptr<const StaticGeometry>>> recent;  // newest last
+  const ShapeKey key = shape_key(surface, view);
+  {
+    const std::lock_guard lock(mutex);
+    for (auto it = recent.begin(); it != recent.end(); ++it)
+      if (it->first == key) {
+        auto entry = std::move(*it);
+        recent.erase(it);
+        recent.push_back(std::move(entry));
+        return recent.back().second;
+      }
+  }
+  auto built = std::make_shared<const StaticGeometry>(built_static(surface, view));  // outside the lock
+  const std::lock_guard lock(mutex);
+  recent.emplace_back(key, built);
+  if (recent.size() > kStaticGeometryCache) recent.erase(recent.begin());
+  return built;
+}
+
+glm::vec3 curvature_color(double k, double full) {
+  const double t = std::clamp(k / full, -1.0, 1.0);
+  const glm::dvec3 white(0.97, 0.97, 0.96), warm(0.87, 0.33, 0.13), cool(0.16, 0.40, 0.80);
+  return glm::vec3(t >= 0.0 ? white + t * (warm - white) : white - t * (cool - white));
 }
 
 LineWidths line_widths(int width, int height) {
@@ -154,6 +218,8 @@ HudLayout hud_layout(const std::vector<std::string>& lines, const std::vector<st
 
 Vec3 exponential_map(const Surface& surface, const Vec3& X, const Vec3& v, double length) {
   if (length == 0.0 || surface.kind == SurfaceKind::plane) return X + v;
+  if (curvature_varies(surface.kind))
+    return implicit_exponential_map(RevolutionImplicit(revolution_surface(surface)), X, v);
   return polar_C(surface, length) * X + (polar_S(surface, length) / length) * v;
 }
 
@@ -196,7 +262,8 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   scene.draw_surface = (view.layers & kSurface) != 0;
   scene.draw_grid = (view.layers & kGrid) != 0;
   if ((scene.draw_surface || scene.draw_grid) && model.uses_static())
-    scene.statics = &static_geometry(surface.kind, view.kind);
+    scene.statics = static_geometry(surface, view.kind);
+  scene.tint_by_curvature = (view.layers & kCurvature) != 0;
   scene.view_projection = model.camera(view);
   scene.depth_test = view_info(view.kind).three_d;
   scene.depth_bias = model.depth_bias();

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +23,7 @@ struct Vertex {
 struct LitVertex {
   glm::vec3 position;
   glm::vec3 normal;
+  glm::vec3 tint{1.0f};  // the curvature layer's colour at the vertex (curvature_color of K there)
 };
 
 // Geometry that depends only on the surface kind and the view: built once and reused.
@@ -37,8 +39,20 @@ struct StaticGeometry {
   std::vector<LitVertex> surface;  // triangles, lit
   std::vector<Vertex> grid;        // line segments
   std::vector<SurfaceEdge> edges;  // each edge of the surface once (degenerate faces left out)
+  std::uint64_t id = 0;            // unique among all ever built (the GL renderer's key for its buffers)
 };
+// The unit surface of a constant-curvature kind in a view: built once, kept for the process's life.
 const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view);
+// Any surface's: a constant kind's as above; a surface whose curvature varies has its own shape
+// (its parameters), so the last kStaticGeometryCache of those are kept and older ones freed once no
+// frame holds them (a slider dragged through a thousand tube radii keeps eight meshes).
+inline constexpr std::size_t kStaticGeometryCache = 8;
+std::shared_ptr<const StaticGeometry> static_geometry(const Surface& surface, ViewKind view);
+
+// The curvature layer's diverging colour of K·ℓ² (ℓ: the surface's length, so that the colour is
+// the same for any size): white at 0, warm (orange-red) for K > 0, cool (blue) for K < 0, saturated
+// at |K|·ℓ² = `full`.
+glm::vec3 curvature_color(double K_times_length_squared, double full);
 
 // Line widths of a frame [pixels]. The outline, trail and arrows are 1.5 px at 640×480 and grow
 // with the frame's shorter side measured in 4:3 terms (min(width·3/4, height)/480), so that a frame
@@ -92,8 +106,9 @@ HudLayout hud_layout(const std::vector<std::string>& lines, const std::vector<st
                      int width, int height);
 
 struct FrameScene {
-  const StaticGeometry* statics = nullptr;  // null when neither surface nor grid is drawn
+  std::shared_ptr<const StaticGeometry> statics;  // null when neither surface nor grid is drawn
   bool draw_surface = false, draw_grid = false;
+  bool tint_by_curvature = false;  // the curvature layer: the surface coloured by its vertices' tint
   std::vector<Vertex> fills;           // translucent triangles (the ellipse)
   std::vector<Vertex> lines;           // line segments (trail, outline, arrows)
   std::vector<std::string> hud_lines;  // empty when the HUD is off
@@ -121,6 +136,10 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view);
 // The direction the surface is lit from (lit.vert's light_direction): the camera's side in the 3-D
 // views, straight on in the 2-D ones.
 glm::vec3 headlight(const FrameScene& scene);
+
+// lit.vert's colour of a surface vertex lit from `light` over an `ambient` floor: the surface's colour,
+// or with the curvature layer the vertex's tint.
+glm::vec4 lit_color(const FrameScene& scene, const LitVertex& v, const glm::vec3& light, float ambient);
 
 // The surface's outline as seen by the scene's camera: the mesh's boundary edges and the edges
 // between a face turned towards the camera and one turned away, as line segments in the shaded

@@ -14,7 +14,7 @@ ViewKind default_view(SurfaceKind surface) {
     case SurfaceKind::sphere: return ViewKind::sphere;
     case SurfaceKind::pseudosphere: return ViewKind::disk;
     case SurfaceKind::plane: return ViewKind::plane;
-    default: return ViewKind::sphere;  // no view draws it yet: view_unsupported_reason says so
+    default: return ViewKind::revolution;
   }
 }
 
@@ -31,30 +31,16 @@ const ViewInfo& view_info(ViewKind view) {
   return views().front();
 }
 
-namespace {
 bool shows(const ViewInfo& v, SurfaceKind surface) {
-  switch (surface) {
-    case SurfaceKind::sphere: return v.sphere;
-    case SurfaceKind::pseudosphere: return v.pseudosphere;
-    case SurfaceKind::plane: return v.plane;
-    default: return false;
-  }
+  return (v.surfaces & surface_bit(surface)) != 0;
 }
-}  // namespace
 
 std::optional<std::string> view_unsupported_reason(ViewKind view, SurfaceKind surface) {
   if (shows(view_info(view), surface)) return std::nullopt;
-  if (curvature_varies(surface))
-    return "no view draws the " + std::string(enum_name(surface)) +
-           " yet (its 3-D and chart views are the next step of the surfaces whose curvature varies): "
-           "simulate, sweep, work-precision, Python and the API's trajectory run it";
   std::string names;
   for (const ViewInfo& v : views())
     if (shows(v, surface)) names += (names.empty() ? "" : ", ") + std::string(v.name);
-  const char* what = surface == SurfaceKind::sphere         ? "the sphere"
-                     : surface == SurfaceKind::pseudosphere ? "the pseudosphere"
-                                                            : "the plane";
-  return std::string(what) + " is shown in these views: " + names;
+  return "the " + std::string(enum_name(surface)) + " is shown in these views: " + names;
 }
 
 std::optional<ViewKind> parse_view(std::string_view name) {

@@ -20,6 +20,7 @@ enum class ViewKind {
   halfplane,    // Poincaré upper half-plane (H²), 2-D, following the body
   tractricoid,  // Beltrami's pseudosphere in ℝ³ (a horocyclic strip of H² wrapped round its axis)
   conformal,    // every surface: stereographic (S²), identity (plane), Poincaré (H²), continuous in K, 2-D
+  revolution,   // a surface of revolution whose curvature varies (torus, spheroid, bump, catenoid) in ℝ³
 };
 
 // The one table of views: the name the API, the CLI and the UI use, the surfaces each shows, and
@@ -27,10 +28,10 @@ enum class ViewKind {
 struct ViewInfo {
   std::string_view name;
   ViewKind kind;
-  bool three_d;                      // an orbiting camera (else orthographic, 2-D)
-  bool sphere, pseudosphere, plane;  // the surfaces it can show
-  std::string_view title;            // a short label for a menu
-  std::string_view description;      // one line for a reader
+  bool three_d;                  // an orbiting camera (else orthographic, 2-D)
+  unsigned surfaces;             // the surface kinds it can show (surface_bit, engine/surface.h)
+  std::string_view title;        // a short label for a menu
+  std::string_view description;  // one line for a reader
 };
 std::span<const ViewInfo> views();
 // The views' names in the table's order joined by `separator` ("sphere | disk | …" for a help text).
@@ -46,7 +47,8 @@ enum Layer : unsigned {
   kTrail = 1u << 4,      // the path on the surface
   kHud = 1u << 5,        // text overlay (Dear ImGui)
   kActions = 1u << 6,    // the action variables and frequencies, added to the text overlay
-  kDefaultLayers = 63u,  // every layer but the action variables
+  kCurvature = 1u << 7,  // the Gaussian curvature K as the surface's colour (warm > 0, cool < 0)
+  kDefaultLayers = 63u,  // every layer but the action variables and the curvature
 };
 
 // The length that the display scale (ViewOptions::scale, "body size") is given in: R, so that a
@@ -75,7 +77,10 @@ struct ViewOptions {
 
 inline constexpr int kMaxImageSide = 4096;
 
-// The view a surface is shown in by default: sphere → sphere, pseudosphere → disk, plane → plane.
+// Whether a view can show a surface kind.
+bool shows(const ViewInfo& view, SurfaceKind surface);
+// The view a surface is shown in by default: sphere → sphere, pseudosphere → disk, plane → plane,
+// the surfaces whose curvature varies → revolution.
 ViewKind default_view(SurfaceKind surface);
 // Why a view cannot show a surface, or nullopt.
 std::optional<std::string> view_unsupported_reason(ViewKind view, SurfaceKind surface);

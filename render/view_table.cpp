@@ -17,36 +17,45 @@ const ViewModel& tractricoid_view();
 const ViewModel& plane_view();
 const ViewModel& conformal_view();
 
+const ViewModel& revolution_view();
+
 namespace {
 
-// name, kind, three_d, shows {sphere, pseudosphere, plane}, title, description; implementation.
+constexpr unsigned kS = surface_bit(SurfaceKind::sphere), kH = surface_bit(SurfaceKind::pseudosphere),
+                   kE = surface_bit(SurfaceKind::plane);
+
+// name, kind, three_d, the surfaces it shows, title, description; implementation.
 constexpr ViewRow kViews[] = {
-    {{"sphere", ViewKind::sphere, true, true, false, false, "3-D sphere",
+    {{"sphere", ViewKind::sphere, true, kS, "3-D sphere",
       "the sphere in space, seen by an orbiting camera"},
      &sphere_view},
-    {{"disk", ViewKind::disk, false, true, true, false, "disk (flat map)",
+    {{"disk", ViewKind::disk, false, kS | kH, "disk (flat map)",
       "the Poincaré disk (H²) or the stereographic plane (S²): angles true, geodesics circular arcs"},
      &disk_view},
-    {{"hyperboloid", ViewKind::hyperboloid, true, false, true, false, "3-D hyperboloid",
+    {{"hyperboloid", ViewKind::hyperboloid, true, kH, "3-D hyperboloid",
       "H² as the upper sheet of the hyperboloid x₃² − x₁² − x₂² = R² in Minkowski space"},
      &hyperboloid_view},
-    {{"klein", ViewKind::klein, false, false, true, false, "Klein disk (straight geodesics)",
+    {{"klein", ViewKind::klein, false, kH, "Klein disk (straight geodesics)",
       "the Beltrami–Klein disk: geodesics are straight chords, angles and shapes are not true"},
      &klein_view},
-    {{"halfplane", ViewKind::halfplane, false, false, true, false, "upper half-plane",
+    {{"halfplane", ViewKind::halfplane, false, kH, "upper half-plane",
       "the Poincaré upper half-plane: angles true, geodesics semicircles on the boundary or vertical lines"},
      &halfplane_view},
-    {{"tractricoid", ViewKind::tractricoid, true, false, true, false, "3-D pseudosphere (tractricoid)",
+    {{"tractricoid", ViewKind::tractricoid, true, kH, "3-D pseudosphere (tractricoid)",
       "Beltrami's surface of curvature −1/R² in space: a strip of H² wrapped round its axis, ending at its "
       "rim"},
      &tractricoid_view},
-    {{"plane", ViewKind::plane, false, false, false, true, "flat plane",
+    {{"plane", ViewKind::plane, false, kE, "flat plane",
       "the Euclidean plane, following the body"},
      &plane_view},
-    {{"conformal", ViewKind::conformal, false, true, true, true, "conformal (continuous in K)",
+    {{"conformal", ViewKind::conformal, false, kS | kH | kE, "conformal (continuous in K)",
       "any curvature K in one flat map, angles true: stereographic (K > 0), the plane itself (K = 0), the "
       "Poincaré disk (K < 0), in lengths and following the body, so the picture changes continuously with K"},
      &conformal_view},
+    {{"revolution", ViewKind::revolution, true, kVaryingCurvatureSurfaces, "3-D surface of revolution",
+      "the torus, spheroid, bump or catenoid in space, with its meridians and parallels, its K = 0 "
+      "circles marked, and the curvature layer colouring it by K"},
+     &revolution_view},
 };
 
 constexpr auto kInfos = [] {

@@ -58,8 +58,8 @@ std::vector<Sight> sights(const ViewModel& model, const Snapshot& snapshot, cons
     for (std::size_t i = 0; i < body.trail.size(); i += stride) {
       const Vec3& P = body.trail[i];
       if (!model.on_view(surface, P)) continue;
-      if (recent_only) {  // the trail's last stretch: within 3 radii (intrinsic) of its body
-        const double R = surface.radius, c = -dot(surface, P, body.X) / (R * R);
+      if (recent_only && !curvature_varies(surface.kind)) {  // the trail's last stretch: within 3 radii
+        const double R = surface.radius, c = -dot(surface, P, body.X) / (R * R);  // (intrinsic) of its body
         if (R * std::acosh(std::max(1.0, c)) > 3.0 * R) continue;
       }
       out.push_back({model.world_position(surface, P), weight});
@@ -68,8 +68,8 @@ std::vector<Sight> sights(const ViewModel& model, const Snapshot& snapshot, cons
   return out;
 }
 
-double badness(const ViewModel& model, const ViewOptions& view, const std::vector<Sight>& points,
-               const HudLayout& hud) {
+double badness(const ViewModel& model, const Surface& surface, const ViewOptions& view,
+               const std::vector<Sight>& points, const HudLayout& hud) {
   FrameScene scene;
   scene.view_projection = model.camera(view);
   const double margin = 0.04 * std::min(view.width, view.height),
@@ -82,7 +82,7 @@ double badness(const ViewModel& model, const ViewOptions& view, const std::vecto
   const glm::dvec3 eye = glm::dvec3(h) / h.w;
   double bad = 0.0;
   for (const Sight& p : points) {
-    const bool hidden = model.hidden(p.at, eye);
+    const bool hidden = model.hidden(surface, p.at, eye);
     const std::optional<glm::dvec2> px = pixel_position(scene, view, p.at);
     if (hidden || !px || px->x < edge || px->y < edge || px->x > view.width - edge ||
         px->y > view.height - edge || hud_box.contains(*px) || legend_box.contains(*px))
@@ -91,8 +91,8 @@ double badness(const ViewModel& model, const ViewOptions& view, const std::vecto
   return bad;
 }
 
-void clear_the_boxes(const ViewModel& model, ViewOptions& view, const std::vector<Sight>& points,
-                     const HudLayout& hud, std::initializer_list<double> pulls) {
+void clear_the_boxes(const ViewModel& model, const Surface& surface, ViewOptions& view,
+                     const std::vector<Sight>& points, const HudLayout& hud, std::initializer_list<double> pulls) {
   constexpr double kTurns[][2] = {{0, 0},    {0, 0.1},    {0, 0.2},     {0.1, 0.1},  {-0.1, 0.1},
                                   {0, 0.3},  {0.15, 0.2}, {-0.15, 0.2}, {0.2, 0.3},  {-0.2, 0.3},
                                   {0, 0.45}, {0.3, 0.3},  {-0.3, 0.3},  {0.3, 0.45}, {-0.3, 0.45},
@@ -105,7 +105,7 @@ void clear_the_boxes(const ViewModel& model, ViewOptions& view, const std::vecto
       v.yaw = start.yaw + turn[0];
       v.pitch = std::clamp(start.pitch + turn[1], -1.3, 1.3);
       v.distance = start.distance * pull;
-      const double bad = badness(model, v, points, hud);
+      const double bad = badness(model, surface, v, points, hud);
       if (bad < best) best = bad, view = v;
       if (best == 0.0) return;
     }
@@ -126,7 +126,7 @@ void aim_orbit(const ViewModel& model, ViewOptions& view, const Snapshot& snapsh
   view.distance = radius / std::sin(0.85 * half_fov);
   view.pitch = pitch;
   if (glm::length(glm::dvec2(centre)) > 1e-9) view.yaw = std::atan2(centre.y, centre.x) + yaw_turn;
-  clear_the_boxes(model, view, points, hud, {1.0, 1.25, 1.6});
+  clear_the_boxes(model, snapshot.surface, view, points, hud, {1.0, 1.25, 1.6});
 }
 
 void aim_at_bodies_centre(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot) {

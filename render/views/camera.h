@@ -39,12 +39,12 @@ std::vector<Sight> sights(const ViewModel& model, const Snapshot& snapshot, cons
 // How badly a camera shows the sights: the weight of those hidden (ViewModel::hidden) or behind
 // the camera, out of the frame (less a margin) or under the HUD's or legend's box (grown by the
 // margin).
-double badness(const ViewModel& model, const ViewOptions& view, const std::vector<Sight>& points,
-               const HudLayout& hud);
+double badness(const ViewModel& model, const Surface& surface, const ViewOptions& view,
+               const std::vector<Sight>& points, const HudLayout& hud);
 // Tries the camera turned by each of a fixed list of (Δyaw, Δpitch) and drawn back by each factor
 // of `pulls`, in this order, and keeps the first that shows the sights best.
-void clear_the_boxes(const ViewModel& model, ViewOptions& view, const std::vector<Sight>& points,
-                     const HudLayout& hud, std::initializer_list<double> pulls);
+void clear_the_boxes(const ViewModel& model, const Surface& surface, ViewOptions& view,
+                     const std::vector<Sight>& points, const HudLayout& hud, std::initializer_list<double> pulls);
 
 // The orbit of a surface that stretches out of a unit ball (hyperboloid, tractricoid): orbit the
 // centre of the bounding box of the bodies and their recent trails, at the distance at which a

@@ -20,7 +20,8 @@ class DiskView final : public ViewModel {
 
   // The disk |w| < 1 of H² with its polar grid and rim, or the sphere's map out to |w| = 3 with
   // parallels down to 150° and meridians every 30°.
-  StaticGeometry build_static(SurfaceKind kind) const override {
+  StaticGeometry build_static(const Surface& surface) const override {
+    const SurfaceKind kind = surface.kind;
     StaticGeometry g;
     const Surface unit{kind, 1.0};
     if (kind == SurfaceKind::pseudosphere) add_geodesic_polar_grid(g.grid, unit, *this, 6.0, 128, 64);

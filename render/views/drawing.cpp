@@ -27,9 +27,9 @@ glm::vec4 outline_color(const BodySnapshot& body) {
   return {0.75f * body.color[0], 0.75f * body.color[1], 0.75f * body.color[2], 1.0f};
 }
 
-glm::dvec3 lifted(const ViewModel& view, const glm::dvec3& w) {
+glm::dvec3 lifted(const ViewModel& view, const Surface& surface, const glm::dvec3& w) {
   const double lift = view.lift();
-  return lift != 0.0 ? w + lift * view.normal(w) : w;
+  return lift != 0.0 ? w + lift * view.normal(surface, w) : w;
 }
 
 void add_segment(std::vector<Vertex>& lines, const glm::dvec3& a, const glm::dvec3& b,
@@ -45,8 +45,8 @@ void add_polyline(std::vector<Vertex>& lines, const Surface& surface, const View
     const Vec3& a = points[i];
     const Vec3& b = points[(i + 1) % points.size()];
     if (!view.on_view(surface, a) || !view.on_view(surface, b)) continue;
-    const glm::dvec3 wa = lifted(view, view.world_position(surface, a)),
-                     wb = lifted(view, view.world_position(surface, b));
+    const glm::dvec3 wa = lifted(view, surface, view.world_position(surface, a)),
+                     wb = lifted(view, surface, view.world_position(surface, b));
     if (clip && !(clip->near(glm::dvec2(wa)) && clip->near(glm::dvec2(wb)))) continue;
     add_segment(lines, wa, wb, color);
   }
@@ -57,8 +57,8 @@ void add_dashed_polyline(std::vector<Vertex>& lines, const Surface& surface, con
   double phase = 0.0;  // distance into the current dash + gap period
   for (std::size_t i = 0; i + 1 < points.size(); ++i) {
     if (!view.on_view(surface, points[i]) || !view.on_view(surface, points[i + 1])) continue;
-    const glm::dvec3 a = lifted(view, view.world_position(surface, points[i]));
-    const glm::dvec3 b = lifted(view, view.world_position(surface, points[i + 1]));
+    const glm::dvec3 a = lifted(view, surface, view.world_position(surface, points[i]));
+    const glm::dvec3 b = lifted(view, surface, view.world_position(surface, points[i + 1]));
     if (clip && !(clip->near(glm::dvec2(a)) && clip->near(glm::dvec2(b)))) continue;
     const double length = glm::length(b - a);
     double done = 0.0;
@@ -89,7 +89,7 @@ void add_body(FrameScene& scene, const Surface& surface, const ViewModel& view, 
   const auto ring_point = [&](int ring, std::size_t i) {
     const double theta = 2 * kPi * static_cast<double>(i % outline.size()) / outline.size();
     const double f = scale * ring / kRings;
-    return to_float(lifted(view, view.world_position(surface, exp_frame(surface, body, f * std::cos(theta),
+    return to_float(lifted(view, surface, view.world_position(surface, exp_frame(surface, body, f * std::cos(theta),
                                                                         f * std::sin(theta)))));
   };
   for (int ring = 0; ring < kRings; ++ring)
@@ -112,11 +112,11 @@ void add_frame_arrows(FrameScene& scene, const Surface& surface, const ViewModel
     }
     add_polyline(scene.lines, surface, view, shaft, kArrowColors[a], false);
     // Arrowhead in world space: two barbs back from the tip, in the surface's tangent plane.
-    const glm::dvec3 tip = lifted(view, view.world_position(surface, shaft.back()));
-    const glm::dvec3 before = lifted(view, view.world_position(surface, shaft[12]));
+    const glm::dvec3 tip = lifted(view, surface, view.world_position(surface, shaft.back()));
+    const glm::dvec3 before = lifted(view, surface, view.world_position(surface, shaft[12]));
     const glm::dvec3 back = before - tip;
     if (glm::length(back) > 0.0) {
-      const glm::dvec3 normal = view.normal(tip);
+      const glm::dvec3 normal = view.normal(surface, tip);
       const glm::dvec3 side = 0.45 * glm::length(back) * glm::normalize(glm::cross(normal, back));
       add_segment(scene.lines, tip, before + side, kArrowColors[a]);
       add_segment(scene.lines, tip, before - side, kArrowColors[a]);

@@ -32,7 +32,7 @@ inline glm::vec4 rgba(const std::array<float, 3>& c, float alpha = 1.0f) {
 glm::vec4 outline_color(const BodySnapshot& body);
 
 // A world point lifted off the view's surface along its normal by view.lift() (unchanged when 0).
-glm::dvec3 lifted(const ViewModel& view, const glm::dvec3& w);
+glm::dvec3 lifted(const ViewModel& view, const Surface& surface, const glm::dvec3& w);
 
 void add_segment(std::vector<Vertex>& lines, const glm::dvec3& a, const glm::dvec3& b,
                  const glm::vec4& color);

@@ -26,7 +26,8 @@ class HalfPlaneView final : public ViewModel {
 
   // y > 0 and its boundary y = 0, and H²'s polar grid out to r = 6 (the half-plane magnifies by
   // e^r towards one side: its circles need more points).
-  StaticGeometry build_static(SurfaceKind kind) const override {
+  StaticGeometry build_static(const Surface& surface) const override {
+    const SurfaceKind kind = surface.kind;
     StaticGeometry g;
     constexpr float far = 1e4f;
     for (const glm::vec2 c : {glm::vec2(-far, 0), glm::vec2(far, 0), glm::vec2(far, far), glm::vec2(-far, 0),

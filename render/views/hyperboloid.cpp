@@ -24,13 +24,14 @@ class HyperboloidView final : public ViewModel {
     return glm::dvec3(X.x() / R, X.y() / R, X.z() / R - 1.0);
   }
   // The Minkowski normal (−x₁, −x₂, x₃) at the world point w (x₃ = w_z + 1), normalised.
-  glm::dvec3 normal(const glm::dvec3& w) const override {
+  glm::dvec3 normal(const Surface& /*surface*/, const glm::dvec3& w) const override {
     return glm::normalize(glm::dvec3(-w.x, -w.y, w.z + 1.0));
   }
   double lift() const override { return kLift; }
 
   // Rings of geodesic polar coordinates out to kHyperboloidExtent and H²'s polar grid.
-  StaticGeometry build_static(SurfaceKind kind) const override {
+  StaticGeometry build_static(const Surface& surface) const override {
+    const SurfaceKind kind = surface.kind;
     StaticGeometry g;
     const Surface unit{kind, 1.0};
     const int rings = 56, slices = 64;

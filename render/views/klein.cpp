@@ -17,7 +17,8 @@ class KleinView final : public ViewModel {
   }
 
   // The unit disk and its rim, and H²'s polar grid out to r = 6.
-  StaticGeometry build_static(SurfaceKind kind) const override {
+  StaticGeometry build_static(const Surface& surface) const override {
+    const SurfaceKind kind = surface.kind;
     StaticGeometry g;
     const int slices = 128;
     for (int j = 0; j < slices; ++j) {

@@ -42,10 +42,11 @@ class SphereView final : public ViewModel {
   glm::dvec3 world_position(const Surface& surface, const Vec3& X) const override {
     return glm::dvec3(X.x(), X.y(), X.z()) / surface.radius;
   }
-  glm::dvec3 normal(const glm::dvec3& w) const override { return glm::normalize(w); }
+  glm::dvec3 normal(const Surface& /*surface*/, const glm::dvec3& w) const override { return glm::normalize(w); }
 
   // A UV sphere of 64 slices and 32 stacks, circumscribed; parallels every 15°, meridians every 30°.
-  StaticGeometry build_static(SurfaceKind kind) const override {
+  StaticGeometry build_static(const Surface& surface) const override {
+    const SurfaceKind kind = surface.kind;
     StaticGeometry g;
     const Surface unit{kind, 1.0};
     const int slices = 64, stacks = 32;
@@ -80,7 +81,7 @@ class SphereView final : public ViewModel {
   glm::mat4 camera(const ViewOptions& view) const override { return orbit_camera(view, glm::dvec3(0.0)); }
   float depth_bias() const override { return kSphereDepthBias; }
   // Beyond the limb, or so near it (more than 60° from the camera's direction) that it is seen edge-on.
-  bool hidden(const glm::dvec3& at, const glm::dvec3& eye) const override {
+  bool hidden(const Surface& /*surface*/, const glm::dvec3& at, const glm::dvec3& eye) const override {
     return glm::dot(at, glm::normalize(eye)) < 0.5;
   }
 
@@ -97,12 +98,12 @@ class SphereView final : public ViewModel {
     // (one near the pole, one on the equator, with the HUD across the top of a 640×480 frame)
     // otherwise end with the camera tilted over one of them and the other beside the limb, its
     // ellipse seen edge-on.
-    clear_the_boxes(*this, view, points, hud, {1.0, 1.2, 1.45, 1.75});
-    if (badness(*this, view, points, hud) >= points.front().weight) {  // the main body lost: start from it
+    clear_the_boxes(*this, snapshot.surface, view, points, hud, {1.0, 1.2, 1.45, 1.75});
+    if (badness(*this, snapshot.surface, view, points, hud) >= points.front().weight) {  // the main body lost: start from it
       const Vec3 m = snapshot.bodies.front().X.normalized();
       view.yaw = std::atan2(m.y(), m.x());
       view.pitch = std::clamp(std::asin(m.z()), -1.3, 1.3);
-      clear_the_boxes(*this, view, points, hud, {1.0, 1.2, 1.45, 1.75});
+      clear_the_boxes(*this, snapshot.surface, view, points, hud, {1.0, 1.2, 1.45, 1.75});
     }
   }
 };

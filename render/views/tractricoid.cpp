@@ -38,12 +38,12 @@ class TractricoidView final : public ViewModel {
   bool on_view(const Surface& surface, const Vec3& X) const override {
     return kTractricoidDilation * half_plane_point(surface, X).y >= 1.0;
   }
-  glm::dvec3 normal(const glm::dvec3& w) const override { return tractricoid_normal(w); }
+  glm::dvec3 normal(const Surface& /*surface*/, const glm::dvec3& w) const override { return tractricoid_normal(w); }
   double lift() const override { return kLift; }
 
   // The surface of revolution, with its meridians (geodesics) every 30° and its parallels
   // (horocycles) every 0.5 in u; the seam and the rim (u = 0, where the surface ends) marked.
-  StaticGeometry build_static(SurfaceKind /*kind*/) const override {
+  StaticGeometry build_static(const Surface& surface) const override {
     StaticGeometry g;
     const int rings = 80, slices = 72;
     const auto at = [](double u, double theta) {
@@ -65,8 +65,8 @@ class TractricoidView final : public ViewModel {
       }
     const auto curve = [&](auto point_at, int segments, const glm::vec4& color) {
       for (int i = 0; i < segments; ++i)
-        add_segment(g.grid, lifted(*this, point_at(static_cast<double>(i) / segments)),
-                    lifted(*this, point_at(static_cast<double>(i + 1) / segments)), color);
+        add_segment(g.grid, lifted(*this, surface, point_at(static_cast<double>(i) / segments)),
+                    lifted(*this, surface, point_at(static_cast<double>(i + 1) / segments)), color);
     };
     for (int k = 0; k < 12; ++k) {
       const double theta = 2 * kPi * k / 12;

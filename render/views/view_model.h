@@ -38,15 +38,16 @@ class ViewModel {
   virtual bool on_view(const Surface& /*surface*/, const Vec3& /*X*/) const { return true; }
   // The surface's unit normal at a world point: overlays are lifted along it and arrowheads lie
   // across it. +z in the 2-D views.
-  virtual glm::dvec3 normal(const glm::dvec3& /*w*/) const { return {0.0, 0.0, 1.0}; }
+  virtual glm::dvec3 normal(const Surface& /*surface*/, const glm::dvec3& /*w*/) const { return {0.0, 0.0, 1.0}; }
   // How far overlays sit above the surface along normal() so that the depth test keeps them
   // [world units]; 0: on it.
   virtual double lift() const { return 0.0; }
 
-  // ---- Geometry that depends only on the surface kind (cached by static_geometry()).
-  // Triangles of the surface and its grid, in unit radii; empty for a view whose background
-  // follows the camera (drawn by add_background instead).
-  virtual StaticGeometry build_static(SurfaceKind /*kind*/) const { return {}; }
+  // ---- Geometry that depends only on the surface (cached by static_geometry()).
+  // Triangles of the surface and its grid, in world units; empty for a view whose background
+  // follows the camera (drawn by add_background instead). Views of constant curvature draw the
+  // unit surface of the kind; the revolution view draws the surface's own shape.
+  virtual StaticGeometry build_static(const Surface& /*surface*/) const { return {}; }
   // Whether build_scene uses the cached static geometry at all (false: everything is drawn per
   // frame, as the conformal view's background depends on K, which no cache key holds).
   virtual bool uses_static() const { return true; }
@@ -58,7 +59,9 @@ class ViewModel {
   virtual float depth_bias() const { return 0.0f; }
   // Whether a point in the frame is still out of sight from a camera at `eye` (beyond the
   // sphere's limb): aiming counts it as missed.
-  virtual bool hidden(const glm::dvec3& /*at*/, const glm::dvec3& /*eye*/) const { return false; }
+  virtual bool hidden(const Surface& /*surface*/, const glm::dvec3& /*at*/, const glm::dvec3& /*eye*/) const {
+    return false;
+  }
   // Places the camera to show the bodies and their trails clear of the HUD's and legend's boxes
   // (aim_camera_at_body; snapshot.bodies is not empty). Default: the view's fixed camera.
   virtual void aim(ViewOptions& /*view*/, const Snapshot& /*snapshot*/, const HudLayout& /*hud*/) const {}

@@ -8,6 +8,7 @@
 #include "codec/scene_json.h"
 #include "codec/scene_schema.h"
 #include "engine/integrator.h"
+#include "engine/scene_fields.h"
 #include "record/recorder.h"
 #include "render/gl_context.h"
 #include "render/view.h"
@@ -76,9 +77,8 @@ void get_views(ServerContext&, const Call&, httplib::Response& res) {
   ordered_json list = ordered_json::array();
   for (const render::ViewInfo& v : render::views()) {
     ordered_json surfaces = ordered_json::array();
-    if (v.sphere) surfaces.push_back("sphere");
-    if (v.pseudosphere) surfaces.push_back("pseudosphere");
-    if (v.plane) surfaces.push_back("plane");
+    for (const EnumName<SurfaceKind>& kind : kSurfaceKindNames)
+      if (render::shows(v, kind.value)) surfaces.push_back(std::string(kind.name));
     list.push_back({{"name", std::string(v.name)},
                     {"title", std::string(v.title)},
                     {"surfaces", surfaces},

@@ -122,7 +122,7 @@ bool live_step(ServerContext& server, LiveStream& live, httplib::DataSink& sink)
   }
   // The session changed surface under the viewer: its own view until the viewer picks another.
   if (render::view_unsupported_reason(f.view.kind, surface)) f.view.kind = render::default_view(surface);
-  // No view draws it (a surface whose curvature varies, for now): no frames to ask for.
+  // A surface no view draws gets no frames (every kind has a view now; kept for the next kind).
   const bool drawable = !render::view_unsupported_reason(f.view.kind, surface);
   const auto now = Clock::now();
   const bool first = live.asked_version == ~std::uint64_t{0};

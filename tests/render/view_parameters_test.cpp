@@ -86,10 +86,10 @@ TEST(ViewParameters, RefusalsSayWhatIsAllowed) {
   EXPECT_EQ(why("distance", std::string("1e400")), "must be a number from 1.2 to 100 [radii]");
   EXPECT_EQ(why("trail", -1.0), "must be a number >= 0 [time]");
   EXPECT_EQ(why("view", std::string("cube")),
-            "must be sphere, disk, hyperboloid, klein, halfplane, tractricoid, plane or conformal");
+            "must be sphere, disk, hyperboloid, klein, halfplane, tractricoid, plane, conformal or revolution");
   // Every layer is listed, `actions` included.
   EXPECT_EQ(why("layers", std::string("surface,sparkles")),
-            "'sparkles' is not one of surface, grid, body, frame, trail, hud, actions");
+            "'sparkles' is not one of surface, grid, body, frame, trail, hud, actions, curvature");
   EXPECT_EQ(r.width, 640);
   EXPECT_EQ(r.scale, 0.25);
   EXPECT_FALSE(r.view);
@@ -107,7 +107,7 @@ TEST(ViewParameters, LayerTableDefinesTheNamesAndTheDefaultMask) {
     EXPECT_EQ(parse_layers(kLayerTable[i].name), kLayerTable[i].bit);
     all |= kLayerTable[i].bit;
   }
-  EXPECT_EQ(parse_layers("surface,grid,body,frame,trail,hud,actions"), all);
+  EXPECT_EQ(parse_layers("surface,grid,body,frame,trail,hud,actions,curvature"), all);
   EXPECT_EQ(parse_layers(default_layer_list()), kDefaultLayers);
   EXPECT_EQ(parse_layers(""), 0u);
   std::string unknown;

@@ -15,16 +15,27 @@ namespace spinfold::render {
 namespace {
 
 using testing::body_at;
+using testing::body_on;
 using testing::in_frame;
 using testing::pixel_of;
 
 constexpr ViewKind kAllKinds[] = {ViewKind::sphere,      ViewKind::hyperboloid, ViewKind::disk,
                                   ViewKind::plane,       ViewKind::klein,       ViewKind::halfplane,
-                                  ViewKind::tractricoid, ViewKind::conformal};
-constexpr SurfaceKind kSurfaces[] = {SurfaceKind::sphere, SurfaceKind::pseudosphere, SurfaceKind::plane};
+                                  ViewKind::tractricoid, ViewKind::conformal,   ViewKind::revolution};
+constexpr SurfaceKind kSurfaces[] = {SurfaceKind::sphere, SurfaceKind::pseudosphere, SurfaceKind::plane,
+                                     SurfaceKind::torus,  SurfaceKind::spheroid,     SurfaceKind::bump,
+                                     SurfaceKind::catenoid};
 
-bool shows(const ViewInfo& v, SurfaceKind s) {
-  return s == SurfaceKind::sphere ? v.sphere : s == SurfaceKind::pseudosphere ? v.pseudosphere : v.plane;
+// A body off every special point of the surface, with a deformed frame.
+Snapshot sample_body(SurfaceKind surface) {
+  return curvature_varies(surface) ? body_on(surface, 0.7, 0.7, 1.2, 0.8) : body_at(surface, 2.0, 0.4, 0.7, 1.2, 0.8);
+}
+
+// The first surface a view shows.
+SurfaceKind first_shown(const ViewInfo& v) {
+  for (const SurfaceKind s : kSurfaces)
+    if (shows(v, s)) return s;
+  return SurfaceKind::sphere;
 }
 
 TEST(ViewTable, EveryKindHasExactlyOneRowAndViewsListsTheRowsInOrder) {
@@ -73,14 +84,11 @@ TEST(ViewTable, ThreeDViewsArePerspectiveAndDepthTestedTheFlatOnesOrthographic) 
     // An orthographic projection keeps w = 1: its last row is (0, 0, 0, 1) (glm indexes [column][row]).
     const bool keeps_w = m[0][3] == 0.0f && m[1][3] == 0.0f && m[2][3] == 0.0f && m[3][3] == 1.0f;
     EXPECT_EQ(keeps_w, !row.info.three_d) << row.info.name;
-    const SurfaceKind surface = row.info.sphere         ? SurfaceKind::sphere
-                                : row.info.pseudosphere ? SurfaceKind::pseudosphere
-                                                        : SurfaceKind::plane;
-    const FrameScene scene = build_scene(body_at(surface, 1.0, 0.3, 0.4), view);
+    const FrameScene scene = build_scene(sample_body(first_shown(row.info)), view);
     EXPECT_EQ(scene.depth_test, row.info.three_d) << row.info.name;
     if (!row.info.three_d) {
       EXPECT_EQ(scene.depth_bias, 0.0f) << row.info.name;
-      EXPECT_EQ(row.model().normal({0.3, 0.2, 0.0}), glm::dvec3(0, 0, 1)) << row.info.name;
+      EXPECT_EQ(row.model().normal(Surface{}, {0.3, 0.2, 0.0}), glm::dvec3(0, 0, 1)) << row.info.name;
       EXPECT_EQ(row.model().lift(), 0.0) << row.info.name;
     }
   }
@@ -94,7 +102,7 @@ TEST(ViewTable, EveryViewDrawsAndAimsAtABodyOnEachSurfaceItShows) {
         continue;
       }
       EXPECT_FALSE(view_unsupported_reason(row.info.kind, surface)) << row.info.name;
-      const Snapshot s = body_at(surface, 2.0, 0.4, 0.7, 1.2, 0.8);
+      const Snapshot s = sample_body(surface);
       ViewOptions view;
       view.kind = row.info.kind;
       view.scale = 0.25 * body_scale_length(view.kind, s.surface);
@@ -117,8 +125,11 @@ TEST(ViewTable, AViewThatUsesStaticGeometryHasASurfaceAndAGridForEachSurfaceItSh
   for (const ViewRow& row : view_table())
     for (const SurfaceKind surface : kSurfaces) {
       if (!shows(row.info, surface) || !row.model().uses_static()) continue;
-      const StaticGeometry& g = static_geometry(surface, row.info.kind);
-      EXPECT_EQ(&g, &static_geometry(surface, row.info.kind)) << "built once: " << row.info.name;
+      Surface shape;
+      shape.kind = surface;
+      const std::shared_ptr<const StaticGeometry> kept = static_geometry(shape, row.info.kind);
+      const StaticGeometry& g = *kept;
+      EXPECT_EQ(&g, static_geometry(shape, row.info.kind).get()) << "built once: " << row.info.name;
       if (row.info.kind == ViewKind::plane) {  // the whole frame: cleared to its colour, a grid per frame
         EXPECT_TRUE(g.surface.empty() && g.grid.empty());
         continue;
@@ -131,11 +142,21 @@ TEST(ViewTable, AViewThatUsesStaticGeometryHasASurfaceAndAGridForEachSurfaceItSh
     }
 }
 
-TEST(ViewTable, BodyScaleIsInRadiiButInLengthsInTheConformalView) {
+TEST(ViewTable, BodyScaleIsInRadiiButInLengthsInTheConformalViewAndTheSmallestFeatureOnRevolutions) {
   const Surface sphere{SurfaceKind::sphere, 3.0};
-  for (const ViewRow& row : view_table())
+  for (const ViewRow& row : view_table()) {
+    if (!shows(row.info, SurfaceKind::sphere)) continue;
     EXPECT_EQ(body_scale_length(row.info.kind, sphere), row.info.kind == ViewKind::conformal ? 1.0 : 3.0)
         << row.info.name;
+  }
+  Surface torus;
+  torus.kind = SurfaceKind::torus;
+  torus.tube_radius = 0.7;
+  EXPECT_EQ(body_scale_length(ViewKind::revolution, torus), 0.7);  // the tube, not the ring
+  Surface bump;
+  bump.kind = SurfaceKind::bump;
+  bump.width = 2.5;
+  EXPECT_EQ(body_scale_length(ViewKind::revolution, bump), 2.5);
 }
 
 }  // namespace

@@ -251,8 +251,9 @@ TEST_F(Api, TheSessionNamesItsSurfaceResolved) {
 }
 
 // A session on a surface whose curvature varies: it runs, patches and replays like any other; its
-// state says u and K; its trajectory is the run's; a frame is refused saying no view draws it yet.
-TEST_F(Api, TorusSessionRunsAndItsFramesAreRefusedWithTheReason) {
+// state says u and K; its trajectory is the run's; its frame is the revolution view's, and a view of
+// constant curvature is refused naming the one that draws it.
+TEST_F(Api, TorusSessionRunsAndIsDrawnInTheRevolutionView) {
   auto c = client();
   auto created = c.Post("/api/v1/sessions",
                         R"({"surface": {"kind": "torus", "tube_radius": 0.6, "center_radius": 2},
@@ -283,10 +284,15 @@ TEST_F(Api, TorusSessionRunsAndItsFramesAreRefusedWithTheReason) {
   ASSERT_TRUE(trajectory);
   EXPECT_EQ(trajectory->status, 200) << trajectory->body;
   EXPECT_NE(trajectory->body.find("t,u,phi,K"), std::string::npos) << trajectory->body.substr(0, 300);
-  auto frame = c.Get("/api/v1/sessions/" + id + "/frame.png");
+  auto frame = c.Get("/api/v1/sessions/" + id + "/frame.png?layers=surface,grid,body,trail,curvature");
   ASSERT_TRUE(frame);
-  EXPECT_EQ(frame->status, 422);
-  EXPECT_NE(frame->body.find("no view draws the torus yet"), std::string::npos) << frame->body;
+  EXPECT_EQ(frame->status, 200) << frame->body;
+  EXPECT_EQ(frame->get_header_value("Content-Type"), "image/png");
+  auto sphere_view = c.Get("/api/v1/sessions/" + id + "/frame.png?view=sphere");
+  ASSERT_TRUE(sphere_view);
+  EXPECT_EQ(sphere_view->status, 422);
+  EXPECT_NE(sphere_view->body.find("the torus is shown in these views: revolution"), std::string::npos)
+      << sphere_view->body;
   auto deleted = c.Delete("/api/v1/sessions/" + id);
   ASSERT_TRUE(deleted);
   EXPECT_EQ(deleted->status, 204);

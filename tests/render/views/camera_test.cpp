@@ -57,14 +57,15 @@ TEST(Camera, AnOrbitingCameraLooksAtItsTargetFromItsDistance) {
 
 TEST(Camera, BadnessWeighsTheSightsOutOfTheFrameBehindTheCameraOrUnderTheHud) {
   const ViewModel& plane = view_model(ViewKind::plane);
+  const Surface flat(SurfaceKind::plane, 1.0);
   ViewOptions view;
   view.kind = ViewKind::plane;
   HudLayout hud;
   const std::vector<Sight> sights{
       {{0.0, 0.0, 0.0}, 1000.0}, {{3.97, 0.0, 0.0}, 5.0}, {{9.0, 0.0, 0.0}, 50.0}};
-  EXPECT_DOUBLE_EQ(badness(plane, view, sights, hud), 5.0 + 50.0);  // one by the edge, one beyond it
+  EXPECT_DOUBLE_EQ(badness(plane, flat, view, sights, hud), 5.0 + 50.0);  // by the edge, beyond it
   hud.hud = {300.0, 220.0, 40.0, 40.0};                             // over the frame's centre
-  EXPECT_DOUBLE_EQ(badness(plane, view, sights, hud), 1000.0 + 5.0 + 50.0);
+  EXPECT_DOUBLE_EQ(badness(plane, flat, view, sights, hud), 1000.0 + 5.0 + 50.0);
 }
 
 TEST(Camera, ClearingTheBoxesNeverLeavesTheCameraWorseThanItFoundIt) {
@@ -77,10 +78,10 @@ TEST(Camera, ClearingTheBoxesNeverLeavesTheCameraWorseThanItFoundIt) {
   HudLayout hud;
   const glm::dvec2 body = *testing::pixel_of(build_scene(s, view), view, s.surface, s.bodies[0].X);
   hud.hud = {body.x - 30.0, body.y - 30.0, 60.0, 60.0};
-  const double before = badness(sphere, view, points, hud);
+  const double before = badness(sphere, s.surface, view, points, hud);
   EXPECT_GE(before, 1000.0);
-  clear_the_boxes(sphere, view, points, hud, {1.0, 1.2});
-  EXPECT_LT(badness(sphere, view, points, hud), 1000.0);
+  clear_the_boxes(sphere, s.surface, view, points, hud, {1.0, 1.2});
+  EXPECT_LT(badness(sphere, s.surface, view, points, hud), 1000.0);
 }
 
 TEST(Camera, AimingAtTheBodiesCentreTakesTheMiddleOfTheirBoundingBox) {

@@ -13,12 +13,13 @@ namespace {
 
 TEST(Drawing, OverlaysAreLiftedAlongTheNormalOnlyWhereTheViewLiftsThem) {
   const glm::dvec3 w(0.3, 0.1, 0.2);
-  EXPECT_EQ(lifted(view_model(ViewKind::sphere), w), w);
-  EXPECT_EQ(lifted(view_model(ViewKind::disk), w), w);
+  const Surface sphere(SurfaceKind::sphere, 1.0), h2(SurfaceKind::pseudosphere, 1.0);
+  EXPECT_EQ(lifted(view_model(ViewKind::sphere), sphere, w), w);
+  EXPECT_EQ(lifted(view_model(ViewKind::disk), sphere, w), w);
   const ViewModel& bowl = view_model(ViewKind::hyperboloid);
-  const glm::dvec3 up = lifted(bowl, w) - w;
+  const glm::dvec3 up = lifted(bowl, h2, w) - w;
   EXPECT_NEAR(glm::length(up), bowl.lift(), 1e-15);
-  EXPECT_NEAR(glm::dot(glm::normalize(up), bowl.normal(w)), 1.0, 1e-12);
+  EXPECT_NEAR(glm::dot(glm::normalize(up), bowl.normal(h2, w)), 1.0, 1e-12);
 }
 
 TEST(Drawing, APolylineIsOneSegmentPerPairAndClosingAddsOne) {

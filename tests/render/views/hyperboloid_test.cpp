@@ -28,7 +28,7 @@ TEST(HyperboloidView, TheNormalIsPerpendicularToTheSheetAndOverlaysAreLiftedAlon
   const Surface h2{SurfaceKind::pseudosphere, 1.0};
   for (const double r : {0.0, 1.0, 3.0}) {
     const glm::dvec3 w = hyperboloid().world_position(h2, chart_point(h2, r, 0.3).X);
-    const glm::dvec3 n = hyperboloid().normal(w);
+    const glm::dvec3 n = hyperboloid().normal(Surface(SurfaceKind::pseudosphere, 1.0), w);
     EXPECT_NEAR(glm::length(n), 1.0, 1e-12);
     // The sheet's tangent along r (and along φ away from the vertex).
     const glm::dvec3 along_r = hyperboloid().world_position(h2, chart_point(h2, r + 1e-5, 0.3).X) - w;

@@ -22,7 +22,7 @@ TEST(SphereView, PointsLandOnTheUnitSphereAndTheNormalIsRadial) {
     const Vec3 X = chart_point(s, theta * s.radius, 0.8).X;
     const glm::dvec3 w = sphere().world_position(s, X);
     EXPECT_NEAR(glm::length(w), 1.0, 1e-12);
-    EXPECT_NEAR(glm::length(sphere().normal(w) - w), 0.0, 1e-12);
+    EXPECT_NEAR(glm::length(sphere().normal(Surface(SurfaceKind::sphere, 1.0), w) - w), 0.0, 1e-12);
   }
   EXPECT_EQ(sphere().lift(), 0.0);  // on the sphere exactly: the mesh is circumscribed
 }
@@ -44,10 +44,10 @@ TEST(SphereView, TheMeshIsCircumscribedEveryFaceJustOutsideTheUnitSphere) {
 
 TEST(SphereView, PointsNearTheLimbOrBeyondItAreHiddenFromTheCamera) {
   const glm::dvec3 eye(0.0, 0.0, 3.4);
-  EXPECT_FALSE(sphere().hidden({0.0, 0.0, 1.0}, eye));
-  EXPECT_FALSE(sphere().hidden({std::sin(0.9), 0.0, std::cos(0.9)}, eye));  // 52° from the camera's direction
-  EXPECT_TRUE(sphere().hidden({std::sin(1.2), 0.0, std::cos(1.2)}, eye));   // 69°: seen edge-on
-  EXPECT_TRUE(sphere().hidden({0.0, 0.0, -1.0}, eye));
+  EXPECT_FALSE(sphere().hidden(Surface(SurfaceKind::sphere, 1.0), {0.0, 0.0, 1.0}, eye));
+  EXPECT_FALSE(sphere().hidden(Surface(SurfaceKind::sphere, 1.0), {std::sin(0.9), 0.0, std::cos(0.9)}, eye));  // 52° from the camera's direction
+  EXPECT_TRUE(sphere().hidden(Surface(SurfaceKind::sphere, 1.0), {std::sin(1.2), 0.0, std::cos(1.2)}, eye));   // 69°: seen edge-on
+  EXPECT_TRUE(sphere().hidden(Surface(SurfaceKind::sphere, 1.0), {0.0, 0.0, -1.0}, eye));
 }
 
 TEST(SphereView, AimingTurnsTheCameraToABodyOnTheFarSide) {
@@ -55,7 +55,7 @@ TEST(SphereView, AimingTurnsTheCameraToABodyOnTheFarSide) {
   ViewOptions view;
   const FrameScene before = build_scene(s, view);
   const glm::dvec4 h = glm::inverse(glm::dmat4(before.view_projection)) * glm::dvec4(0, 0, 1, 0);
-  EXPECT_TRUE(sphere().hidden(world_position(s.surface, view.kind, s.bodies[0].X), glm::dvec3(h) / h.w));
+  EXPECT_TRUE(sphere().hidden(Surface(SurfaceKind::sphere, 1.0), world_position(s.surface, view.kind, s.bodies[0].X), glm::dvec3(h) / h.w));
   aim_camera_at_body(view, s);
   const FrameScene after = build_scene(s, view);
   const std::optional<glm::dvec2> px = testing::pixel_of(after, view, s.surface, s.bodies[0].X);

@@ -46,7 +46,7 @@ TEST(TractricoidView, TheNormalIsPerpendicularToTheMeridianAndTheParallel) {
   const Surface h2{SurfaceKind::pseudosphere, 1.0};
   for (const double y : {0.6, 1.0, 4.0}) {
     const glm::dvec3 w = tractricoid().world_position(h2, from_half_plane(h2, 0.2, y));
-    const glm::dvec3 n = tractricoid().normal(w);
+    const glm::dvec3 n = tractricoid().normal(Surface(SurfaceKind::pseudosphere, 1.0), w);
     EXPECT_NEAR(glm::length(n), 1.0, 1e-12);
     const glm::dvec3 meridian =
         tractricoid().world_position(h2, from_half_plane(h2, 0.2, y * (1 + 1e-6))) - w;

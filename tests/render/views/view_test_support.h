@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "engine/chart.h"
+#include "engine/revolution.h"
 #include "render/scene_builder.h"
 
 namespace spinfold::render::testing {
@@ -21,6 +22,20 @@ inline Snapshot body_at(SurfaceKind kind, double R, double r, double phi, double
   b.X = p.X;
   b.e[0] = lambda * p.E1;
   b.e[1] = mu * p.E2;
+  b.gram << lambda * lambda, 0.0, 0.0, mu * mu;
+  return s;
+}
+
+// A body on a surface whose curvature varies (each kind's default shape, Surface's in-class
+// parameters) at profile point (u, φ), L = diag(λ, μ) in the frame E₁ = X_u/f, E₂ = X_φ/ρ.
+inline Snapshot body_on(SurfaceKind kind, double u, double phi, double lambda = 1.0, double mu = 1.0) {
+  Snapshot s;
+  s.surface.kind = kind;
+  const RevolutionFrame f = revolution_frame(revolution_surface(s.surface), u, phi);
+  BodySnapshot& b = s.bodies.emplace_back();
+  b.X = f.X;
+  b.e[0] = lambda * f.E1;
+  b.e[1] = mu * f.E2;
   b.gram << lambda * lambda, 0.0, 0.0, mu * mu;
   return s;
 }

@@ -1,0 +1,187 @@
+// A surface of revolution whose curvature varies (torus, spheroid, bump, catenoid) in space, drawn
+// from its profile (engine/revolution.h): meridians and parallels as its grid, the K = 0 parallels
+// marked, the curvature layer's colours at the vertices. World units are X/ℓ with ℓ the picture's
+// length (ProfilePicture), so that every shape fits the same camera.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "engine/revolution.h"
+#include "engine/surface_geodesics.h"
+#include "render/views/camera.h"
+#include "render/views/drawing.h"
+#include "render/views/view_model.h"
+
+namespace spinfold::render {
+
+namespace {
+
+// Overlays lie on the true surface; the mesh's flat faces cut inside it on convex parts and outside
+// it by less than its sagitta (~1e-3 world units) on saddle parts, which this bias (a fraction of the
+// distance to the camera, as the sphere's) covers.
+constexpr float kRevolutionDepthBias = 0.01f;
+// The K = 0 parallels: darker than the grid, so that the sign change is seen without the layer.
+const glm::vec4 kZeroCurvatureColor{0.20f, 0.18f, 0.30f, 1.0f};
+// The mesh: rings along the profile, slices round the axis.
+constexpr int kRings = 64, kSlices = 96;
+
+struct Shape {
+  RevolutionSurface surface;
+  const RevolutionEntry* entry;
+  ProfilePicture picture;
+};
+Shape shape_of(const Surface& surface) {
+  const RevolutionSurface s = revolution_surface(surface);
+  const RevolutionEntry& entry = revolution_entry(s.kind);
+  return {s, &entry, entry.picture(s)};
+}
+
+// The parallels where K changes sign (bisected to rounding from a scan of 1024 steps).
+std::vector<double> zero_curvature_parallels(const Shape& shape) {
+  std::vector<double> zeros;
+  const auto K = [&](double u) { return shape.entry->profile(shape.surface, u).K; };
+  const int n = 1024;
+  const double lo = shape.picture.u_min, hi = shape.picture.u_max;
+  for (int i = 0; i < n; ++i) {
+    double a = lo + (hi - lo) * i / n, b = lo + (hi - lo) * (i + 1) / n;
+    if ((K(a) > 0.0) == (K(b) > 0.0)) continue;
+    for (int k = 0; k < 60; ++k) {
+      const double m = 0.5 * (a + b);
+      ((K(a) > 0.0) == (K(m) > 0.0) ? a : b) = m;
+    }
+    zeros.push_back(0.5 * (a + b));
+  }
+  return zeros;
+}
+
+// The parallels of the grid: every 30° of the torus's tube angle, 15° of the spheroid's polar angle,
+// a half width out on the bump, a half neck radius along the catenoid.
+std::vector<double> grid_parallels(const Shape& shape) {
+  const double lo = shape.picture.u_min, hi = shape.picture.u_max;
+  double step = 0.0;
+  switch (shape.surface.kind) {
+    case RevolutionKind::torus: step = kPi / 6; break;
+    case RevolutionKind::spheroid: step = kPi / 12; break;
+    case RevolutionKind::bump: step = 0.5 * shape.surface.width; break;
+    case RevolutionKind::catenoid: step = 0.5 * shape.surface.neck_radius; break;
+  }
+  std::vector<double> us;
+  const double first = std::ceil(lo / step - 1e-9) * step;
+  for (double u = first; u <= hi + 1e-9 * step; u += step)
+    if (shape.entry->profile(shape.surface, u).rho > 1e-9 * shape.picture.length) us.push_back(u);
+  return us;
+}
+
+// Whether the segment from the eye to a point of the surface crosses the surface before it: F
+// changes sign along it, sampled at 32 points short of the last 2% (the point itself).
+bool occluded(const Shape& shape, const glm::dvec3& eye_world, const glm::dvec3& at_world) {
+  const auto F = [&](const glm::dvec3& w) {
+    const double l = shape.picture.length;
+    return shape.entry->implicit(shape.surface, Vec3(w.x * l, w.y * l, w.z * l)).F;
+  };
+  const double start = F(eye_world);
+  for (int i = 1; i <= 32; ++i) {
+    const double t = 0.98 * i / 32;
+    if ((F(glm::mix(eye_world, at_world, t)) > 0.0) != (start > 0.0)) return true;
+  }
+  return false;
+}
+
+class RevolutionView final : public ViewModel {
+ public:
+  glm::dvec3 world_position(const Surface& surface, const Vec3& X) const override {
+    return glm::dvec3(X.x(), X.y(), X.z()) / shape_of(surface).picture.length;
+  }
+  // Within the drawn piece (the bump's plane to 4w, the catenoid to |z| = 2c).
+  bool on_view(const Surface& surface, const Vec3& X) const override {
+    const Shape shape = shape_of(surface);
+    const double u = shape.entry->u_of(shape.surface, X);
+    const double margin = 1e-9 * (shape.picture.u_max - shape.picture.u_min);
+    return u >= shape.picture.u_min - margin && u <= shape.picture.u_max + margin;
+  }
+  glm::dvec3 normal(const Surface& surface, const glm::dvec3& w) const override {
+    const Shape shape = shape_of(surface);
+    const double l = shape.picture.length;
+    const Vec3 n = embedded_normal(RevolutionImplicit(shape.surface), Vec3(w.x * l, w.y * l, w.z * l));
+    return {n.x(), n.y(), n.z()};
+  }
+
+  // The profile swept round the axis; each vertex lit by the surface's normal and tinted by the
+  // curvature layer's colour of K there, scaled so that the largest |K| drawn is the full colour.
+  StaticGeometry build_static(const Surface& surface) const override {
+    const Shape shape = shape_of(surface);
+    const double l = shape.picture.length;
+    StaticGeometry g;
+    const auto u_of = [&](int i) {
+      return shape.picture.u_min + (shape.picture.u_max - shape.picture.u_min) * i / kRings;
+    };
+    double full = 0.0;
+    for (int i = 0; i <= kRings; ++i) full = std::max(full, std::abs(shape.entry->profile(shape.surface, u_of(i)).K));
+    const auto vertex = [&](double u, double phi) {
+      const RevolutionFrame f = revolution_frame(shape.surface, u, phi);
+      const double K = shape.entry->profile(shape.surface, u).K;
+      return LitVertex{to_float(glm::dvec3(f.X.x(), f.X.y(), f.X.z()) / l), to_float({f.n.x(), f.n.y(), f.n.z()}),
+                       curvature_color(K, full > 0.0 ? full : 1.0)};
+    };
+    for (int i = 0; i < kRings; ++i)
+      for (int j = 0; j < kSlices; ++j) {
+        const double p0 = 2 * kPi * j / kSlices, p1 = 2 * kPi * (j + 1) / kSlices;
+        add_quad(g, vertex(u_of(i), p0), vertex(u_of(i + 1), p0), vertex(u_of(i + 1), p1), vertex(u_of(i), p1));
+      }
+    const auto parallel = [&](double u, const glm::vec4& color) {
+      std::vector<Vec3> pts;
+      for (int j = 0; j <= kSlices; ++j) pts.push_back(revolution_frame(shape.surface, u, 2 * kPi * j / kSlices).X);
+      add_polyline(g.grid, surface, *this, pts, color, false);
+    };
+    for (const double u : grid_parallels(shape)) parallel(u, kGridColor);
+    for (int k = 0; k < 12; ++k) {  // meridians every 30°
+      std::vector<Vec3> pts;
+      for (int i = 0; i <= kRings; ++i) pts.push_back(revolution_frame(shape.surface, u_of(i), 2 * kPi * k / 12).X);
+      add_polyline(g.grid, surface, *this, pts, kGridColor, false);
+    }
+    for (const double u : zero_curvature_parallels(shape)) parallel(u, kZeroCurvatureColor);
+    return g;
+  }
+
+  glm::mat4 camera(const ViewOptions& view) const override { return orbit_camera(view, glm::dvec3(0.0)); }
+  float depth_bias() const override { return kRevolutionDepthBias; }
+  bool hidden(const Surface& surface, const glm::dvec3& at, const glm::dvec3& eye) const override {
+    return occluded(shape_of(surface), eye, at);
+  }
+  double body_scale_length(const Surface& surface) const override { return shape_of(surface).picture.feature; }
+
+  // From the bodies' side of the axis at the main body's normal's elevation, framing the bodies and
+  // their recent trails (aim_orbit); when that leaves the main body hidden (the torus's inner band faces the hole) or under a box, a
+  // wider search: every 30° round the axis at five elevations, drawn back as far as 1.6×.
+  void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
+    const Surface& surface = snapshot.surface;
+    const Shape shape = shape_of(surface);
+    const Vec3 n = embedded_normal(RevolutionImplicit(shape.surface), snapshot.bodies.front().X);
+    aim_orbit(*this, view, snapshot, hud, 0.35, std::clamp(std::asin(std::clamp(n.z(), -1.0, 1.0)), -1.2, 1.2),
+              0.0);
+    const std::vector<Sight> points = sights(*this, snapshot, view, true);
+    if (points.empty() || badness(*this, surface, view, points, hud) < points.front().weight) return;
+    const ViewOptions start = view;
+    double best = std::numeric_limits<double>::infinity();
+    for (const double pull : {1.0, 1.3, 1.6})
+      for (const double pitch : {0.35, 0.75, 1.15, -0.35, -0.75})
+        for (int k = 0; k < 12; ++k) {
+          ViewOptions v = start;
+          v.yaw = start.yaw + 2 * kPi * k / 12;
+          v.pitch = pitch;
+          v.distance = start.distance * pull;
+          const double bad = badness(*this, surface, v, points, hud);
+          if (bad < best) best = bad, view = v;
+          if (best == 0.0) return;
+        }
+  }
+};
+
+}  // namespace
+
+const ViewModel& revolution_view() {
+  static const RevolutionView view;
+  return view;
+}
+
+}  // namespace spinfold::render

@@ -1,0 +1,166 @@
+// The revolution view (render/views/revolution.cpp): the mesh and grid lie on the surface, the K = 0
+// parallels are where K changes sign, the curvature layer's tint has K's sign, the camera never
+// leaves the main body hidden (the torus's inner band, the far side), and the mesh cache is bounded.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "engine/revolution.h"
+#include "engine/scene_fields.h"
+#include "render/view_table.h"
+#include "render/views/drawing.h"
+#include "render/views/view_model.h"
+#include "view_test_support.h"
+
+namespace spinfold::render {
+namespace {
+
+using testing::body_on;
+using testing::in_frame;
+using testing::pixel_of;
+
+const ViewModel& revolution() {
+  return view_model(ViewKind::revolution);
+}
+
+Surface surface_of(SurfaceKind kind) {
+  Surface s;
+  s.kind = kind;
+  return s;
+}
+
+constexpr SurfaceKind kKinds[] = {SurfaceKind::torus, SurfaceKind::spheroid, SurfaceKind::bump,
+                                  SurfaceKind::catenoid};
+
+// |F|/|∇F|: the distance of an embedded point from the surface, to first order [length].
+double off_surface(const Surface& surface, const Vec3& X) {
+  const ImplicitPoint p = RevolutionImplicit(revolution_surface(surface)).at(X);
+  return std::abs(p.F) / p.gradient.norm();
+}
+
+Vec3 embedded(const Surface& surface, const glm::vec3& w) {
+  const RevolutionSurface s = revolution_surface(surface);
+  const double l = revolution_entry(s.kind).picture(s).length;
+  return Vec3(w.x, w.y, w.z) * l;
+}
+
+TEST(RevolutionView, TheMeshAndTheGridLieOnTheSurface) {
+  for (const SurfaceKind kind : kKinds) {
+    const Surface surface = surface_of(kind);
+    const auto g = static_geometry(surface, ViewKind::revolution);
+    ASSERT_FALSE(g->surface.empty());
+    ASSERT_FALSE(g->grid.empty());
+    double worst = 0.0;
+    for (const LitVertex& v : g->surface) worst = std::max(worst, off_surface(surface, embedded(surface, v.position)));
+    for (const Vertex& v : g->grid) worst = std::max(worst, off_surface(surface, embedded(surface, v.position)));
+    EXPECT_LT(worst, 1e-5) << enum_name(kind);  // float vertices: rounding of ~1e-7 of the length
+  }
+}
+
+TEST(RevolutionView, TheTorussZeroCurvatureParallelsAreItsTopAndBottomCircles) {
+  Surface torus = surface_of(SurfaceKind::torus);
+  torus.tube_radius = 0.8;
+  torus.center_radius = 2.0;
+  const auto g = static_geometry(torus, ViewKind::revolution);
+  int dark = 0;
+  for (const Vertex& v : g->grid) {
+    if (v.color == kGridColor) continue;
+    ++dark;
+    const Vec3 X = embedded(torus, v.position);
+    EXPECT_NEAR(std::abs(X.z()), 0.8, 1e-5);                  // u = ±π/2: z = ∓a
+    EXPECT_NEAR(std::hypot(X.x(), X.y()), 2.0, 1e-5);         // ρ = c
+  }
+  EXPECT_EQ(dark, 2 * 2 * 96);  // two circles of 96 segments
+}
+
+TEST(RevolutionView, TheCurvatureTintIsWarmWhereKIsPositiveAndCoolWhereNegative) {
+  const Surface torus = surface_of(SurfaceKind::torus);
+  const auto g = static_geometry(torus, ViewKind::revolution);
+  int warm = 0, cool = 0;
+  for (const LitVertex& v : g->surface) {
+    const Vec3 X = embedded(torus, v.position);
+    const double u = torus_entry.u_of(revolution_surface(torus), X);
+    const double K = torus_entry.profile(revolution_surface(torus), u).K;
+    if (std::abs(K) < 0.02) continue;
+    if (K > 0) {
+      EXPECT_GT(v.tint.r, v.tint.b);
+      ++warm;
+    } else {
+      EXPECT_GT(v.tint.b, v.tint.r);
+      ++cool;
+    }
+  }
+  EXPECT_GT(warm, 1000);
+  EXPECT_GT(cool, 1000);
+  EXPECT_EQ(curvature_color(0.0, 1.0), glm::vec3(glm::dvec3(0.97, 0.97, 0.96)));
+}
+
+TEST(RevolutionView, TheCurvatureLayerColoursTheSurfaceByItsTint) {
+  FrameScene scene;
+  const LitVertex v{{0, 0, 1}, {0, 0, 1}, {0.9f, 0.2f, 0.1f}};
+  EXPECT_EQ(glm::vec3(lit_color(scene, v, {0, 0, 1}, 0.35f)), glm::vec3(scene.surface_color));
+  scene.tint_by_curvature = true;
+  EXPECT_EQ(glm::vec3(lit_color(scene, v, {0, 0, 1}, 0.35f)), v.tint);
+}
+
+TEST(RevolutionView, TheCameraShowsABodyAnywhereOnEverySurface) {
+  // The torus's inner equator faces the hole and its bottom faces down; the spheroid's poles; the
+  // bump's top and its rim; the catenoid's neck: the main body must end in the frame, unhidden.
+  const std::pair<SurfaceKind, double> places[] = {
+      {SurfaceKind::torus, 0.0},       {SurfaceKind::torus, 3.1},    {SurfaceKind::torus, 1.5},
+      {SurfaceKind::torus, -1.6},      {SurfaceKind::spheroid, 0.0}, {SurfaceKind::spheroid, 3.14159},
+      {SurfaceKind::spheroid, 1.5},    {SurfaceKind::bump, 0.0},     {SurfaceKind::bump, 3.5},
+      {SurfaceKind::catenoid, 0.0},    {SurfaceKind::catenoid, 1.8}, {SurfaceKind::catenoid, -1.8}};
+  for (const auto& [kind, u] : places)
+    for (const double phi : {0.0, 2.0, 4.0}) {
+      const Snapshot s = body_on(kind, u, phi, 1.0, 0.7);
+      ViewOptions view;
+      view.kind = ViewKind::revolution;
+      view.scale = 0.25 * body_scale_length(view.kind, s.surface);
+      aim_camera_at_body(view, s);
+      const FrameScene scene = build_scene(s, view);
+      const std::string what = std::string(enum_name(kind)) + " u = " + std::to_string(u) + " phi = " +
+                               std::to_string(phi);
+      EXPECT_TRUE(in_frame(pixel_of(scene, view, s.surface, s.bodies[0].X), view)) << what;
+      const glm::dvec4 h = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
+      const glm::dvec3 eye = glm::dvec3(h) / h.w;
+      EXPECT_FALSE(revolution().hidden(s.surface, revolution().world_position(s.surface, s.bodies[0].X), eye))
+          << what;
+    }
+}
+
+TEST(RevolutionView, APointBehindTheTubeIsHiddenAndOneInFrontIsNot) {
+  const Surface torus = surface_of(SurfaceKind::torus);  // a = 1, c = 2.5: ℓ = 3.5
+  const glm::dvec3 eye(3.0, 0.0, 0.0);                  // outside, level with the equator
+  const glm::dvec3 outer = revolution().world_position(torus, Vec3(3.5, 0.0, 0.0));
+  const glm::dvec3 far_inner = revolution().world_position(torus, Vec3(-1.5, 0.0, 0.0));
+  EXPECT_FALSE(revolution().hidden(torus, outer, eye));
+  EXPECT_TRUE(revolution().hidden(torus, far_inner, eye));  // behind the near tube and the hole's far side
+}
+
+TEST(RevolutionView, TheBodysEllipseLiesOnTheSurface) {
+  for (const SurfaceKind kind : kKinds) {
+    const Snapshot s = body_on(kind, 0.6, 1.0, 1.3, 0.6);
+    for (const Vec3& P : ellipse_points(s.surface, s.bodies[0], 0.3, 32))
+      EXPECT_LT(off_surface(s.surface, P), 1e-12) << enum_name(kind);
+  }
+}
+
+TEST(RevolutionView, TheMeshCacheKeepsTheLastShapesAndRebuildsOlderOnes) {
+  Surface torus = surface_of(SurfaceKind::torus);
+  const auto first = static_geometry(torus, ViewKind::revolution);
+  EXPECT_EQ(static_geometry(torus, ViewKind::revolution)->id, first->id);  // kept
+  std::set<std::uint64_t> ids{first->id};
+  for (std::size_t i = 1; i <= kStaticGeometryCache; ++i) {
+    torus.tube_radius = 1.0 + 0.01 * static_cast<double>(i);
+    ids.insert(static_geometry(torus, ViewKind::revolution)->id);
+  }
+  EXPECT_EQ(ids.size(), kStaticGeometryCache + 1);
+  torus.tube_radius = 1.0;
+  EXPECT_NE(static_geometry(torus, ViewKind::revolution)->id, first->id);  // evicted, built again
+  EXPECT_FALSE(first->surface.empty());  // the old one still alive while held
+}
+
+}  // namespace
+}  // namespace spinfold::render
