@@ -200,5 +200,160 @@ TEST(Presets, DegenerateCrossingHappensAtHalfTime) {
   EXPECT_NEAR(run.events[0].t, 0.5, 1e-9);
 }
 
+// ---- The teaching presets where the curvature varies: each claim measured from the run's embedded
+// path X(t) in ℝ³ and compared with a formula the engine does not use (geometry of the surface in
+// closed form, guiding-centre theory, the effective potential's threshold, exponential decay).
+
+Vec3 position(const Simulation& run) {
+  return global_embedding(run.scene, run.state).X;
+}
+
+// The signed geodesic curvature det[Ẋ, Ẍ, n]/|Ẋ|³ at time t of a run and the position there, from X at
+// t + k h (k = −2…2, fourth-order central differences), with the surface normal n given by the test.
+// The run is left at t + 2h.
+struct PathPoint {
+  double kg;
+  Vec3 X;
+};
+template <class Normal>
+PathPoint path_at(Simulation& run, double t, double h, Normal normal, std::size_t companion = ~0u) {
+  Vec3 X[5];
+  for (int k = 0; k < 5; ++k) {
+    advance_to(run, t + (k - 2) * h);
+    X[k] = position(companion == ~0u ? run : run.companions.at(companion));
+  }
+  const Vec3 V = (X[0] - 8.0 * X[1] + 8.0 * X[3] - X[4]) / (12.0 * h);
+  const Vec3 A = (-X[0] + 16.0 * X[1] - 30.0 * X[2] + 16.0 * X[3] - X[4]) / (12.0 * h * h);
+  return {V.cross(A).dot(normal(X[2])) / std::pow(V.norm(), 3), X[2]};
+}
+
+TEST(Presets, OnTheTorusTheSpinningBodysPathCurlsOppositeWaysOnTheTwoBands) {
+  const Scene scene = preset("spin_vs_geodesic_torus");
+  const double a = scene.surface.tube_radius, c = scene.surface.center_radius;
+  const auto outward = [&](const Vec3& X) {  // from the tube's centre circle: the torus's own normal
+    const double rho = std::hypot(X.x(), X.y());
+    return Vec3((X - Vec3(c * X.x() / rho, c * X.y() / rho, 0.0)) / a);
+  };
+  const auto K = [&](const Vec3& X) {  // cos u/(a ρ), cos u = (ρ − c)/a
+    const double rho = std::hypot(X.x(), X.y());
+    return (rho - c) / a / (a * rho);
+  };
+  Simulation run = start_simulation(scene);
+  const double s = spin(scene, run.state), m = scene.body.mass, v = 1.0;
+  int outer = 0, inner = 0;
+  for (double t = 0.5; t < 17.0; t += 0.5) {
+    const PathPoint p = path_at(run, t, 0.01, outward);
+    const double kg = p.kg, k_here = K(p.X);
+    EXPECT_NEAR(kg, k_here * s / (m * v), 2e-6) << "t = " << t;
+    if (k_here > 0.05) {  // left of its velocity (s > 0, n outward)
+      ++outer;
+      EXPECT_GT(kg, 0.0) << t;
+    }
+    if (k_here < -0.05) {
+      ++inner;
+      EXPECT_LT(kg, 0.0) << t;
+    }
+  }
+  EXPECT_GE(outer, 5);  // it visits both bands
+  EXPECT_GE(inner, 5);
+  // The geodesic companion's path does not curl at all.
+  Simulation again = start_simulation(scene);
+  for (const double t : {2.0, 6.0, 11.0})
+    EXPECT_NEAR(path_at(again, t, 0.01, outward, 0).kg, 0.0, 2e-6) << t;
+}
+
+// ⟨φ̇⟩ over a run: the least-squares slope of the unwrapped φ(t) sampled every 0.05.
+double mean_drift(Simulation& run, double T, std::size_t companion = ~0u) {
+  double sum_t = 0, sum_p = 0, sum_tt = 0, sum_tp = 0, last = 0, turns = 0;
+  int n = 0;
+  for (double t = 0.0; t <= T + 1e-9; t += 0.05, ++n) {
+    advance_to(run, t);
+    const Vec3 X = position(companion == ~0u ? run : run.companions.at(companion));
+    double phi = std::atan2(X.y(), X.x());
+    if (n > 0 && phi + turns - last > std::numbers::pi) turns -= 2 * std::numbers::pi;
+    if (n > 0 && phi + turns - last < -std::numbers::pi) turns += 2 * std::numbers::pi;
+    phi += turns;
+    last = phi;
+    sum_t += t, sum_p += phi, sum_tt += t * t, sum_tp += t * phi;
+  }
+  return (n * sum_tp - sum_t * sum_p) / (n * sum_tt - sum_t * sum_t);
+}
+
+TEST(Presets, OnTheOblateSpheroidTheGuidingCentreDriftsAlongTheParallelAndReversesWithTheSpin) {
+  const Scene scene = preset("opposite_spins_spheroid");
+  const double a = scene.surface.equatorial_radius, b = scene.surface.polar_radius;
+  const double u = scene.initial.u, v = 0.5, m = scene.body.mass, s = 8.0;
+  // The spheroid (a sin u, b cos u) in closed form: K = b²/(a² cos² u + b² sin² u)², f, ρ.
+  const auto K = [&](double x) { return b * b / std::pow(a * a * std::cos(x) * std::cos(x) + b * b * std::sin(x) * std::sin(x), 2); };
+  const double K_u = (K(u + 1e-6) - K(u - 1e-6)) / 2e-6;
+  const double f = std::hypot(a * std::cos(u), b * std::sin(u)), rho = a * std::sin(u);
+  const double grad_b = -m * v * v * K_u / (2.0 * s * K(u) * K(u) * f * rho);  // physics-surfaces.md §10.2
+  Simulation run = start_simulation(scene);
+  const double main = mean_drift(run, 60.0);
+  Simulation again = start_simulation(scene);
+  const double opposite = mean_drift(again, 60.0, 0);
+  EXPECT_NEAR(main / grad_b, 1.0, 0.04);  // 0.976: the formula's error is O(r_L²), r_L = 0.09
+  EXPECT_NEAR(opposite, -main, 1e-9 * std::abs(main));
+  EXPECT_GT(std::abs(main), 0.05);
+  // On the round sphere (a = b) the same body circles with no drift at all.
+  Scene round = scene;
+  round.surface.polar_radius = a;
+  Simulation control = start_simulation(round);
+  EXPECT_LT(std::abs(mean_drift(control, 60.0)), 0.02 * std::abs(main));
+}
+
+TEST(Presets, OnTheBumpASpinAboveTheCriticalOneIsTrappedAndBelowItEscapes) {
+  const Scene scene = preset("trapped_spin_bump");
+  const double v = 0.5, s_crit = 5.64742 * v;  // physics-surfaces.md §10.3 (m = I = 1, h = w = 1)
+  const auto rho = [](const Simulation& r) { return std::hypot(position(r).x(), position(r).y()); };
+  Simulation run = start_simulation(scene);
+  double main_far = 0.0, below_far = 0.0, geodesic_far = 0.0;
+  for (double t = 0.5; t <= 60.0; t += 0.5) {
+    advance_to(run, t);
+    main_far = std::max(main_far, rho(run));
+    below_far = std::max(below_far, rho(run.companions.at(0)));
+    geodesic_far = std::max(geodesic_far, rho(run.companions.at(1)));
+  }
+  EXPECT_LT(main_far, 1.0);        // s = 3 > s_crit: it stays on the bump
+  EXPECT_GT(below_far, 4.0);       // s = 2.5: out to the flat plane
+  EXPECT_GT(geodesic_far, 4.0);    // s = 0
+  // The threshold itself, to 1%: just above it trapped for T = 200, just below it gone.
+  for (const double factor : {1.01, 0.99}) {
+    // Through the scene text, as a user changes it (the reader turns spin into the frame's rates).
+    std::string text(find_preset("trapped_spin_bump")->json);
+    const std::size_t at = text.find("\"spin\": 3.0");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, std::string("\"spin\": 3.0").size(), "\"spin\": " + std::to_string(factor * s_crit));
+    Scene near = *parse_scene_text(text).scene;
+    ASSERT_NEAR(*near.initial.spin, factor * s_crit, 1e-6);
+    near.companions.clear();
+    Simulation r = start_simulation(near);
+    double far = 0.0;
+    for (double t = 1.0; t <= 200.0 && far < 4.0; t += 1.0) advance_to(r, t), far = std::max(far, rho(r));
+    if (factor > 1.0)
+      EXPECT_LT(far, 1.0) << factor;
+    else
+      EXPECT_GT(far, 4.0) << factor;
+  }
+}
+
+TEST(Presets, FrictionSlowsTheSpinningBodyExponentiallyAndItsCircleTightensAsItSpiralsIn) {
+  const Scene scene = preset("damped_spin_spheroid");  // a = b = 1: the unit sphere, K = 1
+  const double gamma = scene.friction->translational, m = scene.body.mass, v0 = 0.5, s = 1.0;
+  const double I = 0.5 * 2.0;  // inertia J = 0.5 per axis: I = tr J for the rigid body
+  Simulation run = start_simulation(scene);
+  const auto outward = [](const Vec3& X) { return Vec3(X.normalized()); };
+  for (const double t : {2.0, 8.0, 15.0}) {
+    const double v = v0 * std::exp(-gamma * t / m);
+    advance_to(run, t);
+    EXPECT_NEAR(global_embedding(scene, run.state).V.norm(), v, 1e-8 * v0) << t;
+    EXPECT_NEAR(spin(scene, run.state), s, 1e-9) << t;  // no internal friction: the spin stays
+    EXPECT_NEAR(energy(scene, run.state), s * s / (2.0 * I) + 0.5 * m * v * v, 1e-8) << t;
+    // The circle's geodesic curvature K s/(m v) grows as v falls: its radius shrinks, it spirals in.
+    const double later = v0 * std::exp(-gamma * (t + 0.1) / m);
+    EXPECT_NEAR(std::abs(path_at(run, t + 0.1, 0.01, outward).kg), s / (m * later), 2e-5 * s / (m * later)) << t;
+  }
+}
+
 }  // namespace
 }  // namespace spinfold
