@@ -22,8 +22,8 @@
   X(glClipControl) X(glCompileShader) X(glCopyImageSubData) X(glCreateProgram) X(glCreateShader) \
   X(glDeleteBuffers) X(glDeleteFramebuffers) X(glDeleteProgram) X(glDeleteRenderbuffers) \
   X(glDeleteShader) X(glDeleteTextures) X(glDeleteVertexArrays) X(glDepthFunc) X(glDepthMask) \
-  X(glDetachShader) X(glDisable) X(glDrawArrays) X(glDrawArraysInstanced) X(glDrawElements) \
-  X(glDrawElementsBaseVertex) X(glEnable) X(glEnableVertexAttribArray) X(glFinish) \
+  X(glDetachShader) X(glDisable) X(glDisableVertexAttribArray) X(glDrawArrays) \
+  X(glDrawArraysInstanced) X(glDrawElements) X(glDrawElementsBaseVertex) X(glEnable) X(glEnableVertexAttribArray) X(glFinish) \
   X(glFramebufferRenderbuffer) X(glGenBuffers) X(glGenFramebuffers) X(glGenRenderbuffers) \
   X(glGenTextures) X(glGenVertexArrays) X(glGetAttribLocation) X(glGetError) X(glGetIntegerv) \
   X(glGetProgramInfoLog) X(glGetProgramiv) X(glGetShaderInfoLog) X(glGetShaderiv) X(glGetString) \
@@ -88,6 +88,7 @@ void set_current_gl_api(const GlApi* api);
 #define glDepthMask (::spinfold::render::current_gl_api()->fn_glDepthMask)
 #define glDetachShader (::spinfold::render::current_gl_api()->fn_glDetachShader)
 #define glDisable (::spinfold::render::current_gl_api()->fn_glDisable)
+#define glDisableVertexAttribArray (::spinfold::render::current_gl_api()->fn_glDisableVertexAttribArray)
 #define glDrawArrays (::spinfold::render::current_gl_api()->fn_glDrawArrays)
 #define glDrawArraysInstanced (::spinfold::render::current_gl_api()->fn_glDrawArraysInstanced)
 #define glDrawElements (::spinfold::render::current_gl_api()->fn_glDrawElements)

@@ -133,7 +133,8 @@ StaticGeometry built_static(const Surface& surface, ViewKind view) {
 // A varying surface's shape: its kind and every parameter a profile reads.
 using ShapeKey = std::tuple<SurfaceKind, ViewKind, std::array<double, 7>>;
 ShapeKey shape_key(const Surface& s, ViewKind view) {
-  return {s.kind, view,
+  return {s.kind,
+          view,
           {s.tube_radius, s.center_radius, s.equatorial_radius, s.polar_radius, s.height, s.width,
            s.neck_radius}};
 }
@@ -145,13 +146,15 @@ const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view) {
   static std::map<std::pair<SurfaceKind, ViewKind>, StaticGeometry> cache;
   const std::lock_guard lock(mutex);
   auto it = cache.find({surface, view});
-  if (it == cache.end()) it = cache.emplace(std::pair{surface, view}, built_static(Surface{surface, 1.0}, view)).first;
+  if (it == cache.end())
+    it = cache.emplace(std::pair{surface, view}, built_static(Surface{surface, 1.0}, view)).first;
   return it->second;
 }
 
 std::shared_ptr<const StaticGeometry> static_geometry(const Surface& surface, ViewKind view) {
   if (!curvature_varies(surface.kind))  // kept for ever: a shared_ptr that frees nothing
-    return std::shared_ptr<const StaticGeometry>(std::shared_ptr<void>(), &static_geometry(surface.kind, view));
+    return std::shared_ptr<const StaticGeometry>(std::shared_ptr<void>(),
+                                                 &static_geometry(surface.kind, view));
   static std::mutex mutex;
   static std::vector<std::pair<ShapeKey, std::shared_ptr<const StaticGeometry>>> recent;  // newest last
   const ShapeKey key = shape_key(surface, view);
@@ -242,15 +245,15 @@ std::vector<Vec3> ellipse_points(const Surface& surface, const BodySnapshot& bod
 }
 
 namespace {
-// The HUD's lines: the snapshot's, the action variables' with that layer, and on the tractricoid a
-// line when the main body is off the surface.
+// The HUD's lines: the snapshot's, the action variables' with that layer, and the view's note when
+// the main body is off what it draws (beyond the tractricoid's rim, the bump's or catenoid's piece).
 std::vector<std::string> hud_lines(const Snapshot& snapshot, const ViewOptions& view) {
   if (!(view.layers & kHud)) return {};
   std::vector<std::string> lines = snapshot.hud_lines;
   if (view.layers & kActions)
     lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
   if (!snapshot.bodies.empty() && !on_view(snapshot.surface, view.kind, snapshot.bodies.front().X))
-    lines.push_back("body 1 is beyond the rim: off the part of H2 this surface shows");
+    lines.push_back(std::string(view_model(view.kind).off_view_note()));
   return lines;
 }
 }  // namespace

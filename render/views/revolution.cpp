@@ -2,11 +2,12 @@
 // from its profile (engine/revolution.h): meridians and parallels as its grid, the K = 0 parallels
 // marked, the curvature layer's colours at the vertices. World units are X/ℓ with ℓ the picture's
 // length (ProfilePicture), so that every shape fits the same camera.
+#include "engine/revolution.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "engine/revolution.h"
 #include "engine/surface_geodesics.h"
 #include "render/views/camera.h"
 #include "render/views/drawing.h"
@@ -99,6 +100,9 @@ class RevolutionView final : public ViewModel {
     const double margin = 1e-9 * (shape.picture.u_max - shape.picture.u_min);
     return u >= shape.picture.u_min - margin && u <= shape.picture.u_max + margin;
   }
+  std::string_view off_view_note() const override {
+    return "body 1 is beyond the piece of the surface drawn (the bump to 4w, the catenoid to |z| = 2c)";
+  }
   glm::dvec3 normal(const Surface& surface, const glm::dvec3& w) const override {
     const Shape shape = shape_of(surface);
     const double l = shape.picture.length;
@@ -116,27 +120,31 @@ class RevolutionView final : public ViewModel {
       return shape.picture.u_min + (shape.picture.u_max - shape.picture.u_min) * i / kRings;
     };
     double full = 0.0;
-    for (int i = 0; i <= kRings; ++i) full = std::max(full, std::abs(shape.entry->profile(shape.surface, u_of(i)).K));
+    for (int i = 0; i <= kRings; ++i)
+      full = std::max(full, std::abs(shape.entry->profile(shape.surface, u_of(i)).K));
     const auto vertex = [&](double u, double phi) {
       const RevolutionFrame f = revolution_frame(shape.surface, u, phi);
       const double K = shape.entry->profile(shape.surface, u).K;
-      return LitVertex{to_float(glm::dvec3(f.X.x(), f.X.y(), f.X.z()) / l), to_float({f.n.x(), f.n.y(), f.n.z()}),
-                       curvature_color(K, full > 0.0 ? full : 1.0)};
+      return LitVertex{to_float(glm::dvec3(f.X.x(), f.X.y(), f.X.z()) / l),
+                       to_float({f.n.x(), f.n.y(), f.n.z()}), curvature_color(K, full > 0.0 ? full : 1.0)};
     };
     for (int i = 0; i < kRings; ++i)
       for (int j = 0; j < kSlices; ++j) {
         const double p0 = 2 * kPi * j / kSlices, p1 = 2 * kPi * (j + 1) / kSlices;
-        add_quad(g, vertex(u_of(i), p0), vertex(u_of(i + 1), p0), vertex(u_of(i + 1), p1), vertex(u_of(i), p1));
+        add_quad(g, vertex(u_of(i), p0), vertex(u_of(i + 1), p0), vertex(u_of(i + 1), p1),
+                 vertex(u_of(i), p1));
       }
     const auto parallel = [&](double u, const glm::vec4& color) {
       std::vector<Vec3> pts;
-      for (int j = 0; j <= kSlices; ++j) pts.push_back(revolution_frame(shape.surface, u, 2 * kPi * j / kSlices).X);
+      for (int j = 0; j <= kSlices; ++j)
+        pts.push_back(revolution_frame(shape.surface, u, 2 * kPi * j / kSlices).X);
       add_polyline(g.grid, surface, *this, pts, color, false);
     };
     for (const double u : grid_parallels(shape)) parallel(u, kGridColor);
     for (int k = 0; k < 12; ++k) {  // meridians every 30°
       std::vector<Vec3> pts;
-      for (int i = 0; i <= kRings; ++i) pts.push_back(revolution_frame(shape.surface, u_of(i), 2 * kPi * k / 12).X);
+      for (int i = 0; i <= kRings; ++i)
+        pts.push_back(revolution_frame(shape.surface, u_of(i), 2 * kPi * k / 12).X);
       add_polyline(g.grid, surface, *this, pts, kGridColor, false);
     }
     for (const double u : zero_curvature_parallels(shape)) parallel(u, kZeroCurvatureColor);
@@ -148,32 +156,52 @@ class RevolutionView final : public ViewModel {
   bool hidden(const Surface& surface, const glm::dvec3& at, const glm::dvec3& eye) const override {
     return occluded(shape_of(surface), eye, at);
   }
-  double body_scale_length(const Surface& surface) const override { return shape_of(surface).picture.feature; }
+  double body_scale_length(const Surface& surface) const override {
+    return shape_of(surface).picture.feature;
+  }
 
-  // From the bodies' side of the axis at the main body's normal's elevation, framing the bodies and
-  // their recent trails (aim_orbit); when that leaves the main body hidden (the torus's inner band faces the hole) or under a box, a
-  // wider search: every 30° round the axis at five elevations, drawn back as far as 1.6×.
+  // Orbiting the centre of the bodies and their recent trails at the distance that frames them
+  // (aim_orbit's framing), from the best of: the main body's normal, and every 30° round the axis at
+  // five elevations, drawn back as far as 1.6×. The cost of a camera is its badness (a hidden or
+  // boxed main body 1000, each trail 10 in all) plus up to 4 for drawing back and up to 3 for
+  // looking at the main body obliquely: a near camera facing the body that shows most of its path
+  // wins over a far one that shows all of it edge-on.
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
     const Surface& surface = snapshot.surface;
-    const Shape shape = shape_of(surface);
-    const Vec3 n = embedded_normal(RevolutionImplicit(shape.surface), snapshot.bodies.front().X);
-    aim_orbit(*this, view, snapshot, hud, 0.35, std::clamp(std::asin(std::clamp(n.z(), -1.0, 1.0)), -1.2, 1.2),
-              0.0);
+    const Vec3 n3 = embedded_normal(RevolutionImplicit(shape_of(surface).surface), snapshot.bodies.front().X);
+    const glm::dvec3 n(n3.x(), n3.y(), n3.z());
+    view.target.reset();
     const std::vector<Sight> points = sights(*this, snapshot, view, true);
-    if (points.empty() || badness(*this, surface, view, points, hud) < points.front().weight) return;
-    const ViewOptions start = view;
+    if (points.empty()) return;  // every body off the drawn piece: the default camera
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (const Sight& p : points) lo = glm::min(lo, p.at), hi = glm::max(hi, p.at);
+    const glm::dvec3 centre = 0.5 * (lo + hi);
+    double radius = 0.35;
+    for (const Sight& p : points) radius = std::max(radius, glm::length(p.at - centre));
+    const double aspect = static_cast<double>(view.width) / view.height;
+    const double half_fov = std::atan(std::tan(glm::radians(kFovY) / 2) * std::min(1.0, aspect));
+    view.target = std::array<double, 3>{centre.x, centre.y, centre.z};
+    const double base = radius / std::sin(0.85 * half_fov);
+    const auto cost = [&](const ViewOptions& v, double pull) {
+      const glm::dvec3 towards(std::cos(v.pitch) * std::cos(v.yaw), std::cos(v.pitch) * std::sin(v.yaw),
+                               std::sin(v.pitch));
+      return badness(*this, surface, v, points, hud) + 4.0 * (pull - 1.0) / 0.6 +
+             1.5 * (1.0 - std::abs(glm::dot(towards, n)));
+    };
     double best = std::numeric_limits<double>::infinity();
-    for (const double pull : {1.0, 1.3, 1.6})
-      for (const double pitch : {0.35, 0.75, 1.15, -0.35, -0.75})
-        for (int k = 0; k < 12; ++k) {
-          ViewOptions v = start;
-          v.yaw = start.yaw + 2 * kPi * k / 12;
-          v.pitch = pitch;
-          v.distance = start.distance * pull;
-          const double bad = badness(*this, surface, v, points, hud);
-          if (bad < best) best = bad, view = v;
-          if (best == 0.0) return;
-        }
+    const auto consider = [&](double yaw, double pitch, double pull) {
+      ViewOptions v = view;
+      v.yaw = yaw, v.pitch = pitch, v.distance = base * pull;
+      const double c = cost(v, pull);
+      if (c < best) best = c, view = v;
+    };
+    const double normal_yaw =
+        std::hypot(n.x, n.y) > 1e-6 ? std::atan2(n.y, n.x) : std::atan2(centre.y, centre.x);
+    for (const double pull : {1.0, 1.3, 1.6}) {
+      consider(normal_yaw, std::clamp(std::asin(std::clamp(n.z, -1.0, 1.0)), -1.2, 1.2), pull);
+      for (const double pitch : {1.15, 0.75, 0.35, -0.35, -0.75})
+        for (int k = 0; k < 12; ++k) consider(normal_yaw + 2 * kPi * k / 12, pitch, pull);
+    }
   }
 };
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <glm/glm.hpp>
 #include <optional>
+#include <string_view>
 
 #include "render/scene_builder.h"
 
@@ -34,11 +35,15 @@ class ViewModel {
   // ---- Projection
   // Where an embedded point X of `surface` lands in the view's world coordinates (world_position).
   virtual glm::dvec3 world_position(const Surface& surface, const Vec3& X) const = 0;
-  // Whether the view shows X (false only off the tractricoid's strip).
+  // Whether the view shows X (false only off the tractricoid's strip and the revolution view's
+  // drawn piece of an unbounded surface), and what the HUD says of a main body it does not show.
   virtual bool on_view(const Surface& /*surface*/, const Vec3& /*X*/) const { return true; }
+  virtual std::string_view off_view_note() const { return "body 1 is off the view"; }
   // The surface's unit normal at a world point: overlays are lifted along it and arrowheads lie
   // across it. +z in the 2-D views.
-  virtual glm::dvec3 normal(const Surface& /*surface*/, const glm::dvec3& /*w*/) const { return {0.0, 0.0, 1.0}; }
+  virtual glm::dvec3 normal(const Surface& /*surface*/, const glm::dvec3& /*w*/) const {
+    return {0.0, 0.0, 1.0};
+  }
   // How far overlays sit above the surface along normal() so that the depth test keeps them
   // [world units]; 0: on it.
   virtual double lift() const { return 0.0; }

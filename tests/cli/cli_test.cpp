@@ -225,7 +225,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadArgs{"render --scene spinning_rigid_sphere --camera 1,2 --out /tmp/x.png", "--camera"},
         // The table's words, every layer listed (actions included), the ranges the API has.
         BadArgs{"render --scene spinning_rigid_sphere --layers body,glitter --out /tmp/x.png",
-                "--layers: 'glitter' is not one of surface, grid, body, frame, trail, hud, actions (got "
+                "--layers: 'glitter' is not one of surface, grid, body, frame, trail, hud, actions, "
+                "curvature (got "
                 "'body,glitter')"},
         BadArgs{"render --scene spinning_rigid_sphere --pitch 2 --out /tmp/x.png",
                 "--pitch: must be a number from -1.55 to 1.55 [rad] (got '2')"},

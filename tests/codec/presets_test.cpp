@@ -258,8 +258,7 @@ TEST(Presets, OnTheTorusTheSpinningBodysPathCurlsOppositeWaysOnTheTwoBands) {
   EXPECT_GE(inner, 5);
   // The geodesic companion's path does not curl at all.
   Simulation again = start_simulation(scene);
-  for (const double t : {2.0, 6.0, 11.0})
-    EXPECT_NEAR(path_at(again, t, 0.01, outward, 0).kg, 0.0, 2e-6) << t;
+  for (const double t : {2.0, 6.0, 11.0}) EXPECT_NEAR(path_at(again, t, 0.01, outward, 0).kg, 0.0, 2e-6) << t;
 }
 
 // ⟨φ̇⟩ over a run: the least-squares slope of the unwrapped φ(t) sampled every 0.05.
@@ -284,7 +283,9 @@ TEST(Presets, OnTheOblateSpheroidTheGuidingCentreDriftsAlongTheParallelAndRevers
   const double a = scene.surface.equatorial_radius, b = scene.surface.polar_radius;
   const double u = scene.initial.u, v = 0.5, m = scene.body.mass, s = 8.0;
   // The spheroid (a sin u, b cos u) in closed form: K = b²/(a² cos² u + b² sin² u)², f, ρ.
-  const auto K = [&](double x) { return b * b / std::pow(a * a * std::cos(x) * std::cos(x) + b * b * std::sin(x) * std::sin(x), 2); };
+  const auto K = [&](double x) {
+    return b * b / std::pow(a * a * std::cos(x) * std::cos(x) + b * b * std::sin(x) * std::sin(x), 2);
+  };
   const double K_u = (K(u + 1e-6) - K(u - 1e-6)) / 2e-6;
   const double f = std::hypot(a * std::cos(u), b * std::sin(u)), rho = a * std::sin(u);
   const double grad_b = -m * v * v * K_u / (2.0 * s * K(u) * K(u) * f * rho);  // physics-surfaces.md §10.2
@@ -314,9 +315,9 @@ TEST(Presets, OnTheBumpASpinAboveTheCriticalOneIsTrappedAndBelowItEscapes) {
     below_far = std::max(below_far, rho(run.companions.at(0)));
     geodesic_far = std::max(geodesic_far, rho(run.companions.at(1)));
   }
-  EXPECT_LT(main_far, 1.0);        // s = 3 > s_crit: it stays on the bump
-  EXPECT_GT(below_far, 4.0);       // s = 2.5: out to the flat plane
-  EXPECT_GT(geodesic_far, 4.0);    // s = 0
+  EXPECT_LT(main_far, 1.0);      // s = 3 > s_crit: it stays on the bump
+  EXPECT_GT(below_far, 4.0);     // s = 2.5: out to the flat plane
+  EXPECT_GT(geodesic_far, 4.0);  // s = 0
   // The threshold itself, to 1%: just above it trapped for T = 200, just below it gone.
   for (const double factor : {1.01, 0.99}) {
     // Through the scene text, as a user changes it (the reader turns spin into the frame's rates).
@@ -351,8 +352,34 @@ TEST(Presets, FrictionSlowsTheSpinningBodyExponentiallyAndItsCircleTightensAsItS
     EXPECT_NEAR(energy(scene, run.state), s * s / (2.0 * I) + 0.5 * m * v * v, 1e-8) << t;
     // The circle's geodesic curvature K s/(m v) grows as v falls: its radius shrinks, it spirals in.
     const double later = v0 * std::exp(-gamma * (t + 0.1) / m);
-    EXPECT_NEAR(std::abs(path_at(run, t + 0.1, 0.01, outward).kg), s / (m * later), 2e-5 * s / (m * later)) << t;
+    EXPECT_NEAR(std::abs(path_at(run, t + 0.1, 0.01, outward).kg), s / (m * later), 2e-5 * s / (m * later))
+        << t;
   }
+}
+
+TEST(Presets, OnTheCatenoidTheNeckIsAGeodesicAndTheSpinningBodyCurlsOffIt) {
+  const Scene scene = preset("spin_vs_geodesic_catenoid");
+  Simulation run = start_simulation(scene);
+  double main_off = 0.0;
+  for (double t = 0.5; t <= 8.0; t += 0.5) {
+    advance_to(run, t);
+    main_off = std::max(main_off, std::abs(position(run).z()));
+    // The neck z = 0 is a geodesic: the point launched along it stays (it is unstable, K < 0, so
+    // rounding grows as e^(√|K| v t) ≈ 3e3 by t = 8, from 1e-16).
+    EXPECT_LT(std::abs(position(run.companions.at(0)).z()), 1e-11) << t;
+  }
+  EXPECT_GT(main_off, 1.0);
+  // It turns against its spin (K s < 0): with n = ∇F/|∇F| for F = ρ² − c² cosh²(z/c), outward.
+  const double c = scene.surface.neck_radius;
+  const auto outward = [&](const Vec3& X) {
+    const double ch = std::cosh(X.z() / c);
+    return Vec3(Vec3(X.x(), X.y(), -c * ch * std::sinh(X.z() / c)).normalized());
+  };
+  Simulation again = start_simulation(scene);
+  const PathPoint p = path_at(again, 0.3, 0.01, outward);
+  const double rho = std::hypot(p.X.x(), p.X.y()), K = -1.0 / (std::pow(rho, 4) / (c * c));  // K = −c²/ρ⁴
+  EXPECT_NEAR(p.kg, K * 0.5 / (scene.body.mass * 1.0), 2e-6);
+  EXPECT_LT(p.kg, 0.0);
 }
 
 }  // namespace

@@ -543,7 +543,11 @@ INSTANTIATE_TEST_SUITE_P(
                       // One flat map for every curvature.
                       Golden{"conformal_sphere", "spin_vs_geodesic_sphere", ViewKind::conformal, 2.0},
                       Golden{"conformal_pseudosphere", "spin_vs_geodesic_pseudosphere", ViewKind::conformal,
-                             6.0}),
+                             6.0},
+                      // Where the curvature varies: the torus with the curvature layer, the bump without.
+                      Golden{"revolution_torus", "spin_vs_geodesic_torus", ViewKind::revolution, 12.0, 640,
+                             480, kDefaultLayers | kCurvature},
+                      Golden{"revolution_bump", "trapped_spin_bump", ViewKind::revolution, 20.0}),
     [](const auto& param) { return std::string(param.param.name); });
 
 }  // namespace

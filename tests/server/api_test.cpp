@@ -881,11 +881,13 @@ TEST_F(Api, QueryValuesOutOfRangeOrOfTheWrongTypeNameTheValue) {
       {frame + "height=2.5", "height: must be a whole number from 16 to 4096 [pixels] (got 2.5)"},
       {frame + "yaw=nan", "yaw: must be a number from -100 to 100 [rad] (got nan)"},
       {frame + "view=cube",
-       "view: must be sphere, disk, hyperboloid, klein, halfplane, tractricoid, plane or conformal (got "
+       "view: must be sphere, disk, hyperboloid, klein, halfplane, tractricoid, plane, conformal or "
+       "revolution (got "
        "cube)"},
       {frame + "view=klein", "view: the sphere is shown in these views: sphere, disk, conformal (got klein)"},
       {frame + "layers=body,glitter",
-       "layers: 'glitter' is not one of surface, grid, body, frame, trail, hud, actions (got body,glitter)"},
+       "layers: 'glitter' is not one of surface, grid, body, frame, trail, hud, actions, curvature (got "
+       "body,glitter)"},
       {"/api/v1/sessions/" + id + "/events?rate=1000",
        "rate: must be a number from 0.5 to 60 [Hz] (got 1000)"},
       {"/api/v1/sessions/" + id + "/trajectory?format=xml", "format: must be json or csv (got xml)"},

@@ -154,7 +154,7 @@ TEST_F(ViewParameterTable, TheRouteAnswersTheTables) {
     EXPECT_EQ(doc["layers"][i]["name"], std::string(render::kLayerTable[i].name));
     EXPECT_EQ(doc["layers"][i]["default"], render::kLayerTable[i].on_by_default);
   }
-  EXPECT_EQ(doc["layers"].back()["name"], "actions");
+  EXPECT_EQ(doc["layers"].back()["name"], "curvature");
   EXPECT_EQ(doc["layers"].back()["default"], false);
   ASSERT_EQ(doc["formats"].size(), std::size(record::kFormats));
   for (std::size_t i = 0; i < std::size(record::kFormats); ++i) {
