@@ -9,7 +9,7 @@ import { $, el, clear } from "./dom.js";
 import { begin, refused } from "./edits.js";
 import { applyChange } from "./session.js";
 import { store, withView } from "./state.js";
-import { curvatureForm, shownRadius } from "./surface.js";
+import { curvatureForm, curvatureVaries, shownRadius, surfaceSwitch } from "./surface.js";
 import { showConformal } from "./viewcontrols.js";
 
 /** @typedef {import("./state.js").AppState} AppState */
@@ -117,46 +117,49 @@ function physicalRows(s) {
   // switches to the conformal view, the one view that exists on every surface and is continuous in K.
   const byK = curvatureForm(surface);
   const resolved = /** @type {import("./surface.js").ResolvedSurface} */ (s.surface);
-  rows.push(
-    {
-      key: "curvature",
-      ...described("surface.curvature"),
-      min: -2,
-      max: 2,
-      step: 0.01,
-      live: true,
-      // K as given in the K form, else the server's σ/R².
-      value: byK ? surface.curvature : resolved.curvature,
-      before: showConformal,
-      patch: (v) => ({ surface: { curvature: v, kind: null, radius: null } }),
-    },
-    {
-      key: "radius",
-      ...described("surface.radius"),
-      min: 0.25,
-      max: 5,
-      step: 0.05,
-      disabled: byK,
-      // Derived from K, the row says so before the field's own description.
-      note: byK
-        ? resolved.kind === "plane"
-          ? "From the curvature: K = 0 is the flat plane, which has no radius."
-          : "From the curvature: R = 1/√|K|. To set R, pick the surface above."
-        : "",
-      value: shownRadius(surface, resolved),
-      placeholder: "none",
-      patch: (v) => ({ surface: { radius: v } }),
-    },
-    {
-      key: "gamma",
-      ...described("potential.radial.gamma"),
-      min: 0,
-      max: 1,
-      step: 0.01,
-      value: current.potential?.radial?.gamma ?? 0,
-      patch: (v) => ({ potential: { radial: { gamma: v } } }),
-    },
-  );
+  const varies = curvatureVaries(resolved.kind);
+  if (varies) rows.push(...shapeRows(s));
+  else
+    rows.push(
+      {
+        key: "curvature",
+        ...described("surface.curvature"),
+        min: -2,
+        max: 2,
+        step: 0.01,
+        live: true,
+        // K as given in the K form, else the server's σ/R².
+        value: byK ? surface.curvature : resolved.curvature,
+        before: showConformal,
+        patch: (v) => ({ surface: { curvature: v, kind: null, radius: null } }),
+      },
+      {
+        key: "radius",
+        ...described("surface.radius"),
+        min: 0.25,
+        max: 5,
+        step: 0.05,
+        disabled: byK,
+        // Derived from K, the row says so before the field's own description.
+        note: byK
+          ? resolved.kind === "plane"
+            ? "From the curvature: K = 0 is the flat plane, which has no radius."
+            : "From the curvature: R = 1/√|K|. To set R, pick the surface above."
+          : "",
+        value: shownRadius(surface, resolved),
+        placeholder: "none",
+        patch: (v) => ({ surface: { radius: v } }),
+      },
+      {
+        key: "gamma",
+        ...described("potential.radial.gamma"),
+        min: 0,
+        max: 1,
+        step: 0.01,
+        value: current.potential?.radial?.gamma ?? 0,
+        patch: (v) => ({ potential: { radial: { gamma: v } } }),
+      },
+    );
   if (!rigid && (!deformation || deformation.kind === "abc"))
     rows.push({
       key: "C",
@@ -171,7 +174,7 @@ function physicalRows(s) {
   rows.push({
     key: "scale",
     label: "Body size on screen",
-    unit: s.view.kind === "conformal" ? "lengths" : "surface radii",
+    unit: s.view.kind === "conformal" ? "lengths" : varies ? "× the tube, width or neck" : "surface radii",
     min: 0.05,
     max: 1,
     step: 0.01,
@@ -179,6 +182,64 @@ function physicalRows(s) {
     help: "Only the picture: how large the body's ellipse is drawn (+ and − keys in 2-D views).",
     value: s.view.scale,
     patch: null,
+  });
+  return rows;
+}
+
+/**
+ * Where the curvature varies: the surface's own parameters (the schema's surface fields that
+ * belong to its kind), gravity along −z and translational friction; each restarts the run.
+ * @param {AppState} s
+ * @returns {Row[]}
+ */
+function shapeRows(s) {
+  const kind = /** @type {import("./surface.js").ResolvedSurface} */ (s.surface).kind;
+  const current = s.current;
+  const fields = s.schema.properties.surface.properties;
+  /** @param {any} spec */
+  const words = (spec) => ({ label: spec.title, unit: displayUnit(spec["x-unit"]), help: spec.description });
+  /** @type {Row[]} */
+  const rows = Object.entries(fields)
+    .filter(([, spec]) => /** @type {any} */ (spec)["x-surfaces"]?.includes(kind))
+    .map(([key, spec]) => ({
+      key,
+      field: `surface.${key}`,
+      ...words(spec),
+      min: key === "height" ? -2 : 0.1,
+      max: 5,
+      step: 0.05,
+      restarts: true,
+      value: current.surface?.[key] ?? /** @type {any} */ (spec).default,
+      patch: (/** @type {number} */ v) => ({ surface: { [key]: v } }),
+    }));
+  const height = current.potential?.height;
+  if (height?.kind !== "spring") {
+    const gravity = s.schema.properties.potential.properties.height.oneOf.find(
+      (/** @type {any} */ b) => b.properties?.kind?.const === "gravity",
+    ).properties.g;
+    rows.push({
+      key: "gravity",
+      field: "potential.height.g",
+      ...words(gravity),
+      min: -2,
+      max: 2,
+      step: 0.01,
+      restarts: true,
+      value: height?.g ?? 0,
+      patch: (v) => ({ potential: { height: { kind: "gravity", g: v } } }),
+    });
+  }
+  const drag = s.schema.properties.friction.properties.translational;
+  rows.push({
+    key: "friction",
+    field: "friction.translational",
+    ...words(drag),
+    min: 0,
+    max: 1,
+    step: 0.01,
+    restarts: true,
+    value: current.friction?.translational ?? 0,
+    patch: (v) => ({ friction: { translational: v } }),
   });
   return rows;
 }
@@ -342,6 +403,10 @@ function surfaceKindRow(s) {
     ["sphere", "sphere (positive curvature)"],
     ["pseudosphere", "hyperbolic plane (negative curvature)"],
     ["plane", "flat plane (no curvature)"],
+    ["torus", "torus (K > 0 outside, < 0 inside)"],
+    ["spheroid", "spheroid (K varies with latitude)"],
+    ["bump", "bump on the plane (K > 0 on top, < 0 round it)"],
+    ["catenoid", "catenoid (K < 0, most negative on the neck)"],
   ])
     select.add(new Option(text, value));
   select.value = /** @type {import("./surface.js").ResolvedSurface} */ (s.surface).kind;
@@ -356,15 +421,12 @@ function surfaceKindRow(s) {
     const edit = begin(error);
     const { current, surface } = store.get();
     try {
-      // From the curvature form: that form goes, the radius it implied stays (1 from the plane).
-      await applyChange(
-        {
-          surface: curvatureForm(current.surface)
-            ? { kind: select.value, radius: surface?.radius ?? 1, curvature: null }
-            : { kind: select.value },
-        },
-        edit,
-      );
+      // Fields of the other kinds go (initial.r on a torus); from the curvature form, that form
+      // goes and the radius it implied stays (1 from the plane).
+      const patch = surfaceSwitch(store.get().schema, current, select.value);
+      if (curvatureForm(current.surface) && !curvatureVaries(select.value))
+        patch.surface = { kind: select.value, radius: surface?.radius ?? 1, curvature: null };
+      await applyChange(patch, edit);
     } catch (e) {
       if (refused(edit, /** @type {Error} */ (e).message)) select.value = store.get().surface?.kind;
     }

@@ -3,7 +3,7 @@
 // curvature}}, server/context.cpp) in either of the scene's forms, {kind, radius} or {curvature: K},
 // so the UI never re-derives the kind from K (the engine's flat threshold stays in the engine). Pure.
 
-/** @typedef {"sphere" | "pseudosphere" | "plane"} SurfaceKind */
+/** @typedef {"sphere" | "pseudosphere" | "plane" | "torus" | "spheroid" | "bump" | "catenoid"} SurfaceKind */
 /** A scene's surface as written. @typedef {{kind?: SurfaceKind, radius?: number, curvature?: number | null}} Surface */
 /** The server's resolution of it. @typedef {{kind: SurfaceKind, radius: number, curvature: number}} ResolvedSurface */
 
@@ -35,4 +35,41 @@ export const shownRadius = (given, resolved) =>
   curvatureForm(given) && resolved.kind === "plane" ? undefined : resolved.radius;
 
 /** @type {Record<SurfaceKind, string>} */
-export const surfaceName = { sphere: "sphere", pseudosphere: "hyperbolic plane", plane: "flat plane" };
+export const surfaceName = {
+  sphere: "sphere",
+  pseudosphere: "hyperbolic plane",
+  plane: "flat plane",
+  torus: "torus",
+  spheroid: "spheroid",
+  bump: "bump on the plane",
+  catenoid: "catenoid",
+};
+
+/** Whether the curvature varies from place to place on a kind (the engine's curvature_varies). */
+export const curvatureVaries = (/** @type {string} */ kind) => ["torus", "spheroid", "bump", "catenoid"].includes(kind);
+
+/**
+ * The merge patch that switches a scene to another surface kind: the kind, and null for every
+ * field the scene gives that the schema marks as belonging to other kinds only ("x-surfaces":
+ * initial.r on a torus, the torus's radii or friction on a sphere), so the server refuses nothing.
+ * @param {any} schema the scene's JSON Schema
+ * @param {any} scene the scene in force
+ * @param {string} kind
+ */
+export function surfaceSwitch(schema, scene, kind) {
+  /** @type {any} */
+  const patch = { surface: { kind } };
+  const foreign = (/** @type {any} */ spec) => spec?.["x-surfaces"] && !spec["x-surfaces"].includes(kind);
+  for (const [section, spec] of Object.entries(schema.properties ?? {})) {
+    const given = scene[section];
+    if (given === undefined || given === null) continue;
+    if (foreign(spec)) {
+      patch[section] = null;
+      continue;
+    }
+    if (typeof given !== "object") continue;
+    for (const key of Object.keys(given))
+      if (foreign(/** @type {any} */ (spec).properties?.[key])) (patch[section] ??= {})[key] = null;
+  }
+  return patch;
+}

@@ -163,8 +163,9 @@ class RevolutionView final : public ViewModel {
   // Orbiting the centre of the bodies and their recent trails at the distance that frames them
   // (aim_orbit's framing), from the best of: the main body's normal, and every 30° round the axis at
   // five elevations, drawn back as far as 1.6×. The cost of a camera is its badness (a hidden or
-  // boxed main body 1000, each trail 10 in all) plus up to 4 for drawing back and up to 3 for
-  // looking at the main body obliquely: a near camera facing the body that shows most of its path
+  // boxed main body 1000, each trail 10 in all) plus up to 4 for drawing back, up to 1.5 for
+  // looking at the main body obliquely and a little for an elevation far from 0.5 rad (a surface
+  // is read best from a little above): a near camera facing the body that shows most of its path
   // wins over a far one that shows all of it edge-on.
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
     const Surface& surface = snapshot.surface;
@@ -176,7 +177,10 @@ class RevolutionView final : public ViewModel {
     glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
     for (const Sight& p : points) lo = glm::min(lo, p.at), hi = glm::max(hi, p.at);
     const glm::dvec3 centre = 0.5 * (lo + hi);
-    double radius = 0.35;
+    // At least 2.5 features round the body (a torus's tube and more), never less than a third of
+    // the picture's unit: the body is seen on its surface, not alone.
+    const ProfilePicture picture = shape_of(surface).picture;
+    double radius = std::clamp(2.5 * picture.feature / picture.length, 0.35, 1.0);
     for (const Sight& p : points) radius = std::max(radius, glm::length(p.at - centre));
     const double aspect = static_cast<double>(view.width) / view.height;
     const double half_fov = std::atan(std::tan(glm::radians(kFovY) / 2) * std::min(1.0, aspect));
@@ -186,7 +190,7 @@ class RevolutionView final : public ViewModel {
       const glm::dvec3 towards(std::cos(v.pitch) * std::cos(v.yaw), std::cos(v.pitch) * std::sin(v.yaw),
                                std::sin(v.pitch));
       return badness(*this, surface, v, points, hud) + 4.0 * (pull - 1.0) / 0.6 +
-             1.5 * (1.0 - std::abs(glm::dot(towards, n)));
+             1.5 * (1.0 - std::abs(glm::dot(towards, n))) + 0.5 * std::abs(v.pitch - 0.5);
     };
     double best = std::numeric_limits<double>::infinity();
     const auto consider = [&](double yaw, double pitch, double pull) {
