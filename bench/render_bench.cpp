@@ -208,6 +208,35 @@ void anti_aliasing_and_cache_tables(int frames) {
       std::printf("| %dx%d | %s | %.2f | %.2f | %.2f | %d, %d, %d |\n", w, h, row->name, mb, mc, mc / mb,
                   after.hits - before.hits, after.fills - before.fills, after.misses - before.misses);
     }
+  // Where the curvature varies: the torus's revolution view against the sphere view, each frame
+  // aimed, built (the ellipse through the implicit surface's exponential map) and drawn with the
+  // default renderer, interleaved frame by frame. Issue 33's target: torus / sphere ≤ 1.5.
+  const std::vector<render::Snapshot> torus = moving_snapshots("spin_vs_geodesic_torus", 3.0, 0.02, n);
+  std::printf(
+      "\n| size | sphere frame ms (aim + build + draw) | torus frame ms (revolution view) | torus / sphere "
+      "|\n"
+      "| --- | --- | --- | --- |\n");
+  for (const auto& [w, h] : {std::pair{640, 480}, std::pair{1280, 720}}) {
+    std::vector<double> ts, tt;
+    const auto frame_ms = [&](const render::Snapshot& s, render::ViewKind kind) {
+      const auto t = std::chrono::steady_clock::now();
+      render::ViewOptions view;
+      view.kind = kind;
+      view.width = w;
+      view.height = h;
+      view.scale *= render::body_scale_length(kind, s.surface);
+      render::aim_camera_at_body(view, s);
+      const render::FrameScene scene = render::build_scene(s, view);
+      c.render_ms(context, scene, w, h);
+      return ms_since(t);
+    };
+    for (int f = 0; f < n; ++f) {
+      const double ms = frame_ms(sphere[f], render::ViewKind::sphere);
+      const double mt = frame_ms(torus[f], render::ViewKind::revolution);
+      if (f >= 2) ts.push_back(ms), tt.push_back(mt);
+    }
+    std::printf("| %dx%d | %.2f | %.2f | %.2f |\n", w, h, median(ts), median(tt), median(tt) / median(ts));
+  }
   std::printf("\n");
 }
 

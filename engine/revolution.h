@@ -66,8 +66,10 @@ struct ProfileDomain {
 // piece of an unbounded one (the bump's plane to ρ = 4w, the catenoid to |z| = 2c).
 struct ProfilePicture {
   double u_min = 0.0, u_max = 0.0;  // the drawn range of u
-  double length = 1.0;   // [length] the picture's unit: the drawn piece lies within a ball of about this radius
-  double feature = 1.0;  // [length] the smallest feature (the torus's tube, the bump's width): a body's scale
+  // [length] the picture's unit: the drawn piece lies within a ball of about this radius
+  double length = 1.0;
+  // [length] the smallest feature (the torus's tube, the bump's width): a body's scale
+  double feature = 1.0;
 };
 
 // One table row per surface: the functions its file defines.

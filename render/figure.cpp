@@ -221,9 +221,9 @@ void add_triangles(FigurePage& page, const Camera& camera, const ViewOptions& vi
       return color.value_or(glm::dvec4(triangles[t].color));
     } else {  // no colour given: the curvature layer's tint, the face's mean in steps of 1/16 (fewer paths)
       if (color) return *color;
-      const glm::dvec3 mean =
-          (glm::dvec3(triangles[t].tint) + glm::dvec3(triangles[t + 1].tint) + glm::dvec3(triangles[t + 2].tint)) /
-          3.0;
+      const glm::dvec3 mean = (glm::dvec3(triangles[t].tint) + glm::dvec3(triangles[t + 1].tint) +
+                               glm::dvec3(triangles[t + 2].tint)) /
+                              3.0;
       return glm::dvec4(glm::round(mean * 16.0) / 16.0, 1.0);
     }
   };
@@ -396,9 +396,10 @@ std::string grid_line(const Snapshot& snapshot, const ViewOptions& view) {
              " length units.";
     case ViewKind::revolution:
       return std::string("Grid: meridians every 30 degrees and parallels; the K = 0 parallels darker.") +
-             (view.layers & kCurvature ? " Colour: the Gaussian curvature K, warm where K > 0, cool where K < 0, "
-                                         "white where K = 0, full at the largest |K| drawn."
-                                       : "");
+             (view.layers & kCurvature
+                  ? " Colour: the Gaussian curvature K, warm where K > 0, cool where K < 0, "
+                    "white where K = 0, full at the largest |K| drawn."
+                  : "");
   }
   return "";
 }
@@ -465,8 +466,8 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
   // The surface's fill: its visible faces (hidden ones lie under them) in one flat colour.
   if (scene.statics && scene.draw_surface)
     add_triangles(page, camera, view, scene.statics->surface,
-                  scene.tint_by_curvature ? std::nullopt : std::optional(glm::dvec4(scene.surface_color)), three_d,
-                  "surface");
+                  scene.tint_by_curvature ? std::nullopt : std::optional(glm::dvec4(scene.surface_color)),
+                  three_d, "surface");
   if (scene.statics && scene.draw_grid)
     add_segments(page, camera, view, scene.statics->grid, grid_width, "grid");
   add_segments(page, camera, view, scene.grid_lines, grid_width, "grid");

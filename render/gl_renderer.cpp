@@ -59,7 +59,8 @@ void upload(unsigned vao, unsigned vbo, const void* data, std::size_t bytes, boo
                         reinterpret_cast<void*>(sizeof(glm::vec3)));
   if (lit) {  // the curvature layer's tint
     glEnableVertexAttribArray(2);
-    glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(LitVertex, tint)));
+    glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<void*>(offsetof(LitVertex, tint)));
   } else {
     glDisableVertexAttribArray(2);
   }
@@ -110,8 +111,7 @@ bool GlRenderer::BackgroundKey::operator==(const BackgroundKey& o) const {
   // Bitwise on the floats: the same camera gives the same matrix bits, and only then may the
   // cached pixels stand in for drawn ones.
   return statics == o.statics && surface == o.surface && grid == o.grid && depth_test == o.depth_test &&
-         tint == o.tint &&
-         std::memcmp(&view_projection, &o.view_projection, sizeof view_projection) == 0 &&
+         tint == o.tint && std::memcmp(&view_projection, &o.view_projection, sizeof view_projection) == 0 &&
          std::memcmp(&surface_color, &o.surface_color, sizeof surface_color) == 0 &&
          std::memcmp(&clear_color, &o.clear_color, sizeof clear_color) == 0 && width == o.width &&
          height == o.height && samples == o.samples &&

@@ -101,8 +101,8 @@ class GlRenderer {
   // Static geometry is uploaded once per surface and view and kept.
   const Mesh& static_surface(const StaticGeometry& g);
   const Mesh& static_grid(const StaticGeometry& g);
-  const Mesh& static_mesh(std::map<std::uint64_t, Mesh>& meshes, const StaticGeometry& g,
-                          const void* data, std::size_t count, bool lit);
+  const Mesh& static_mesh(std::map<std::uint64_t, Mesh>& meshes, const StaticGeometry& g, const void* data,
+                          std::size_t count, bool lit);
   void draw_flat(const std::vector<Vertex>& vertices, unsigned mode);
 
   // Binds the program and sets the camera uniforms the flat and line shaders share

@@ -108,7 +108,7 @@ HudLayout hud_layout(const std::vector<std::string>& lines, const std::vector<st
 struct FrameScene {
   std::shared_ptr<const StaticGeometry> statics;  // null when neither surface nor grid is drawn
   bool draw_surface = false, draw_grid = false;
-  bool tint_by_curvature = false;  // the curvature layer: the surface coloured by its vertices' tint
+  bool tint_by_curvature = false;      // the curvature layer: the surface coloured by its vertices' tint
   std::vector<Vertex> fills;           // translucent triangles (the ellipse)
   std::vector<Vertex> lines;           // line segments (trail, outline, arrows)
   std::vector<std::string> hud_lines;  // empty when the HUD is off

@@ -124,7 +124,8 @@ inline constexpr LayerInfo kLayerTable[] = {
     {"hud", kHud, true, "the text overlay: scene, time, energy, invariants"},
     {"actions", kActions, false, "the action variables and frequencies, added to the text overlay"},
     {"curvature", kCurvature, false,
-     "the Gaussian curvature K as the surface's colour: warm where K > 0, cool where K < 0, white where K = 0"},
+     "the Gaussian curvature K as the surface's colour: warm where K > 0, cool where K < 0, white where K = "
+     "0"},
 };
 
 constexpr unsigned default_layers() {

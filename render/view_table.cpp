@@ -26,8 +26,7 @@ constexpr unsigned kS = surface_bit(SurfaceKind::sphere), kH = surface_bit(Surfa
 
 // name, kind, three_d, the surfaces it shows, title, description; implementation.
 constexpr ViewRow kViews[] = {
-    {{"sphere", ViewKind::sphere, true, kS, "3-D sphere",
-      "the sphere in space, seen by an orbiting camera"},
+    {{"sphere", ViewKind::sphere, true, kS, "3-D sphere", "the sphere in space, seen by an orbiting camera"},
      &sphere_view},
     {{"disk", ViewKind::disk, false, kS | kH, "disk (flat map)",
       "the Poincaré disk (H²) or the stereographic plane (S²): angles true, geodesics circular arcs"},
@@ -45,8 +44,7 @@ constexpr ViewRow kViews[] = {
       "Beltrami's surface of curvature −1/R² in space: a strip of H² wrapped round its axis, ending at its "
       "rim"},
      &tractricoid_view},
-    {{"plane", ViewKind::plane, false, kE, "flat plane",
-      "the Euclidean plane, following the body"},
+    {{"plane", ViewKind::plane, false, kE, "flat plane", "the Euclidean plane, following the body"},
      &plane_view},
     {{"conformal", ViewKind::conformal, false, kS | kH | kE, "conformal (continuous in K)",
       "any curvature K in one flat map, angles true: stereographic (K > 0), the plane itself (K = 0), the "

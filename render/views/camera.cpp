@@ -92,7 +92,8 @@ double badness(const ViewModel& model, const Surface& surface, const ViewOptions
 }
 
 void clear_the_boxes(const ViewModel& model, const Surface& surface, ViewOptions& view,
-                     const std::vector<Sight>& points, const HudLayout& hud, std::initializer_list<double> pulls) {
+                     const std::vector<Sight>& points, const HudLayout& hud,
+                     std::initializer_list<double> pulls) {
   constexpr double kTurns[][2] = {{0, 0},    {0, 0.1},    {0, 0.2},     {0.1, 0.1},  {-0.1, 0.1},
                                   {0, 0.3},  {0.15, 0.2}, {-0.15, 0.2}, {0.2, 0.3},  {-0.2, 0.3},
                                   {0, 0.45}, {0.3, 0.3},  {-0.3, 0.3},  {0.3, 0.45}, {-0.3, 0.45},

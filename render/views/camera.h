@@ -44,7 +44,8 @@ double badness(const ViewModel& model, const Surface& surface, const ViewOptions
 // Tries the camera turned by each of a fixed list of (Δyaw, Δpitch) and drawn back by each factor
 // of `pulls`, in this order, and keeps the first that shows the sights best.
 void clear_the_boxes(const ViewModel& model, const Surface& surface, ViewOptions& view,
-                     const std::vector<Sight>& points, const HudLayout& hud, std::initializer_list<double> pulls);
+                     const std::vector<Sight>& points, const HudLayout& hud,
+                     std::initializer_list<double> pulls);
 
 // The orbit of a surface that stretches out of a unit ball (hyperboloid, tractricoid): orbit the
 // centre of the bounding box of the bodies and their recent trails, at the distance at which a

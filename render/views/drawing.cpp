@@ -89,8 +89,9 @@ void add_body(FrameScene& scene, const Surface& surface, const ViewModel& view, 
   const auto ring_point = [&](int ring, std::size_t i) {
     const double theta = 2 * kPi * static_cast<double>(i % outline.size()) / outline.size();
     const double f = scale * ring / kRings;
-    return to_float(lifted(view, surface, view.world_position(surface, exp_frame(surface, body, f * std::cos(theta),
-                                                                        f * std::sin(theta)))));
+    return to_float(lifted(
+        view, surface,
+        view.world_position(surface, exp_frame(surface, body, f * std::cos(theta), f * std::sin(theta)))));
   };
   for (int ring = 0; ring < kRings; ++ring)
     for (std::size_t i = 0; i < outline.size(); ++i) {

@@ -24,7 +24,7 @@ constexpr float kRevolutionDepthBias = 0.01f;
 // The K = 0 parallels: darker than the grid, so that the sign change is seen without the layer.
 const glm::vec4 kZeroCurvatureColor{0.20f, 0.18f, 0.30f, 1.0f};
 // The mesh: rings along the profile, slices round the axis.
-constexpr int kRings = 64, kSlices = 96;
+constexpr int kRings = 48, kSlices = 72;
 
 struct Shape {
   RevolutionSurface surface;
@@ -201,8 +201,13 @@ class RevolutionView final : public ViewModel {
     };
     const double normal_yaw =
         std::hypot(n.x, n.y) > 1e-6 ? std::atan2(n.y, n.x) : std::atan2(centre.y, centre.x);
+    const double facing_pitch = std::clamp(std::asin(std::clamp(n.z, -1.0, 1.0)), -1.2, 1.2);
+    // Most frames end here: from the body's own side, a little above, everything is seen (badness
+    // 0); the wide search (183 cameras, each casting a ray per sight) is for the rest.
+    for (const double pitch : {std::max(facing_pitch, 0.5), facing_pitch}) consider(normal_yaw, pitch, 1.0);
+    if (best < 3.0) return;  // nothing hidden or boxed: only the preferences are left to weigh
     for (const double pull : {1.0, 1.3, 1.6}) {
-      consider(normal_yaw, std::clamp(std::asin(std::clamp(n.z, -1.0, 1.0)), -1.2, 1.2), pull);
+      consider(normal_yaw, facing_pitch, pull);
       for (const double pitch : {1.15, 0.75, 0.35, -0.35, -0.75})
         for (int k = 0; k < 12; ++k) consider(normal_yaw + 2 * kPi * k / 12, pitch, pull);
     }

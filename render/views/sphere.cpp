@@ -42,7 +42,9 @@ class SphereView final : public ViewModel {
   glm::dvec3 world_position(const Surface& surface, const Vec3& X) const override {
     return glm::dvec3(X.x(), X.y(), X.z()) / surface.radius;
   }
-  glm::dvec3 normal(const Surface& /*surface*/, const glm::dvec3& w) const override { return glm::normalize(w); }
+  glm::dvec3 normal(const Surface& /*surface*/, const glm::dvec3& w) const override {
+    return glm::normalize(w);
+  }
 
   // A UV sphere of 64 slices and 32 stacks, circumscribed; parallels every 15°, meridians every 30°.
   StaticGeometry build_static(const Surface& surface) const override {
@@ -99,7 +101,8 @@ class SphereView final : public ViewModel {
     // otherwise end with the camera tilted over one of them and the other beside the limb, its
     // ellipse seen edge-on.
     clear_the_boxes(*this, snapshot.surface, view, points, hud, {1.0, 1.2, 1.45, 1.75});
-    if (badness(*this, snapshot.surface, view, points, hud) >= points.front().weight) {  // the main body lost: start from it
+    if (badness(*this, snapshot.surface, view, points, hud) >=
+        points.front().weight) {  // the main body lost: start from it
       const Vec3 m = snapshot.bodies.front().X.normalized();
       view.yaw = std::atan2(m.y(), m.x());
       view.pitch = std::clamp(std::asin(m.z()), -1.3, 1.3);

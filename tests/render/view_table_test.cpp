@@ -22,13 +22,14 @@ using testing::pixel_of;
 constexpr ViewKind kAllKinds[] = {ViewKind::sphere,      ViewKind::hyperboloid, ViewKind::disk,
                                   ViewKind::plane,       ViewKind::klein,       ViewKind::halfplane,
                                   ViewKind::tractricoid, ViewKind::conformal,   ViewKind::revolution};
-constexpr SurfaceKind kSurfaces[] = {SurfaceKind::sphere, SurfaceKind::pseudosphere, SurfaceKind::plane,
-                                     SurfaceKind::torus,  SurfaceKind::spheroid,     SurfaceKind::bump,
+constexpr SurfaceKind kSurfaces[] = {SurfaceKind::sphere,  SurfaceKind::pseudosphere, SurfaceKind::plane,
+                                     SurfaceKind::torus,   SurfaceKind::spheroid,     SurfaceKind::bump,
                                      SurfaceKind::catenoid};
 
 // A body off every special point of the surface, with a deformed frame.
 Snapshot sample_body(SurfaceKind surface) {
-  return curvature_varies(surface) ? body_on(surface, 0.7, 0.7, 1.2, 0.8) : body_at(surface, 2.0, 0.4, 0.7, 1.2, 0.8);
+  return curvature_varies(surface) ? body_on(surface, 0.7, 0.7, 1.2, 0.8)
+                                   : body_at(surface, 2.0, 0.4, 0.7, 1.2, 0.8);
 }
 
 // The first surface a view shows.

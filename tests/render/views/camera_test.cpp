@@ -64,7 +64,7 @@ TEST(Camera, BadnessWeighsTheSightsOutOfTheFrameBehindTheCameraOrUnderTheHud) {
   const std::vector<Sight> sights{
       {{0.0, 0.0, 0.0}, 1000.0}, {{3.97, 0.0, 0.0}, 5.0}, {{9.0, 0.0, 0.0}, 50.0}};
   EXPECT_DOUBLE_EQ(badness(plane, flat, view, sights, hud), 5.0 + 50.0);  // by the edge, beyond it
-  hud.hud = {300.0, 220.0, 40.0, 40.0};                             // over the frame's centre
+  hud.hud = {300.0, 220.0, 40.0, 40.0};                                   // over the frame's centre
   EXPECT_DOUBLE_EQ(badness(plane, flat, view, sights, hud), 1000.0 + 5.0 + 50.0);
 }
 

@@ -45,8 +45,10 @@ TEST(SphereView, TheMeshIsCircumscribedEveryFaceJustOutsideTheUnitSphere) {
 TEST(SphereView, PointsNearTheLimbOrBeyondItAreHiddenFromTheCamera) {
   const glm::dvec3 eye(0.0, 0.0, 3.4);
   EXPECT_FALSE(sphere().hidden(Surface(SurfaceKind::sphere, 1.0), {0.0, 0.0, 1.0}, eye));
-  EXPECT_FALSE(sphere().hidden(Surface(SurfaceKind::sphere, 1.0), {std::sin(0.9), 0.0, std::cos(0.9)}, eye));  // 52° from the camera's direction
-  EXPECT_TRUE(sphere().hidden(Surface(SurfaceKind::sphere, 1.0), {std::sin(1.2), 0.0, std::cos(1.2)}, eye));   // 69°: seen edge-on
+  EXPECT_FALSE(sphere().hidden(Surface(SurfaceKind::sphere, 1.0), {std::sin(0.9), 0.0, std::cos(0.9)},
+                               eye));  // 52° from the camera's direction
+  EXPECT_TRUE(sphere().hidden(Surface(SurfaceKind::sphere, 1.0), {std::sin(1.2), 0.0, std::cos(1.2)},
+                              eye));  // 69°: seen edge-on
   EXPECT_TRUE(sphere().hidden(Surface(SurfaceKind::sphere, 1.0), {0.0, 0.0, -1.0}, eye));
 }
 
@@ -55,7 +57,8 @@ TEST(SphereView, AimingTurnsTheCameraToABodyOnTheFarSide) {
   ViewOptions view;
   const FrameScene before = build_scene(s, view);
   const glm::dvec4 h = glm::inverse(glm::dmat4(before.view_projection)) * glm::dvec4(0, 0, 1, 0);
-  EXPECT_TRUE(sphere().hidden(Surface(SurfaceKind::sphere, 1.0), world_position(s.surface, view.kind, s.bodies[0].X), glm::dvec3(h) / h.w));
+  EXPECT_TRUE(sphere().hidden(Surface(SurfaceKind::sphere, 1.0),
+                              world_position(s.surface, view.kind, s.bodies[0].X), glm::dvec3(h) / h.w));
   aim_camera_at_body(view, s);
   const FrameScene after = build_scene(s, view);
   const std::optional<glm::dvec2> px = testing::pixel_of(after, view, s.surface, s.bodies[0].X);
