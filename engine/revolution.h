@@ -70,6 +70,9 @@ struct ProfilePicture {
   double length = 1.0;
   // [length] the smallest feature (the torus's tube, the bump's width): a body's scale
   double feature = 1.0;
+  // The spacing of the parallels a picture draws, in u: 30° of the torus's tube angle, 15° of the
+  // spheroid's polar angle, w/2 on the bump, c/2 along the catenoid.
+  double grid_step = 1.0;
 };
 
 // One table row per surface: the functions its file defines.

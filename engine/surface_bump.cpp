@@ -52,7 +52,7 @@ ProfileDomain bump_domain(const RevolutionSurface&) {
 
 // The plane out to ρ = 4w, where the bump has fallen to e⁻⁸ of its height.
 ProfilePicture bump_picture(const RevolutionSurface& s) {
-  return {0.0, 4.0 * s.width, std::max(4.0 * s.width, std::abs(s.height)), s.width};
+  return {0.0, 4.0 * s.width, std::max(4.0 * s.width, std::abs(s.height)), s.width, 0.5 * s.width};
 }
 
 }  // namespace

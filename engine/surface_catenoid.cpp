@@ -45,7 +45,7 @@ ProfileDomain catenoid_domain(const RevolutionSurface&) {
 
 // |z| ≤ 2c, where ρ = c cosh 2 ≈ 3.8c.
 ProfilePicture catenoid_picture(const RevolutionSurface& s) {
-  return {-2.0 * s.neck_radius, 2.0 * s.neck_radius, 3.0 * s.neck_radius, s.neck_radius};
+  return {-2.0 * s.neck_radius, 2.0 * s.neck_radius, 3.0 * s.neck_radius, s.neck_radius, 0.5 * s.neck_radius};
 }
 
 }  // namespace

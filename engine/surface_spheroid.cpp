@@ -48,7 +48,7 @@ ProfileDomain spheroid_domain(const RevolutionSurface&) {
 
 ProfilePicture spheroid_picture(const RevolutionSurface& s) {
   return {0.0, std::numbers::pi, std::max(s.equatorial_radius, s.polar_radius),
-          std::min(s.equatorial_radius, s.polar_radius)};
+          std::min(s.equatorial_radius, s.polar_radius), std::numbers::pi / 12};
 }
 
 }  // namespace

@@ -48,7 +48,8 @@ ProfileDomain torus_domain(const RevolutionSurface&) {
 }
 
 ProfilePicture torus_picture(const RevolutionSurface& s) {
-  return {-std::numbers::pi, std::numbers::pi, s.center_radius + s.tube_radius, s.tube_radius};
+  return {-std::numbers::pi, std::numbers::pi, s.center_radius + s.tube_radius, s.tube_radius,
+          std::numbers::pi / 6};
 }
 
 }  // namespace

@@ -394,6 +394,10 @@ std::string grid_line(const Snapshot& snapshot, const ViewOptions& view) {
       return "Grid: the image of a square grid of geodesic normal coordinates, every " +
              format("%g", kPlaneGridSpacing * body_scale_length(view.kind, snapshot.surface)) +
              " length units.";
+    case ViewKind::chart:
+      return "Chart: phi across (-pi to pi), u down; the background coloured by the Gaussian curvature K "
+             "(warm > 0, "
+             "cool < 0, white 0); meridians every 30 degrees, parallels, the K = 0 parallels darker.";
     case ViewKind::revolution:
       return std::string("Grid: meridians every 30 degrees and parallels; the K = 0 parallels darker.") +
              (view.layers & kCurvature

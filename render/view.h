@@ -21,6 +21,7 @@ enum class ViewKind {
   tractricoid,  // Beltrami's pseudosphere in ℝ³ (a horocyclic strip of H² wrapped round its axis)
   conformal,    // every surface: stereographic (S²), identity (plane), Poincaré (H²), continuous in K, 2-D
   revolution,   // a surface of revolution whose curvature varies (torus, spheroid, bump, catenoid) in ℝ³
+  chart,        // the same surfaces' chart (u, φ) unrolled flat, K as the background's colour, 2-D
 };
 
 // The one table of views: the name the API, the CLI and the UI use, the surfaces each shows, and

@@ -18,6 +18,7 @@ const ViewModel& plane_view();
 const ViewModel& conformal_view();
 
 const ViewModel& revolution_view();
+const ViewModel& chart_view();
 
 namespace {
 
@@ -54,6 +55,10 @@ constexpr ViewRow kViews[] = {
       "the torus, spheroid, bump or catenoid in space, with its meridians and parallels, its K = 0 "
       "circles marked, and the curvature layer colouring it by K"},
      &revolution_view},
+    {{"chart", ViewKind::chart, false, kVaryingCurvatureSurfaces, "chart (u, φ) with K",
+      "the surface's chart unrolled: φ across, u down, the background coloured by the curvature K (warm "
+      "> 0, cool < 0) with the K = 0 parallels dark; lengths and angles are not true"},
+     &chart_view},
 };
 
 constexpr auto kInfos = [] {

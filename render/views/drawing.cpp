@@ -48,6 +48,7 @@ void add_polyline(std::vector<Vertex>& lines, const Surface& surface, const View
     const glm::dvec3 wa = lifted(view, surface, view.world_position(surface, a)),
                      wb = lifted(view, surface, view.world_position(surface, b));
     if (clip && !(clip->near(glm::dvec2(wa)) && clip->near(glm::dvec2(wb)))) continue;
+    if (view.torn(wa, wb)) continue;
     add_segment(lines, wa, wb, color);
   }
 }
@@ -60,6 +61,7 @@ void add_dashed_polyline(std::vector<Vertex>& lines, const Surface& surface, con
     const glm::dvec3 a = lifted(view, surface, view.world_position(surface, points[i]));
     const glm::dvec3 b = lifted(view, surface, view.world_position(surface, points[i + 1]));
     if (clip && !(clip->near(glm::dvec2(a)) && clip->near(glm::dvec2(b)))) continue;
+    if (view.torn(a, b)) continue;
     const double length = glm::length(b - a);
     double done = 0.0;
     while (done < length) {
@@ -97,6 +99,8 @@ void add_body(FrameScene& scene, const Surface& surface, const ViewModel& view, 
     for (std::size_t i = 0; i < outline.size(); ++i) {
       const glm::vec3 a = ring_point(ring, i), b = ring_point(ring + 1, i), c = ring_point(ring + 1, i + 1),
                       d = ring_point(ring, i + 1);
+      if (view.torn(glm::dvec3(a), glm::dvec3(c)) || view.torn(glm::dvec3(b), glm::dvec3(d)))
+        continue;  // an ellipse across the chart's seam: its quads there
       scene.fills.insert(scene.fills.end(), {{a, fill}, {b, fill}, {c, fill}});
       if (ring > 0) scene.fills.insert(scene.fills.end(), {{a, fill}, {c, fill}, {d, fill}});
     }

@@ -11,6 +11,7 @@
 #include "engine/surface_geodesics.h"
 #include "render/views/camera.h"
 #include "render/views/drawing.h"
+#include "render/views/profile_drawing.h"
 #include "render/views/view_model.h"
 
 namespace spinfold::render {
@@ -21,61 +22,12 @@ namespace {
 // it by less than its sagitta (~1e-3 world units) on saddle parts, which this bias (a fraction of the
 // distance to the camera, as the sphere's) covers.
 constexpr float kRevolutionDepthBias = 0.01f;
-// The K = 0 parallels: darker than the grid, so that the sign change is seen without the layer.
-const glm::vec4 kZeroCurvatureColor{0.20f, 0.18f, 0.30f, 1.0f};
 // The mesh: rings along the profile, slices round the axis.
 constexpr int kRings = 48, kSlices = 72;
 
-struct Shape {
-  RevolutionSurface surface;
-  const RevolutionEntry* entry;
-  ProfilePicture picture;
-};
-Shape shape_of(const Surface& surface) {
-  const RevolutionSurface s = revolution_surface(surface);
-  const RevolutionEntry& entry = revolution_entry(s.kind);
-  return {s, &entry, entry.picture(s)};
-}
-
-// The parallels where K changes sign (bisected to rounding from a scan of 1024 steps).
-std::vector<double> zero_curvature_parallels(const Shape& shape) {
-  std::vector<double> zeros;
-  const auto K = [&](double u) { return shape.entry->profile(shape.surface, u).K; };
-  const int n = 1024;
-  const double lo = shape.picture.u_min, hi = shape.picture.u_max;
-  for (int i = 0; i < n; ++i) {
-    double a = lo + (hi - lo) * i / n, b = lo + (hi - lo) * (i + 1) / n;
-    if ((K(a) > 0.0) == (K(b) > 0.0)) continue;
-    for (int k = 0; k < 60; ++k) {
-      const double m = 0.5 * (a + b);
-      ((K(a) > 0.0) == (K(m) > 0.0) ? a : b) = m;
-    }
-    zeros.push_back(0.5 * (a + b));
-  }
-  return zeros;
-}
-
-// The parallels of the grid: every 30° of the torus's tube angle, 15° of the spheroid's polar angle,
-// a half width out on the bump, a half neck radius along the catenoid.
-std::vector<double> grid_parallels(const Shape& shape) {
-  const double lo = shape.picture.u_min, hi = shape.picture.u_max;
-  double step = 0.0;
-  switch (shape.surface.kind) {
-    case RevolutionKind::torus: step = kPi / 6; break;
-    case RevolutionKind::spheroid: step = kPi / 12; break;
-    case RevolutionKind::bump: step = 0.5 * shape.surface.width; break;
-    case RevolutionKind::catenoid: step = 0.5 * shape.surface.neck_radius; break;
-  }
-  std::vector<double> us;
-  const double first = std::ceil(lo / step - 1e-9) * step;
-  for (double u = first; u <= hi + 1e-9 * step; u += step)
-    if (shape.entry->profile(shape.surface, u).rho > 1e-9 * shape.picture.length) us.push_back(u);
-  return us;
-}
-
 // Whether the segment from the eye to a point of the surface crosses the surface before it: F
 // changes sign along it, sampled at 32 points short of the last 2% (the point itself).
-bool occluded(const Shape& shape, const glm::dvec3& eye_world, const glm::dvec3& at_world) {
+bool occluded(const ProfileShape& shape, const glm::dvec3& eye_world, const glm::dvec3& at_world) {
   const auto F = [&](const glm::dvec3& w) {
     const double l = shape.picture.length;
     return shape.entry->implicit(shape.surface, Vec3(w.x * l, w.y * l, w.z * l)).F;
@@ -91,11 +43,11 @@ bool occluded(const Shape& shape, const glm::dvec3& eye_world, const glm::dvec3&
 class RevolutionView final : public ViewModel {
  public:
   glm::dvec3 world_position(const Surface& surface, const Vec3& X) const override {
-    return glm::dvec3(X.x(), X.y(), X.z()) / shape_of(surface).picture.length;
+    return glm::dvec3(X.x(), X.y(), X.z()) / profile_shape(surface).picture.length;
   }
   // Within the drawn piece (the bump's plane to 4w, the catenoid to |z| = 2c).
   bool on_view(const Surface& surface, const Vec3& X) const override {
-    const Shape shape = shape_of(surface);
+    const ProfileShape shape = profile_shape(surface);
     const double u = shape.entry->u_of(shape.surface, X);
     const double margin = 1e-9 * (shape.picture.u_max - shape.picture.u_min);
     return u >= shape.picture.u_min - margin && u <= shape.picture.u_max + margin;
@@ -104,7 +56,7 @@ class RevolutionView final : public ViewModel {
     return "body 1 is beyond the piece of the surface drawn (the bump to 4w, the catenoid to |z| = 2c)";
   }
   glm::dvec3 normal(const Surface& surface, const glm::dvec3& w) const override {
-    const Shape shape = shape_of(surface);
+    const ProfileShape shape = profile_shape(surface);
     const double l = shape.picture.length;
     const Vec3 n = embedded_normal(RevolutionImplicit(shape.surface), Vec3(w.x * l, w.y * l, w.z * l));
     return {n.x(), n.y(), n.z()};
@@ -113,20 +65,18 @@ class RevolutionView final : public ViewModel {
   // The profile swept round the axis; each vertex lit by the surface's normal and tinted by the
   // curvature layer's colour of K there, scaled so that the largest |K| drawn is the full colour.
   StaticGeometry build_static(const Surface& surface) const override {
-    const Shape shape = shape_of(surface);
+    const ProfileShape shape = profile_shape(surface);
     const double l = shape.picture.length;
     StaticGeometry g;
     const auto u_of = [&](int i) {
       return shape.picture.u_min + (shape.picture.u_max - shape.picture.u_min) * i / kRings;
     };
-    double full = 0.0;
-    for (int i = 0; i <= kRings; ++i)
-      full = std::max(full, std::abs(shape.entry->profile(shape.surface, u_of(i)).K));
+    const double full = largest_curvature(shape, kRings);
     const auto vertex = [&](double u, double phi) {
       const RevolutionFrame f = revolution_frame(shape.surface, u, phi);
       const double K = shape.entry->profile(shape.surface, u).K;
       return LitVertex{to_float(glm::dvec3(f.X.x(), f.X.y(), f.X.z()) / l),
-                       to_float({f.n.x(), f.n.y(), f.n.z()}), curvature_color(K, full > 0.0 ? full : 1.0)};
+                       to_float({f.n.x(), f.n.y(), f.n.z()}), curvature_color(K, full)};
     };
     for (int i = 0; i < kRings; ++i)
       for (int j = 0; j < kSlices; ++j) {
@@ -154,10 +104,10 @@ class RevolutionView final : public ViewModel {
   glm::mat4 camera(const ViewOptions& view) const override { return orbit_camera(view, glm::dvec3(0.0)); }
   float depth_bias() const override { return kRevolutionDepthBias; }
   bool hidden(const Surface& surface, const glm::dvec3& at, const glm::dvec3& eye) const override {
-    return occluded(shape_of(surface), eye, at);
+    return occluded(profile_shape(surface), eye, at);
   }
   double body_scale_length(const Surface& surface) const override {
-    return shape_of(surface).picture.feature;
+    return profile_shape(surface).picture.feature;
   }
 
   // Orbiting the centre of the bodies and their recent trails at the distance that frames them
@@ -169,7 +119,8 @@ class RevolutionView final : public ViewModel {
   // wins over a far one that shows all of it edge-on.
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
     const Surface& surface = snapshot.surface;
-    const Vec3 n3 = embedded_normal(RevolutionImplicit(shape_of(surface).surface), snapshot.bodies.front().X);
+    const Vec3 n3 =
+        embedded_normal(RevolutionImplicit(profile_shape(surface).surface), snapshot.bodies.front().X);
     const glm::dvec3 n(n3.x(), n3.y(), n3.z());
     view.target.reset();
     const std::vector<Sight> points = sights(*this, snapshot, view, true);
@@ -179,7 +130,7 @@ class RevolutionView final : public ViewModel {
     const glm::dvec3 centre = 0.5 * (lo + hi);
     // At least 2.5 features round the body (a torus's tube and more), never less than a third of
     // the picture's unit: the body is seen on its surface, not alone.
-    const ProfilePicture picture = shape_of(surface).picture;
+    const ProfilePicture picture = profile_shape(surface).picture;
     double radius = std::clamp(2.5 * picture.feature / picture.length, 0.35, 1.0);
     for (const Sight& p : points) radius = std::max(radius, glm::length(p.at - centre));
     const double aspect = static_cast<double>(view.width) / view.height;

@@ -47,6 +47,9 @@ class ViewModel {
   // How far overlays sit above the surface along normal() so that the depth test keeps them
   // [world units]; 0: on it.
   virtual double lift() const { return 0.0; }
+  // Whether the map tears the segment between two world points (the chart's seam at φ = ±π, where
+  // a path that goes on round the surface reappears at the other edge): such a segment is left out.
+  virtual bool torn(const glm::dvec3& /*a*/, const glm::dvec3& /*b*/) const { return false; }
 
   // ---- Geometry that depends only on the surface (cached by static_geometry()).
   // Triangles of the surface and its grid, in world units; empty for a view whose background

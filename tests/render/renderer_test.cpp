@@ -547,7 +547,8 @@ INSTANTIATE_TEST_SUITE_P(
                       // Where the curvature varies: the torus with the curvature layer, the bump without.
                       Golden{"revolution_torus", "spin_vs_geodesic_torus", ViewKind::revolution, 12.0, 640,
                              480, kDefaultLayers | kCurvature},
-                      Golden{"revolution_bump", "trapped_spin_bump", ViewKind::revolution, 20.0}),
+                      Golden{"revolution_bump", "trapped_spin_bump", ViewKind::revolution, 20.0},
+                      Golden{"chart_torus", "spin_vs_geodesic_torus", ViewKind::chart, 16.0}),
     [](const auto& param) { return std::string(param.param.name); });
 
 }  // namespace

@@ -19,9 +19,9 @@ using testing::body_on;
 using testing::in_frame;
 using testing::pixel_of;
 
-constexpr ViewKind kAllKinds[] = {ViewKind::sphere,      ViewKind::hyperboloid, ViewKind::disk,
-                                  ViewKind::plane,       ViewKind::klein,       ViewKind::halfplane,
-                                  ViewKind::tractricoid, ViewKind::conformal,   ViewKind::revolution};
+constexpr ViewKind kAllKinds[] = {
+    ViewKind::sphere,    ViewKind::hyperboloid, ViewKind::disk,      ViewKind::plane,      ViewKind::klein,
+    ViewKind::halfplane, ViewKind::tractricoid, ViewKind::conformal, ViewKind::revolution, ViewKind::chart};
 constexpr SurfaceKind kSurfaces[] = {SurfaceKind::sphere,  SurfaceKind::pseudosphere, SurfaceKind::plane,
                                      SurfaceKind::torus,   SurfaceKind::spheroid,     SurfaceKind::bump,
                                      SurfaceKind::catenoid};

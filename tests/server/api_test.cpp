@@ -291,7 +291,7 @@ TEST_F(Api, TorusSessionRunsAndIsDrawnInTheRevolutionView) {
   auto sphere_view = c.Get("/api/v1/sessions/" + id + "/frame.png?view=sphere");
   ASSERT_TRUE(sphere_view);
   EXPECT_EQ(sphere_view->status, 422);
-  EXPECT_NE(sphere_view->body.find("the torus is shown in these views: revolution"), std::string::npos)
+  EXPECT_NE(sphere_view->body.find("the torus is shown in these views: revolution, chart"), std::string::npos)
       << sphere_view->body;
   auto deleted = c.Delete("/api/v1/sessions/" + id);
   ASSERT_TRUE(deleted);
@@ -881,9 +881,8 @@ TEST_F(Api, QueryValuesOutOfRangeOrOfTheWrongTypeNameTheValue) {
       {frame + "height=2.5", "height: must be a whole number from 16 to 4096 [pixels] (got 2.5)"},
       {frame + "yaw=nan", "yaw: must be a number from -100 to 100 [rad] (got nan)"},
       {frame + "view=cube",
-       "view: must be sphere, disk, hyperboloid, klein, halfplane, tractricoid, plane, conformal or "
-       "revolution (got "
-       "cube)"},
+       "view: must be sphere, disk, hyperboloid, klein, halfplane, tractricoid, plane, conformal, "
+       "revolution or chart (got cube)"},
       {frame + "view=klein", "view: the sphere is shown in these views: sphere, disk, conformal (got klein)"},
       {frame + "layers=body,glitter",
        "layers: 'glitter' is not one of surface, grid, body, frame, trail, hud, actions, curvature (got "

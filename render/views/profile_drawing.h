@@ -1,0 +1,32 @@
+// What the two pictures of a surface of revolution share (the revolution view in space, the chart
+// view flat): the surface's table row and picture, the parallels drawn, the K = 0 parallels, the
+// largest |K| drawn (the curvature colour's full scale).
+#pragma once
+
+#include <vector>
+
+#include "engine/revolution.h"
+#include "render/scene_builder.h"
+
+namespace spinfold::render {
+
+// The K = 0 parallels: darker than the grid, so that the sign change is seen without the layer.
+inline const glm::vec4 kZeroCurvatureColor{0.20f, 0.18f, 0.30f, 1.0f};
+
+struct ProfileShape {
+  RevolutionSurface surface;
+  const RevolutionEntry* entry;
+  ProfilePicture picture;
+  double K(double u) const { return entry->profile(surface, u).K; }
+};
+ProfileShape profile_shape(const Surface& surface);
+
+// The parallels where K changes sign within the drawn range (bisected to rounding from 1024 steps).
+std::vector<double> zero_curvature_parallels(const ProfileShape& shape);
+// The grid's parallels: whole multiples of the picture's grid_step within the drawn range, leaving
+// out the axis points (ρ = 0).
+std::vector<double> grid_parallels(const ProfileShape& shape);
+// The largest |K| at `samples` + 1 points of the drawn range (1 where K is 0 throughout).
+double largest_curvature(const ProfileShape& shape, int samples);
+
+}  // namespace spinfold::render
