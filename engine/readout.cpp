@@ -145,7 +145,9 @@ std::string inertia_text(const Body& body) {
 std::vector<std::string> readout_lines(const Scene& scene, const Readout& readout) {
   return {
       format("t = %.3f", readout.t),
-      format("energy error = %.2e", readout.energy_error),
+      // With friction the energy falls by design (dE/dt = −2R): the line names what it shows.
+      scene.friction ? format("energy change = %.2e (friction)", readout.energy_error)
+                     : format("energy error = %.2e", readout.energy_error),
       "integrator: " + std::string(readout.integrator) + (readout.status == Status::ok ? "" : "  [stopped]"),
       std::string(enum_name(scene.surface.kind)) +
           (curvature_varies(scene.surface.kind) ? format("  K = %.4f", readout.curvature.value_or(0.0))
