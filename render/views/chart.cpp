@@ -31,15 +31,8 @@ class ChartView final : public ViewModel {
     const ProfileShape shape = profile_shape(surface);
     return chart_position(shape.picture, shape.entry->u_of(shape.surface, X), std::atan2(X.y(), X.x()));
   }
-  bool on_view(const Surface& surface, const Vec3& X) const override {
-    const ProfileShape shape = profile_shape(surface);
-    const double u = shape.entry->u_of(shape.surface, X);
-    const double margin = 1e-9 * (shape.picture.u_max - shape.picture.u_min);
-    return u >= shape.picture.u_min - margin && u <= shape.picture.u_max + margin;
-  }
-  std::string_view off_view_note() const override {
-    return "body 1 is beyond the piece of the surface drawn (the bump to 4w, the catenoid to |z| = 2c)";
-  }
+  bool on_view(const Surface& surface, const Vec3& X) const override { return on_drawn_piece(surface, X); }
+  std::string_view off_view_note() const override { return kOffDrawnPieceNote; }
   // A step of more than a quarter of the width: across the seam (or over an axis point, where φ jumps).
   bool torn(const glm::dvec3& a, const glm::dvec3& b) const override { return std::abs(a.x - b.x) > 0.5; }
 

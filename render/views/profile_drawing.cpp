@@ -11,6 +11,13 @@ ProfileShape profile_shape(const Surface& surface) {
   return {s, &entry, entry.picture(s)};
 }
 
+bool on_drawn_piece(const Surface& surface, const Vec3& X) {
+  const ProfileShape shape = profile_shape(surface);
+  const double u = shape.entry->u_of(shape.surface, X);
+  const double margin = 1e-9 * (shape.picture.u_max - shape.picture.u_min);
+  return u >= shape.picture.u_min - margin && u <= shape.picture.u_max + margin;
+}
+
 std::vector<double> zero_curvature_parallels(const ProfileShape& shape) {
   std::vector<double> zeros;
   const int n = 1024;

@@ -3,6 +3,7 @@
 // largest |K| drawn (the curvature colour's full scale).
 #pragma once
 
+#include <string_view>
 #include <vector>
 
 #include "engine/revolution.h"
@@ -20,6 +21,12 @@ struct ProfileShape {
   double K(double u) const { return entry->profile(surface, u).K; }
 };
 ProfileShape profile_shape(const Surface& surface);
+
+// Whether X lies on the drawn range of u (the bump to 4w, the catenoid to |z| = 2c), and what the
+// HUD says of a main body beyond it.
+bool on_drawn_piece(const Surface& surface, const Vec3& X);
+inline constexpr std::string_view kOffDrawnPieceNote =
+    "body 1 is beyond the piece of the surface drawn (the bump to 4w, the catenoid to |z| = 2c)";
 
 // The parallels where K changes sign within the drawn range (bisected to rounding from 1024 steps).
 std::vector<double> zero_curvature_parallels(const ProfileShape& shape);

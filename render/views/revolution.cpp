@@ -46,15 +46,8 @@ class RevolutionView final : public ViewModel {
     return glm::dvec3(X.x(), X.y(), X.z()) / profile_shape(surface).picture.length;
   }
   // Within the drawn piece (the bump's plane to 4w, the catenoid to |z| = 2c).
-  bool on_view(const Surface& surface, const Vec3& X) const override {
-    const ProfileShape shape = profile_shape(surface);
-    const double u = shape.entry->u_of(shape.surface, X);
-    const double margin = 1e-9 * (shape.picture.u_max - shape.picture.u_min);
-    return u >= shape.picture.u_min - margin && u <= shape.picture.u_max + margin;
-  }
-  std::string_view off_view_note() const override {
-    return "body 1 is beyond the piece of the surface drawn (the bump to 4w, the catenoid to |z| = 2c)";
-  }
+  bool on_view(const Surface& surface, const Vec3& X) const override { return on_drawn_piece(surface, X); }
+  std::string_view off_view_note() const override { return kOffDrawnPieceNote; }
   glm::dvec3 normal(const Surface& surface, const glm::dvec3& w) const override {
     const ProfileShape shape = profile_shape(surface);
     const double l = shape.picture.length;
