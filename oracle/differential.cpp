@@ -7,6 +7,7 @@
 
 #include "codec/scene_json.h"
 #include "engine/chart.h"
+#include "engine/embedded_run.h"
 #include "engine/integrator.h"
 #include "engine/simulation.h"
 
@@ -60,6 +61,15 @@ B3 chart_apply(const Mat3& M, const B3& v) {
 }  // namespace
 
 EngineBody engine_body(const Scene& sc, const State& state, const OracleScene& scene) {
+  if (curvature_varies(sc.surface.kind)) {  // the chart-free state, in the scene's frame
+    const EmbeddedBody b = embedded_body(*make_embedded_scene(sc), state.y);
+    EngineBody out;
+    Body3& body = out.in_start_frame;
+    body.X = big3(b.X), body.V = big3(b.V), body.e1 = big3(b.e[0]), body.e2 = big3(b.e[1]);
+    body.W1 = big3(b.W[0]), body.W2 = big3(b.W[1]);
+    out.in_chart = body;
+    return out;
+  }
   // the engine's body in its chart's coordinates, then globally, then in the oracle's start frame
   const BodyKinematics k = chart_kinematics(sc, state.y);
   const Vec3 F2 = rotate_quarter(sc.surface, k.X, k.F1);
@@ -120,13 +130,169 @@ Verdict check(std::string_view scene_json, const IntegratorCase& c, double t_end
 
 // ---- the scene generator --------------------------------------------------------------------
 const std::vector<std::string>& regimes() {
-  static const std::vector<std::string> names = {"generic",   "undeformed", "pole",
-                                                 "band_edge", "far_h2",     "degenerate"};
+  static const std::vector<std::string> names = {
+      "generic",  "undeformed", "pole",     "band_edge", "far_h2",      "degenerate",    "torus",
+      "spheroid", "bump",       "catenoid", "axis",      "zero_circle", "inner_equator", "friction"};
   return names;
 }
 
+bool varying_regime(const std::string& regime) {
+  return regime == "torus" || regime == "spheroid" || regime == "bump" || regime == "catenoid" ||
+         regime == "axis" || regime == "zero_circle" || regime == "inner_equator" || regime == "friction";
+}
+
+namespace {
+
+// A scene on a surface whose curvature varies (physics-surfaces.md §1): the torus, spheroid, bump
+// and catenoid (a regime each, placed anywhere on it), an affine or rigid body (anisotropic J sometimes), no,
+// a gravity or a spring height potential, no, abc or polar internal potential, friction in the `friction`
+// regime; placed generically, on or near an axis point heading over it (`axis`: the spheroid's poles, the
+// bump's top), along and across the torus's K = 0 circles (`zero_circle`), on a thin torus's inner equator
+// where K is most negative (`inner_equator`).
+std::string random_varying_scene(const std::string& regime, std::mt19937_64& rng, unsigned long long seed) {
+  auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  auto coin = [&](double p) { return uni(0, 1) < p; };
+  auto pick = [&](int n) { return static_cast<int>(std::uniform_int_distribution<int>(0, n - 1)(rng)); };
+  const double pi = std::numbers::pi;
+  json j;
+  j["name"] = "oracle_" + regime + "_" + std::to_string(seed);
+
+  // surface: 0 torus, 1 spheroid, 2 bump, 3 catenoid (one per regime of that name, any in `friction`)
+  int kind = pick(4);
+  if (regime == "torus" || regime == "zero_circle" || regime == "inner_equator") kind = 0;
+  if (regime == "spheroid") kind = 1;
+  if (regime == "bump") kind = 2;
+  if (regime == "catenoid") kind = 3;
+  if (regime == "axis") kind = coin(0.5) ? 1 : 2;
+  double u = 0;  // the start on the profile
+  bool on_axis = false;
+  switch (kind) {
+    case 0: {
+      const double a = uni(0.5, 1.2), gap = regime == "inner_equator" ? uni(0.3, 0.6) : uni(0.5, 2.0);
+      j["surface"] = {{"kind", "torus"}, {"tube_radius", a}, {"center_radius", a + gap}};
+      if (regime == "zero_circle")
+        u = (coin(0.5) ? 0.5 : -0.5) * pi + (coin(0.3) ? 0.0 : uni(-0.05, 0.05));
+      else if (regime == "inner_equator")
+        u = pi + uni(-0.1, 0.1);
+      else
+        u = uni(-pi, pi);
+      break;
+    }
+    case 1: {
+      const double a = uni(0.7, 2.0), b = coin(0.2) ? a : uni(0.5, 2.0);
+      j["surface"] = {{"kind", "spheroid"}, {"equatorial_radius", a}, {"polar_radius", b}};
+      if (regime == "axis") {
+        const double d[] = {0.0, 1e-9, 1e-4, 0.01, 0.05};
+        u = d[pick(5)];
+        on_axis = u == 0.0;
+        if (coin(0.4)) u = pi - u;  // the south pole
+      } else {
+        u = uni(0.1, pi - 0.1);
+      }
+      break;
+    }
+    case 2: {
+      const double h = uni(0.3, 1.5) * (coin(0.5) ? 1 : -1), w = uni(0.5, 1.5);
+      j["surface"] = {{"kind", "bump"}, {"height", h}, {"width", w}};
+      if (regime == "axis") {
+        const double d[] = {0.0, 1e-9, 1e-4, 0.01, 0.05};
+        u = d[pick(5)] * w;
+        on_axis = u == 0.0;
+      } else {
+        u = uni(0.1, 3.0) * w;
+      }
+      break;
+    }
+    default: {
+      const double c = uni(0.5, 1.5);
+      j["surface"] = {{"kind", "catenoid"}, {"neck_radius", c}};
+      u = uni(-1.5, 1.5) * c;
+      break;
+    }
+  }
+
+  // body: affine or rigid (the incompressible body runs only under the chart's splitting methods)
+  const bool rigid = coin(0.35);
+  json body = {{"mass", uni(0.5, 2.0)}, {"model", rigid ? "rigid" : "affine"}};
+  if (coin(0.35)) {
+    const double a = uni(0.1, 0.5), d = uni(0.1, 0.5), o = uni(-0.4, 0.4) * std::sqrt(a * d);
+    body["inertia"] = json::array({json::array({a, o}), json::array({o, d})});
+  } else {
+    body["inertia"] = uni(0.1, 0.5);
+  }
+  j["body"] = body;
+
+  double lambda = uni(0.6, 1.4), mu = uni(0.3, 1.2);
+  if (std::abs(lambda - mu) < 0.1) mu = lambda - 0.2;
+  double lambda_dot = uni(-0.3, 0.3), mu_dot = uni(-0.3, 0.3), beta_dot = uni(-0.5, 0.5);
+  if (rigid) mu = lambda, lambda_dot = mu_dot = beta_dot = 0;
+
+  json potential = json::object();
+  const int height = pick(3);  // none, gravity, spring
+  if (height == 1) potential["height"] = {{"kind", "gravity"}, {"g", uni(-0.5, 0.5)}};
+  if (height == 2) potential["height"] = {{"kind", "spring"}, {"k", uni(0.1, 1.0)}};
+  if (!rigid) {
+    const int def = pick(3);  // none, abc, polar
+    if (def == 1)
+      potential["deformation"] = {{"kind", "abc"},
+                                  {"A", coin(0.5) ? uni(0.005, 0.05) : 0.0},
+                                  {"B", coin(0.7) ? uni(0.05, 0.4) : 0.0},
+                                  {"C", uni(0.05, 0.3)}};
+    else if (def == 2)  // the cot2 form only: the literal one's a²b denominator makes the internal
+                        // motion stiff near λ = μ, which is the flat motion (§4's decoupling) and is
+                        // tested on the constant-curvature surfaces; here the surface is under test
+      potential["deformation"] = {
+          {"kind", "polar"}, {"gtilde", -uni(0.1, 0.5)}, {"ghat", uni(0.05, 0.2)}, {"form", "cot2"}};
+  }
+  j["potential"] = potential;
+  if (regime == "friction") {
+    json friction = json::object();
+    if (coin(0.8)) friction["translational"] = uni(0.0, 0.3);
+    if (coin(0.8) || friction.empty()) friction["internal"] = uni(0.0, 0.2);
+    j["friction"] = friction;
+  }
+
+  json q = {{"u", u},
+            {"phi", uni(-pi, pi)},
+            {"alpha", uni(-pi, pi)},
+            {"beta", uni(-pi, pi)},
+            {"lambda", lambda},
+            {"mu", mu},
+            {"lambda_dot", lambda_dot},
+            {"mu_dot", mu_dot},
+            {"beta_dot", beta_dot}};
+  const double speed = uni(0.0, 1.0);
+  if (on_axis) {  // E₂ is undefined there: along E₁ (over the axis for heading π at the bump's top)
+    q["speed"] = speed;
+    q["heading"] = coin(0.5) ? 0.0 : pi;
+  } else if (regime == "axis") {  // near it, heading (nearly) over it
+    q["speed"] = speed;
+    q["heading"] = (u < 1.0 ? pi : 0.0) + uni(-1e-3, 1e-3);
+  } else if (regime == "zero_circle") {  // along the circle or across it
+    q["speed"] = uni(0.2, 1.0);
+    q["heading"] = coin(0.5) ? pi / 2 + uni(-0.3, 0.3) : uni(-pi, pi);
+  } else if (coin(0.5)) {
+    q["speed"] = speed;
+    q["heading"] = uni(-pi, pi);
+  } else {
+    q["u_dot"] = uni(-0.7, 0.7);
+    q["phi_dot"] = uni(-0.5, 0.5);
+  }
+  // a spin (needed on the axis, where φ̇ is undefined), or α̇
+  if (on_axis || regime == "axis" || regime == "zero_circle" || coin(0.5))
+    q["spin"] = uni(-1.0, 1.0) * (regime == "zero_circle" ? 3.0 : 1.0);
+  else
+    q["alpha_dot"] = uni(-1.0, 1.0);
+  j["initial"] = q;
+  j["integrator"] = {{"name", "auto"}};
+  return j.dump(2);
+}
+
+}  // namespace
+
 std::string random_scene(const std::string& regime, unsigned long long seed) {
   std::mt19937_64 rng(seed * 7919 + std::hash<std::string>{}(regime));
+  if (varying_regime(regime)) return random_varying_scene(regime, rng, seed);
   auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
   auto coin = [&](double p) { return uni(0, 1) < p; };
   auto pick = [&](int n) { return static_cast<int>(std::uniform_int_distribution<int>(0, n - 1)(rng)); };

@@ -59,5 +59,9 @@ Verdict check(std::string_view scene_json, const IntegratorCase& c, double t_end
 // seed). Regimes: see regimes().
 std::string random_scene(const std::string& regime, unsigned long long seed);
 const std::vector<std::string>& regimes();
+// The regimes on surfaces whose curvature varies (torus, spheroid, bump, catenoid, axis, zero_circle,
+// inner_equator, friction):
+// there the chart's splitting methods and `exact` are refused, not run.
+bool varying_regime(const std::string& regime);
 
 }  // namespace spinfold::oracle

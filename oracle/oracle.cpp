@@ -1,8 +1,11 @@
 #include "oracle/oracle.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace spinfold::oracle {
@@ -57,6 +60,11 @@ inline Quad sinh(Quad x) {
 inline Quad cosh(Quad x) {
   return from_big(boost::multiprecision::cosh(to_big(x)));
 }
+// exp (the bump's height) through the 50-digit type: exact to quad's precision, slow, used once per
+// field evaluation
+inline Quad exp(Quad x) {
+  return from_big(boost::multiprecision::exp(to_big(x)));
+}
 inline Big sqrt(const Big& x) {
   return boost::multiprecision::sqrt(x);
 }
@@ -71,6 +79,12 @@ inline Big sinh(const Big& x) {
 }
 inline Big cosh(const Big& x) {
   return boost::multiprecision::cosh(x);
+}
+inline Big exp(const Big& x) {
+  return boost::multiprecision::exp(x);
+}
+inline Big atan2(const Big& y, const Big& x) {
+  return boost::multiprecision::atan2(y, x);
 }
 inline Big abs(const Big& x) {
   return boost::multiprecision::abs(x);
@@ -156,6 +170,18 @@ Dual<T> cst(const T& c) {
 
 // ---- the problem in the start frame --------------------------------------------------------
 template <class T>
+using M3 = std::array<V3<T>, 3>;  // rows
+
+template <class T>
+T dot3(const V3<T>& a, const V3<T>& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+template <class T>
+V3<T> mat_vec(const M3<T>& M, const V3<T>& v) {
+  return {dot3(M[0], v), dot3(M[1], v), dot3(M[2], v)};
+}
+
+template <class T>
 struct Problem {
   Kind kind;
   Model model;
@@ -168,14 +194,89 @@ struct Problem {
   DefKind def;
   T A, B, C, ghat, gtilde;
   bool literal;
-  T spin_rigid, omega_rigid;  // rigid: s and the rate s/(2Jλ₀²)
-  T det_c;                    // incompressible: det L
+  T inertia_rigid;  // rigid: I = 2 J_iso λ₀² (physics-surfaces.md §2)
+  T lambda0_sq;     // rigid: λ₀²
+  T det_c;          // incompressible: det L
+  // where the curvature varies: the surface's parameters, the height potential, friction
+  T tube, centre, equatorial, polar, bump_h, bump_w, neck;
+  HeightKind height;
+  T height_k;  // g (gravity) or k (spring)
+  T gamma_t, gamma_i;
 
+  bool implicit() const { return implicit_kind(kind); }
   T eta() const { return kind == Kind::pseudosphere ? T(-1) : T(1); }
   T dot(const V3<T>& a, const V3<T>& b) const { return a[0] * b[0] + a[1] * b[1] + eta() * a[2] * b[2]; }
   // k = 1/⟨X,X⟩ (0 on the plane): the stabilised form of §7
   T kfac(const V3<T>& X) const { return kind == Kind::plane ? T(0) : T(1) / dot(X, X); }
+
+  // ∇F and Hess F of the implicit surfaces (physics-surfaces.md §1's table, written out here).
+  V3<T> grad_of(const V3<T>& X) const {
+    const T x = X[0], y = X[1], z = X[2];
+    switch (kind) {
+      case Kind::torus: {
+        const T k = 4 * (dot3(X, X) + centre * centre - tube * tube), c8 = 8 * centre * centre;
+        return {k * x - c8 * x, k * y - c8 * y, k * z};
+      }
+      case Kind::spheroid:
+        return {2 * x / (equatorial * equatorial), 2 * y / (equatorial * equatorial),
+                2 * z / (polar * polar)};
+      case Kind::bump: {
+        const T G = bump_G(X), w2 = bump_w * bump_w;
+        return {x * G / w2, y * G / w2, T(1)};
+      }
+      case Kind::catenoid: return {2 * x, 2 * y, -neck * num::sinh(2 * z / neck)};
+      default: return {T(0), T(0), T(1)};
+    }
+  }
+  M3<T> hess_of(const V3<T>& X) const {
+    const T x = X[0], y = X[1], z = X[2], zero(0);
+    switch (kind) {
+      case Kind::torus: {
+        const T k = 4 * (dot3(X, X) + centre * centre - tube * tube), c8 = 8 * centre * centre;
+        return {V3<T>{k + 8 * x * x - c8, 8 * x * y, 8 * x * z},
+                V3<T>{8 * x * y, k + 8 * y * y - c8, 8 * y * z}, V3<T>{8 * x * z, 8 * y * z, k + 8 * z * z}};
+      }
+      case Kind::spheroid: {
+        const T a2 = 2 / (equatorial * equatorial);
+        return {V3<T>{a2, zero, zero}, V3<T>{zero, a2, zero}, V3<T>{zero, zero, 2 / (polar * polar)}};
+      }
+      case Kind::bump: {
+        const T G = bump_G(X), w2 = bump_w * bump_w, w4 = w2 * w2;
+        return {V3<T>{G / w2 - x * x * G / w4, -x * y * G / w4, zero},
+                V3<T>{-x * y * G / w4, G / w2 - y * y * G / w4, zero}, V3<T>{zero, zero, zero}};
+      }
+      case Kind::catenoid:
+        return {V3<T>{T(2), zero, zero}, V3<T>{zero, T(2), zero},
+                V3<T>{zero, zero, -2 * num::cosh(2 * z / neck)}};
+      default: return {V3<T>{zero, zero, zero}, V3<T>{zero, zero, zero}, V3<T>{zero, zero, zero}};
+    }
+  }
+  // The last point's ∇F, Hess F and n: a field evaluation asks for them at one X many times (the
+  // bump's exp and the catenoid's sinh, cosh go through the 50-digit type).
+  struct Geometry {
+    V3<T> X, g, n;
+    M3<T> H;
+    bool valid = false;
+  };
+  mutable Geometry geometry;
+  const Geometry& at(const V3<T>& X) const {
+    if (!geometry.valid || geometry.X != X) {
+      geometry.X = X;
+      geometry.g = grad_of(X);
+      geometry.H = hess_of(X);
+      geometry.n = (T(1) / num::sqrt(dot3(geometry.g, geometry.g))) * geometry.g;
+      geometry.valid = true;
+    }
+    return geometry;
+  }
+  V3<T> grad(const V3<T>& X) const { return at(X).g; }
+  M3<T> hess(const V3<T>& X) const { return at(X).H; }
+  T bump_G(const V3<T>& X) const {
+    return bump_h * num::exp(-(X[0] * X[0] + X[1] * X[1]) / (2 * bump_w * bump_w));
+  }
+
   V3<T> normal(const V3<T>& X) const {
+    if (implicit()) return at(X).n;
     if (kind == Kind::plane) return {T(0), T(0), T(1)};
     return (T(1) / R) * X;
   }
@@ -188,26 +289,92 @@ struct Problem {
     const V3<T> c = cross(a, b), n = normal(X);
     return c[0] * n[0] + c[1] * n[1] + c[2] * n[2];
   }
-  V3<T> P(const V3<T>& X, const V3<T>& w) const { return w - (kfac(X) * dot(w, X)) * X; }
+  V3<T> P(const V3<T>& X, const V3<T>& w) const {
+    if (implicit()) {
+      const V3<T> n = normal(X);
+      return w - dot3(n, w) * n;
+    }
+    return w - (kfac(X) * dot(w, X)) * X;
+  }
+  // The normal part of d(a)/dt for a tangent field a along a path with velocity V (the second
+  // fundamental form): k⟨a, V⟩X at constant curvature, (aᵀ Hess F V/|∇F|²) ∇F on an implicit surface.
+  V3<T> bend(const V3<T>& X, const V3<T>& a, const V3<T>& V) const {
+    if (!implicit()) return (kfac(X) * dot(a, V)) * X;
+    const V3<T> gr = grad(X);
+    return (dot3(a, mat_vec(hess(X), V)) / dot3(gr, gr)) * gr;
+  }
+  // Gaussian curvature: constant, or K = gᵀ adj(Hess F) g / |g|⁴ (the bordered Hessian, §1).
+  T curvature(const V3<T>& X) const {
+    if (!implicit()) return K;
+    const V3<T> gr = grad(X);
+    const M3<T> H = hess(X);
+    const M3<T> adj{V3<T>{H[1][1] * H[2][2] - H[1][2] * H[2][1], H[0][2] * H[2][1] - H[0][1] * H[2][2],
+                          H[0][1] * H[1][2] - H[0][2] * H[1][1]},
+                    V3<T>{H[1][2] * H[2][0] - H[1][0] * H[2][2], H[0][0] * H[2][2] - H[0][2] * H[2][0],
+                          H[0][2] * H[1][0] - H[0][0] * H[1][2]},
+                    V3<T>{H[1][0] * H[2][1] - H[1][1] * H[2][0], H[0][1] * H[2][0] - H[0][0] * H[2][1],
+                          H[0][0] * H[1][1] - H[0][1] * H[1][0]}};
+    const T g2 = dot3(gr, gr);
+    return dot3(gr, mat_vec(adj, gr)) / (g2 * g2);
+  }
+  // §7's shape-operator bracket Π Σ J^{AB}(Dnᵀ W_A ⟨e_B, Dn V⟩ − Dnᵀ e_A ⟨W_B, Dn V⟩), Dn = ΠH/ν,
+  // Dnᵀ = HΠ/ν: the spin–curvature force without K or s.
+  V3<T> bracket(const V3<T>& X, const V3<T>* e, const V3<T>* W, const V3<T>& V) const {
+    const V3<T> gr = grad(X);
+    const M3<T> H = hess(X);
+    const T nu = num::sqrt(dot3(gr, gr));
+    auto Dn = [&](const V3<T>& v) { return (T(1) / nu) * P(X, mat_vec(H, v)); };
+    auto DnT = [&](const V3<T>& v) { return (T(1) / nu) * mat_vec(H, P(X, v)); };
+    const V3<T> DnV = Dn(V);
+    V3<T> sum{T(0), T(0), T(0)};
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b)
+        sum = sum + J[a * 2 + b] * (dot3(e[b], DnV) * DnT(W[a]) - dot3(W[b], DnV) * DnT(e[a]));
+    return P(X, sum);
+  }
+
+  // V_h(z) (gravity m g z, spring k z²/2) and its derivative in z.
+  T height_potential(const V3<T>& X, T* dVdz) const {
+    const T z = X[2];
+    if (height == HeightKind::gravity) {
+      if (dVdz) *dVdz = m * height_k;
+      return m * height_k * z;
+    }
+    if (height == HeightKind::spring) {
+      if (dVdz) *dVdz = height_k * z;
+      return height_k * z * z / 2;
+    }
+    if (dVdz) *dVdz = T(0);
+    return T(0);
+  }
 
   // V_r and its gradient (a vector) at X.
-  T radial_potential(const V3<T>& X, V3<T>* grad) const {
+  T radial_potential(const V3<T>& X, V3<T>* grad_out) const {
     if (!radial) {
-      if (grad) *grad = {T(0), T(0), T(0)};
+      if (grad_out) *grad_out = {T(0), T(0), T(0)};
       return T(0);
     }
     if (kind == Kind::plane) {
       const V3<T> d = X - O;
       const T rho2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-      if (grad) *grad = (T(-2) * g / (rho2 * rho2)) * d;
+      if (grad_out) *grad_out = (T(-2) * g / (rho2 * rho2)) * d;
       return g / rho2;
     }
     const Dual<T> u{K * dot(X, O), T(1)};  // u = C(r)
     const Dual<T> one = cst(T(1));
     const Dual<T> V =
         kind == Kind::sphere ? cst(g) / ((one - u) * (one + u)) : cst(g / (R * R)) / ((u - one) * (u + one));
-    if (grad) *grad = (V.d * K) * O;
+    if (grad_out) *grad_out = (V.d * K) * O;
     return V.v;
+  }
+  // −∇(V_r + V_h), before the projection.
+  V3<T> position_force(const V3<T>& X) const {
+    V3<T> gr;
+    radial_potential(X, &gr);
+    T dVdz;
+    height_potential(X, &dVdz);
+    gr[2] += dVdz;
+    return T(-1) * gr;
   }
   // V(a, b), a = x², b = y²; dVa, dVb its partial derivatives.
   template <class S>
@@ -246,37 +413,48 @@ struct Problem {
     return da.v;
   }
   T spin(const V3<T>& X, const V3<T>* e, const V3<T>* W) const {
-    if (model == Model::rigid) return spin_rigid;
     T s = 0;
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b) s += J[b * 2 + a] * omega(X, e[a], W[b]);
     return s;
   }
-  int size() const { return model == Model::rigid ? 9 : 18; }
+  // rigid: [X, V, e₁, s, D]; affine: [X, V, e₁, e₂, W₁, W₂, D]; D = ∫2R dt, the energy friction took.
+  int size() const { return model == Model::rigid ? 11 : 19; }
+  // The rigid body's e₂ = n × e₁ and W_A = (s/I) n × e_A.
+  void rigid_frame(const V3<T>& X, const V3<T>& e1, const T& s, V3<T>* e, V3<T>* W) const {
+    e[0] = e1, e[1] = jrot(X, e1);
+    const T w = s / inertia_rigid;
+    W[0] = w * e[1], W[1] = w * jrot(X, e[1]);
+  }
 
   void field(const T* y, T* f) const {
     V3<T> X{y[0], y[1], y[2]}, V{y[3], y[4], y[5]};
-    const T k = kfac(X);
-    V3<T> gradr;
-    radial_potential(X, &gradr);
-    const V3<T> F = T(-1) * P(X, gradr);
+    const V3<T> F = P(X, position_force(X) - gamma_t * V);
     auto put = [&](int i, const V3<T>& v) { f[i] = v[0], f[i + 1] = v[1], f[i + 2] = v[2]; };
     put(0, V);
     if (model == Model::rigid) {
-      const V3<T> e1{y[6], y[7], y[8]};
-      put(3, (T(1) / m) * ((K * spin_rigid) * jrot(X, V) + F) - (k * dot(V, V)) * X);
-      put(6, omega_rigid * jrot(X, e1) - (k * dot(e1, V)) * X);
+      const T s = y[9];
+      V3<T> e[2], W[2];
+      rigid_frame(X, {y[6], y[7], y[8]}, s, e, W);
+      // the orbit: the bracket where the curvature varies (the engine writes K s n × V there)
+      const V3<T> spin_force = implicit() ? bracket(X, e, W, V) : (K * s) * jrot(X, V);
+      put(3, (T(1) / m) * (spin_force + F) - bend(X, V, V));
+      put(6, W[0] - bend(X, e[0], V));
+      f[9] = T(-2) * gamma_i * lambda0_sq * s / inertia_rigid;
+      f[10] = gamma_t * dot(V, V) + gamma_i * (dot(W[0], W[0]) + dot(W[1], W[1]));
       return;
     }
     const V3<T> e[2] = {{y[6], y[7], y[8]}, {y[9], y[10], y[11]}};
     const V3<T> W[2] = {{y[12], y[13], y[14]}, {y[15], y[16], y[17]}};
     const T s = spin(X, e, W);
-    put(3, (T(1) / m) * ((K * s) * jrot(X, V) + F) - (k * dot(V, V)) * X);
+    // the orbit: K s n × V, K from the bordered Hessian where the curvature varies (the engine
+    // writes §7's bracket there)
+    put(3, (T(1) / m) * ((curvature(X) * s) * jrot(X, V) + F) - bend(X, V, V));
     T Va, Vb;
     deformation(X, e[0], e[1], &Va, &Vb);
     const V3<T> je1 = jrot(X, e[0]), je2 = jrot(X, e[1]);
-    const V3<T> G[2] = {P(X, Va * (e[0] + je2) + Vb * (e[0] - je2)),
-                        P(X, Va * (e[1] - je1) + Vb * (e[1] + je1))};
+    const V3<T> G[2] = {P(X, Va * (e[0] + je2) + Vb * (e[0] - je2) + gamma_i * W[0]),
+                        P(X, Va * (e[1] - je1) + Vb * (e[1] + je1) + gamma_i * W[1])};
     V3<T> acc[2];
     for (int a = 0; a < 2; ++a) acc[a] = T(-1) * (Jinv[0 * 2 + a] * G[0] + Jinv[1 * 2 + a] * G[1]);
     if (model == Model::incompressible) {
@@ -290,14 +468,16 @@ struct Problem {
       for (int a = 0; a < 2; ++a) acc[a] = acc[a] + nu * c[a];
     }
     for (int a = 0; a < 2; ++a) {
-      put(6 + 3 * a, W[a] - (k * dot(e[a], V)) * X);
-      put(12 + 3 * a, acc[a] - (k * dot(W[a], V)) * X);
+      put(6 + 3 * a, W[a] - bend(X, e[a], V));
+      put(12 + 3 * a, acc[a] - bend(X, W[a], V));
     }
+    f[18] = gamma_t * dot(V, V) + gamma_i * (dot(W[0], W[0]) + dot(W[1], W[1]));
   }
 
-  T energy(const V3<T>& X, const V3<T>& V, const V3<T>* e, const V3<T>* W) const {
-    T H = m * dot(V, V) / 2 + radial_potential(X, nullptr);
-    if (model == Model::rigid) return H + spin_rigid * spin_rigid / (4 * J_iso * dot(e[0], e[0]));
+  // H (rigid: s is the spin carried by the state; its I from |e₁|²).
+  T energy(const V3<T>& X, const V3<T>& V, const V3<T>* e, const V3<T>* W, const T& s_rigid) const {
+    T H = m * dot(V, V) / 2 + radial_potential(X, nullptr) + height_potential(X, nullptr);
+    if (model == Model::rigid) return H + s_rigid * s_rigid / (4 * J_iso * dot(e[0], e[0]));
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b) H += J[a * 2 + b] * dot(W[a], W[b]) / 2;
     return H + deformation(X, e[0], e[1], nullptr, nullptr);
@@ -343,16 +523,26 @@ OracleScene read_scene(std::string_view json_text) {
     }
   } else {
     const std::string kind = surface.value("kind", std::string("sphere"));
-    if (kind == "sphere")
-      s.kind = Kind::sphere;
-    else if (kind == "pseudosphere")
-      s.kind = Kind::pseudosphere;
-    else if (kind == "plane")
-      s.kind = Kind::plane;
-    else
-      throw std::runtime_error("surface.kind: unknown '" + kind + "'");
+    const std::pair<const char*, Kind> kinds[] = {
+        {"sphere", Kind::sphere},    {"pseudosphere", Kind::pseudosphere}, {"plane", Kind::plane},
+        {"torus", Kind::torus},      {"spheroid", Kind::spheroid},         {"bump", Kind::bump},
+        {"catenoid", Kind::catenoid}};
+    const auto it =
+        std::find_if(std::begin(kinds), std::end(kinds), [&](const auto& k) { return kind == k.first; });
+    if (it == std::end(kinds)) throw std::runtime_error("surface.kind: unknown '" + kind + "'");
+    s.kind = it->second;
     s.R = number(surface, "radius", 1.0, "surface");
+    s.tube_radius = number(surface, "tube_radius", s.tube_radius, "surface");
+    s.center_radius = number(surface, "center_radius", s.center_radius, "surface");
+    s.equatorial_radius = number(surface, "equatorial_radius", s.equatorial_radius, "surface");
+    s.polar_radius = number(surface, "polar_radius", s.polar_radius, "surface");
+    s.bump_height = number(surface, "height", s.bump_height, "surface");
+    s.bump_width = number(surface, "width", s.bump_width, "surface");
+    s.neck_radius = number(surface, "neck_radius", s.neck_radius, "surface");
   }
+  const json& friction = block(j, "friction");
+  s.friction_t = number(friction, "translational", 0.0, "friction");
+  s.friction_i = number(friction, "internal", 0.0, "friction");
   const json& body = block(j, "body");
   s.mass = number(body, "mass", 1.0, "body");
   if (const auto it = body.find("inertia"); it != body.end() && it->is_array()) {
@@ -387,9 +577,22 @@ OracleScene read_scene(std::string_view json_text) {
       throw std::runtime_error("potential.deformation.kind: unknown '" + kind + "'");
     }
   }
+  if (const auto it = potential.find("height"); it != potential.end() && it->is_object()) {
+    const std::string kind = it->value("kind", std::string());
+    if (kind == "gravity") {
+      s.height = HeightKind::gravity;
+      s.height_coefficient = number(*it, "g", 0, "potential.height");
+    } else if (kind == "spring") {
+      s.height = HeightKind::spring;
+      s.height_coefficient = number(*it, "k", 0, "potential.height");
+    } else {
+      throw std::runtime_error("potential.height.kind: unknown '" + kind + "'");
+    }
+  }
   const json& q = block(j, "initial");
   const std::string p = "initial";
   s.r = number(q, "r", 1.0, p), s.phi = number(q, "phi", 0.0, p);
+  s.u = number(q, "u", 0.0, p), s.u_dot = number(q, "u_dot", 0.0, p);
   s.alpha = number(q, "alpha", 0.0, p), s.beta = number(q, "beta", 0.0, p);
   s.lambda = number(q, "lambda", 1.0, p), s.mu = number(q, "mu", 1.0, p);
   s.r_dot = number(q, "r_dot", 0.0, p), s.phi_dot = number(q, "phi_dot", 0.0, p);
@@ -406,6 +609,10 @@ Isometry start_isometry(const OracleScene& s) {
   std::array<std::array<Big, 3>, 3> T2{};
   Isometry iso;
   iso.b = {Big(0), Big(0), Big(0)};
+  if (implicit_kind(s.kind)) {  // the scene's own frame
+    iso.M = {{{Big(1), Big(0), Big(0)}, {Big(0), Big(1), Big(0)}, {Big(0), Big(0), Big(1)}}};
+    return iso;
+  }
   if (s.kind == Kind::plane) {
     iso.M = Rz;
     iso.b = {Big(s.r) * c, Big(s.r) * sn, Big(0)};
@@ -453,7 +660,9 @@ Problem<T> make_problem(const OracleScene& s) {
   p.kind = s.kind;
   p.model = s.model;
   p.R = T(s.R);
-  p.K = s.kind == Kind::plane ? T(0) : (s.kind == Kind::sphere ? T(1) : T(-1)) / (p.R * p.R);
+  p.K = s.kind == Kind::plane || implicit_kind(s.kind)
+            ? T(0)
+            : (s.kind == Kind::sphere ? T(1) : T(-1)) / (p.R * p.R);
   p.m = T(s.mass);
   for (int i = 0; i < 4; ++i) p.J[i] = T(s.J[i]);
   const T det = p.J[0] * p.J[3] - p.J[1] * p.J[2];
@@ -468,6 +677,14 @@ Problem<T> make_problem(const OracleScene& s) {
   p.def = s.def;
   p.A = T(s.A), p.B = T(s.B), p.C = T(s.C), p.ghat = T(s.ghat), p.gtilde = T(s.gtilde);
   p.literal = s.literal;
+  p.lambda0_sq = T(s.lambda) * T(s.lambda);
+  p.inertia_rigid = 2 * p.J_iso * p.lambda0_sq;
+  p.tube = T(s.tube_radius), p.centre = T(s.center_radius);
+  p.equatorial = T(s.equatorial_radius), p.polar = T(s.polar_radius);
+  p.bump_h = T(s.bump_height), p.bump_w = T(s.bump_width), p.neck = T(s.neck_radius);
+  p.height = s.height;
+  p.height_k = T(s.height_coefficient);
+  p.gamma_t = T(s.friction_t), p.gamma_i = T(s.friction_i);
   return p;
 }
 
@@ -492,22 +709,63 @@ T trace(const M2<T>& a) {
   return a[0] + a[3];
 }
 
+// Where the curvature varies: the point (u, φ) of the profile (physics-surfaces.md §1's table, written
+// out here) and |X_u| = f. The frame is then taken from the normal: E₂ = (−sin φ, cos φ, 0),
+// E₁ = E₂ × n (n = E₁ × E₂ = ∇F/|∇F|), and C = ρ_u/f = n_z.
+template <class T>
+struct ProfileAt {
+  T rho, z, f;
+};
+template <class T>
+ProfileAt<T> profile_at(const OracleScene& s, const T& u) {
+  switch (s.kind) {
+    case Kind::torus: {
+      const T a(s.tube_radius), c(s.center_radius);
+      return {c + a * num::cos(u), -a * num::sin(u), a};
+    }
+    case Kind::spheroid: {
+      const T a(s.equatorial_radius), b(s.polar_radius), ca = a * num::cos(u), sb = b * num::sin(u);
+      return {a * num::sin(u), b * num::cos(u), num::sqrt(ca * ca + sb * sb)};
+    }
+    case Kind::bump: {
+      const T h(s.bump_height), w(s.bump_width);
+      const T z = h * num::exp(-u * u / (2 * w * w)), z_u = -u * z / (w * w);
+      return {u, z, num::sqrt(1 + z_u * z_u)};
+    }
+    default: {  // catenoid
+      const T c(s.neck_radius);
+      return {c * num::cosh(u / c), -u, num::cosh(u / c)};
+    }
+  }
+}
+
 // The scene's initial values (physics.md §1–§3, §13; spin, speed, heading as the scene format
-// defines them) as a state vector in the start frame, where E₁ = x̂, E₂ = ŷ at X₀.
+// defines them) as a state vector in the start frame, where E₁ = x̂, E₂ = ŷ at X₀ (constant
+// curvature), or in the scene's frame (where the curvature varies).
 template <class T>
 std::vector<T> start_state(const OracleScene& s, Problem<T>& p) {
   const T r(s.r), R(s.R);
-  T S, C;
-  if (s.kind == Kind::plane)
-    S = r, C = T(1);
-  else if (s.kind == Kind::sphere)
-    S = R * num::sin(r / R), C = num::cos(r / R);
-  else
-    S = R * num::sinh(r / R), C = num::cosh(r / R);
-  const V3<T> X0 = s.kind == Kind::plane ? V3<T>{T(0), T(0), T(0)} : V3<T>{T(0), T(0), R};
-  const V3<T> E1{T(1), T(0), T(0)}, E2{T(0), T(1), T(0)};
-  // velocity: V = ṙE₁ + Sφ̇E₂, or v(cos h E₁ + sin h E₂)
-  T vr = T(s.r_dot), vphi = S * T(s.phi_dot), phi_dot = T(s.phi_dot);
+  T S, C, f(1), q_dot(s.r_dot);
+  V3<T> X0, E1{T(1), T(0), T(0)}, E2{T(0), T(1), T(0)};
+  if (implicit_kind(s.kind)) {
+    const T u(s.u), phi(s.phi);
+    const ProfileAt<T> at = profile_at(s, u);
+    X0 = {at.rho * num::cos(phi), at.rho * num::sin(phi), at.z};
+    E2 = {-num::sin(phi), num::cos(phi), T(0)};
+    const V3<T> n = p.normal(X0);
+    E1 = cross(E2, n);
+    S = at.rho, C = n[2], f = at.f, q_dot = T(s.u_dot);
+  } else {
+    if (s.kind == Kind::plane)
+      S = r, C = T(1);
+    else if (s.kind == Kind::sphere)
+      S = R * num::sin(r / R), C = num::cos(r / R);
+    else
+      S = R * num::sinh(r / R), C = num::cosh(r / R);
+    X0 = s.kind == Kind::plane ? V3<T>{T(0), T(0), T(0)} : V3<T>{T(0), T(0), R};
+  }
+  // velocity: V = f q̇ E₁ + Sφ̇ E₂, or v(cos h E₁ + sin h E₂)
+  T vr = f * q_dot, vphi = S * T(s.phi_dot), phi_dot = T(s.phi_dot);
   if (s.speed && s.heading) {
     vr = T(*s.speed) * num::cos(T(*s.heading));
     vphi = T(*s.speed) * num::sin(T(*s.heading));
@@ -518,17 +776,15 @@ std::vector<T> start_state(const OracleScene& s, Problem<T>& p) {
   const M2<T> Ua = rot(T(s.alpha)), Ub = rot(T(s.beta));
   const M2<T> D{T(s.lambda), T(0), T(0), T(s.mu)}, Dd{T(s.lambda_dot), T(0), T(0), T(s.mu_dot)};
   const M2<T> L = mul(mul(Ua, D), trans(Ub));
-  std::vector<T> y(p.size());
+  std::vector<T> y(p.size(), T(0));
   auto put = [&](int i, const V3<T>& v) { y[i] = v[0], y[i + 1] = v[1], y[i + 2] = v[2]; };
   put(0, X0);
   put(3, V);
   if (s.model == Model::rigid) {
-    const T l = T(s.lambda);
-    // s = 2Jλ₀²(α̇ − β̇ + Cφ̇) with J = tr J/2 (§8.8, §13)
-    const T w = s.spin ? T(*s.spin) / (2 * p.J_iso * l * l) : T(s.alpha_dot) - T(s.beta_dot) + C * phi_dot;
-    p.omega_rigid = w;
-    p.spin_rigid = 2 * p.J_iso * l * l * w;
+    // s = I(α̇ − β̇ + Cφ̇), I = 2Jλ₀² with J = tr J/2 (§8.8, §13)
+    const T w = s.spin ? T(*s.spin) / p.inertia_rigid : T(s.alpha_dot) - T(s.beta_dot) + C * phi_dot;
     put(6, L[0] * E1 + L[2] * E2);
+    y[9] = p.inertia_rigid * w;
     return y;
   }
   // M = χεL + U(α)diag(λ̇, μ̇)U(β)ᵀ − β̇Lε, χ = α̇ + Cφ̇; with a given spin, s = tr((εL)ᵀMJ) solved for χ
@@ -551,35 +807,42 @@ std::vector<T> start_state(const OracleScene& s, Problem<T>& p) {
   return y;
 }
 
+// The body's six vectors and, for the rigid body, its spin.
+template <class T>
+struct Vectors {
+  V3<T> X, V, e[2], W[2];
+  T s{0};
+};
+template <class T>
+Vectors<T> vectors_of(const Problem<T>& p, const std::vector<T>& y) {
+  Vectors<T> v;
+  v.X = {y[0], y[1], y[2]}, v.V = {y[3], y[4], y[5]};
+  if (p.model == Model::rigid) {
+    v.s = y[9];
+    p.rigid_frame(v.X, {y[6], y[7], y[8]}, v.s, v.e, v.W);
+  } else {
+    v.e[0] = {y[6], y[7], y[8]}, v.e[1] = {y[9], y[10], y[11]};
+    v.W[0] = {y[12], y[13], y[14]}, v.W[1] = {y[15], y[16], y[17]};
+  }
+  return v;
+}
+
 template <class T>
 Body3 body_of(const Problem<T>& p, const std::vector<T>& y) {
-  Body3 b;
-  auto get = [&](int i) {
-    return std::array<Big, 3>{num::big(y[i]), num::big(y[i + 1]), num::big(y[i + 2])};
+  const Vectors<T> v = vectors_of(p, y);
+  auto big3 = [](const V3<T>& w) {
+    return std::array<Big, 3>{num::big(w[0]), num::big(w[1]), num::big(w[2])};
   };
-  b.X = get(0), b.V = get(3), b.e1 = get(6);
-  if (p.model == Model::rigid) {
-    const V3<T> X{y[0], y[1], y[2]}, e1{y[6], y[7], y[8]};
-    const V3<T> e2 = p.jrot(X, e1), W1 = p.omega_rigid * e2, W2 = p.omega_rigid * p.jrot(X, e2);
-    auto big3 = [](const V3<T>& v) {
-      return std::array<Big, 3>{num::big(v[0]), num::big(v[1]), num::big(v[2])};
-    };
-    b.e2 = big3(e2), b.W1 = big3(W1), b.W2 = big3(W2);
-  } else {
-    b.e2 = get(9), b.W1 = get(12), b.W2 = get(15);
-  }
+  Body3 b;
+  b.X = big3(v.X), b.V = big3(v.V), b.e1 = big3(v.e[0]), b.e2 = big3(v.e[1]);
+  b.W1 = big3(v.W[0]), b.W2 = big3(v.W[1]);
   return b;
 }
 
 template <class T>
 T energy_of_state(const Problem<T>& p, const std::vector<T>& y) {
-  const V3<T> X{y[0], y[1], y[2]}, V{y[3], y[4], y[5]};
-  V3<T> e[2] = {{y[6], y[7], y[8]}, {}}, W[2];
-  if (p.model != Model::rigid) {
-    e[1] = {y[9], y[10], y[11]};
-    W[0] = {y[12], y[13], y[14]}, W[1] = {y[15], y[16], y[17]};
-  }
-  return p.energy(X, V, e, W);
+  const Vectors<T> v = vectors_of(p, y);
+  return p.energy(v.X, v.V, v.e, v.W, v.s);
 }
 
 // Gragg–Bulirsch–Stoer: the modified midpoint rule with n = 2, 4, …, 2k substeps, extrapolated to
@@ -599,7 +862,7 @@ OracleRun integrate(const OracleScene& s, double t_end, double tolerance, long m
   {
     Problem<T> q = p;  // the yardstick: kinetic + |potential|
     const V3<T> X{y[0], y[1], y[2]};
-    T pot = q.radial_potential(X, nullptr);
+    T pot = q.radial_potential(X, nullptr) + q.height_potential(X, nullptr);
     if (p.model != Model::rigid)
       pot += q.deformation(X, {y[6], y[7], y[8]}, {y[9], y[10], y[11]}, nullptr, nullptr);
     run.energy_scale = num::to_double(num::abs(H0 - pot) + num::abs(pot));
@@ -669,7 +932,11 @@ OracleRun integrate(const OracleScene& s, double t_end, double tolerance, long m
     }
   }
   run.end = body_of(p, y);
-  run.end_energy = num::to_double(energy_of_state(p, y));
+  const T H1 = energy_of_state(p, y);
+  run.end_energy = num::to_double(H1);
+  run.end_energy_exact = num::big(H1);
+  run.dissipated = num::to_double(y[n - 1]);
+  run.balance = num::to_double(num::abs(H1 + y[n - 1] - H0)) / std::max(run.energy_scale, 1e-300);
   run.ok = true;
   return run;
 }
@@ -683,22 +950,12 @@ OracleRun run_oracle(const OracleScene& scene, double t_end, double tolerance, P
 }
 
 Big energy_of(const OracleScene& scene, const Body3& body) {
-  Problem<Big> p = make_problem<Big>(scene);
-  std::vector<Big> y(18);
-  const std::array<Big, 3>* parts[6] = {&body.X, &body.V, &body.e1, &body.e2, &body.W1, &body.W2};
-  for (int k = 0; k < 6; ++k)
-    for (int i = 0; i < 3; ++i) y[3 * k + i] = (*parts[k])[i];
-  if (scene.model == Model::rigid) {
-    // the spin of the body as given (s = J_iso Σ ω(e_A, W_A))
-    Problem<Big> q = p;
-    q.model = Model::affine;
-    const V3<Big> e[2] = {body.e1, body.e2}, W[2] = {body.W1, body.W2};
-    Big s = 0;
-    for (int a = 0; a < 2; ++a) s += p.J_iso * q.omega(body.X, e[a], W[a]);
-    p.spin_rigid = s;
-    return p.energy(body.X, body.V, e, W);
-  }
-  return energy_of_state(p, y);
+  const Problem<Big> p = make_problem<Big>(scene);
+  const V3<Big> e[2] = {body.e1, body.e2}, W[2] = {body.W1, body.W2};
+  // the rigid body's spin as the vectors carry it (s = J_iso Σ ω(e_A, W_A))
+  Big s = 0;
+  for (int a = 0; a < 2; ++a) s += p.J_iso * p.omega(body.X, e[a], W[a]);
+  return p.energy(body.X, body.V, e, W, s);
 }
 
 namespace {
@@ -719,7 +976,7 @@ std::vector<Big> gram(const Problem<Big>& p, const Body3& b) {
 // Geodesic distance from the scene's pole of a point in the scene's coordinates.
 Big radius_of(const OracleScene& s, const std::array<Big, 3>& X) {
   const Big rho = num::sqrt(X[0] * X[0] + X[1] * X[1]);
-  if (s.kind == Kind::plane) return rho;
+  if (s.kind == Kind::plane || implicit_kind(s.kind)) return rho;  // (varying: from the axis)
   if (s.kind == Kind::pseudosphere) return Big(s.R) * num::asinh(rho / Big(s.R));
   return Big(s.R) * boost::multiprecision::atan2(rho, X[2]);
 }
@@ -739,7 +996,7 @@ Difference compare(const OracleScene& scene, const OracleRun& run, const Body3& 
   Difference d;
   const V3<Big> dX = o.X - e.X;
   const Big chord = num::sqrt(num::abs(p.dot(dX, dX)));
-  if (scene.kind == Kind::plane)
+  if (scene.kind == Kind::plane || implicit_kind(scene.kind))  // (the chord: the differences are small)
     d.position = num::to_double(chord);
   else if (scene.kind == Kind::sphere)
     d.position = num::to_double(2 * p.R * num::asin(std::min(Big(1), chord / (2 * p.R))));
@@ -759,19 +1016,16 @@ Difference compare(const OracleScene& scene, const OracleRun& run, const Body3& 
   for (std::size_t i = 0; i < go.size(); ++i) gscale = std::max(gscale, num::abs(go[i]));
   for (std::size_t i = 0; i < go.size(); ++i) gdiff = std::max(gdiff, num::abs(go[i] - ge[i]));
   d.invariants = num::to_double(gdiff / gscale);
-  // H of the engine's body: kinetic and deformation parts from its own chart, V_r at its place
+  // H of the engine's body: kinetic, deformation and height parts from its own chart (where the
+  // curvature varies, the scene's frame), V_r at its place; the rigid spin read off the same vectors
   Problem<Big> q = p;
   q.radial = false;
-  Big He;
-  if (scene.model == Model::rigid) {  // the rigid spin is read off the same vectors
-    OracleScene plain = scene;
-    plain.radial = false;
-    He = energy_of(plain, local) + p.radial_potential(e.X, nullptr);
-  } else {
-    const V3<Big> ee[2] = {local.e1, local.e2}, W[2] = {local.W1, local.W2};
-    He = q.energy(local.X, local.V, ee, W) + p.radial_potential(e.X, nullptr);
-  }
-  d.energy = num::to_double(num::abs(He - run.energy_exact) / Big(std::max(run.energy_scale, 1e-300)));
+  const V3<Big> ee[2] = {local.e1, local.e2}, W[2] = {local.W1, local.W2};
+  Big s = 0;
+  for (int a = 0; a < 2; ++a) s += p.J_iso * p.omega(local.X, ee[a], W[a]);
+  const Big He = q.energy(local.X, local.V, ee, W, s) + p.radial_potential(e.X, nullptr);
+  // against H(T) of the oracle (H(0) without friction, to its drift of ~1e-25)
+  d.energy = num::to_double(num::abs(He - run.end_energy_exact) / Big(std::max(run.energy_scale, 1e-300)));
   if (scene.kind == Kind::pseudosphere) {
     const double c = std::cosh(std::max(num::to_double(r_o), scene.r) / scene.R);
     d.position_floor = 1000 * 2.2e-16 * scene.R * c;

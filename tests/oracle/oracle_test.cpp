@@ -9,7 +9,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "codec/scene_json.h"
+#include "engine/integrator.h"
 #include "oracle/differential.h"
+#include "tests/engine/revolution_examples.h"
 
 namespace spinfold::oracle {
 namespace {
@@ -68,6 +71,129 @@ TEST(Oracle, QuadAndFiftyDigitsAgree) {
   ASSERT_TRUE(q.ok && b.ok);
   const Difference d = compare(scene, q, b.end, b.end);
   EXPECT_LT(std::max({d.position, d.velocity, d.frame, d.energy}), 1e-18) << text;
+}
+
+// ---- where the curvature varies (physics-surfaces.md) ----------------------------------------
+
+std::array<double, 3> d3(const std::array<Big, 3>& v) {
+  return {static_cast<double>(v[0]), static_cast<double>(v[1]), static_cast<double>(v[2])};
+}
+void expect_near3(const std::array<Big, 3>& got, std::array<double, 3> want, double tolerance) {
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(static_cast<double>(got[i]), want[i], tolerance) << "component " << i;
+}
+
+// §11's WS1 (the torus a = 1, c = 3, anisotropic J, gravity, abc) as a scene, its L decomposed into the
+// scene's two-polar fields by Eigen's SVD: the oracle's own reading of it lands on WS1's Y, and its
+// run on the reference's 30-digit trajectory.
+TEST(OracleWhereCurvatureVaries, ReproducesWS1) {
+  const std::string text = scene_to_json(test::ws1_scene()).dump();
+  const OracleScene scene = read_scene(text);
+  ASSERT_EQ(scene.kind, Kind::torus);
+  const OracleRun one = run_oracle(scene, 1.0);
+  ASSERT_TRUE(one.ok) << one.error;
+  const Embedded Y = test::ws1_state();
+  const std::array<Big, 3>* parts[6] = {&one.start.X,  &one.start.V,  &one.start.e1,
+                                        &one.start.e2, &one.start.W1, &one.start.W2};
+  for (int k = 0; k < 6; ++k) expect_near3(*parts[k], {Y(3 * k), Y(3 * k + 1), Y(3 * k + 2)}, 2e-15);
+  EXPECT_NEAR(one.energy, 0.7726449045081352, 1e-15);
+  expect_near3(one.end.X, {3.350568512996648, 0.2646701387724223, -0.9325635900151183}, 1e-14);
+  const OracleRun two = run_oracle(scene, 2.0);
+  ASSERT_TRUE(two.ok) << two.error;
+  expect_near3(two.end.X, {2.8242096200506657, -0.6183870861207411, -0.9940546679244858}, 1e-14);
+  expect_near3(two.end.e1, {-1.0396884457026114, -0.10316245548821772, 0.10882812074818082}, 1e-14);
+  expect_near3(two.end.W2, {0.29627443020240224, 0.9694076688365609, -0.008989320225909238}, 1e-14);
+  EXPECT_LT(std::abs(two.end_energy - two.energy), 1e-24);
+  EXPECT_EQ(two.dissipated, 0.0);
+}
+
+// WS1 with friction (γ_t, γ_i) = (0.1, 0.05): at the start dE/dt = −2R = −0.07709185500384629 (§11), and
+// along a run E(T) + ∫2R dt = E(0) to the oracle's precision (§13).
+TEST(OracleWhereCurvatureVaries, FrictionTakesTwiceRayleighsFunction) {
+  nlohmann::json j = scene_to_json(test::ws1_scene());
+  j["friction"] = {{"translational", 0.1}, {"internal", 0.05}};
+  const OracleScene scene = read_scene(j.dump());
+  const double dt = 1e-6;
+  const OracleRun a = run_oracle(scene, dt), b = run_oracle(scene, 2 * dt);
+  ASSERT_TRUE(a.ok && b.ok);
+  // (4 D(dt) − D(2dt)) / (2 dt) = 2R(0) + O(dt²) (measured 6e-11 off at dt = 1e-5)
+  EXPECT_NEAR((4 * a.dissipated - b.dissipated) / (2 * dt), 0.07709185500384629, 1e-12);
+  const OracleRun run = run_oracle(scene, 2.0);
+  ASSERT_TRUE(run.ok) << run.error;
+  EXPECT_GT(run.energy - run.end_energy, 0.05);  // it did lose energy
+  EXPECT_NEAR(run.energy - run.end_energy, run.dissipated, 1e-15);
+  EXPECT_LT(run.balance, 1e-20);  // (the step's tolerance is 1e-20: measured 7e-22)
+}
+
+// §11's WS2 (a rigid body on the oblate spheroid a = 2, b = 1 with a spring): the start from the scene's
+// speed, heading and spin, and its energy.
+TEST(OracleWhereCurvatureVaries, ReadsWS2sRigidBody) {
+  const char* ws2 = R"({"surface": {"kind": "spheroid", "equatorial_radius": 2, "polar_radius": 1},
+    "body": {"mass": 1, "inertia": 0.5, "model": "rigid"},
+    "potential": {"height": {"kind": "spring", "k": 0.7}},
+    "initial": {"u": 1, "phi": 0, "alpha": 0.4, "lambda": 1, "mu": 1, "speed": 0.5, "heading": 0.3,
+                "spin": 1.5}})";
+  const OracleScene scene = read_scene(ws2);
+  const OracleRun run = run_oracle(scene, 0.5);
+  ASSERT_TRUE(run.ok) << run.error;
+  expect_near3(run.start.X, {1.682941969615793, 0, 0.5403023058681398}, 1e-15);
+  expect_near3(run.start.V, {0.3768792838318358, 0.14776010333066983, -0.2934773539510542}, 1e-15);
+  expect_near3(run.start.e1, {0.7267152709784253, 0.3894183423086505, -0.56589598832324}, 1e-15);
+  EXPECT_NEAR(run.energy, 1.35217430360425, 1e-14);
+  EXPECT_LT(std::abs(run.end_energy - run.energy), 1e-24);
+}
+
+// The bordered-Hessian curvature the oracle's force uses, against §11's WS3 (the bump h = 1.5, w = 0.7)
+// through the gyration it drives: a rigid body started at u with spin s and speed v on a bump curls at
+// κ_g = K s/(m v) there; the oracle's path over a short time has that curvature.
+TEST(OracleWhereCurvatureVaries, CurlsAtWS3sCurvature) {
+  const double K[] = {9.371095376926283, 1.525821045282344, -0.2883065112090633};
+  const double u[] = {0.0, 0.35, 1.4};
+  for (int i = 0; i < 3; ++i) {
+    nlohmann::json j = {
+        {"surface", {{"kind", "bump"}, {"height", 1.5}, {"width", 0.7}}},
+        {"body", {{"mass", 1.0}, {"inertia", 0.5}, {"model", "rigid"}}},
+        {"initial", {{"u", u[i]}, {"phi", 0.2}, {"speed", 1e-3}, {"heading", 0.0}, {"spin", 0.3}}}};
+    // at the axis the heading along E₁ is the only one; elsewhere across the parallels too
+    const double dt = 1e-3;
+    const OracleRun r = run_oracle(read_scene(j.dump()), dt);
+    ASSERT_TRUE(r.ok) << r.error;
+    // κ_g = ⟨a, n × v⟩/|v|³ with a from the velocity's change over dt (O(dt) accurate)
+    const auto V0 = d3(r.start.V), V1 = d3(r.end.V);
+    const double a[3] = {(V1[0] - V0[0]) / dt, (V1[1] - V0[1]) / dt, (V1[2] - V0[2]) / dt};
+    const auto e1 = d3(r.start.e1), e2 = d3(r.start.e2);  // λ = μ = 1: n = e₁ × e₂
+    const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                         e1[0] * e2[1] - e1[1] * e2[0]};
+    const double jv[3] = {n[1] * V0[2] - n[2] * V0[1], n[2] * V0[0] - n[0] * V0[2],
+                          n[0] * V0[1] - n[1] * V0[0]};
+    const double v = std::sqrt(V0[0] * V0[0] + V0[1] * V0[1] + V0[2] * V0[2]);
+    const double kappa = (a[0] * jv[0] + a[1] * jv[1] + a[2] * jv[2]) / (v * v * v);
+    EXPECT_NEAR(kappa, K[i] * 0.3 / 1e-3, 2e-3 * std::abs(K[i]) * 0.3 / 1e-3) << "u = " << u[i];
+  }
+}
+
+// A long run (T = 100) with anisotropic J under abc, where physics-surfaces.md §10.5 measured the
+// internal motion to be chaotic, judged as §12 advises: on the orbit, which sees the body only through
+// the conserved spin (§4, decoupling), and on the energy. (Measured here: position 1e-11, energy 5e-13,
+// the frame 4e-10 — it grows faster, 100× from T = 20, the position 12×.)
+TEST(OracleWhereCurvatureVaries, LongChaoticRunKeepsTheOrbitAndTheEnergy) {
+  const char* text = R"({"surface": {"kind": "torus", "tube_radius": 1, "center_radius": 2.5},
+    "body": {"mass": 1, "inertia": [[0.5, 0.1], [0.1, 0.3]]},
+    "potential": {"deformation": {"kind": "abc", "A": 0.02, "B": 0.1, "C": 0.2},
+                  "height": {"kind": "gravity", "g": 0.05}},
+    "initial": {"u": 0.3, "phi": 0.1, "alpha": 0.4, "beta": -0.2, "lambda": 1.2, "mu": 0.7,
+                "lambda_dot": 0.2, "mu_dot": -0.1, "beta_dot": 0.3, "speed": 0.6, "heading": 1.2,
+                "spin": 0.8}})";
+  const double T = 100.0;
+  const OracleScene scene = read_scene(text);
+  const OracleRun reference = run_oracle(scene, T);
+  ASSERT_TRUE(reference.ok) << reference.error;
+  for (const IntegratorCase& c : integrator_cases()) {
+    if (c.name != "auto" && c.name != "dop853") continue;
+    const Verdict v = check(text, c, T, scene, reference);
+    ASSERT_FALSE(v.refused || v.stopped || v.incomplete) << v.message;
+    EXPECT_LT(std::max({v.diff.position, v.diff.velocity, v.diff.energy}), 1e-8) << c.name;
+  }
 }
 
 std::string replay(const Verdict& v) {
@@ -161,8 +287,9 @@ TEST_P(Differential, EveryIntegratorAgreesWithTheOracle) {
     const OracleScene scene = read_scene(text);
     const OracleRun reference = run_oracle(scene, kHorizon);
     ASSERT_TRUE(reference.ok) << reference.error << "\n" << text;
-    ASSERT_LT(std::abs(reference.end_energy - reference.energy),
-              1e-18 * std::max(1.0, reference.energy_scale));
+    // the oracle's own balance, relative to the energy scale: E conserved, or E(T) + ∫2R dt = E(0) with
+    // friction (measured ≤ 6e-18 at the step tolerance 1e-20; the engine is held to 1e-8)
+    ASSERT_LT(reference.balance, 1e-16) << text;
     for (const IntegratorCase& c : integrator_cases()) {
       const Verdict v = check(text, c, kHorizon, scene, reference);
       if (!v.refused) ++ran[c.name];
@@ -170,8 +297,15 @@ TEST_P(Differential, EveryIntegratorAgreesWithTheOracle) {
     }
   }
   // every integrator ran some of them (refusals are the documented ones: exact without a closed
-  // form, the incompressible body outside split4/split6)
+  // form, the incompressible body outside split4/split6, the chart's splitting methods and exact
+  // where the curvature varies)
   for (const IntegratorCase& c : integrator_cases()) {
+    const CatalogEntry* entry = find_integrator(c.name);
+    const bool chart_only = c.name == "exact" || (entry && entry->info.chart_flows_only);
+    if (varying_regime(regime) && chart_only) {
+      EXPECT_EQ(ran[c.name], 0) << c.name << " ran where the curvature varies";
+      continue;
+    }
     if (c.name == "auto" || c.name == "dop853" || regime != "degenerate") {
       EXPECT_GT(ran[c.name], 0) << c.name;
     }
