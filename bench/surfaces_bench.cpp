@@ -9,6 +9,7 @@
 
 #include "bench/timing.h"
 #include "engine/embedded_dynamics.h"
+#include "engine/embedded_run.h"
 #include "engine/field_stepping.h"
 #include "engine/integrator.h"
 #include "engine/revolution_chart.h"
@@ -33,6 +34,20 @@ RevolutionModel torus_model() {
   model.body.height = GravityPotential{0.5};
   model.body.deformation = AbcPotential{0.01, 0.02, 0.2};
   return model;
+}
+
+// The same model as a scene (the orbit-only stepping is chosen from a scene: engine/embedded_run.h).
+Scene torus_scene(Stepping stepping) {
+  Scene scene;
+  scene.surface.kind = SurfaceKind::torus;
+  scene.surface.tube_radius = 1.0;
+  scene.surface.center_radius = 3.0;
+  scene.body.mass = 2.0;
+  scene.body.inertia = 0.5;
+  scene.potential.height = GravityPotential{0.5};
+  scene.potential.deformation = AbcPotential{0.01, 0.02, 0.2};
+  scene.integrator.stepping = stepping;
+  return scene;
 }
 
 Embedded torus_start(const RevolutionModel& model) {
@@ -83,11 +98,31 @@ int run_surfaces_bench(const SurfacesBenchOptions& options) {
     std::unique_ptr<Integrator> integrator = find_integrator(name)->make();
     return step_field(*integrator, problem, start, options.t_end, 1e-3, tolerance).y;
   };
-  const auto odeint_run = [&](const std::string& stepper, double tolerance) {
-    OdeState x(start.data(), start.data() + 18);
+  // The orbit alone (10 of its 18 numbers move), the internal motion in closed form at T.
+  const auto orbit_model = std::make_shared<const EmbeddedScene>(torus_scene(Stepping::automatic));
+  const EmbeddedScene full_model(torus_scene(Stepping::full));
+  const Coords orbit_start = embedded_layout(*orbit_model, full_model, Coords(start));
+  const VectorField orbit_field_raw = embedded_field(orbit_model);
+  const VectorField orbit_field = [&](const Coords& y, Coords& dy) {
+    orbit_field_raw(y, dy);
+    ++evaluations;
+  };
+  const StepProblem orbit_problem{unused_scene, unused_chart, &orbit_field};
+  const auto orbit_run = [&](double tolerance) {
+    std::unique_ptr<Integrator> integrator = find_integrator("dop853")->make();
+    const Coords end = step_field(*integrator, orbit_problem, orbit_start, options.t_end, 1e-3, tolerance).y;
+    return Coords(embedded_full_state(*orbit_model, end));
+  };
+  // Odeint's steppers on the same field (all 18 numbers, or the orbit alone: the name's suffix)
+  const auto odeint_run = [&](const std::string& method, double tolerance) {
+    const bool orbit = method.ends_with("_orbit_only");
+    const std::string stepper = orbit ? method.substr(0, method.size() - 11) : method;
+    const VectorField& f = orbit ? orbit_field : field;
+    const Coords& y0 = orbit ? orbit_start : Coords(start);
+    OdeState x(y0.data(), y0.data() + 18);
     const auto system = [&](const OdeState& in, OdeState& out, double) {
       Coords y = Eigen::Map<const Eigen::VectorXd>(in.data(), 18), d;
-      field(y, d);
+      f(y, d);
       out.assign(d.data(), d.data() + 18);
     };
     if (stepper == "odeint_dopri5")
@@ -101,8 +136,8 @@ int run_surfaces_bench(const SurfacesBenchOptions& options) {
     else
       odeint::integrate_adaptive(odeint::bulirsch_stoer<OdeState>(tolerance, tolerance), system, x, 0.0,
                                  options.t_end, 1e-3);
-    Coords y = Eigen::Map<const Eigen::VectorXd>(x.data(), 18);
-    return y;
+    const Coords y = Eigen::Map<const Eigen::VectorXd>(x.data(), 18);
+    return orbit ? Coords(embedded_full_state(*orbit_model, y)) : y;
   };
 
   // The reference: dop853 at 1e-15, checked against Odeint's Bulirsch–Stoer at 1e-15.
@@ -115,14 +150,18 @@ int run_surfaces_bench(const SurfacesBenchOptions& options) {
       reference_spread);
 
   std::vector<Method> methods;
-  for (const std::string name : {"dop853", "odeint_dopri5", "odeint_fehlberg78", "odeint_bulirsch_stoer"}) {
+  for (const std::string name :
+       {"dop853", "dop853_orbit_only", "odeint_dopri5", "odeint_fehlberg78", "odeint_bulirsch_stoer",
+        "odeint_dopri5_orbit_only", "odeint_fehlberg78_orbit_only", "odeint_bulirsch_stoer_orbit_only"}) {
     Method method{name, {}};
     for (double exponent = 5.0; exponent <= 14.0; exponent += 0.5) {
       const double tolerance = std::pow(10.0, -exponent);
       Coords end;
       evaluations = 0;
       const double ms = median_ms(options.repeats, [&] {
-        end = name == "dop853" ? engine_run("dop853", tolerance) : odeint_run(name, tolerance);
+        end = name == "dop853"              ? engine_run("dop853", tolerance)
+              : name == "dop853_orbit_only" ? orbit_run(tolerance)
+                                            : odeint_run(name, tolerance);
       });
       const long evals = evaluations / options.repeats;
       method.points.push_back({tolerance, distance(end, reference), ms, evals});
@@ -131,8 +170,10 @@ int run_surfaces_bench(const SurfacesBenchOptions& options) {
   }
 
   std::printf("| method | tolerance | error at T | ms | evaluations |\n| --- | --- | --- | --- | --- |\n");
-  double engine_best = std::numeric_limits<double>::infinity(), odeint_best = engine_best;
-  std::string odeint_best_name;
+  double engine_best = std::numeric_limits<double>::infinity(), odeint_best = engine_best,
+         orbit_best = engine_best, odeint_orbit_best = engine_best, engine_tolerance = 1e-10,
+         orbit_tolerance = 1e-10;
+  std::string odeint_best_name, odeint_orbit_best_name;
   for (const Method& m : methods) {
     const Point* best = nullptr;
     for (const Point& p : m.points)
@@ -142,8 +183,12 @@ int run_surfaces_bench(const SurfacesBenchOptions& options) {
                   p.evaluations, &p == best ? " (cheapest within the target)" : "");
     if (!best) continue;
     if (m.name == "dop853")
-      engine_best = best->ms;
-    else if (best->ms < odeint_best) {
+      engine_best = best->ms, engine_tolerance = best->tolerance;
+    else if (m.name == "dop853_orbit_only")
+      orbit_best = best->ms, orbit_tolerance = best->tolerance;
+    else if (m.name.ends_with("_orbit_only")) {
+      if (best->ms < odeint_orbit_best) odeint_orbit_best = best->ms, odeint_orbit_best_name = m.name;
+    } else if (best->ms < odeint_best) {
       odeint_best = best->ms;
       odeint_best_name = m.name;
     }
@@ -151,6 +196,16 @@ int run_surfaces_bench(const SurfacesBenchOptions& options) {
   std::printf("\nat error <= %.0e: engine dop853 %.3f ms, Odeint's best (%s) %.3f ms: ratio %.2f\n",
               options.target_error, engine_best, odeint_best_name.c_str(), odeint_best,
               odeint_best / engine_best);
+  std::printf(
+      "at error <= %.0e: orbit-only dop853 %.3f ms: %.2f x faster than stepping all 18, %.2f x Odeint's best "
+      "on "
+      "all 18; Odeint's best on the orbit alone (%s) %.3f ms: ratio %.2f\n",
+      options.target_error, orbit_best, engine_best / orbit_best, odeint_best / orbit_best,
+      odeint_orbit_best_name.c_str(), odeint_orbit_best, odeint_orbit_best / orbit_best);
+  // The same answer: orbit-only against stepping all 18, each at its cheapest tolerance within the target.
+  std::printf("orbit-only (tolerance %.1e) against stepping all 18 (%.1e): %.2g (relative, max)\n",
+              orbit_tolerance, engine_tolerance,
+              distance(orbit_run(orbit_tolerance), Embedded(engine_run("dop853", engine_tolerance))));
   return 0;
 }
 

@@ -1,6 +1,7 @@
 // Surfaces whose curvature varies (issue 33): run time against error on a torus scene for the
 // engine's stepping (the chart-free equations, engine/embedded_dynamics.h, through a catalog
-// integrator) and for Boost.Odeint's steppers on the same equations.
+// integrator), the same stepping only the orbit (the internal motion in closed form: engine/embedded_run.h),
+// and Boost.Odeint's steppers on the same equations.
 #pragma once
 
 namespace spinfold::bench {

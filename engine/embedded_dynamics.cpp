@@ -76,22 +76,43 @@ void embedded_vector_field(const EmbeddedModel& model, const Embedded& Y, Embedd
   }
 }
 
+namespace {
+
+// dV/dt of a body of constant spin s (§7 with §4's force K s n × V, K from the bordered Hessian).
+Vec3 orbit_acceleration(const SurfaceBody& body, const Local& l, const Vec3& X, const Vec3& V, const Vec3& HV,
+                        double s) {
+  const double K = bordered_hessian_curvature(l.p);
+  const Vec3 push =
+      height_slope(body.height, body.mass, X.z()) * Vec3::UnitZ() + body.friction.translational * V;
+  return (K * s * l.n.cross(V) - l.Pi * push) / body.mass - (V.dot(HV) / l.nu2) * l.p.gradient;
+}
+
+}  // namespace
+
 void embedded_rigid_vector_field(const EmbeddedModel& model, const EmbeddedRigid& Y, EmbeddedRigid& dYdt) {
   const SurfaceBody& body = model.body;
   const Vec3 X = Y.segment<3>(embedded::X), V = Y.segment<3>(embedded::V), e1 = Y.segment<3>(embedded::e1);
   const double s = Y(embedded::spin);
   const Local l = local_at(model.surface, X);
-  const Vec3& g = l.p.gradient;
   const Vec3 HV = l.p.hessian * V;
-  const double K = bordered_hessian_curvature(l.p);
   const double lambda2 = e1.squaredNorm();
   const double I = lambda2 * body.inertia.matrix.trace();
-  const Vec3 push =
-      height_slope(body.height, body.mass, X.z()) * Vec3::UnitZ() + body.friction.translational * V;
   dYdt.segment<3>(embedded::X) = V;
-  dYdt.segment<3>(embedded::V) = (K * s * l.n.cross(V) - l.Pi * push) / body.mass - (V.dot(HV) / l.nu2) * g;
-  dYdt.segment<3>(embedded::e1) = (s / I) * l.n.cross(e1) - (e1.dot(HV) / l.nu2) * g;
+  dYdt.segment<3>(embedded::V) = orbit_acceleration(body, l, X, V, HV, s);
+  dYdt.segment<3>(embedded::e1) = (s / I) * l.n.cross(e1) - (e1.dot(HV) / l.nu2) * l.p.gradient;
   dYdt(embedded::spin) = -2.0 * body.friction.internal * lambda2 / I * s;
+}
+
+void embedded_orbit_vector_field(const EmbeddedModel& model, double s, const EmbeddedOrbit& Y,
+                                 EmbeddedOrbit& dYdt) {
+  const Vec3 X = Y.segment<3>(embedded_orbit::X), V = Y.segment<3>(embedded_orbit::V);
+  const Vec3 E = Y.segment<3>(embedded_orbit::E);
+  const Local l = local_at(model.surface, X);
+  const Vec3 HV = l.p.hessian * V;
+  dYdt.segment<3>(embedded_orbit::X) = V;
+  dYdt.segment<3>(embedded_orbit::V) = orbit_acceleration(model.body, l, X, V, HV, s);
+  dYdt.segment<3>(embedded_orbit::E) = -(E.dot(HV) / l.nu2) * l.p.gradient;
+  dYdt(embedded_orbit::tau) = 1.0;
 }
 
 double embedded_spin(const EmbeddedModel& model, const Embedded& Y) {

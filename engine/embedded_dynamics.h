@@ -21,6 +21,15 @@ inline constexpr int X = 0, V = 3, e1 = 6, e2 = 9, W1 = 12, W2 = 15;
 inline constexpr int spin = 9;  // rigid: s
 }  // namespace embedded
 
+// The orbit alone (§4, decoupling: the orbit sees the body only through its constant spin s):
+// [X, V, E, τ] ∈ ℝ¹⁰, E a tangent vector carried by parallel transport (DE/Dt = 0) and τ the time
+// since E was set [length, length/time, 1, time]. The internal motion is the flat one in the frame
+// (E, n × E).
+using EmbeddedOrbit = Eigen::Matrix<double, 10, 1>;
+namespace embedded_orbit {
+inline constexpr int X = 0, V = 3, E = 6, tau = 9;
+}  // namespace embedded_orbit
+
 struct EmbeddedModel {
   const ImplicitSurface& surface;
   SurfaceBody body;
@@ -37,6 +46,11 @@ void embedded_vector_field(const EmbeddedModel& model, const Embedded& Y, Embedd
 // dY/dt for the rigid body: dV/dt = (K s n × V − Π(V_h′ ẑ + γ_t V))/m − (VᵀHV/ν²) g with K from the
 // bordered Hessian; de₁/dt = (s/I) n × e₁ − (e₁ᵀHV/ν²) g; ds/dt = −(2γ_i|e₁|²/I) s.
 void embedded_rigid_vector_field(const EmbeddedModel& model, const EmbeddedRigid& Y, EmbeddedRigid& dYdt);
+
+// dY/dt of the orbit alone, for a body of constant spin s without internal friction: dV/dt as the rigid
+// body's, dE/dt = −(EᵀHV/ν²) g (parallel transport), dτ/dt = 1.
+void embedded_orbit_vector_field(const EmbeddedModel& model, double s, const EmbeddedOrbit& Y,
+                                 EmbeddedOrbit& dYdt);
 
 // The unit normal n = ∇F/|∇F| at X.
 Vec3 embedded_normal(const ImplicitSurface& surface, const Vec3& X);

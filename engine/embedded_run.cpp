@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "engine/chart.h"
+#include "engine/exact_solution.h"
 #include "engine/inertia.h"
 
 namespace spinfold {
@@ -28,11 +29,95 @@ EmbeddedRigid rigid_of(const Coords& y) {
 
 }  // namespace
 
+bool steps_orbit_only(const Scene& scene) {
+  const DeformationPotential& d = scene.potential.deformation;
+  return curvature_varies(scene.surface.kind) && scene.integrator.stepping == Stepping::automatic &&
+         scene.body.model == BodyModel::affine && inertia_of(scene.body).isotropic &&
+         (std::holds_alternative<std::monostate>(d) || std::holds_alternative<AbcPotential>(d)) &&
+         scene.friction.value_or(Friction{}).internal == 0.0;
+}
+
 EmbeddedScene::EmbeddedScene(const Scene& scene)
     : surface(revolution_surface(scene.surface)),
       implicit(surface),
       body(surface_body(scene)),
-      rigid(scene.body.model == BodyModel::rigid) {}
+      rigid(scene.body.model == BodyModel::rigid),
+      orbit_only(steps_orbit_only(scene)) {
+  if (const AbcPotential* abc = std::get_if<AbcPotential>(&scene.potential.deformation)) internal = *abc;
+}
+
+namespace {
+
+// The orbit-only state's parts: [X, V, E, τ] (EmbeddedOrbit), then L₀ and M₀ (row-major) in the frame
+// (E, n × E) at τ = 0.
+constexpr int kL0 = 10, kM0 = 14;
+
+Mat2 matrix_at(const Coords& y, int i) {
+  Mat2 m;
+  m << y(i), y(i + 1), y(i + 2), y(i + 3);
+  return m;
+}
+
+// s = J Σ_A ω(e_A, W_A) of the frame components (isotropic J; constant along the orbit, §6).
+double orbit_spin(const EmbeddedScene& model, const Coords& y) {
+  const Mat2 L = matrix_at(y, kL0), M = matrix_at(y, kM0);
+  return model.body.inertia.J *
+         (L(0, 0) * M(1, 0) - L(1, 0) * M(0, 0) + L(0, 1) * M(1, 1) - L(1, 1) * M(0, 1));
+}
+
+// The orbit-only state of a body whose frame components in (E, n × E) are L, M.
+Coords orbit_state(const Vec3& X, const Vec3& V, const Vec3& E, const Mat2& L, const Mat2& M) {
+  Coords y(18);
+  y.segment<3>(embedded_orbit::X) = X;
+  y.segment<3>(embedded_orbit::V) = V;
+  y.segment<3>(embedded_orbit::E) = E;
+  y(embedded_orbit::tau) = 0.0;
+  y.segment<4>(kL0) << L(0, 0), L(0, 1), L(1, 0), L(1, 1);
+  y.segment<4>(kM0) << M(0, 0), M(0, 1), M(1, 0), M(1, 1);
+  return y;
+}
+
+}  // namespace
+
+Embedded embedded_full_state(const EmbeddedScene& model, const Coords& y) {
+  if (!model.orbit_only) return affine_of(y);
+  // §4: the internal motion is the flat one in the parallel-transported frame (E, n × E).
+  const Vec3 X = y.segment<3>(embedded_orbit::X);
+  const Vec3 n = embedded_normal(model.implicit, X);
+  const Vec3 F1 = y.segment<3>(embedded_orbit::E).normalized(), F2 = n.cross(F1);
+  const auto [L, M] = flat_internal_motion(model.body.inertia.J, model.internal, matrix_at(y, kL0),
+                                           matrix_at(y, kM0), y(embedded_orbit::tau));
+  Embedded Y;
+  Y.segment<3>(embedded::X) = X;
+  Y.segment<3>(embedded::V) = y.segment<3>(embedded_orbit::V);
+  for (int A = 0; A < 2; ++A) {
+    Y.segment<3>(embedded::e1 + 3 * A) = L(0, A) * F1 + L(1, A) * F2;
+    Y.segment<3>(embedded::W1 + 3 * A) = M(0, A) * F1 + M(1, A) * F2;
+  }
+  return Y;
+}
+
+Coords embedded_layout(const EmbeddedScene& model, const EmbeddedScene& from, const Coords& y) {
+  if (model.rigid || (!model.orbit_only && !from.orbit_only)) return y;
+  const Embedded Y = embedded_full_state(from, y);
+  if (!model.orbit_only) return Coords(Y);
+  const Vec3 X = Y.segment<3>(embedded::X);
+  const Vec3 n = embedded_normal(model.implicit, X);
+  // E: the one carried so far, or the profile's E₁ there (any unit tangent would do)
+  Vec3 E = from.orbit_only ? Vec3(y.segment<3>(embedded_orbit::E).normalized()) : Vec3::Zero();
+  if (!from.orbit_only) {
+    const Vec3 e1 = Y.segment<3>(embedded::e1);
+    E = (e1 - e1.dot(n) * n).normalized();
+  }
+  const Vec3 F2 = n.cross(E);
+  Mat2 L, M;
+  for (int A = 0; A < 2; ++A) {
+    const Vec3 e = Y.segment<3>(embedded::e1 + 3 * A), W = Y.segment<3>(embedded::W1 + 3 * A);
+    L(0, A) = E.dot(e), L(1, A) = F2.dot(e);
+    M(0, A) = E.dot(W), M(1, A) = F2.dot(W);
+  }
+  return orbit_state(X, Y.segment<3>(embedded::V), E, L, M);
+}
 
 std::shared_ptr<const EmbeddedScene> make_embedded_scene(const Scene& scene) {
   return std::make_shared<const EmbeddedScene>(scene);
@@ -55,6 +140,7 @@ Coords embedded_start(const EmbeddedScene& model, const InitialState& q) {
     Y << frame.X, V, L(0, 0) * frame.E1 + L(1, 0) * frame.E2, spin_from_rate(model.body.inertia, L, M);
     return Coords(Y);
   }
+  if (model.orbit_only) return orbit_state(frame.X, V, frame.E1, L, M);
   Embedded Y;
   Y.segment<3>(embedded::X) = frame.X;
   Y.segment<3>(embedded::V) = V;
@@ -71,6 +157,12 @@ VectorField embedded_field(std::shared_ptr<const EmbeddedScene> model) {
       EmbeddedRigid d;
       embedded_rigid_vector_field(model->model(), rigid_of(y), d);
       dydt = d;
+    } else if (model->orbit_only) {
+      EmbeddedOrbit d;
+      embedded_orbit_vector_field(model->model(), orbit_spin(*model, y), EmbeddedOrbit(y.head<10>()), d);
+      dydt.resize(18);
+      dydt.head<10>() = d;
+      dydt.tail<8>().setZero();  // L₀, M₀: the closed form's start
     } else {
       Embedded d;
       embedded_vector_field(model->model(), affine_of(y), d);
@@ -87,18 +179,19 @@ EnergyParts embedded_energy_parts(const EmbeddedScene& model, const Coords& y) {
     const double potential = height_energy(body.height, body.mass, y(embedded::X + 2));
     return {total - potential, potential};
   }
+  const Embedded Y = embedded_full_state(model, y);
   const Mat2& J = body.inertia.matrix;
   double internal_kinetic = 0.0;
   for (int A = 0; A < 2; ++A)
     for (int B = 0; B < 2; ++B)
       internal_kinetic +=
-          J(A, B) * y.segment<3>(embedded::W1 + 3 * A).dot(y.segment<3>(embedded::W1 + 3 * B));
+          J(A, B) * Y.segment<3>(embedded::W1 + 3 * A).dot(Y.segment<3>(embedded::W1 + 3 * B));
   const double kinetic = orbital_kinetic + 0.5 * internal_kinetic;
-  return {kinetic, embedded_energy(model.model(), affine_of(y)).total() - kinetic};
+  return {kinetic, embedded_energy(model.model(), Y).total() - kinetic};
 }
 
 EmbeddedEnergy embedded_energy_split(const EmbeddedScene& model, const Coords& y) {
-  if (!model.rigid) return embedded_energy(model.model(), affine_of(y));
+  if (!model.rigid) return embedded_energy(model.model(), embedded_full_state(model, y));
   const SurfaceBody& body = model.body;
   EmbeddedEnergy e;
   e.orbital = 0.5 * body.mass * y.segment<3>(embedded::V).squaredNorm() +
@@ -109,11 +202,12 @@ EmbeddedEnergy embedded_energy_split(const EmbeddedScene& model, const Coords& y
 
 double embedded_det(const EmbeddedScene& model, const Coords& y) {
   if (model.rigid) return y.segment<3>(embedded::e1).squaredNorm();
-  return embedded_det_L(model.model(), affine_of(y));
+  return embedded_det_L(model.model(), embedded_full_state(model, y));
 }
 
 double embedded_spin_of(const EmbeddedScene& model, const Coords& y) {
   if (model.rigid) return y(embedded::spin);
+  if (model.orbit_only) return orbit_spin(model, y);
   return embedded_spin(model.model(), affine_of(y));
 }
 
@@ -132,7 +226,7 @@ double embedded_dissipation(const EmbeddedScene& model, const Coords& y) {
     return 0.5 * f.translational * y.segment<3>(embedded::V).squaredNorm() +
            f.internal * e2 * s * s / (I * I);
   }
-  return embedded_rayleigh(model.model(), affine_of(y));
+  return embedded_rayleigh(model.model(), embedded_full_state(model, y));
 }
 
 EmbeddedBody embedded_body(const EmbeddedScene& model, const Coords& y) {
@@ -147,9 +241,10 @@ EmbeddedBody embedded_body(const EmbeddedScene& model, const Coords& y) {
     for (int A = 0; A < 2; ++A) b.W[A] = (y(embedded::spin) / I) * n.cross(b.e[A]);
     return b;
   }
+  const Embedded Y = embedded_full_state(model, y);
   for (int A = 0; A < 2; ++A) {
-    b.e[A] = y.segment<3>(embedded::e1 + 3 * A);
-    b.W[A] = y.segment<3>(embedded::W1 + 3 * A);
+    b.e[A] = Y.segment<3>(embedded::e1 + 3 * A);
+    b.W[A] = Y.segment<3>(embedded::W1 + 3 * A);
   }
   return b;
 }

@@ -4,6 +4,11 @@
 // bump's top), so a body passes over them like any other point.
 //
 // The state: affine [X, V, e₁, e₂, W₁, W₂] (18 numbers), rigid [X, V, e₁, s] (10), in the embedding ℝ³.
+// Where the internal motion has a closed form (an affine body with isotropic J under abc or no internal
+// potential, no internal friction; integrator.stepping auto) only the orbit is stepped (§4,
+// decoupling): [X, V, E, τ, L₀, M₀], E a parallel-transported tangent, τ the time since L₀, M₀ (the
+// frame's components in (E, n × E)), constant, 18 numbers of which the integrator moves 10; e_A and
+// W_A at τ are physics.md §8.3's flat motion from L₀, M₀ in the frame (E, n × E).
 #pragma once
 
 #include <memory>
@@ -28,8 +33,13 @@ struct EmbeddedScene {
   RevolutionImplicit implicit;
   SurfaceBody body;
   bool rigid = false;
+  bool orbit_only = false;  // steps_orbit_only(scene)
+  AbcPotential internal;    // the internal potential of the closed form (zero: none)
   EmbeddedModel model() const { return {implicit, body}; }
 };
+
+// Whether the run steps only the orbit (the header's comment says when).
+bool steps_orbit_only(const Scene& scene);
 
 // The scene's model (shared by the run's field and its read-outs). The scene's kind must vary.
 std::shared_ptr<const EmbeddedScene> make_embedded_scene(const Scene& scene);
@@ -53,6 +63,12 @@ double embedded_spin_of(const EmbeddedScene& model, const Coords& y);
 double embedded_p_phi(const EmbeddedScene& model, const Coords& y);
 // Rayleigh's R [energy/time]: dE/dt = −2R (physics-surfaces.md §13).
 double embedded_dissipation(const EmbeddedScene& model, const Coords& y);
+
+// The affine body's [X, V, e₁, e₂, W₁, W₂] of a state (the orbit-only one's through the closed form).
+Embedded embedded_full_state(const EmbeddedScene& model, const Coords& y);
+// The state `y` of `from` in `model`'s layout (the same body; an orbit-only layout starts its closed
+// form here, τ = 0): for a change of parameters that changes what is stepped.
+Coords embedded_layout(const EmbeddedScene& model, const EmbeddedScene& from, const Coords& y);
 
 // X, V, e_A and W_A of the state (the rigid body's e₂ = n × e₁, W_A = (s/I) n × e_A, I = |e₁|² tr J).
 EmbeddedBody embedded_body(const EmbeddedScene& model, const Coords& y);

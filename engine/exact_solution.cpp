@@ -122,20 +122,6 @@ Mat2 assemble(const Vec2& uv, const Vec2& pq) {
   return L;
 }
 
-// Internal motion at a fixed point without drive from (L₀, M₀) under J‖M‖²/2 + V_abc: L(t), L̇(t).
-std::pair<Mat2, Mat2> internal_motion(double J, const AbcPotential& abc, const Mat2& L, const Mat2& M,
-                                      double t) {
-  const PlaneMotion anticonformal =
-      plane_motion(J, abc.A, abc.C, Vec2(0.5 * (L(0, 0) - L(1, 1)), 0.5 * (L(0, 1) + L(1, 0))),
-                   Vec2(0.5 * (M(0, 0) - M(1, 1)), 0.5 * (M(0, 1) + M(1, 0))));
-  const PlaneMotion conformal =
-      plane_motion(J, abc.B, abc.C, Vec2(0.5 * (L(0, 0) + L(1, 1)), 0.5 * (L(1, 0) - L(0, 1))),
-                   Vec2(0.5 * (M(0, 0) + M(1, 1)), 0.5 * (M(1, 0) - M(0, 1))));
-  const auto [uv, uv_dot] = plane_motion_at(anticonformal, t);
-  const auto [pq, pq_dot] = plane_motion_at(conformal, t);
-  return {assemble(uv, pq), assemble(uv_dot, pq_dot)};
-}
-
 // The internal motion at a fixed point without drive: §8.3 for isotropic J; for anisotropic J only
 // the free motion, Ṗ = 0 ⇒ Ṁ = 0, L(t) = L + tM (physics.md §13; callers keep the abc potential
 // out of `abc`: exact_unsupported_reason refuses it, the splitting kicks it).
@@ -145,7 +131,7 @@ std::pair<Mat2, Mat2> internal_flow(const Scene& scene, const AbcPotential& abc,
   // of this flow: here the body only turns with the frame (physics.md §15).
   if (scene.body.model == BodyModel::incompressible) return {L, M};
   const Inertia inertia = inertia_of(scene.body);
-  if (inertia.isotropic) return internal_motion(inertia.J, abc, L, M, t);
+  if (inertia.isotropic) return flat_internal_motion(inertia.J, abc, L, M, t);
   return {L + t * M, M};
 }
 
@@ -203,6 +189,19 @@ OrbitPoint radial_orbit_at(const Surface& surface, double m, const RadialOrbit& 
 }
 
 }  // namespace
+
+std::pair<Mat2, Mat2> flat_internal_motion(double J, const AbcPotential& abc, const Mat2& L, const Mat2& M,
+                                           double t) {
+  const PlaneMotion anticonformal =
+      plane_motion(J, abc.A, abc.C, Vec2(0.5 * (L(0, 0) - L(1, 1)), 0.5 * (L(0, 1) + L(1, 0))),
+                   Vec2(0.5 * (M(0, 0) - M(1, 1)), 0.5 * (M(0, 1) + M(1, 0))));
+  const PlaneMotion conformal =
+      plane_motion(J, abc.B, abc.C, Vec2(0.5 * (L(0, 0) + L(1, 1)), 0.5 * (L(1, 0) - L(0, 1))),
+                   Vec2(0.5 * (M(0, 0) + M(1, 1)), 0.5 * (M(1, 0) - M(0, 1))));
+  const auto [uv, uv_dot] = plane_motion_at(anticonformal, t);
+  const auto [pq, pq_dot] = plane_motion_at(conformal, t);
+  return {assemble(uv, pq), assemble(uv_dot, pq_dot)};
+}
 
 PlaneMotion plane_motion(double J, double A, double C, const Vec2& w0, const Vec2& w_dot0) {
   PlaneMotion m;

@@ -31,6 +31,12 @@ PlaneMotion plane_motion(double J, double A, double C, const Eigen::Vector2d& w0
 // w(t) and ẇ(t).
 std::pair<Eigen::Vector2d, Eigen::Vector2d> plane_motion_at(const PlaneMotion& motion, double t);
 
+// The internal motion at a fixed point without drive (physics.md §8.3: flat space, isotropic J) from
+// (L₀, M₀ = L̇₀) under J‖M‖²/2 + V_abc: L(t) and L̇(t). Where the curvature varies it is the internal
+// motion in a parallel-transported frame (physics-surfaces.md §4, decoupling).
+std::pair<Mat2, Mat2> flat_internal_motion(double J, const AbcPotential& abc, const Mat2& L, const Mat2& M,
+                                           double t);
+
 // The exact flow for time t of the integrable part of H (physics.md §8.6): the orbit's isometry
 // flow MᵀηM/(2mR²), the body-frame rotation −σs²/(2mR²) and the internal motion at a fixed point
 // under J‖M‖²/2 + V_abc (`internal`; zero for a free body). `start` may be in any chart's embedding

@@ -123,10 +123,17 @@ struct InitialState {
   double u_dot = 0.0;  // [per time]
 };
 
+// What the integrator steps where the curvature varies.
+enum class Stepping {
+  automatic,  // only the orbit where the internal motion has a closed form (physics-surfaces.md §4)
+  full,       // every number of the chart-free state (a check of the above, or a benchmark's baseline)
+};
+
 struct IntegratorSettings {
   std::string name = "auto";  // a catalog name (integrator.h), or "auto": the engine chooses
   double dt = 0.01;           // [time]: the step of fixed-step methods, the first trial step otherwise
   double tolerance = 1e-10;   // relative and absolute error per step of adaptive methods
+  Stepping stepping = Stepping::automatic;
 };
 
 enum class OnDegenerate {

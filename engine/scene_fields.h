@@ -63,6 +63,12 @@ inline constexpr EnumName<OnDegenerate> kOnDegenerateNames[] = {
     {"report", OnDegenerate::report, "follow the frame through det L = 0 and report the event"},
     {"stop", OnDegenerate::stop, "stop with status degenerate_frame at the last state with det L > 0"},
 };
+inline constexpr EnumName<Stepping> kSteppingNames[] = {
+    {"auto", Stepping::automatic,
+     "where the curvature varies, step only the orbit when the internal motion has a closed form "
+     "(affine body, isotropic inertia, abc or no internal potential, no internal friction)"},
+    {"full", Stepping::full, "step every number of the state"},
+};
 
 // The names table of an enumerated type (found by argument-dependent lookup).
 constexpr std::span<const EnumName<SurfaceKind>> enum_names(std::type_identity<SurfaceKind>) {
@@ -76,6 +82,9 @@ constexpr std::span<const EnumName<PolarForm>> enum_names(std::type_identity<Pol
 }
 constexpr std::span<const EnumName<OnDegenerate>> enum_names(std::type_identity<OnDegenerate>) {
   return kOnDegenerateNames;
+}
+constexpr std::span<const EnumName<Stepping>> enum_names(std::type_identity<Stepping>) {
+  return kSteppingNames;
 }
 
 // The name of an enumerated value ("" for a value outside its table).
@@ -364,6 +373,9 @@ inline constexpr std::tuple kIntegratorSettingsFields{
                  "step (fixed-step) or first trial step"),
     number_field("tolerance", &IntegratorSettings::tolerance, "Tolerance", "1",
                  Range{.min = 1e-15, .max = 1e-2}, "error per step (adaptive)"),
+    value_field("stepping", &IntegratorSettings::stepping,
+                "auto: only the orbit where the internal motion has a closed form (surfaces whose "
+                "curvature varies); full: every number"),
 };
 
 inline constexpr std::tuple kSceneFields{

@@ -561,9 +561,13 @@ void retune(Simulation& run, const Scene& next) {
   if (curvature_varies(before.kind)) {
     // The chart-free state keeps X, V, e_A and W_A (so the velocities and frame rates); the rigid
     // body's spin follows its rate s/I with the new inertia I = |e₁|² tr J.
+    // An orbit-only state (embedded_run.h) starts its closed form again here, with the new internal
+    // potential and inertia; a change that makes the internal motion need stepping unfolds it.
     if (run.embedded->rigid)
       here.y(embedded::spin) *=
           inertia_of(next.body).matrix.trace() / run.embedded->body.inertia.matrix.trace();
+    else
+      here.y = embedded_layout(EmbeddedScene(next), *run.embedded, here.y);
   } else if (dialled(before, next.surface)) {
     // The same geodesic polar place (r, φ), velocity and frame in (E₁, E₂) on the new surface.
     const GlobalBody g = global_body(run.scene, here);

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <tuple>
 
 #include "engine/integrator.h"
 #include "engine/paper_coordinates.h"
@@ -97,6 +98,119 @@ TEST(EmbeddedRun, EveryAdmittedIntegratorRunsAndTheOthersAreRefused) {
     ASSERT_FALSE(errors.empty()) << name;
     EXPECT_EQ(errors.front().field, "integrator.name");
     EXPECT_NE(errors.front().reason.find("torus"), std::string::npos) << errors.front().reason;
+  }
+}
+
+// ---- only the orbit stepped (physics-surfaces.md §4, decoupling) ----------------------------
+
+// WS1's torus, gravity and abc with an isotropic body (J = 0.4): the internal motion has a closed form.
+Scene isotropic_torus(Stepping stepping) {
+  Scene scene = ws1_scene();
+  scene.body.inertia_matrix.reset();
+  scene.body.inertia = 0.4;
+  scene.integrator = {"dop853", 0.01, 1e-12, stepping};
+  return scene;
+}
+
+// What is stepped: the orbit alone only where the internal motion has a closed form.
+TEST(OrbitOnly, ChosenOnlyWhereTheInternalMotionHasAClosedForm) {
+  EXPECT_TRUE(steps_orbit_only(isotropic_torus(Stepping::automatic)));
+  EXPECT_FALSE(steps_orbit_only(isotropic_torus(Stepping::full)));
+  EXPECT_FALSE(steps_orbit_only(ws1_scene()));  // anisotropic J
+  Scene polar = isotropic_torus(Stepping::automatic);
+  polar.potential.deformation = PolarPotential{0.1, -0.2, PolarForm::cot2};
+  EXPECT_FALSE(steps_orbit_only(polar));
+  Scene damped = isotropic_torus(Stepping::automatic);
+  damped.friction = Friction{0.1, 0.0};
+  EXPECT_TRUE(steps_orbit_only(damped));  // translational friction acts on the orbit alone
+  damped.friction = Friction{0.1, 0.05};
+  EXPECT_FALSE(steps_orbit_only(damped));
+  Scene rigid = isotropic_torus(Stepping::automatic);
+  rigid.body.model = BodyModel::rigid;
+  rigid.potential.deformation = std::monostate{};
+  EXPECT_FALSE(steps_orbit_only(rigid));  // already 10 numbers, its own closed form for the frame
+  Scene free_body = isotropic_torus(Stepping::automatic);
+  free_body.potential.deformation = std::monostate{};
+  EXPECT_TRUE(steps_orbit_only(free_body));
+  Scene sphere;
+  EXPECT_FALSE(steps_orbit_only(sphere));
+  const Simulation run = start_simulation(isotropic_torus(Stepping::automatic));
+  EXPECT_TRUE(run.embedded->orbit_only);
+}
+
+// The same motion as stepping all 18 numbers (a different computation of the internal state: the
+// integrator against physics.md §8.3's closed form in the transported frame), at every read-out,
+// with translational friction too, over T = 20.
+TEST(OrbitOnly, AgreesWithSteppingEverything) {
+  for (const bool friction : {false, true}) {
+    SCOPED_TRACE(friction ? "friction" : "no friction");
+    Scene a = isotropic_torus(Stepping::automatic), b = isotropic_torus(Stepping::full);
+    if (friction) a.friction = b.friction = Friction{0.05, 0.0};
+    Simulation orbit = start_simulation(a), all = start_simulation(b);
+    ASSERT_TRUE(orbit.embedded->orbit_only);
+    ASSERT_FALSE(all.embedded->orbit_only);
+    for (const double t : {0.0, 1.0, 7.5, 20.0}) {
+      advance_to(orbit, t);
+      advance_to(all, t);
+      ASSERT_EQ(orbit.state.status, Status::ok);
+      const EmbeddedBody p = embedded_body(*orbit.embedded, orbit.state.y),
+                         q = embedded_body(*all.embedded, all.state.y);
+      EXPECT_LT((p.X - q.X).norm(), 1e-9) << "t = " << t;
+      EXPECT_LT((p.V - q.V).norm(), 1e-9);
+      for (int A = 0; A < 2; ++A) {
+        EXPECT_LT((p.e[A] - q.e[A]).norm(), 1e-9) << "t = " << t;
+        EXPECT_LT((p.W[A] - q.W[A]).norm(), 1e-9) << "t = " << t;
+      }
+      const ProfileReadout ro = profile_readout(*orbit.embedded, orbit.state.y);
+      const ProfileReadout ra = profile_readout(*all.embedded, all.state.y);
+      EXPECT_NEAR(ro.coordinates.p_alpha, ra.coordinates.p_alpha, 1e-10);
+      EXPECT_NEAR(ro.coordinates.p_phi, ra.coordinates.p_phi, 1e-9);
+      EXPECT_NEAR(ro.coordinates.det_L, ra.coordinates.det_L, 1e-9);
+      const EnergyParts eo = embedded_energy_parts(*orbit.embedded, orbit.state.y);
+      const EnergyParts ea = embedded_energy_parts(*all.embedded, all.state.y);
+      EXPECT_NEAR(eo.kinetic + eo.potential, ea.kinetic + ea.potential, 1e-10);
+    }
+    // it did fewer evaluations' worth of steps: the internal time scale no longer sets the step
+    EXPECT_LE(orbit.steps, all.steps);
+  }
+}
+
+// det L = 0 crossings (a body squashed through a segment under C < 0) are found at the same times, and
+// a change of parameters mid-run (a stiffer potential, then anisotropic J: the internal motion then
+// needs stepping) continues both runs alike.
+TEST(OrbitOnly, EventsAndChangesOfParametersAsSteppingEverything) {
+  Scene a = isotropic_torus(Stepping::automatic), b = isotropic_torus(Stepping::full);
+  a.potential.deformation = b.potential.deformation = AbcPotential{0.0, 0.0, -0.05};
+  a.initial.mu = b.initial.mu = 0.08;
+  a.initial.mu_dot = b.initial.mu_dot = -0.4;
+  ASSERT_TRUE(validate_scene(a).empty());
+  Simulation orbit = start_simulation(a), all = start_simulation(b);
+  advance_to(orbit, 3.0);
+  advance_to(all, 3.0);
+  ASSERT_FALSE(all.events.empty());
+  ASSERT_EQ(orbit.events.size(), all.events.size());
+  for (std::size_t i = 0; i < all.events.size(); ++i) EXPECT_NEAR(orbit.events[i].t, all.events[i].t, 1e-9);
+
+  Scene a2 = a, b2 = b;
+  a2.potential.deformation = b2.potential.deformation = AbcPotential{0.01, 0.02, 0.3};
+  retune(orbit, a2);
+  retune(all, b2);
+  ASSERT_TRUE(orbit.embedded->orbit_only);
+  Scene a3 = a2, b3 = b2;
+  a3.body.inertia_matrix = b3.body.inertia_matrix = InertiaMatrix{0.4, 0.05, 0.05, 0.3};
+  for (const auto& [t, sa, sb] : {std::tuple{5.0, &a2, &b2}, std::tuple{8.0, &a3, &b3}}) {
+    if (sa == &a3) {
+      retune(orbit, a3);
+      retune(all, b3);
+      ASSERT_FALSE(orbit.embedded->orbit_only);  // anisotropic: the internal motion is stepped now
+    }
+    advance_to(orbit, t);
+    advance_to(all, t);
+    const EmbeddedBody p = embedded_body(*orbit.embedded, orbit.state.y),
+                       q = embedded_body(*all.embedded, all.state.y);
+    EXPECT_LT((p.X - q.X).norm(), 1e-9) << "t = " << t;
+    EXPECT_LT((p.e[0] - q.e[0]).norm(), 1e-8) << "t = " << t;
+    EXPECT_LT((p.W[1] - q.W[1]).norm(), 1e-8) << "t = " << t;
   }
 }
 

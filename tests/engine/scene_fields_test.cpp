@@ -53,9 +53,9 @@ TEST(SceneFields, EveryTableNamesEachFieldOnceAndDescribesIt) {
   });
   // surface 2 + 1 optional (curvature) + 7 of the surfaces whose curvature varies, body 3, radial 1, abc 3,
   // polar 3, gravity 1, spring 1, friction 2, initial 12 + 2 (u, u_dot) + 3 optional (spin, speed,
-  // heading), integrator 3, name, description, on_degenerate. A field added to a struct of
-  // engine/scene.h goes into its table and this count.
-  EXPECT_EQ(count, 47);
+  // heading), integrator 4 (name, dt, tolerance, stepping), name, description, on_degenerate. A field
+  // added to a struct of engine/scene.h goes into its table and this count.
+  EXPECT_EQ(count, 48);
 }
 
 // ---- Units: the table's units obey the formulas of physics.md, checked by dimension.
