@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "codec/scene_json.h"
+#include "engine/embedded_run.h"
 #include "engine/number_text.h"
 #include "engine/simulation.h"
 
@@ -34,6 +35,9 @@ nlohmann::ordered_json provenance_json(const Scene& scene, std::string_view comm
                      {"runs", std::string(resolve_integrator(scene))},
                      {"dt", scene.integrator.dt},
                      {"tolerance", scene.integrator.tolerance}};
+  // where the curvature varies: whether the orbit alone was stepped (engine/embedded_run.h)
+  if (curvature_varies(scene.surface.kind))
+    j["integrator"]["steps"] = steps_orbit_only(scene) ? "orbit" : "all";
   if (!command.empty()) j["command"] = std::string(command);
   return j;
 }

@@ -373,9 +373,10 @@ inline constexpr std::tuple kIntegratorSettingsFields{
                  "step (fixed-step) or first trial step"),
     number_field("tolerance", &IntegratorSettings::tolerance, "Tolerance", "1",
                  Range{.min = 1e-15, .max = 1e-2}, "error per step (adaptive)"),
-    value_field("stepping", &IntegratorSettings::stepping,
-                "auto: only the orbit where the internal motion has a closed form (surfaces whose "
-                "curvature varies); full: every number"),
+    only_on(kVaryingCurvatureSurfaces,
+            value_field("stepping", &IntegratorSettings::stepping,
+                        "auto: only the orbit where the internal motion has a closed form; full: every "
+                        "number")),
 };
 
 inline constexpr std::tuple kSceneFields{

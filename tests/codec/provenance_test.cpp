@@ -79,6 +79,21 @@ TEST(Provenance, AutoRecordsTheResolvedIntegrator) {
   EXPECT_NE(p["integrator"]["runs"], "auto");
 }
 
+// Where the curvature varies the record says what was stepped: the orbit alone (the internal motion in
+// closed form) or every number; on the constant-curvature surfaces it has no such field.
+TEST(Provenance, SaysWhetherOnlyTheOrbitWasStepped) {
+  EXPECT_FALSE(provenance_json(sphere_scene(), "")["integrator"].contains("steps"));
+  Scene s;
+  s.surface.kind = SurfaceKind::torus;
+  s.body.inertia = 0.3;
+  EXPECT_EQ(provenance_json(s, "")["integrator"]["steps"], "orbit");
+  s.integrator.stepping = Stepping::full;
+  EXPECT_EQ(provenance_json(s, "")["integrator"]["steps"], "all");
+  s.integrator.stepping = Stepping::automatic;
+  s.body.inertia_matrix = InertiaMatrix{0.3, 0.1, 0.1, 0.2};
+  EXPECT_EQ(provenance_json(s, "")["integrator"]["steps"], "all");
+}
+
 // Nothing depends on the clock or the host: two calls give the same bytes.
 TEST(Provenance, SameSceneSameBytes) {
   const Scene s = sphere_scene();
