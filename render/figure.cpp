@@ -9,6 +9,9 @@
 #include <numeric>
 #include <optional>
 
+#include "render/view_table.h"
+#include "render/views/view_model.h"
+
 namespace spinfold::render {
 
 namespace {
@@ -567,7 +570,7 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
   if (view.layers & kActions)
     lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
   if (!snapshot.bodies.empty() && !on_view(snapshot.surface, view.kind, snapshot.bodies.front().X))
-    lines.push_back("body 1 is beyond the rim: off the part of H2 this surface shows");
+    lines.push_back(std::string(view_model(view.kind).off_view_note()));  // the view's own words
   std::string view_line = "View: " + std::string(view_info(view.kind).title) + ".";
   if (const std::string grid = grid_line(snapshot, view); !grid.empty()) view_line += " " + grid;
   lines.push_back(view_line);

@@ -46,18 +46,18 @@ std::vector<Sight> sights(const ViewModel& model, const Snapshot& snapshot, cons
   const Surface& surface = snapshot.surface;
   std::vector<Sight> out;
   for (const BodySnapshot& body : snapshot.bodies) {
-    if (!model.on_view(surface, body.X)) continue;
+    if (!model.draws(surface, body.X)) continue;
     const double weight = &body == &snapshot.bodies.front() ? 1000.0 : 50.0;
     out.push_back({model.world_position(surface, body.X), weight});
     for (const Vec3& P : ellipse_points(surface, body, view.scale, 8))
-      if (model.on_view(surface, P)) out.push_back({model.world_position(surface, P), 5.0});
+      if (model.draws(surface, P)) out.push_back({model.world_position(surface, P), 5.0});
   }
   for (const BodySnapshot& body : snapshot.bodies) {
     const std::size_t stride = body.trail.size() / 96 + 1;
     const double weight = 10.0 * static_cast<double>(stride) / static_cast<double>(body.trail.size());
     for (std::size_t i = 0; i < body.trail.size(); i += stride) {
       const Vec3& P = body.trail[i];
-      if (!model.on_view(surface, P)) continue;
+      if (!model.draws(surface, P)) continue;
       if (recent_only && !curvature_varies(surface.kind)) {  // the trail's last stretch: within 3 radii
         const double R = surface.radius, c = -dot(surface, P, body.X) / (R * R);  // (intrinsic) of its body
         if (R * std::acosh(std::max(1.0, c)) > 3.0 * R) continue;

@@ -32,7 +32,7 @@ struct Sight {
   glm::dvec3 at;
   double weight;
 };
-// The sights of a snapshot in a view, the main body's first when it is on the view; with
+// The sights of a snapshot in a view, the main body's first when the view draws it; with
 // `recent_only`, only each trail's last stretch (within 3 radii, intrinsic, of its body).
 std::vector<Sight> sights(const ViewModel& model, const Snapshot& snapshot, const ViewOptions& view,
                           bool recent_only);

@@ -44,7 +44,7 @@ void add_polyline(std::vector<Vertex>& lines, const Surface& surface, const View
   for (std::size_t i = 0; i + 1 < points.size() + (closed ? 1 : 0); ++i) {
     const Vec3& a = points[i];
     const Vec3& b = points[(i + 1) % points.size()];
-    if (!view.on_view(surface, a) || !view.on_view(surface, b)) continue;
+    if (!view.draws(surface, a) || !view.draws(surface, b)) continue;
     const glm::dvec3 wa = lifted(view, surface, view.world_position(surface, a)),
                      wb = lifted(view, surface, view.world_position(surface, b));
     if (clip && !(clip->near(glm::dvec2(wa)) && clip->near(glm::dvec2(wb)))) continue;
@@ -57,7 +57,7 @@ void add_dashed_polyline(std::vector<Vertex>& lines, const Surface& surface, con
                          const std::vector<Vec3>& points, const glm::vec4& color, const Window2d* clip) {
   double phase = 0.0;  // distance into the current dash + gap period
   for (std::size_t i = 0; i + 1 < points.size(); ++i) {
-    if (!view.on_view(surface, points[i]) || !view.on_view(surface, points[i + 1])) continue;
+    if (!view.draws(surface, points[i]) || !view.draws(surface, points[i + 1])) continue;
     const glm::dvec3 a = lifted(view, surface, view.world_position(surface, points[i]));
     const glm::dvec3 b = lifted(view, surface, view.world_position(surface, points[i + 1]));
     if (clip && !(clip->near(glm::dvec2(a)) && clip->near(glm::dvec2(b)))) continue;
@@ -144,15 +144,15 @@ void add_geodesic_polar_grid(std::vector<Vertex>& grid, const Surface& unit, con
         grid, unit, view, [&](double s) { return chart_point(unit, extent * s, 2 * kPi * k / 12).X; }, out);
 }
 
-// The default bodies: every body on the view, ellipses first, then arrows.
+// The default bodies: every body the view draws, ellipses first, then arrows.
 void ViewModel::add_bodies(FrameScene& scene, const Snapshot& snapshot, const ViewOptions& view) const {
   const Surface& surface = snapshot.surface;
   if (view.layers & kBody)
     for (const BodySnapshot& body : snapshot.bodies)
-      if (on_view(surface, body.X)) add_body(scene, surface, *this, view.scale, body);
+      if (draws(surface, body.X)) add_body(scene, surface, *this, view.scale, body);
   if (view.layers & kFrame)
     for (const BodySnapshot& body : snapshot.bodies)
-      if (on_view(surface, body.X)) add_frame_arrows(scene, surface, *this, view.scale, body);
+      if (draws(surface, body.X)) add_frame_arrows(scene, surface, *this, view.scale, body);
 }
 
 }  // namespace spinfold::render

@@ -48,6 +48,7 @@ class RevolutionView final : public ViewModel {
   // Within the drawn piece (the bump's plane to 4w, the catenoid to |z| = 2c).
   bool on_view(const Surface& surface, const Vec3& X) const override { return on_drawn_piece(surface, X); }
   std::string_view off_view_note() const override { return kOffDrawnPieceNote; }
+  bool draws(const Surface& /*surface*/, const Vec3& /*X*/) const override { return true; }
   glm::dvec3 normal(const Surface& surface, const glm::dvec3& w) const override {
     const ProfileShape shape = profile_shape(surface);
     const double l = shape.picture.length;
@@ -116,8 +117,21 @@ class RevolutionView final : public ViewModel {
         embedded_normal(RevolutionImplicit(profile_shape(surface).surface), snapshot.bodies.front().X);
     const glm::dvec3 n(n3.x(), n3.y(), n3.z());
     view.target.reset();
-    const std::vector<Sight> points = sights(*this, snapshot, view, true);
-    if (points.empty()) return;  // every body off the drawn piece: the default camera
+    std::vector<Sight> points = sights(*this, snapshot, view, true);
+    // The catenoid and the bump are unbounded and what is beyond the drawn piece is drawn too, but
+    // the camera frames what is on it (a companion escaping to infinity is not followed) — unless the
+    // main body is beyond: then it follows that body, framing it and its outline alone (the HUD says
+    // where it is).
+    const double l = profile_shape(surface).picture.length;
+    std::erase_if(points,
+                  [&](const Sight& p) { return !on_view(surface, Vec3(p.at.x, p.at.y, p.at.z) * l); });
+    const BodySnapshot& main = snapshot.bodies.front();
+    if (!on_view(surface, main.X)) {
+      points = {{world_position(surface, main.X), 1000.0}};
+      for (const Vec3& P : ellipse_points(surface, main, view.scale, 8))
+        points.push_back({world_position(surface, P), 5.0});
+    }
+    if (points.empty()) return;
     glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
     for (const Sight& p : points) lo = glm::min(lo, p.at), hi = glm::max(hi, p.at);
     const glm::dvec3 centre = 0.5 * (lo + hi);

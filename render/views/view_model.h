@@ -39,6 +39,10 @@ class ViewModel {
   // drawn piece of an unbounded surface), and what the HUD says of a main body it does not show.
   virtual bool on_view(const Surface& /*surface*/, const Vec3& /*X*/) const { return true; }
   virtual std::string_view off_view_note() const { return "body 1 is off the view"; }
+  // Whether a body, trail or path point at X is drawn: where the view shows it, or anywhere in a
+  // view whose world is ℝ³ itself (the revolution view: off its drawn piece the body, its trail and
+  // the camera's aim go on, with the note, and only the surface's mesh is missing).
+  virtual bool draws(const Surface& surface, const Vec3& X) const { return on_view(surface, X); }
   // The surface's unit normal at a world point: overlays are lifted along it and arrowheads lie
   // across it. +z in the 2-D views.
   virtual glm::dvec3 normal(const Surface& /*surface*/, const glm::dvec3& /*w*/) const {

@@ -148,6 +148,18 @@ TEST(Figure, PlaneAndConformalViewsHaveAScaleBarInLengths) {
 
 // Without the hud layer the page is the picture and the legend: a bare figure for a paper's own
 // caption (the provenance stays in the file's metadata).
+// A main body off what the view draws gets the view's own note in the caption, as in the frame's
+// HUD (the figure had the tractricoid's words for every view): the catenoid's body beyond the drawn
+// piece at t = 15, still drawn there with its outline.
+TEST(Figure, TheCaptionSaysWhereABodyOffTheDrawnPieceIs) {
+  const Figure f = figure_of("spin_vs_geodesic_catenoid", 15.0);
+  ASSERT_EQ(f.view.kind, ViewKind::revolution);
+  const std::vector<std::string> caption = texts_of(f.page, "caption");
+  EXPECT_TRUE(contains(caption, "beyond the piece of the surface drawn")) << "the revolution view's note";
+  EXPECT_FALSE(contains(caption, "beyond the rim"));
+  EXPECT_GT(paths_of(f.page, "body"), 0u);
+}
+
 TEST(Figure, WithoutTheHudLayerThereIsNoCaption) {
   const Figure f = figure_of("spin_vs_geodesic_sphere", 2.0);
   ViewOptions bare = f.view;
