@@ -3,12 +3,14 @@
 // frame on screen, pause → lossless frame on screen, against the previous design (an event stream
 // at 20 Hz and a frame.png fetch per event) measured in the same run; then N viewers of N playing
 // sessions (plain streams, frames counted as they arrive). Prints JSON.
-// Usage: node bench/live_bench.mjs BASE_URL [SECONDS] [VIEWERS]   (bench/live_bench.sh runs it)
+// Usage: node bench/live_bench.mjs BASE_URL [SECONDS] [VIEWERS] [PRESET]   (bench/live_bench.sh runs it;
+// PRESET: the live view's scene, e.g. spin_vs_geodesic_torus; default the default scene)
 import { chromium } from "../web/node_modules/playwright-core/index.mjs";
 
 const base = process.argv[2] || "http://127.0.0.1:8080";
 const seconds = Number(process.argv[3] || 5);
 const viewers = Number(process.argv[4] || 16);
+const sessionBody = process.argv[5] ? JSON.stringify({ preset: process.argv[5] }) : "{}";
 const median = (a) => { const s = [...a].sort((x, y) => x - y); return s.length ? s[Math.floor(s.length / 2)] : NaN; };
 
 async function post(path, body = {}) {
@@ -27,9 +29,9 @@ const result = { seconds };
 
 // Frames painted per second while the session plays, in the live view at this size.
 async function livePainted(width, height) {
-  return page.evaluate(async ({ width, height, seconds }) => {
+  return page.evaluate(async ({ width, height, seconds, sessionBody }) => {
     const { LiveView } = await import("/live.js");
-    const session = await (await fetch("/api/v1/sessions", { method: "POST", headers: { "Content-Type": "application/json" }, body: "{}" })).json();
+    const session = await (await fetch("/api/v1/sessions", { method: "POST", headers: { "Content-Type": "application/json" }, body: sessionBody })).json();
     const canvas = document.body.appendChild(document.createElement("canvas"));
     const live = new LiveView(canvas);
     live.open(session.id, { width, height });
@@ -45,7 +47,7 @@ async function livePainted(width, height) {
     canvas.remove();
     await fetch(`/api/v1/sessions/${session.id}`, { method: "DELETE" });
     return stats;
-  }, { width, height, seconds });
+  }, { width, height, seconds, sessionBody });
 }
 
 // The previous design: an event stream at 20 Hz and a frame.png per state event.

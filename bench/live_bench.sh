@@ -2,7 +2,8 @@
 # Live frames, one run: frame misses with 1 and 8 concurrent clients (wrk; each request a new frame
 # of one of 8 sessions, so nothing is served from the cache), then the browser and viewer figures
 # of bench/live_bench.mjs (headless Chromium, the UI's web/live.js). Prints JSON lines.
-# Usage: bench/live_bench.sh [BUILD_DIR] [SECONDS] (default build, 5); needs wrk, curl, chromium,
+# Usage: bench/live_bench.sh [BUILD_DIR] [SECONDS] [PRESET] (default build, 5, the default scene: the
+# live view's scene, e.g. spin_vs_geodesic_torus); needs wrk, curl, chromium,
 # web/node_modules (scripts/setup.sh).
 set -euo pipefail
 build=${1:-build}
@@ -35,4 +36,4 @@ misses() { wrk -t"$(( $1 < 2 ? $1 : 2 ))" -c"$1" -d"${seconds}s" -s "$work/miss.
 one=$(misses 1)
 eight=$(misses 8)
 awk -v a="$one" -v b="$eight" 'BEGIN {printf "{\"frame_misses_per_s\": {\"clients_1\": %.1f, \"clients_8\": %.1f, \"ratio\": %.2f}}\n", a, b, b / a}'
-node "$(dirname "$0")/live_bench.mjs" "http://127.0.0.1:$port" "$seconds" 16
+node "$(dirname "$0")/live_bench.mjs" "http://127.0.0.1:$port" "$seconds" 16 ${3:+"$3"}
