@@ -89,7 +89,7 @@ class NullWriter : public ClipWriter {
 // camera as `spinfold record` does): the main body's centre lands in the frame and the surface does
 // not hide it (the torus's inner band, the far side, under the bump's rim; the catenoid beyond its
 // drawn piece, where the body goes at t ≈ 4.5 and the camera failed to follow it before). At 10 frames/s
-// (1 in the sanitizer builds).
+// (0.25 in the sanitizer builds).
 TEST(Clip, TwentySecondsOfEachPresetWhereTheCurvatureVariesKeepTheBodyInView) {
   for (const char* name : {"spin_vs_geodesic_torus", "opposite_spins_spheroid", "trapped_spin_bump",
                            "damped_spin_spheroid", "spin_vs_geodesic_catenoid"}) {
