@@ -143,6 +143,17 @@ bool varying_regime(const std::string& regime) {
 
 namespace {
 
+// body.inertia: with probability `anisotropic` a symmetric positive-definite matrix J^{AB}, else a
+// number (the generators' one draw of it, in this order).
+template <class Uni, class Coin>
+json random_inertia(Uni& uni, Coin& coin, double anisotropic) {
+  if (coin(anisotropic)) {
+    const double a = uni(0.1, 0.5), d = uni(0.1, 0.5), o = uni(-0.4, 0.4) * std::sqrt(a * d);
+    return json::array({json::array({a, o}), json::array({o, d})});
+  }
+  return uni(0.1, 0.5);
+}
+
 // A scene on a surface whose curvature varies (physics-surfaces.md §1): the torus, spheroid, bump
 // and catenoid (a regime each, placed anywhere on it), an affine or rigid body (anisotropic J sometimes), no,
 // a gravity or a spring height potential, no, abc or polar internal potential, friction in the `friction`
@@ -214,12 +225,7 @@ std::string random_varying_scene(const std::string& regime, std::mt19937_64& rng
   // body: affine or rigid (the incompressible body runs only under the chart's splitting methods)
   const bool rigid = coin(0.35);
   json body = {{"mass", uni(0.5, 2.0)}, {"model", rigid ? "rigid" : "affine"}};
-  if (coin(0.35)) {
-    const double a = uni(0.1, 0.5), d = uni(0.1, 0.5), o = uni(-0.4, 0.4) * std::sqrt(a * d);
-    body["inertia"] = json::array({json::array({a, o}), json::array({o, d})});
-  } else {
-    body["inertia"] = uni(0.1, 0.5);
-  }
+  body["inertia"] = random_inertia(uni, coin, 0.35);
   j["body"] = body;
 
   double lambda = uni(0.6, 1.4), mu = uni(0.3, 1.2);
@@ -319,12 +325,7 @@ std::string random_scene(const std::string& regime, unsigned long long seed) {
       regime == "degenerate" ? 0 : (coin(0.6) ? 0 : (coin(0.5) ? 1 : 2));  // affine, rigid, incompressible
   const char* model_name[] = {"affine", "rigid", "incompressible"};
   json body = {{"mass", uni(0.5, 2.0)}, {"model", model_name[model]}};
-  if (coin(0.3)) {
-    const double a = uni(0.1, 0.5), d = uni(0.1, 0.5), o = uni(-0.4, 0.4) * std::sqrt(a * d);
-    body["inertia"] = json::array({json::array({a, o}), json::array({o, d})});
-  } else {
-    body["inertia"] = uni(0.1, 0.5);
-  }
+  body["inertia"] = random_inertia(uni, coin, 0.3);
   j["body"] = body;
 
   // the internal start
