@@ -69,7 +69,7 @@ std::vector<Sight> sights(const ViewModel& model, const Snapshot& snapshot, cons
 }
 
 double badness(const ViewModel& model, const Surface& surface, const ViewOptions& view,
-               const std::vector<Sight>& points, const HudLayout& hud) {
+               const std::vector<Sight>& points, const HudLayout& hud, double enough) {
   FrameScene scene;
   scene.view_projection = model.camera(view);
   const double margin = 0.04 * std::min(view.width, view.height),
@@ -82,10 +82,11 @@ double badness(const ViewModel& model, const Surface& surface, const ViewOptions
   const glm::dvec3 eye = glm::dvec3(h) / h.w;
   double bad = 0.0;
   for (const Sight& p : points) {
-    const bool hidden = model.hidden(surface, p.at, eye);
+    if (bad >= enough) break;
+    // The projection first: a sight out of the frame or under a box costs no ray cast.
     const std::optional<glm::dvec2> px = pixel_position(scene, view, p.at);
-    if (hidden || !px || px->x < edge || px->y < edge || px->x > view.width - edge ||
-        px->y > view.height - edge || hud_box.contains(*px) || legend_box.contains(*px))
+    if (!px || px->x < edge || px->y < edge || px->x > view.width - edge || px->y > view.height - edge ||
+        hud_box.contains(*px) || legend_box.contains(*px) || model.hidden(surface, p.at, eye))
       bad += p.weight;
   }
   return bad;
@@ -106,7 +107,7 @@ void clear_the_boxes(const ViewModel& model, const Surface& surface, ViewOptions
       v.yaw = start.yaw + turn[0];
       v.pitch = std::clamp(start.pitch + turn[1], -1.3, 1.3);
       v.distance = start.distance * pull;
-      const double bad = badness(model, surface, v, points, hud);
+      const double bad = badness(model, surface, v, points, hud, best);
       if (bad < best) best = bad, view = v;
       if (best == 0.0) return;
     }

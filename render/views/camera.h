@@ -4,6 +4,7 @@
 #pragma once
 
 #include <initializer_list>
+#include <limits>
 #include <vector>
 
 #include "render/scene_builder.h"
@@ -38,9 +39,11 @@ std::vector<Sight> sights(const ViewModel& model, const Snapshot& snapshot, cons
                           bool recent_only);
 // How badly a camera shows the sights: the weight of those hidden (ViewModel::hidden) or behind
 // the camera, out of the frame (less a margin) or under the HUD's or legend's box (grown by the
-// margin).
+// margin). The sum stops once it reaches `enough` (a camera search's best so far: a camera that bad
+// cannot win), so the ray casts of the rest are not paid for.
 double badness(const ViewModel& model, const Surface& surface, const ViewOptions& view,
-               const std::vector<Sight>& points, const HudLayout& hud);
+               const std::vector<Sight>& points, const HudLayout& hud,
+               double enough = std::numeric_limits<double>::infinity());
 // Tries the camera turned by each of a fixed list of (Δyaw, Δpitch) and drawn back by each factor
 // of `pulls`, in this order, and keeps the first that shows the sights best.
 void clear_the_boxes(const ViewModel& model, const Surface& surface, ViewOptions& view,

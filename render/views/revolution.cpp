@@ -144,13 +144,15 @@ class RevolutionView final : public ViewModel {
     const double half_fov = std::atan(std::tan(glm::radians(kFovY) / 2) * std::min(1.0, aspect));
     view.target = std::array<double, 3>{centre.x, centre.y, centre.z};
     const double base = radius / std::sin(0.85 * half_fov);
+    double best = std::numeric_limits<double>::infinity();
+    // The preferences first: the badness is summed only while the camera can still win.
     const auto cost = [&](const ViewOptions& v, double pull) {
       const glm::dvec3 towards(std::cos(v.pitch) * std::cos(v.yaw), std::cos(v.pitch) * std::sin(v.yaw),
                                std::sin(v.pitch));
-      return badness(*this, surface, v, points, hud) + 4.0 * (pull - 1.0) / 0.6 +
-             1.5 * (1.0 - std::abs(glm::dot(towards, n))) + 0.5 * std::abs(v.pitch - 0.5);
+      const double preference = 4.0 * (pull - 1.0) / 0.6 + 1.5 * (1.0 - std::abs(glm::dot(towards, n))) +
+                                0.5 * std::abs(v.pitch - 0.5);
+      return badness(*this, surface, v, points, hud, best - preference) + preference;
     };
-    double best = std::numeric_limits<double>::infinity();
     const auto consider = [&](double yaw, double pitch, double pull) {
       ViewOptions v = view;
       v.yaw = yaw, v.pitch = pitch, v.distance = base * pull;

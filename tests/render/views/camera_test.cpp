@@ -66,6 +66,38 @@ TEST(Camera, BadnessWeighsTheSightsOutOfTheFrameBehindTheCameraOrUnderTheHud) {
   EXPECT_DOUBLE_EQ(badness(plane, flat, view, sights, hud), 5.0 + 50.0);  // by the edge, beyond it
   hud.hud = {300.0, 220.0, 40.0, 40.0};                                   // over the frame's centre
   EXPECT_DOUBLE_EQ(badness(plane, flat, view, sights, hud), 1000.0 + 5.0 + 50.0);
+  // A search's bound: the sum stops once it reaches `enough`, after the sight that reached it.
+  EXPECT_DOUBLE_EQ(badness(plane, flat, view, sights, hud, 1000.0), 1000.0);
+  EXPECT_DOUBLE_EQ(badness(plane, flat, view, sights, hud, 1004.0), 1000.0 + 5.0);
+  EXPECT_DOUBLE_EQ(badness(plane, flat, view, sights, hud, 2000.0), 1000.0 + 5.0 + 50.0);
+}
+
+// The ray casts are the cost of a camera search: a sight out of the frame or under a box, and the
+// sights after the bound is reached, cast none.
+TEST(Camera, BadnessCastsNoRayForASightAlreadyCountedOrPastTheBound) {
+  struct CountingPlane final : ViewModel {
+    const ViewModel& plane = view_model(ViewKind::plane);
+    mutable int casts = 0;
+    glm::dvec3 world_position(const Surface& s, const Vec3& X) const override {
+      return plane.world_position(s, X);
+    }
+    glm::mat4 camera(const ViewOptions& v) const override { return plane.camera(v); }
+    bool hidden(const Surface&, const glm::dvec3&, const glm::dvec3&) const override {
+      return ++casts, false;
+    }
+  } model;
+  const Surface flat(SurfaceKind::plane, 1.0);
+  ViewOptions view;
+  view.kind = ViewKind::plane;
+  HudLayout hud;
+  hud.hud = {300.0, 220.0, 40.0, 40.0};  // over the main body
+  const std::vector<Sight> sights{
+      {{0.0, 0.0, 0.0}, 1000.0}, {{0.5, 0.0, 0.0}, 5.0}, {{9.0, 0.0, 0.0}, 50.0}, {{-0.5, 0.0, 0.0}, 5.0}};
+  EXPECT_DOUBLE_EQ(badness(model, flat, view, sights, hud), 1050.0);
+  EXPECT_EQ(model.casts, 2);  // the two in the frame and clear of the box
+  model.casts = 0;
+  EXPECT_DOUBLE_EQ(badness(model, flat, view, sights, hud, 500.0), 1000.0);
+  EXPECT_EQ(model.casts, 0);
 }
 
 TEST(Camera, ClearingTheBoxesNeverLeavesTheCameraWorseThanItFoundIt) {
