@@ -43,6 +43,10 @@ std::optional<std::string> actions_unsupported_reason(const Scene& scene) {
   if (curvature_varies(scene.surface.kind))
     return "action variables are computed where the curvature is constant (physics.md §8); here the orbit "
            "does not separate";
+  if (scene.friction && scene.friction->any())
+    return "with friction nothing is conserved to make action variables of (physics-surfaces.md §13)";
+  if (!std::holds_alternative<std::monostate>(scene.potential.height))
+    return "the height potential: its action variables (physics-surfaces.md §5) are not computed here";
   if (scene.surface.kind == SurfaceKind::plane)
     return "the flat limit has no action formulas here (physics.md §8.9, §8.10 are for S² and H²)";
   if (has_deformation_potential(scene.potential) && !abc_of(scene))

@@ -19,15 +19,17 @@ InternalState internal_state(const Scene& scene, const Coords& y);
 // Spin s = tr((εL)ᵀP) (affine) or the stored s (rigid) [angular momentum].
 double spin_of(const Scene& scene, const Coords& y);
 
-// Radial potential and its chart derivatives at a chart point.
-struct RadialTerms {
-  double value = 0.0;
-  double d_dr = 0.0;
-  double d_dphi = 0.0;
+// The orbit's potential at a chart point, V_r + V_h, and its chart derivatives: the radial potential
+// about the pole (physics.md §5) and the height potential V_h(z) of the embedded height z
+// (physics-surfaces.md §5; among the constant kinds only the sphere has one).
+struct OrbitPotential {
+  double value = 0.0;   // [energy]
+  double d_dr = 0.0;    // [energy/length]
+  double d_dphi = 0.0;  // [energy]
 };
-RadialTerms radial_terms(const Scene& scene, const Chart& chart, double r, double phi);
+OrbitPotential orbit_potential(const Scene& scene, const Chart& chart, double r, double phi);
 
-// H = p_r²/2m + (p_φ − Cs)²/(2mS²) + ½tr(PJ⁻¹Pᵀ) + V_r + V_def   (rigid: s²/(4Jλ₀²) for the internal
+// H = p_r²/2m + (p_φ − Cs)²/(2mS²) + ½tr(PJ⁻¹Pᵀ) + V_r + V_h + V_def   (rigid: s²/(4Jλ₀²) for the internal
 // part, J = tr(J)/2); ½tr(PJ⁻¹Pᵀ) = ‖P‖²/2J for isotropic J (physics.md §4, §13)
 double hamiltonian(const Scene& scene, const Chart& chart, const Coords& y);
 
@@ -38,10 +40,13 @@ struct EnergyParts {
 };
 EnergyParts energy_parts(const Scene& scene, const Chart& chart, const Coords& y);
 
-// dy/dt = X_H(y):
-//   ṙ = p_r/m, φ̇ = Π/(mS²), ṗ_r = CΠ²/(mS³) − KsΠ/(mS) − ∂V_r/∂r, ṗ_φ = −∂V_r/∂φ, Π = p_φ − Cs,
-//   L̇ = PJ⁻¹ − Cφ̇εL, Ṗ = −∂V/∂L − Cφ̇εP   (rigid: θ̇ = s/(2Jλ₀²) − Cφ̇, ṡ = 0; physics.md §13).
-// ∂V_r/∂φ vanishes in the global chart; in a moved chart the radial centre is off the chart pole.
+// dy/dt = X_H(y) + Q (Q: Rayleigh friction, physics-surfaces.md §13, absent without it):
+//   ṙ = p_r/m, φ̇ = Π/(mS²), ṗ_r = CΠ²/(mS³) − KsΠ/(mS) − ∂V/∂r − γ_t p_r/m,
+//   ṗ_φ = −∂V/∂φ − γ_t S²φ̇ − γ_i C tr((εL)ᵀM), Π = p_φ − Cs, M = PJ⁻¹,
+//   L̇ = PJ⁻¹ − Cφ̇εL, Ṗ = −∂V/∂L − Cφ̇εP − γ_i M
+//   (rigid: θ̇ = s/(2Jλ₀²) − Cφ̇, ṡ = −γ_i s/J, and tr((εL)ᵀM) = s/J; physics.md §13).
+// V = V_r + V_h; ∂V/∂φ vanishes in the global chart, not in a moved one (the potential's centre or
+// axis is off the chart's pole).
 void vector_field(const Scene& scene, const Chart& chart, const Coords& y, Coords& dydt);
 
 }  // namespace spinfold

@@ -244,6 +244,10 @@ std::optional<std::string> exact_unsupported_reason(const Scene& scene) {
   if (curvature_varies(scene.surface.kind))
     return "the closed forms hold where the curvature is constant (physics.md §8); on the " +
            std::string(enum_name(scene.surface.kind)) + " use an integrator";
+  if (scene.friction && scene.friction->any())
+    return "with friction the motion has no closed form here (physics-surfaces.md §13): use an integrator";
+  if (!std::holds_alternative<std::monostate>(scene.potential.height))
+    return "the height potential's orbit has no closed form here (physics-surfaces.md §5): use an integrator";
   if (std::holds_alternative<PolarPotential>(scene.potential.deformation))
     return "the polar deformation potential has no closed form in time (physics.md §8.7): use an integrator";
   if (scene.body.model == BodyModel::incompressible)

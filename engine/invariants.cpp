@@ -63,7 +63,7 @@ double orbital_energy(const Scene& scene, const State& state) {
   const double Pi = state.y[coord::p_phi] - C * spin_of(scene, state.y);
   const double p_r = state.y[coord::p_r];
   return p_r * p_r / (2.0 * m) + Pi * Pi / (2.0 * m * S * S) +
-         radial_terms(scene, state.chart, r, state.y[coord::phi]).value;
+         orbit_potential(scene, state.chart, r, state.y[coord::phi]).value;
 }
 
 double deformation_energy(const Scene& scene, const State& state) {

@@ -76,7 +76,7 @@ using HeightPotential = std::variant<std::monostate, GravityPotential, SpringPot
 struct Potentials {
   std::optional<RadialPotential> radial;  // absent: no radial force
   DeformationPotential deformation;       // monostate: no deformation force
-  HeightPotential height;                 // monostate: none (only on a surface whose curvature varies)
+  HeightPotential height;                 // monostate: none (the sphere and where the curvature varies)
 };
 
 // Rayleigh's dissipation R = γ_t/2 |V|² + γ_i/2 Σ_A |De_A/Dt|² (physics-surfaces.md §13): viscous
@@ -163,7 +163,7 @@ struct Scene {
   Surface surface;
   Body body;
   Potentials potential;
-  std::optional<Friction> friction;  // absent: none (only on a surface whose curvature varies)
+  std::optional<Friction> friction;  // absent: none
   InitialState initial;
   IntegratorSettings integrator;
   OnDegenerate on_degenerate = OnDegenerate::report;

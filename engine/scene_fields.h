@@ -302,10 +302,10 @@ inline constexpr std::tuple kPotentialsFields{
                         "the radial potential V_r (absent: none); only where the curvature is constant")),
     value_field("deformation", &Potentials::deformation,
                 "the deformation potential, abc or polar (absent: none)"),
-    only_on(kVaryingCurvatureSurfaces,
-            value_field(
-                "height", &Potentials::height,
-                "a potential of the embedded height z, gravity (m g z) or spring (k z²/2) (absent: none)")),
+    only_on(kVaryingCurvatureSurfaces | surface_bit(SurfaceKind::sphere),
+            value_field("height", &Potentials::height,
+                        "a potential of the embedded height z, gravity (m g z) or spring (k z²/2) (absent: "
+                        "none); not on the plane (z = 0 there) nor the pseudosphere (no height in ℝ³)")),
 };
 
 inline constexpr std::tuple kFrictionFields{
@@ -385,9 +385,8 @@ inline constexpr std::tuple kSceneFields{
     value_field("surface", &Scene::surface, "the surface the body moves on"),
     value_field("body", &Scene::body, "mass, inertia and model of the body"),
     value_field("potential", &Scene::potential, "the potentials acting on the body"),
-    only_on(kVaryingCurvatureSurfaces,
-            value_field("friction", &Scene::friction,
-                        "Rayleigh friction in translation and internal motion (absent: none): dE/dt = −2R")),
+    value_field("friction", &Scene::friction,
+                "Rayleigh friction in translation and internal motion (absent: none): dE/dt = −2R"),
     value_field("initial", &Scene::initial, "the initial state in the paper's coordinates"),
     value_field("integrator", &Scene::integrator, "the integrator and its step and tolerance"),
     value_field("on_degenerate", &Scene::on_degenerate, "what happens when det L reaches 0"),

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "engine/body_forces.h"
 #include "engine/chart.h"
 #include "engine/exact_solution.h"
 #include "engine/inertia.h"
@@ -21,6 +22,14 @@ void kick(const Scene& scene, const Chart& chart, double h, BodyKinematics& body
     // and projected: the surface gradient P(η ∂V_r/∂X).
     const Vec3 covector = chart.A.transpose() * radial_potential_gradient(surface, *scene.potential.radial,
                                                                           chart.A * body.X + chart.b);
+    body.V -= (h / scene.body.mass) * tangential(surface, body.X, raise(surface, covector));
+  }
+  if (!std::holds_alternative<std::monostate>(scene.potential.height)) {
+    // V_h(z) of the global point's height (the sphere): ∂V_h/∂X = V_h′ ẑ, pulled back and projected
+    // as above.
+    const double z = (chart.A * body.X + chart.b).z();
+    const Vec3 covector =
+        chart.A.transpose() * Vec3(0.0, 0.0, height_slope(scene.potential.height, scene.body.mass, z));
     body.V -= (h / scene.body.mass) * tangential(surface, body.X, raise(surface, covector));
   }
   if (scene.body.model == BodyModel::incompressible) return;  // its deformation forces act in rattle()

@@ -162,17 +162,22 @@ void check_varying_surface(const Scene& scene, Checker& c) {
                    " use dop853, rk4, gauss4, gauss6, implicit_midpoint or auto");
 }
 
-// Height potential and friction act only where the curvature varies (on the sphere, plane and
-// pseudosphere the engine has no term for them yet; a spheroid with a = b is the sphere).
-void check_constant_surface(const Scene& scene, Checker& c) {
-  if (!std::holds_alternative<std::monostate>(scene.potential.height))
-    c.add_text("potential.height", "present",
-               "acts only on the torus, spheroid, bump and catenoid so far: for gravity on a sphere use a "
-               "spheroid with equatorial_radius = polar_radius");
-  if (scene.friction)
+// Friction is not a Hamiltonian flow: the splitting methods, which compose exact flows, cannot carry
+// it, and the incompressible body runs only under them (physics.md §15). Where the curvature varies
+// neither runs at all (check_varying_surface says so).
+void check_friction(const Scene& scene, Checker& c) {
+  if (!scene.friction || !scene.friction->any() || curvature_varies(scene.surface.kind)) return;
+  if (scene.body.model == BodyModel::incompressible) {
     c.add_text("friction", "present",
-               "acts only on the torus, spheroid, bump and catenoid so far: for friction on a sphere use a "
-               "spheroid with equatorial_radius = polar_radius");
+               "the incompressible body runs only under split4/split6 (RATTLE on det L), which compose "
+               "Hamiltonian flows: friction is not one; use affine or rigid");
+    return;
+  }
+  const std::string& name = scene.integrator.name;
+  if (name == split4_info.name || name == split6_info.name)
+    c.add_text("integrator.name", name,
+               "composes exact Hamiltonian flows and friction is not one: use dop853, rk4, gauss4, gauss6, "
+               "implicit_midpoint or auto");
 }
 
 void check_initial(const Scene& scene, Checker& c) {
@@ -182,7 +187,13 @@ void check_initial(const Scene& scene, Checker& c) {
     check_varying_surface(scene, c);
     return;
   }
-  check_constant_surface(scene, c);
+  if (surface.kind != SurfaceKind::sphere && !std::holds_alternative<std::monostate>(scene.potential.height))
+    c.add_text(
+        "potential.height", "present",
+        surface.kind == SurfaceKind::plane
+            ? "is constant on the plane (z = 0 there): only on the sphere, torus, spheroid, bump and catenoid"
+            : "needs a height in ℝ³, which the pseudosphere has not: only on the sphere, torus, spheroid, "
+              "bump and catenoid");
   if (!std::isfinite(q.r) || std::abs(q.r) > kMaxSceneMagnitude || !std::isfinite(surface.radius) ||
       !(surface.radius > 0.0))
     return;
@@ -340,6 +351,7 @@ std::vector<FieldError> validate_scene(const Scene& scene) {
   check_rigid(scene, c);
   check_incompressible(scene, c);
   check_potentials(scene, c);
+  check_friction(scene, c);
   const IntegratorSettings& in = scene.integrator;
   if (in.name == exact_info.name && scene.body.model != BodyModel::incompressible)
     if (const auto why = exact_unsupported_reason(scene)) c.add_text("integrator.name", in.name, *why);

@@ -77,8 +77,18 @@ TEST(SurfacesJson, FieldsOfTheOtherFamilyAreRefusedNamingThem) {
   EXPECT_NE(e.reason.find("only on the torus"), std::string::npos) << e.reason;
   e = first_error(R"({"surface": {"kind": "spheroid", "neck_radius": 1}})");
   EXPECT_EQ(e.field, "surface.neck_radius");
-  e = first_error(R"({"surface": {"kind": "plane"}, "friction": {"translational": 1}})");
-  EXPECT_EQ(e.field, "friction");
+  // The height potential: not on the plane (z = 0) nor the pseudosphere; friction acts everywhere.
+  e = first_error(R"({"surface": {"kind": "plane"}, "potential": {"height": {"kind": "gravity", "g": 1}}})");
+  EXPECT_EQ(e.field, "potential.height");
+  EXPECT_NE(e.reason.find("only on the sphere"), std::string::npos) << e.reason;
+  e = first_error(
+      R"({"surface": {"kind": "pseudosphere"}, "potential": {"height": {"kind": "spring", "k": 1}}})");
+  EXPECT_EQ(e.field, "potential.height");
+  for (const char* kind : {"sphere", "pseudosphere", "plane"})
+    EXPECT_TRUE(parse_scene_text(std::string(R"({"surface": {"kind": ")") + kind +
+                                 R"("}, "initial": {"r": 0.5}, "friction": {"translational": 1}})")
+                    .errors.empty())
+        << kind;
   e = first_error(R"({"surface": {"kind": "bump"}, "potential": {"radial": {"gamma": 1}}})");
   EXPECT_EQ(e.field, "potential.radial");
   e = first_error(R"({"surface": {"kind": "bump"}, "potential": {"height": {"kind": "magnetic"}}})");

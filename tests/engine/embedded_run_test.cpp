@@ -366,12 +366,19 @@ TEST(EmbeddedRun, RefusalsNameTheField) {
   s = ws1_scene();
   s.potential.radial = RadialPotential{0.1};
   EXPECT_EQ(first_field(s), "potential.radial");
-  Scene sphere;
-  sphere.potential.height = GravityPotential{1.0};
-  EXPECT_EQ(first_field(sphere), "potential.height");
-  sphere = Scene{};
-  sphere.friction = Friction{0.1, 0.0};
-  EXPECT_EQ(first_field(sphere), "friction");
+  // The height potential needs an embedded height: the sphere has one, the plane (z = 0) and the
+  // pseudosphere have not; friction acts on every surface (dynamics_test).
+  Scene flat;
+  flat.surface = Surface(SurfaceKind::plane, 1.0);
+  flat.initial.r = 0.5;
+  flat.potential.height = GravityPotential{1.0};
+  EXPECT_EQ(first_field(flat), "potential.height");
+  flat.surface.kind = SurfaceKind::pseudosphere;
+  EXPECT_EQ(first_field(flat), "potential.height");
+  flat.surface.kind = SurfaceKind::sphere;
+  EXPECT_EQ(first_field(flat), "(accepted)");
+  flat.friction = Friction{0.1, 0.0};
+  EXPECT_EQ(first_field(flat), "(accepted)");
   s = ws1_scene();
   s.surface.width = 0.0;
   s.surface.kind = SurfaceKind::bump;

@@ -25,7 +25,9 @@ TEST(ScenePaths, EveryLeafOnceWithItsRangeOrNames) {
   ASSERT_NE(find_scene_path("initial.u"), nullptr);
   EXPECT_EQ(find_scene_path("initial.u")->surfaces, kVaryingCurvatureSurfaces);
   ASSERT_NE(find_scene_path("potential.height.g"), nullptr);
-  EXPECT_EQ(find_scene_path("potential.height.g")->surfaces, kVaryingCurvatureSurfaces);
+  EXPECT_EQ(find_scene_path("potential.height.g")->surfaces,
+            kVaryingCurvatureSurfaces | surface_bit(SurfaceKind::sphere));
+  EXPECT_EQ(find_scene_path("friction.internal")->surfaces, ~0u);
   EXPECT_EQ(find_scene_path("surface.tube_radius")->surfaces, surface_bit(SurfaceKind::torus));
   EXPECT_EQ(find_scene_path("body.mass")->surfaces, ~0u);
   const ScenePath* integrator = find_scene_path("integrator.name");

@@ -38,6 +38,53 @@ TEST(Validation, EveryBadFieldIsNamedWithItsValue) {
   EXPECT_EQ(error_at(errors, "surface.radius")->value, "0");
 }
 
+// Friction on a constant-curvature surface runs under the stepping methods and `auto`; the splitting
+// methods (exact Hamiltonian flows), the closed form and the incompressible body (RATTLE only) refuse
+// it with the reason.
+TEST(Validation, FrictionIsRefusedOnlyWhereTheMethodComposesHamiltonianFlows) {
+  for (const SurfaceKind kind : {SurfaceKind::sphere, SurfaceKind::pseudosphere, SurfaceKind::plane}) {
+    Scene s;
+    s.surface = Surface(kind, 1.0);
+    s.initial.r = 0.5;
+    s.friction = Friction{0.1, 0.05};
+    for (const char* name : {"auto", "dop853", "rk4", "gauss4", "gauss6", "implicit_midpoint"}) {
+      s.integrator.name = name;
+      EXPECT_TRUE(validate_scene(s).empty()) << name;
+    }
+    for (const char* name : {"split4", "split6", "exact"}) {
+      s.integrator.name = name;
+      const std::vector<FieldError> errors = validate_scene(s);
+      const FieldError* e = error_at(errors, "integrator.name");
+      ASSERT_NE(e, nullptr) << name;
+      EXPECT_NE(e->reason.find("friction"), std::string::npos) << e->reason;
+    }
+    s.integrator.name = "auto";
+    s.body.model = BodyModel::incompressible;
+    const std::vector<FieldError> errors = validate_scene(s);
+    const FieldError* e = error_at(errors, "friction");
+    ASSERT_NE(e, nullptr);
+    EXPECT_NE(e->reason.find("split4/split6"), std::string::npos) << e->reason;
+    s.friction = Friction{};  // zero coefficients: no friction
+    EXPECT_EQ(error_at(validate_scene(s), "friction"), nullptr);
+  }
+}
+
+// The sphere's height potential runs under every method but the closed form.
+TEST(Validation, TheSpheresHeightPotentialRunsUnderEveryMethodButTheClosedForm) {
+  Scene s;
+  s.initial.r = 0.5;
+  s.potential.height = GravityPotential{1.0};
+  for (const char* name : {"auto", "dop853", "split4", "split6", "gauss6"}) {
+    s.integrator.name = name;
+    EXPECT_TRUE(validate_scene(s).empty()) << name;
+  }
+  s.integrator.name = "exact";
+  const std::vector<FieldError> errors = validate_scene(s);
+  const FieldError* e = error_at(errors, "integrator.name");
+  ASSERT_NE(e, nullptr);
+  EXPECT_NE(e->reason.find("height"), std::string::npos) << e->reason;
+}
+
 // Beyond the supported magnitudes is refused even where the sign is right.
 TEST(Validation, MagnitudesBeyondTheSupportedRangeAreRefused) {
   Scene s;
