@@ -5,9 +5,11 @@
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
+#include "engine/embedded_dynamics.h"
 #include "engine/embedded_run.h"
 #include "engine/inertia.h"
 #include "engine/potentials.h"
+#include "engine/revolution.h"
 
 namespace spinfold {
 
@@ -145,17 +147,36 @@ double angular_momentum_rounding(const Scene& scene, const State& state) {
   return chart_momentum(scene, state).rounding.z();
 }
 
+namespace {
+
+// L and M (the rates relative to parallel transport, W_A) in a right-handed orthonormal tangent frame
+// (E, n × E) at the body, E along e₁: a, b and their rates' a, b are invariant under the frame's
+// rotation (physics-surfaces.md §4: the internal motion is the flat one in a transported frame).
+InternalState embedded_internal_state(const Scene& scene, const State& state) {
+  const EmbeddedBody b = embedded_body(EmbeddedScene(scene), state.y);
+  const Vec3 n = embedded_normal(RevolutionImplicit(revolution_surface(scene.surface)), b.X);
+  const Vec3 E1 = (b.e[0] - b.e[0].dot(n) * n).normalized(), E2 = n.cross(E1);
+  InternalState in;
+  for (int A = 0; A < 2; ++A) {
+    in.L(0, A) = E1.dot(b.e[A]), in.L(1, A) = E2.dot(b.e[A]);
+    in.M(0, A) = E1.dot(b.W[A]), in.M(1, A) = E2.dot(b.W[A]);
+  }
+  return in;
+}
+
+}  // namespace
+
 std::optional<SeparatedEnergies> separated_energies(const Scene& scene, const State& state) {
   // C_x and C_y separate only for isotropic J (physics.md §13), and not under det L = c (§15).
   if (scene.body.model != BodyModel::affine || !isotropic_inertia(scene.body)) return std::nullopt;
-  if (curvature_varies(scene.surface.kind)) return std::nullopt;  // not computed there (yet)
   AbcPotential abc;
   if (const auto* p = std::get_if<AbcPotential>(&scene.potential.deformation))
     abc = *p;
   else if (has_deformation_potential(scene.potential))
     return std::nullopt;
   const double J = inertia_of(scene.body).J;
-  const InternalState in = internal_state(scene, state.y);
+  const InternalState in = curvature_varies(scene.surface.kind) ? embedded_internal_state(scene, state)
+                                                                : internal_state(scene, state.y);
   const DeformationInvariants inv = deformation_invariants(in.L);
   const DeformationInvariants rate = deformation_invariants(in.M);  // 2(u_M² + v_M²), 2(p_M² + q_M²)
   SeparatedEnergies e{0.5 * J * rate.a, 0.5 * J * rate.b};

@@ -59,6 +59,7 @@ void read_profile(const Simulation& run, Readout& r) {
   r.heading = p.heading;
   r.vorticity = p.coordinates.p_beta;
   r.det_L = p.coordinates.det_L;
+  r.separated = separated_energies(run.scene, run.state);
   r.actions_unsupported = *actions_unsupported_reason(run.scene);
 }
 
