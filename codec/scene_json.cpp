@@ -603,7 +603,7 @@ SceneParse parse_scene_text(std::string_view text) {
   try {
     return parse_scene(parse_json_text(text));
   } catch (const JsonTextError& e) {
-    result.errors.push_back({"", "", e.what()});
+    result.errors.push_back({e.field, "", e.what()});
   }
   return result;
 }

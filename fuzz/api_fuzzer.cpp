@@ -190,7 +190,7 @@ void raw_request(Harness& h, FuzzedDataProvider& in) {
   bool chunked = false, has_length = false;
   const int lines = in.ConsumeIntegralInRange(0, 4);
   for (int k = 0; k < lines; ++k) {
-    switch (in.ConsumeIntegralInRange(0, 9)) {
+    switch (in.ConsumeIntegralInRange(0, 10)) {
       case 0:
         headers += "Content-Length: " + std::to_string(body.size()) + "\r\n";
         has_length = true;
@@ -227,6 +227,11 @@ void raw_request(Harness& h, FuzzedDataProvider& in) {
       case 8:
         headers += "Transfer-Encoding: " + in.ConsumeRandomLengthString(12) + "\r\n";
         chunked = true;
+        break;
+      case 9:  // byte ranges apply to a file download only, by RFC 9110 (server/http/byte_ranges.h)
+        headers += std::string(in.PickValueInArray({"Range", "RANGE", "Rnge_", "If-Range"})) + ": " +
+                   in.PickValueInArray({"bytes=", "items=", "bytes=-", ""}) +
+                   in.ConsumeRandomLengthString(24) + "\r\n";
         break;
       default:
         headers += "X-" + in.ConsumeRandomLengthString(12) + ": " + in.ConsumeRandomLengthString(24) + "\r\n";
@@ -298,8 +303,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (const auto at = target.find("{id}"); at != std::string::npos) target.replace(at, 4, h.id);
   const int parameters = in.ConsumeIntegralInRange(0, 3);
   for (int k = 0; k < parameters; ++k) {
-    const std::string key = in.PickValueInArray({"format", "width", "height", "view", "layers", "yaw",
-                                                 "pitch", "distance", "scale", "rate", "trail", "x"});
+    const std::string key =
+        in.PickValueInArray({"format", "width", "height", "view", "layers", "yaw", "pitch", "distance",
+                             "scale", "rate", "trail", "fields", "every", "x"});
     target += (k == 0 ? "?" : "&") + key + "=" +
               httplib::detail::encode_query_param(in.ConsumeRandomLengthString(24));
   }

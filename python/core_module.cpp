@@ -391,7 +391,8 @@ class PySimulation {
       try {
         patch = parse_json_text(changes.cast<std::string>());
       } catch (const JsonTextError& e) {
-        throw py::value_error(std::string("changes: ") + e.what());
+        throw py::value_error("changes" + (e.field.empty() ? std::string() : "." + e.field) + ": " +
+                              e.what());
       }
     } else {
       patch = json_of(changes, "");  // NaN kept for the validation to name the field

@@ -15,6 +15,8 @@
 #include <optional>
 #include <vector>
 
+#include "server/http/byte_ranges.h"
+
 namespace spinfold::server {
 
 namespace {
@@ -244,18 +246,22 @@ class ConnectionStream final : public httplib::Stream {
 
   ssize_t read(char* ptr, size_t size) override {
     if (pending() == 0) {
-      if (!ready(POLLIN, read_timeout_)) return -1;
       buffer_.erase(0, offset_);
       offset_ = 0;
-      std::array<char, 4096> chunk{};
-      ssize_t got = 0;
-      do {
-        got = ::recv(sock_, chunk.data(), chunk.size(), 0);
-      } while (got < 0 && errno == EINTR);
-      if (got <= 0) return got;
-      buffer_.append(chunk.data(), static_cast<std::size_t>(got));
+      if (const ssize_t got = fill(); got <= 0) return got;
     }
-    const std::size_t n = std::min(size, pending());
+    std::size_t n = std::min(size, pending());
+    if (in_head_) {
+      // The head goes out no further than a line's end, each line looked at (rename_range_line)
+      // when its first byte is asked for (httplib reads the head a byte at a time).
+      std::size_t lf = buffer_.find('\n', offset_);
+      while (lf == std::string::npos && fill() > 0) lf = buffer_.find('\n', offset_);
+      if (lf != std::string::npos) {
+        if (at_line_start_) rename_range_line(lf);
+        n = std::min(size, lf + 1 - offset_);
+      }
+      at_line_start_ = buffer_[offset_ + n - 1] == '\n';
+    }
     std::copy_n(buffer_.data() + offset_, n, ptr);
     // Kept up to a bound: a longer request is cut short there, which the checks read as incomplete
     // (refused), rather than held twice (httplib holds what it reads of it too).
@@ -287,11 +293,52 @@ class ConnectionStream final : public httplib::Stream {
     return false;
   }
 
-  void start_request() { request_.clear(); }
+  void start_request() {
+    request_.clear();
+    in_head_ = true;
+    head_started_ = false;
+    at_line_start_ = true;
+  }
   const std::string& request() const { return request_; }
 
  private:
   std::size_t pending() const { return buffer_.size() - offset_; }
+
+  // One more recv appended to the buffer: its byte count, 0 at the end, −1 on error or time-out.
+  ssize_t fill() {
+    if (!ready(POLLIN, read_timeout_)) return -1;
+    std::array<char, 4096> chunk{};
+    ssize_t got = 0;
+    do {
+      got = ::recv(sock_, chunk.data(), chunk.size(), 0);
+    } while (got < 0 && errno == EINTR);
+    if (got > 0) buffer_.append(chunk.data(), static_cast<std::size_t>(got));
+    return got;
+  }
+
+  // The head's line at offset_ (ending at `lf`): a Range header is renamed kRangeHeader, in place
+  // (the same length), so that httplib neither parses nor applies it (server/http/byte_ranges.h);
+  // a client's own header of that name is renamed away. The empty line ends the head.
+  void rename_range_line(std::size_t lf) {
+    const std::string_view line = std::string_view(buffer_).substr(offset_, lf - offset_);
+    if (line.empty() || line == "\r") {
+      if (head_started_) in_head_ = false;  // empty lines before the request line are skipped
+      return;
+    }
+    head_started_ = true;
+    const auto named = [&](std::string_view name) {
+      if (line.size() <= name.size() || line[name.size()] != ':') return false;
+      for (std::size_t i = 0; i < name.size(); ++i)
+        if (std::tolower(static_cast<unsigned char>(line[i])) !=
+            std::tolower(static_cast<unsigned char>(name[i])))
+          return false;
+      return true;
+    };
+    if (named(kRangeHeader))
+      buffer_.replace(offset_, kRangeHeader.size(), "Rnge-");
+    else if (named("Range"))
+      buffer_.replace(offset_, kRangeHeader.size(), kRangeHeader);
+  }
 
   bool ready(short events, std::chrono::microseconds timeout) const {
     pollfd p{sock_, events, 0};
@@ -323,6 +370,9 @@ class ConnectionStream final : public httplib::Stream {
   std::string buffer_;
   std::size_t offset_ = 0;
   std::string request_;
+  bool in_head_ = true;        // the current request's head is being read
+  bool head_started_ = false;  // its request line has been read
+  bool at_line_start_ = true;  // the next byte handed out starts a line of the head
 };
 
 // True when the request was read exactly to the end of its body: the connection may go on.

@@ -88,6 +88,7 @@ json parse_body(const httplib::Request& req, const std::string& body,
   try {
     return parse_json_text(body);
   } catch (const JsonTextError& e) {
+    if (!e.field.empty()) throw bad(422, "Invalid value", e.field, "", e.what());  // a repeated key
     throw bad(400, "Malformed request", "", "", e.what());
   }
 }

@@ -77,15 +77,18 @@ std::variant<QueryValue, std::string> parse_value(const QueryParam& p, const std
       return expectation(p);
     case ParamType::list: {
       std::string_view rest = text;
+      bool named = false;  // commas alone (`,`, `,,`) name nothing: refused, not read as absent
       while (true) {
         const std::size_t comma = rest.find(',');
         const std::string_view item = rest.substr(0, comma);
         bool known = item.empty();
         for (const std::string& v : p.values) known = known || v == item;
         if (!known) return "'" + std::string(item) + "' is not one of " + joined(p.values, ", ");
+        named = named || !item.empty();
         if (comma == std::string_view::npos) break;
         rest.remove_prefix(comma + 1);
       }
+      if (!named && !text.empty()) return "names nothing: " + expectation(p);
       return QueryValue(text);
     }
     case ParamType::string: break;

@@ -6,6 +6,7 @@
 #include "render/view_parameters.h"
 #include "server/context.h"
 #include "server/frames/frames.h"
+#include "server/http/byte_ranges.h"
 #include "server/http/problem.h"
 #include "server/routes/routes.h"
 
@@ -137,14 +138,33 @@ void get_recording(ServerContext& server, const Call& call, httplib::Response& r
   send_json(res, server.recordings.describe(call.id));
 }
 
+// The whole file (200), or one byte range of it (206) by RFC 9110 §14 (server/http/byte_ranges.h).
+// An If-Range is never matched (no validator is sent), so it asks for the whole file.
 void get_recording_file(ServerContext& server, const Call& call, httplib::Response& res) {
   const RecordingDownload file = server.recordings.file(call.id);
+  const std::string asked = call.http.get_header_value(std::string(kRangeHeader));
+  const RangeAnswer range = call.http.has_header("If-Range")
+                                ? RangeAnswer{}
+                                : answer_range(asked, static_cast<std::uint64_t>(file.bytes));
+  res.set_header("Accept-Ranges", "bytes");
+  if (range.kind == RangeAnswer::Kind::unsatisfiable) {
+    res.set_header("Content-Range", range.content_range);
+    throw bad(416, "Range not satisfiable", "Range", asked,
+              "the file has " + std::to_string(file.bytes) + " bytes: no byte asked for is in it");
+  }
+  const bool partial = range.kind == RangeAnswer::Kind::partial;
+  const std::uint64_t first = partial ? range.first : 0;
+  const std::uint64_t count = partial ? range.last - range.first + 1 : static_cast<std::uint64_t>(file.bytes);
   res.set_header("Content-Disposition", "attachment; filename=\"" + file.file_name + "\"");
   res.set_header("Cache-Control", "no-store");
+  if (partial) {
+    res.status = 206;
+    res.set_header("Content-Range", range.content_range);
+  }
   res.set_content_provider(
-      static_cast<std::size_t>(file.bytes), file.content_type,
-      [read = file.read](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
-        const std::string bytes = read(offset, length);
+      static_cast<std::size_t>(count), file.content_type,
+      [read = file.read, first](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+        const std::string bytes = read(first + offset, length);
         if (bytes.empty()) return false;
         sink.write(bytes.data(), bytes.size());
         return true;

@@ -67,9 +67,22 @@ void register_routes(httplib::Server& http, ServerContext& server, const std::ve
     add(route.method, path_regex(route.path), route);
     if (!paths_done.insert(route.path).second) continue;
     // A known path asked with a method it does not have: 405 with Allow, not the router's 404.
+    // Every known path answers OPTIONS too (204 with Allow, RFC 9110 §9.3.7), so Allow names it.
     const std::vector<std::string> allowed = methods_of(routes, route.path);
     std::string allow;
     for (const std::string& m : allowed) allow += (allow.empty() ? "" : ", ") + m;
+    allow += ", OPTIONS";
+    http.Options(path_regex(route.path), [allow](const httplib::Request& req, httplib::Response& res) {
+      res.set_header("X-Spinfold-Version", server_version());
+      try {
+        refuse_malformed_chunks(req, res);
+      } catch (const ApiError& e) {
+        send_error(res, e);
+        return;
+      }
+      res.set_header("Allow", allow);
+      res.status = 204;
+    });
     const auto refuse = [allow](const httplib::Request& req, httplib::Response& res) {
       res.set_header("X-Spinfold-Version", server_version());
       try {

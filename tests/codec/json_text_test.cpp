@@ -81,3 +81,36 @@ TEST(JsonText, ScalarsAndContainersReadBackExactly) {
 
 }  // namespace
 }  // namespace spinfold
+
+namespace spinfold {
+namespace {
+
+// A key repeated in one object is refused naming its path, in either order (nlohmann-json alone
+// keeps the last: `{"mass": -1, "mass": 1}` read as mass 1); the same key in two objects is fine.
+TEST(JsonText, ARepeatedKeyIsRefusedNamingItsPath) {
+  const std::pair<std::string, std::string> cases[] = {
+      {R"({"body": {"mass": -1, "mass": 1}})", "body.mass"},
+      {R"({"body": {"mass": 1, "mass": -1}})", "body.mass"},
+      {R"({"a": 1, "a": 1})", "a"},
+      {R"({"companions": [{"label": "x"}, {"label": "y", "initial": {"r": 1, "phi": 0, "r": 2}}]})",
+       "companions[1].initial.r"},
+      {R"([[1, 2], {"k": [], "k": {}}])", "[1].k"},
+  };
+  for (const auto& [text, path] : cases) {
+    try {
+      parse_json_text(text);
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const JsonTextError& e) {
+      EXPECT_EQ(e.field, path) << text;
+      EXPECT_NE(std::string(e.what()).find("appears twice"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(parse_json_text(R"({"a": {"k": 1}, "b": {"k": 2}, "c": [{"k": 1}, {"k": 2}], "k": 0})"));
+  const SceneParse p = parse_scene_text(R"({"body": {"mass": -1, "mass": 1}})");
+  EXPECT_FALSE(p.scene);
+  ASSERT_EQ(p.errors.size(), 1u);
+  EXPECT_EQ(p.errors[0].field, "body.mass");
+}
+
+}  // namespace
+}  // namespace spinfold
