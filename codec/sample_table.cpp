@@ -180,6 +180,32 @@ ordered_json SampleTable::json_row(const ordered_json& sample) const {
   return j;
 }
 
+std::vector<FieldError> companion_label_errors(const Scene& scene) {
+  std::vector<FieldError> errors;
+  const std::vector<std::string> columns = sample_column_names();
+  for (std::size_t i = 0; i < scene.companions.size(); ++i) {
+    const std::string label = companion_label(scene, i),
+                      field = "companions[" + std::to_string(i) + "].label";
+    for (std::size_t j = 0; j < i; ++j)
+      if (companion_label(scene, j) == label) {
+        errors.push_back(
+            {field, label,
+             "is companions[" + std::to_string(j) +
+                 "]'s label too: each body's columns are named by its label, which must be unique"});
+        break;
+      }
+    const std::string prefix = label + ".";
+    for (const std::string& c : columns)
+      if (c.starts_with(prefix)) {
+        errors.push_back({field, label,
+                          "would name its columns like the main body's own (" + c +
+                              "): choose a label that is not a column group"});
+        break;
+      }
+  }
+  return errors;
+}
+
 SampleTable make_sample_table(std::string_view fields, const ordered_json& first_sample) {
   SampleTable table;
   const std::vector<std::string> known = sample_column_names();

@@ -12,6 +12,9 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/scene.h"
+#include "engine/validation.h"
+
 namespace spinfold {
 
 // The numeric values of a sample (codec/sample_json.h), flattened, in the sample's order.
@@ -39,6 +42,12 @@ struct SampleTable {
   std::string csv_row(const nlohmann::ordered_json& sample) const;              // one line
   nlohmann::ordered_json json_row(const nlohmann::ordered_json& sample) const;  // {"name": value}
 };
+
+// Companions' labels that would make two columns one (a table's companion columns are
+// "<label>.<column>"): a label that another companion's repeats (explicit or the default "body N"),
+// or one that, with a column's name after it, is a main-body column (`frequencies` makes
+// `frequencies.r`). Each error names companions[i].label.
+std::vector<FieldError> companion_label_errors(const Scene& scene);
 
 // `fields`: a comma-separated list of names ("" for all); `first_sample` gives the companions'
 // labels. Throws std::invalid_argument "unknown field 'x' (…)" naming the first unknown one.

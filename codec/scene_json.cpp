@@ -4,6 +4,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "codec/sample_table.h"
 #include "engine/initial_rates.h"
 #include "engine/number_text.h"
 #include "engine/scene_fields.h"
@@ -594,6 +595,7 @@ SceneParse parse_scene(const json& document) {
   for (std::size_t i = 0; i < scene.companions.size(); ++i)
     name_given_fields(invalid, "companions[" + std::to_string(i) + "].initial", scene.companions[i].initial);
   add_new(std::move(invalid));
+  add_new(companion_label_errors(scene));
   if (result.errors.empty()) result.scene = scene;
   return result;
 }

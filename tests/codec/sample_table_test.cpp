@@ -11,6 +11,7 @@
 #include "codec/presets.h"
 #include "codec/sample_json.h"
 #include "codec/scene_json.h"
+#include "engine/simulation.h"
 
 namespace spinfold {
 namespace {
@@ -131,6 +132,39 @@ TEST(SampleTable, CellsNeverBreakALine) {
   EXPECT_EQ(csv_quote("say \"x\", y"), "\"say \"\"x\"\", y\"");
   EXPECT_EQ(csv_cell(ordered_json()), "");
   EXPECT_EQ(csv_cell(ordered_json(0.1)), "0.1");
+}
+
+}  // namespace
+}  // namespace spinfold
+
+namespace spinfold {
+namespace {
+
+// Labels that would make two columns one are refused naming companions[i].label: a repeated label
+// (explicit, or the default "body N" of an unlabelled companion) and a label that is a main-body
+// column group (`frequencies` + `.r`); the header of an accepted scene has no name twice.
+TEST(SampleTable, CompanionLabelsThatWouldCollideAreRefused) {
+  const auto first_error = [](const std::string& companions) {
+    const SceneParse p = parse_scene_text(R"({"companions": )" + companions + "}");
+    EXPECT_FALSE(p.scene) << companions;
+    return p.errors.empty() ? FieldError{} : p.errors.front();
+  };
+  FieldError e = first_error(R"([{"label": "frequencies"}])");
+  EXPECT_EQ(e.field, "companions[0].label");
+  EXPECT_NE(e.reason.find("frequencies.r"), std::string::npos) << e.reason;
+  EXPECT_EQ(first_error(R"([{"label": "a"}, {"label": "a"}])").field, "companions[1].label");
+  EXPECT_EQ(first_error(R"([{}, {"label": "body 2"}])").field, "companions[1].label");
+  EXPECT_EQ(first_error(R"([{"label": "body 3"}, {}])").field, "companions[1].label");
+  EXPECT_EQ(first_error(R"([{"label": "L.0"}])").field, "companions[0].label");  // L.0 + .0 = L.0.0
+  for (const char* fine :
+       {R"([{"label": "a"}, {"label": "b"}, {}])", R"([{"label": "r"}, {"label": "body 9"}])"}) {
+    const SceneParse p = parse_scene_text(std::string(R"({"companions": )") + fine + "}");
+    ASSERT_TRUE(p.scene) << fine << ": " << (p.errors.empty() ? "" : p.errors[0].reason);
+    Simulation run = start_simulation(*p.scene);
+    const SampleTable table = make_sample_table("", sample_to_json(run, 0.0));
+    const std::vector<std::string> header = table.header();
+    EXPECT_EQ(std::set<std::string>(header.begin(), header.end()).size(), header.size()) << fine;
+  }
 }
 
 }  // namespace
