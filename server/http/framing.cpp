@@ -69,6 +69,34 @@ std::optional<std::uint64_t> digits(std::string_view s) {
   return n;
 }
 
+// RFC 3986's host [":" port]: a reg-name (unreserved, pct-encoded, sub-delims but the comma) or an
+// IPv4 address, or an IP literal in brackets. The comma (a sub-delim) is refused too: "a,b" is what
+// a list of two Host values looks like once folded, and no name served here has one.
+bool valid_authority(std::string_view v) {
+  std::string_view host = v, port;
+  if (v.starts_with('[')) {
+    const std::size_t close = v.find(']');
+    if (close == std::string_view::npos) return false;
+    const std::string_view literal = v.substr(1, close - 1);
+    if (literal.empty() || literal.find_first_not_of("0123456789abcdefABCDEF:.") != std::string_view::npos)
+      return false;
+    host = v.substr(0, close + 1);
+    const std::string_view rest = v.substr(close + 1);
+    if (!rest.empty() && rest.front() != ':') return false;
+    port = rest.empty() ? rest : rest.substr(1);
+    if (!rest.empty() && port.empty()) return true;  // "[::1]:" (an empty port is allowed)
+  } else {
+    const std::size_t colon = v.rfind(':');
+    if (colon != std::string_view::npos) host = v.substr(0, colon), port = v.substr(colon + 1);
+    if (host.empty()) return false;
+    for (const char c : host)
+      if (!std::isalnum(static_cast<unsigned char>(c)) &&
+          std::string_view("-._~!$&'()*+;=%").find(c) == std::string_view::npos)
+        return false;
+  }
+  return port.find_first_not_of("0123456789") == std::string_view::npos && port.size() <= 5;
+}
+
 Framing refused(int status, std::string field, std::string_view value, std::string reason) {
   Framing f;
   f.status = status;
@@ -113,6 +141,7 @@ Framing read_framing(std::string_view bytes) {
   std::string length_text;
   std::vector<std::string_view> codings;
   bool has_coding = false;
+  std::vector<std::string_view> hosts;
   std::size_t at = request_line->next;
   while (true) {
     const auto line = line_at(bytes, at);
@@ -151,6 +180,8 @@ Framing read_framing(std::string_view bytes) {
     } else if (key == "transfer-encoding") {
       has_coding = true;
       for (const std::string_view v : elements(value)) codings.push_back(v);
+    } else if (key == "host") {
+      hosts.push_back(value);
     }
   }
 
@@ -178,6 +209,18 @@ Framing read_framing(std::string_view bytes) {
   }
   if ((method == "GET" || method == "HEAD") && f.body != Framing::Body::none)
     return refused(400, "method", method, "a " + method + " has no body here");
+  // RFC 9112 §3.2: an HTTP/1.1 request has exactly one Host, a valid authority (host[:port]).
+  if (request_line->text.ends_with(" HTTP/1.1")) {
+    if (hosts.size() != 1)
+      return refused(400, "Host", hosts.empty() ? "" : std::string(hosts[0]),
+                     hosts.empty() ? "is required in an HTTP/1.1 request (RFC 9112 §3.2)"
+                                   : "is given " + std::to_string(hosts.size()) +
+                                         " times: an HTTP/1.1 request has exactly one (RFC 9112 §3.2)");
+    if (!valid_authority(hosts[0]))
+      return refused(400, "Host", hosts[0],
+                     "is not a host with an optional port (RFC 9112 §3.2; RFC 3986 §3.2.2: no spaces, "
+                     "commas or slashes)");
+  }
   return f;
 }
 
@@ -252,12 +295,12 @@ class ConnectionStream final : public httplib::Stream {
     }
     std::size_t n = std::min(size, pending());
     if (in_head_) {
-      // The head goes out no further than a line's end, each line looked at (rename_range_line)
+      // The head goes out no further than a line's end, each line looked at (look_at_line)
       // when its first byte is asked for (httplib reads the head a byte at a time).
       std::size_t lf = buffer_.find('\n', offset_);
       while (lf == std::string::npos && fill() > 0) lf = buffer_.find('\n', offset_);
       if (lf != std::string::npos) {
-        if (at_line_start_) rename_range_line(lf);
+        if (at_line_start_) lf = look_at_line(lf);
         n = std::min(size, lf + 1 - offset_);
       }
       at_line_start_ = buffer_[offset_ + n - 1] == '\n';
@@ -316,21 +359,42 @@ class ConnectionStream final : public httplib::Stream {
     return got;
   }
 
-  // The head's line at offset_ (ending at `lf`): a Range header is renamed kRangeHeader, in place
-  // (the same length), so that httplib neither parses nor applies it (server/http/byte_ranges.h);
-  // a client's own header of that name is renamed away. The empty line ends the head.
-  void rename_range_line(std::size_t lf) {
+  // The head's line at offset_ (ending at `lf`), before httplib reads it; returns where it ends now.
+  // - The request line: an absolute-form target (`http://host:port/path`) becomes its origin form
+  //   (`/path`): RFC 9112 §3.2.2, a server MUST accept it; httplib would route the whole URI.
+  // - A Range header is renamed kRangeHeader, in place, so that httplib neither parses nor applies it
+  //   (server/http/byte_ranges.h); a client's own header of that name is renamed away.
+  // The empty line ends the head.
+  std::size_t look_at_line(std::size_t lf) {
     const std::string_view line = std::string_view(buffer_).substr(offset_, lf - offset_);
     if (line.empty() || line == "\r") {
       if (head_started_) in_head_ = false;  // empty lines before the request line are skipped
-      return;
+      return lf;
     }
-    head_started_ = true;
-    const auto named = [&](std::string_view name) {
-      if (line.size() <= name.size() || line[name.size()] != ':') return false;
-      for (std::size_t i = 0; i < name.size(); ++i)
+    if (!head_started_) {
+      head_started_ = true;
+      const std::size_t space = line.find(' ');
+      const std::string_view rest = space == std::string_view::npos ? "" : line.substr(space + 1);
+      const std::size_t scheme = rest.find("://");
+      const std::string_view name = rest.substr(0, scheme);
+      const bool http = scheme != std::string_view::npos && (lower(name) == "http" || lower(name) == "https");
+      if (!http) return lf;
+      const std::size_t authority = space + 1 + scheme + 3;
+      const std::size_t end = line.find(' ', authority);
+      const std::size_t path = line.find_first_of("/?", authority);
+      const std::size_t target_end = end == std::string_view::npos ? line.size() : end;
+      const std::string origin = path == std::string_view::npos || path > target_end
+                                     ? "/"
+                                     : std::string(line.substr(path, target_end - path));
+      const std::string fixed = (origin.front() == '?' ? "/" : "") + origin;
+      buffer_.replace(offset_ + space + 1, target_end - space - 1, fixed);
+      return buffer_.find('\n', offset_);
+    }
+    const auto named = [&](std::string_view header) {
+      if (line.size() <= header.size() || line[header.size()] != ':') return false;
+      for (std::size_t i = 0; i < header.size(); ++i)
         if (std::tolower(static_cast<unsigned char>(line[i])) !=
-            std::tolower(static_cast<unsigned char>(name[i])))
+            std::tolower(static_cast<unsigned char>(header[i])))
           return false;
       return true;
     };
@@ -338,6 +402,7 @@ class ConnectionStream final : public httplib::Stream {
       buffer_.replace(offset_, kRangeHeader.size(), "Rnge-");
     else if (named("Range"))
       buffer_.replace(offset_, kRangeHeader.size(), kRangeHeader);
+    return lf;
   }
 
   bool ready(short events, std::chrono::microseconds timeout) const {

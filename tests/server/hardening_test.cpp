@@ -501,6 +501,22 @@ std::vector<Framed> framing_cases() {
        "POST /api/v1/sessions%2F{id}/advance HTTP/1.1\r\nHost: 127.0.0.1\r\n" + type +
            "Content-Length: 13\r\n\r\n" + body,
        404},
+      // RFC 9112 §3.2: exactly one Host, an authority (a PATCH without one was applied).
+      {"no Host",
+       "POST /api/v1/sessions/{id}/advance HTTP/1.1\r\n" + type + "Content-Length: 13\r\n\r\n" + body, 400},
+      {"two Host lines", line + "Host: 127.0.0.1\r\n" + type + "Content-Length: 13\r\n\r\n" + body, 400},
+      {"a Host list",
+       "POST /api/v1/sessions/{id}/advance HTTP/1.1\r\nHost: a, b\r\n" + type + "Content-Length: 13\r\n\r\n" +
+           body,
+       400},
+      {"a Host with a space",
+       "POST /api/v1/sessions/{id}/advance HTTP/1.1\r\nHost: a b\r\n" + type + "Content-Length: 13\r\n\r\n" +
+           body,
+       400},
+      {"a PATCH without Host",
+       "PATCH /api/v1/sessions/{id} HTTP/1.1\r\n" + type +
+           "Content-Length: 23\r\n\r\n{\"body\": {\"mass\": 2}}",
+       400},
       {"a GET with a body that holds a request",
        "GET /api/v1/sessions/{id} HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: " +
            std::to_string(smuggled.size()) + "\r\n\r\n" + smuggled,
@@ -574,6 +590,17 @@ TEST_F(Framing, WellFramedRequestsAreServed) {
   EXPECT_EQ(answers.find("HTTP/1.1 200"), 0u) << answers.substr(0, 300);
   EXPECT_NE(answers.find("HTTP/1.1 200", 12), std::string::npos) << answers.substr(0, 600);
   EXPECT_EQ(json::parse(c.Get("/api/v1/sessions/" + id)->body)["state"]["t"], 1.0);
+  // The absolute form of the target (RFC 9112 §3.2.2: a server MUST accept it).
+  const std::string authority = "http://127.0.0.1:" + std::to_string(server_->port());
+  const RawAnswer absolute =
+      raw_request(server_->port(), "POST " + authority + "/api/v1/sessions/" + id +
+                                       "/advance HTTP/1.1\r\nHost: 127.0.0.1\r\n" + json_type +
+                                       "Content-Length: 14\r\n\r\n{\"until\":1.25}");
+  EXPECT_EQ(absolute.status, 200) << absolute.body.substr(0, 300);
+  EXPECT_EQ(json::parse(c.Get("/api/v1/sessions/" + id)->body)["state"]["t"], 1.25);
+  const RawAnswer health = raw_request(
+      server_->port(), "GET HTTP://127.0.0.1/api/v1/health?x=1 HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
+  EXPECT_EQ(health.status, 422) << health.body.substr(0, 300);  // routed: the unknown parameter is named
   c.Delete("/api/v1/sessions/" + id);
 }
 

@@ -27,16 +27,35 @@ TEST(RequestFraming, AcceptedHeadsAndTheirBodies) {
   EXPECT_EQ(length.body, Framing::Body::length);
   EXPECT_EQ(length.length, 42u);
 
-  const Framing chunked = framing_of("POST /a HTTP/1.1\r\nTransfer-Encoding: Chunked\r\n\r\n");
+  const Framing chunked = framing_of("POST /a HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: Chunked\r\n\r\n");
   EXPECT_EQ(chunked.status, 0) << chunked.reason;
   EXPECT_EQ(chunked.body, Framing::Body::chunked);
 
   // Repeated equal lengths agree; a zero length is no body.
-  EXPECT_EQ(framing_of("POST /a HTTP/1.1\r\nContent-Length: 7\r\nContent-Length: 7\r\n\r\n").length, 7u);
-  EXPECT_EQ(framing_of("POST /a HTTP/1.1\r\nContent-Length: 0\r\n\r\n").body, Framing::Body::none);
+  EXPECT_EQ(
+      framing_of("POST /a HTTP/1.1\r\nHost: x\r\nContent-Length: 7\r\nContent-Length: 7\r\n\r\n").length, 7u);
+  EXPECT_EQ(framing_of("POST /a HTTP/1.1\r\nHost: x\r\nContent-Length: 0\r\n\r\n").body, Framing::Body::none);
 }
 
 // What cpp-httplib would read leniently, refused here with the status of the header's comment.
+// RFC 9112 §3.2: an HTTP/1.1 request has exactly one Host, an authority (host and optional port).
+TEST(RequestFraming, AnHttp11RequestHasExactlyOneWellFormedHost) {
+  const auto status = [](const std::string& hosts, const std::string& version = "HTTP/1.1") {
+    return read_framing("GET /api/v1/health " + version + "\r\n" + hosts + "\r\n").status;
+  };
+  for (const char* fine : {"Host: 127.0.0.1:8080\r\n", "Host: localhost\r\n", "Host: [::1]:80\r\n",
+                           "Host: spinfold.example.org\r\n", "host:  a-b.c \r\n", "Host: [::1]\r\n"})
+    EXPECT_EQ(status(fine), 0) << fine;
+  for (const char* bad :
+       {"", "Host: a\r\nHost: a\r\n", "Host: a, b\r\n", "Host: a b\r\n", "Host: a,b\r\n", "Host: \r\n",
+        "Host: a/b\r\n", "Host: a:80x\r\n", "Host: [::1\r\n", "Host: u@a\r\n"}) {
+    const Framing f = read_framing(std::string("GET / HTTP/1.1\r\n") + bad + "\r\n");
+    EXPECT_EQ(f.status, 400) << bad;
+    EXPECT_EQ(f.field, "Host") << bad;
+  }
+  EXPECT_EQ(status("", "HTTP/1.0"), 0);  // HTTP/1.0 has no Host requirement
+}
+
 TEST(RequestFraming, AmbiguousHeadsAreRefused) {
   const struct {
     const char* head;
