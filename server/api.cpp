@@ -2,6 +2,8 @@
 
 #include <sys/socket.h>
 
+#include <set>
+
 #include "server/context.h"
 #include "server/http/framing.h"
 #include "server/http/problem.h"
@@ -84,14 +86,28 @@ ApiServer::ApiServer(ServerOptions options) : state_(std::make_unique<State>(std
     ::setsockopt(sock, SOL_SOCKET, SO_SNDBUF, &kSendBuffer, sizeof kSendBuffer);
     state->listen_socket = sock;
   });
-  register_routes(http, state_->server, route_table(state_->server.options.limits));
+  const std::vector<Route> routes = route_table(state_->server.options.limits);
+  register_routes(http, state_->server, routes);
   // Framing first, on the bytes as they arrived (server/http/framing.h): a refused head is answered and the
-  // connection closed before any route, body or state is touched.
-  http.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
+  // connection closed before any route, body or state is touched. Then a method the router has no
+  // registration for (TRACE, CONNECT: httplib would answer 400) on a known path: 405 with Allow.
+  http.set_pre_routing_handler([routes](const httplib::Request& req, httplib::Response& res) {
     const std::string* bytes = current_request_bytes();
     if (!bytes) return httplib::Server::HandlerResponse::Unhandled;
     const Framing f = read_framing(*bytes);
-    if (f.status == 0) return httplib::Server::HandlerResponse::Unhandled;
+    if (f.status == 0) {
+      static const std::set<std::string> routed{"GET", "HEAD", "POST", "PUT", "PATCH", "DELETE", "OPTIONS"};
+      if (routed.contains(req.method)) return httplib::Server::HandlerResponse::Unhandled;
+      const std::string allow = allow_at(routes, req.path);
+      res.set_header("X-Spinfold-Version", server_version());
+      if (allow.empty()) {
+        send_error(res, unrouted(req, 404));  // as for any other method
+        return httplib::Server::HandlerResponse::Handled;
+      }
+      res.set_header("Allow", allow);
+      send_error(res, bad(405, "Method not allowed", "method", req.method, "this path allows " + allow));
+      return httplib::Server::HandlerResponse::Handled;
+    }
     res.set_header("X-Spinfold-Version", server_version());
     // (httplib adds its own when the client asked to close.)
     if (req.get_header_value("Connection") != "close") res.set_header("Connection", "close");

@@ -291,18 +291,19 @@ class ConnectionStream final : public httplib::Stream {
     if (pending() == 0) {
       buffer_.erase(0, offset_);
       offset_ = 0;
+      line_end_ = std::string::npos;
       if (const ssize_t got = fill(); got <= 0) return got;
     }
     std::size_t n = std::min(size, pending());
     if (in_head_) {
-      // The head goes out no further than a line's end, each line looked at (look_at_line)
-      // when its first byte is asked for (httplib reads the head a byte at a time).
-      std::size_t lf = buffer_.find('\n', offset_);
-      while (lf == std::string::npos && fill() > 0) lf = buffer_.find('\n', offset_);
-      if (lf != std::string::npos) {
-        if (at_line_start_) lf = look_at_line(lf);
-        n = std::min(size, lf + 1 - offset_);
+      // The head goes out no further than a line's end, each line looked at (look_at_line) once,
+      // when its first byte is asked for (httplib reads the head a byte at a time: the line's end
+      // is found once per line, not per byte).
+      if (at_line_start_) {
+        line_end_ = line_end();
+        if (line_end_ != std::string::npos) line_end_ = look_at_line(line_end_);
       }
+      if (line_end_ != std::string::npos && line_end_ >= offset_) n = std::min(size, line_end_ + 1 - offset_);
       at_line_start_ = buffer_[offset_ + n - 1] == '\n';
     }
     std::copy_n(buffer_.data() + offset_, n, ptr);
@@ -346,6 +347,19 @@ class ConnectionStream final : public httplib::Stream {
 
  private:
   std::size_t pending() const { return buffer_.size() - offset_; }
+
+  // Where the line starting at offset_ ends (its LF), reading more while needed; npos when it is
+  // longer than kLongestLookedAtLine (httplib refuses such a line itself: 414 or 400) or the
+  // connection ends first.
+  std::size_t line_end() {
+    std::size_t from = offset_;
+    while (true) {
+      const std::size_t lf = buffer_.find('\n', from);
+      if (lf != std::string::npos) return lf;
+      from = buffer_.size();
+      if (pending() >= kLongestLookedAtLine || fill() <= 0) return std::string::npos;
+    }
+  }
 
   // One more recv appended to the buffer: its byte count, 0 at the end, −1 on error or time-out.
   ssize_t fill() {
@@ -435,9 +449,12 @@ class ConnectionStream final : public httplib::Stream {
   std::string buffer_;
   std::size_t offset_ = 0;
   std::string request_;
-  bool in_head_ = true;        // the current request's head is being read
-  bool head_started_ = false;  // its request line has been read
-  bool at_line_start_ = true;  // the next byte handed out starts a line of the head
+  bool in_head_ = true;                       // the current request's head is being read
+  bool head_started_ = false;                 // its request line has been read
+  bool at_line_start_ = true;                 // the next byte handed out starts a line of the head
+  std::size_t line_end_ = std::string::npos;  // the LF of the head's line being handed out
+  // [bytes] a head line is looked at up to this length (httplib's own limit is 8 KiB)
+  static constexpr std::size_t kLongestLookedAtLine = 16384;
 };
 
 // True when the request was read exactly to the end of its body: the connection may go on.

@@ -1,6 +1,7 @@
 #include "server/routes/routes.h"
 
 #include <algorithm>
+#include <regex>
 #include <set>
 
 #include "server/context.h"
@@ -10,6 +11,23 @@
 #include <httplib.h>
 
 namespace spinfold::server {
+
+namespace {
+
+// "GET, PATCH, DELETE, OPTIONS": the table's methods for a route path, and OPTIONS.
+std::string allow_of(const std::vector<Route>& routes, const std::string& route_path) {
+  std::string allow;
+  for (const std::string& m : methods_of(routes, route_path)) allow += (allow.empty() ? "" : ", ") + m;
+  return allow + ", OPTIONS";
+}
+
+}  // namespace
+
+std::string allow_at(const std::vector<Route>& routes, const std::string& path) {
+  for (const Route& r : routes)
+    if (std::regex_match(path, std::regex(path_regex(r.path)))) return allow_of(routes, r.path);
+  return "";
+}
 
 std::vector<Route> route_table(const Limits& limits) {
   std::vector<Route> routes;
@@ -69,9 +87,7 @@ void register_routes(httplib::Server& http, ServerContext& server, const std::ve
     // A known path asked with a method it does not have: 405 with Allow, not the router's 404.
     // Every known path answers OPTIONS too (204 with Allow, RFC 9110 §9.3.7), so Allow names it.
     const std::vector<std::string> allowed = methods_of(routes, route.path);
-    std::string allow;
-    for (const std::string& m : allowed) allow += (allow.empty() ? "" : ", ") + m;
-    allow += ", OPTIONS";
+    const std::string allow = allow_of(routes, route.path);
     http.Options(path_regex(route.path), [allow](const httplib::Request& req, httplib::Response& res) {
       res.set_header("X-Spinfold-Version", server_version());
       try {

@@ -37,4 +37,8 @@ nlohmann::ordered_json view_parameters_json(const Limits& limits);
 // Registers every route, and 405 (with `Allow`) for a known path asked with another method.
 void register_routes(httplib::Server& http, ServerContext& server, const std::vector<Route>& routes);
 
+// The Allow of a request path: the methods of the route it matches, then OPTIONS (every known path
+// answers it); "" for a path no route has. For the methods the router cannot register (TRACE, …).
+std::string allow_at(const std::vector<Route>& routes, const std::string& path);
+
 }  // namespace spinfold::server

@@ -601,6 +601,12 @@ TEST_F(Framing, WellFramedRequestsAreServed) {
   const RawAnswer health = raw_request(
       server_->port(), "GET HTTP://127.0.0.1/api/v1/health?x=1 HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
   EXPECT_EQ(health.status, 422) << health.body.substr(0, 300);  // routed: the unknown parameter is named
+  // TRACE (which the router cannot register) on a known path: 405 with Allow; elsewhere 404.
+  const RawAnswer trace =
+      raw_request(server_->port(), "TRACE /api/v1/sessions/" + id + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
+  EXPECT_EQ(trace.status, 405) << trace.body.substr(0, 300);
+  EXPECT_EQ(json::parse(trace.body)["errors"][0]["field"], "method");
+  EXPECT_EQ(raw_request(server_->port(), "TRACE /nothing HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n").status, 404);
   c.Delete("/api/v1/sessions/" + id);
 }
 
