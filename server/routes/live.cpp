@@ -2,10 +2,9 @@
 // an <img> shows it as is; the UI parses it to count and time frames). While the session plays or
 // the viewer's camera moves, frames are JPEG (motion frames, a third of the bytes); kStillDelay after
 // the last change a lossless PNG of the same state replaces the last one. Nothing is sent while
-// nothing changes (a heartbeat part every kHeartbeat finds clients that left: the second write to a closed
-// connection fails). A frame is rendered
-// only when the client has taken the previous one, so a slow client gets fewer, newer frames and
-// the server holds one frame per viewer at most.
+// nothing changes (a heartbeat part every kHeartbeat finds clients that left: the second write to
+// a closed connection fails). A frame is rendered only when the client has taken the previous one,
+// so a slow client gets fewer, newer frames and the server holds one frame per viewer at most.
 #include <chrono>
 #include <cstdio>
 #include <cstring>
