@@ -15,6 +15,9 @@ struct Limits {
   long max_play_steps = 20000;             // step attempts per session per player tick (120 Hz)
   double max_advance_time = 1e6;           // simulated time per advance request
   int max_image_side = 4096;               // [pixels]
+  // A trajectory's answer (GET …/trajectory), built in memory before it is sent: a request whose
+  // rows would pass it is refused (422 naming `every`) before the replay, or when it does [bytes].
+  std::size_t max_trajectory_bytes = 64 << 20;
   // Open event and live streams (each holds a worker thread): 32 viewers with an event stream and
   // a live stream each, and room for more.
   int max_streams = 96;

@@ -1,6 +1,8 @@
 // Sessions: create, read, patch, delete, and the run's controls (advance, play, pause, reset) and
 // record (trajectory).
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <sstream>
 
@@ -46,6 +48,32 @@ namespace {
 
 const std::string kSessions = "/api/v1/sessions";
 constexpr double kMaxTrajectoryRows = 100000;
+
+// Bytes as a person reads them, to three digits: "64.0 MiB", "9.25 kiB", "512 B".
+std::string size_text(double bytes) {
+  const char* units[] = {"B", "kiB", "MiB", "GiB"};
+  int unit = 0;
+  for (; unit < 3 && bytes >= 1024.0; ++unit) bytes /= 1024.0;
+  const int decimals = unit == 0 || bytes >= 100.0 ? 0 : bytes >= 10.0 ? 1 : 2;
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f %s", decimals, bytes, units[unit]);
+  return text;
+}
+
+// The bytes a row's numbers may take past those of `row`'s text: a run's first row (t = 0, numbers
+// such as 0 and 1) is shorter than the rows after it, whose doubles take up to 17 digits, a sign, a
+// point and an exponent, and whose counts grow.
+double row_widening(const ordered_json& row) {
+  constexpr double kDoubleWidth = 22, kCountWidth = 10;  // "-0.12345678901234567e-5"; 10¹⁰ steps
+  if (row.is_structured()) {
+    double extra = 0.0;
+    for (const ordered_json& value : row) extra += row_widening(value);
+    return extra;
+  }
+  if (!row.is_number()) return 0.0;
+  const double width = row.is_number_float() ? kDoubleWidth : kCountWidth;
+  return std::max(0.0, width - static_cast<double>(row.dump().size()));
+}
 
 // A share link's body: {"scene", "timeline", "until"} (a scene itself never has a "scene" key).
 bool is_share_link(const json& body) {
@@ -264,13 +292,60 @@ void get_trajectory(ServerContext& server, const Call& call, httplib::Response& 
     throw bad(422, "Too many samples", "every", shortest(every),
               "gives more than " + shortest(kMaxTrajectoryRows) + " samples up to t = " + shortest(until) +
                   ": choose a larger interval");
-  std::vector<ordered_json> samples;
+  const double rows = std::floor(until / every) + 1.0;
+  const std::size_t budget = server.options.limits.max_trajectory_bytes;
+  const std::string fields = call.query.text("fields").value_or("");
+  const bool json_rows = *call.query.text("format") == "json";
+  const auto too_large = [&](const std::string& why) {
+    return bad(422, "Answer too large", "every", shortest(every),
+               why + "; an answer holds at most " + size_text(static_cast<double>(budget)) +
+                   ": choose a larger interval or fewer fields");
+  };
+  // The answer is written row by row as the replay makes the samples: memory is the answer's text
+  // and one sample, never every sample as JSON values (10⁴ rows of 9 bodies took 650 MB that way).
+  std::optional<SampleTable> table;
+  std::string text;
   double reported_until = -1.0;
+  // One row's text appended, and the widest the row could have been (row_widening).
+  const auto append_row = [&](const ordered_json& sample) {
+    if (!json_rows) {
+      const std::string row = table->csv_row(sample);
+      text += row;
+      return static_cast<double>(row.size()) + row_widening(ordered_json(table->row(sample)));
+    }
+    if (text.size() > 1) text += ',';
+    const ordered_json row = fields.empty() ? sample : table->json_row(sample);
+    const std::string row_text = row.dump();
+    text += row_text;
+    return static_cast<double>(row_text.size() + 1) + row_widening(row);
+  };
   const bool complete = replay_sampled(
       scene, changes, until, every,
       [&](const Simulation& run) {
-        samples.push_back(sample_to_json(run, reported_until));
+        const ordered_json sample = sample_to_json(run, reported_until);
         reported_until = run.state.t;
+        if (table) {
+          append_row(sample);
+          if (text.size() > budget)
+            throw too_large("passed " + size_text(static_cast<double>(text.size())) +
+                            " at t = " + shortest(run.state.t) + " of " + shortest(until));
+          return;
+        }
+        // The first row: the columns, and the size the answer would reach, before the replay runs.
+        table = make_sample_table(fields, sample);
+        if (json_rows) {
+          text = "[";
+        } else {
+          const std::string comment[] = {"spinfold trajectory " + version_line(),
+                                         "provenance: " + provenance_json(scene, "").dump()};
+          text = samples_csv({}, *table, comment);
+        }
+        const double row_bytes = append_row(sample);
+        const double expected = static_cast<double>(text.size()) + (rows - 1.0) * row_bytes;
+        if (expected > static_cast<double>(budget))
+          throw too_large("gives " + shortest(rows) + " rows of up to " + size_text(row_bytes) +
+                          " up to t = " + shortest(until) + ", about " + size_text(expected));
+        text.reserve(static_cast<std::size_t>(expected) + 1);
       },
       attempts);
   if (!complete)
@@ -278,19 +353,10 @@ void get_trajectory(ServerContext& server, const Call& call, httplib::Response& 
                    "Trajectory unavailable",
                    {{"", "", "the replay of the timeline ran out of step attempts"}},
                    "1"};
-  const std::string fields = call.query.text("fields").value_or("");
-  SampleTable table = make_sample_table(fields, samples.front());
   res.set_header("X-Spinfold-Provenance", provenance_text);
-  if (*call.query.text("format") == "json") {
-    ordered_json rows = ordered_json::array();
-    for (const ordered_json& sample : samples)
-      rows.push_back(fields.empty() ? sample : table.json_row(sample));
-    return send_json(res, rows);
-  }
-  const std::string comment[] = {"spinfold trajectory " + version_line(),
-                                 "provenance: " + provenance_json(scene, "").dump()};
-  res.body = samples_csv(samples, table, comment);
-  res.set_header("Content-Type", "text/csv");
+  if (json_rows) text += ']';
+  res.body = std::move(text);
+  res.set_header("Content-Type", json_rows ? "application/json" : "text/csv");
 }
 
 }  // namespace
@@ -429,13 +495,17 @@ std::vector<Route> session_routes(const Limits& limits) {
                   .maximum = 1e9,
                   .exclusive_minimum = true,
                   .default_value = 0.5,
-                  .description = "the sample interval (at most 100000 samples)"},
+                  .description = "the sample interval (at most 100000 samples, and an answer of at most "
+                                 "limits.max_trajectory_bytes: 64 MiB)"},
                  {.name = "fields",
                   .type = ParamType::list,
                   .values = sample_column_names(),
                   .description = "the columns (as `spinfold simulate --fields`); absent: every column "
                                  "(csv) or the whole sample (json)"}},
-       .responses = {{200, "application/json or text/csv"}, {422, "more than 100000 samples"}}},
+       .responses =
+           {{200, "application/json or text/csv"},
+            {422,
+             "more than 100000 samples, or an answer over 64 MiB (its size foreseen from the first row)"}}},
   };
 }
 
