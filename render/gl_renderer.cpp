@@ -89,11 +89,7 @@ GlRenderer::GlRenderer(const Options& options) : options_(options) {
 
 GlRenderer::~GlRenderer() {
   drop_targets();
-  for (auto* meshes : {&surfaces_, &grids_})
-    for (auto& [key, mesh] : *meshes) {
-      glDeleteBuffers(1, &mesh.vbo);
-      glDeleteVertexArrays(1, &mesh.vao);
-    }
+  drop_meshes();
   glDeleteBuffers(1, &dynamic_.vbo);
   glDeleteVertexArrays(1, &dynamic_.vao);
   glDeleteProgram(lit_program_);
@@ -153,6 +149,16 @@ void GlRenderer::delete_target(Target& t) const {
   glDeleteRenderbuffers(1, &t.color);
   glDeleteRenderbuffers(1, &t.depth);
   t = Target{};
+}
+
+void GlRenderer::drop_meshes() {
+  for (auto* meshes : {&surfaces_, &grids_}) {
+    for (auto& [key, mesh] : *meshes) {
+      glDeleteBuffers(1, &mesh.vbo);
+      glDeleteVertexArrays(1, &mesh.vao);
+    }
+    meshes->clear();
+  }
 }
 
 void GlRenderer::drop_targets() {

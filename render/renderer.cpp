@@ -31,6 +31,11 @@ const std::uint8_t* Renderer::render_rgba(const FrameScene& scene, int width, in
   return context_->pixels();
 }
 
+void Renderer::release_memory() {
+  gl_->release_memory();
+  context_->make_current(64, 64);  // the frame-sized default framebuffer (an EGL pbuffer) as at the start
+}
+
 Image Renderer::render_image(const Snapshot& snapshot, const ViewOptions& view) {
   const FrameScene scene = build_scene(snapshot, view);
   const std::uint8_t* rgba = render_rgba(scene, view.width, view.height);

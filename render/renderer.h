@@ -37,6 +37,9 @@ class Renderer {
                                        std::span<const PngText> texts = {});
   // build_scene + render + encode_jpeg at this quality (1..100).
   std::vector<std::uint8_t> render_jpeg(const Snapshot& snapshot, const ViewOptions& view, int quality);
+  // Frees the memory kept for the next frame (off-screen targets, cached backgrounds, uploaded
+  // surfaces): a renderer that has been idle gives it back; the next frame takes a few ms more.
+  void release_memory();
   // The context's backend ("egl-device", "egl-surfaceless", "osmesa") and GL_RENDERER.
   const GlContext& context() const { return *context_; }
 

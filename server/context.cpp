@@ -79,6 +79,7 @@ void remove_session(ServerContext& server, const std::string& id) {
     throw store_unavailable("the deletion");
   }
   if (!removed) throw unknown_session(id);
+  server.frames.drop(frame_etag_prefix(id));
 }
 
 std::string provenance(const Session& s) {

@@ -38,7 +38,7 @@ struct ServerContext {
   std::unique_ptr<Store> db;  // the durable store (options.store, else options.data_dir), or none
   SessionStore sessions;
   RenderPool renderer{options.render_threads};
-  FrameCache frames{128};
+  FrameCache frames{options.limits.frame_cache_frames, options.limits.frame_cache_bytes};
   Recordings recordings{options.limits, renderer, db.get()};  // after the pool and the store
   WorkPrecisionJobs work_precision{options.limits};
   ChangeSignal changes;              // bumped after every change of a session (live streams wait on it)

@@ -18,6 +18,9 @@ struct Limits {
   // A trajectory's answer (GET …/trajectory), built in memory before it is sent: a request whose
   // rows would pass it is refused (422 naming `every`) before the replay, or when it does [bytes].
   std::size_t max_trajectory_bytes = 64 << 20;
+  // Encoded frames kept for the next ask (server/frames/frame_cache.h), least recently used dropped.
+  std::size_t frame_cache_frames = 128;
+  std::size_t frame_cache_bytes = 32 << 20;  // [bytes]
   // Open event and live streams (each holds a worker thread): 32 viewers with an event stream and
   // a live stream each, and room for more.
   int max_streams = 96;

@@ -145,6 +145,10 @@ void check_view(const FrameRequest& f, SurfaceKind surface) {
     throw bad(422, "Invalid value", "view", std::string(render::view_name(f.view.kind)), *why);
 }
 
+std::string frame_etag_prefix(const std::string& id) {
+  return "W/\"" + id + "-";
+}
+
 std::string frame_etag(const std::string& id, const std::string& state, const FrameRequest& f) {
   const auto camera = [](const std::optional<double>& v) {
     char text[32] = "auto";  // aimed at the body

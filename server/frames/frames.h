@@ -50,6 +50,8 @@ void check_view(const FrameRequest& f, SurfaceKind surface);
 // replicas on other CPUs render the same state within the golden frames' tolerance, not to the same
 // bytes (on one CPU class: equal ETags, equal bytes).
 std::string frame_etag(const std::string& id, const std::string& state, const FrameRequest& f);
+// What every frame_etag of session `id` starts with (FrameCache::drop on the session's deletion).
+std::string frame_etag_prefix(const std::string& id);
 // Whether an If-None-Match value names this ETag (weak comparison, RFC 9110 §8.8.3.2; "*" or a list).
 bool etag_matches(const std::string& if_none_match, const std::string& etag);
 

@@ -5,7 +5,8 @@
 
 namespace spinfold::server {
 
-RenderPool::RenderPool(int threads, Observer observer) : observer_(std::move(observer)) {
+RenderPool::RenderPool(int threads, Observer observer, std::chrono::milliseconds idle_release)
+    : idle_release_(idle_release), observer_(std::move(observer)) {
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   thread_count_ = threads;  // before any thread reads it
   for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { loop(); });
@@ -44,6 +45,7 @@ void RenderPool::loop() {
   } catch (const std::exception&) {
   }
   ++started_;
+  bool holding = false;  // memory kept for the next frame since the last one
   for (;;) {
     Task task;
     {
@@ -53,7 +55,7 @@ void RenderPool::loop() {
       // frames hold fewer than threads − 1 threads.
       const int background_threads = std::max(1, thread_count_ - 1);
       auto next = queue_.end();
-      wake_.wait(lock, [&] {
+      const auto ready = [&] {
         const auto free_of = [&](RenderPriority p) {
           return std::find_if(queue_.begin(), queue_.end(),
                               [&](const Task& t) { return t.priority == p && !busy_.contains(t.key); });
@@ -62,7 +64,15 @@ void RenderPool::loop() {
         if (next == queue_.end() && background_busy_ < background_threads)
           next = free_of(RenderPriority::background);
         return stopping_ || next != queue_.end();
-      });
+      };
+      if (holding && !wake_.wait_for(lock, idle_release_, ready)) {
+        lock.unlock();
+        if (renderer) renderer->release_memory();
+        holding = false;
+        ++releases_;
+        continue;
+      }
+      wake_.wait(lock, ready);
       if (next == queue_.end()) return;  // stopping, nothing left to take
       task = std::move(*next);
       queue_.erase(next);
@@ -71,6 +81,7 @@ void RenderPool::loop() {
     }
     if (observer_) observer_(task.key, task.number, true);
     if (renderer) task.work(*renderer);
+    holding = true;
     if (observer_) observer_(task.key, task.number, false);
     {
       const std::lock_guard lock(mutex_);

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <functional>
@@ -33,8 +34,10 @@ class RenderPool {
   // numbered from 1 in the order asked for). For tests and metrics.
   using Observer = std::function<void(const std::string& key, std::uint64_t number, bool started)>;
 
-  // threads: 0 for one per core.
-  explicit RenderPool(int threads, Observer observer = {});
+  // threads: 0 for one per core. A thread idle for `idle_release` frees what its renderer keeps
+  // for the next frame (render::Renderer::release_memory: tens of MB per frame size).
+  explicit RenderPool(int threads, Observer observer = {},
+                      std::chrono::milliseconds idle_release = std::chrono::seconds(20));
   ~RenderPool();
   RenderPool(const RenderPool&) = delete;
   RenderPool& operator=(const RenderPool&) = delete;
@@ -43,6 +46,8 @@ class RenderPool {
   // Threads past their start: the context made and its shaders compiled (or failed). Until then a
   // thread takes a core compiling (tens of ms, seconds under sanitizers).
   int started() const { return started_.load(); }
+  // Times a thread gave its renderer's memory back after idle_release without a frame.
+  int releases() const { return releases_.load(); }
   // The frame's pixels. Without a GL context the future holds std::future_error (broken promise).
   std::future<render::Image> render(std::string key, render::Snapshot snapshot, render::ViewOptions view,
                                     RenderPriority priority = RenderPriority::live);
@@ -64,6 +69,8 @@ class RenderPool {
   bool stopping_ = false;
   std::uint64_t asked_ = 0;  // frames asked for so far
   std::atomic<int> started_{0};
+  std::atomic<int> releases_{0};
+  std::chrono::milliseconds idle_release_;
   Observer observer_;
   std::vector<std::thread> threads_;
 };

@@ -19,7 +19,7 @@ using namespace std::chrono_literals;
 // Eight viewers asking for one frame at once: one render, eight answers; a failed render reaches
 // everyone waiting and is made again at the next ask.
 TEST(FrameCache, OneRenderPerFrameForEveryoneAsking) {
-  FrameCache cache(4);
+  FrameCache cache(4, 1 << 20);
   std::atomic<int> made{0};
   const auto make = [&] {
     ++made;
@@ -49,7 +49,7 @@ FrameBytes bytes(std::uint8_t value) {
 
 // A hit is served from memory: `make` is not called again, and the bytes are the same object.
 TEST(FrameCache, HitServesTheKeptFrameWithoutMaking) {
-  FrameCache cache(2);
+  FrameCache cache(2, 1 << 20);
   int made = 0;
   const FrameBytes first = cache.get("\"a\"", [&] {
     ++made;
@@ -67,7 +67,7 @@ TEST(FrameCache, HitServesTheKeptFrameWithoutMaking) {
 // Using a frame makes it the most recent: with capacity 2, after a, b, a again, c, it is b that
 // goes, not a.
 TEST(FrameCache, EvictsTheLeastRecentlyUsedNotTheOldest) {
-  FrameCache cache(2);
+  FrameCache cache(2, 1 << 20);
   cache.get("\"a\"", [] { return bytes(1); });
   cache.get("\"b\"", [] { return bytes(2); });
   cache.get("\"a\"", [] { return bytes(9); });
@@ -87,12 +87,44 @@ TEST(FrameCache, EvictsTheLeastRecentlyUsedNotTheOldest) {
 
 // An evicted frame's bytes stay valid for whoever holds them (shared, not owned by the cache).
 TEST(FrameCache, EvictedBytesOutliveTheEntry) {
-  FrameCache cache(1);
+  FrameCache cache(1, 1 << 20);
   const FrameBytes held = cache.get("\"a\"", [] { return bytes(7); });
   cache.get("\"b\"", [] { return bytes(8); });
   EXPECT_FALSE(cache.contains("\"a\""));
   ASSERT_TRUE(held);
   EXPECT_EQ((*held)[0], 7);
+}
+
+// Bounded in bytes too: frames of 400 bytes under a 1000-byte bound keep two; a frame over the whole
+// bound is served to who asked and not kept.
+TEST(FrameCache, BoundedInBytesAsWellAsFrames) {
+  FrameCache cache(100, 1000);
+  const auto of = [](std::size_t n) {
+    return [n] { return std::make_shared<const std::vector<std::uint8_t>>(n, 1); };
+  };
+  cache.get("\"a\"", of(400));
+  cache.get("\"b\"", of(400));
+  EXPECT_EQ(cache.bytes(), 800u);
+  cache.get("\"c\"", of(400));
+  EXPECT_FALSE(cache.contains("\"a\""));
+  EXPECT_TRUE(cache.contains("\"b\""));
+  EXPECT_EQ(cache.bytes(), 800u);
+  EXPECT_EQ(cache.get("\"huge\"", of(5000))->size(), 5000u);
+  EXPECT_FALSE(cache.contains("\"huge\""));
+  EXPECT_LE(cache.bytes(), 1000u);
+}
+
+// A deleted session's frames go at once (frame_etag starts with the session's id), the others stay.
+TEST(FrameCache, DropsTheFramesOfOnePrefix) {
+  FrameCache cache(100, 1 << 20);
+  for (const char* etag : {"W/\"s1-a\"", "W/\"s1-b\"", "W/\"s10-a\"", "W/\"s2-a\""})
+    cache.get(etag, [] { return bytes(1); });
+  cache.drop("W/\"s1-");
+  EXPECT_FALSE(cache.contains("W/\"s1-a\""));
+  EXPECT_FALSE(cache.contains("W/\"s1-b\""));
+  EXPECT_TRUE(cache.contains("W/\"s10-a\""));
+  EXPECT_TRUE(cache.contains("W/\"s2-a\""));
+  EXPECT_EQ(cache.bytes(), 2u);
 }
 
 }  // namespace

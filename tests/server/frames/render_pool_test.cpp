@@ -108,5 +108,26 @@ TEST(RenderPool, FramesOfOneKeyInOrderOneAtATime) {
   EXPECT_EQ(started.size(), 12u);
 }
 
+// A thread idle for idle_release gives its renderer's memory back once (not again while idle), and
+// the next frame is drawn as before it, pixel for pixel (the targets and meshes are made again).
+TEST(RenderPool, AnIdleThreadGivesItsMemoryBackAndDrawsTheSameAfter) {
+  const Scene scene = *parse_scene_text(find_preset("spin_vs_geodesic_sphere")->json).scene;
+  const Simulation run = start_simulation(scene);
+  render::ViewOptions view;
+  view.width = 320;
+  view.height = 240;
+  RenderPool pool(1, {}, 100ms);
+  const render::Image before = pool.render("a", render::make_snapshot(run, Trail{}, -1.0), view).get();
+  EXPECT_EQ(pool.releases(), 0);  // nothing drawn and released before the first frame
+  for (int i = 0; i < 500 && pool.releases() < 1; ++i) std::this_thread::sleep_for(10ms);
+  EXPECT_EQ(pool.releases(), 1);
+  std::this_thread::sleep_for(300ms);
+  EXPECT_EQ(pool.releases(), 1);  // idle still, with nothing more to give back
+  const render::Image after = pool.render("a", render::make_snapshot(run, Trail{}, -1.0), view).get();
+  EXPECT_EQ(after.rgba, before.rgba);
+  for (int i = 0; i < 500 && pool.releases() < 2; ++i) std::this_thread::sleep_for(10ms);
+  EXPECT_EQ(pool.releases(), 2);
+}
+
 }  // namespace
 }  // namespace spinfold::server
