@@ -161,6 +161,8 @@ await runSuite(started, async (browser) => {
     await page.click("#pause");
     await page.waitForFunction(() => document.querySelector("#frame").dataset.kind === "still", null, { timeout: 10000 });
     const before = await page.$eval("#frame", (el) => el.dataset.seq);
+    // In view wherever the tests before left the page scrolled (a field of the Advanced form).
+    await page.$eval("#frame", (el) => el.scrollIntoView({ block: "center" }));
     const box = await (await page.$("#frame")).boundingBox();
     await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
     await page.mouse.down();
