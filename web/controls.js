@@ -5,7 +5,7 @@
 // the set of fields changes (another deformation kind, a field given in its other form), otherwise
 // its values updated in place.
 import { $, el, clear } from "./dom.js";
-import { begin, refused } from "./edits.js";
+import { begin, refused, typedValue } from "./edits.js";
 import { applyChange } from "./session.js";
 import { store } from "./state.js";
 import { curvatureForm } from "./surface.js";
@@ -148,15 +148,17 @@ function fieldRow(f) {
     const patch = {};
     let node = patch;
     path.slice(0, -1).forEach((key) => (node = node[key] = {}));
-    try {
-      node[path[path.length - 1]] = spec.enum
-        ? input.value
-        : matrixOrNumber(spec)
-          ? JSON.parse(input.value)
-          : Number(input.value);
-    } catch {
-      refused(edit, `${name}: write a number or a matrix such as [[0.6, 0.1], [0.1, 0.3]] (got ${input.value})`);
-      return;
+    if (spec.enum) node[path[path.length - 1]] = input.value;
+    else {
+      // A number input whose text is not a number (`1e`, `abc`) has the value "" (badInput).
+      const typed = typedValue(input.value, matrixOrNumber(spec));
+      if ("error" in typed) {
+        // Nothing is sent; the value in force comes back, as after a refusal by the server.
+        if (refused(edit, `${name}: ${typed.error}`))
+          input.value = shown({ ...f, value: lookup(store.get().current, path), replaced: false });
+        return;
+      }
+      node[path[path.length - 1]] = typed.value;
     }
     // A deformation field needs its kind: the scene's, or abc when there is none yet.
     if (path[1] === "deformation") node.kind = lookup(current, ["potential", "deformation", "kind"]) ?? "abc";

@@ -82,3 +82,28 @@ export function told(edit) {
   said = edit.n;
   return true;
 }
+
+/**
+ * What a typed field would send: a finite number, or, where a matrix may stand instead (`matrix`),
+ * a JSON number or a non-empty array of them, nested. An empty, partial or non-numeric text, or one
+ * past a double's range (`1e400`), sends nothing: `error` says what to enter instead, and the
+ * session keeps its value (`Number("")` is 0, and JSON turns Infinity into null).
+ * @param {string} text
+ * @param {boolean} [matrix]
+ * @returns {{value: number | any[]} | {error: string}}
+ */
+export function typedValue(text, matrix = false) {
+  const trimmed = text.trim();
+  /** @type {(v: unknown) => boolean} */
+  const finite = (v) =>
+    typeof v === "number" ? Number.isFinite(v) : Array.isArray(v) && v.length > 0 && v.every(finite);
+  let value;
+  try {
+    value = trimmed === "" ? NaN : matrix ? JSON.parse(trimmed) : Number(trimmed);
+  } catch {
+    value = NaN;
+  }
+  if (finite(value)) return { value };
+  const what = matrix ? "enter a number or a matrix such as [[0.6, 0.1], [0.1, 0.3]]" : "enter a number";
+  return { error: trimmed === "" ? what : `${what} (got ${trimmed})` };
+}

@@ -128,6 +128,20 @@ await runSuite(started, async (browser) => {
     assert.equal(await page.textContent("#readout"), before);
   });
 
+  await test("an empty or unparsable number sends nothing: 'enter a number' beside it, the value in force back", async () => {
+    const before = await page.textContent("#readout");
+    const shown = await page.inputValue('[name="initial.r"]');
+    for (const text of ["", "1e"]) {
+      await page.click('[name="initial.r"]', { clickCount: 3 });
+      await page.keyboard.press("Backspace");
+      if (text) await page.keyboard.type(text);
+      await page.dispatchEvent('[name="initial.r"]', "change");
+      await page.waitForFunction(() => /initial\.r: enter a number/.test(document.querySelector("#field-initial-r-error").textContent));
+      assert.equal(await page.inputValue('[name="initial.r"]'), shown);
+      assert.equal(await page.textContent("#readout"), before);
+    }
+  });
+
   await test("switching the deformation kind replaces its fields on the server and in the form", async () => {
     // The parameters in force (a change after t = 0 is a timeline entry; the scene is t = 0's).
     const scene = async () => (await (await fetch(await page.$eval("#export-state", (a) => a.href))).json()).current;
@@ -147,6 +161,8 @@ await runSuite(started, async (browser) => {
     await page.click("#pause");
     await page.waitForFunction(() => document.querySelector("#frame").dataset.kind === "still", null, { timeout: 10000 });
     const before = await page.$eval("#frame", (el) => el.dataset.seq);
+    // In view wherever the tests before left the page scrolled (a field of the Advanced form).
+    await page.$eval("#frame", (el) => el.scrollIntoView({ block: "center" }));
     const box = await (await page.$("#frame")).boundingBox();
     await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
     await page.mouse.down();

@@ -2,7 +2,7 @@
 // speaks for its own edit only.
 import assert from "node:assert/strict";
 import { test } from "node:test";
-import { accepted, begin, latest, refused, told } from "../edits.js";
+import { accepted, begin, latest, refused, told, typedValue } from "../edits.js";
 
 // A control's message line as edits.js uses it.
 const line = () => /** @type {HTMLElement} */ (/** @type {unknown} */ ({ textContent: "" }));
@@ -57,4 +57,26 @@ test("the status line says the newest answered edit, not an older one that comes
   assert.equal(told(older), false);
   assert.equal(told(newer), true, "the same edit may say more");
   assert.equal(told(begin()), true);
+});
+
+test("a typed field sends a finite number or matrix, and nothing for empty, partial or huge text", () => {
+  assert.deepEqual(typedValue("0.25"), { value: 0.25 });
+  assert.deepEqual(typedValue(" -3e-2 "), { value: -0.03 });
+  assert.deepEqual(typedValue("[[0.6, 0.1], [0.1, 0.3]]", true), {
+    value: [
+      [0.6, 0.1],
+      [0.1, 0.3],
+    ],
+  });
+  assert.deepEqual(typedValue("0.5", true), { value: 0.5 });
+  assert.deepEqual(typedValue(""), { error: "enter a number" }, "Number('') is 0: never sent");
+  assert.deepEqual(typedValue("   "), { error: "enter a number" });
+  assert.deepEqual(typedValue("1e"), { error: "enter a number (got 1e)" });
+  assert.deepEqual(typedValue("abc"), { error: "enter a number (got abc)" });
+  assert.deepEqual(typedValue("1e400"), { error: "enter a number (got 1e400)" });
+  assert.deepEqual(typedValue("1e400", true), {
+    error: "enter a number or a matrix such as [[0.6, 0.1], [0.1, 0.3]] (got 1e400)",
+  });
+  for (const text of ["[]", "[[1, null]]", '"1"', "[[0.6, 0.1], [0.1,", "true"])
+    assert.ok("error" in typedValue(text, true), text);
 });
