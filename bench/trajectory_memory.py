@@ -8,78 +8,43 @@ seconds and the server's RSS before, at its peak (sampled every 20 ms) and after
     /usr/bin/python3 bench/trajectory_memory.py build/spinfold spin_fan_sphere 1000 0.2 json [FIELDS]
 """
 import json
-import socket
-import subprocess
 import sys
 import threading
 import time
-import urllib.error
-import urllib.request
+
+from local_server import LocalServer
 
 
 def main():
     binary, preset, t_end, every, fmt = sys.argv[1:6]
     fields = sys.argv[6] if len(sys.argv) > 6 else ""
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
-    server = subprocess.Popen([binary, "serve", "--port", str(port), "--no-store", "--requests-per-second", "0"],
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    base = f"http://127.0.0.1:{port}/api/v1"
-
-    def rss_mib():
-        with open(f"/proc/{server.pid}/status") as status:
-            for line in status:
-                if line.startswith("VmRSS"):
-                    return int(line.split()[1]) / 1024
-        return float("nan")
-
-    def call(method, path, body=None):
-        data = None if body is None else json.dumps(body).encode()
-        request = urllib.request.Request(base + path, data=data, method=method,
-                                         headers={"Content-Type": "application/json"})
-        try:
-            with urllib.request.urlopen(request, timeout=600) as answer:
-                return answer.status, answer.read()
-        except urllib.error.HTTPError as error:
-            return error.code, error.read()
-
-    try:
-        for _ in range(200):
-            try:
-                call("GET", "/health")
-                break
-            except OSError:
-                time.sleep(0.1)
-        status, body = call("POST", "/sessions", {"preset": preset})
+    with LocalServer(binary) as server:
+        status, body = server.call("POST", "/sessions", {"preset": preset})
         assert status == 201, body
         session = json.loads(body)["id"]
-        status, body = call("POST", f"/sessions/{session}/advance", {"until": float(t_end)})
+        status, body = server.call("POST", f"/sessions/{session}/advance", {"until": float(t_end)})
         assert status == 200, body
-        before = rss_mib()
+        before = server.rss_mib()
         peak = [before]
         done = threading.Event()
 
         def watch():
             while not done.is_set():
-                peak[0] = max(peak[0], rss_mib())
+                peak[0] = max(peak[0], server.rss_mib())
                 time.sleep(0.02)
 
         watcher = threading.Thread(target=watch)
         watcher.start()
         query = f"every={every}&format={fmt}" + (f"&fields={fields}" if fields else "")
         started = time.time()
-        status, body = call("GET", f"/sessions/{session}/trajectory?{query}")
+        status, body = server.call("GET", f"/sessions/{session}/trajectory?{query}")
         seconds = time.time() - started
         done.set()
         watcher.join()
         print(f"status {status}, {len(body)} bytes in {seconds:.1f} s; server RSS {before:.0f} MiB before, "
-              f"{peak[0]:.0f} at its peak (+{peak[0] - before:.0f}), {rss_mib():.0f} after")
+              f"{peak[0]:.0f} at its peak (+{peak[0] - before:.0f}), {server.rss_mib():.0f} after")
         if status != 200:
             print(json.loads(body)["errors"][0]["reason"])
-    finally:
-        server.terminate()
-        server.wait()
 
 
 if __name__ == "__main__":
