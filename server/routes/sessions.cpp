@@ -302,7 +302,7 @@ void get_trajectory(ServerContext& server, const Call& call, httplib::Response& 
                    ": choose a larger interval or fewer fields");
   };
   // The answer is written row by row as the replay makes the samples: memory is the answer's text
-  // and one sample, never every sample as JSON values (10⁴ rows of 9 bodies took 650 MB that way).
+  // and one sample, never every sample as JSON values (10⁴ rows of 5 bodies took 650 MB that way).
   std::optional<SampleTable> table;
   std::string text;
   double reported_until = -1.0;
