@@ -35,7 +35,7 @@ constexpr Registrar kCommands[] = {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Spinfold: affinely-rigid bodies moving on the sphere and the pseudosphere"};
+  CLI::App app{"Spinfold: affinely-rigid bodies moving on curved surfaces"};
 #ifdef SPINFOLD_COMPUTE_ONLY
   app.set_version_flag("--version", "spinfold " + version_line());
 #else

@@ -587,7 +587,9 @@ SceneParse parse_scene(const json& document) {
       if (!known) result.errors.push_back(std::move(e));
     }
   };
-  add_new(resolve_initial_rates(scene));
+  // The rates are converted on the surface: one that is itself wrong (neck_radius 0) would make
+  // them fail too and be named first, so a wrong surface is named alone.
+  if (validate_surface(scene).empty()) add_new(resolve_initial_rates(scene));
   // Companions build on the main body: only once it reads and validates.
   if (result.errors.empty() && validate_scene(scene).empty()) read_companions(in, document, scene);
   std::vector<FieldError> invalid = validate_scene(scene);

@@ -83,9 +83,20 @@ json property_of(const Field& field) {
       return {{"enum", integrator_names()}, {"default", field.fallback()}};
     return {{"type", "string"}};
   } else if constexpr (Enumerated<T>) {
-    json names = json::array();
-    for (const EnumName<T>& n : enum_names(std::type_identity<T>{})) names.push_back(n.name);
-    return {{"enum", names}, {"default", enum_name(field.fallback())}};
+    json names = json::array(), titles = json::object();
+    for (const EnumName<T>& n : enum_names(std::type_identity<T>{})) {
+      names.push_back(n.name);
+      if (!n.title.empty()) titles[std::string(n.name)] = n.title;
+    }
+    json e{{"enum", names}, {"default", enum_name(field.fallback())}};
+    if (!titles.empty()) e["x-titles"] = titles;  // a menu's words for each name (the UI's select)
+    if constexpr (std::is_same_v<T, SurfaceKind>) {
+      json varies = json::array();  // the kinds whose K varies from place to place (no one radius)
+      for (const EnumName<T>& n : enum_names(std::type_identity<T>{}))
+        if (curvature_varies(n.value)) varies.push_back(n.name);
+      e["x-curvature-varies"] = varies;
+    }
+    return e;
   } else if constexpr (HasFields<T>) {
     return section<T>();
   } else if constexpr (OptionalSection<T>) {

@@ -88,8 +88,9 @@ std::vector<FieldError> resolve_initial_rates(Scene& scene) {
   if (q.speed.has_value() != q.heading.has_value()) {
     if (q.speed)
       errors.push_back({"initial.heading", "null",
-                        "is missing: speed comes with heading (the angle of the velocity from E1 = d/dr "
-                        "towards E2, rad)"});
+                        std::string("is missing: speed comes with heading (the angle of the velocity from ") +
+                            (curvature_varies(scene.surface.kind) ? "E1 = X_u/f" : "E1 = d/dr") +
+                            " towards E2, rad)"});
     else
       errors.push_back({"initial.speed", "null", "is missing: heading comes with speed (|velocity| >= 0)"});
   } else if (q.speed && finite(*q.speed) && finite(*q.heading) && finite(place.q)) {

@@ -34,20 +34,26 @@ struct EnumName {
   std::string_view name;  // as written in the scene JSON, the CLI and the HUD
   Enum value;
   std::string_view description;  // one line
+  std::string_view title = {};   // a menu's words for it, where a person picks it (the UI)
 };
 
 inline constexpr EnumName<SurfaceKind> kSurfaceKindNames[] = {
-    {"sphere", SurfaceKind::sphere, "S², curvature +1/R²"},
-    {"pseudosphere", SurfaceKind::pseudosphere, "H² (Minkowski hyperboloid), curvature -1/R²"},
-    {"plane", SurfaceKind::plane, "the flat plane, the curvature-zero limit"},
+    {"sphere", SurfaceKind::sphere, "S², curvature +1/R²", "sphere (positive curvature)"},
+    {"pseudosphere", SurfaceKind::pseudosphere, "H² (Minkowski hyperboloid), curvature -1/R²",
+     "hyperbolic plane (negative curvature)"},
+    {"plane", SurfaceKind::plane, "the flat plane, the curvature-zero limit", "flat plane (no curvature)"},
     {"torus", SurfaceKind::torus,
-     "a torus (tube_radius a, center_radius c > a): K > 0 on the outer band, < 0 on the inner"},
+     "a torus (tube_radius a, center_radius c > a): K > 0 on the outer band, < 0 on the inner",
+     "torus (K > 0 outside, < 0 inside)"},
     {"spheroid", SurfaceKind::spheroid,
-     "an ellipsoid of revolution (equatorial_radius a, polar_radius b): oblate a > b, prolate a < b"},
+     "an ellipsoid of revolution (equatorial_radius a, polar_radius b): oblate a > b, prolate a < b",
+     "spheroid (K varies with latitude)"},
     {"bump", SurfaceKind::bump,
-     "a Gaussian bump z = h exp(-ρ²/(2w²)) on the plane: K > 0 on top, < 0 round it"},
+     "a Gaussian bump z = h exp(-ρ²/(2w²)) on the plane: K > 0 on top, < 0 round it",
+     "bump on the plane (K > 0 on top, < 0 round it)"},
     {"catenoid", SurfaceKind::catenoid,
-     "the catenoid ρ = c cosh(z/c) (neck_radius c): a minimal surface, K < 0"},
+     "the catenoid ρ = c cosh(z/c) (neck_radius c): a minimal surface, K < 0",
+     "catenoid (K < 0, most negative on the neck)"},
 };
 inline constexpr EnumName<BodyModel> kBodyModelNames[] = {
     {"affine", BodyModel::affine, "L free: 4 internal degrees of freedom"},

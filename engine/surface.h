@@ -19,12 +19,6 @@ using Mat3 = Eigen::Matrix3d;
 // constant-curvature functions below are not defined on them (std::logic_error).
 enum class SurfaceKind { sphere, pseudosphere, plane, torus, spheroid, bump, catenoid };
 
-// True for the torus, spheroid, bump and catenoid (physics-surfaces.md), false for S², H², the plane.
-constexpr bool curvature_varies(SurfaceKind kind) {
-  return kind == SurfaceKind::torus || kind == SurfaceKind::spheroid || kind == SurfaceKind::bump ||
-         kind == SurfaceKind::catenoid;
-}
-
 // The bit of one surface kind in a set of kinds (a scene field's or a view's), and the two families.
 constexpr unsigned surface_bit(SurfaceKind kind) {
   return 1u << static_cast<unsigned>(kind);
@@ -35,6 +29,12 @@ inline constexpr unsigned kConstantCurvatureSurfaces = surface_bit(SurfaceKind::
 inline constexpr unsigned kVaryingCurvatureSurfaces =
     surface_bit(SurfaceKind::torus) | surface_bit(SurfaceKind::spheroid) | surface_bit(SurfaceKind::bump) |
     surface_bit(SurfaceKind::catenoid);
+
+// True for the torus, spheroid, bump and catenoid (physics-surfaces.md), false for S², H², the plane.
+// (A value outside the enumeration, which the validator names, is no kind of either family.)
+constexpr bool curvature_varies(SurfaceKind kind) {
+  return static_cast<unsigned>(kind) < 32 && (surface_bit(kind) & kVaryingCurvatureSurfaces) != 0;
+}
 
 // Farthest a body may go on H², in units of R: the global embedding grows as R e^{r/R}/2 and the
 // outputs built from it (X, p_φ, the paper's frame) must stay finite in double (e^250 ≈ 1e108).

@@ -125,14 +125,18 @@ void check_fields(Checker& c, const std::string& path, const S& value) {
 
 // A surface whose curvature varies (physics-surfaces.md §1): its parameters together, u on the
 // profile's domain, and what runs only where the curvature is constant.
-void check_varying_surface(const Scene& scene, Checker& c) {
-  const Surface& surface = scene.surface;
-  const std::string kind(enum_name(surface.kind));
+void check_torus_radii(const Surface& surface, Checker& c) {
   if (surface.kind == SurfaceKind::torus && std::isfinite(surface.tube_radius) &&
       std::isfinite(surface.center_radius) && !(surface.center_radius > surface.tube_radius))
     c.add("surface.center_radius", surface.center_radius,
           "must be > tube_radius (" + shortest(surface.tube_radius) +
               "): the tube would cross the axis and the torus intersect itself");
+}
+
+void check_varying_surface(const Scene& scene, Checker& c) {
+  const Surface& surface = scene.surface;
+  const std::string kind(enum_name(surface.kind));
+  check_torus_radii(surface, c);
   const double u = scene.initial.u;
   if (std::isfinite(u) && std::abs(u) <= kMaxSceneMagnitude) {
     const ProfileDomain d =
@@ -342,6 +346,13 @@ void check_finite_start(const Scene& scene, Checker& c) {
 }
 
 }  // namespace
+
+std::vector<FieldError> validate_surface(const Scene& scene) {
+  Checker c;
+  check_fields(c, "surface", scene.surface);
+  check_torus_radii(scene.surface, c);
+  return c.errors;
+}
 
 std::vector<FieldError> validate_scene(const Scene& scene) {
   Checker c;

@@ -24,6 +24,9 @@ inline constexpr double kMinScenePositive = 1e-100;
 // Every error found (empty: the scene can be run): each field against its range in
 // engine/scene_fields.h, then the rules that tie fields together.
 std::vector<FieldError> validate_scene(const Scene& scene);
+// The surface alone: its fields by their table and the relations between them (the torus's c > a).
+// The initial rates are converted on it (codec/scene_json.cpp), so a wrong one is named before them.
+std::vector<FieldError> validate_surface(const Scene& scene);
 
 // The reason given for a number outside `range`, e.g. "must be > 0", "must be between 1e-15 and
 // 1e-2"; a `note` is appended in parentheses.

@@ -10,13 +10,13 @@
 #include <optional>
 
 #include "render/view_table.h"
+#include "render/views/drawing.h"
 #include "render/views/view_model.h"
 
 namespace spinfold::render {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 const glm::dvec4 kOutlineColor{0.22, 0.25, 0.30, 1.0};
 const glm::dvec4 kLabelColor{0.25, 0.32, 0.42, 1.0};
 const glm::dvec4 kProvenanceColor{0.40, 0.40, 0.40, 1.0};
@@ -27,12 +27,6 @@ constexpr double kProvenanceSize = 6.0;   // [pt]
 constexpr double kLabelSize = 7.0;        // grid labels and the scale bar's [pt]
 constexpr double kLineSpacing = 1.35;     // baseline to baseline over the font size
 constexpr float kDepthTolerance = 1e-5f;  // [NDC depth] a line on the surface is not hidden by it
-
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
-}
 
 // The scene's camera and, in the 3-D views, a depth buffer of its surface rasterised in software
 // (pixel centres, depth interpolated linearly in screen space as GL does for NDC z): what hides a
@@ -358,7 +352,7 @@ void add_scale_bar(FigurePage& page, const Snapshot& snapshot, const ViewOptions
                         .color = kOutlineColor,
                         .width = 1.0,
                         .role = "scale_bar"});
-  const bool exact = view.kind == ViewKind::plane || curvature(surface) == 0.0;
+  const bool exact = curvature(surface) == 0.0;  // else the bar holds at the centre only
   char number[32];
   std::snprintf(number, sizeof number, "%g", length);
   page.texts.push_back({.at = {0.5 * (start.x + end.x), start.y - tick - 2.0},
@@ -371,57 +365,10 @@ void add_scale_bar(FigurePage& page, const Snapshot& snapshot, const ViewOptions
                         .role = "scale_bar"});
 }
 
-// What the grid shows, for the caption.
-std::string grid_line(const Snapshot& snapshot, const ViewOptions& view) {
-  if (!(view.layers & kGrid)) return "";
-  const bool sphere = snapshot.surface.kind == SurfaceKind::sphere;
-  switch (view.kind) {
-    case ViewKind::sphere: return "Grid: parallels every 15 degrees, meridians every 30 degrees.";
-    case ViewKind::hyperboloid:
-      return "Grid: geodesic circles r = 0.5 R, 1 R, ... about the pole; radial geodesics every 30 degrees.";
-    case ViewKind::tractricoid:
-      return "Grid: meridians (geodesics) every 30 degrees, parallels (horocycles).";
-    case ViewKind::disk:
-      return sphere ? "Grid: geodesic circles about the pole (parallels every 15 degrees); meridians every "
-                      "30 degrees."
-                    : "Grid: geodesic circles about the pole, labelled with their radius r; radial geodesics "
-                      "every 30 degrees.";
-    case ViewKind::klein:
-    case ViewKind::halfplane:
-      return "Grid: geodesic circles about the pole, labelled with their radius r; radial geodesics every 30 "
-             "degrees.";
-    case ViewKind::plane:
-      return "Grid: lines every " + format("%g", kPlaneGridSpacing) +
-             " R (R = " + format("%g", snapshot.surface.radius) + ").";
-    case ViewKind::conformal:
-      return "Grid: the image of a square grid of geodesic normal coordinates, every " +
-             format("%g", kPlaneGridSpacing * body_scale_length(view.kind, snapshot.surface)) +
-             " length units.";
-    case ViewKind::chart:
-      return "Chart: phi across (-pi to pi), u down; the background coloured by the Gaussian curvature K "
-             "(warm > 0, "
-             "cool < 0, white 0); meridians every 30 degrees, parallels, the K = 0 parallels darker.";
-    case ViewKind::revolution:
-      return std::string("Grid: meridians every 30 degrees and parallels; the K = 0 parallels darker.") +
-             (view.layers & kCurvature
-                  ? " Colour: the Gaussian curvature K, warm where K > 0, cool where K < 0, "
-                    "white where K = 0, full at the largest |K| drawn."
-                  : "");
-  }
-  return "";
-}
-
 }  // namespace
 
 FigureScale figure_scale(ViewKind view) {
-  switch (view) {
-    case ViewKind::disk:
-    case ViewKind::klein:
-    case ViewKind::halfplane: return FigureScale::circle_labels;
-    case ViewKind::plane:
-    case ViewKind::conformal: return FigureScale::scale_bar;
-    default: return FigureScale::none;
-  }
+  return view_model(view).figure_scale();
 }
 
 double scale_bar_length(double most) {
@@ -438,12 +385,12 @@ std::string circle_label(double r_over_R, bool sphere) {
     const int g = std::gcd(k, 12);
     const int num = k / g, den = 12 / g;
     std::string text = "r = ";
-    if (num != 1) text += format("%.0f", num);
+    if (num != 1) text += caption_number("%.0f", num);
     text += "\u03C0R";
-    if (den != 1) text += format("/%.0f", den);
+    if (den != 1) text += caption_number("/%.0f", den);
     return text;
   }
-  return "r = " + format("%g", r_over_R) + " R";
+  return "r = " + caption_number("%g", r_over_R) + " R";
 }
 
 FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, const FigureCaption& caption) {
@@ -572,7 +519,9 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
   if (!snapshot.bodies.empty() && !on_view(snapshot.surface, view.kind, snapshot.bodies.front().X))
     lines.push_back(std::string(view_model(view.kind).off_view_note()));  // the view's own words
   std::string view_line = "View: " + std::string(view_info(view.kind).title) + ".";
-  if (const std::string grid = grid_line(snapshot, view); !grid.empty()) view_line += " " + grid;
+  if (const std::string grid = view.layers & kGrid ? view_model(view.kind).grid_caption(snapshot, view) : "";
+      !grid.empty())
+    view_line += " " + grid;
   lines.push_back(view_line);
   for (const std::string& l : lines) add_lines(l, kCaptionSize, false, {0.1, 0.1, 0.1, 1});
   if (!caption.provenance.empty()) add_lines(caption.provenance, kProvenanceSize, false, kProvenanceColor);

@@ -15,6 +15,7 @@
 #include "render/scene_builder.h"
 #include "render/snapshot.h"
 #include "render/view.h"
+#include "render/views/view_model.h"
 
 namespace spinfold::render {
 
@@ -36,7 +37,7 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view, const 
 
 // Whether the view labels its geodesic circles (disk, Klein, half-plane) or shows a scale bar
 // (plane, conformal); the 3-D views do neither.
-enum class FigureScale { none, circle_labels, scale_bar };
+// (The view says which: ViewModel::figure_scale.)
 FigureScale figure_scale(ViewKind view);
 
 // The scale bar's length: 1, 2 or 5 × 10ᵏ lengths, the largest not over `most` [length].

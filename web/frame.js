@@ -5,7 +5,7 @@
 import { api } from "./api.js";
 import { $ } from "./dom.js";
 import { LiveView } from "./live.js";
-import { store, withView } from "./state.js";
+import { initialState, store, withView } from "./state.js";
 import { clampTo, toApi } from "./viewparams.js";
 
 /** @typedef {import("./state.js").AppState} AppState */
@@ -167,6 +167,14 @@ export function orbit({ dYaw = 0, dPitch = 0, yaw, pitch }) {
 
 /** The camera where it is now (or where the server aims it). @param {AppState} state */
 export const camera = (state) => ({ yaw: state.view.yaw ?? aimed.yaw, pitch: state.view.pitch ?? aimed.pitch });
+
+/** The camera as the server aims it (at the body, clear of the HUD) and the body at its starting size. */
+export const freshCamera = () => ({ yaw: null, pitch: null, distance: null, scale: initialState().view.scale });
+
+/** Undoes orbiting and zooming: Reset view (V), Reset (R) and a preset's opening do it. */
+export function resetView() {
+  store.update((s) => withView(s, freshCamera()));
+}
 
 /** Closer by `factor` in the 3-D views; a larger body in the 2-D ones. @param {number} factor */
 export function zoom(factor) {

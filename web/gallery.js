@@ -4,10 +4,11 @@
 // thumbnails the server renders.
 import { api, request } from "./api.js";
 import { $, el } from "./dom.js";
+import { freshCamera } from "./frame.js";
 import { say } from "./readout.js";
 import { openScene, presetLabel } from "./session.js";
-import { store } from "./state.js";
-import { surfaceName } from "./surface.js";
+import { store, withView } from "./state.js";
+import { surfaceTitle } from "./surface.js";
 
 /** @typedef {import("./state.js").AppState} AppState */
 
@@ -56,7 +57,9 @@ export function renderGalleryMarks(s, b) {
 export function renderExplanation(s, b) {
   if (!s.surface || (s.preset === b.preset && s.surface === b.surface)) return;
   const preset = s.presets.find((p) => p.name === s.preset);
-  $("explanation").textContent = preset ? preset.description : `Your own scene on the ${surfaceName[s.surface.kind]}.`;
+  $("explanation").textContent = preset
+    ? preset.description
+    : `Your own scene on the ${surfaceTitle(s.schema, s.surface.kind)}.`;
 }
 
 /** The cards, then their thumbnails, one short-lived session at a time, kept for the tab. */
@@ -72,8 +75,12 @@ export async function buildGallery() {
       el("span", { class: "mark" }),
       el("small", { text: preset.description }),
     );
+    // A preset opens in its surface's own view, aimed afresh: nothing of the last scene's view stays
+    // (the disk view of an H² preset carried over to a sphere, a zoom put the body under the HUD).
     button.addEventListener("click", () =>
-      openScene(preset.scene, { preset: preset.name }).catch((e) => say(e.message)),
+      openScene(preset.scene, { preset: preset.name })
+        .then(() => store.update((s) => withView(s, { ...freshCamera(), kind: null })))
+        .catch((e) => say(e.message)),
     );
     gallery.append(button);
   }

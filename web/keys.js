@@ -1,10 +1,10 @@
 // @ts-check
 // The keyboard and the pointer on the picture: Space play/pause, → step, R reset, F full screen,
 // G geodesic companion, arrows orbit (on the focused picture; Shift+arrows anywhere), + and − zoom,
-// dragging orbits (3-D views). Typing in a field is left alone; Space on another button presses it.
+// V resets the view (R too), dragging orbits (3-D views). Typing in a field is left alone; Space on another button presses it.
 import { toggleGeodesic } from "./comparisons.js";
 import { $ } from "./dom.js";
-import { camera, is3d, orbit, zoom } from "./frame.js";
+import { camera, is3d, orbit, resetView, zoom } from "./frame.js";
 import { toggleFullscreen } from "./presentation.js";
 import { say } from "./readout.js";
 import { pause, play, reset, step } from "./session.js";
@@ -50,7 +50,10 @@ function onKey(e) {
       key === "ArrowUp" ? d : key === "ArrowDown" ? -d : 0,
     );
   } else if (key === "ArrowRight" && target.type !== "range") run(step);
-  else if (key === "r" || key === "R") run(reset);
+  else if (key === "r" || key === "R") {
+    resetView();
+    run(reset);
+  } else if (key === "v" || key === "V") resetView();
   else if (key === "f" || key === "F") toggleFullscreen();
   else if (key === "g" || key === "G") toggleGeodesic();
   else if (key === "+" || key === "=") zoom(1.15);

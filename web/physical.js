@@ -9,7 +9,7 @@ import { $, el, clear } from "./dom.js";
 import { begin, refused } from "./edits.js";
 import { applyChange } from "./session.js";
 import { store, withView } from "./state.js";
-import { curvatureForm, curvatureVaries, shownRadius, surfaceSwitch } from "./surface.js";
+import { curvatureForm, curvatureVaries, shownRadius, surfaceKinds, surfaceSwitch, surfaceTitle } from "./surface.js";
 import { showConformal } from "./viewcontrols.js";
 
 /** @typedef {import("./state.js").AppState} AppState */
@@ -117,7 +117,7 @@ function physicalRows(s) {
   // switches to the conformal view, the one view that exists on every surface and is continuous in K.
   const byK = curvatureForm(surface);
   const resolved = /** @type {import("./surface.js").ResolvedSurface} */ (s.surface);
-  const varies = curvatureVaries(resolved.kind);
+  const varies = curvatureVaries(s.schema, resolved.kind);
   if (varies) rows.push(...shapeRows(s));
   else
     rows.push(
@@ -399,16 +399,7 @@ function physicalRow(spec) {
 /** The surface's kind; switching restarts the run. @param {AppState} s */
 function surfaceKindRow(s) {
   const select = el("select", { id: "phys-surface", name: "phys.surface", "aria-describedby": "phys-surface-help" });
-  for (const [value, text] of [
-    ["sphere", "sphere (positive curvature)"],
-    ["pseudosphere", "hyperbolic plane (negative curvature)"],
-    ["plane", "flat plane (no curvature)"],
-    ["torus", "torus (K > 0 outside, < 0 inside)"],
-    ["spheroid", "spheroid (K varies with latitude)"],
-    ["bump", "bump on the plane (K > 0 on top, < 0 round it)"],
-    ["catenoid", "catenoid (K < 0, most negative on the neck)"],
-  ])
-    select.add(new Option(text, value));
+  for (const value of surfaceKinds(s.schema)) select.add(new Option(surfaceTitle(s.schema, value), value));
   select.value = /** @type {import("./surface.js").ResolvedSurface} */ (s.surface).kind;
   const help = el("small", {
     class: "help",
@@ -424,7 +415,7 @@ function surfaceKindRow(s) {
       // Fields of the other kinds go (initial.r on a torus); from the curvature form, that form
       // goes and the radius it implied stays (1 from the plane).
       const patch = surfaceSwitch(store.get().schema, current, select.value);
-      if (curvatureForm(current.surface) && !curvatureVaries(select.value))
+      if (curvatureForm(current.surface) && !curvatureVaries(store.get().schema, select.value))
         patch.surface = { kind: select.value, radius: surface?.radius ?? 1, curvature: null };
       await applyChange(patch, edit);
     } catch (e) {

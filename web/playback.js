@@ -2,6 +2,7 @@
 // The playback bar: play, pause, step, reset and the speed; its state badge and the picture's
 // play mark follow the store (the session's "playing" and "rate", and a run that stopped).
 import { $ } from "./dom.js";
+import { resetView } from "./frame.js";
 import { say } from "./readout.js";
 import { pause, play, reset, step } from "./session.js";
 import { mount, store } from "./state.js";
@@ -36,7 +37,11 @@ export function setupPlayback() {
   };
   $("pause").onclick = reported(pause);
   $("step").onclick = reported(step);
-  $("reset").onclick = reported(reset);
+  $("reset").onclick = () => {
+    resetView();
+    return reported(reset)();
+  };
+  $("reset-view").onclick = resetView;
   $("speed").oninput = () => ($("speed-out").textContent = $("speed").value);
   // A new speed applies at once while playing; while paused it waits for Play.
   $("speed").onchange = () => {

@@ -3,7 +3,7 @@
 // curvature}}, server/context.cpp) in either of the scene's forms, {kind, radius} or {curvature: K},
 // so the UI never re-derives the kind from K (the engine's flat threshold stays in the engine). Pure.
 
-/** @typedef {"sphere" | "pseudosphere" | "plane" | "torus" | "spheroid" | "bump" | "catenoid"} SurfaceKind */
+/** A name in the schema's surface.kind enum ("sphere", "torus", …). @typedef {string} SurfaceKind */
 /** A scene's surface as written. @typedef {{kind?: SurfaceKind, radius?: number, curvature?: number | null}} Surface */
 /** The server's resolution of it. @typedef {{kind: SurfaceKind, radius: number, curvature: number}} ResolvedSurface */
 
@@ -34,19 +34,19 @@ export function writtenKind(surface) {
 export const shownRadius = (given, resolved) =>
   curvatureForm(given) && resolved.kind === "plane" ? undefined : resolved.radius;
 
-/** @type {Record<SurfaceKind, string>} */
-export const surfaceName = {
-  sphere: "sphere",
-  pseudosphere: "hyperbolic plane",
-  plane: "flat plane",
-  torus: "torus",
-  spheroid: "spheroid",
-  bump: "bump on the plane",
-  catenoid: "catenoid",
-};
+// The kinds, their menu words and which of them have a K that varies come from the scene's schema
+// (surface.kind's "enum", "x-titles", "x-curvature-varies": engine/scene_fields.h's one table).
+/** @param {any} schema */
+const kindSpec = (schema) => schema?.properties?.surface?.properties?.kind ?? {};
 
-/** Whether the curvature varies from place to place on a kind (the engine's curvature_varies). */
-export const curvatureVaries = (/** @type {string} */ kind) => ["torus", "spheroid", "bump", "catenoid"].includes(kind);
+/** Every surface kind, in the table's order. @param {any} schema @returns {SurfaceKind[]} */
+export const surfaceKinds = (schema) => kindSpec(schema).enum ?? [];
+
+/** A menu's words for a kind ("hyperbolic plane (negative curvature)"); its name before the schema is in. @param {any} schema @param {string} kind */
+export const surfaceTitle = (schema, kind) => kindSpec(schema)["x-titles"]?.[kind] ?? kind;
+
+/** Whether the curvature varies from place to place on a kind (the engine's curvature_varies). @param {any} schema @param {string} kind */
+export const curvatureVaries = (schema, kind) => (kindSpec(schema)["x-curvature-varies"] ?? []).includes(kind);
 
 /**
  * The merge patch that switches a scene to another surface kind: the kind, and null for every

@@ -113,6 +113,33 @@ void clear_the_boxes(const ViewModel& model, const Surface& surface, ViewOptions
     }
 }
 
+double slide_clear_of_boxes(const ViewModel& model, const Surface& surface, ViewOptions& view,
+                            const std::vector<Sight>& points, const HudLayout& hud) {
+  double best = badness(model, surface, view, points, hud);
+  if (best == 0.0 || !view.target) return best;
+  const glm::dvec3 target((*view.target)[0], (*view.target)[1], (*view.target)[2]);
+  const glm::dvec3 dir(std::cos(view.pitch) * std::cos(view.yaw), std::cos(view.pitch) * std::sin(view.yaw),
+                       std::sin(view.pitch));
+  const glm::dvec3 up_hint = std::abs(dir.z) > 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+  const glm::dvec3 right = glm::normalize(glm::cross(-dir, up_hint)), up = glm::cross(right, -dir);
+  // Half the frame's height and width at the target's depth [world units].
+  const double half_h = view.distance * std::tan(glm::radians(kFovY) / 2);
+  const double half_w = half_h * view.width / view.height;
+  // Where on the screen the target goes, in half-frames (x right, y up): the sights move with it.
+  constexpr double kSlides[][2] = {{0.3, -0.3}, {0.3, 0},     {0, -0.3},  {0.45, -0.45}, {0.45, 0},
+                                   {0, -0.45},  {-0.3, -0.3}, {0.3, 0.3}, {0.45, 0.45},  {-0.45, -0.45}};
+  const ViewOptions start = view;
+  for (const auto& slide : kSlides) {
+    ViewOptions v = start;
+    const glm::dvec3 t = target - slide[0] * half_w * right - slide[1] * half_h * up;
+    v.target = std::array<double, 3>{t.x, t.y, t.z};
+    const double bad = badness(model, surface, v, points, hud, best);
+    if (bad < best) best = bad, view = v;
+    if (best == 0.0) break;
+  }
+  return best;
+}
+
 void aim_orbit(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud,
                double min_radius, double pitch, double yaw_turn) {
   const std::vector<Sight> points = sights(model, snapshot, view, true);

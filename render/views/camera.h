@@ -50,6 +50,13 @@ void clear_the_boxes(const ViewModel& model, const Surface& surface, ViewOptions
                      const std::vector<Sight>& points, const HudLayout& hud,
                      std::initializer_list<double> pulls);
 
+// When turning and drawing back leave the sights boxed (a small frame whose HUD covers its
+// centre, where an orbit puts its target): slides the target across the screen plane by a
+// quarter or a third of the frame each way, the first of the list of offsets that shows the
+// sights best; the camera's direction and distance stay. Returns the badness it ends with.
+double slide_clear_of_boxes(const ViewModel& model, const Surface& surface, ViewOptions& view,
+                            const std::vector<Sight>& points, const HudLayout& hud);
+
 // The orbit of a surface that stretches out of a unit ball (hyperboloid, tractricoid): orbit the
 // centre of the bounding box of the bodies and their recent trails, at the distance at which a
 // ball round all of them (at least `min_radius` [world units]) fills 85% of the narrower field of

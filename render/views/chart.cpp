@@ -79,6 +79,11 @@ class ChartView final : public ViewModel {
   double body_scale_length(const Surface& surface) const override {
     return profile_shape(surface).picture.feature;
   }
+  std::string grid_caption(const Snapshot& /*snapshot*/, const ViewOptions& /*view*/) const override {
+    return "Chart: phi across (-pi to pi), u down; the background coloured by the Gaussian curvature K (warm "
+           "> 0, "
+           "cool < 0, white 0); meridians every 30 degrees, parallels, the K = 0 parallels darker.";
+  }
 };
 
 }  // namespace

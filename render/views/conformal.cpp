@@ -277,6 +277,11 @@ class ConformalView final : public ViewModel {
   // Lengths, not R: the picture must not change with K (the dial); a sphere of R = 1e6 would
   // otherwise draw a body the size of a continent.
   double body_scale_length(const Surface& /*surface*/) const override { return 1.0; }
+  std::string grid_caption(const Snapshot& snapshot, const ViewOptions& /*view*/) const override {
+    return "Grid: the image of a square grid of geodesic normal coordinates, every " +
+           caption_number("%g", kPlaneGridSpacing * body_scale_length(snapshot.surface)) + " length units.";
+  }
+  FigureScale figure_scale() const override { return FigureScale::scale_bar; }
 };
 
 }  // namespace

@@ -56,6 +56,14 @@ class DiskView final : public ViewModel {
   glm::mat4 camera(const ViewOptions& view) const override {
     return window_camera(window_around(view, glm::dvec2(0.0), 1.08));
   }
+  std::string grid_caption(const Snapshot& snapshot, const ViewOptions& /*view*/) const override {
+    return snapshot.surface.kind == SurfaceKind::sphere ? "Grid: geodesic circles about the pole (parallels "
+                                                          "every 15 degrees); meridians every 30 degrees."
+                                                        : "Grid: geodesic circles about the pole, labelled "
+                                                          "with their radius r; radial geodesics every 30 "
+                                                          "degrees.";
+  }
+  FigureScale figure_scale() const override { return FigureScale::circle_labels; }
 };
 
 }  // namespace

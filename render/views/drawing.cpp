@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace spinfold::render {
 
@@ -153,6 +154,12 @@ void ViewModel::add_bodies(FrameScene& scene, const Snapshot& snapshot, const Vi
   if (view.layers & kFrame)
     for (const BodySnapshot& body : snapshot.bodies)
       if (draws(surface, body.X)) add_frame_arrows(scene, surface, *this, view.scale, body);
+}
+
+std::string caption_number(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
 }
 
 }  // namespace spinfold::render

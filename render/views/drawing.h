@@ -4,6 +4,7 @@
 #pragma once
 
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "engine/chart.h"
@@ -20,6 +21,9 @@ inline const glm::vec4 kGridColor{0.45f, 0.52f, 0.62f, 1.0f};
 inline const glm::vec4 kSeamColor{0.80f, 0.35f, 0.55f, 1.0f};
 inline constexpr float kFillAlpha = 0.55f;
 inline const glm::vec4 kArrowColors[2] = {{0.85f, 0.10f, 0.10f, 1.0f}, {0.10f, 0.60f, 0.15f, 1.0f}};
+
+// A number in a caption or label, printf-formatted ("%g" → "0.5").
+std::string caption_number(const char* pattern, double value);
 
 inline glm::vec3 to_float(const glm::dvec3& w) {
   return glm::vec3(w);

@@ -53,6 +53,11 @@ class HalfPlaneView final : public ViewModel {
     const double height = std::max({main, top / 1.9, (hi - lo) / (2.0 * 0.9 * 1.08 * std::max(1.0, aspect))});
     view.target = std::array<double, 3>{0.5 * (lo + hi), height, 0.0};
   }
+  std::string grid_caption(const Snapshot& /*snapshot*/, const ViewOptions& /*view*/) const override {
+    return "Grid: geodesic circles about the pole, labelled with their radius r; radial geodesics every 30 "
+           "degrees.";
+  }
+  FigureScale figure_scale() const override { return FigureScale::circle_labels; }
 };
 
 }  // namespace

@@ -60,6 +60,9 @@ class HyperboloidView final : public ViewModel {
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
     aim_orbit(*this, view, snapshot, hud, 1.5, 0.55, kPi);
   }
+  std::string grid_caption(const Snapshot& /*snapshot*/, const ViewOptions& /*view*/) const override {
+    return "Grid: geodesic circles r = 0.5 R, 1 R, ... about the pole; radial geodesics every 30 degrees.";
+  }
 };
 
 }  // namespace

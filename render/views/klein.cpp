@@ -36,6 +36,11 @@ class KleinView final : public ViewModel {
   glm::mat4 camera(const ViewOptions& view) const override {
     return window_camera(window_around(view, glm::dvec2(0.0), 1.08));
   }
+  std::string grid_caption(const Snapshot& /*snapshot*/, const ViewOptions& /*view*/) const override {
+    return "Grid: geodesic circles about the pole, labelled with their radius r; radial geodesics every 30 "
+           "degrees.";
+  }
+  FigureScale figure_scale() const override { return FigureScale::circle_labels; }
 };
 
 }  // namespace

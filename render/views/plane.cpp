@@ -46,6 +46,11 @@ class PlaneView final : public ViewModel {
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& /*hud*/) const override {
     aim_at_bodies_centre(*this, view, snapshot);
   }
+  std::string grid_caption(const Snapshot& snapshot, const ViewOptions& /*view*/) const override {
+    return "Grid: lines every " + caption_number("%g", kPlaneGridSpacing) +
+           " R (R = " + caption_number("%g", snapshot.surface.radius) + ").";
+  }
+  FigureScale figure_scale() const override { return FigureScale::scale_bar; }
 };
 
 }  // namespace

@@ -26,7 +26,7 @@ ProfileShape profile_shape(const Surface& surface);
 // HUD says of a main body beyond it.
 bool on_drawn_piece(const Surface& surface, const Vec3& X);
 inline constexpr std::string_view kOffDrawnPieceNote =
-    "body 1 is beyond the piece of the surface drawn (the bump to 4w, the catenoid to |z| = 2c)";
+    "body 1 is beyond the surface drawn (bump: to 4w, catenoid: to |z| = 2c)";
 
 // The parallels where K changes sign within the drawn range (bisected to rounding from 1024 steps).
 std::vector<double> zero_curvature_parallels(const ProfileShape& shape);

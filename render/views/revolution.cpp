@@ -25,17 +25,20 @@ constexpr float kRevolutionDepthBias = 0.01f;
 // The mesh: rings along the profile, slices round the axis.
 constexpr int kRings = 48, kSlices = 72;
 
-// Whether the segment from the eye to a point of the surface crosses the surface before it: F
-// changes sign along it, sampled at 32 points short of the last 2% (the point itself).
-bool occluded(const ProfileShape& shape, const glm::dvec3& eye_world, const glm::dvec3& at_world) {
-  const auto F = [&](const glm::dvec3& w) {
-    const double l = shape.picture.length;
-    return shape.entry->implicit(shape.surface, Vec3(w.x * l, w.y * l, w.z * l)).F;
-  };
-  const double start = F(eye_world);
+// Whether the segment from the eye to a point of the surface crosses the surface as drawn before it:
+// F changes sign along it, sampled at 32 points short of the last 2% (the point itself), at a
+// crossing on the drawn piece (beyond it, on an unbounded surface, nothing is drawn to hide it).
+bool occluded(const Surface& surface, const glm::dvec3& eye_world, const glm::dvec3& at_world) {
+  const ProfileShape shape = profile_shape(surface);
+  const double l = shape.picture.length;
+  const auto embedded = [&](const glm::dvec3& w) { return Vec3(w.x * l, w.y * l, w.z * l); };
+  const auto F = [&](const glm::dvec3& w) { return shape.entry->implicit(shape.surface, embedded(w)).F; };
+  bool outside = F(eye_world) > 0.0;
   for (int i = 1; i <= 32; ++i) {
-    const double t = 0.98 * i / 32;
-    if ((F(glm::mix(eye_world, at_world, t)) > 0.0) != (start > 0.0)) return true;
+    const glm::dvec3 w = glm::mix(eye_world, at_world, 0.98 * i / 32);
+    if ((F(w) > 0.0) == outside) continue;
+    if (on_drawn_piece(surface, embedded(w))) return true;
+    outside = !outside;
   }
   return false;
 }
@@ -98,7 +101,7 @@ class RevolutionView final : public ViewModel {
   glm::mat4 camera(const ViewOptions& view) const override { return orbit_camera(view, glm::dvec3(0.0)); }
   float depth_bias() const override { return kRevolutionDepthBias; }
   bool hidden(const Surface& surface, const glm::dvec3& at, const glm::dvec3& eye) const override {
-    return occluded(profile_shape(surface), eye, at);
+    return occluded(surface, eye, at);
   }
   double body_scale_length(const Surface& surface) const override {
     return profile_shape(surface).picture.feature;
@@ -171,6 +174,23 @@ class RevolutionView final : public ViewModel {
       for (const double pitch : {1.15, 0.75, 0.35, -0.35, -0.75})
         for (int k = 0; k < 12; ++k) consider(normal_yaw + 2 * kPi * k / 12, pitch, pull);
     }
+    // The main body still hidden or boxed: in a small frame the HUD covers the centre, where every
+    // orbit puts the body. Slide it to the free side, seen from its own side if that clears it.
+    if (best >= 1000.0) {
+      ViewOptions facing = view;
+      facing.yaw = normal_yaw, facing.pitch = std::max(facing_pitch, 0.5), facing.distance = base;
+      if (slide_clear_of_boxes(*this, surface, facing, points, hud) < 1000.0)
+        view = facing;
+      else
+        slide_clear_of_boxes(*this, surface, view, points, hud);
+    }
+  }
+  std::string grid_caption(const Snapshot& /*snapshot*/, const ViewOptions& view) const override {
+    return std::string("Grid: meridians every 30 degrees and parallels; the K = 0 parallels darker.") +
+           (view.layers & kCurvature
+                ? " Colour: the Gaussian curvature K, warm where K > 0, cool where K < 0, "
+                  "white where K = 0, full at the largest |K| drawn."
+                : "");
   }
 };
 

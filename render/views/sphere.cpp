@@ -109,6 +109,9 @@ class SphereView final : public ViewModel {
       clear_the_boxes(*this, snapshot.surface, view, points, hud, {1.0, 1.2, 1.45, 1.75});
     }
   }
+  std::string grid_caption(const Snapshot& /*snapshot*/, const ViewOptions& /*view*/) const override {
+    return "Grid: parallels every 15 degrees, meridians every 30 degrees.";
+  }
 };
 
 }  // namespace

@@ -91,6 +91,9 @@ class TractricoidView final : public ViewModel {
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
     aim_orbit(*this, view, snapshot, hud, 0.9, 0.35, 0.0);
   }
+  std::string grid_caption(const Snapshot& /*snapshot*/, const ViewOptions& /*view*/) const override {
+    return "Grid: meridians (geodesics) every 30 degrees, parallels (horocycles).";
+  }
 };
 
 }  // namespace

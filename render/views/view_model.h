@@ -7,11 +7,16 @@
 #include <cmath>
 #include <glm/glm.hpp>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "render/scene_builder.h"
 
 namespace spinfold::render {
+
+// What a figure (render/figure.h) marks lengths with: labels on the geodesic circles (the flat
+// maps of H² and the sphere), a scale bar in lengths (plane, conformal), or nothing (3-D views).
+enum class FigureScale { none, circle_labels, scale_bar };
 
 // The centre and half-extents of a 2-D view's orthographic frame [world units].
 struct Window2d {
@@ -90,6 +95,13 @@ class ViewModel {
   virtual void add_bodies(FrameScene& scene, const Snapshot& snapshot, const ViewOptions& view) const;
   // The length ViewOptions::scale is given in (body_scale_length).
   virtual double body_scale_length(const Surface& surface) const { return surface.radius; }
+
+  // ---- What a figure's caption says and marks (render/figure.cpp asks; it never switches on views)
+  // The caption's sentence on what the grid shows ("" for none); called only with the grid layer.
+  virtual std::string grid_caption(const Snapshot& /*snapshot*/, const ViewOptions& /*view*/) const {
+    return "";
+  }
+  virtual FigureScale figure_scale() const { return FigureScale::none; }
 };
 
 }  // namespace spinfold::render

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "codec/scene_json.h"
 
 namespace spinfold {
@@ -45,6 +47,23 @@ TEST(SceneSchema, EveryDescribedPropertyIsAccepted) {
     const SceneParse parsed =
         parse_scene(json{{"potential", {{"deformation", deformation}}}, {"initial", {{"mu", 0.5}}}});
     EXPECT_TRUE(parsed.errors.empty()) << describe_errors(parsed.errors);
+  }
+}
+
+// The UI's Surface menu and its "is K one number" test come from surface.kind's schema entry.
+// Every kind has a menu title; the kinds said to have a K that varies are exactly those that have
+// no radius (read off the radius field's own "x-surfaces", not off curvature_varies).
+TEST(SceneSchema, SurfaceKindsCarryTheirMenuWordsAndWhetherKVaries) {
+  const json schema = scene_schema();
+  const json& kind = schema["properties"]["surface"]["properties"]["kind"];
+  const json& radius_kinds = schema["properties"]["surface"]["properties"]["radius"]["x-surfaces"];
+  ASSERT_TRUE(radius_kinds.is_array());
+  ASSERT_GE(kind["enum"].size(), 7u);
+  for (const json& name : kind["enum"]) {
+    EXPECT_FALSE(kind["x-titles"].value(name.get<std::string>(), "").empty()) << name;
+    const bool varies = std::ranges::count(kind["x-curvature-varies"], name) == 1;
+    const bool has_radius = std::ranges::count(radius_kinds, name) == 1;
+    EXPECT_NE(varies, has_radius) << name;
   }
 }
 

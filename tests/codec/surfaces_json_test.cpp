@@ -132,5 +132,29 @@ TEST(SurfacesJson, SpeedAndHeadingUseTheProfileFrame) {
   EXPECT_NE(e.reason.find("axis"), std::string::npos) << e.reason;
 }
 
+// A wrong surface is named alone: its parameters make every rate conversion fail too (a catenoid
+// of neck 0 gives an infinite u_dot for any speed), and those follow-on errors once came first.
+TEST(SurfacesJson, AWrongSurfaceIsNamedAloneNotTheRatesItSpoils) {
+  const SceneParse p = parse_scene_text(R"({"surface": {"kind": "catenoid", "neck_radius": 0},
+    "initial": {"u": 0, "speed": 1, "heading": 1.5, "spin": 0.5}})");
+  ASSERT_EQ(p.errors.size(), 1u) << describe_errors(p.errors);
+  EXPECT_EQ(p.errors.front().field, "surface.neck_radius");
+  const SceneParse bump = parse_scene_text(R"({"surface": {"kind": "bump", "height": 1, "width": 0},
+    "initial": {"u": 0.5, "spin": 2}})");
+  ASSERT_EQ(bump.errors.size(), 1u) << describe_errors(bump.errors);
+  EXPECT_EQ(bump.errors.front().field, "surface.width");
+}
+
+// The missing heading's reason names the frame the heading is measured in on this surface.
+TEST(SurfacesJson, AMissingHeadingNamesTheSurfacesOwnE1) {
+  const FieldError torus =
+      first_error(R"({"surface": {"kind": "torus"}, "initial": {"u": 0.3, "speed": 1}})");
+  EXPECT_EQ(torus.field, "initial.heading");
+  EXPECT_NE(torus.reason.find("E1 = X_u/f"), std::string::npos) << torus.reason;
+  const FieldError sphere = first_error(R"({"initial": {"r": 0.3, "speed": 1}})");
+  EXPECT_EQ(sphere.field, "initial.heading");
+  EXPECT_NE(sphere.reason.find("E1 = d/dr"), std::string::npos) << sphere.reason;
+}
+
 }  // namespace
 }  // namespace spinfold

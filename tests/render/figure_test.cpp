@@ -155,7 +155,7 @@ TEST(Figure, TheCaptionSaysWhereABodyOffTheDrawnPieceIs) {
   const Figure f = figure_of("spin_vs_geodesic_catenoid", 15.0);
   ASSERT_EQ(f.view.kind, ViewKind::revolution);
   const std::vector<std::string> caption = texts_of(f.page, "caption");
-  EXPECT_TRUE(contains(caption, "beyond the piece of the surface drawn")) << "the revolution view's note";
+  EXPECT_TRUE(contains(caption, "beyond the surface drawn")) << "the revolution view's note";
   EXPECT_FALSE(contains(caption, "beyond the rim"));
   EXPECT_GT(paths_of(f.page, "body"), 0u);
 }

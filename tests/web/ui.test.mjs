@@ -403,6 +403,24 @@ await runSuite(started, async (browser) => {
     await page.keyboard.press("ArrowLeft");
     await page.keyboard.press("+");
     await page.waitForFunction((s) => document.querySelector("#frame").dataset.seq !== s, seq, { timeout: 10000 });
+    // Zoom and orbit are undone by R (with the run) and by Reset view (V, or its button): the
+    // picture's address holds no camera of its own then, the server aims it afresh.
+    const camera = async () => new URL(await page.$eval("#export-png", (a) => a.href)).searchParams;
+    await page.keyboard.press("+");
+    assert.ok((await camera()).has("distance"), "zoomed: a distance of its own");
+    await page.keyboard.press("r");
+    await page.waitForFunction(() => Number(document.querySelector("#readout").dataset.t) === 0);
+    for (const part of ["distance", "yaw", "pitch"]) assert.ok(!(await camera()).has(part), `R: no ${part} kept`);
+    assert.equal((await camera()).get("scale"), "0.25");
+    await page.focus("#frame");
+    await page.keyboard.press("+");
+    await page.keyboard.press("ArrowLeft");
+    assert.ok((await camera()).has("yaw"));
+    await page.keyboard.press("v");
+    for (const part of ["distance", "yaw", "pitch"]) assert.ok(!(await camera()).has(part), `V: no ${part} kept`);
+    await page.keyboard.press("+");
+    await page.click("#reset-view");
+    assert.ok(!(await camera()).has("distance"), "the Reset view button");
     await page.keyboard.press("f");
     await page.waitForFunction(() => document.fullscreenElement?.id === "frame-box");
     await page.keyboard.press("f");
@@ -477,6 +495,19 @@ await runSuite(started, async (browser) => {
       await page.waitForFunction((n) => Number(document.querySelector("#frame").dataset.painted) > n, before, { timeout: 10000 });
       assert.match(await page.$eval("#export-png", (a) => a.href), new RegExp(`view=${view}`));
     }
+  });
+
+  await test("a preset opens in its surface's own view, aimed afresh (the disk and a zoom do not carry over)", async () => {
+    await page.selectOption("#view", "disk");  // on the pseudosphere of the test before
+    await page.focus("#frame");
+    await page.keyboard.press("+");
+    await page.click('.preset[data-name="spin_fan_sphere"]');
+    await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "spin_fan_sphere");
+    await page.waitForFunction(() => document.querySelector("#view").value === "sphere");
+    const query = new URL(await page.$eval("#export-png", (a) => a.href)).searchParams;
+    assert.equal(query.get("view"), "sphere");
+    assert.equal(query.get("scale"), "0.25");
+    for (const part of ["distance", "yaw", "pitch"]) assert.ok(!query.has(part), `no ${part} kept`);
   });
 
   await test("the action variables panel: numbers for a separable scene, the reason for one that is not", async () => {

@@ -8,7 +8,10 @@
 #include <cmath>
 #include <set>
 
+#include "codec/presets.h"
+#include "codec/scene_json.h"
 #include "engine/scene_fields.h"
+#include "render/snapshot.h"
 #include "render/view_table.h"
 #include "render/views/drawing.h"
 #include "render/views/view_model.h"
@@ -130,6 +133,32 @@ TEST(RevolutionView, TheCameraShowsABodyAnywhereOnEverySurface) {
       const glm::dvec3 eye = glm::dvec3(h) / h.w;
       EXPECT_FALSE(revolution().hidden(s.surface, revolution().world_position(s.surface, s.bodies[0].X), eye))
           << what;
+    }
+}
+
+// In a small frame the HUD's box covers the centre, where every orbiting camera puts the body: the
+// camera slides the body to the free side (at 320×240 the torus preset's body stayed under the HUD).
+// The five presets' stills as `spinfold render` draws them, HUD and legend on.
+TEST(RevolutionView, InASmallFrameTheHudNeverCoversTheMainBody) {
+  for (const char* name : {"spin_vs_geodesic_torus", "opposite_spins_spheroid", "trapped_spin_bump",
+                           "damped_spin_spheroid", "spin_vs_geodesic_catenoid"})
+    for (const double t : {0.0, 1.0, 2.5, 5.0}) {
+      Simulation run;
+      const Snapshot s =
+          snapshot_at(*parse_scene_text(find_preset(name)->json).scene, t, true, std::nullopt, run);
+      ViewOptions view;
+      view.kind = ViewKind::revolution;
+      view.width = 320, view.height = 240;
+      view.layers |= kHud;
+      view.scale = 0.25 * body_scale_length(view.kind, s.surface);
+      aim_camera_at_body(view, s);
+      const FrameScene scene = build_scene(s, view);
+      const std::string what = std::string(name) + " t = " + std::to_string(t);
+      ASSERT_GT(scene.hud.hud.w, 0.25 * view.width) << "the HUD is drawn and large: " << what;
+      const std::optional<glm::dvec2> px = pixel_of(scene, view, s.surface, s.bodies[0].X);
+      ASSERT_TRUE(in_frame(px, view)) << what;
+      EXPECT_FALSE(scene.hud.hud.contains(*px) || scene.hud.legend.contains(*px))
+          << what << " at (" << px->x << ", " << px->y << ")";
     }
 }
 
