@@ -26,6 +26,31 @@ let replacement = null;
 /** @param {string} name a preset's name, as its card shows it */
 export const presetLabel = (name) => name.replaceAll("_", " ");
 
+// The calls on each session not answered yet. A session the page replaces is deleted only once
+// they are: a field's change that the blur of a preset's click fires goes to the old session a
+// moment before the new one is made, and under load the old one's DELETE overtook it (a 404).
+/** @type {Map<string, Set<Promise<unknown>>>} */
+const unanswered = new Map();
+/** @template T @param {string} path @param {Promise<T>} promise @returns {Promise<T>} */
+function tracked(path, promise) {
+  const id = /^\/sessions\/([^/?]+)/.exec(path)?.[1];
+  if (!id) return promise;
+  const calls = unanswered.get(id) ?? new Set();
+  unanswered.set(id, calls);
+  calls.add(promise);
+  const done = () => {
+    calls.delete(promise);
+    if (!calls.size) unanswered.delete(id);
+  };
+  promise.then(done, done);
+  return promise;
+}
+/** @param {string} id */
+const answered = (id) => Promise.allSettled([...(unanswered.get(id) ?? [])]);
+
+/** Whether an answer is the current session's (an answer of the one a preset replaced is not). @param {any} res */
+const current = (res) => !res?.id || res.id === store.get().id;
+
 /**
  * A call on the current session. Made while a scene opens (an edit a moment after a preset's
  * click) it goes to the new session, not the old one being deleted (whose 404 would rebuild the old
@@ -43,7 +68,7 @@ export async function call(method, path, body) {
     if (was && id !== was) path = path.replace(`/sessions/${was}`, `/sessions/${id}`);
   }
   try {
-    return await request(method, path, body);
+    return await tracked(path, request(method, path, body));
   } catch (e) {
     const { id } = store.get();
     const own = id && path.startsWith(`/sessions/${id}`);
@@ -153,7 +178,10 @@ async function openSceneNow(scene, { until = 0, timeline = [], preset = null }) 
     go(phase === "live" ? "kept" : "failed");
     throw e;
   }
-  if (old && old !== created.id && old !== borrowed) request("DELETE", `/sessions/${old}`).catch(() => {});
+  if (old && old !== created.id && old !== borrowed)
+    answered(old)
+      .then(() => request("DELETE", `/sessions/${old}`))
+      .catch(() => {});
   store.update({ preset, modified: timeline.length > 0, playing: false });
   attach(created, "opened");
   say(preset ? `Opened “${presetLabel(preset)}”.` : "Opened the scene.");
@@ -239,6 +267,7 @@ export async function reset() {
  */
 export async function applyChange(patch, edit = begin()) {
   const res = await call("PATCH", `/sessions/${store.get().id}`, patch);
+  if (!current(res)) return res; // the scene it changed was replaced meanwhile
   accepted(edit);
   const restarted = res.change.kind === "restarted";
   store.update((s) => ({

@@ -325,6 +325,42 @@ await runSuite(started, async (browser) => {
     await page.unroute("**/api/v1/sessions/*");
   });
 
+  await test("an edit the click on a preset sends reaches its own session before that session goes, and its answer stays out of the new scene", async () => {
+    // A typed field's change fires on the blur of the preset's click and goes to the old session a
+    // moment before the new one is made. Made certain: that change is held before it reaches the
+    // server (under load the old session's DELETE overtook it: a 404 on the console).
+    await openAdvanced(page);
+    const before = await sessionId(page);
+    const origin = new URL(await page.$eval("#export-state", (a) => a.href)).origin;
+    let release;
+    const released = new Promise((r) => (release = r));
+    let deleted = false;
+    await page.route("**/api/v1/sessions/*", async (route) => {
+      const r = route.request();
+      if (r.method() === "DELETE" && new URL(r.url()).pathname.endsWith(`/${before}`)) deleted = true;
+      if (isChange(r) && JSON.parse(r.postData()).body?.mass === 1.7) {
+        await released;
+        return route.continue();
+      }
+      return route.fallback();
+    });
+    await page.fill('[name="body.mass"]', "1.7");
+    await page.click('.preset[data-name="spinning_rigid_sphere"]');
+    await page.waitForFunction((old) => new URL(document.querySelector("#export-state").href).pathname.split("/").pop() !== old, before);
+    await new Promise((r) => setTimeout(r, 400));
+    assert.equal(deleted, false, "the old session waits for the edit sent to it");
+    release();
+    const deadline = Date.now() + 10000;
+    while ((await fetch(`${origin}/api/v1/sessions/${before}`)).status !== 404) {
+      assert.ok(Date.now() < deadline, "the old session goes once the edit is answered");
+      await new Promise((r) => setTimeout(r, 50));
+    }
+    assert.ok(deleted);
+    await page.evaluate(async () => (await fetch("/api/v1/health")).ok);
+    assert.equal(await page.inputValue('[name="body.mass"]'), "1", "the new preset's mass, not the old session's answer");
+    await page.unroute("**/api/v1/sessions/*");
+  });
+
   await test("the energy plot: labelled decades, zeros on the floor, a growing rk4 error, history across a change", async () => {
     // The default preset may be open already: wait for the new session, not for the card.
     const before = await sessionId(page);
