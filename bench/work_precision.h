@@ -15,7 +15,7 @@ struct WorkPrecisionOptions {
   double max_seconds_per_run = 1.0;  // stop refining a fixed-step sweep beyond this
 };
 
-// Writes work_precision.csv, one plot per scene (<scene>.gp, .png and .svg if gnuplot is installed)
+// Writes work_precision.csv, one plot per scene (<scene>.png and .svg, and <scene>.gp as an export)
 // and summary.md into out_dir; prints the summary. Returns 0, or 2 (nothing written) for an unknown
 // scene name. The sweeps, the reference and the plots are workprecision/'s, as `spinfold
 // work-precision` runs them on any scene.

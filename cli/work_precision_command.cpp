@@ -126,7 +126,8 @@ int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
   for (const auto& [name, why] : wp::skipped_integrators(scene, sweep))
     md << "- Not run: " << name << " (" << why << ")\n";
   md << "- Plot: " << (plot.empty() ? "work_precision.png, work_precision.svg" : plot)
-     << " (re-plot: `gnuplot work_precision.gp` in this folder); data: work_precision.csv\n\n"
+     << " (also as a gnuplot script: `gnuplot work_precision.gp` in this folder); data: "
+        "work_precision.csv\n\n"
      << "Cost at error " << opt.target_error << " (interpolated along each curve, µs per unit time):\n\n"
      << "| method | µs per unit time |\n| --- | --- |\n";
   for (const auto& [method, curve] : curves)

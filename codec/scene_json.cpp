@@ -1,6 +1,7 @@
 #include "codec/scene_json.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <sstream>
 #include <type_traits>
 
@@ -651,6 +652,13 @@ std::string describe_errors(const std::vector<FieldError>& errors) {
     out << "\n";
   }
   return out.str();
+}
+
+std::string continued_reason(double t) {
+  if (t == 0.0) return "new parameters from t = 0, continuing from the start";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", t);
+  return std::string("new parameters from t = ") + text + " on, continuing from the current state";
 }
 
 std::string restart_reason(const json& patch, const Scene& before, const Scene& after) {

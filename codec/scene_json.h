@@ -37,6 +37,11 @@ void merge_scene_patch(nlohmann::json& document, const nlohmann::json& patch);
 // curvature dial, joining or leaving the incompressible constraint), or "" when it can continue.
 std::string restart_reason(const nlohmann::json& patch, const Scene& before, const Scene& after);
 
+// What a change that continues the run says, in every front door's answer: "new parameters from
+// t = 5.32927 on, continuing from the current state", or "…from t = 0, continuing from the start"
+// when nothing had run yet. The time to 6 digits (the answer's own `t` is exact).
+std::string continued_reason(double t);
+
 // "field: reason (value)" lines, one per error.
 std::string describe_errors(const std::vector<FieldError>& errors);
 

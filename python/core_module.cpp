@@ -411,11 +411,11 @@ class PySimulation {
     }
     if (run_.state.t == 0.0 && changes_.empty()) {
       start_over(*parsed.scene);
-      return {"continued", "new parameters from t = 0"};
+      return {"continued", continued_reason(0.0)};
     }
     retune(run_, *parsed.scene);
     changes_.push_back({run_.state.t, *parsed.scene});
-    return {"continued", "new parameters from t = " + shortest(run_.state.t) + " on"};
+    return {"continued", continued_reason(run_.state.t)};
   }
 
   // Back to t = 0 with the parameters in force (as the server's reset).

@@ -1,11 +1,13 @@
 // A zip of PNGs (libzip): frame-000000.png, frame-000001.png, … in order, stored (the PNGs are
 // already compressed), every entry dated 1980-01-01 00:00 so that a rerun gives the same bytes.
-// libzip writes the archive at finish(): the PNGs are held in memory until then (bytes() counts them).
+// libzip writes the archive at finish(), reading each entry's bytes then: each PNG is appended to a
+// spill file beside the archive as it is made and its entry reads its piece of that file, so the
+// writer holds one frame however long the clip (3600 PNGs of 1920×1080 were ~4 GB held in memory).
 #include <zip.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 
 #include "record/recorder.h"
@@ -17,7 +19,12 @@ namespace {
 
 class PngZipWriter final : public ClipWriter {
  public:
-  PngZipWriter(const std::string& path, const ClipWriterSpec& spec) : spec_(spec) {
+  PngZipWriter(const std::string& path, const ClipWriterSpec& spec)
+      : spec_(spec), spill_path_(path + ".frames") {
+    spill_ = std::fopen(spill_path_.c_str(), "wb");
+    if (!spill_)
+      throw RecordError("cannot write '" + spill_path_ +
+                        "' (the frames until the zip is written): " + std::strerror(errno));
     int error = 0;
     zip_ = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &error);
     if (!zip_) {
@@ -25,25 +32,25 @@ class PngZipWriter final : public ClipWriter {
       zip_error_init_with_code(&e, error);
       const std::string why = zip_error_strerror(&e);
       zip_error_fini(&e);
+      drop_spill();
       throw RecordError("libzip: cannot write '" + path + "': " + why);
     }
   }
   ~PngZipWriter() override {
     if (zip_) zip_discard(zip_);
+    drop_spill();
   }
 
   void add(const std::uint8_t* rgba) override {
     std::vector<render::PngText> texts;
     if (!spec_.provenance.empty()) texts.emplace_back("Source", spec_.provenance);
     const std::vector<std::uint8_t> png = render::encode_png(rgba, spec_.width, spec_.height, texts);
-    void* data = std::malloc(png.size());  // libzip frees it (freep = 1)
-    if (!data) throw RecordError("out of memory");
-    std::memcpy(data, png.data(), png.size());
-    zip_source_t* source = zip_source_buffer(zip_, data, png.size(), 1);
-    if (!source) {
-      std::free(data);
-      fail();
-    }
+    // Flushed at once: libzip checks the piece against the file's size when the entry is added.
+    if (std::fwrite(png.data(), 1, png.size(), spill_) != png.size() || std::fflush(spill_) != 0)
+      throw RecordError("cannot write '" + spill_path_ + "': " + std::strerror(errno));
+    zip_source_t* source =
+        zip_source_file(zip_, spill_path_.c_str(), held_, static_cast<zip_int64_t>(png.size()));
+    if (!source) fail();
     char name[32];
     std::snprintf(name, sizeof name, "frame-%06lld.png", frames_);
     const zip_int64_t index = zip_file_add(zip_, name, source, ZIP_FL_ENC_UTF_8);
@@ -66,17 +73,24 @@ class PngZipWriter final : public ClipWriter {
       fail();
     if (zip_close(zip_) != 0) fail();
     zip_ = nullptr;
+    drop_spill();
   }
 
   std::uint64_t bytes() const override { return held_; }
 
  private:
   [[noreturn]] void fail() { throw RecordError(std::string("libzip: ") + zip_strerror(zip_)); }
+  void drop_spill() {
+    if (spill_) std::fclose(spill_), std::remove(spill_path_.c_str());
+    spill_ = nullptr;
+  }
 
   ClipWriterSpec spec_;
+  std::string spill_path_;
+  std::FILE* spill_ = nullptr;
   zip_t* zip_ = nullptr;
   long long frames_ = 0;
-  std::uint64_t held_ = 0;
+  std::uint64_t held_ = 0;  // the spill file's length: the PNGs so far
 };
 
 }  // namespace

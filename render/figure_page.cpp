@@ -7,9 +7,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <stdexcept>
+
+#include "render/png_encoder.h"
 
 namespace spinfold::render {
 
@@ -173,6 +176,39 @@ double text_width(std::string_view text, double size, bool bold) {
   return extents.x_advance;
 }
 
+namespace {
+
+// The page's paths, then its texts, on a cairo surface in points; std::runtime_error when cairo fails.
+void paint_page(cairo_surface_t* surface, const FigurePage& page, double scale) {
+  const Context cr(cairo_create(surface));
+  cairo_t* c = cr.get();
+  cairo_scale(c, scale, scale);
+  set_color(c, page.background);
+  cairo_paint(c);
+  cairo_set_line_cap(c, CAIRO_LINE_CAP_ROUND);
+  cairo_set_line_join(c, CAIRO_LINE_JOIN_ROUND);
+  for (const FigurePath& path : page.paths) {
+    cairo_save(c);
+    if (path.clip_to_picture) {
+      cairo_rectangle(c, page.picture.x, page.picture.y, page.picture.z, page.picture.w);
+      cairo_clip(c);
+    }
+    paint_path(c, path);
+    cairo_restore(c);
+  }
+  for (const FigureText& text : page.texts) paint_text(c, text);
+  if (cairo_status(c) != CAIRO_STATUS_SUCCESS)
+    throw std::runtime_error(std::string("cairo: ") + cairo_status_to_string(cairo_status(c)));
+}
+
+void finish(cairo_surface_t* surface) {
+  cairo_surface_finish(surface);
+  if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS)
+    throw std::runtime_error(std::string("cairo: ") + cairo_status_to_string(cairo_surface_status(surface)));
+}
+
+}  // namespace
+
 std::vector<std::uint8_t> draw_figure(const FigurePage& page, FigureFormat format) {
   std::vector<std::uint8_t> bytes;
   Surface surface;
@@ -190,33 +226,42 @@ std::vector<std::uint8_t> draw_figure(const FigurePage& page, FigureFormat forma
   } else {
     throw std::invalid_argument("draw_figure: a vector format (svg or pdf) is needed");
   }
-  {
-    const Context cr(cairo_create(surface.get()));
-    cairo_t* c = cr.get();
-    set_color(c, page.background);
-    cairo_paint(c);
-    cairo_set_line_cap(c, CAIRO_LINE_CAP_ROUND);
-    cairo_set_line_join(c, CAIRO_LINE_JOIN_ROUND);
-    for (const FigurePath& path : page.paths) {
-      cairo_save(c);
-      if (path.clip_to_picture) {
-        cairo_rectangle(c, page.picture.x, page.picture.y, page.picture.z, page.picture.w);
-        cairo_clip(c);
-      }
-      paint_path(c, path);
-      cairo_restore(c);
-    }
-    for (const FigureText& text : page.texts) paint_text(c, text);
-    if (cairo_status(c) != CAIRO_STATUS_SUCCESS)
-      throw std::runtime_error(std::string("cairo: ") + cairo_status_to_string(cairo_status(c)));
-  }
-  cairo_surface_finish(surface.get());
-  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
-    throw std::runtime_error(std::string("cairo: ") +
-                             cairo_status_to_string(cairo_surface_status(surface.get())));
+  paint_page(surface.get(), page, 1.0);
+  finish(surface.get());
   surface.reset();
   if (format == FigureFormat::svg) add_svg_metadata(bytes, page);
   return bytes;
+}
+
+std::vector<std::uint8_t> raster_figure(const FigurePage& page, double pixels_per_point) {
+  if (!(pixels_per_point > 0.0) || page.width * pixels_per_point > 8192 ||
+      page.height * pixels_per_point > 8192)
+    throw std::invalid_argument("raster_figure: a page of at most 8192 pixels a side, at a scale > 0");
+  const int width = std::max(1, static_cast<int>(std::ceil(page.width * pixels_per_point)));
+  const int height = std::max(1, static_cast<int>(std::ceil(page.height * pixels_per_point)));
+  const Surface surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height));
+  paint_page(surface.get(), page, pixels_per_point);
+  cairo_surface_flush(surface.get());
+  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
+    throw std::runtime_error(std::string("cairo: ") +
+                             cairo_status_to_string(cairo_surface_status(surface.get())));
+  // cairo's ARGB32 is premultiplied, native-endian 32-bit words; the page's background is opaque,
+  // so each pixel's colour is its own.
+  const unsigned char* data = cairo_image_surface_get_data(surface.get());
+  const int stride = cairo_image_surface_get_stride(surface.get());
+  std::vector<std::uint8_t> rgba(static_cast<std::size_t>(width) * height * 4);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      std::uint32_t argb;
+      std::memcpy(&argb, data + static_cast<std::size_t>(y) * stride + 4 * static_cast<std::size_t>(x), 4);
+      std::uint8_t* p = &rgba[4 * (static_cast<std::size_t>(y) * width + x)];
+      p[0] = static_cast<std::uint8_t>(argb >> 16), p[1] = static_cast<std::uint8_t>(argb >> 8);
+      p[2] = static_cast<std::uint8_t>(argb), p[3] = static_cast<std::uint8_t>(argb >> 24);
+    }
+  std::vector<PngText> texts;
+  if (!page.title.empty()) texts.emplace_back("Title", page.title);
+  if (!page.metadata.empty()) texts.emplace_back("Source", page.metadata);
+  return encode_png(rgba.data(), width, height, texts);
 }
 
 std::string xml_escape(std::string_view text) {

@@ -84,6 +84,11 @@ std::vector<std::string> wrap_text(const std::string& text, double size, bool bo
 // std::invalid_argument for FigureFormat::png.
 std::vector<std::uint8_t> draw_figure(const FigurePage& page, FigureFormat format);
 
+// The page as a PNG's bytes at `pixels_per_point` (cairo's image surface, then render/png_encoder.h
+// with the title and the metadata as text chunks): a plot shown in a page (the work-precision plot in
+// the UI). std::invalid_argument for a scale ≤ 0 or a side over 8192 pixels.
+std::vector<std::uint8_t> raster_figure(const FigurePage& page, double pixels_per_point);
+
 // XML's five escapes (&, <, >, ", ').
 std::string xml_escape(std::string_view text);
 

@@ -18,7 +18,7 @@ packages=(
   libcli11-dev                                    # command line
   libgtest-dev libgmock-dev libbenchmark-dev      # tests and benchmarks
   clang libclang-rt-14-dev                        # fuzzing (libFuzzer) and sanitizer runtimes
-  libboost-dev gnuplot-nox                        # reference integrators (Boost.Odeint), plots
+  libboost-dev                                    # reference integrators (Boost.Odeint)
   python3-sympy                                   # docs/physics_inertia_check.py (a ctest)
   wrk curl                                        # HTTP load benchmark
   stress-ng clang-format                          # flake hunts under load (scripts/flake_hunt.sh); C++ format check

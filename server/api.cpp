@@ -120,6 +120,12 @@ ApiServer::ApiServer(ServerOptions options) : state_(std::make_unique<State>(std
   http.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (res.body.empty()) send_error(res, unrouted(req, res.status));
   });
+  // httplib 0.11 gives every answer without a body `Content-Length: 0`; RFC 9110 §8.6: a server MUST
+  // NOT send one with 204. (A 304's stays: httplib's own client reads a 304 without one to the
+  // connection's end.)
+  http.set_post_routing_handler([](const httplib::Request& /*req*/, httplib::Response& res) {
+    if (res.status == 204) res.headers.erase("Content-Length");
+  });
 }
 
 ApiServer::~ApiServer() {

@@ -278,7 +278,7 @@ export async function applyChange(patch, edit = begin()) {
   receive(res.state, { restart: restarted, from: "answer" });
   if (restarted && told(edit)) say(`Restarted at t = 0: ${res.change.reason}`);
   else if (res.change.kind === "continued" && told(edit))
-    say(`Changed at t = ${num(res.change.t)}, continuing: ${res.change.reason}`);
+    say(res.change.reason.charAt(0).toUpperCase() + res.change.reason.slice(1)); // the server's words, whole
   return res;
 }
 

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <memory>
@@ -18,6 +17,7 @@
 #include "engine/simulation.h"
 #include "engine/validation.h"
 #include "oracle/differential.h"
+#include "render/curves_plot.h"
 
 namespace spinfold::work_precision {
 
@@ -446,15 +446,26 @@ std::string points_table(const Curves& curves) {
   return md.str();
 }
 
-std::string write_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,
-                       const Curves& curves, double t_end, const PlotLayout& layout) {
-  const std::string gp_name = stem + ".gp";
+namespace {
+
+bool ours(const std::string& method) {
+  return find_integrator(method) || method == kAutoIntegrator;
+}
+bool drawn(const Point& p) {
+  return std::isfinite(p.state_error) && p.state_error > 0;
+}
+
+// The gnuplot script of the same plot, with the data inline: `gnuplot <stem>.gp` in its folder draws
+// <stem>.svg and <stem>.png again in gnuplot (an export for whoever edits the plot there; nothing
+// here runs gnuplot).
+std::string gnuplot_script(const std::string& stem, const std::string& title, const Curves& curves,
+                           double t_end) {
   const auto quote_safe = [](std::string text) {  // gnuplot's single-quoted strings have no escape
     std::ranges::replace(text, '\'', '"');
     return text;
   };
-  std::ofstream gp(dir / gp_name);
-  gp << "# Re-plot with `gnuplot " << gp_name << "` in this folder: draws " << stem << ".svg and " << stem
+  std::ostringstream gp;
+  gp << "# Re-plot with `gnuplot " << stem << ".gp` in this folder: draws " << stem << ".svg and " << stem
      << ".png.\n";
   std::string plot;
   int index = 0;
@@ -462,39 +473,69 @@ std::string write_plot(const std::filesystem::path& dir, const std::string& stem
     std::ostringstream data;
     data.precision(6);
     for (const Point& p : curve)
-      if (std::isfinite(p.state_error) && p.state_error > 0)
-        data << p.state_error << " " << p.seconds_per_unit_time << "\n";
-    if (data.str().empty()) continue;  // nothing finite to draw (every run stopped)
+      if (drawn(p)) data << p.state_error << " " << p.seconds_per_unit_time << "\n";
+    if (data.str().empty()) continue;
     const std::string block = "$data" + std::to_string(index++);
     gp << block << " << EOD\n" << data.str() << "EOD\n";
-    const bool ours = find_integrator(method) || method == kAutoIntegrator;
     plot += (plot.empty() ? "plot " : ", ") + block + " using 1:2 with linespoints" +
-            (ours ? "" : " dashtype 2") + " title '" + quote_safe(method) + "'";
+            (ours(method) ? "" : " dashtype 2") + " title '" + quote_safe(method) + "'";
   }
-  if (plot.empty()) return "no run finished: nothing to plot";
-  const std::string size = std::to_string(layout.width) + "," + std::to_string(layout.height);
-  const std::string font =
-      layout.font_points > 0 ? std::string(" font ',") + std::to_string(layout.font_points) + "'" : "";
   gp << "set logscale xy\nset format x '1e%L'\nset format y '1e%L'\nset grid\n"
      << "set xlabel 'state error at T = " << sci(t_end, 4) << "'\n"
      << "set ylabel 'wall time per unit simulated time [s]'\n"
-     << "set title '" << quote_safe(title) << "'\nset key "
-     << (layout.key_below ? "outside below" : "outside right") << "\n"
-     << "set terminal svg size " << size << " dynamic noenhanced" << font << "\nset output '" << stem
-     << ".svg'\n"
+     << "set title '" << quote_safe(title) << "'\nset key outside right\n"
+     << "set terminal svg size 1100,800 dynamic noenhanced\nset output '" << stem << ".svg'\n"
      << plot
      << "\n"
      // pngcairo where this gnuplot has it (antialiased), the libgd png terminal otherwise
-     << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size " << size << " noenhanced"
-     << font << " } else { set terminal png size " << size << " noenhanced" << font << " }\n"
+     << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1100,800 noenhanced } "
+     << "else { set terminal png size 1100,800 noenhanced }\n"
      << "set output '" << stem << ".png'\nreplot\nset output\n";
-  gp.close();
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) return "gnuplot is not installed";
-  std::string quoted = dir.string();
-  for (std::size_t i = 0; (i = quoted.find('\'', i)) != std::string::npos; i += 4)
-    quoted.replace(i, 1, "'\\''");
-  const std::string command = "cd '" + quoted + "' && gnuplot '" + gp_name + "' > /dev/null 2>&1";
-  if (std::system(command.c_str()) != 0) return "gnuplot failed on " + gp_name;
+  return gp.str();
+}
+
+}  // namespace
+
+render::FigurePage plot_page(const std::string& title, const Curves& curves, double t_end,
+                             const PlotLayout& layout) {
+  render::CurvesPlot plot{.x_title = "state error at T = " + sci(t_end, 4),
+                          .y_title = "wall time per unit simulated time [s]",
+                          .title = title,
+                          .metadata = title,
+                          .width = layout.width,
+                          .plot_height = layout.plot_height,
+                          .legend_below = layout.key_below};
+  for (const auto& [method, curve] : curves) {
+    render::Curve line{.label = method, .dashed = !ours(method)};
+    for (const Point& p : curve)
+      if (drawn(p)) line.points.push_back({p.state_error, p.seconds_per_unit_time});
+    if (!line.points.empty()) plot.curves.push_back(std::move(line));
+  }
+  if (plot.curves.empty()) throw std::invalid_argument("no run finished: nothing to plot");
+  return render::curves_page(plot);
+}
+
+std::string write_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,
+                       const Curves& curves, double t_end, const PlotLayout& layout) {
+  render::FigurePage page;
+  try {
+    page = plot_page(title, curves, t_end, layout);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  const auto write = [&](const std::string& name, const auto& bytes) {
+    std::ofstream out(dir / name, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    return static_cast<bool>(out);
+  };
+  try {
+    if (!write(stem + ".svg", render::draw_figure(page, render::FigureFormat::svg)) ||
+        !write(stem + ".png", render::raster_figure(page, layout.pixels_per_point)) ||
+        !write(stem + ".gp", gnuplot_script(stem, title, curves, t_end)))
+      return "cannot write the plot's files in " + dir.string();
+  } catch (const std::exception& e) {
+    return std::string("the plot was not drawn: ") + e.what();
+  }
   return "";
 }
 

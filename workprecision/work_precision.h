@@ -1,7 +1,7 @@
 // Work-precision measurement (issue 24): run time per unit simulated time against the error at T,
 // for any scene. Shared by `spinfold work-precision` (any scene) and `spinfold-bench work-precision`
 // (the bench scenes, with Boost.Odeint beside ours): the reference, the sweeps, the cost at a target
-// error, the recommendation and the gnuplot script.
+// error, the recommendation and the plot (cairo, render/curves_plot.h; a gnuplot script as an export).
 //
 // The error is chart-free: the engine's state at T and the reference's are compared by the oracle's
 // `compare` (oracle/oracle.h) in the oracle's start frame, whatever chart each run ended in.
@@ -17,6 +17,7 @@
 
 #include "engine/scene.h"
 #include "engine/state.h"
+#include "render/figure_page.h"
 
 namespace spinfold::work_precision {
 
@@ -122,17 +123,23 @@ std::string csv(const std::string& comments, const Curves& curves);
 // The markdown table of the curves' points (method, setting, cost, errors, steps).
 std::string points_table(const Curves& curves);
 
-// The picture's size and lettering: the default is a page of its own (the CLI's files); a plot
-// shown scaled down in a narrow column (the browser UI's) wants fewer pixels and larger letters.
+// The picture's size: the default is a page of its own (the CLI's files); a plot shown scaled down
+// in a narrow column (the browser UI's) wants a narrower page, so larger letters, the legend below.
 struct PlotLayout {
-  int width = 1100, height = 800;  // [pixels]
-  int font_points = 0;             // 0: gnuplot's default
-  bool key_below = false;          // the legend under the plot rather than to its right
+  double width = 540, plot_height = 330;  // of the page and of its plotting area [pt]
+  double pixels_per_point = 2.0;          // the PNG's resolution (144 dpi)
+  bool key_below = false;                 // the legend under the plot rather than to its right
 };
 
-// Writes `<stem>.gp` in `dir` (the data inline, so that `gnuplot <stem>.gp` in dir re-plots) drawing
-// <stem>.png and <stem>.svg, and runs gnuplot there. Methods outside the catalog are dashed.
-// Returns "" or why no image was drawn (gnuplot missing or failing).
+// The plot (state error against wall time per unit simulated time, both logarithmic; one line per
+// method, the runs that stopped left out; methods outside the catalog dashed) as a figure page;
+// std::invalid_argument("no run finished: nothing to plot") when no run has a point to draw.
+render::FigurePage plot_page(const std::string& title, const Curves& curves, double t_end,
+                             const PlotLayout& layout = {});
+
+// Writes <stem>.svg and <stem>.png (plot_page, drawn by cairo in-process) and <stem>.gp in `dir`: a
+// gnuplot script with the data inline, an export for whoever re-plots in gnuplot (never run here).
+// Returns "" or why no image was drawn (no run finished, a file that cannot be written).
 std::string write_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,
                        const Curves& curves, double t_end, const PlotLayout& layout = {});
 

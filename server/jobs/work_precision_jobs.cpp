@@ -1,13 +1,10 @@
 #include "server/jobs/work_precision_jobs.h"
 
-#include <unistd.h>
-
-#include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <stdexcept>
 
 #include "codec/provenance.h"
 #include "engine/number_text.h"
+#include "render/figure_page.h"
 #include "server/http/problem.h"
 #include "server/sessions/session_id.h"
 
@@ -16,18 +13,10 @@ namespace spinfold::server {
 namespace {
 
 namespace wp = work_precision;
-namespace fs = std::filesystem;
 
 // Below the HTTP workers and the render threads, like the recordings: a sweep never slows the live
 // view (its timings then measure this thread's share of a core, which a busy server makes noisy).
 constexpr int kWorkPrecisionNice = 10;
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // "preset NAME", "the scene given", "the scene of a session": never the session's id, which is a
 // capability (the plot and the CSV are made to be shared).
@@ -36,27 +25,23 @@ std::string describe_source(const WorkPrecisionJob& job) {
   return job.source == "session" ? "the scene of a session" : "the scene given";
 }
 
-// The plot as gnuplot draws it for the CLI, in a directory of its own that is removed at once: the
-// result keeps the SVG and PNG in memory.
+// The plot as the CLI draws it (cairo, in this process: no temporary files, no program started from
+// a server thread), laid out for the UI's side column (about 500 pixels wide, a phone's 370): a
+// narrower page, so larger letters, the legend below.
 void draw_plot(const WorkPrecisionJob& job, WorkPrecisionResult& result) {
-  std::string pattern = (fs::temp_directory_path() / "spinfold-work-precision-XXXXXX").string();
-  if (!mkdtemp(pattern.data())) {
-    result.plot_trouble = "no temporary directory for gnuplot";
-    return;
+  const wp::PlotLayout layout{.width = 300, .plot_height = 220, .pixels_per_point = 2.0, .key_below = true};
+  try {
+    const render::FigurePage page =
+        wp::plot_page("work-precision: " + describe_source(job), result.curves, job.t_end, layout);
+    const std::vector<std::uint8_t> svg = render::draw_figure(page, render::FigureFormat::svg);
+    const std::vector<std::uint8_t> png = render::raster_figure(page, layout.pixels_per_point);
+    result.svg.assign(svg.begin(), svg.end());
+    result.png.assign(png.begin(), png.end());
+  } catch (const std::invalid_argument& e) {  // nothing to plot
+    result.plot_trouble = e.what();
+  } catch (const std::exception& e) {
+    result.plot_trouble = std::string("the plot was not drawn: ") + e.what();
   }
-  const fs::path dir = pattern;
-  // Shown scaled into the UI's side column (about 500 pixels wide, a phone's 370): larger letters,
-  // the legend below.
-  const wp::PlotLayout layout{.width = 600, .height = 560, .font_points = 13, .key_below = true};
-  result.plot_trouble = wp::write_plot(dir, "work_precision", "work-precision: " + describe_source(job),
-                                       result.curves, job.t_end, layout);
-  if (result.plot_trouble.empty()) {
-    result.svg = read_file(dir / "work_precision.svg");
-    result.png = read_file(dir / "work_precision.png");
-    if (result.svg.empty() || result.png.empty()) result.plot_trouble = "gnuplot wrote no image";
-  }
-  std::error_code ignored;
-  fs::remove_all(dir, ignored);
 }
 
 }  // namespace

@@ -306,18 +306,21 @@ void get_trajectory(ServerContext& server, const Call& call, httplib::Response& 
   std::optional<SampleTable> table;
   std::string text;
   double reported_until = -1.0;
-  // One row's text appended, and the widest the row could have been (row_widening).
+  // One row's text appended; the first row's numbers are widened (row_widening) to foresee the rest.
   const auto append_row = [&](const ordered_json& sample) {
     if (!json_rows) {
-      const std::string row = table->csv_row(sample);
-      text += row;
-      return static_cast<double>(row.size()) + row_widening(ordered_json(table->row(sample)));
+      text += table->csv_row(sample);
+      return;
     }
     if (text.size() > 1) text += ',';
+    text += fields.empty() ? sample.dump() : table->json_row(sample).dump();
+  };
+  const auto widest_row = [&](const ordered_json& sample) {
+    if (!json_rows)
+      return static_cast<double>(table->csv_row(sample).size()) +
+             row_widening(ordered_json(table->row(sample)));
     const ordered_json row = fields.empty() ? sample : table->json_row(sample);
-    const std::string row_text = row.dump();
-    text += row_text;
-    return static_cast<double>(row_text.size() + 1) + row_widening(row);
+    return static_cast<double>(row.dump().size() + 1) + row_widening(row);
   };
   const bool complete = replay_sampled(
       scene, changes, until, every,
@@ -340,7 +343,8 @@ void get_trajectory(ServerContext& server, const Call& call, httplib::Response& 
                                          "provenance: " + provenance_json(scene, "").dump()};
           text = samples_csv({}, *table, comment);
         }
-        const double row_bytes = append_row(sample);
+        append_row(sample);
+        const double row_bytes = widest_row(sample);
         const double expected = static_cast<double>(text.size()) + (rows - 1.0) * row_bytes;
         if (expected > static_cast<double>(budget))
           throw too_large("gives " + shortest(rows) + " rows of up to " + size_text(row_bytes) +
@@ -496,16 +500,17 @@ std::vector<Route> session_routes(const Limits& limits) {
                   .exclusive_minimum = true,
                   .default_value = 0.5,
                   .description = "the sample interval (at most 100000 samples, and an answer of at most "
-                                 "limits.max_trajectory_bytes: 64 MiB)"},
+                                 "limits.max_trajectory_bytes: " +
+                                 size_text(static_cast<double>(limits.max_trajectory_bytes)) + ")"},
                  {.name = "fields",
                   .type = ParamType::list,
                   .values = sample_column_names(),
                   .description = "the columns (as `spinfold simulate --fields`); absent: every column "
                                  "(csv) or the whole sample (json)"}},
-       .responses =
-           {{200, "application/json or text/csv"},
-            {422,
-             "more than 100000 samples, or an answer over 64 MiB (its size foreseen from the first row)"}}},
+       .responses = {{200, "application/json or text/csv"},
+                     {422, "more than 100000 samples, or an answer over " +
+                               size_text(static_cast<double>(limits.max_trajectory_bytes)) +
+                               " (its size foreseen from the first row)"}}},
   };
 }
 

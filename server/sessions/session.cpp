@@ -77,7 +77,7 @@ ChangeOutcome change(Session& session, const json& patch) {
   if (t == 0.0 && session.changes.empty()) {
     // Nothing has happened yet: the change is the scene itself.
     restart(session, *parsed.scene);
-    out.reason = "new parameters from t = 0";
+    out.reason = continued_reason(0.0);
     return out;
   }
   retune_carrying_trail(session.run, session.trail, *parsed.scene);
@@ -85,7 +85,7 @@ ChangeOutcome change(Session& session, const json& patch) {
   session.changes.push_back({t, *parsed.scene});
   sample_trail_if_due(session.trail, session.run);
   state_changed(session);
-  out.reason = "new parameters from t = " + shortest(t) + " on, continuing from the current state";
+  out.reason = continued_reason(t);
   return out;
 }
 

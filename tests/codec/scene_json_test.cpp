@@ -12,6 +12,14 @@
 namespace spinfold {
 namespace {
 
+// One wording of a change that continues the run, for the server, Python and the page (which showed
+// "continuing" twice and t = 5.329274332000002).
+TEST(SceneJson, AContinuedChangeSaysItsTimeOnceToSixDigits) {
+  EXPECT_EQ(continued_reason(5.329274332000002),
+            "new parameters from t = 5.32927 on, continuing from the current state");
+  EXPECT_EQ(continued_reason(0.0), "new parameters from t = 0, continuing from the start");
+}
+
 TEST(SceneJson, EmptyObjectGetsTheDocumentedDefaults) {
   const SceneParse p = parse_scene_text("{}");
   ASSERT_TRUE(p.errors.empty()) << describe_errors(p.errors);

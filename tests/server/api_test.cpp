@@ -443,6 +443,7 @@ TEST_F(Api, PatchContinuesFromTheCurrentStateUnderNewParameters) {
   EXPECT_EQ(after["timeline"],
             json::parse(R"([{"t": 1.5, "patch": {"body": {"mass": 3}, "integrator": {"name": "dop853"}}}])"));
   EXPECT_EQ(after["change"]["kind"], "continued");
+  EXPECT_EQ(after["change"]["reason"], "new parameters from t = 1.5 on, continuing from the current state");
   EXPECT_EQ(after["state"]["t"], 1.5);             // the clock goes on
   EXPECT_EQ(after["state"]["energy_error"], 0.0);  // measured from the change
   EXPECT_NEAR(after["state"]["r"].get<double>(), before["r"].get<double>(), 1e-12);
@@ -1073,6 +1074,7 @@ TEST_F(Api, KnownPathsWithAnotherMethodAnswer405WithAllow) {
   EXPECT_EQ(options->status, 204);
   EXPECT_EQ(options->get_header_value("Allow"), "GET, PATCH, DELETE, OPTIONS");
   EXPECT_TRUE(options->body.empty());
+  EXPECT_FALSE(options->has_header("Content-Length")) << "RFC 9110 §8.6: never with 204";
   auto unknown = c.Options("/api/v1/nothing-here");
   ASSERT_TRUE(unknown);
   EXPECT_EQ(unknown->status, 404);
