@@ -15,6 +15,10 @@ struct Limits {
   long max_play_steps = 20000;             // step attempts per session per player tick (120 Hz)
   double max_advance_time = 1e6;           // simulated time per advance request
   int max_image_side = 4096;               // [pixels]
+  // A frame's width × height (frame.png, frame.jpg, the live view) [pixels]: 4K UHD. The memory a frame
+  // takes grows with it, ~28 bytes a pixel (targets, readback, the PNG): 232 MiB at this size, 443 at
+  // 4096 × 4096 (bench/limit_memory.py). Vector figures (frame.svg, frame.pdf) have no such bound.
+  long long max_image_pixels = 3840LL * 2160;
   // A trajectory's answer (GET …/trajectory), built in memory before it is sent: a request whose
   // rows would pass it is refused (422 naming `every`) before the replay, or when it does [bytes].
   std::size_t max_trajectory_bytes = 64 << 20;

@@ -131,18 +131,23 @@ void apply_view_query(const Query& q, FrameRequest& f, SurfaceKind surface) {
   f.trail = r.trail;
 }
 
-FrameRequest frame_request(const Query& q, SurfaceKind surface, bool jpeg) {
+FrameRequest frame_request(const Query& q, SurfaceKind surface, bool jpeg, long long max_pixels) {
   FrameRequest f;
   f.view.kind = render::default_view(surface);
   apply_view_query(q, f, surface);
   if (jpeg) f.jpeg_quality = static_cast<int>(*q.integer("quality"));
-  check_view(f, surface);
+  check_view(f, surface, max_pixels);
   return f;
 }
 
-void check_view(const FrameRequest& f, SurfaceKind surface) {
+void check_view(const FrameRequest& f, SurfaceKind surface, long long max_pixels) {
   if (const auto why = render::view_unsupported_reason(f.view.kind, surface))
     throw bad(422, "Invalid value", "view", std::string(render::view_name(f.view.kind)), *why);
+  const long long pixels = static_cast<long long>(f.view.width) * f.view.height;
+  if (max_pixels > 0 && pixels > max_pixels)
+    throw bad(422, "Invalid value", "width", std::to_string(f.view.width),
+              "width × height = " + std::to_string(pixels) + " pixels; a frame has at most " +
+                  std::to_string(max_pixels) + " (limits.max_image_pixels: the memory one frame takes)");
 }
 
 std::string frame_etag_prefix(const std::string& id) {

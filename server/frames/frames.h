@@ -43,8 +43,10 @@ void apply_view_query(const Query& q, FrameRequest& f, SurfaceKind surface);
 
 // From a query of frame_params (with quality when `jpeg`); ApiError 422 when the view cannot show
 // the surface.
-FrameRequest frame_request(const Query& q, SurfaceKind surface, bool jpeg);
-void check_view(const FrameRequest& f, SurfaceKind surface);
+// `max_pixels`: the picture's width × height at most (limits.max_image_pixels for a raster frame; 0
+// for none: a vector figure), else 422 naming `width`.
+FrameRequest frame_request(const Query& q, SurfaceKind surface, bool jpeg, long long max_pixels);
+void check_view(const FrameRequest& f, SurfaceKind surface, long long max_pixels);
 
 // Names the session's state (state_tag) and every parameter of the picture: a weak ETag, since
 // replicas on other CPUs render the same state within the golden frames' tolerance, not to the same

@@ -157,7 +157,10 @@ ordered_json view_parameters_json(const Limits& limits) {
                        {"extension", std::string(f.extension)},
                        {"content_type", std::string(f.content_type)},
                        {"help", std::string(f.help)}});
-  return {{"parameters", parameters}, {"layers", layers}, {"formats", formats}};
+  // width × height at most: a raster frame's (frame.png, frame.jpg, live) and a recording's.
+  const ordered_json max_pixels{{"frame", limits.max_image_pixels},
+                                {"recording", limits.max_recording_pixels}};
+  return {{"parameters", parameters}, {"layers", layers}, {"formats", formats}, {"max_pixels", max_pixels}};
 }
 
 std::vector<Route> catalog_routes(const Limits&) {

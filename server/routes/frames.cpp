@@ -28,7 +28,7 @@ void send_frame(ServerContext& server, const Call& call, httplib::Response& res,
   std::string etag;
   {
     const std::lock_guard lock(s->mutex);
-    f = frame_request(call.query, s->run.scene.surface.kind, jpeg);
+    f = frame_request(call.query, s->run.scene.surface.kind, jpeg, server.options.limits.max_image_pixels);
     etag = frame_etag(call.id, state_tag(*s), f);
     res.set_header("X-Spinfold-Provenance", provenance(*s));
   }
@@ -56,7 +56,7 @@ void send_figure(ServerContext& server, const Call& call, httplib::Response& res
   render::FigureCaption caption;
   {
     const std::lock_guard lock(s->mutex);
-    f = frame_request(call.query, s->run.scene.surface.kind, false);
+    f = frame_request(call.query, s->run.scene.surface.kind, false, 0);  // a vector figure
     etag = frame_etag(call.id, state_tag(*s), f);
     std::string suffix(1, '-');  // the format in the ETag, before its closing quote
     suffix.append(render::figure_format_name(format));

@@ -183,7 +183,8 @@ void get_live(ServerContext& server, const Call& call, httplib::Response& res) {
   live->viewer = std::make_shared<Viewer>();
   {
     const std::lock_guard lock(s->mutex);
-    live->viewer->request = frame_request(call.query, s->run.scene.surface.kind, false);
+    live->viewer->request =
+        frame_request(call.query, s->run.scene.surface.kind, false, server.options.limits.max_image_pixels);
   }
   live->motion_quality = static_cast<int>(*call.query.integer("quality"));
   live->min_interval = std::chrono::duration_cast<Clock::duration>(
@@ -233,7 +234,7 @@ void patch_live(ServerContext& server, const Call& call, httplib::Response& res)
   FrameRequest f = viewer->request;
   apply_view_query(q, f, surface);
   if (q.text("aim")) f.yaw = f.pitch = f.distance = std::nullopt;
-  check_view(f, surface);  // 422, nothing changed
+  check_view(f, surface, server.options.limits.max_image_pixels);  // 422, nothing changed
   viewer->request = f;
   ++viewer->generation;
   res.status = 204;

@@ -277,6 +277,10 @@ TEST_F(Live, PatchSteersTheStreamsCamera) {
   EXPECT_EQ(bad->status, 422);
   EXPECT_NE(bad->body.find("viewer"), std::string::npos);
   EXPECT_EQ(c.Patch(live + "?viewer=steer&pitch=9", "", "text/plain")->status, 422);
+  // Each side allowed, the two together over limits.max_image_pixels (4K UHD): refused, as for frame.png.
+  auto large = c.Patch(live + "?viewer=steer&width=4096&height=4096", "", "text/plain");
+  EXPECT_EQ(large->status, 422);
+  EXPECT_NE(large->body.find("limits.max_image_pixels"), std::string::npos) << large->body;
   EXPECT_EQ(c.Get(live + "?viewer=steer")->status, 409);
   watch.stop();
 }

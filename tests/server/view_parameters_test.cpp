@@ -28,6 +28,8 @@ using nlohmann::json;
 
 // A side limit below the renderer's, so that the server's ranges are seen to come from its limits.
 constexpr int kSide = 1024;
+// And a frame's pixels below the side's square (512 × 512).
+constexpr long long kPixels = 512LL * 512;
 
 class ViewParameterTable : public ::testing::Test {
  protected:
@@ -38,6 +40,7 @@ class ViewParameterTable : public ::testing::Test {
     options.render_threads = 1;
     options.limits.requests_per_second_per_client = 0.0;
     options.limits.max_image_side = kSide;
+    options.limits.max_image_pixels = kPixels;
     return options;
   }
   static void SetUpTestSuite() {
@@ -109,6 +112,28 @@ void expect_schema_of_table(const json& schema, const render::ViewParameter& p, 
     EXPECT_FALSE(schema.contains("x-unit"));
   else
     EXPECT_EQ(schema["x-unit"], std::string(p.unit));
+}
+
+// A raster frame (PNG, JPEG, the live view) is bounded in pixels as well as in sides, by the server's
+// limit: 422 naming width, with the product; a vector figure is not (it holds no pixels). The route
+// says both bounds.
+TEST_F(ViewParameterTable, ARasterFramesPixelsAreBoundedAndAFiguresAreNot) {
+  const std::string frame = "/api/v1/sessions/" + session_ + "/frame";
+  for (const char* kind : {".png", ".jpg"}) {
+    auto over = client().Get(frame + kind + "?width=1024&height=257");
+    ASSERT_TRUE(over);
+    EXPECT_EQ(over->status, 422) << kind;
+    const json problem = json::parse(over->body);
+    EXPECT_EQ(problem["errors"][0]["field"], "width");
+    EXPECT_EQ(problem["errors"][0]["value"], "1024");
+    EXPECT_EQ(
+        problem["errors"][0]["reason"],
+        "width × height = 263168 pixels; a frame has at most 262144 (limits.max_image_pixels: the memory "
+        "one frame takes)");
+    EXPECT_EQ(client().Get(frame + kind + "?width=1024&height=256")->status, 200) << "at the limit";
+  }
+  EXPECT_EQ(client().Get(frame + ".svg?width=1024&height=1024")->status, 200);
+  EXPECT_EQ(get("/api/v1/view-parameters")["max_pixels"]["frame"], kPixels);
 }
 
 // GET /api/v1/view-parameters is the table: every row with its type, unit, range, default, choices
