@@ -513,6 +513,45 @@ TEST(HardeningOversized, ATrajectoryIsBoundedInBytesAndHeldOnce) {
   EXPECT_EQ(rows.back()["companions"].size(), 4u);
 }
 
+// A frame at the largest size a request may ask (limits.max_image_pixels, 3840 × 2160) takes under
+// 256 MB while it is drawn, encoded and received; a 4096 × 4096 frame (each side allowed) took 443 MiB
+// and is refused before anything is drawn.
+TEST(HardeningOversized, TheLargestFrameIsBoundedInMemory) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  GTEST_SKIP() << "the sanitizers' shadow memory measures the tool, not the server";
+#endif
+  ServerOptions options;
+  options.port = 0;
+  options.render_threads = 1;
+  options.limits.requests_per_second_per_client = 0.0;
+  TestServer server(options);
+  auto c = server.client();
+  c.set_read_timeout(120, 0);  // a large frame on a busy machine
+  auto created = c.Post("/api/v1/sessions", R"({"preset": "spinning_rigid_sphere"})", "application/json");
+  ASSERT_EQ(created->status, 201);
+  const std::string frame =
+      "/api/v1/sessions/" + json::parse(created->body)["id"].get<std::string>() + "/frame.png?";
+  ASSERT_EQ(c.Get(frame + "width=64&height=64")->status, 200);  // the render thread started
+  std::atomic<bool> done{false};
+  std::atomic<long> peak{rss_kib()};
+  const long before = peak;
+  std::thread watch([&] {
+    while (!done) {
+      peak = std::max(peak.load(), rss_kib());
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  });
+  auto refused = c.Get(frame + "width=4096&height=4096");
+  auto largest = c.Get(frame + "width=3840&height=2160");
+  done = true;
+  watch.join();
+  EXPECT_EQ(refused->status, 422);
+  ASSERT_EQ(largest->status, 200);
+  EXPECT_GT(largest->body.size(), 100'000u);
+  std::printf("3840x2160 frame: RSS %ld → peak %ld KiB\n", before, peak.load());
+  EXPECT_LT(peak - before, 256L << 10) << "KiB";
+}
+
 // The size a trajectory would make is foreseen from its first row within a factor it can keep: at
 // least what the answer turns out to be (so what passes the check passes the bound) and less than
 // twice it (so what fits is not refused), for every preset, JSON and CSV, every column or a few.
