@@ -175,6 +175,33 @@ std::shared_ptr<const StaticGeometry> static_geometry(const Surface& surface, Vi
   return built;
 }
 
+std::shared_ptr<const StaticGeometry> static_geometry(const Surface& surface, ViewKind view,
+                                                      std::array<double, 2> at) {
+  static std::mutex mutex;
+  using Key = std::pair<ShapeKey, std::array<double, 2>>;
+  static std::vector<std::pair<Key, std::shared_ptr<const StaticGeometry>>> recent;  // newest last
+  const Key key{shape_key(surface, view), at};
+  {
+    const std::lock_guard lock(mutex);
+    for (const auto& [k, g] : recent)
+      if (k == key) return g;
+  }
+  // The piece's triangles and lines, then the patch's: one mesh, its edges found anew (the patch's
+  // border is an outline, as the piece's rim is).
+  StaticGeometry g = *static_geometry(surface, view);
+  StaticGeometry patch = view_model(view).build_patch(surface, at);
+  g.surface.insert(g.surface.end(), patch.surface.begin(), patch.surface.end());
+  g.grid.insert(g.grid.end(), patch.grid.begin(), patch.grid.end());
+  g.edges.clear();
+  add_edges(g);
+  g.id = next_static_id();
+  auto built = std::make_shared<const StaticGeometry>(std::move(g));
+  const std::lock_guard lock(mutex);
+  recent.emplace_back(key, built);
+  if (recent.size() > 4) recent.erase(recent.begin());
+  return built;
+}
+
 glm::vec3 curvature_color(double k, double full) {
   const double t = std::clamp(k / full, -1.0, 1.0);
   const glm::dvec3 white(0.97, 0.97, 0.96), warm(0.87, 0.33, 0.13), cool(0.16, 0.40, 0.80);
@@ -270,8 +297,10 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   const ViewModel& model = view_model(view.kind);
   scene.draw_surface = (view.layers & kSurface) != 0;
   scene.draw_grid = (view.layers & kGrid) != 0;
-  if ((scene.draw_surface || scene.draw_grid) && model.uses_static())
-    scene.statics = static_geometry(surface, view.kind);
+  if ((scene.draw_surface || scene.draw_grid) && model.uses_static()) {
+    const std::optional<std::array<double, 2>> patch = model.patch_at(snapshot);
+    scene.statics = patch ? static_geometry(surface, view.kind, *patch) : static_geometry(surface, view.kind);
+  }
   scene.tint_by_curvature = (view.layers & kCurvature) != 0;
   scene.view_projection = model.camera(view);
   scene.depth_test = view_info(view.kind).three_d;

@@ -48,6 +48,9 @@ const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view);
 // frame holds them (a slider dragged through a thousand tube radii keeps eight meshes).
 inline constexpr std::size_t kStaticGeometryCache = 8;
 std::shared_ptr<const StaticGeometry> static_geometry(const Surface& surface, ViewKind view);
+// The same with the view's patch at `at` added (ViewModel::patch_at; the last four are kept).
+std::shared_ptr<const StaticGeometry> static_geometry(const Surface& surface, ViewKind view,
+                                                      std::array<double, 2> at);
 
 // The curvature layer's diverging colour of K·ℓ² (ℓ: the surface's length, so that the colour is
 // the same for any size): white at 0, warm (orange-red) for K > 0, cool (blue) for K < 0, saturated

@@ -23,10 +23,10 @@ struct ProfileShape {
 ProfileShape profile_shape(const Surface& surface);
 
 // Whether X lies on the drawn range of u (the bump to 4w, the catenoid to |z| = 2c), and what the
-// HUD says of a main body beyond it.
+// HUD says of a main body beyond it (round which the revolution view draws a patch of the surface).
 bool on_drawn_piece(const Surface& surface, const Vec3& X);
 inline constexpr std::string_view kOffDrawnPieceNote =
-    "body 1 is beyond the surface drawn (bump: to 4w, catenoid: to |z| = 2c)";
+    "body 1 is beyond the surface drawn whole (bump: 4w, catenoid: |z| = 2c)";
 
 // The parallels where K changes sign within the drawn range (bisected to rounding from 1024 steps).
 std::vector<double> zero_curvature_parallels(const ProfileShape& shape);

@@ -24,6 +24,33 @@ namespace {
 constexpr float kRevolutionDepthBias = 0.01f;
 // The mesh: rings along the profile, slices round the axis.
 constexpr int kRings = 48, kSlices = 72;
+// The patch round a main body beyond the drawn piece: quads along u and round the axis, and its
+// half-size in arc length, in units of the camera's least framing radius (aim's): it fills the frame.
+constexpr int kPatchQuads = 32;
+constexpr double kPatchHalf = 3.0;
+
+// The camera's least framing radius when it follows one body [length]: 2.5 features, at least a
+// third of the picture's unit (aim).
+double framing_radius(const ProfilePicture& picture) {
+  return std::clamp(2.5 * picture.feature, 0.35 * picture.length, picture.length);
+}
+
+// The patch round u: its half-extents in u and φ (an arc of kPatchHalf framing radii each way, φ at
+// most the whole turn), and the spacing of its grid: parallels and meridians at whole fractions
+// 1/2ᵏ of the piece's steps (grid_step, 30°), the largest no wider than a feature along the surface.
+struct PatchShape {
+  double du = 0, dphi = 0, step_u = 0, step_phi = 0;
+};
+PatchShape patch_shape(const ProfileShape& shape, double u) {
+  const ProfilePoint p = shape.entry->profile(shape.surface, u);
+  const double f = std::hypot(p.rho_u, p.z_u), half = kPatchHalf * framing_radius(shape.picture);
+  const double feature = shape.picture.feature;
+  const auto halved = [&](double step, double arc_per_unit) {  // step/2ᵏ with arc ≤ feature
+    while (step * arc_per_unit > feature) step /= 2.0;
+    return step;
+  };
+  return {half / f, std::min(kPi, half / p.rho), halved(shape.picture.grid_step, f), halved(kPi / 6, p.rho)};
+}
 
 // Whether the segment from the eye to a point of the surface crosses the surface as drawn before it:
 // F changes sign along it, sampled at 32 points short of the last 2% (the point itself), at a
@@ -52,6 +79,57 @@ class RevolutionView final : public ViewModel {
   bool on_view(const Surface& surface, const Vec3& X) const override { return on_drawn_piece(surface, X); }
   std::string_view off_view_note() const override { return kOffDrawnPieceNote; }
   bool draws(const Surface& /*surface*/, const Vec3& /*X*/) const override { return true; }
+
+  // A main body beyond the drawn piece: a patch of the surface round it, its centre on a lattice of
+  // powers of two no coarser than a quarter of its half-extents (it moves in steps: a frame and the
+  // next share one).
+  std::optional<std::array<double, 2>> patch_at(const Snapshot& snapshot) const override {
+    if (snapshot.bodies.empty() || on_view(snapshot.surface, snapshot.bodies.front().X)) return std::nullopt;
+    const Vec3& X = snapshot.bodies.front().X;
+    const ProfileShape shape = profile_shape(snapshot.surface);
+    const double u = shape.entry->u_of(shape.surface, X), phi = std::atan2(X.y(), X.x());
+    const PatchShape patch = patch_shape(shape, u);
+    const auto snapped = [](double v, double extent) {
+      const double quantum = std::exp2(std::floor(std::log2(extent / 4)));
+      return std::round(v / quantum) * quantum;
+    };
+    return std::array<double, 2>{snapped(u, patch.du), snapped(phi, patch.dphi)};
+  }
+  // Lit and tinted as the piece (the same full scale of |K|), with its own parallels and meridians;
+  // never over the piece (its range in u stops at the piece's end).
+  StaticGeometry build_patch(const Surface& surface, std::array<double, 2> at) const override {
+    const ProfileShape shape = profile_shape(surface);
+    const double l = shape.picture.length, full = largest_curvature(shape, kRings);
+    const PatchShape patch = patch_shape(shape, at[0]);
+    double lo = at[0] - patch.du, hi = at[0] + patch.du;
+    if (at[0] >= shape.picture.u_max) lo = std::max(lo, shape.picture.u_max);
+    if (at[0] <= shape.picture.u_min) hi = std::min(hi, shape.picture.u_min);
+    const double phi0 = at[1] - patch.dphi, phi1 = at[1] + patch.dphi;
+    const auto u_of = [&](int i) { return lo + (hi - lo) * i / kPatchQuads; };
+    const auto phi_of = [&](int j) { return phi0 + (phi1 - phi0) * j / kPatchQuads; };
+    StaticGeometry g;
+    const auto vertex = [&](double u, double phi) {
+      const RevolutionFrame f = revolution_frame(shape.surface, u, phi);
+      return LitVertex{to_float(glm::dvec3(f.X.x(), f.X.y(), f.X.z()) / l),
+                       to_float({f.n.x(), f.n.y(), f.n.z()}),
+                       curvature_color(shape.entry->profile(shape.surface, u).K, full)};
+    };
+    for (int i = 0; i < kPatchQuads; ++i)
+      for (int j = 0; j < kPatchQuads; ++j)
+        add_quad(g, vertex(u_of(i), phi_of(j)), vertex(u_of(i + 1), phi_of(j)),
+                 vertex(u_of(i + 1), phi_of(j + 1)), vertex(u_of(i), phi_of(j + 1)));
+    for (double u = std::ceil(lo / patch.step_u) * patch.step_u; u <= hi; u += patch.step_u) {
+      std::vector<Vec3> pts;
+      for (int j = 0; j <= kPatchQuads; ++j) pts.push_back(revolution_frame(shape.surface, u, phi_of(j)).X);
+      add_polyline(g.grid, surface, *this, pts, kGridColor, false);
+    }
+    for (double phi = std::ceil(phi0 / patch.step_phi) * patch.step_phi; phi <= phi1; phi += patch.step_phi) {
+      std::vector<Vec3> pts;
+      for (int i = 0; i <= kPatchQuads; ++i) pts.push_back(revolution_frame(shape.surface, u_of(i), phi).X);
+      add_polyline(g.grid, surface, *this, pts, kGridColor, false);
+    }
+    return g;
+  }
   glm::dvec3 normal(const Surface& surface, const glm::dvec3& w) const override {
     const ProfileShape shape = profile_shape(surface);
     const double l = shape.picture.length;
@@ -141,7 +219,7 @@ class RevolutionView final : public ViewModel {
     // At least 2.5 features round the body (a torus's tube and more), never less than a third of
     // the picture's unit: the body is seen on its surface, not alone.
     const ProfilePicture picture = profile_shape(surface).picture;
-    double radius = std::clamp(2.5 * picture.feature / picture.length, 0.35, 1.0);
+    double radius = framing_radius(picture) / picture.length;
     for (const Sight& p : points) radius = std::max(radius, glm::length(p.at - centre));
     const double aspect = static_cast<double>(view.width) / view.height;
     const double half_fov = std::atan(std::tan(glm::radians(kFovY) / 2) * std::min(1.0, aspect));
@@ -185,8 +263,12 @@ class RevolutionView final : public ViewModel {
         slide_clear_of_boxes(*this, surface, view, points, hud);
     }
   }
-  std::string grid_caption(const Snapshot& /*snapshot*/, const ViewOptions& view) const override {
+  std::string grid_caption(const Snapshot& snapshot, const ViewOptions& view) const override {
     return std::string("Grid: meridians every 30 degrees and parallels; the K = 0 parallels darker.") +
+           (patch_at(snapshot)
+                ? " Round body 1, beyond the piece drawn whole, a patch of the surface with "
+                  "meridians and parallels at halves of those steps, no wider than its feature."
+                : "") +
            (view.layers & kCurvature
                 ? " Colour: the Gaussian curvature K, warm where K > 0, cool where K < 0, "
                   "white where K = 0, full at the largest |K| drawn."

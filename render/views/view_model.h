@@ -4,6 +4,7 @@
 // ask the view for what differs and never switch on ViewKind. No GL: plain draw lists.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <glm/glm.hpp>
 #include <optional>
@@ -68,6 +69,15 @@ class ViewModel {
   // Whether build_scene uses the cached static geometry at all (false: everything is drawn per
   // frame, as the conformal view's background depends on K, which no cache key holds).
   virtual bool uses_static() const { return true; }
+  // Where the main body is off the piece build_static draws (an unbounded surface's), the frame adds
+  // a patch of the surface round it: patch_at says where (equal places, one patch: it moves in
+  // steps, and frames share it), build_patch builds it as build_static builds the piece.
+  virtual std::optional<std::array<double, 2>> patch_at(const Snapshot& /*snapshot*/) const {
+    return std::nullopt;
+  }
+  virtual StaticGeometry build_patch(const Surface& /*surface*/, std::array<double, 2> /*at*/) const {
+    return {};
+  }
 
   // ---- Camera
   // The view-projection matrix of the frame.

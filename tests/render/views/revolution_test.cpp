@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "codec/presets.h"
@@ -160,6 +161,42 @@ TEST(RevolutionView, InASmallFrameTheHudNeverCoversTheMainBody) {
       EXPECT_FALSE(scene.hud.hud.contains(*px) || scene.hud.legend.contains(*px))
           << what << " at (" << px->x << ", " << px->y << ")";
     }
+}
+
+// Beyond the drawn piece of the catenoid (|z| > 2c from t ≈ 4.5 on in its preset) the body was drawn
+// in the void; the frame now adds a patch of the surface round it: on the surface, under the body,
+// never over the piece, and the same patch for nearby times (it moves in steps, not every frame).
+TEST(RevolutionView, BeyondTheDrawnPieceAPatchOfTheSurfaceIsDrawnRoundTheBody) {
+  const Scene scene = *parse_scene_text(find_preset("spin_vs_geodesic_catenoid")->json).scene;
+  ViewOptions view;
+  view.kind = ViewKind::revolution;
+  const auto frame_at = [&](double t) {
+    Simulation run;
+    const Snapshot s = snapshot_at(scene, t, true, std::nullopt, run);
+    ViewOptions v = view;
+    aim_camera_at_body(v, s);
+    return std::pair{s, build_scene(s, v)};
+  };
+  const auto [on, on_scene] = frame_at(2.0);
+  EXPECT_EQ(on_scene.statics, static_geometry(on.surface, ViewKind::revolution)) << "on the piece: no patch";
+  const auto [off, off_scene] = frame_at(8.0);
+  const auto piece = static_geometry(off.surface, ViewKind::revolution);
+  ASSERT_FALSE(revolution().on_view(off.surface, off.bodies[0].X)) << "the body is beyond the piece at t = 8";
+  ASSERT_GT(off_scene.statics->surface.size(), piece->surface.size());
+  ASSERT_GT(off_scene.statics->grid.size(), piece->grid.size());
+  const RevolutionSurface rs = revolution_surface(off.surface);
+  const ProfilePicture picture = revolution_entry(rs.kind).picture(rs);
+  double nearest = std::numeric_limits<double>::infinity(), worst = 0.0;
+  for (std::size_t i = piece->surface.size(); i < off_scene.statics->surface.size(); ++i) {
+    const Vec3 X = embedded(off.surface, off_scene.statics->surface[i].position);
+    worst = std::max(worst, off_surface(off.surface, X) / picture.length);
+    nearest = std::min(nearest, (X - off.bodies[0].X).norm());
+    EXPECT_GE(std::abs(X.z()), 2.0 * rs.neck_radius * (1 - 1e-6)) << "the patch lies beyond the piece";
+  }
+  EXPECT_LT(worst, 1e-5) << "the patch lies on the surface";
+  EXPECT_LT(nearest, picture.feature) << "the patch is under the body";
+  // A little later (the body moved by ~1e-3 of its distance from the neck) the frames share the patch.
+  EXPECT_EQ(frame_at(8.001).second.statics, off_scene.statics);
 }
 
 TEST(RevolutionView, APointBehindTheTubeIsHiddenAndOneInFrontIsNot) {
