@@ -11,7 +11,6 @@ frames, 300 by default: SPINFOLD_LIMIT_FRAMES), work-precision (a preset at its 
 import json
 import os
 import sys
-import threading
 import time
 
 from local_server import LocalServer
@@ -76,25 +75,10 @@ CASES = {"frame": frame, "trajectory": trajectory, "gif": recording("gif"), "web
 
 def measure(binary, name):
     with LocalServer(binary) as server:
-        before = server.rss_mib()
-        peak = [before]
-        done = threading.Event()
-
-        def watch():
-            while not done.is_set():
-                peak[0] = max(peak[0], server.rss_mib())
-                time.sleep(0.02)
-
-        watcher = threading.Thread(target=watch)
-        watcher.start()
         started = time.time()
-        try:
-            what = CASES[name](server)
-        finally:
-            done.set()
-            watcher.join()
+        what, before, peak = server.peak_mib(lambda: CASES[name](server))
         print(f"{name:15s} {what}; {time.time() - started:.1f} s; RSS {before:.0f} MiB before, "
-              f"peak +{peak[0] - before:.0f} MiB", flush=True)
+              f"peak +{peak - before:.0f} MiB", flush=True)
 
 
 def main():

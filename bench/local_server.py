@@ -7,6 +7,7 @@
 import json
 import socket
 import subprocess
+import threading
 import time
 import urllib.error
 import urllib.request
@@ -42,6 +43,26 @@ class LocalServer:
                 if line.startswith("VmRSS"):
                     return int(line.split()[1]) / 1024
         return float("nan")
+
+    def peak_mib(self, action):
+        """(action's result, the server's RSS before it [MiB], its peak while it ran, sampled every 20 ms)."""
+        before = self.rss_mib()
+        peak = [before]
+        done = threading.Event()
+
+        def watch():
+            while not done.is_set():
+                peak[0] = max(peak[0], self.rss_mib())
+                time.sleep(0.02)
+
+        watcher = threading.Thread(target=watch)
+        watcher.start()
+        try:
+            result = action()
+        finally:
+            done.set()
+            watcher.join()
+        return result, before, peak[0]
 
     def call(self, method, path, body=None):
         """(status, body bytes) of a request under /api/v1; a refusal is an answer, not an error."""

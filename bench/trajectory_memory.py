@@ -9,7 +9,6 @@ seconds and the server's RSS before, at its peak (sampled every 20 ms) and after
 """
 import json
 import sys
-import threading
 import time
 
 from local_server import LocalServer
@@ -24,25 +23,13 @@ def main():
         session = json.loads(body)["id"]
         status, body = server.call("POST", f"/sessions/{session}/advance", {"until": float(t_end)})
         assert status == 200, body
-        before = server.rss_mib()
-        peak = [before]
-        done = threading.Event()
-
-        def watch():
-            while not done.is_set():
-                peak[0] = max(peak[0], server.rss_mib())
-                time.sleep(0.02)
-
-        watcher = threading.Thread(target=watch)
-        watcher.start()
         query = f"every={every}&format={fmt}" + (f"&fields={fields}" if fields else "")
         started = time.time()
-        status, body = server.call("GET", f"/sessions/{session}/trajectory?{query}")
+        (status, body), before, peak = server.peak_mib(
+            lambda: server.call("GET", f"/sessions/{session}/trajectory?{query}"))
         seconds = time.time() - started
-        done.set()
-        watcher.join()
         print(f"status {status}, {len(body)} bytes in {seconds:.1f} s; server RSS {before:.0f} MiB before, "
-              f"{peak[0]:.0f} at its peak (+{peak[0] - before:.0f}), {server.rss_mib():.0f} after")
+              f"{peak:.0f} at its peak (+{peak - before:.0f}), {server.rss_mib():.0f} after")
         if status != 200:
             print(json.loads(body)["errors"][0]["reason"])
 

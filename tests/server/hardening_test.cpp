@@ -355,6 +355,23 @@ long rss_kib() {
   return kib;
 }
 
+// How far this process's RSS rose above where it was while `action` ran, at its peak (sampled every
+// 2 ms) [KiB].
+template <class Action>
+long peak_growth_kib(Action&& action) {
+  const long before = rss_kib();
+  std::atomic<bool> done{false};
+  std::atomic<long> peak{before};
+  std::thread watch([&] {
+    for (; !done; std::this_thread::sleep_for(std::chrono::milliseconds(2)))
+      peak = std::max(peak.load(), rss_kib());
+  });
+  action();
+  done = true;
+  watch.join();
+  return peak - before;
+}
+
 struct RawAnswer {
   int status = 0;  // 0: no answer
   std::string body;
@@ -413,16 +430,8 @@ TEST(HardeningOversized, RefusedWithoutHarm) {
   // The same request first: what the server's start and a worker's first request take (stacks, a
   // malloc arena) is then not counted as the body's (alone in a process that was up to 30 MB).
   EXPECT_EQ(raw_request(server.port(), head, chunk, 64).status, 413);
-  const long rss_before = rss_kib();
-  std::atomic<bool> done{false};
-  std::atomic<long> peak{rss_before};
-  std::thread watch([&] {  // the peak while it is sent: a held body is freed once refused
-    for (; !done; std::this_thread::sleep_for(std::chrono::milliseconds(2)))
-      peak = std::max(peak.load(), rss_kib());
-  });
-  const RawAnswer chunked = raw_request(server.port(), head, chunk, 64);
-  done = true;
-  watch.join();
+  RawAnswer chunked;  // the peak while it is sent: a held body is freed once refused
+  const long grown = peak_growth_kib([&] { chunked = raw_request(server.port(), head, chunk, 64); });
   EXPECT_EQ(chunked.status, 413) << chunked.body.substr(0, 200);
   EXPECT_NE(chunked.body.find("limit of 65536 bytes"), std::string::npos) << chunked.body;
   // Only the limit was held: httplib 0.11.4 then reads the rest as requests of its own (each line
@@ -430,9 +439,9 @@ TEST(HardeningOversized, RefusedWithoutHarm) {
 #if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)  // their shadow memory grows
   // A held body is 64 MiB; a worker's own costs (a malloc arena of the thread the connection got,
   // the 1 MiB lines read as requests after the 413) measured 17–21 MiB alone in a process.
-  EXPECT_LT(peak - rss_before, 40 * 1024) << "the chunked body was held in memory";
+  EXPECT_LT(grown, 40 * 1024) << "the chunked body was held in memory";
 #else
-  (void)rss_before;
+  (void)grown;
 #endif
 
   const RawAnswer sized =
@@ -490,23 +499,14 @@ TEST(HardeningOversized, ATrajectoryIsBoundedInBytesAndHeldOnce) {
 
   // Near the bound (5001 rows, ~46 MB): the peak of RSS while it is made and received (the client's
   // copy is in this process too) stays under 256 MB.
-  std::atomic<bool> done{false};
-  std::atomic<long> peak{rss_kib()};
-  const long before = peak;
-  std::thread watch([&] {
-    while (!done) {
-      peak = std::max(peak.load(), rss_kib());
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-  });
-  auto answer = c.Get(session + "/trajectory?every=0.2");
-  done = true;
-  watch.join();
+  std::optional<httplib::Result> result;  // (not default-constructible)
+  const long grown = peak_growth_kib([&] { result.emplace(c.Get(session + "/trajectory?every=0.2")); });
+  const httplib::Result& answer = *result;
   ASSERT_EQ(answer->status, 200);
   EXPECT_LE(answer->body.size(), options.limits.max_trajectory_bytes);
   EXPECT_GT(answer->body.size(), 32u << 20);
-  std::printf("trajectory of %zu bytes: RSS %ld → peak %ld KiB\n", answer->body.size(), before, peak.load());
-  EXPECT_LT(peak - before, 256L << 10) << "KiB";
+  std::printf("trajectory of %zu bytes: RSS grew %ld KiB at its peak\n", answer->body.size(), grown);
+  EXPECT_LT(grown, 256L << 10) << "KiB";
   const json rows = json::parse(answer->body);
   ASSERT_EQ(rows.size(), 5001u);
   EXPECT_EQ(rows.back()["t"], 1000.0);
@@ -532,24 +532,17 @@ TEST(HardeningOversized, TheLargestFrameIsBoundedInMemory) {
   const std::string frame =
       "/api/v1/sessions/" + json::parse(created->body)["id"].get<std::string>() + "/frame.png?";
   ASSERT_EQ(c.Get(frame + "width=64&height=64")->status, 200);  // the render thread started
-  std::atomic<bool> done{false};
-  std::atomic<long> peak{rss_kib()};
-  const long before = peak;
-  std::thread watch([&] {
-    while (!done) {
-      peak = std::max(peak.load(), rss_kib());
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
+  std::optional<httplib::Result> too_large, at_limit;           // (not default-constructible)
+  const long grown = peak_growth_kib([&] {
+    too_large.emplace(c.Get(frame + "width=4096&height=4096"));
+    at_limit.emplace(c.Get(frame + "width=3840&height=2160"));
   });
-  auto refused = c.Get(frame + "width=4096&height=4096");
-  auto largest = c.Get(frame + "width=3840&height=2160");
-  done = true;
-  watch.join();
+  const httplib::Result &refused = *too_large, &largest = *at_limit;
   EXPECT_EQ(refused->status, 422);
   ASSERT_EQ(largest->status, 200);
   EXPECT_GT(largest->body.size(), 100'000u);
-  std::printf("3840x2160 frame: RSS %ld → peak %ld KiB\n", before, peak.load());
-  EXPECT_LT(peak - before, 256L << 10) << "KiB";
+  std::printf("3840x2160 frame: RSS grew %ld KiB at its peak\n", grown);
+  EXPECT_LT(grown, 256L << 10) << "KiB";
 }
 
 // The size a trajectory would make is foreseen from its first row within a factor it can keep: at
