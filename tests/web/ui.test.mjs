@@ -758,6 +758,24 @@ await runSuite(started, async (browser) => {
     assert.equal(await t.$eval("html", (el) => el.dataset.theme), "dark");
     await t.click("#theme");
     assert.ok(await luma(t, "body", "backgroundColor") > 200);
+    // A pressed button (Pause, while paused) is not drawn in the focus ring's colour (issue 34: the
+    // button in force looked like the one the keyboard is on), nor like a button not pressed.
+    const look = (selector) => t.$eval(selector, (el) => {
+      const c = getComputedStyle(el);
+      return { border: c.borderTopColor, background: c.backgroundColor };
+    });
+    assert.equal(await t.getAttribute("#pause", "aria-pressed"), "true");
+    const pressed = await look("#pause"), unpressed = await look("#play");
+    const ring = await t.evaluate(() => {
+      const probe = document.createElement("div");
+      probe.style.color = getComputedStyle(document.documentElement).getPropertyValue("--accent");
+      document.body.append(probe);
+      const color = getComputedStyle(probe).color;
+      probe.remove();
+      return color;
+    });
+    assert.notEqual(pressed.border, ring, "the pressed border is not the focus ring's orange");
+    assert.notEqual(pressed.background, unpressed.background, "pressed is filled");
     await t.close();
   });
 
