@@ -123,11 +123,13 @@ function defaultHud(shownWidth, shownHeight) {
   store.update((s) => withView(s, { layers }));
 }
 
-// The frame and the playback bar below it fit the window at load: the frame is never taller than
-// the room between its top and the window's bottom less the toolbar (at least 240 px).
+// The frame and the bars below it fit the window at load: the frame is never taller than the room
+// between its top and the window's bottom less the playback bar and, on a screen at least 700 px
+// tall (a laptop, a projector), the View row too (at least 240 px).
 function fitFrameToWindow() {
   const top = $("frame-box").getBoundingClientRect().top + window.scrollY;
-  const room = Math.max(240, window.innerHeight - top - $("toolbar").offsetHeight - 20);
+  const bars = $("toolbar").offsetHeight + (window.innerHeight >= 700 ? $("viewbar").offsetHeight : 0);
+  const room = Math.max(240, window.innerHeight - top - bars - 20);
   document.documentElement.style.setProperty("--frame-room", `${Math.round(room)}px`);
 }
 

@@ -703,14 +703,15 @@ await runSuite(started, async (browser) => {
                                                                                                               : `${selector} ${JSON.stringify(b)}`;
   };
 
-  await test("at 1366×900 and 1920×1080 the frame and the Play button are in view at load; the picture has its text overlay", async () => {
+  await test("at 1366×900 and 1920×1080 the frame, the Play button and the View row are in view at load; the picture has its text overlay", async () => {
     for (const viewport of [{ width: 1366, height: 900 }, { width: 1920, height: 1080 }]) {
       const desk = await browser.newPage({ bypassCSP: true, viewport });
       watchConsole(desk, `desktop ${viewport.width}`);
       await desk.goto(base);
       await desk.waitForSelector("body[data-ready=true]", { timeout: 20000 });
       await desk.waitForTimeout(300);  // the gallery fills in after the session opens; the frame refits
-      for (const selector of ["#frame", "#play", "#pause", "#step", "#reset"]) assert.equal(await inView(desk, selector, viewport), true);
+      for (const selector of ["#frame", "#play", "#pause", "#step", "#reset", "#view", "#reset-view"])
+        assert.equal(await inView(desk, selector, viewport), true);
       assert.equal(await desk.$eval("#layers input[name=layer-hud]", (el) => el.checked), true);
       await desk.close();
     }
