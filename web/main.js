@@ -60,7 +60,11 @@ async function main() {
     view: () => viewQuery(store.get()),
   });
   // "Which integrator for this scene?" (workprecision.js): its "Use …" is a change like any other.
-  setupWorkPrecision($("wp-panel"), { session: () => store.get().id, apply: applyChange });
+  setupWorkPrecision($("wp-panel"), {
+    session: () => store.get().id,
+    inForce: () => store.get().current?.integrator,
+    apply: applyChange,
+  });
   setupPlots();
   setupFrame(() => checkSession());
 

@@ -19,11 +19,19 @@ function short(x) {
 // "tol 1e-6", "dt 0.0123": a setting.
 const setting = (/** @type {{parameter: string, value: number}} */ p) => `${p.parameter} ${short(p.value)}`;
 
-// Builds the panel in `box`. `app` gives: session() → its id; apply(patch, edit) → the app's PATCH
-// of the session (its controls and status line follow), a promise.
+// Whether the recommended integrator (the object PATCH takes) is what the session runs already:
+// each of its fields has the value in force. Then the panel says so instead of offering it.
+/** @param {Record<string, unknown>} recommended @param {Record<string, unknown> | undefined} inForce */
+export function alreadyInForce(recommended, inForce) {
+  return !!inForce && Object.entries(recommended).every(([key, value]) => inForce[key] === value);
+}
+
+// Builds the panel in `box`. `app` gives: session() → its id; inForce() → the integrator in force
+// now (the session's current scene's); apply(patch, edit) → the app's PATCH of the session (its
+// controls and status line follow), a promise.
 /**
  * @param {HTMLElement} box
- * @param {{session: () => string | null,
+ * @param {{session: () => string | null, inForce: () => Record<string, unknown> | undefined,
  *   apply: (patch: any, edit: import("./edits.js").Edit) => Promise<unknown>}} app
  */
 export function setupWorkPrecision(box, app) {
@@ -132,9 +140,12 @@ export function setupWorkPrecision(box, app) {
     const r = job.result;
     $("wp-recommendation").textContent = r.recommendation;
     recommended = r.recommended;
-    $("wp-use").hidden = !recommended;
+    const kept = !!recommended && alreadyInForce(recommended.integrator, app.inForce());
+    $("wp-use").hidden = !recommended || kept;
     if (recommended) $("wp-use").textContent = `Use ${recommended.method} at ${setting(recommended)}`;
-    $("wp-use-status").textContent = "";
+    $("wp-use-status").textContent = kept
+      ? `The session runs ${recommended.method} at ${setting(recommended)} already.`
+      : "";
     const plot = $("wp-plot");
     plot.hidden = !r.plot_svg;
     if (r.plot_svg) {

@@ -58,6 +58,13 @@ await runSuite(started, async (browser) => {
     recommended = job.result.recommended;
     assert.ok(recommended, "an integrator reached 1e-10 at T = 0.5");
     assert.match(await page.textContent("#wp-use"), new RegExp(`^Use ${recommended.method} at (tol|dt) `));
+    // The scene runs what the panel recommends already (auto at the default tolerance): it says so
+    // rather than offering it (issue 34: the panel proposed the setting in force).
+    const inForce = (await (await fetch(`${base}api/v1/sessions/${session}`)).json()).current.integrator;
+    if (inForce.name === recommended.method) {
+      assert.equal(await page.isHidden("#wp-use"), true);
+      assert.match(await page.textContent("#wp-use-status"), new RegExp(`runs ${recommended.method} at .* already`));
+    }
   });
 
   await test("axe-core: no violations in the panel with its result (light and dark)", async () => {
@@ -81,6 +88,17 @@ await runSuite(started, async (browser) => {
 
   await test("Use … sets the recommended integrator on the session", async () => {
     assert.ok(session && recommended, "the measurement ran");
+    // Another integrator in force first (rk4), then measured again: the recommendation is offered.
+    await page.selectOption("#field-integrator-name", "rk4");
+    await page.waitForFunction(
+      (id) => fetch(`/api/v1/sessions/${id}`).then((r) => r.json()).then((s) => s.current.integrator.name === "rk4"),
+      session,
+      { timeout: 10000 },
+    );
+    await page.click("#wp-start");
+    await page.waitForSelector("#wp-use:visible", { timeout: 90000 });
+    const again = await (await fetch(new URL(await page.getAttribute("#wp-plot", "src"), base).href.replace(/\/plot\.svg$/, ""))).json();
+    recommended = again.result.recommended;
     await page.click("#wp-use");
     await page.waitForSelector("#wp-use-status:has-text('now runs')", { timeout: 10000 });
     const s = await (await fetch(`${base}api/v1/sessions/${session}`)).json();
