@@ -365,11 +365,13 @@ export async function firstSession() {
   if (shared === "damaged") say("The share link is damaged; opening the default scene.");
   else if (shared) {
     store.update((s) => withView(s, shared.view));
-    return openScene(shared.scene, {
+    await openScene(shared.scene, {
       until: shared.until,
       timeline: shared.timeline,
       preset: shared.scene.name ?? null,
     });
+    if (shared.modified) store.update({ modified: true }); // changed before its run began
+    return;
   }
   const mine = loadSaved();
   if (mine?.scene) {

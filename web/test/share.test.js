@@ -20,6 +20,16 @@ test("a share link round-trips the scene, timeline, time and view", () => {
   assert.deepEqual(shared.timeline, state.timeline);
   assert.equal(shared.until, 3.25);
   assert.deepEqual(shared.view, { kind: "conformal", layers: ["surface", "trail"] });
+  assert.equal(shared.modified, false);
+});
+
+// A preset changed at t = 0 (its timeline empty) opened "selected", not "modified" (issue 34).
+test("a share link says whether its preset was changed", () => {
+  const changed = { ...initialState(), scene: { name: "spinning_rigid_sphere" }, timeline: [], modified: true };
+  const shared = fromHash(new URL(shareUrl(changed, "http://host/")).hash);
+  assert.ok(shared && shared !== "damaged");
+  assert.equal(shared.modified, true);
+  assert.equal(new URL(shareUrl({ ...changed, modified: false }, "http://host/")).hash.includes("modified"), false);
 });
 
 test("no fragment, or one without a scene, is no share link", () => {
