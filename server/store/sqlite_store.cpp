@@ -4,9 +4,11 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <thread>
 
 namespace spinfold::server {
 
@@ -135,12 +137,20 @@ SqliteStore::SqliteStore(const std::string& dir, std::chrono::milliseconds busy_
       throw StoreError(path_ + ": not a Spinfold session store (another program's SQLite database)");
     if (schema > kSchemaVersion)
       throw StoreError(path_ + ": made by a newer Spinfold (schema " + std::to_string(schema) + ")");
-    {
-      // WAL: readers never wait for the writer, so several processes can share the file.
-      Statement wal(*this, "PRAGMA journal_mode = WAL");
-      if (!wal.step() || wal.column_text(0) != "wal")
-        throw StoreError(path_ + ": cannot use WAL mode (journal_mode is '" + wal.column_text(0) +
-                         "'; is the directory on a network file system?)");
+    // WAL: readers never wait for the writer, so several processes can share the file. Switching a
+    // new file to it while another process opens it too (replicas started together) can be
+    // SQLITE_BUSY without the busy handler being asked: tried again until busy_timeout.
+    for (const auto until = std::chrono::steady_clock::now() + busy_timeout;;) {
+      try {
+        Statement wal(*this, "PRAGMA journal_mode = WAL");
+        if (!wal.step() || wal.column_text(0) != "wal")
+          throw StoreError(path_ + ": cannot use WAL mode (journal_mode is '" + wal.column_text(0) +
+                           "'; is the directory on a network file system?)");
+        break;
+      } catch (const StoreError&) {
+        if (sqlite3_errcode(db_) != SQLITE_BUSY || std::chrono::steady_clock::now() > until) throw;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      }
     }
     // FULL: a commit is on disk (fsync) before the API acknowledges it, power loss included.
     exec("PRAGMA synchronous = FULL");

@@ -77,7 +77,12 @@ class Front : public ::testing::Test {
     }
     for (int i = 0; i < 300 && !fs::exists(ready); ++i)
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    ASSERT_TRUE(fs::exists(ready)) << "the front did not start; see " << (dir_ / "front.log");
+    if (!fs::exists(ready)) {  // its log says why, and goes with the directory at the teardown
+      std::ifstream in(dir_ / "front.log");
+      const std::string log((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      FAIL() << "the front did not start in 30 s; its log ends:\n"
+             << log.substr(log.size() > 4000 ? log.size() - 4000 : 0);
+    }
   }
 
   static void TearDownTestSuite() {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <libpq-fe.h>
 #include <sqlite3.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -209,6 +210,43 @@ TEST(SqliteStore, AFileOfSchemaOneIsMigratedKeepingItsSessions) {
   sqlite3_finalize(q);
   sqlite3_close(db);
   fs::remove_all(dir);
+}
+
+// Replicas sharing a data directory start together (scripts/front.sh starts them at once): two
+// processes opening a store that does not exist yet, at the same instant, both open it. (Switching
+// a new file to WAL while another process holds it can be SQLITE_BUSY without the busy handler.)
+TEST(SqliteStore, TwoProcessesOpeningANewStoreAtOnceBothOpenIt) {
+  for (int round = 0; round < 40; ++round) {
+    const fs::path dir = fs::temp_directory_path() /
+                         ("spinfold_sqlite_race_" + std::to_string(getpid()) + "_" + std::to_string(round));
+    fs::remove_all(dir);
+    int go[2];
+    ASSERT_EQ(::pipe(go), 0);
+    pid_t children[2];
+    for (pid_t& child : children) {
+      child = ::fork();
+      if (child == 0) {
+        char byte;
+        ::close(go[1]);
+        if (::read(go[0], &byte, 1) != 0) std::_Exit(3);  // both wait for the pipe's close
+        try {
+          const auto store = open_store("", dir.string());
+          std::_Exit(0);
+        } catch (const std::exception& e) {
+          std::fprintf(stderr, "round %d: %s\n", round, e.what());
+          std::_Exit(1);
+        }
+      }
+    }
+    ::close(go[0]);
+    ::close(go[1]);  // now
+    for (const pid_t child : children) {
+      int status = 0;
+      ::waitpid(child, &status, 0);
+      EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "round " << round;
+    }
+    fs::remove_all(dir);
+  }
 }
 
 TEST_P(StoreConformance, ARecordingsRowChangesOnlyWhileActive) {
