@@ -110,6 +110,9 @@ await runSuite(started, async (browser) => {
     await page.click("#play");
     await page.waitForFunction(() => /playing at 3×/.test(document.querySelector("#state-badge").textContent));
     await page.click("#pause");
+    // Paused before the next test edits: under load its pause reached the server after that edit's
+    // PATCH, and the run went on under the edit's "nothing changed" check (a flake hunt saw it).
+    await page.waitForFunction(() => /^paused/.test(document.querySelector("#state-badge").textContent));
   });
 
   await test("changing a field changes the state", async () => {
