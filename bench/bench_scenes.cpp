@@ -6,6 +6,7 @@
 #include "engine/chart.h"
 #include "engine/invariants.h"
 #include "engine/simulation.h"
+#include "engine/worked_examples.h"
 
 namespace spinfold::bench {
 
@@ -48,12 +49,7 @@ std::vector<BenchScene> work_precision_scenes() {
       {"sphere_deforming_abc", "S², deforming spinning body, abc potential", deforming(SurfaceKind::sphere)});
   scenes.push_back({"pseudosphere_deforming_abc", "H², deforming spinning body, abc potential, bounded",
                     deforming(SurfaceKind::pseudosphere)});
-  Scene w5;
-  w5.surface = {SurfaceKind::sphere, 1.5};
-  w5.body = {1.0, 0.4, BodyModel::affine};
-  w5.potential.radial = RadialPotential{0.05};
-  w5.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
-  w5.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.0, 0.05};
+  const Scene w5 = w5_scene();
   scenes.push_back({"sphere_radial_abc", "S², radial + abc potentials (W5), numerical reference", w5});
   Scene polar = deforming(SurfaceKind::sphere);
   polar.potential.deformation = PolarPotential{0.05, -1.0, PolarForm::cot2};

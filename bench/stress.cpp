@@ -14,6 +14,7 @@
 #include "engine/invariants.h"
 #include "engine/paper_coordinates.h"
 #include "engine/simulation.h"
+#include "engine/worked_examples.h"
 
 namespace spinfold::bench {
 
@@ -182,12 +183,8 @@ StressResult near_degenerate(double size) {
 // Stiff internal potential (C = 1e4) beside a radial potential: the splitting method solves the
 // stiff internal motion exactly, an explicit method must resolve it.
 StressResult stiff_and_multiscale(double size) {
-  Scene scene;
-  scene.surface = {SurfaceKind::sphere, 1.5};
-  scene.body = {1.0, 0.4, BodyModel::affine};
-  scene.potential.radial = RadialPotential{0.05};
+  Scene scene = w5_scene();
   scene.potential.deformation = AbcPotential{0.02, 0.4, 1e4};
-  scene.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.0, 0.05};
   const double t_end = std::max(2.0, 200.0 * size);
   const State reference = exact_state(make_exact_solution(scene), t_end);
   StressResult r;
@@ -302,13 +299,7 @@ StressResult long_runs(double size) {
 // (det L residual, energy, spin) and an anisotropic one under split6 (energy, spin; the vorticity
 // moves).
 StressResult whole_model(double size) {
-  Scene scene;
-  scene.surface = {SurfaceKind::sphere, 1.5};
-  scene.body = {1.0, 0.4, BodyModel::incompressible};
-  scene.potential.radial = RadialPotential{0.05};
-  scene.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
-  scene.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.3, 0.0};
-  scene.initial.mu_dot = -scene.initial.lambda_dot * scene.initial.mu / scene.initial.lambda;
+  Scene scene = incompressible_w5_scene();
   const long steps = std::max(10000L, std::lround(1e6 * size));
   const double dt = 0.02;
   scene.integrator = {"split6", dt, 1e-10};

@@ -22,20 +22,20 @@ namespace num {
 inline double to_double(Quad x) {
   return static_cast<double>(x);
 }
-inline Quad from_big(const Big& x) {
-  // three doubles carry the 113 bits
+// One type to the other as the sum of three doubles, which carry quad's 113 bits.
+template <class To, class From>
+To through_three_doubles(const From& x) {
   const double hi = static_cast<double>(x);
-  const Big r1 = x - Big(hi);
+  const From r1 = x - From(hi);
   const double mid = static_cast<double>(r1);
-  const double lo = static_cast<double>(r1 - Big(mid));
-  return Quad(hi) + Quad(mid) + Quad(lo);
+  const double lo = static_cast<double>(r1 - From(mid));
+  return To(hi) + To(mid) + To(lo);
+}
+inline Quad from_big(const Big& x) {
+  return through_three_doubles<Quad>(x);
 }
 inline Big to_big(Quad x) {
-  const double hi = static_cast<double>(x);
-  const Quad r1 = x - Quad(hi);
-  const double mid = static_cast<double>(r1);
-  const double lo = static_cast<double>(r1 - Quad(mid));
-  return Big(hi) + Big(mid) + Big(lo);
+  return through_three_doubles<Big>(x);
 }
 inline Quad abs(Quad x) {
   return x < 0 ? -x : x;
@@ -49,52 +49,33 @@ inline Quad sqrt(Quad x) {
   for (int i = 0; i < 2; ++i) y = (y + x / y) / 2;
   return y;
 }
-inline Quad sin(Quad x) {
-  return from_big(boost::multiprecision::sin(to_big(x)));
-}
-inline Quad cos(Quad x) {
-  return from_big(boost::multiprecision::cos(to_big(x)));
-}
-inline Quad sinh(Quad x) {
-  return from_big(boost::multiprecision::sinh(to_big(x)));
-}
-inline Quad cosh(Quad x) {
-  return from_big(boost::multiprecision::cosh(to_big(x)));
-}
-// exp (the bump's height) through the 50-digit type: exact to quad's precision, slow, used once per
-// field evaluation
-inline Quad exp(Quad x) {
-  return from_big(boost::multiprecision::exp(to_big(x)));
-}
+// The functions both types share, for Big returning Big (not Boost's expression templates) and for
+// Quad through Big: exact to quad's precision, slow, used to build the start and once per field
+// evaluation (the bump's exp).
+#define SPINFOLD_ORACLE_THROUGH_BIG(f)                    \
+  inline Big f(const Big& x) {                            \
+    return boost::multiprecision::f(x);                   \
+  }                                                       \
+  inline Quad f(Quad x) {                                 \
+    return from_big(boost::multiprecision::f(to_big(x))); \
+  }                                                       \
+  static_assert(true)
+SPINFOLD_ORACLE_THROUGH_BIG(sin);
+SPINFOLD_ORACLE_THROUGH_BIG(cos);
+SPINFOLD_ORACLE_THROUGH_BIG(sinh);
+SPINFOLD_ORACLE_THROUGH_BIG(cosh);
+SPINFOLD_ORACLE_THROUGH_BIG(exp);
+SPINFOLD_ORACLE_THROUGH_BIG(asin);
+SPINFOLD_ORACLE_THROUGH_BIG(asinh);
+#undef SPINFOLD_ORACLE_THROUGH_BIG
 inline Big sqrt(const Big& x) {
   return boost::multiprecision::sqrt(x);
-}
-inline Big sin(const Big& x) {
-  return boost::multiprecision::sin(x);
-}
-inline Big cos(const Big& x) {
-  return boost::multiprecision::cos(x);
-}
-inline Big sinh(const Big& x) {
-  return boost::multiprecision::sinh(x);
-}
-inline Big cosh(const Big& x) {
-  return boost::multiprecision::cosh(x);
-}
-inline Big exp(const Big& x) {
-  return boost::multiprecision::exp(x);
 }
 inline Big atan2(const Big& y, const Big& x) {
   return boost::multiprecision::atan2(y, x);
 }
 inline Big abs(const Big& x) {
   return boost::multiprecision::abs(x);
-}
-inline Big asin(const Big& x) {
-  return boost::multiprecision::asin(x);
-}
-inline Big asinh(const Big& x) {
-  return boost::multiprecision::asinh(x);
 }
 inline bool finite(const Big& x) {
   return boost::multiprecision::isfinite(x);

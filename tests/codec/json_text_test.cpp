@@ -79,12 +79,6 @@ TEST(JsonText, ScalarsAndContainersReadBackExactly) {
   EXPECT_TRUE(v[6]["k"].is_array() && v[6]["k"].empty());
 }
 
-}  // namespace
-}  // namespace spinfold
-
-namespace spinfold {
-namespace {
-
 // A key repeated in one object is refused naming its path, in either order (nlohmann-json alone
 // keeps the last: `{"mass": -1, "mass": 1}` read as mass 1); the same key in two objects is fine.
 TEST(JsonText, ARepeatedKeyIsRefusedNamingItsPath) {

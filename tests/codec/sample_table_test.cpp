@@ -134,12 +134,6 @@ TEST(SampleTable, CellsNeverBreakALine) {
   EXPECT_EQ(csv_cell(ordered_json(0.1)), "0.1");
 }
 
-}  // namespace
-}  // namespace spinfold
-
-namespace spinfold {
-namespace {
-
 // Labels that would make two columns one are refused naming companions[i].label: a repeated label
 // (explicit, or the default "body N" of an unlabelled companion) and a label that is a main-body
 // column group (`frequencies` + `.r`); the header of an accepted scene has no name twice.

@@ -13,6 +13,7 @@
 #include "engine/integrator.h"
 #include "engine/invariants.h"
 #include "engine/validation.h"
+#include "engine/worked_examples.h"
 #include "test_support.h"
 
 namespace spinfold {
@@ -20,13 +21,8 @@ namespace {
 
 // W5's sphere, radial and abc potentials and start (physics.md §10), with J = [[0.3, 0.08], [0.08, 0.15]].
 Scene anisotropic_scene() {
-  Scene s;
-  s.surface = {SurfaceKind::sphere, 1.5};
-  s.body = {1.0, 0.4, BodyModel::affine};
+  Scene s = w5_scene();
   s.body.inertia_matrix = InertiaMatrix{0.3, 0.08, 0.08, 0.15};
-  s.potential.radial = RadialPotential{0.05};
-  s.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
-  s.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.0, 0.05};
   return s;
 }
 

@@ -15,15 +15,15 @@ namespace {
 Scene scene_on(SurfaceKind kind) {
   Scene s;
   s.surface = {kind, 1.5};
-  s.initial.r = 1.2;
-  s.initial.phi = 0.3;
-  s.initial.r_dot = 0.2;
-  s.initial.phi_dot = -0.3;
-  s.initial.alpha = 0.1;
-  s.initial.beta = -0.4;
-  s.initial.lambda = 1.1;
-  s.initial.mu = 0.6;
-  s.initial.alpha_dot = 0.5;
+  s.initial = {.r = 1.2,
+               .phi = 0.3,
+               .alpha = 0.1,
+               .beta = -0.4,
+               .lambda = 1.1,
+               .mu = 0.6,
+               .r_dot = 0.2,
+               .phi_dot = -0.3,
+               .alpha_dot = 0.5};
   return s;
 }
 

@@ -133,14 +133,7 @@ TEST(EmbeddedDynamics, ChartFlowPushesForwardToTheEmbeddedField) {
   for (const RevolutionEntry& entry : revolution_catalog())
     for (const HeightPotential height :
          {HeightPotential{GravityPotential{0.4}}, HeightPotential{SpringPotential{0.9}}}) {
-      model.surface.kind = entry.kind;
-      model.surface.tube_radius = 0.8;
-      model.surface.center_radius = 2.0;
-      model.surface.equatorial_radius = 1.5;
-      model.surface.polar_radius = 0.9;
-      model.surface.height = 1.2;
-      model.surface.width = 0.8;
-      model.surface.neck_radius = 0.7;
+      model.surface = test::off_default_surface(entry.kind);
       model.body.height = height;
       RevolutionRates rates;
       rates.u = 0.6;
@@ -164,13 +157,7 @@ TEST(EmbeddedDynamics, ChartFlowPushesForwardToTheEmbeddedField) {
 
 // WS2 (rigid, spring, oblate spheroid): the embedded rigid field and the path's geodesic curvature.
 TEST(EmbeddedDynamics, WorkedNumbersWS2Rigid) {
-  RevolutionModel model;
-  model.surface.kind = RevolutionKind::spheroid;
-  model.surface.equatorial_radius = 2.0;
-  model.surface.polar_radius = 1.0;
-  model.body.mass = 1.0;
-  model.body.inertia = inertia_matrix(0.5, 0.0, 0.5);
-  model.body.height = SpringPotential{0.7};
+  const RevolutionModel model = test::ws2_model();
   const RevolutionImplicit spheroid(model.surface);
   const EmbeddedModel em{spheroid, model.body};
   EmbeddedRigid Y;

@@ -13,6 +13,7 @@
 #include "engine/invariants.h"
 #include "engine/potentials.h"
 #include "engine/validation.h"
+#include "engine/worked_examples.h"
 #include "test_support.h"
 
 namespace spinfold {
@@ -20,13 +21,7 @@ namespace {
 
 // A breathing ellipse on S² under radial + abc potentials, det L = 1.1·0.6 = 0.66, λ̇μ + λμ̇ = 0.
 Scene incompressible_scene() {
-  Scene s;
-  s.surface = {SurfaceKind::sphere, 1.5};
-  s.body = {1.0, 0.4, BodyModel::incompressible};
-  s.potential.radial = RadialPotential{0.05};
-  s.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
-  s.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.3, 0.0};
-  s.initial.mu_dot = -s.initial.lambda_dot * s.initial.mu / s.initial.lambda;
+  Scene s = incompressible_w5_scene();
   s.integrator = {"split6", 0.05, 1e-10};
   return s;
 }

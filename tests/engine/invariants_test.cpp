@@ -118,12 +118,6 @@ TEST(AngularMomentum, FarOutOnH2MatchesThePolarFormula) {
   EXPECT_GT(checked, 100);
 }
 
-}  // namespace
-}  // namespace spinfold
-
-namespace spinfold {
-namespace {
-
 // Where the curvature varies the internal motion is the flat one in a transported frame
 // (physics-surfaces.md §4), so physics.md §6's C_x and C_y separate there too: each is conserved
 // along a run, stepped in full or orbit-only (the closed form), and C_x + C_y is the deformation

@@ -12,18 +12,7 @@ namespace {
 Scene scene_on(SurfaceKind kind) {
   Scene s;
   s.surface = {kind, 1.5};
-  s.initial.r = 1.2;
-  s.initial.phi = 0.3;
-  s.initial.alpha = 0.1;
-  s.initial.beta = -0.4;
-  s.initial.lambda = 1.1;
-  s.initial.mu = 0.6;
-  s.initial.r_dot = 0.2;
-  s.initial.phi_dot = -0.3;
-  s.initial.alpha_dot = 0.5;
-  s.initial.beta_dot = 0.25;
-  s.initial.lambda_dot = 0.05;
-  s.initial.mu_dot = -0.02;
+  s.initial = {1.2, 0.3, 0.1, -0.4, 1.1, 0.6, 0.2, -0.3, 0.5, 0.25, 0.05, -0.02};
   return s;
 }
 

@@ -59,13 +59,7 @@ TEST(RevolutionChart, WorkedNumbersWS1Friction) {
 
 // WS2: oblate spheroid a = 2, b = 1; rigid m = 1, J = diag(0.5, 0.5), λ₀ = 1 (I = 1), spring k = 0.7.
 TEST(RevolutionChart, WorkedNumbersWS2Rigid) {
-  RevolutionModel model;
-  model.surface.kind = RevolutionKind::spheroid;
-  model.surface.equatorial_radius = 2.0;
-  model.surface.polar_radius = 1.0;
-  model.body.mass = 1.0;
-  model.body.inertia = inertia_matrix(0.5, 0.0, 0.5);
-  model.body.height = SpringPotential{0.7};
+  const RevolutionModel model = test::ws2_model();
   const ProfilePoint p = spheroid_entry.profile(model.surface, 1.0);
   const ProfileMetric m = profile_metric(p);
   EXPECT_NEAR(p.K, 0.284208011477352, 1e-15);
@@ -125,14 +119,7 @@ TEST(RevolutionChart, SpheroidWithEqualRadiiIsTheSphere) {
 TEST(RevolutionChart, EmbeddingRoundTrip) {
   RevolutionModel model = ws1_model();
   for (const RevolutionEntry& entry : revolution_catalog()) {
-    model.surface.kind = entry.kind;
-    model.surface.tube_radius = 0.8;
-    model.surface.center_radius = 2.0;
-    model.surface.equatorial_radius = 1.5;
-    model.surface.polar_radius = 0.9;
-    model.surface.height = 1.2;
-    model.surface.width = 0.8;
-    model.surface.neck_radius = 0.7;
+    model.surface = test::off_default_surface(entry.kind);
     RevolutionRates rates = ws1_rates();
     const RevolutionCoords w = revolution_coords(model, rates);
     const RevolutionCoords back = chart_of(model, embed(model, w));

@@ -33,6 +33,33 @@ inline RevolutionModel ws1_model() {
   return model;
 }
 
+// A surface of the given kind with every kind's parameters set off their defaults (each kind reads its
+// own): the tests that loop over revolution_catalog().
+inline RevolutionSurface off_default_surface(RevolutionKind kind) {
+  RevolutionSurface s;
+  s.kind = kind;
+  s.tube_radius = 0.8;
+  s.center_radius = 2.0;
+  s.equatorial_radius = 1.5;
+  s.polar_radius = 0.9;
+  s.height = 1.2;
+  s.width = 0.8;
+  s.neck_radius = 0.7;
+  return s;
+}
+
+// §11's WS2: oblate spheroid a = 2, b = 1; rigid m = 1, J = diag(0.5, 0.5), spring k = 0.7.
+inline RevolutionModel ws2_model() {
+  RevolutionModel model;
+  model.surface.kind = RevolutionKind::spheroid;
+  model.surface.equatorial_radius = 2.0;
+  model.surface.polar_radius = 1.0;
+  model.body.mass = 1.0;
+  model.body.inertia = inertia_matrix(0.5, 0.0, 0.5);
+  model.body.height = SpringPotential{0.7};
+  return model;
+}
+
 inline RevolutionRates ws1_rates() {
   RevolutionRates r;
   r.u = 0.7;

@@ -22,18 +22,7 @@ Scene deforming(SurfaceKind kind, double R) {
   Scene s;
   s.surface = {kind, R};
   s.body = {1.3, 0.3, BodyModel::affine};
-  s.initial.r = 1.1;
-  s.initial.phi = 0.2;
-  s.initial.alpha = 0.3;
-  s.initial.beta = -0.4;
-  s.initial.lambda = 1.4;
-  s.initial.mu = 0.6;
-  s.initial.r_dot = 0.2;
-  s.initial.phi_dot = 0.5;
-  s.initial.alpha_dot = 0.6;
-  s.initial.beta_dot = -0.2;
-  s.initial.lambda_dot = 0.1;
-  s.initial.mu_dot = -0.05;
+  s.initial = {1.1, 0.2, 0.3, -0.4, 1.4, 0.6, 0.2, 0.5, 0.6, -0.2, 0.1, -0.05};
   s.integrator = {"dop853", 0.01, 1e-12};
   return s;
 }
@@ -323,12 +312,6 @@ TEST(Rk4, FourthOrderOnTheSpinningCircle) {
     previous = err;
   }
 }
-
-}  // namespace
-}  // namespace spinfold
-
-namespace spinfold {
-namespace {
 
 // A free-ish body whose frame passes det L = 0 about once a second (abc with C > 0, A = B = 0:
 // L oscillates through the degenerate set).

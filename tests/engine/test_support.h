@@ -8,6 +8,7 @@
 #include "engine/invariants.h"
 #include "engine/scene.h"
 #include "engine/simulation.h"
+#include "engine/worked_examples.h"
 
 namespace spinfold::test {
 
@@ -53,17 +54,7 @@ inline Scene degenerate_crossing_scene() {
   return s;
 }
 
-// physics.md W5 (the preset separable_radial_abc): a radial potential and the abc deformation
-// potential on the sphere of radius 1.5, started at r = 1.2.
-inline Scene w5_scene() {
-  Scene s;
-  s.surface = {SurfaceKind::sphere, 1.5};
-  s.body = {1.0, 0.4, BodyModel::affine};
-  s.potential.radial = RadialPotential{0.05};
-  s.potential.deformation = AbcPotential{0.02, 0.4, 0.3};
-  s.initial = {1.2, 0.0, 0.0, 0.0, 1.1, 0.6, 0.1, 0.4, 0.5, 0.2, 0.0, 0.05};
-  return s;
-}
+using spinfold::w5_scene;  // engine/worked_examples.h
 
 // Two states with the same time, chart, coordinates (bit for bit) and status.
 inline bool same_bits(const State& a, const State& b) {

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "engine/chart.h"
+#include "tests/render/views/view_test_support.h"
 
 namespace spinfold::render {
 namespace {
@@ -18,11 +19,7 @@ Snapshot body_at(SurfaceKind kind, double R, double r, double phi, double lambda
   Snapshot s;
   s.surface = {kind, R};
   const ChartPoint p = chart_point(s.surface, r, phi);
-  BodySnapshot& b = s.bodies.emplace_back();
-  b.X = p.X;
-  b.e[0] = lambda * p.E1;
-  b.e[1] = mu * p.E2;
-  b.gram << lambda * lambda, 0.0, 0.0, mu * mu;
+  testing::add_body(s, p.X, p.E1, p.E2, lambda, mu);
   return s;
 }
 

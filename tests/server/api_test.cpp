@@ -1208,12 +1208,6 @@ TEST_F(Api, ABadTimelineIsRefusedNamingTheEntry) {
   EXPECT_EQ(json::parse(c.Get("/api/v1/health")->body)["sessions"], 0);  // nothing left behind
 }
 
-}  // namespace
-}  // namespace spinfold::server
-
-namespace spinfold::server {
-namespace {
-
 // Companions through the API: created from a preset, carried through a PATCH of the main body (the
 // geodesic companion inherits the mass), replayed from scene + timeline to the same state and
 // frame bytes; a bad companion is 422 naming its path, and the session is unchanged.
@@ -1269,12 +1263,6 @@ TEST_F(Api, CompanionsThroughPostPatchAndTimelineReplay) {
   remove(id);
   remove(rebuilt["id"]);
 }
-
-}  // namespace
-}  // namespace spinfold::server
-
-namespace spinfold::server {
-namespace {
 
 // frame.jpg is the same picture as frame.png within JPEG's error, in a third of the bytes; it has
 // its own ETag per quality, and the same state gives the same bytes.

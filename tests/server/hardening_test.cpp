@@ -24,6 +24,8 @@
 // After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
 #include <httplib.h>
 
+#include "test_server.h"
+
 namespace spinfold::server {
 namespace {
 
@@ -32,31 +34,8 @@ using Clock = std::chrono::steady_clock;
 
 // ---- In-process servers.
 
-class TestServer {
- public:
-  explicit TestServer(ServerOptions options) : api_(std::move(options)) {
-    port_ = api_.bind();
-    EXPECT_GT(port_, 0);
-    thread_ = std::thread([this] { api_.listen(); });
-  }
-  ~TestServer() {
-    api_.stop();
-    thread_.join();
-  }
-  int port() const { return port_; }
-  // A client; with `address`, every request says X-Forwarded-For: address.
-  httplib::Client client(const std::string& address = "") const {
-    httplib::Client c("127.0.0.1", port_);
-    c.set_read_timeout(30, 0);
-    if (!address.empty()) c.set_default_headers({{"X-Forwarded-For", address}});
-    return c;
-  }
-
- private:
-  ApiServer api_;
-  std::thread thread_;
-  int port_ = 0;
-};
+using test::connect_loopback;
+using test::TestServer;
 
 // Small quotas, behind a trusted proxy (127.0.0.1): each test speaks for its own addresses.
 ServerOptions small_quotas(const std::string& trusted_proxy) {
@@ -98,7 +77,7 @@ class Hardening : public ::testing::Test {
 TestServer* Hardening::server_ = nullptr;
 
 TEST_F(Hardening, SessionsPerClientAddress) {
-  auto a = server_->client("10.0.1.1");
+  auto a = server_->client_from("10.0.1.1");
   std::vector<std::string> ids;
   for (int i = 0; i < 3; ++i) {
     auto res = a.Post("/api/v1/sessions", kScene, "application/json");
@@ -109,7 +88,7 @@ TEST_F(Hardening, SessionsPerClientAddress) {
   }
   expect_over_quota(a.Post("/api/v1/sessions", kScene, "application/json"), "max_sessions_per_client");
   // Another address is served; a session's id works for anyone who has it.
-  auto b = server_->client("10.0.1.2");
+  auto b = server_->client_from("10.0.1.2");
   auto other = b.Post("/api/v1/sessions", kScene, "application/json");
   ASSERT_TRUE(other);
   EXPECT_EQ(other->status, 201);
@@ -120,12 +99,13 @@ TEST_F(Hardening, SessionsPerClientAddress) {
   ASSERT_TRUE(again);
   EXPECT_EQ(again->status, 201);
   ids[0] = json::parse(again->body)["id"];
-  for (const std::string& id : ids) server_->client("10.0.1.3").Delete("/api/v1/sessions/" + id);
-  server_->client("10.0.1.3").Delete("/api/v1/sessions/" + json::parse(other->body)["id"].get<std::string>());
+  for (const std::string& id : ids) server_->client_from("10.0.1.3").Delete("/api/v1/sessions/" + id);
+  server_->client_from("10.0.1.3")
+      .Delete("/api/v1/sessions/" + json::parse(other->body)["id"].get<std::string>());
 }
 
 TEST_F(Hardening, StreamsPerClientAddress) {
-  auto setup = server_->client("10.0.2.9");
+  auto setup = server_->client_from("10.0.2.9");
   const std::string id = json::parse(setup.Post("/api/v1/sessions", kScene, "application/json")->body)["id"];
   const std::string path = "/api/v1/sessions/" + id + "/events?rate=20";
   std::atomic<bool> done{false};
@@ -134,7 +114,7 @@ TEST_F(Hardening, StreamsPerClientAddress) {
   for (int i = 0; i < 2; ++i)
     streams.emplace_back([&] {
       bool counted = false;
-      server_->client("10.0.2.1").Get(path, [&](const char*, std::size_t) {
+      server_->client_from("10.0.2.1").Get(path, [&](const char*, std::size_t) {
         if (!counted) counted = true, ++connected;
         return !done.load();
       });
@@ -142,10 +122,10 @@ TEST_F(Hardening, StreamsPerClientAddress) {
   for (int wait = 0; wait < 500 && connected < 2; ++wait)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   ASSERT_EQ(connected, 2);
-  expect_over_quota(server_->client("10.0.2.1").Get(path), "max_streams_per_client");
+  expect_over_quota(server_->client_from("10.0.2.1").Get(path), "max_streams_per_client");
   // Another address gets its stream.
   std::atomic<bool> other{false};
-  server_->client("10.0.2.2").Get(path, [&](const char*, std::size_t) {
+  server_->client_from("10.0.2.2").Get(path, [&](const char*, std::size_t) {
     other = true;
     return false;
   });
@@ -155,7 +135,7 @@ TEST_F(Hardening, StreamsPerClientAddress) {
   // Closed streams give their places back (the server notices at its next write).
   bool reopened = false;
   for (int attempt = 0; attempt < 50 && !reopened; ++attempt) {
-    server_->client("10.0.2.1").Get(path, [&](const char*, std::size_t) {
+    server_->client_from("10.0.2.1").Get(path, [&](const char*, std::size_t) {
       reopened = true;
       return false;
     });
@@ -166,7 +146,7 @@ TEST_F(Hardening, StreamsPerClientAddress) {
 }
 
 TEST_F(Hardening, RequestRatePerClientAddress) {
-  auto a = server_->client("10.0.3.1");
+  auto a = server_->client_from("10.0.3.1");
   int served = 0;
   std::optional<httplib::Result> refused;
   for (int i = 0; i < 40 && !refused; ++i) {
@@ -182,7 +162,7 @@ TEST_F(Hardening, RequestRatePerClientAddress) {
   EXPECT_GE(served, 12);
   EXPECT_LE(served, 14);
   expect_over_quota(*refused, "requests_per_second_per_client");
-  EXPECT_EQ(server_->client("10.0.3.2").Get("/api/v1/health")->status, 200);
+  EXPECT_EQ(server_->client_from("10.0.3.2").Get("/api/v1/health")->status, 200);
   // The bucket refills at the rate.
   std::this_thread::sleep_for(std::chrono::milliseconds(600));
   EXPECT_EQ(a.Get("/api/v1/health")->status, 200);
@@ -211,20 +191,20 @@ TEST(HardeningUntrusted, ForwardedForIsIgnoredUnlessThePeerIsTheProxy) {
     TestServer server(small_quotas(proxy));
     std::vector<std::string> ids;
     for (int i = 0; i < 3; ++i) {
-      auto res =
-          server.client("10.0.4." + std::to_string(i)).Post("/api/v1/sessions", kScene, "application/json");
+      auto res = server.client_from("10.0.4." + std::to_string(i))
+                     .Post("/api/v1/sessions", kScene, "application/json");
       ASSERT_TRUE(res);
       ASSERT_EQ(res->status, 201) << res->body;
       ids.push_back(json::parse(res->body)["id"]);
     }
-    auto over = server.client("10.0.4.99").Post("/api/v1/sessions", kScene, "application/json");
+    auto over = server.client_from("10.0.4.99").Post("/api/v1/sessions", kScene, "application/json");
     expect_over_quota(over, "max_sessions_per_client");
     EXPECT_NE(problem_of(over)["detail"].get<std::string>().find("127.0.0.1"), std::string::npos);
   }
 }
 
 TEST_F(Hardening, UnknownAndMalformedIdsAreTheOne404) {
-  auto c = server_->client("10.0.5.1");
+  auto c = server_->client_from("10.0.5.1");
   for (const std::string id : {"AAAAAAAAAAAAAAAAAAAAAA", "0123456789abcdef", "a"}) {
     auto res = c.Get("/api/v1/sessions/" + id);
     ASSERT_TRUE(res);
@@ -241,7 +221,7 @@ TEST_F(Hardening, UnknownAndMalformedIdsAreTheOne404) {
 }
 
 TEST_F(Hardening, SecurityHeadersOnTheUiAndItsFiles) {
-  auto c = server_->client("10.0.6.1");
+  auto c = server_->client_from("10.0.6.1");
   for (const char* path : {"/", "/main.js", "/style.css", "/api/v1/health"}) {
     auto res = c.Get(path);
     ASSERT_TRUE(res);
@@ -273,17 +253,6 @@ TEST(HardeningEmbed, FrameAncestorsAreTheConfiguredOrigins) {
 }
 
 // ---- Idle and slow connections.
-
-// A TCP connection to the server on 127.0.0.1.
-int connect_loopback(int port) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(static_cast<std::uint16_t>(port));
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  EXPECT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
-  return fd;
-}
 
 // A connection that has sent the start of a request line and goes on sending it a byte at a time.
 int trickling_connection(int port) {
@@ -754,12 +723,6 @@ TEST_F(Framing, WellFramedRequestsAreServed) {
   EXPECT_EQ(raw_request(server_->port(), "TRACE /nothing HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n").status, 404);
   c.Delete("/api/v1/sessions/" + id);
 }
-
-}  // namespace
-}  // namespace spinfold::server
-
-namespace spinfold::server {
-namespace {
 
 // A second server cannot bind a port in use (httplib's default SO_REUSEPORT would let it, and the
 // two would silently share the connections).

@@ -107,27 +107,9 @@ struct ResponseReader {
   }
 };
 
-// A socket connected to the test server.
-int connect_to(int port) {
-  const int sock = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(static_cast<std::uint16_t>(port));
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  EXPECT_EQ(::connect(sock, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
-  return sock;
-}
-
 class Live : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    ServerOptions options;
-    options.port = 0;
-    options.threads = 16;
-    options.render_threads = 2;
-    options.limits.requests_per_second_per_client = 0.0;
-    server_.start(options);
-  }
+  static void SetUpTestSuite() { server_.start(test::suite_options(16, 2)); }
   static void TearDownTestSuite() { server_.stop(); }
   static httplib::Client client() { return server_.client(30); }
   static std::string create() {
@@ -147,7 +129,7 @@ class Live : public ::testing::Test {
     std::atomic<bool> stopping{false};
     int sock;
     std::thread thread;
-    explicit Watch(const std::string& path) : sock(connect_to(server_.port())) {
+    explicit Watch(const std::string& path) : sock(test::connect_loopback(server_.port())) {
       const std::string request = "GET " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n";
       EXPECT_EQ(::send(sock, request.data(), request.size(), 0), static_cast<ssize_t>(request.size()));
       thread = std::thread([this] {

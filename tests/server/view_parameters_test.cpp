@@ -34,11 +34,7 @@ constexpr long long kPixels = 512LL * 512;
 class ViewParameterTable : public ::testing::Test {
  protected:
   static ServerOptions options() {
-    ServerOptions options;
-    options.port = 0;
-    options.threads = 4;
-    options.render_threads = 1;
-    options.limits.requests_per_second_per_client = 0.0;
+    ServerOptions options = test::suite_options(4, 1);
     options.limits.max_image_side = kSide;
     options.limits.max_image_pixels = kPixels;
     return options;

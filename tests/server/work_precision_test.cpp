@@ -27,14 +27,7 @@ const std::string kPath = "/api/v1/work-precision";
 
 class WorkPrecision : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    ServerOptions options;
-    options.port = 0;
-    options.threads = 8;
-    options.render_threads = 1;
-    options.limits.requests_per_second_per_client = 0.0;
-    server_.start(options);
-  }
+  static void SetUpTestSuite() { server_.start(test::suite_options(8, 1)); }
   static void TearDownTestSuite() { server_.stop(); }
   static httplib::Client client() { return server_.client(60); }
   static httplib::Result post(const json& body) {

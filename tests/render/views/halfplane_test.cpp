@@ -10,18 +10,15 @@
 namespace spinfold::render {
 namespace {
 
-const ViewModel& halfplane() {
-  return view_model(ViewKind::halfplane);
-}
-
 TEST(HalfPlaneView, ThePoleGoesToIAndDistancesAreThoseOfTheHalfPlaneMetric) {
   const Surface h2{SurfaceKind::pseudosphere, 0.8};
-  const glm::dvec3 pole = halfplane().world_position(h2, chart_point(h2, 0.0, 0.0).X);
+  const glm::dvec3 pole = view_model(ViewKind::halfplane).world_position(h2, chart_point(h2, 0.0, 0.0).X);
   EXPECT_NEAR(pole.x, 0.0, 1e-15);
   EXPECT_NEAR(pole.y, 1.0, 1e-15);
   // cosh(d/R) = 1 + |a − b|²/(2 a_y b_y).
   const Vec3 A = chart_point(h2, 0.7, 0.4).X, B = chart_point(h2, 2.1, 2.9).X;
-  const glm::dvec2 a(halfplane().world_position(h2, A)), b(halfplane().world_position(h2, B));
+  const glm::dvec2 a(view_model(ViewKind::halfplane).world_position(h2, A)),
+      b(view_model(ViewKind::halfplane).world_position(h2, B));
   EXPECT_GT(a.y, 0.0);
   EXPECT_GT(b.y, 0.0);
   const double d = testing::geodesic_distance(h2, A, B);
@@ -34,7 +31,7 @@ TEST(HalfPlaneView, TheWindowScalesWithItsCentresHeightSoThePictureIsTheSameAtAn
   for (const double y : {0.01, 1.0, 300.0}) {
     view.target = std::array<double, 3>{2.0, y, 0.0};
     FrameScene scene;
-    scene.view_projection = halfplane().camera(view);
+    scene.view_projection = view_model(ViewKind::halfplane).camera(view);
     EXPECT_NEAR(pixel_position(scene, view, {2.0, y, 0.0})->y, 240.0, 1e-3) << y;
     EXPECT_NEAR(pixel_position(scene, view, {2.0, 0.0, 0.0})->y, 240.0 * (1.0 + 1.0 / 1.08), 1e-3) << y;
   }
@@ -47,7 +44,7 @@ TEST(HalfPlaneView, AimingCentresALoneBodyAtItsOwnHeight) {
     view.kind = ViewKind::halfplane;
     aim_camera_at_body(view, s);
     ASSERT_TRUE(view.target);
-    const glm::dvec2 body(halfplane().world_position(s.surface, s.bodies[0].X));
+    const glm::dvec2 body(view_model(ViewKind::halfplane).world_position(s.surface, s.bodies[0].X));
     EXPECT_DOUBLE_EQ((*view.target)[1], body.y) << r;  // the main body's height, never lower
     EXPECT_NEAR((*view.target)[0], body.x, 0.3 * body.y) << r;
   }

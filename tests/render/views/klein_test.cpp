@@ -10,15 +10,11 @@
 namespace spinfold::render {
 namespace {
 
-const ViewModel& klein() {
-  return view_model(ViewKind::klein);
-}
-
 TEST(KleinView, AtDistanceRAPointLiesAtTanhRAndIsThePoincarePointDoubled) {
   const Surface h2{SurfaceKind::pseudosphere, 1.3};
   for (const double r : {0.2, 1.0, 4.0}) {  // [radii]
     const Vec3 X = chart_point(h2, r * h2.radius, 2.2).X;
-    const glm::dvec3 k = klein().world_position(h2, X);
+    const glm::dvec3 k = view_model(ViewKind::klein).world_position(h2, X);
     EXPECT_NEAR(glm::length(k), std::tanh(r), 1e-12) << r;
     // k = 2p/(1 + |p|²) of the Poincaré disk's p.
     const glm::dvec2 p(world_position(h2, ViewKind::disk, X));

@@ -10,13 +10,10 @@
 namespace spinfold::render {
 namespace {
 
-const ViewModel& plane() {
-  return view_model(ViewKind::plane);
-}
-
 TEST(PlaneView, PointsAreTheirOwnCoordinatesInRadii) {
   const Surface flat{SurfaceKind::plane, 2.0};
-  EXPECT_EQ(plane().world_position(flat, Vec3(3.0, -1.0, 0.0)), glm::dvec3(1.5, -0.5, 0.0));
+  EXPECT_EQ(view_model(ViewKind::plane).world_position(flat, Vec3(3.0, -1.0, 0.0)),
+            glm::dvec3(1.5, -0.5, 0.0));
 }
 
 TEST(PlaneView, ItHasNoStaticGeometryAndItsBackgroundIsDrawnPerFrameOnlyForItsLayers) {
@@ -44,7 +41,7 @@ TEST(PlaneView, AimingCentresTheWindowOnTheBodies) {
   view.kind = ViewKind::plane;
   aim_camera_at_body(view, s);
   ASSERT_TRUE(view.target);
-  const glm::dvec3 a = plane().world_position(s.surface, s.bodies[0].X);
+  const glm::dvec3 a = view_model(ViewKind::plane).world_position(s.surface, s.bodies[0].X);
   EXPECT_NEAR((*view.target)[0], 0.5 * (a.x - 2.0), 1e-12);
   EXPECT_NEAR((*view.target)[1], 0.5 * (a.y + 1.0), 1e-12);
 }

@@ -12,17 +12,22 @@
 
 namespace spinfold::render::testing {
 
+// A body at X whose frame is e₁ = λE₁, e₂ = μE₂ (L = diag(λ, μ) in the frame (E₁, E₂)).
+inline void add_body(Snapshot& s, const Vec3& X, const Vec3& E1, const Vec3& E2, double lambda, double mu) {
+  BodySnapshot& b = s.bodies.emplace_back();
+  b.X = X;
+  b.e[0] = lambda * E1;
+  b.e[1] = mu * E2;
+  b.gram << lambda * lambda, 0.0, 0.0, mu * mu;
+}
+
 // A body at chart point (r, φ) [radii, rad] with L = diag(λ, μ) in the paper's frame.
 inline Snapshot body_at(SurfaceKind kind, double R, double r, double phi, double lambda = 1.0,
                         double mu = 1.0) {
   Snapshot s;
   s.surface = {kind, R};
   const ChartPoint p = chart_point(s.surface, r * R, phi);
-  BodySnapshot& b = s.bodies.emplace_back();
-  b.X = p.X;
-  b.e[0] = lambda * p.E1;
-  b.e[1] = mu * p.E2;
-  b.gram << lambda * lambda, 0.0, 0.0, mu * mu;
+  add_body(s, p.X, p.E1, p.E2, lambda, mu);
   return s;
 }
 
@@ -32,11 +37,7 @@ inline Snapshot body_on(SurfaceKind kind, double u, double phi, double lambda = 
   Snapshot s;
   s.surface.kind = kind;
   const RevolutionFrame f = revolution_frame(revolution_surface(s.surface), u, phi);
-  BodySnapshot& b = s.bodies.emplace_back();
-  b.X = f.X;
-  b.e[0] = lambda * f.E1;
-  b.e[1] = mu * f.E2;
-  b.gram << lambda * lambda, 0.0, 0.0, mu * mu;
+  add_body(s, f.X, f.E1, f.E2, lambda, mu);
   return s;
 }
 

@@ -23,6 +23,8 @@
 // After Eigen (through the server's headers): httplib.h brings <resolv.h>'s `_res` macro.
 #include <httplib.h>
 
+#include "tests/server/test_server.h"
+
 namespace spinfold::server {
 namespace {
 
@@ -76,11 +78,7 @@ TEST(Recordings, PassingTheDiskAllowanceFailsWithTheReasonAndOldOnesAreDeleted) 
 class Recording : public ::testing::TestWithParam<std::string> {
  protected:
   static ServerOptions options() {
-    ServerOptions options;
-    options.port = 0;
-    options.threads = 8;
-    options.render_threads = 2;
-    options.limits.requests_per_second_per_client = 0.0;
+    ServerOptions options = test::suite_options(8, 2);
     options.limits.max_steps = 3000;
     options.limits.max_recording_frames = 120;
     options.limits.max_recording_pixels = 128 * 96;
