@@ -105,6 +105,14 @@ std::vector<std::string> sample_column_names() {
   return all;
 }
 
+std::vector<std::string> expand_field(std::string_view name, std::span<const std::string> names) {
+  std::vector<std::string> out;
+  for (const std::string& n : names)
+    if (n == name || (n.size() > name.size() && n.starts_with(name) && n[name.size()] == '.'))
+      out.push_back(n);
+  return out;
+}
+
 std::map<std::string, ordered_json> flatten_sample(const ordered_json& sample) {
   std::map<std::string, ordered_json> out;
   for (auto it = sample.begin(); it != sample.end(); ++it) {
@@ -156,7 +164,7 @@ std::string SampleTable::csv_header() const {
   std::string line;
   for (const std::string& name : header()) {
     if (!line.empty()) line += ',';
-    line += csv_quote(name);
+    line += csv_name(name);
   }
   return line + "\n";
 }
@@ -225,7 +233,8 @@ SampleTable make_sample_table(std::string_view fields, const ordered_json& first
       const std::string name(fields.substr(start, end - start));
       start = end + 1;
       if (name.empty()) continue;
-      if (std::find(known.begin(), known.end(), name) == known.end())
+      const std::vector<std::string> selected = expand_field(name, known);
+      if (selected.empty())
         throw std::invalid_argument("unknown field '" + name + "' (the names: " + [&] {
           std::string all;
           for (const std::string& k : known) {
@@ -234,7 +243,7 @@ SampleTable make_sample_table(std::string_view fields, const ordered_json& first
           }
           return all;
         }() + ")");
-      table.columns.push_back(name);
+      table.columns.insert(table.columns.end(), selected.begin(), selected.end());
     }
     if (table.columns.empty()) throw std::invalid_argument("no field named (give a comma-separated list)");
   }
@@ -246,11 +255,16 @@ SampleTable make_sample_table(std::string_view fields, const ordered_json& first
 
 std::string samples_csv(std::span<const ordered_json> samples, const SampleTable& table,
                         std::span<const std::string> comment) {
-  std::string csv;
+  std::string csv = table.csv_header();
   for (const std::string& line : comment) csv += "# " + line + "\n";
-  csv += table.csv_header();
   for (const ordered_json& s : samples) csv += table.csv_row(s);
   return csv;
+}
+
+std::string csv_name(std::string_view name) {
+  std::string text(name);
+  std::replace(text.begin(), text.end(), '.', '_');
+  return csv_quote(text);
 }
 
 std::string csv_cell(const ordered_json& value) {

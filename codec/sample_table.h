@@ -3,6 +3,11 @@
 // sample's nested values are flattened with dots (X.0, L.0.1, actions.J_r, frequencies.r); a null
 // value (undefined at a pole, lost far out on H²; the reason is in the JSON sample's "undefined") is
 // an empty cell, which NumPy's genfromtxt and pandas read as NaN.
+//
+// A CSV file is read as it is by numpy.genfromtxt(f, delimiter=",", names=True, comments="#") and
+// pandas.read_csv(f, comment="#"): the column names are its first line, with each dot written '_'
+// (X_0, L_0_1, initial_spin: numpy drops dots from names), and the provenance comes after them as
+// '#' lines (numpy takes the names from the first line, commented or not).
 #pragma once
 
 #include <map>
@@ -24,6 +29,12 @@ std::span<const std::string> sample_value_names();
 std::span<const std::string> sample_text_names();
 // Every column name a table accepts: the values, then the rest.
 std::vector<std::string> sample_column_names();
+
+// The columns a name selects: itself when it is a column, a vector's or matrix's components or a
+// group's members when it names one ("X": X.0, X.1, X.2; "L": L.0.0 … L.1.1; "L.1": L.1.0, L.1.1;
+// "actions": actions.J_r …), in the table's order; none for an unknown name. `names` is the
+// vocabulary (sample_column_names(), or a part of it).
+std::vector<std::string> expand_field(std::string_view name, std::span<const std::string> names);
 
 // The sample's values by flattened name (objects by key, arrays by index); "events" becomes the
 // count of events and "undefined" the names joined by ';'. Companions are left out.
@@ -53,7 +64,7 @@ std::vector<FieldError> companion_label_errors(const Scene& scene);
 // labels. Throws std::invalid_argument "unknown field 'x' (…)" naming the first unknown one.
 SampleTable make_sample_table(std::string_view fields, const nlohmann::ordered_json& first_sample);
 
-// The samples as CSV: `comment` lines (each prefixed "# "), the header, one row per sample.
+// The samples as CSV: the header, `comment` lines (each prefixed "# "), one row per sample.
 std::string samples_csv(std::span<const nlohmann::ordered_json> samples, const SampleTable& table,
                         std::span<const std::string> comment = {});
 
@@ -61,6 +72,8 @@ std::string samples_csv(std::span<const nlohmann::ordered_json> samples, const S
 // double), text as is (quoted per RFC 4180 when it holds a comma or quote; a line break becomes a space so
 // that one row is one line), null empty.
 std::string csv_cell(const nlohmann::ordered_json& value);
+// A column's name in a CSV header: the name with each '.' written '_' (quoted per RFC 4180 if need be).
+std::string csv_name(std::string_view name);
 std::string csv_quote(std::string_view text);
 
 }  // namespace spinfold

@@ -116,8 +116,8 @@ ls "$tmp"/out/shard-{0,1,2,3}.csv >/dev/null || fail "a shard is missing"
 # shellcheck disable=SC2086  # a list of arguments
 "$spinfold" sweep $sweep_args --quiet --out "$tmp/single.csv"
 
-# The same rows: all but the last column (seconds) and the header's command line.
-strip() { grep -v '^# command:' "$1" | sed 's/,[^,]*$//'; }
+# The same rows: all but the last column (seconds) and the header's command lines (the merge adds one).
+strip() { grep -v -e '^# command:' -e '^# merge:' "$1" | sed 's/,[^,]*$//'; }
 if ! diff <(strip "$tmp/single.csv") <(strip "$tmp/merged.csv") >"$tmp/diff.log"; then
   fail "merged shards differ from the single-process sweep"
 fi

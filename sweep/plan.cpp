@@ -23,13 +23,13 @@ std::vector<Column> parse_columns(const std::string& list, Door door) {
     if (f.empty()) continue;
     const bool drift = f.starts_with("drift.");
     const std::string key = drift ? f.substr(6) : f;
-    const bool known = std::find(names.begin(), names.end(), key) != names.end() ||
-                       (!drift && (key == "integrator" || key == "status_detail"));
-    if (!known)
+    std::vector<std::string> keys = expand_field(key, names);  // X: X.0, X.1, X.2
+    if (!drift && (key == "integrator" || key == "status_detail")) keys = {key};
+    if (keys.empty())
       throw SweepError(
           option_name(door, "--fields") + ": unknown field '" + f + "' (" +
           (door == Door::cli ? "see `spinfold sweep --list-fields`" : "see spinfold.sweep_fields()") + ")");
-    columns.push_back({f, drift, key});
+    for (const std::string& k : keys) columns.push_back({drift ? "drift." + k : k, drift, k});
   }
   return columns;
 }

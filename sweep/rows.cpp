@@ -68,14 +68,15 @@ std::string header_text(const Plan& plan, Format format, Shard shard, const std:
     h["sweep"]["base"] = base_provenance(plan);
     return h.dump() + "\n";
   }
-  std::string h = "# spinfold sweep " + version_line() + "\n# command: " + command +
-                  "\n# runs: " + std::to_string(plan.total) + "\n# definition: " + definition_hash(plan) +
-                  "\n# shard: " + shard_text + "\n# base: " + base_provenance(plan).dump() + "\n";
+  // The names first (numpy.genfromtxt takes them from the first line), then the provenance.
+  std::string h;
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (i) h += ',';
-    h += csv_quote(names[i]);
+    h += csv_name(names[i]);
   }
-  return h + "\n";
+  return h + "\n# spinfold sweep " + version_line() + "\n# command: " + command +
+         "\n# runs: " + std::to_string(plan.total) + "\n# definition: " + definition_hash(plan) +
+         "\n# shard: " + shard_text + "\n# base: " + base_provenance(plan).dump() + "\n";
 }
 
 std::string row_text(const Row& row, Format format) {

@@ -1,5 +1,6 @@
 #include "sweep/shard.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
@@ -38,7 +39,8 @@ std::vector<std::size_t> shard_runs(std::size_t total, Shard shard) {
 namespace {
 
 struct ShardFile {
-  std::vector<std::string> header;  // CSV: the comment lines and the column line; JSON Lines: one
+  std::vector<std::string> header;  // CSV: the column line and the comment lines; JSON Lines: one
+  std::string command;              // the sweep's command that wrote it
   std::map<std::size_t, std::string> rows;
   Shard shard{0, 0};
   std::size_t total = 0;
@@ -56,14 +58,17 @@ ShardFile read_shard(const std::string& path, bool jsonl) {
   const std::string text = read_text(path);
   ShardFile f;
   std::size_t pos = 0;
-  bool columns_seen = false;  // CSV: comment lines, then the column names, then rows
+  // CSV: the column names, the comment lines, then rows (files of an older version: the comment lines
+  // first); JSON Lines: the header object, then rows.
+  bool columns_seen = false;
   while (pos < text.size()) {
     const std::size_t end = text.find('\n', pos);
     if (end == std::string::npos) break;  // a line cut short by a kill: not a row
     const std::string line = text.substr(pos, end - pos);
     pos = end + 1;
-    const bool header = jsonl ? f.header.empty() : !columns_seen;
-    if (!jsonl && !line.starts_with("#")) columns_seen = true;
+    const bool comment = !jsonl && line.starts_with("#");
+    const bool header = jsonl ? f.header.empty() : comment || !columns_seen;
+    if (!jsonl && !comment) columns_seen = true;
     if (header) {
       if (jsonl) {
         const json h = json::parse(line, nullptr, false);
@@ -72,6 +77,7 @@ ShardFile read_shard(const std::string& path, bool jsonl) {
         f.shard = parse_shard(h["sweep"].value("shard", ""));
         f.total = h["sweep"].value("runs", std::size_t{0});
         json canonical = h;
+        f.command = h["sweep"].value("command", "");
         canonical["sweep"].erase("command");
         canonical["sweep"].erase("shard");
         f.header.push_back(canonical.dump());
@@ -82,6 +88,7 @@ ShardFile read_shard(const std::string& path, bool jsonl) {
         f.total = std::strtoull(line.c_str() + 8, nullptr, 10);
         f.header.push_back(line);
       } else if (line.starts_with("# command: ")) {
+        f.command = line.substr(11);
         f.header.push_back("# command");
       } else {
         f.header.push_back(line);
@@ -140,6 +147,10 @@ void merge_shards(const std::vector<std::string>& paths, const std::string& out,
     throw SweepError("--merge: runs missing (" + missing + (count == 10 ? ", ..." : "") + ") of " +
                      std::to_string(total) + ": give every shard's complete output");
 
+  // The sweep's own command (shard 0's, or the lowest given) stays; the merge's is added.
+  const ShardFile& first =
+      *std::min_element(shards.begin(), shards.end(),
+                        [](const ShardFile& a, const ShardFile& b) { return a.shard.index < b.shard.index; });
   FILE* file = std::fopen(out.c_str(), "w");
   if (!file) throw SweepError("--out: cannot write '" + out + "'");
   if (jsonl) {
@@ -148,7 +159,8 @@ void merge_shards(const std::vector<std::string>& paths, const std::string& out,
     ojson o;
     o["sweep"] = {{"version", h["sweep"]["version"]},
                   {"commit", h["sweep"]["commit"]},
-                  {"command", command},
+                  {"command", first.command},
+                  {"merge", command},
                   {"runs", h["sweep"]["runs"]},
                   {"definition", h["sweep"]["definition"]},
                   {"shard", "0/1"},
@@ -157,7 +169,7 @@ void merge_shards(const std::vector<std::string>& paths, const std::string& out,
     std::fputs((o.dump() + "\n").c_str(), file);
   } else {
     for (const std::string& line : shards[0].header) {
-      const std::string text = line == "# command" ? "# command: " + command
+      const std::string text = line == "# command" ? "# command: " + first.command + "\n# merge: " + command
                                : line == "# shard" ? "# shard: 0/1"
                                                    : line;
       std::fputs((text + "\n").c_str(), file);

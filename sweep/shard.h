@@ -19,7 +19,8 @@ Shard parse_shard(const std::string& text);
 std::vector<std::size_t> shard_runs(std::size_t total, Shard shard);
 
 // Joins the shard outputs at `paths` (all CSV or all JSON Lines, as `out`) into `out`: the header
-// with `command` and shard 0/1, then every run's row in order. SweepError "--merge: …" for another
+// with the sweep's own command (shard 0's), the merge's `command` beside it and shard 0/1, then every
+// run's row in order. SweepError "--merge: …" for another
 // sweep's shard, a shard given twice, a row outside its shard, or runs missing (named).
 void merge_shards(const std::vector<std::string>& paths, const std::string& out, const std::string& command);
 

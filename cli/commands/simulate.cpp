@@ -76,14 +76,15 @@ int simulate(SimulateOptions opt) {
     out = std::fopen(opt.out.c_str(), "w");
     if (!out) throw BadInput{"--out: cannot write '" + opt.out + "'"};
   }
-  // Line by line: a run killed at a cluster's time limit leaves whole lines only.
+  // Line by line: a run killed at a cluster's time limit leaves whole lines (but for one cut in its write).
   std::setvbuf(out, nullptr, _IOLBF, 1 << 16);
   const auto write = [&](const std::string& line) { std::fputs(line.c_str(), out); };
 
   const nlohmann::ordered_json provenance = provenance_json(scene, opt.scene.command);
   if (csv) {
-    write("# spinfold simulate " + version_line() + "\n# provenance: " + provenance.dump() + "\n");
+    // The names first (numpy.genfromtxt takes them from the first line), then the provenance.
     write(table.csv_header());
+    write("# spinfold simulate " + version_line() + "\n# provenance: " + provenance.dump() + "\n");
   } else {
     write(nlohmann::ordered_json{{"provenance", provenance}}.dump() + "\n");
   }

@@ -11,6 +11,7 @@
 #include "codec/sample_json.h"
 #include "codec/sample_table.h"
 #include "codec/scene_json.h"
+#include "engine/number_rule.h"
 #include "engine/number_text.h"
 #include "engine/timeline.h"
 #include "server/context.h"
@@ -94,9 +95,9 @@ void create_session(ServerContext& server, const Call& call, httplib::Response& 
   const json timeline = link ? body.value("timeline", json::array()) : json::array();
   if (link && body.contains("until")) {
     until = number_field(body, "until");
-    if (until < 0.0 || until > limits.max_advance_time)
-      throw bad(422, "Invalid value", "until", body["until"].dump(),
-                "must be from 0 to " + shortest(limits.max_advance_time));
+    const NumberRule rule{.range = {.min = 0.0, .max = limits.max_advance_time}, .unit = "time"};
+    if (const auto why = refusal(rule, until))
+      throw bad(422, "Invalid value", "until", body["until"].dump(), *why);
   }
   std::string id;
   const auto session = server.sessions.create(scene, id);
@@ -188,8 +189,8 @@ double advance_target(const json& body, const Session& s, const Limits& limits) 
                 "is before the session's time (t = " + shortest(now) + ")");
   } else {
     const double steps = number_field(body, "steps");
-    if (steps < 1 || steps != std::floor(steps))
-      throw bad(422, "Invalid value", "steps", body["steps"].dump(), "must be a whole number >= 1");
+    if (const auto why = refusal({.whole = true, .range = {.min = 1.0}}, steps))
+      throw bad(422, "Invalid value", "steps", body["steps"].dump(), *why);
     if (steps > static_cast<double>(limits.max_steps))
       throw bad(422, "Over a limit", "steps", body["steps"].dump(),
                 "exceeds the limit of " + shortest(static_cast<long long>(limits.max_steps)) +

@@ -44,7 +44,8 @@ std::vector<std::string> split(const std::string& line, char sep) {
   return cells;
 }
 
-// A CSV sweep output: the column names and the rows as name → cell (no quoted cells in these tests).
+// A CSV sweep output: the column names (dots written '_') and the rows as name → cell (no quoted cells
+// in these tests).
 struct Table {
   std::vector<std::string> header_comments;
   std::vector<std::string> columns;
@@ -86,11 +87,12 @@ json preset(const std::string& name) {
 }
 
 // The last sample `simulate` printed, flattened as the sweep names its fields.
+// A sample's values by their CSV column names (nested keys joined with '_', as the CSV header writes them).
 void flatten(const json& j, const std::string& prefix, std::map<std::string, json>& out) {
   if (j.is_object())
-    for (auto it = j.begin(); it != j.end(); ++it) flatten(it.value(), prefix + it.key() + ".", out);
+    for (auto it = j.begin(); it != j.end(); ++it) flatten(it.value(), prefix + it.key() + "_", out);
   else if (j.is_array())
-    for (size_t i = 0; i < j.size(); ++i) flatten(j[i], prefix + std::to_string(i) + ".", out);
+    for (size_t i = 0; i < j.size(); ++i) flatten(j[i], prefix + std::to_string(i) + "_", out);
   else
     out[prefix.substr(0, prefix.size() - 1)] = j;
 }
@@ -108,10 +110,10 @@ void expect_rows_equal_simulate(const Table& table, const std::string& base_pres
     json scene = preset(base_preset);
     std::string integrator_flag;
     for (const auto& [name, value] : row) {
-      if (name == "initial.r") scene["initial"]["r"] = std::stod(value);
-      if (name == "initial.phi_dot") scene["initial"]["phi_dot"] = std::stod(value);
-      if (name == "integrator.tolerance") scene["integrator"]["tolerance"] = std::stod(value);
-      if (name == "integrator.name") integrator_flag = " --integrator " + value;
+      if (name == "initial_r") scene["initial"]["r"] = std::stod(value);
+      if (name == "initial_phi_dot") scene["initial"]["phi_dot"] = std::stod(value);
+      if (name == "integrator_tolerance") scene["integrator"]["tolerance"] = std::stod(value);
+      if (name == "integrator_name") integrator_flag = " --integrator " + value;
     }
     const fs::path scene_file = dir / ("scene_" + row.at("index") + ".json");
     std::ofstream(scene_file) << scene.dump();
@@ -141,9 +143,9 @@ void expect_rows_equal_simulate(const Table& table, const std::string& base_pres
     flatten(samples.front(), "", first);
     flatten(samples.back(), "", last);
     for (const std::string& column : table.columns) {
-      if (column == "index" || column.starts_with("initial.") || column.starts_with("integrator.")) continue;
+      if (column == "index" || column.starts_with("initial_") || column.starts_with("integrator_")) continue;
       const std::string& cell = row.at(column);
-      if (column.starts_with("drift.")) {
+      if (column.starts_with("drift_")) {
         const std::string key = column.substr(6);
         EXPECT_EQ(cell, json(last[key].get<double>() - first[key].get<double>()).dump()) << column;
       } else if (last.count(column)) {
@@ -170,12 +172,12 @@ TEST(Sweep, RowsAreTheSameRunsAsSimulateToTheBit) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Table table = read_csv(slurp(dir.path / "rows.csv"));
   ASSERT_EQ(table.rows.size(), 15u);
-  EXPECT_EQ(table.columns[1], "integrator.name");
-  EXPECT_EQ(table.columns[2], "initial.r");
+  EXPECT_EQ(table.columns[1], "integrator_name");
+  EXPECT_EQ(table.columns[2], "initial_r");
   // Cartesian product, the last field varying fastest; a:b:n ends at b exactly.
-  EXPECT_EQ(table.rows[0].at("integrator.name"), "dop853");
-  EXPECT_EQ(table.rows[2].at("initial.r"), "1.1");
-  EXPECT_EQ(table.rows[3].at("integrator.name"), "gauss6");
+  EXPECT_EQ(table.rows[0].at("integrator_name"), "dop853");
+  EXPECT_EQ(table.rows[2].at("initial_r"), "1.1");
+  EXPECT_EQ(table.rows[3].at("integrator_name"), "gauss6");
   for (size_t i = 0; i < table.rows.size(); ++i) {
     EXPECT_EQ(table.rows[i].at("index"), std::to_string(i));
     EXPECT_EQ(table.rows[i].at("status"), "ok");
@@ -204,10 +206,13 @@ std::string without_timing(const std::string& text, bool jsonl) {
   std::string result;
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) {
-    if (line.starts_with("# command:")) continue;
+    if (line.starts_with("# command:") || line.starts_with("# merge:")) continue;
     if (jsonl) {
       json j = json::parse(line);
-      if (j.contains("sweep")) j["sweep"].erase("command");
+      if (j.contains("sweep")) {
+        j["sweep"].erase("command");
+        j["sweep"].erase("merge");
+      }
       j.erase("seconds");
       result += j.dump() + "\n";
     } else {
@@ -236,6 +241,17 @@ TEST(Sweep, ShardsMergeIntoTheRowsOfOneProcess) {
     ASSERT_EQ(merged.exit_code, 0) << merged.err;
     const std::string expected = without_timing(slurp(dir.path / ("whole." + ext)), ext == "jsonl");
     EXPECT_EQ(without_timing(slurp(dir.path / ("merged." + ext)), ext == "jsonl"), expected);
+    // The merged output keeps the sweep's own command (shard 0's) and adds the merge's.
+    const std::string merged_text = slurp(dir.path / ("merged." + ext));
+    if (ext == "jsonl") {
+      const json h = json::parse(merged_text.substr(0, merged_text.find('\n')))["sweep"];
+      EXPECT_NE(h["command"].get<std::string>().find("--shard 0/3"), std::string::npos) << h.dump();
+      EXPECT_NE(h["merge"].get<std::string>().find("--merge"), std::string::npos) << h.dump();
+    } else {
+      EXPECT_NE(merged_text.find("\n# command: "), std::string::npos);
+      EXPECT_NE(merged_text.find("--shard 0/3 "), std::string::npos) << merged_text;
+      EXPECT_NE(merged_text.find("\n# merge: "), std::string::npos) << merged_text;
+    }
     // CSV: version, runs, definition, shard and base lines (the command aside), the header, 10 rows.
     EXPECT_EQ(std::count(expected.begin(), expected.end(), '\n'), ext == "csv" ? 5 + 1 + 10 : 1 + 10);
     // A missing shard is refused, naming the runs missing.
@@ -361,9 +377,9 @@ TEST(Sweep, AnyVocabularyFieldCanBeVaried) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Table t = read_csv(r.out);
   ASSERT_EQ(t.rows.size(), 12u);
-  EXPECT_EQ(t.columns[1], "surface.curvature");
-  EXPECT_EQ(t.columns[2], "potential.radial.gamma");
-  EXPECT_EQ(t.columns[3], "body.inertia");
+  EXPECT_EQ(t.columns[1], "surface_curvature");
+  EXPECT_EQ(t.columns[2], "potential_radial_gamma");
+  EXPECT_EQ(t.columns[3], "body_inertia");
   std::set<std::string> energies;
   for (const auto& row : t.rows) {
     EXPECT_EQ(row.at("status"), "ok") << row.at("index") << " " << row.at("detail");
@@ -388,8 +404,8 @@ TEST(Sweep, EveryListedFieldIsAColumnAndNoProgressOffATerminal) {
   const Table t = read_csv(r.out);
   ASSERT_EQ(t.rows.size(), 2u);
   EXPECT_EQ(t.columns.size(), 1u + 1u + count + 5u);
-  EXPECT_NE(t.rows[0].at("actions.J_r"), "");
-  EXPECT_NE(t.rows[0].at("drift.energy"), "");
+  EXPECT_NE(t.rows[0].at("actions_J_r"), "");
+  EXPECT_NE(t.rows[0].at("drift_energy"), "");
 }
 
 TEST(Sweep, AKilledSweepLeavesWholeLines) {

@@ -98,8 +98,8 @@ TEST(SampleTable, OneColumnBlockPerCompanionNamedByItsLabel) {
   const std::vector<std::string> lines =
       lines_of(samples_csv(samples, table, std::vector<std::string>{"hello"}));
   ASSERT_EQ(lines.size(), 4u);
-  EXPECT_EQ(lines[0], "# hello");
-  EXPECT_EQ(lines[1], "t,r,status,\"s = -1, mirrored.t\",\"s = -1, mirrored.r\",\"s = -1, mirrored.status\"");
+  EXPECT_EQ(lines[0], "t,r,status,\"s = -1, mirrored_t\",\"s = -1, mirrored_r\",\"s = -1, mirrored_status\"");
+  EXPECT_EQ(lines[1], "# hello");
   EXPECT_EQ(lines[3].rfind("1.0,", 0), 0u) << lines[3];
   EXPECT_NE(lines[3].find("," + nlohmann::json(samples[1]["companions"][0]["r"]).dump() + ","),
             std::string::npos);
@@ -125,6 +125,23 @@ TEST(SampleTable, UnknownFieldsAreRefusedByName) {
   EXPECT_EQ(make_sample_table("", sample).columns, without({"u", "u_dot", "p_u", "K"}));
   const Simulation torus = start_simulation(*parse_scene_text(R"({"surface": {"kind": "torus"}})").scene);
   EXPECT_EQ(make_sample_table("", sample_to_json(torus, -1.0)).columns, without({"r", "r_dot", "p_r"}));
+}
+
+// A vector, a matrix, a matrix's row or a group names its components (issue 35: `--fields X` was
+// refused, only X.0,X.1,X.2 accepted); a name that is a prefix of a name but not a group is not one.
+TEST(SampleTable, AVectorOrGroupNameSelectsItsComponents) {
+  Simulation run = preset_run("spinning_rigid_sphere");
+  const ordered_json sample = sample_to_json(run, -1.0);
+  EXPECT_EQ(make_sample_table("t,X", sample).columns, (std::vector<std::string>{"t", "X.0", "X.1", "X.2"}));
+  EXPECT_EQ(make_sample_table("L.1,frequencies", sample).columns,
+            (std::vector<std::string>{"L.1.0", "L.1.1", "frequencies.r", "frequencies.phi", "frequencies.x",
+                                      "frequencies.y"}));
+  EXPECT_THROW(make_sample_table("X.", sample), std::invalid_argument);
+  EXPECT_THROW(make_sample_table("energy_", sample), std::invalid_argument);  // a prefix, not a group
+  // the cells are the components' own
+  const auto cells = make_sample_table("X", sample).row(sample);
+  ASSERT_EQ(cells.size(), 3u);
+  EXPECT_EQ(cells[2], sample["X"][2]);
 }
 
 TEST(SampleTable, CellsNeverBreakALine) {

@@ -327,13 +327,22 @@ TEST_F(Api, SessionLifecycle) {
   auto steps = c.Post("/api/v1/sessions/" + id + "/advance", R"({"steps": 10})", "application/json");
   ASSERT_TRUE(steps);
   EXPECT_NEAR(json::parse(steps->body)["state"]["t"].get<double>(), 2.1, 1e-12);  // 10 × dt 0.01
+  // A step count that is not a whole number >= 1 is refused in number_rule's words; t is unchanged.
+  for (const char* bad : {R"({"steps": 0})", R"({"steps": 2.5})"}) {
+    auto refused = c.Post("/api/v1/sessions/" + id + "/advance", bad, "application/json");
+    ASSERT_TRUE(refused);
+    EXPECT_EQ(refused->status, 422) << bad;
+    EXPECT_NE(refused->body.find("must be a whole number >= 1"), std::string::npos) << refused->body;
+  }
+  EXPECT_NEAR(json::parse(c.Get("/api/v1/sessions/" + id)->body)["state"]["t"].get<double>(), 2.1, 1e-12);
 
   auto csv = c.Get("/api/v1/sessions/" + id + "/trajectory?format=csv");
   ASSERT_TRUE(csv);
   EXPECT_EQ(csv->get_header_value("Content-Type"), "text/csv");
-  // Two comment lines, the header, and samples at 0, 0.5, …, 2 and the session's 2.1.
+  // The header, two comment lines, and samples at 0, 0.5, …, 2 and the session's 2.1.
   EXPECT_EQ(std::count(csv->body.begin(), csv->body.end(), '\n'), 9) << csv->body;
-  EXPECT_TRUE(csv->body.starts_with("# spinfold trajectory ")) << csv->body.substr(0, 100);
+  EXPECT_TRUE(csv->body.starts_with("t,r,phi,")) << csv->body.substr(0, 100);
+  EXPECT_NE(csv->body.find("\n# spinfold trajectory "), std::string::npos) << csv->body.substr(0, 300);
   auto trajectory = c.Get("/api/v1/sessions/" + id + "/trajectory");
   ASSERT_TRUE(trajectory);
   const json samples = json::parse(trajectory->body);
@@ -386,7 +395,8 @@ TEST_F(Api, TrajectoryRowsDoNotDependOnHowTheSessionWasAdvanced) {
   const SampleTable table = make_sample_table("t,r,phi,X.0,L.1.1,energy_error,events", samples.front());
   std::string rows;
   for (const auto& sample : samples) rows += table.csv_row(sample);
-  EXPECT_TRUE(ta->body.ends_with(table.csv_header() + rows)) << ta->body;
+  EXPECT_TRUE(ta->body.starts_with(table.csv_header())) << ta->body;
+  EXPECT_TRUE(ta->body.ends_with(rows)) << ta->body;
   // Too many samples: 422 naming `every`; an unknown field: 400 naming `fields`.
   auto many = c.Get("/api/v1/sessions/" + a + "/trajectory?every=1e-5");
   EXPECT_EQ(many->status, 422);
@@ -1251,7 +1261,7 @@ TEST_F(Api, CompanionsThroughPostPatchAndTimelineReplay) {
   // The CSV has a column block per body.
   auto csv = c.Get(session + "/trajectory?format=csv");
   ASSERT_EQ(csv->status, 200);
-  EXPECT_NE(csv->body.find("geodesic (s = 0).r,"), std::string::npos) << csv->body.substr(0, 300);
+  EXPECT_NE(csv->body.find("geodesic (s = 0)_r,"), std::string::npos) << csv->body.substr(0, 300);
 
   // A change of companions restarts the run.
   auto restarted = c.Patch(session, R"({"vary": {"field": "initial.spin", "values": [0.5, 2]}})",

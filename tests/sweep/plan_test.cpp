@@ -35,6 +35,21 @@ TEST(SweepPlan, DefaultColumnsAndRunDocuments) {
   EXPECT_EQ(varied_values(plan, 0)[0].first, "initial.r");
 }
 
+// A vector or group in fields (and after drift.) is its components, in the table's order.
+TEST(SweepPlan, AVectorFieldIsItsComponents) {
+  Definition def = definition();
+  def.fields = "X,drift.L.0,integrator";
+  const Plan plan = make_plan(def);
+  std::vector<std::string> names;
+  for (const Column& c : plan.columns) names.push_back(c.name);
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"X.0", "X.1", "X.2", "drift.L.0.0", "drift.L.0.1", "integrator"}));
+  EXPECT_EQ(plan.columns[3].key, "L.0.0");
+  EXPECT_TRUE(plan.columns[3].drift);
+  def.fields = "X.";
+  EXPECT_NE(error_of(def).find("unknown field 'X.'"), std::string::npos) << error_of(def);
+}
+
 // On a torus: the default columns are its chart's (u, and K), a field of the other family is
 // refused with its axis before any run, and the torus's own parameters sweep.
 TEST(SweepPlan, ATorusBaseSweepsItsOwnFields) {

@@ -29,11 +29,15 @@ TEST(SweepRows, ColumnsHeaderAndRows) {
   EXPECT_EQ(column_names(p), (std::vector<std::string>{"index", "integrator.name", "t", "r", "events",
                                                        "status", "detail", "steps", "seconds"}));
   const std::string csv = header_text(p, Format::csv, {1, 2}, "spinfold sweep x");
-  EXPECT_TRUE(csv.starts_with("# spinfold sweep "));
+  // The names first, dots written '_' (numpy.genfromtxt(names=True, comments="#") reads them as they
+  // are), then the provenance as comment lines.
+  EXPECT_TRUE(
+      csv.starts_with("index,integrator_name,t,r,events,status,detail,steps,seconds\n# spinfold sweep "))
+      << csv;
   EXPECT_NE(csv.find("\n# command: spinfold sweep x\n# runs: 2\n# definition: " + definition_hash(p) +
                      "\n# shard: 1/2\n"),
             std::string::npos);
-  EXPECT_TRUE(csv.ends_with("\nindex,integrator.name,t,r,events,status,detail,steps,seconds\n"));
+  EXPECT_TRUE(csv.ends_with("}\n")) << csv;  // the base's provenance is the last line
   const auto jsonl = nlohmann::json::parse(header_text(p, Format::jsonl, {}, "c"));
   EXPECT_EQ(jsonl["sweep"]["runs"], 2);
   EXPECT_EQ(jsonl["sweep"]["shard"], "0/1");

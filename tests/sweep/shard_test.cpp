@@ -51,7 +51,9 @@ TEST(SweepShard, MergedShardsAreTheRowsOfOneOutput) {
   std::ifstream in(dir / "all.csv");
   std::stringstream text;
   text << in.rdbuf();
-  EXPECT_NE(text.str().find("# command: merge\n"), std::string::npos);
+  // The sweep's own command stays (shard 0's), the merge's is added.
+  EXPECT_NE(text.str().find("# command: shard\n# merge: merge\n"), std::string::npos) << text.str();
+  EXPECT_TRUE(text.str().starts_with("index,initial_r,t,")) << text.str();
   EXPECT_NE(text.str().find("# shard: 0/1\n"), std::string::npos);
   EXPECT_TRUE(text.str().ends_with("\n0,0.0\n1,1.0\n2,2.0\n3,3.0\n4,4.0\n")) << text.str();
   EXPECT_NE(error_of([&] {
