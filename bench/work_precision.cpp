@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "bench/bench_scenes.h"
+#include "codec/provenance.h"
 #include "engine/chart.h"
 #include "engine/dynamics.h"
 #include "engine/simulation.h"
@@ -145,8 +146,9 @@ int run_work_precision(const WorkPrecisionOptions& options) {
         << "× | " << best_stepping << " " << wp::format_cost(cost_stepping) << " | "
         << cost_odeint / cost_stepping << "× |\n";
     md << row.str();
-    if (const std::string why =
-            wp::write_plot(dir, bench.name, "work-precision: " + bench.name, curves, t_end);
+    if (const std::string why = wp::write_plot(
+            dir, bench.name, "work-precision: " + bench.name,
+            provenance_json(bench.scene, "spinfold-bench work-precision").dump(), curves, t_end);
         !why.empty())
       std::cerr << "  no plot: " << why << "\n";
   }

@@ -108,13 +108,15 @@ int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
                                      " characteristic periods of " + period_text.str() + ")"
                                : " (" + std::to_string(static_cast<int>(wp::kDefaultPeriods)) +
                                      " time units: the motion has no characteristic period)");
-  const std::string header =
-      "# spinfold work-precision " + version_line() + "\n# command: " + spinfold::command_line(argc, argv) +
-      "\n# provenance: " + provenance_json(scene, "").dump() + "\n# scene: " + label + "; " + horizon +
-      "\n# reference: " + reference.kind + ": " + reference.description + "\n# " + wp::kErrorMeaning + "\n";
+  const std::string command = spinfold::command_line(argc, argv);
+  const std::string provenance = provenance_json(scene, command).dump();
+  const std::string header = "# spinfold work-precision " + version_line() + "\n# command: " + command +
+                             "\n# provenance: " + provenance + "\n# scene: " + label + "; " + horizon +
+                             "\n# reference: " + reference.kind + ": " + reference.description + "\n# " +
+                             wp::kErrorMeaning + "\n";
   std::ofstream(fs::path(opt.out) / "work_precision.csv") << wp::csv(header, curves);
   const std::string plot =
-      wp::write_plot(opt.out, "work_precision", "work-precision: " + label, curves, t_end);
+      wp::write_plot(opt.out, "work_precision", "work-precision: " + label, provenance, curves, t_end);
 
   std::ostringstream md;
   md << "# Work-precision: " << label << "\n\n"
@@ -133,7 +135,8 @@ int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
   for (const auto& [method, curve] : curves)
     md << "| " << method << " | " << wp::format_cost(wp::cost_at(curve, opt.target_error)) << " |\n";
   md << "\nEvery point:\n\n" << wp::points_table(curves);
-  std::ofstream(fs::path(opt.out) / "summary.md") << md.str();
+  // The file starts with the provenance as a comment (not rendered; the CSV header's lines).
+  std::ofstream(fs::path(opt.out) / "summary.md") << "<!--\n" << header << "-->\n" << md.str();
   std::cout << md.str();
   return 0;
 }

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "codec/provenance.h"
 #include "codec/scene_json.h"
 #include "engine/chart.h"
 #include "engine/exact_solution.h"
@@ -458,13 +459,14 @@ bool drawn(const Point& p) {
 // The gnuplot script of the same plot, with the data inline: `gnuplot <stem>.gp` in its folder draws
 // <stem>.svg and <stem>.png again in gnuplot (an export for whoever edits the plot there; nothing
 // here runs gnuplot).
-std::string gnuplot_script(const std::string& stem, const std::string& title, const Curves& curves,
-                           double t_end) {
+std::string gnuplot_script(const std::string& stem, const std::string& title, const std::string& provenance,
+                           const Curves& curves, double t_end) {
   const auto quote_safe = [](std::string text) {  // gnuplot's single-quoted strings have no escape
     std::ranges::replace(text, '\'', '"');
     return text;
   };
   std::ostringstream gp;
+  gp << "# spinfold work-precision " << version_line() << "\n# provenance: " << provenance << "\n";
   gp << "# Re-plot with `gnuplot " << stem << ".gp` in this folder: draws " << stem << ".svg and " << stem
      << ".png.\n";
   std::string plot;
@@ -496,12 +498,12 @@ std::string gnuplot_script(const std::string& stem, const std::string& title, co
 
 }  // namespace
 
-render::FigurePage plot_page(const std::string& title, const Curves& curves, double t_end,
-                             const PlotLayout& layout) {
+render::FigurePage plot_page(const std::string& title, const std::string& provenance, const Curves& curves,
+                             double t_end, const PlotLayout& layout) {
   render::CurvesPlot plot{.x_title = "state error at T = " + sci(t_end, 4),
                           .y_title = "wall time per unit simulated time [s]",
                           .title = title,
-                          .metadata = title,
+                          .metadata = provenance,
                           .width = layout.width,
                           .plot_height = layout.plot_height,
                           .legend_below = layout.key_below};
@@ -516,10 +518,11 @@ render::FigurePage plot_page(const std::string& title, const Curves& curves, dou
 }
 
 std::string write_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,
-                       const Curves& curves, double t_end, const PlotLayout& layout) {
+                       const std::string& provenance, const Curves& curves, double t_end,
+                       const PlotLayout& layout) {
   render::FigurePage page;
   try {
-    page = plot_page(title, curves, t_end, layout);
+    page = plot_page(title, provenance, curves, t_end, layout);
   } catch (const std::invalid_argument& e) {
     return e.what();
   }
@@ -531,7 +534,7 @@ std::string write_plot(const std::filesystem::path& dir, const std::string& stem
   try {
     if (!write(stem + ".svg", render::draw_figure(page, render::FigureFormat::svg)) ||
         !write(stem + ".png", render::raster_figure(page, layout.pixels_per_point)) ||
-        !write(stem + ".gp", gnuplot_script(stem, title, curves, t_end)))
+        !write(stem + ".gp", gnuplot_script(stem, title, provenance, curves, t_end)))
       return "cannot write the plot's files in " + dir.string();
   } catch (const std::exception& e) {
     return std::string("the plot was not drawn: ") + e.what();

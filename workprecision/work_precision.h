@@ -132,15 +132,18 @@ struct PlotLayout {
 };
 
 // The plot (state error against wall time per unit simulated time, both logarithmic; one line per
-// method, the runs that stopped left out; methods outside the catalog dashed) as a figure page;
+// method, the runs that stopped left out; methods outside the catalog dashed) as a figure page whose
+// metadata is `provenance` (codec/provenance.h's JSON: the PNG's Source chunk, the SVG's <metadata>);
 // std::invalid_argument("no run finished: nothing to plot") when no run has a point to draw.
-render::FigurePage plot_page(const std::string& title, const Curves& curves, double t_end,
-                             const PlotLayout& layout = {});
+render::FigurePage plot_page(const std::string& title, const std::string& provenance, const Curves& curves,
+                             double t_end, const PlotLayout& layout = {});
 
 // Writes <stem>.svg and <stem>.png (plot_page, drawn by cairo in-process) and <stem>.gp in `dir`: a
-// gnuplot script with the data inline, an export for whoever re-plots in gnuplot (never run here).
-// Returns "" or why no image was drawn (no run finished, a file that cannot be written).
+// gnuplot script with the data inline and the provenance as comment lines, an export for whoever
+// re-plots in gnuplot (never run here). Returns "" or why no image was drawn (no run finished, a file
+// that cannot be written).
 std::string write_plot(const std::filesystem::path& dir, const std::string& stem, const std::string& title,
-                       const Curves& curves, double t_end, const PlotLayout& layout = {});
+                       const std::string& provenance, const Curves& curves, double t_end,
+                       const PlotLayout& layout = {});
 
 }  // namespace spinfold::work_precision

@@ -31,8 +31,9 @@ std::string describe_source(const WorkPrecisionJob& job) {
 void draw_plot(const WorkPrecisionJob& job, WorkPrecisionResult& result) {
   const wp::PlotLayout layout{.width = 300, .plot_height = 220, .pixels_per_point = 2.0, .key_below = true};
   try {
-    const render::FigurePage page =
-        wp::plot_page("work-precision: " + describe_source(job), result.curves, job.t_end, layout);
+    const render::FigurePage page = wp::plot_page(
+        "work-precision: " + describe_source(job),
+        provenance_json(job.scene, "POST /api/v1/work-precision").dump(), result.curves, job.t_end, layout);
     const std::vector<std::uint8_t> svg = render::draw_figure(page, render::FigureFormat::svg);
     const std::vector<std::uint8_t> png = render::raster_figure(page, layout.pixels_per_point);
     result.svg.assign(svg.begin(), svg.end());

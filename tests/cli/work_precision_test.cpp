@@ -147,9 +147,36 @@ TEST(WorkPrecision, UserSceneGivesCsvPlotsAndARecommendation) {
   std::string why;
   EXPECT_TRUE(is_svg_xml(read(out / "work_precision.svg"), why)) << why;
   EXPECT_NE(read(out / "work_precision.gp").find("set output 'work_precision.svg'"), std::string::npos);
+  // Every file says where it came from (issue 35): the provenance JSON, with the scene's hash and the
+  // command, in the PNG's Source chunk, the SVG's <metadata>, the script's and the summary's comments.
+  const auto provenance_in = [](const std::string& text, const std::string& before) {
+    const std::size_t at = text.find(before);
+    if (at == std::string::npos) return nlohmann::json();
+    return nlohmann::json::parse(
+        text.substr(at + before.size(),
+                    text.find('}', text.find("\"command\"", at)) + 1 - at - before.size()),
+        nullptr, false);
+  };
+  for (const auto& [file, before] : {std::pair{"work_precision.png", std::string("tEXtSource\0", 11)},
+                                     {"work_precision.svg", "<metadata>"},
+                                     {"work_precision.gp", "# provenance: "},
+                                     {"summary.md", "# provenance: "}}) {
+    const std::string text = read(out / file);
+    std::string unescaped = text;  // the SVG's metadata is XML-escaped
+    for (std::size_t at; (at = unescaped.find("&quot;")) != std::string::npos;)
+      unescaped.replace(at, 6, "\"");
+    const nlohmann::json p = provenance_in(unescaped, before);
+    ASSERT_TRUE(p.is_object()) << file;
+    EXPECT_EQ(p["software"], "spinfold") << file;
+    EXPECT_EQ(p["scene_hash"].get<std::string>().size(), 16u) << file;
+    EXPECT_NE(p["command"].get<std::string>().find("work-precision"), std::string::npos) << file;
+  }
+  EXPECT_TRUE(read(out / "work_precision.gp").starts_with("# spinfold work-precision "));
 
   const std::string summary = read(out / "summary.md");
-  EXPECT_EQ(r.out, summary);
+  // The file: the provenance as an HTML comment (not rendered), then what the command printed.
+  EXPECT_TRUE(summary.starts_with("<!--\n# spinfold work-precision ")) << summary.substr(0, 200);
+  EXPECT_TRUE(summary.ends_with("-->\n" + r.out)) << summary.substr(0, 400);
   EXPECT_NE(summary.find("**Recommendation.** For this scene at error 1e-10 over T = 2: "), std::string::npos)
       << summary;
   EXPECT_NE(summary.find("Reference: oracle"), std::string::npos) << summary;

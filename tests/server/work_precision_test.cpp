@@ -113,6 +113,11 @@ TEST_F(WorkPrecision, AJobOnAUserSceneIsDoneWithFallingErrorsAPlotAndTheCsv) {
   auto png = client().Get(result["plot_png"].get<std::string>());
   ASSERT_EQ(png->status, 200);
   EXPECT_EQ(png->body.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  // Both say where they came from: the provenance JSON (the scene's hash; the route as the command).
+  for (const std::string* body : {&svg->body, &png->body}) {
+    EXPECT_NE(body->find("scene_hash"), std::string::npos) << body->substr(0, 300);
+    EXPECT_NE(body->find("POST /api/v1/work-precision"), std::string::npos);
+  }
   auto csv = client().Get(result["data_csv"].get<std::string>());
   ASSERT_EQ(csv->status, 200);
   EXPECT_EQ(csv->get_header_value("Content-Type"), "text/csv");
