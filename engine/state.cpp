@@ -17,7 +17,7 @@ std::string_view status_name(Status status) {
 
 std::string_view status_description(Status status) {
   switch (status) {
-    case Status::ok: return "running";
+    case Status::ok: return "ok: every step so far passed its checks";
     case Status::non_finite:
       return "stopped: a step produced a number that is not finite; the state is the last good one "
              "(lower dt or the tolerance, or change the parameters)";

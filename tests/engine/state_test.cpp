@@ -34,6 +34,9 @@ TEST(State, EveryStatusHasItsOwnDescription) {
     EXPECT_NE(sentence, status_name(status));
     EXPECT_TRUE(sentences.insert(sentence).second) << sentence;
   }
+  // An ok run's sentence fits a finished run too (a sweep row, simulate's last sample): issue 35
+  // found "running" there.
+  EXPECT_EQ(std::string(status_description(Status::ok)).find("running"), std::string::npos);
 }
 
 // A new state starts at t = 0 in the scene's own chart, ok, with no coordinates yet.
