@@ -5,8 +5,10 @@
 // prints the catalog. Each subcommand is one file, cli/commands/<name>.cpp, and one row of the
 // table below. Bad input: a message on stderr and exit code 2.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <iostream>
 #include <stdexcept>
+#include <string_view>
 #include <vector>
 
 #include "cli/commands/command.h"
@@ -32,6 +34,9 @@ constexpr Registrar kCommands[] = {
     cli::register_scenes,   cli::register_integrators,
 };
 
+// What the full build has beyond the compute-only one: named when asked for on a cluster node's build.
+constexpr std::string_view kFullBuildOnly[] = {"render", "record", "work-precision", "plot", "serve"};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -43,6 +48,16 @@ int main(int argc, char** argv) {
                        [] { return "spinfold " + version_line() + "\n" + cli::gl_version_lines(); });
 #endif
   app.require_subcommand(1);
+#ifdef SPINFOLD_COMPUTE_ONLY
+  if (argc > 1 && std::ranges::find(kFullBuildOnly, std::string_view(argv[1])) != std::end(kFullBuildOnly)) {
+    std::cerr << "spinfold: " << argv[1]
+              << " is not in this build (the compute-only build has simulate, sweep, scenes and integrators: "
+                 "no GL, FFmpeg or HTTP; build without SPINFOLD_COMPUTE_ONLY for it)\n";
+    return cli::kExitBadInput;
+  }
+#else
+  (void)kFullBuildOnly;
+#endif
   std::vector<cli::Command> commands;
   for (const Registrar add : kCommands) commands.push_back(add(app));
 
