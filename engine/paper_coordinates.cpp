@@ -11,24 +11,26 @@ namespace spinfold {
 
 namespace {
 
-// Polar pair of one plane of L's decomposition (physics.md §2): magnitude √2·hypot, angle, rates.
+// Polar pair of one plane of L's decomposition (physics.md §2): the radius hypot(c, s) (the paper's
+// magnitude over √2: (λ − μ)/2 or (λ + μ)/2), the angle, their rates. The radii, not the magnitudes,
+// are summed into λ and μ: a round trip through √2 made λ = 1.1 read 1.1000000000000003.
 struct PolarPart {
-  double magnitude, angle, magnitude_dot, angle_dot;
+  double radius, angle, radius_dot, angle_dot;
   bool angle_defined;
 };
 
 PolarPart polar_part(double c, double s, double c_dot, double s_dot, double scale) {
   const double h = std::hypot(c, s);
   PolarPart p{};
-  p.magnitude = std::numbers::sqrt2 * h;
+  p.radius = h;
   p.angle_defined = h > 1e-12 * scale;
   if (p.angle_defined) {
     p.angle = std::atan2(s, c);
-    p.magnitude_dot = std::numbers::sqrt2 * (c * c_dot + s * s_dot) / h;
+    p.radius_dot = (c * c_dot + s * s_dot) / h;
     p.angle_dot = (c * s_dot - s * c_dot) / (h * h);
   } else {
-    // At magnitude 0 the one-sided rate of the (non-negative) magnitude is √2·|rate|.
-    p.magnitude_dot = std::numbers::sqrt2 * std::hypot(c_dot, s_dot);
+    // At radius 0 the one-sided rate of the (non-negative) radius is |rate|.
+    p.radius_dot = std::hypot(c_dot, s_dot);
   }
   return p;
 }
@@ -47,10 +49,12 @@ void set_internal_coordinates(PaperCoordinates& out, const Mat2& L, const Mat2& 
                                  0.5 * (L_dot(0, 0) - L_dot(1, 1)), 0.5 * (L_dot(0, 1) + L_dot(1, 0)), scale);
   const PolarPart y = polar_part(0.5 * (L(0, 0) + L(1, 1)), 0.5 * (L(1, 0) - L(0, 1)),
                                  0.5 * (L_dot(0, 0) + L_dot(1, 1)), 0.5 * (L_dot(1, 0) - L_dot(0, 1)), scale);
-  out.lambda = (x.magnitude + y.magnitude) / std::numbers::sqrt2;
-  out.mu = (y.magnitude - x.magnitude) / std::numbers::sqrt2;
-  out.lambda_dot = (x.magnitude_dot + y.magnitude_dot) / std::numbers::sqrt2;
-  out.mu_dot = (y.magnitude_dot - x.magnitude_dot) / std::numbers::sqrt2;
+  out.lambda = y.radius + x.radius;
+  // μ = det L / λ: as accurate as the difference of the radii, and the given μ back where L was made
+  // from it (the difference read μ = 0.6 as 0.6000000000000001).
+  out.mu = out.lambda > 0.0 ? L.determinant() / out.lambda : 0.0;
+  out.lambda_dot = y.radius_dot + x.radius_dot;
+  out.mu_dot = y.radius_dot - x.radius_dot;
   out.p_lambda = J * out.lambda_dot;
   out.p_mu = J * out.mu_dot;
   if (!inertia.isotropic && model == BodyModel::affine) {

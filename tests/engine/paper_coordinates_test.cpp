@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "engine/chart.h"
 
 namespace spinfold {
@@ -40,6 +42,27 @@ TEST(PaperCoordinates, ReadBackTheScenesStart) {
     EXPECT_LT((c.X - chart_point(s.surface, i.r, i.phi).X).norm(), 1e-13);
     EXPECT_TRUE(c.undefined.empty());
   }
+}
+
+// A frame started unrotated (α = β = 0) reads its λ and μ back as given, to the bit (issue 35: the
+// decomposition's round trip through √2 read λ = 1.1 as 1.1000000000000003), and within an ulp or two
+// when rotated.
+TEST(PaperCoordinates, LambdaAndMuReadBackAsGiven) {
+  for (const double lambda : {1.1, 0.3, 2.7, 1e-3, 13.0 / 7.0})
+    for (const double mu : {0.6, -0.4, 1e-5, 0.1, lambda}) {
+      if (std::abs(mu) > lambda) continue;
+      Scene s;
+      s.surface = {SurfaceKind::sphere, 1.5};
+      s.initial = {.r = 0.8, .lambda = lambda, .mu = mu};
+      const PaperCoordinates c = paper_coordinates(s, initial_state(s));
+      EXPECT_EQ(c.lambda, lambda) << lambda << " " << mu;
+      EXPECT_EQ(c.mu, mu) << lambda << " " << mu;
+      s.initial.alpha = 0.7;
+      s.initial.beta = -1.9;
+      const PaperCoordinates rotated = paper_coordinates(s, initial_state(s));
+      EXPECT_NEAR(rotated.lambda, lambda, 4e-16 * lambda) << lambda << " " << mu;
+      EXPECT_NEAR(rotated.mu, mu, 4e-16 * lambda) << lambda << " " << mu;
+    }
 }
 
 // λ = μ: L is a rotation times a scale, so only θ = α − β is defined; α and β are named as such.
