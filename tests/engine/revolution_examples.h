@@ -22,42 +22,35 @@ inline Inertia inertia_matrix(double J11, double J12, double J22) {
 }
 
 inline RevolutionModel ws1_model() {
-  RevolutionModel model;
-  model.surface.kind = RevolutionKind::torus;
-  model.surface.tube_radius = 1.0;
-  model.surface.center_radius = 3.0;
-  model.body.mass = 2.0;
-  model.body.inertia = inertia_matrix(0.6, 0.1, 0.4);
-  model.body.height = GravityPotential{0.5};
-  model.body.deformation = AbcPotential{0.01, 0.02, 0.2};
-  return model;
+  return {.surface = {.kind = RevolutionKind::torus, .tube_radius = 1.0, .center_radius = 3.0},
+          .body = {.mass = 2.0,
+                   .inertia = inertia_matrix(0.6, 0.1, 0.4),
+                   .height = GravityPotential{0.5},
+                   .deformation = AbcPotential{0.01, 0.02, 0.2},
+                   .friction = {}}};
 }
 
 // A surface of the given kind with every kind's parameters set off their defaults (each kind reads its
 // own): the tests that loop over revolution_catalog().
 inline RevolutionSurface off_default_surface(RevolutionKind kind) {
-  RevolutionSurface s;
-  s.kind = kind;
-  s.tube_radius = 0.8;
-  s.center_radius = 2.0;
-  s.equatorial_radius = 1.5;
-  s.polar_radius = 0.9;
-  s.height = 1.2;
-  s.width = 0.8;
-  s.neck_radius = 0.7;
-  return s;
+  return {.kind = kind,
+          .tube_radius = 0.8,
+          .center_radius = 2.0,
+          .equatorial_radius = 1.5,
+          .polar_radius = 0.9,
+          .height = 1.2,
+          .width = 0.8,
+          .neck_radius = 0.7};
 }
 
 // §11's WS2: oblate spheroid a = 2, b = 1; rigid m = 1, J = diag(0.5, 0.5), spring k = 0.7.
 inline RevolutionModel ws2_model() {
-  RevolutionModel model;
-  model.surface.kind = RevolutionKind::spheroid;
-  model.surface.equatorial_radius = 2.0;
-  model.surface.polar_radius = 1.0;
-  model.body.mass = 1.0;
-  model.body.inertia = inertia_matrix(0.5, 0.0, 0.5);
-  model.body.height = SpringPotential{0.7};
-  return model;
+  return {.surface = {.kind = RevolutionKind::spheroid, .equatorial_radius = 2.0, .polar_radius = 1.0},
+          .body = {.mass = 1.0,
+                   .inertia = inertia_matrix(0.5, 0.0, 0.5),
+                   .height = SpringPotential{0.7},
+                   .deformation = {},
+                   .friction = {}}};
 }
 
 inline RevolutionRates ws1_rates() {
