@@ -513,11 +513,7 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
   }
   if (!caption.title.empty()) add_lines(caption.title, kTitleSize, true, {0.1, 0.1, 0.1, 1});
   if (!caption.description.empty()) add_lines(caption.description, kCaptionSize, false, {0.1, 0.1, 0.1, 1});
-  std::vector<std::string> lines = snapshot.hud_lines;
-  if (view.layers & kActions)
-    lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
-  if (!snapshot.bodies.empty() && !on_view(snapshot.surface, view.kind, snapshot.bodies.front().X))
-    lines.push_back(std::string(view_model(view.kind).off_view_note()));  // the view's own words
+  std::vector<std::string> lines = readout_lines(snapshot, view);
   std::string view_line = "View: " + std::string(view_info(view.kind).title) + ".";
   if (const std::string grid = view.layers & kGrid ? view_model(view.kind).grid_caption(snapshot, view) : "";
       !grid.empty())

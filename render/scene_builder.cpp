@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <mutex>
 #include <tuple>
@@ -267,6 +268,21 @@ bool on_view(const Surface& surface, ViewKind view, const Vec3& X) {
   return view_model(view).on_view(surface, X);
 }
 
+double drawn_scale(const Surface& surface, const BodySnapshot& body, double scale) {
+  if (surface.kind == SurfaceKind::plane) return scale;
+  // The frame's largest length over a² + b² = 1: √ of the Gram matrix's larger eigenvalue [length].
+  const Mat2& g = body.gram;
+  const double half_trace = 0.5 * (g(0, 0) + g(1, 1)), half_gap = 0.5 * (g(0, 0) - g(1, 1));
+  const double extent = std::sqrt(std::max(0.0, half_trace + std::hypot(half_gap, g(0, 1))));
+  double radius = surface.radius;
+  if (curvature_varies(surface.kind)) {
+    const RevolutionSurface shape = revolution_surface(surface);
+    radius = revolution_entry(shape.kind).picture(shape).feature;
+  }
+  const double limit = kMaxDrawnExtent * radius;
+  return scale * extent > limit ? limit / extent : scale;
+}
+
 std::vector<Vec3> ellipse_points(const Surface& surface, const BodySnapshot& body, double scale, int count) {
   std::vector<Vec3> points;
   points.reserve(count);
@@ -277,19 +293,25 @@ std::vector<Vec3> ellipse_points(const Surface& surface, const BodySnapshot& bod
   return points;
 }
 
-namespace {
-// The HUD's lines: the snapshot's, the action variables' with that layer, and the view's note when
-// the main body is off what it draws (beyond the tractricoid's rim, the bump's or catenoid's piece).
-std::vector<std::string> hud_lines(const Snapshot& snapshot, const ViewOptions& view) {
-  if (!(view.layers & kHud)) return {};
+std::vector<std::string> readout_lines(const Snapshot& snapshot, const ViewOptions& view) {
   std::vector<std::string> lines = snapshot.hud_lines;
   if (view.layers & kActions)
     lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
   if (!snapshot.bodies.empty() && !on_view(snapshot.surface, view.kind, snapshot.bodies.front().X))
     lines.push_back(std::string(view_model(view.kind).off_view_note()));
+  // A frame too large to draw at the picture's scale is drawn smaller: say by how much.
+  if (!snapshot.bodies.empty() && (view.layers & (kBody | kFrame))) {
+    const double shrink =
+        view_model(view.kind).body_drawing_scale(snapshot.surface, snapshot.bodies.front(), view.scale) /
+        view.scale;
+    if (shrink < 1.0) {
+      char text[64];
+      std::snprintf(text, sizeof text, "body 1 drawn at %.2g x its size", shrink);
+      lines.push_back(text);
+    }
+  }
   return lines;
 }
-}  // namespace
 
 FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   FrameScene scene;
@@ -327,7 +349,7 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)) && view.width >= kLegendMinWidth)
     for (const BodySnapshot& body : snapshot.bodies)
       scene.legend.push_back({body.label, rgba(body.color), rgba(body.trail_color), body.geodesic});
-  scene.hud_lines = hud_lines(snapshot, view);
+  if (view.layers & kHud) scene.hud_lines = readout_lines(snapshot, view);
   std::vector<std::string> labels;
   for (const LegendEntry& entry : scene.legend) labels.push_back(entry.label);
   scene.hud = hud_layout(scene.hud_lines, labels, view.width, view.height);
@@ -341,7 +363,9 @@ HudLayout layout_for(const Snapshot& snapshot, const ViewOptions& view) {
   std::vector<std::string> labels;
   if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)) && view.width >= kLegendMinWidth)
     for (const BodySnapshot& body : snapshot.bodies) labels.push_back(body.label);
-  return hud_layout(hud_lines(snapshot, view), labels, view.width, view.height);
+  const std::vector<std::string> lines =
+      view.layers & kHud ? readout_lines(snapshot, view) : std::vector<std::string>{};
+  return hud_layout(lines, labels, view.width, view.height);
 }
 
 }  // namespace

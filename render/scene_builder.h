@@ -158,6 +158,19 @@ std::vector<Vertex> silhouette(const StaticGeometry& g, const FrameScene& scene)
 // they need (the same search then clears the boxes); on the plane, centred on the bodies.
 void aim_camera_at_body(ViewOptions& view, const Snapshot& snapshot);
 
+// The scale a body is drawn at [length per frame unit]: `scale`, or less, so that its ellipse
+// reaches no farther than kMaxDrawnExtent of the surface's curvature radius (R on S² and H², the
+// feature where the curvature varies) from the body: the image of a larger one wraps round the
+// sphere or runs far out on H², a torn polygon (λ = 26 painted the whole sphere). The plane draws
+// any size. Its ratio to `scale` is below 1 for a body drawn smaller than it is (the HUD says so).
+inline constexpr double kMaxDrawnExtent = 0.5;
+double drawn_scale(const Surface& surface, const BodySnapshot& body, double scale);
+
+// The read-out's lines for the HUD and a figure's caption: the snapshot's, the action variables'
+// with that layer, the view's note when the main body is off what it draws (beyond the
+// tractricoid's rim, the bump's or catenoid's piece), and the scale a too-large frame is drawn at.
+std::vector<std::string> readout_lines(const Snapshot& snapshot, const ViewOptions& view);
+
 // Points of a body's ellipse on the surface: exp_X(scale·(cos θ e₁ + sin θ e₂)), embedding
 // coordinates (exposed for tests).
 std::vector<Vec3> ellipse_points(const Surface& surface, const BodySnapshot& body, double scale, int count);

@@ -49,7 +49,8 @@ std::vector<Sight> sights(const ViewModel& model, const Snapshot& snapshot, cons
     if (!model.draws(surface, body.X)) continue;
     const double weight = &body == &snapshot.bodies.front() ? 1000.0 : 50.0;
     out.push_back({model.world_position(surface, body.X), weight});
-    for (const Vec3& P : ellipse_points(surface, body, view.scale, 8))
+    for (const Vec3& P :
+         ellipse_points(surface, body, model.body_drawing_scale(surface, body, view.scale), 8))
       if (model.draws(surface, P)) out.push_back({model.world_position(surface, P), 5.0});
   }
   for (const BodySnapshot& body : snapshot.bodies) {

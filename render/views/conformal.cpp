@@ -277,6 +277,11 @@ class ConformalView final : public ViewModel {
   // Lengths, not R: the picture must not change with K (the dial); a sphere of R = 1e6 would
   // otherwise draw a body the size of a continent.
   double body_scale_length(const Surface& /*surface*/) const override { return 1.0; }
+  // The frame to first order in the flat picture: an ellipse at any size, nothing wraps.
+  double body_drawing_scale(const Surface& /*surface*/, const BodySnapshot& /*body*/,
+                            double scale) const override {
+    return scale;
+  }
   std::string grid_caption(const Snapshot& snapshot, const ViewOptions& /*view*/) const override {
     return "Grid: the image of a square grid of geodesic normal coordinates, every " +
            caption_number("%g", kPlaneGridSpacing * body_scale_length(snapshot.surface)) + " length units.";

@@ -150,10 +150,16 @@ void ViewModel::add_bodies(FrameScene& scene, const Snapshot& snapshot, const Vi
   const Surface& surface = snapshot.surface;
   if (view.layers & kBody)
     for (const BodySnapshot& body : snapshot.bodies)
-      if (draws(surface, body.X)) add_body(scene, surface, *this, view.scale, body);
+      if (draws(surface, body.X))
+        add_body(scene, surface, *this, body_drawing_scale(surface, body, view.scale), body);
   if (view.layers & kFrame)
     for (const BodySnapshot& body : snapshot.bodies)
-      if (draws(surface, body.X)) add_frame_arrows(scene, surface, *this, view.scale, body);
+      if (draws(surface, body.X))
+        add_frame_arrows(scene, surface, *this, body_drawing_scale(surface, body, view.scale), body);
+}
+
+double ViewModel::body_drawing_scale(const Surface& surface, const BodySnapshot& body, double scale) const {
+  return drawn_scale(surface, body, scale);
 }
 
 std::string caption_number(const char* pattern, double value) {

@@ -209,7 +209,7 @@ class RevolutionView final : public ViewModel {
     const BodySnapshot& main = snapshot.bodies.front();
     if (!on_view(surface, main.X)) {
       points = {{world_position(surface, main.X), 1000.0}};
-      for (const Vec3& P : ellipse_points(surface, main, view.scale, 8))
+      for (const Vec3& P : ellipse_points(surface, main, body_drawing_scale(surface, main, view.scale), 8))
         points.push_back({world_position(surface, P), 5.0});
     }
     if (points.empty()) return;

@@ -105,6 +105,10 @@ class ViewModel {
   virtual void add_bodies(FrameScene& scene, const Snapshot& snapshot, const ViewOptions& view) const;
   // The length ViewOptions::scale is given in (body_scale_length).
   virtual double body_scale_length(const Surface& surface) const { return surface.radius; }
+  // The scale a body is drawn at (its ellipse and arrows, and where aiming looks): drawn_scale, a
+  // frame too large for the surface drawn smaller (render/scene_builder.h). A view that draws the
+  // frame to first order in a flat picture draws any size at `scale`.
+  virtual double body_drawing_scale(const Surface& surface, const BodySnapshot& body, double scale) const;
 
   // ---- What a figure's caption says and marks (render/figure.cpp asks; it never switches on views)
   // The caption's sentence on what the grid shows ("" for none); called only with the grid layer.

@@ -50,6 +50,38 @@ TEST(SceneBuilder, EllipseLiesOnTheSurfaceCentredOnTheBodyWithTheAxesOfL) {
   }
 }
 
+// A frame far larger than the surface (issue 35: λ ≈ 26, det L < 0 on the unit sphere painted the
+// sphere orange and tore the outline) is drawn smaller, as an ellipse: its semi-axes in proportion,
+// the larger one kMaxDrawnExtent·R, and the HUD says at what scale. Ordinary bodies and the plane
+// keep the picture's scale.
+TEST(SceneBuilder, AFrameTooLargeForTheSurfaceIsDrawnSmallerAsAnEllipseAndTheHudSaysSo) {
+  const Snapshot s = body_at(SurfaceKind::sphere, 1.0, 1.3, 0.4, 24.0, -5.0);
+  ViewOptions view;
+  view.scale = 0.15;
+  const double drawn = drawn_scale(s.surface, s.bodies[0], view.scale);
+  EXPECT_NEAR(drawn * 24.0, kMaxDrawnExtent, 1e-12);
+  const Vec3& X = s.bodies[0].X;
+  const std::vector<Vec3> points = ellipse_points(s.surface, s.bodies[0], drawn, 64);
+  EXPECT_NEAR(geodesic_distance(s.surface, X, points[0]), kMaxDrawnExtent, 1e-12);
+  EXPECT_NEAR(geodesic_distance(s.surface, X, points[16]), kMaxDrawnExtent * 5.0 / 24.0, 1e-12);
+  for (const Vec3& P : points) EXPECT_LE(geodesic_distance(s.surface, X, P), kMaxDrawnExtent + 1e-12);
+  // Every filled vertex near the body (a chord of at most 2 sin(kMaxDrawnExtent/2), the lift aside).
+  const FrameScene scene = build_scene(s, view);
+  ASSERT_FALSE(scene.fills.empty());
+  const glm::dvec3 at = world_position(s.surface, view.kind, X);
+  for (const auto& v : scene.fills) EXPECT_LT(glm::length(glm::dvec3(v.position) - at), 0.52);
+  EXPECT_NE(std::find(scene.hud_lines.begin(), scene.hud_lines.end(), "body 1 drawn at 0.14 x its size"),
+            scene.hud_lines.end())
+      << scene.hud_lines.back();
+  // A body of ordinary size, and any body on the plane: the picture's scale, and nothing said.
+  const Snapshot ordinary = body_at(SurfaceKind::sphere, 1.0, 1.3, 0.4, 1.5, 0.5);
+  EXPECT_EQ(drawn_scale(ordinary.surface, ordinary.bodies[0], view.scale), view.scale);
+  EXPECT_TRUE(build_scene(ordinary, view).hud_lines.empty() ||
+              build_scene(ordinary, view).hud_lines.back().find("drawn at") == std::string::npos);
+  const Snapshot plane = body_at(SurfaceKind::plane, 1.0, 1.3, 0.4, 24.0, -5.0);
+  EXPECT_EQ(drawn_scale(plane.surface, plane.bodies[0], view.scale), view.scale);
+}
+
 TEST(SceneBuilder, UnselectedLayersCostNothing) {
   const Snapshot s = body_at(SurfaceKind::sphere, 1.0, 1.0, 0.0, 1.0, 1.0);
   ViewOptions view;
