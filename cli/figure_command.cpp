@@ -94,13 +94,16 @@ int plot(const PlotOptions& opt, int argc, char** argv) {
   Simulation run = start_simulation(scene);
   const SampleTable table = make_sample_table(opt.fields, sample_to_json(run, -1.0));
   render::SeriesPlot plot;
-  plot.x_quantity = fields.front();
+  // The axes' titles from the column table (codec/sample_table.h): symbols and units, "ΔH/H₀", "t [time]".
+  plot.x_quantity = column_symbol(fields.front());
   plot.x_unit = column_unit(fields.front());
   plot.width = opt.width;
   plot.panel_height = opt.panel_height;
   for (std::size_t i = 1; i < fields.size(); ++i) {
-    render::PlotPanel panel{
-        fields[i], column_unit(fields[i]), std::find(log.begin(), log.end(), fields[i]) != log.end(), {}};
+    render::PlotPanel panel{column_symbol(fields[i]),
+                            column_unit(fields[i]),
+                            std::find(log.begin(), log.end(), fields[i]) != log.end(),
+                            {}};
     panel.lines.push_back({"body 1", rgba(render::kMainTrailColor), {}});
     for (std::size_t c = 0; c < table.companion_labels.size(); ++c)
       panel.lines.push_back({table.companion_labels[c], rgba(render::companion_color(scene, c)), {}});
@@ -115,10 +118,12 @@ int plot(const PlotOptions& opt, int argc, char** argv) {
     const nlohmann::ordered_json row = table.json_row(sample_to_json(run, reported_until));
     reported_until = run.state.t;
     plot.x.push_back(number(row, fields.front()));
-    for (render::PlotPanel& panel : plot.panels) {
-      panel.lines.front().y.push_back(number(row, panel.quantity));
+    for (std::size_t p = 0; p < plot.panels.size(); ++p) {
+      render::PlotPanel& panel = plot.panels[p];
+      const std::string& field = fields[p + 1];
+      panel.lines.front().y.push_back(number(row, field));
       for (std::size_t c = 0; c < table.companion_labels.size(); ++c)
-        panel.lines[c + 1].y.push_back(number(row, table.companion_labels[c] + "." + panel.quantity));
+        panel.lines[c + 1].y.push_back(number(row, table.companion_labels[c] + "." + field));
     }
   };
   sample_run(
@@ -127,7 +132,7 @@ int plot(const PlotOptions& opt, int argc, char** argv) {
   const std::string command = command_line(argc, argv);
   plot.title = scene.name.empty() ? "Spinfold scene" : scene.name;
   plot.description = scene.description;
-  plot.provenance = provenance_header(scene) + "; command=" + command;
+  if (!opt.no_footer) plot.provenance = provenance_header(scene) + "; command=" + command;
   plot.metadata = provenance_json(scene, command).dump();
   write_bytes(opt.out, render::draw_figure(render::series_page(plot), format));
   return run_exit_code(run.state);
@@ -190,6 +195,9 @@ CLI::App* add_plot_command(CLI::App& app, PlotOptions& opt) {
   cmd->add_option("--width", opt.width, "Figure width [pt]")->capture_default_str();
   cmd->add_option("--panel-height", opt.panel_height, "Height of each panel's plot area [pt]")
       ->capture_default_str();
+  cmd->add_flag(
+      "--no-footer", opt.no_footer,
+      "No provenance line under the figure (a paper's caption says it); it stays in the file's metadata");
   return cmd;
 }
 
@@ -203,44 +211,6 @@ int run_plot_command(const PlotOptions& opt, int argc, char** argv) {
     std::cerr << "spinfold: --fields: " << e.what() << "\n";
     return kExitBadInput;
   }
-}
-
-std::string column_unit(const std::string& column) {
-  static const std::pair<const char*, const char*> kUnits[] = {
-      {"t", "time"},
-      {"r", "length"},
-      {"phi", "rad"},
-      {"alpha", "rad"},
-      {"beta", "rad"},
-      {"theta", "rad"},
-      {"heading", "rad"},
-      {"r_dot", "length/time"},
-      {"speed", "length/time"},
-      {"phi_dot", "rad/time"},
-      {"alpha_dot", "rad/time"},
-      {"beta_dot", "rad/time"},
-      {"theta_dot", "rad/time"},
-      {"lambda_dot", "1/time"},
-      {"mu_dot", "1/time"},
-      {"X.0", "length"},
-      {"X.1", "length"},
-      {"X.2", "length"},
-      {"energy", "energy"},
-      {"energy_orbital", "energy"},
-      {"energy_deformation", "energy"},
-      {"energy_reference_t", "time"},
-      {"spin", "mass·length²/time"},
-      {"vorticity", "mass·length²/time"},
-      {"p_alpha", "mass·length²/time"},
-      {"p_beta", "mass·length²/time"},
-      {"p_phi", "mass·length²/time"},
-      {"p_r", "mass·length/time"},
-  };
-  for (const auto& [name, unit] : kUnits)
-    if (column == name) return unit;
-  if (column.starts_with("frequencies.")) return "1/time";
-  if (column.starts_with("actions.")) return "action";
-  return "";
 }
 
 }  // namespace spinfold::cli

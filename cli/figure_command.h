@@ -50,6 +50,7 @@ struct PlotOptions {
   std::string out;
   double width = 480;         // [pt]
   double panel_height = 120;  // [pt]
+  bool no_footer = false;     // no provenance line on the page (it stays in the file's metadata)
 };
 
 // Registers `plot`; `opt` must outlive the parse.
@@ -58,9 +59,5 @@ CLI::App* add_plot_command(CLI::App& app, PlotOptions& opt);
 // Runs it: 0, 2 for bad input (a message on stderr, nothing written), 3 when the run stopped before
 // t_end (the figure shows what there is).
 int run_plot_command(const PlotOptions& opt, int argc, char** argv);
-
-// The unit of a sample column (codec/sample_table.h) for an axis: "time", "length", "rad", …; "" for
-// a pure number (energy_error is relative).
-std::string column_unit(const std::string& column);
 
 }  // namespace spinfold::cli

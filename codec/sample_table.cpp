@@ -105,6 +105,85 @@ std::vector<std::string> sample_column_names() {
   return all;
 }
 
+namespace {
+
+struct ColumnLabel {
+  std::string_view name, symbol, unit;
+};
+// ̇ (U+0307) puts the dot of a time derivative over the symbol before it.
+constexpr ColumnLabel kColumnLabels[] = {
+    {"t", "t", "time"},
+    {"r", "r", "length"},
+    {"phi", "φ", "rad"},
+    {"alpha", "α", "rad"},
+    {"beta", "β", "rad"},
+    {"theta", "θ", "rad"},
+    {"lambda", "λ", ""},
+    {"mu", "μ", ""},
+    {"r_dot", "r\u0307", "length/time"},
+    {"phi_dot", "φ\u0307", "rad/time"},
+    {"alpha_dot", "α\u0307", "rad/time"},
+    {"beta_dot", "β\u0307", "rad/time"},
+    {"theta_dot", "θ\u0307", "rad/time"},
+    {"lambda_dot", "λ\u0307", "1/time"},
+    {"mu_dot", "μ\u0307", "1/time"},
+    {"p_r", "p_r", "mass·length/time"},
+    {"p_phi", "p_φ", "mass·length²/time"},
+    {"p_alpha", "p_α", "mass·length²/time"},
+    {"p_beta", "p_β", "mass·length²/time"},
+    {"p_lambda", "p_λ", "mass·length²/time"},
+    {"p_mu", "p_μ", "mass·length²/time"},
+    {"X.0", "X₀", "length"},
+    {"X.1", "X₁", "length"},
+    {"X.2", "X₂", "length"},
+    {"L.0.0", "L₀₀", ""},
+    {"L.0.1", "L₀₁", ""},
+    {"L.1.0", "L₁₀", ""},
+    {"L.1.1", "L₁₁", ""},
+    {"det_L", "det L", ""},
+    {"energy", "H", "energy"},
+    {"energy_error", "ΔH/H₀", ""},
+    {"energy_reference_t", "t₀", "time"},
+    {"energy_orbital", "E_orb", "energy"},
+    {"energy_deformation", "E_def", "energy"},
+    {"spin", "s", "mass·length²/time"},
+    {"speed", "v", "length/time"},
+    {"heading", "h", "rad"},
+    {"vorticity", "p_β", "mass·length²/time"},
+    {"C_x", "C_x", "energy"},
+    {"C_y", "C_y", "energy"},
+    {"M.0", "M₀", "mass·length²/time"},
+    {"M.1", "M₁", "mass·length²/time"},
+    {"M.2", "M₂", "mass·length²/time"},
+    {"casimir", "C", "(mass·length²/time)²"},
+    {"u", "u", ""},
+    {"u_dot", "u\u0307", "1/time"},
+    {"p_u", "p_u", ""},
+    {"K", "K", "1/length²"},
+};
+
+const ColumnLabel* column_label(std::string_view name) {
+  for (const ColumnLabel& c : kColumnLabels)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+}  // namespace
+
+std::string column_symbol(std::string_view name) {
+  if (const ColumnLabel* c = column_label(name)) return std::string(c->symbol);
+  if (name.starts_with("actions.")) return std::string(name.substr(8));              // J_r, …
+  if (name.starts_with("frequencies.")) return "ν_" + std::string(name.substr(12));  // ν_r, …
+  return std::string(name);
+}
+
+std::string column_unit(std::string_view name) {
+  if (const ColumnLabel* c = column_label(name)) return std::string(c->unit);
+  if (name.starts_with("frequencies.")) return "1/time";
+  if (name.starts_with("actions.")) return "action";
+  return "";
+}
+
 std::vector<std::string> expand_field(std::string_view name, std::span<const std::string> names) {
   std::vector<std::string> out;
   for (const std::string& n : names)

@@ -30,6 +30,12 @@ std::span<const std::string> sample_text_names();
 // Every column name a table accepts: the values, then the rest.
 std::vector<std::string> sample_column_names();
 
+// A column's symbol and unit for a figure's axis: "φ" and "rad", "ΔH/H₀" and "" (a pure number),
+// "X₀" and "length", "L₀₁", "det L", "ν_r" and "1/time"; the name itself and "" for one the table
+// lacks. The one table `spinfold plot`'s labels come from.
+std::string column_symbol(std::string_view name);
+std::string column_unit(std::string_view name);
+
 // The columns a name selects: itself when it is a column, a vector's or matrix's components or a
 // group's members when it names one ("X": X.0, X.1, X.2; "L": L.0.0 … L.1.1; "L.1": L.1.0, L.1.1;
 // "actions": actions.J_r …), in the table's order; none for an unknown name. `names` is the

@@ -103,7 +103,8 @@ FigurePage series_page(const SeriesPlot& plot) {
         if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
     }
     const bool empty = !std::isfinite(lo);
-    const PlotAxis y_axis = make_axis(empty ? 0.0 : lo, empty ? 1.0 : hi, panel.log, !panel.log);
+    // Padded, logarithmic or not: no line runs along the frame (the log axis's largest value did).
+    const PlotAxis y_axis = make_axis(empty ? 0.0 : lo, empty ? 1.0 : hi, panel.log, true);
     const auto y_at = [&](double v) { return bottom - y_axis.to_unit(v) * plot.panel_height; };
 
     // Grid lines at the ticks, then the lines, then the frame, ticks and labels over them.

@@ -136,11 +136,27 @@ TEST(CliFigure, PlotRefusesBadInputWithExitTwo) {
   }
 }
 
-TEST(CliFigure, ColumnUnits) {
-  EXPECT_EQ(column_unit("t"), "time");
-  EXPECT_EQ(column_unit("r"), "length");
-  EXPECT_EQ(column_unit("energy_error"), "");
-  EXPECT_EQ(column_unit("frequencies.r"), "1/time");
+// A paper's figure (issue 35): the axes say symbols and units from the column table ("|ΔH/H₀|",
+// "λ", "t [time]"), not the raw names, and --no-footer leaves the provenance line out of the page
+// (it stays in the file's metadata).
+TEST(CliFigure, PlotLabelsAxesWithSymbolsAndUnitsAndCanDropItsFooter) {
+  if (!figure_test::have_tool("pdftotext")) GTEST_SKIP() << "pdftotext missing (Debian poppler-utils)";
+  const std::string pdf = temp("paper.pdf"), bare = temp("bare.pdf");
+  const std::string args =
+      "plot --scene separable_radial_abc --fields t,energy_error,lambda --log energy_error --t-end 2 --out ";
+  auto r = run_spinfold(args + pdf);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string text = figure_test::run_tool("pdftotext " + pdf + " -").out;
+  EXPECT_NE(text.find("|\u0394H/H\u2080|"), std::string::npos) << text;
+  EXPECT_NE(text.find("t [time]"), std::string::npos) << text;
+  EXPECT_EQ(text.find("|energy_error|"), std::string::npos) << text;  // (the footer's command has the name)
+  EXPECT_NE(text.find("scene_hash="), std::string::npos) << text;  // the footer
+  r = run_spinfold(args + bare + " --no-footer");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(figure_test::run_tool("pdftotext " + bare + " -").out.find("scene_hash="), std::string::npos);
+  EXPECT_NE(figure_test::run_tool("pdfinfo " + bare).out.find("scene_hash"), std::string::npos);  // metadata
+  std::filesystem::remove(pdf);
+  std::filesystem::remove(bare);
 }
 
 }  // namespace

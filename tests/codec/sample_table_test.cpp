@@ -144,6 +144,28 @@ TEST(SampleTable, AVectorOrGroupNameSelectsItsComponents) {
   EXPECT_EQ(cells[2], sample["X"][2]);
 }
 
+// The column table's symbols and units for a figure's axes (`spinfold plot`).
+TEST(SampleTable, ColumnSymbolsAndUnits) {
+  EXPECT_EQ(column_unit("t"), "time");
+  EXPECT_EQ(column_unit("r"), "length");
+  EXPECT_EQ(column_unit("energy_error"), "");
+  EXPECT_EQ(column_unit("frequencies.r"), "1/time");
+  EXPECT_EQ(column_symbol("energy_error"), "\u0394H/H\u2080");
+  EXPECT_EQ(column_symbol("lambda"), "\u03BB");
+  EXPECT_EQ(column_symbol("X.2"), "X\u2082");
+  EXPECT_EQ(column_symbol("frequencies.r"), "\u03BD_r");
+  EXPECT_EQ(column_symbol("actions.J_r"), "J_r");
+  // Every numeric column has a symbol of its own (no two columns share one but the vorticity, p_β).
+  std::set<std::string> seen;
+  for (const std::string& name : sample_value_names()) {
+    const std::string symbol = column_symbol(name);
+    EXPECT_FALSE(symbol.empty()) << name;
+    if (name != "vorticity") {
+      EXPECT_TRUE(seen.insert(symbol).second) << name << " " << symbol;
+    }
+  }
+}
+
 TEST(SampleTable, CellsNeverBreakALine) {
   EXPECT_EQ(csv_quote("a\nb"), "a b");
   EXPECT_EQ(csv_quote("say \"x\", y"), "\"say \"\"x\"\", y\"");
