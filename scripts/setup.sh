@@ -28,6 +28,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy          # the Python package (python/): pybind11, NumPy
   python3-pytest                                  # its tests (tests/python)
   python3-pandas                                  # the CSV files read as they are by pandas (tests/python)
+  python3-yaml gettext-base                       # the Kubernetes recipe's test: PyYAML, envsubst
   python3-setuptools python3-pip                  # pip install --no-build-isolation of the package
   jupyter-nbconvert python3-nbconvert python3-ipykernel python3-matplotlib  # the notebook (examples/)
   libcairo2-dev fonts-dejavu-core               # vector figures (SVG, PDF): cairo, Debian-packaged and
