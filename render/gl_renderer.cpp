@@ -264,7 +264,9 @@ void GlRenderer::use_flat_program(const FrameScene& scene) {
 }
 
 void GlRenderer::draw_background(const FrameScene& scene, float grid_width) {
-  glClearColor(scene.clear_color.r, scene.clear_color.g, scene.clear_color.b, scene.clear_color.a);
+  // Opaque: the pixels' alpha stays 1 (the blends above keep the destination's), as the PNG and
+  // JPEG (RGB) and Python's Frame.pixels (RGBA) say; a translucent fill's alpha was left there.
+  glClearColor(scene.clear_color.r, scene.clear_color.g, scene.clear_color.b, 1.0f);
   glDepthMask(GL_TRUE);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   if (scene.depth_test)
@@ -343,7 +345,7 @@ void GlRenderer::draw_lines(const FrameScene& scene, const Mesh& mesh, int count
   }
   // Blended, and writing no depth, so that one line's fringe never hides another line.
   glEnable(GL_BLEND);
-  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);  // keeps the frame opaque
   glDepthMask(GL_FALSE);
   glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count / 2);
   glDepthMask(GL_TRUE);
@@ -362,7 +364,7 @@ void GlRenderer::draw_moving(const FrameScene& scene, float line_width) {
   use_flat_program(scene);
   if (!scene.fills.empty()) {
     glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);  // keeps the frame opaque
     glDepthMask(GL_FALSE);  // translucent: test against the surface, write nothing
     draw_flat(scene.fills, GL_TRIANGLES);
     glDepthMask(GL_TRUE);

@@ -265,6 +265,9 @@ def test_render_equals_the_cli_png_pixels(binary, tmp_path):
         frame = spinfold.render(args["scene"], t=args["t"], view=args["view"], width=320, height=240)
         assert frame.pixels.shape == (240, 320, 4) and frame.pixels.dtype == np.uint8
         assert np.array_equal(frame.pixels[:, :, :3], cli.pixels[:, :, :3])
+        # Opaque, as the PNG (RGB) is: the whole RGBA array equals the PNG read back (issue 35:
+        # a translucent fill's alpha was left in Frame.pixels).
+        assert np.array_equal(frame.pixels, cli.pixels)
         assert dict(cli.texts)["Software"] == dict(frame.texts)["Software"]
     # save() and _repr_png_ are that frame as PNG, with the provenance.
     frame.save(tmp_path / "py.png")
