@@ -14,6 +14,7 @@
 
 #include "cli/commands/command.h"
 #include "cli/commands/scene_options.h"
+#include "codec/npz_writer.h"
 #include "codec/provenance.h"
 #include "codec/sample_json.h"
 #include "codec/sample_table.h"
@@ -29,7 +30,7 @@ struct SimulateOptions {
   double t_end = 10.0;
   double every = 0.5;
   // simulate's output (codec/sample_table.h) and its budgets
-  std::string format;                         // jsonl | csv; "": by --out's extension, else jsonl
+  std::string format;                         // jsonl | csv | npz; "": by --out's extension, else jsonl
   std::string fields;                         // table columns; "": all (CSV), the whole sample (JSON Lines)
   std::string out;                            // "" or "-": stdout
   std::optional<std::string> max_steps_text;  // read by run_limit_value (engine/run_limits.h)
@@ -58,10 +59,15 @@ int simulate(SimulateOptions opt) {
   if (opt.max_seconds) check_run_limit("max_seconds", *opt.max_seconds);
   const bool to_stdout = opt.out.empty() || opt.out == "-";
   std::string format = opt.format;
-  if (format.empty()) format = !to_stdout && opt.out.ends_with(".csv") ? "csv" : "jsonl";
-  if (format != "jsonl" && format != "csv")
-    throw BadInput{"--format: must be jsonl or csv (got '" + format + "')"};
-  const bool csv = format == "csv";
+  if (format.empty())
+    format = !to_stdout && opt.out.ends_with(".csv")   ? "csv"
+             : !to_stdout && opt.out.ends_with(".npz") ? "npz"
+                                                       : "jsonl";
+  if (format != "jsonl" && format != "csv" && format != "npz")
+    throw BadInput{"--format: must be jsonl, csv or npz (got '" + format + "')"};
+  if (format == "npz" && to_stdout)
+    throw BadInput{"--format npz: give --out FILE.npz (an archive, not a stream)"};
+  const bool csv = format == "csv", npz = format == "npz";
   const Scene scene = load_scene(opt.scene);
 
   Simulation run = start_simulation(scene);
@@ -72,7 +78,7 @@ int simulate(SimulateOptions opt) {
     throw BadInput{std::string("--fields: ") + e.what()};
   }
   FILE* out = stdout;
-  if (!to_stdout) {
+  if (!to_stdout && !npz) {
     out = std::fopen(opt.out.c_str(), "w");
     if (!out) throw BadInput{"--out: cannot write '" + opt.out + "'"};
   }
@@ -81,7 +87,12 @@ int simulate(SimulateOptions opt) {
   const auto write = [&](const std::string& line) { std::fputs(line.c_str(), out); };
 
   const nlohmann::ordered_json provenance = provenance_json(scene, opt.scene.command);
-  if (csv) {
+  // npz: the table's columns, filled as the samples come and written at the end (numpy.load reads
+  // them with nothing of spinfold installed), the provenance as an array of its own.
+  std::vector<NpzColumn> columns;
+  if (npz) {
+    for (const std::string& name : table.header()) columns.push_back({name, {}});
+  } else if (csv) {
     // The names first (numpy.genfromtxt takes them from the first line), then the provenance.
     write(table.csv_header());
     write("# spinfold simulate " + version_line() + "\n# provenance: " + provenance.dump() + "\n");
@@ -91,10 +102,14 @@ int simulate(SimulateOptions opt) {
   double reported_until = -1.0;  // events up to this time were printed
   const auto emit = [&] {
     const nlohmann::ordered_json sample = sample_to_json(run, reported_until);
-    if (csv)
+    if (npz) {
+      const std::vector<nlohmann::ordered_json> cells = table.row(sample);
+      for (std::size_t i = 0; i < cells.size(); ++i) columns[i].cells.push_back(cells[i]);
+    } else if (csv) {
       write(table.csv_row(sample));
-    else
+    } else {
       write((opt.fields.empty() ? sample : table.json_row(sample)).dump() + "\n");
+    }
     reported_until = run.state.t;
   };
 
@@ -146,12 +161,23 @@ int simulate(SimulateOptions opt) {
     const nlohmann::ordered_json end = {{"stopped", budget == Budget::steps ? "max_steps" : "max_seconds"},
                                         {"t", run.state.t},
                                         {"steps", run.steps}};
-    write(csv ? "# stopped: " + end.dump() + "\n" : end.dump() + "\n");
+    if (npz)
+      columns.push_back({"stopped", {end.dump()}});
+    else
+      write(csv ? "# stopped: " + end.dump() + "\n" : end.dump() + "\n");
   }
-  if (!to_stdout)
+  if (npz) {
+    columns.push_back({"provenance", {provenance.dump()}});
+    try {
+      write_npz(opt.out, columns);
+    } catch (const std::runtime_error& e) {
+      throw BadInput{std::string("--out: ") + e.what()};
+    }
+  } else if (!to_stdout) {
     std::fclose(out);
-  else
+  } else {
     std::fflush(out);
+  }
   if (code != 0) std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << stopped << "\n";
   return code;
 }
@@ -172,7 +198,8 @@ Command register_simulate(CLI::App& app) {
   simulate_cmd->add_option("--integrator", sim.scene.integrator, "Override the scene's integrator name");
   simulate_cmd->add_option("--dt", sim.scene.dt, "Override the step (fixed-step) or first trial step");
   simulate_cmd->add_option("--tolerance", sim.scene.tolerance, "Override the error tolerance per step");
-  simulate_cmd->add_option("--format", sim.format, "jsonl | csv (default: by --out's extension, else jsonl)");
+  simulate_cmd->add_option("--format", sim.format,
+                           "jsonl | csv | npz (default: by --out's extension, else jsonl)");
   simulate_cmd->add_option("--fields", sim.fields,
                            "Comma-separated columns (see `spinfold simulate --list-fields`; default: all)");
   simulate_cmd->add_option("--out", sim.out, "File to write (default: stdout)");

@@ -2,6 +2,7 @@
 pandas.read_csv(comment="#"): the names line first (dots written '_', which survive numpy's name
 cleaning), the provenance after it as comment lines, and the same doubles as the JSON Lines."""
 
+import csv
 import json
 import subprocess
 
@@ -81,3 +82,29 @@ def test_both_read_a_sweep_csv_and_its_varied_fields(binary, tmp_path):
     assert list(frame.columns) == list(table.dtype.names)
     assert frame["X_2"].tolist() == list(table["X_2"])
     assert set(frame["status"]) == {"ok"}
+
+
+def test_an_npz_loads_in_numpy_with_the_csvs_numbers(binary, tmp_path):
+    """`simulate --out run.npz`: numpy.load, nothing of spinfold needed; every column the CSV's, to
+    the bit (null cells NaN in both), the text columns as text, the provenance beside them."""
+    csv_path, npz_path = tmp_path / "run.csv", tmp_path / "run.npz"
+    csv_path.write_text(simulate(binary, "--format", "csv"))
+    subprocess.run([binary, "simulate", "--scene", "separable_radial_abc", "--t-end", "3", "--every", "0.5",
+                    "--out", str(npz_path)], check=True)
+    lines = [line for line in csv_path.read_text().splitlines() if not line.startswith("#")]
+    cells = list(csv.reader(lines))
+    text = {name: [row[j] for row in cells[1:]] for j, name in enumerate(cells[0])}  # the cells as written
+    numbers = np.genfromtxt(csv_path, delimiter=",", names=True, comments="#")  # empty cells NaN
+    with np.load(npz_path) as arrays:
+        names = [name for name in arrays.files if name != "provenance"]
+        assert [name.replace(".", "_") for name in names] == list(numbers.dtype.names)
+        for name in names:
+            column = arrays[name]
+            if column.dtype == np.float64:
+                expected = numbers[name.replace(".", "_")]
+                assert np.array_equal(np.isnan(column), np.isnan(expected)), name
+                same = ~np.isnan(column)
+                assert np.array_equal(column[same].view(np.uint64), expected[same].view(np.uint64)), name
+            else:
+                assert [str(v) for v in column] == text[name.replace(".", "_")], name
+        assert json.loads(str(arrays["provenance"][0]))["software"] == "spinfold"

@@ -1,0 +1,65 @@
+// The .npy arrays of an .npz (codec/npz_writer.h) as numpy.lib.format defines them; numpy.load reading
+// the files is tests/python/test_csv_readers.py's.
+#include "codec/npz_writer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+
+namespace spinfold {
+namespace {
+
+using nlohmann::ordered_json;
+
+std::string header_of(const std::vector<std::uint8_t>& npy) {
+  const std::size_t length = npy[8] | (npy[9] << 8);
+  return std::string(npy.begin() + 10, npy.begin() + 10 + static_cast<std::ptrdiff_t>(length));
+}
+
+TEST(NpzWriter, NumbersAreFloat64WithNullAsNaNAfterAHeaderPaddedTo64Bytes) {
+  const std::vector<ordered_json> cells = {1.5, nullptr, -0.1};
+  const std::vector<std::uint8_t> npy = npy_bytes(cells);
+  EXPECT_EQ(std::string(npy.begin(), npy.begin() + 6), "\x93NUMPY");
+  EXPECT_EQ(npy[6], 1);
+  EXPECT_EQ(npy[7], 0);
+  const std::string header = header_of(npy);
+  EXPECT_EQ(header.rfind("{'descr': '<f8', 'fortran_order': False, 'shape': (3,), }", 0), 0u) << header;
+  EXPECT_EQ(header.back(), '\n');
+  const std::size_t data = 10 + header.size();
+  EXPECT_EQ(data % 64, 0u);
+  ASSERT_EQ(npy.size(), data + 3 * 8);
+  double v[3];
+  std::memcpy(v, npy.data() + data, sizeof v);
+  EXPECT_EQ(v[0], 1.5);
+  EXPECT_TRUE(std::isnan(v[1]));
+  EXPECT_EQ(v[2], -0.1);  // the same double, bit for bit
+}
+
+TEST(NpzWriter, TextIsFixedWidthUtf32) {
+  const std::vector<std::uint8_t> npy = npy_bytes({"ok", "s = \u03BB", nullptr});
+  const std::string header = header_of(npy);
+  EXPECT_NE(header.find("'descr': '<U5'"), std::string::npos) << header;
+  const std::size_t data = 10 + header.size();
+  ASSERT_EQ(npy.size(), data + 3 * 5 * 4);
+  std::uint32_t second[5];
+  std::memcpy(second, npy.data() + data + 5 * 4, sizeof second);
+  EXPECT_EQ(second[0], U's');
+  EXPECT_EQ(second[4], 0x03BBu);  // λ, one code point from two UTF-8 bytes
+  std::uint32_t third[5];
+  std::memcpy(third, npy.data() + data + 10 * 4, sizeof third);
+  EXPECT_EQ(third[0], 0u);  // null: empty
+}
+
+TEST(NpzWriter, AnUnwritablePathIsNamed) {
+  try {
+    write_npz("/nonexistent-dir/x.npz", {{"t", {0.0}}});
+    FAIL() << "written";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent-dir/x.npz"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace spinfold
