@@ -104,7 +104,7 @@ int plot(const PlotOptions& opt, int argc, char** argv) {
                             column_unit(fields[i]),
                             std::find(log.begin(), log.end(), fields[i]) != log.end(),
                             {}};
-    panel.lines.push_back({"body 1", rgba(render::kMainTrailColor), {}});
+    panel.lines.push_back({main_body_label(scene), rgba(render::kMainTrailColor), {}});
     for (std::size_t c = 0; c < table.companion_labels.size(); ++c)
       panel.lines.push_back({table.companion_labels[c], rgba(render::companion_color(scene, c)), {}});
     plot.panels.push_back(std::move(panel));

@@ -470,6 +470,22 @@ std::optional<Companion> read_companion(Reader& in, const json& entry, const jso
   return c;
 }
 
+// A fan member's label: "spin = 0.25" (the field's last part and the value).
+std::string fan_label(const std::string& last_part, double value) {
+  return last_part + " = " + shortest(value);
+}
+
+// A dotted field path's parts: "initial.spin" → initial, spin.
+std::vector<std::string> path_parts(const std::string& name) {
+  std::vector<std::string> parts;
+  for (std::size_t at = 0; at <= name.size();) {
+    const std::size_t dot = std::min(name.find('.', at), name.size());
+    parts.push_back(name.substr(at, dot - at));
+    at = dot + 1;
+  }
+  return parts;
+}
+
 // {"field": "initial.spin", "values": [...]}: one companion entry per value, labelled by it.
 std::vector<json> fan_entries(Reader& in, const json& vary) {
   std::vector<json> entries;
@@ -481,13 +497,7 @@ std::vector<json> fan_entries(Reader& in, const json& vary) {
              "must name a numeric field of body, initial or potential.deformation, e.g. \"initial.spin\"");
     return entries;
   }
-  const std::string name = field->get<std::string>();
-  std::vector<std::string> parts;
-  for (std::size_t at = 0; at <= name.size();) {
-    const std::size_t dot = std::min(name.find('.', at), name.size());
-    parts.push_back(name.substr(at, dot - at));
-    at = dot + 1;
-  }
+  const std::vector<std::string> parts = path_parts(field->get<std::string>());
   const auto has = [](const std::vector<std::string_view>& keys, const std::string& key) {
     return std::find(keys.begin(), keys.end(), key) != keys.end();
   };
@@ -513,10 +523,23 @@ std::vector<json> fan_entries(Reader& in, const json& vary) {
   for (const json& v : *values) {
     json patch = v;
     for (auto it = parts.rbegin(); it != parts.rend(); ++it) patch = json{{*it, patch}};
-    patch["label"] = parts.back() + " = " + shortest(v.get<double>());
+    patch["label"] = fan_label(parts.back(), v.get<double>());
     entries.push_back(patch);
   }
   return entries;
+}
+
+// The main body's label in a fan: its own value of the varied field, where the document gives it.
+std::string fan_main_label(const json& document, const json& vary) {
+  const auto field = vary.find("field");
+  if (!vary.is_object() || field == vary.end() || !field->is_string()) return "";
+  const json* at = &document;
+  const std::vector<std::string> parts = path_parts(field->get<std::string>());
+  for (const std::string& part : parts) {
+    if (!at->is_object() || !at->contains(part)) return "";
+    at = &(*at)[part];
+  }
+  return at->is_number() ? fan_label(parts.back(), at->get<double>()) : "";
 }
 
 // Expands "companions" and "vary" of the document into scene.companions (errors under
@@ -534,6 +557,7 @@ void read_companions(Reader& in, const json& document, Scene& scene) {
   if (const auto it = document.find("vary"); it != document.end()) {
     source["vary"] = *it;
     for (json& e : fan_entries(in, *it)) entries.push_back(std::move(e));
+    scene.main_label = fan_main_label(document, *it);
   }
   if (source.empty()) return;
   scene.companions_source = source.dump();

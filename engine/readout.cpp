@@ -172,8 +172,9 @@ std::vector<std::string> action_lines(const Readout& readout) {
 }
 
 std::string companion_readout_line(std::string_view label, const Readout& readout) {
-  std::string line =
-      std::string(label) + format(": spin = %.4f  energy error = %.2e", readout.spin, readout.energy_error);
+  // A fan's label already names the spin ("spin = 0.25"): the line does not say it twice.
+  const std::string spin = label.starts_with("spin = ") ? "" : format("spin = %.4f  ", readout.spin);
+  std::string line = std::string(label) + ": " + spin + format("energy error = %.2e", readout.energy_error);
   if (readout.status != Status::ok) line += "  [stopped: " + std::string(readout.status_name) + "]";
   return line;
 }

@@ -16,6 +16,10 @@ Scene companion_scene(const Scene& scene, std::size_t i) {
   return out;
 }
 
+std::string main_body_label(const Scene& scene) {
+  return scene.main_label.empty() ? "body 1" : scene.main_label;
+}
+
 std::string companion_label(const Scene& scene, std::size_t i) {
   const std::string& label = scene.companions.at(i).label;
   return label.empty() ? "body " + std::to_string(i + 2) : label;

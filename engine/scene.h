@@ -172,6 +172,9 @@ struct Scene {
   // writer gives them back, and a change of the main body's blocks reaches the companions through
   // them (each is a merge patch over those blocks).
   std::string companions_source;
+  // The main body's label in legends and tables beside its companions' ("": "body 1"). A fan
+  // ("vary") names it by its own value of the varied field, as the fan names the others ("spin = 0").
+  std::string main_label;
 };
 
 // Companion i as a scene of its own: the main scene's surface, radial and height potentials, friction
@@ -180,5 +183,7 @@ Scene companion_scene(const Scene& scene, std::size_t i);
 
 // Companion i's label: its own, else "body i+2" (the main body is body 1).
 std::string companion_label(const Scene& scene, std::size_t i);
+// The main body's label: scene.main_label, else "body 1".
+std::string main_body_label(const Scene& scene);
 
 }  // namespace spinfold

@@ -306,8 +306,9 @@ std::vector<std::string> readout_lines(const Snapshot& snapshot, const ViewOptio
         view.scale;
     if (shrink < 1.0) {
       char text[64];
-      std::snprintf(text, sizeof text, "body 1 drawn at %.2g x its size", shrink);
-      lines.push_back(text);
+      std::snprintf(text, sizeof text, " drawn at %.2g x its size", shrink);
+      const std::string& label = snapshot.bodies.front().label;
+      lines.push_back((label.empty() ? std::string("body 1") : label) + text);
     }
   }
   return lines;

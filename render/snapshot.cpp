@@ -41,7 +41,7 @@ Snapshot make_snapshot(const Simulation& run, const Trail& trail, double span) {
   s.surface = scene.surface;
   s.bodies.reserve(1 + run.companions.size());
   s.bodies.push_back(body_snapshot(run, &trail, span));
-  s.bodies.front().label = "body 1";
+  s.bodies.front().label = main_body_label(scene);
   const Readout main = readout(run);
   s.hud_lines = readout_lines(scene, main);
   s.action_lines = action_lines(main);

@@ -40,7 +40,7 @@ struct BodySnapshot {
   std::vector<Vec3> trail;       // earlier positions, oldest first, ending at X (empty: no trail)
   std::array<float, 3> color = kMainBodyColor;         // the body's fill [sRGB in 0–1]
   std::array<float, 3> trail_color = kMainTrailColor;  // its trail's [sRGB in 0–1]
-  std::string label;      // legend text: "body 1" for the main body, companion_label otherwise
+  std::string label;      // legend text: main_body_label ("body 1") or companion_label
   bool geodesic = false;  // the point-particle companion: its trail is drawn dashed
 };
 

@@ -67,6 +67,12 @@ TEST(CompanionsJson, AFanExpandsIntoLabelledCompanions) {
   EXPECT_EQ(p.scene->companions[1].label, "C = 0.1");
   EXPECT_EQ(std::get<AbcPotential>(p.scene->companions[2].deformation).C, 0.25);
   EXPECT_EQ(companion_label(*p.scene, 0), "body 2");
+  // The main body is named as the fan names the others, by its own value (issue 34: the spin fan's
+  // legend said "body 1" beside "spin = 0.25"); without a fan it is body 1.
+  EXPECT_EQ(main_body_label(*p.scene), "C = 0.3");
+  EXPECT_EQ(main_body_label(*with(R"({"vary": {"field": "initial.spin", "values": [1]}})").scene),
+            "spin = 0.7");
+  EXPECT_EQ(main_body_label(*with(R"({"companions": [{"geodesic": true}]})").scene), "body 1");
 }
 
 TEST(CompanionsJson, WritesBackWhatWasGivenAndReadsItToTheSameScene) {

@@ -134,6 +134,8 @@ TEST(Readout, ANumberThatRoundsToZeroIsShownWithoutASign) {
   EXPECT_EQ(lines[1], "energy error = -1.00e-17");
   EXPECT_EQ(lines[5], "spin = -0.5000  det L = -0.0001");
   EXPECT_EQ(companion_readout_line("b", r), "b: spin = -0.5000  energy error = -1.00e-17");
+  // A fan's label names the spin already: said once (it read "spin = 0.25: spin = 0.2500").
+  EXPECT_EQ(companion_readout_line("spin = -0.5", r), "spin = -0.5: energy error = -1.00e-17");
 }
 
 }  // namespace
