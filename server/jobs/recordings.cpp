@@ -97,7 +97,6 @@ Recordings::Recordings(const Limits& limits, RenderPool& pool, Store* db)
       pool_(pool),
       db_(db),
       instance_(instance_name()),
-      dir_(new_directory()),
       queue_(
           {.threads = limits.recording_threads,
            .nice = kRecordingNice,
@@ -113,7 +112,12 @@ Recordings::Recordings(const Limits& limits, RenderPool& pool, Store* db)
 Recordings::~Recordings() {
   queue_.stop();  // before the directory goes
   std::error_code ignored;
-  std::filesystem::remove_all(dir_, ignored);
+  if (!dir_.empty()) std::filesystem::remove_all(dir_, ignored);
+}
+
+std::filesystem::path Recordings::directory() {
+  std::call_once(dir_made_, [this] { dir_ = new_directory(); });
+  return dir_;
 }
 
 void Recordings::heartbeat() {
@@ -155,7 +159,7 @@ std::string Recordings::start(RecordingJob job) {
   // requests to the replica that records it, the one its session's go to (deploy/nginx/spinfold.conf).
   entry->state.id = job.session + new_session_id();
   entry->state.frames = frames;
-  entry->extra.path = dir_ / (entry->state.id + "." + std::string(record::file_extension(job.format)));
+  entry->extra.path = directory() / (entry->state.id + "." + std::string(record::file_extension(job.format)));
   entry->state.job = std::move(job);
   queue_.admit(
       entry,

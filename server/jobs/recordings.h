@@ -18,6 +18,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -111,6 +112,10 @@ class Recordings {
   RenderPool& pool_;
   Store* db_;
   std::string instance_;
+  // Where the files are made: created at the first recording (a server that never records leaves
+  // no directory behind, even when it is killed), removed with the object.
+  std::filesystem::path directory();
+  std::once_flag dir_made_;
   std::filesystem::path dir_;
   bool heartbeat_warned_ = false;  // (the heartbeat's own)
   Queue queue_;                    // last: its threads use the members above

@@ -5,8 +5,11 @@
 #include "server/jobs/recordings.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <condition_variable>
+#include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -30,6 +33,38 @@ namespace {
 
 using nlohmann::json;
 using namespace std::chrono_literals;
+
+// The spill directory is made at the first recording and removed with the jobs: a server that never
+// records leaves none behind, even killed (every test server and fuzzer run left an empty
+// /tmp/spinfold-recordings-* before: ~760 on this machine).
+TEST(Recordings, TheDirectoryIsMadeByTheFirstRecordingAndGoesWithTheJobs) {
+  const std::filesystem::path tmp =
+      std::filesystem::temp_directory_path() / ("recordings_dir_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(tmp);
+  const char* before = std::getenv("TMPDIR");
+  const std::string saved = before ? before : "";
+  ::setenv("TMPDIR", tmp.c_str(), 1);  // where temp_directory_path() looks
+  const auto entries = [&] {
+    return std::distance(std::filesystem::directory_iterator(tmp), std::filesystem::directory_iterator());
+  };
+  RenderPool pool(1);
+  {
+    Recordings recordings(Limits{}, pool);
+    EXPECT_EQ(entries(), 0) << "a directory before any recording";
+    RecordingJob job{.client = "test", .clip = {0.0, 0.1, 10.0, 1.0}, .format = record::Format::png_zip};
+    job.frames.scene = *parse_scene_text(find_preset("spin_vs_geodesic_sphere")->json).scene;
+    job.frames.view.width = 32;
+    job.frames.view.height = 24;
+    recordings.start(job);
+    EXPECT_EQ(entries(), 1);
+  }
+  EXPECT_EQ(entries(), 0) << "the directory outlived its jobs";
+  if (before)
+    ::setenv("TMPDIR", saved.c_str(), 1);
+  else
+    ::unsetenv("TMPDIR");
+  std::filesystem::remove_all(tmp);
+}
 
 // The disk allowance and the age limit, on the jobs alone (no HTTP).
 TEST(Recordings, PassingTheDiskAllowanceFailsWithTheReasonAndOldOnesAreDeleted) {
