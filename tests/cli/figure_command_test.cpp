@@ -150,7 +150,7 @@ TEST(CliFigure, PlotLabelsAxesWithSymbolsAndUnitsAndCanDropItsFooter) {
   EXPECT_NE(text.find("|\u0394H/H\u2080|"), std::string::npos) << text;
   EXPECT_NE(text.find("t [time]"), std::string::npos) << text;
   EXPECT_EQ(text.find("|energy_error|"), std::string::npos) << text;  // (the footer's command has the name)
-  EXPECT_NE(text.find("scene_hash="), std::string::npos) << text;  // the footer
+  EXPECT_NE(text.find("scene_hash="), std::string::npos) << text;     // the footer
   r = run_spinfold(args + bare + " --no-footer");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(figure_test::run_tool("pdftotext " + bare + " -").out.find("scene_hash="), std::string::npos);
