@@ -66,6 +66,8 @@ int run_sweep(const SweepOptions& opt, const std::string& command) {
                         .every = opt.every,
                         .max_steps = max_steps,
                         .fields = opt.fields,
+                        .summaries = opt.summaries,
+                        .events = opt.events,
                         .trajectories = opt.trajectories,
                         .command = command,
                         .door = sweep::Door::cli};
@@ -124,6 +126,7 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& opt) {
   cmd->add_option("--every", opt.every, "Sample interval (as simulate's)")->capture_default_str();
   cmd->add_option("--fields", opt.fields, "Final-state and drift.NAME columns (see --list-fields)")
       ->capture_default_str();
+  add_monitor_options(*cmd, opt.summaries, opt.events);
   cmd->add_option("--jobs", opt.jobs, "Runs at once (0: one per core)")->capture_default_str();
   cmd->add_option("--out", opt.out, "FILE.csv or FILE.jsonl (default: CSV on stdout)");
   cmd->add_option("--shard", opt.shard, "I/N: run only the runs i with i mod N = I (for job arrays)");

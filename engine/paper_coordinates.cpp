@@ -41,6 +41,16 @@ double wrap(double angle) {
 
 }  // namespace
 
+FrameStretches frame_stretches(const Mat2& L) {
+  // The radii of the two polar pairs (polar_part), summed; μ = det L / λ: as accurate as the
+  // difference of the radii, and the given μ back where L was made from it (the difference read
+  // μ = 0.6 as 0.6000000000000001).
+  const double x = std::hypot(0.5 * (L(0, 0) - L(1, 1)), 0.5 * (L(0, 1) + L(1, 0)));
+  const double y = std::hypot(0.5 * (L(0, 0) + L(1, 1)), 0.5 * (L(1, 0) - L(0, 1)));
+  const double lambda = y + x;
+  return {lambda, lambda > 0.0 ? L.determinant() / lambda : 0.0};
+}
+
 void set_internal_coordinates(PaperCoordinates& out, const Mat2& L, const Mat2& L_dot, const Mat2& M,
                               const Inertia& inertia, BodyModel model, bool frame_defined) {
   const double J = inertia.J;
@@ -49,10 +59,9 @@ void set_internal_coordinates(PaperCoordinates& out, const Mat2& L, const Mat2& 
                                  0.5 * (L_dot(0, 0) - L_dot(1, 1)), 0.5 * (L_dot(0, 1) + L_dot(1, 0)), scale);
   const PolarPart y = polar_part(0.5 * (L(0, 0) + L(1, 1)), 0.5 * (L(1, 0) - L(0, 1)),
                                  0.5 * (L_dot(0, 0) + L_dot(1, 1)), 0.5 * (L_dot(1, 0) - L_dot(0, 1)), scale);
-  out.lambda = y.radius + x.radius;
-  // μ = det L / λ: as accurate as the difference of the radii, and the given μ back where L was made
-  // from it (the difference read μ = 0.6 as 0.6000000000000001).
-  out.mu = out.lambda > 0.0 ? L.determinant() / out.lambda : 0.0;
+  const FrameStretches stretches = frame_stretches(L);
+  out.lambda = stretches.lambda;
+  out.mu = stretches.mu;
   out.lambda_dot = y.radius_dot + x.radius_dot;
   out.mu_dot = y.radius_dot - x.radius_dot;
   out.p_lambda = J * out.lambda_dot;

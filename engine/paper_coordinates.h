@@ -36,6 +36,12 @@ struct PaperCoordinates {
 
 PaperCoordinates paper_coordinates(const Scene& scene, const State& state);
 
+// λ ≥ |μ| of L = U(α)diag(λ, μ)U(β)ᵀ: λ the sum of the two polar radii, μ = det L / λ (0 at L = 0).
+struct FrameStretches {
+  double lambda = 0.0, mu = 0.0;
+};
+FrameStretches frame_stretches(const Mat2& L);
+
 struct Inertia;
 // The internal coordinates of L = U(α)diag(λ, μ)U(β)ᵀ and L̇ given in one frame: λ, μ and their rates
 // and momenta always; with frame_defined also L, α, β, θ and their rates (each undefined where

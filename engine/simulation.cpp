@@ -409,13 +409,25 @@ bool step_toward(Simulation& run, StepPoint& p, double t_end, Mode mode, std::ui
       if (sequence) ++run.recentres;
       p.carry.setZero(state.y.size());  // the new chart's coordinates start exact
     }
+    if (sequence && run.monitor) {
+      if (std::optional<State> stop = run.monitor->step(run, state)) {
+        // A terminal event: the sequence ends on the crossing (as a det L stop does).
+        state = std::move(*stop);
+        p.carry.setZero(state.y.size());
+        p.t_carry = 0.0;
+        ++run.steps;
+        return true;
+      }
+    }
     if (sequence && ++run.steps % kCheckEvery == 0) {
       if (const Status trouble = health(run, state); trouble != Status::ok) {
         p = run.checked;
         p.state.status = trouble;
+        run.monitor = run.monitor_checked;
         return true;
       }
       run.checked = p;
+      run.monitor_checked = run.monitor;
     }
   }
   return true;
@@ -440,7 +452,7 @@ bool advance_steps(Simulation& run, double t_end, std::uint64_t& attempts) {
   run.view_events.clear();
   const bool sequence_done = step_toward(run, run.grid, t_end, Mode::sequence, attempts, run.events);
   const Status sequence_status = run.grid.state.status;
-  if (sequence_status == Status::degenerate_frame) {
+  if (sequence_status == Status::degenerate_frame || sequence_status == Status::event_stop) {
     run.state = run.grid.state;
     return true;
   }
@@ -477,8 +489,8 @@ bool advance_steps(Simulation& run, double t_end, std::uint64_t& attempts) {
   return true;
 }
 
-// One body (not its companions).
-bool advance_body(Simulation& run, double t_end, std::uint64_t& attempts) {
+// One body (not its companions), without its monitor.
+bool advance_body_only(Simulation& run, double t_end, std::uint64_t& attempts) {
   if (run.state.status != Status::ok || !(t_end > run.state.t)) return true;
   if (!run.exact) return advance_steps(run, t_end, attempts);
   if (attempts == 0) return false;
@@ -515,6 +527,55 @@ bool advance_body(Simulation& run, double t_end, std::uint64_t& attempts) {
   return true;
 }
 
+// The closed form has no steps: the monitor is fed its points segment_start + k·dt (the scene's
+// dt), so what it reports does not depend on the sampling either.
+void monitor_closed_form(Simulation& run) {
+  RunMonitor& m = *run.monitor;
+  const double dt = run.scene.integrator.dt;
+  for (;;) {
+    const double t = run.segment_start + static_cast<double>(m.closed_form_points + 1) * dt;
+    if (!(t <= run.state.t) || m.stopped()) return;
+    ++m.closed_form_points;
+    State point = exact_at(run, t);
+    if (!all_finite(point)) return;
+    if (std::optional<State> stop = m.step(run, point)) {
+      run.state = std::move(*stop);
+      std::erase_if(run.events, [&](const DegenerateEvent& e) { return e.t > run.state.t; });
+      return;
+    }
+  }
+}
+
+// A terminal event between the sequence's last point and the state asked for stops the run there
+// (the sample then shows it, as a det L stop between samples does).
+void stop_on_event_before_state(Simulation& run) {
+  const bool terminal = std::any_of(run.monitor->spec().events.begin(), run.monitor->spec().events.end(),
+                                    [](const EventSpec& e) { return e.stop > 0; });
+  if (!terminal || run.state.status != Status::ok || !(run.state.t > run.monitor->last().t)) return;
+  RunMonitor trial = *run.monitor;
+  std::optional<State> stop = trial.step(run, run.state);
+  if (!stop) return;
+  run.monitor = std::move(trial);
+  run.state = std::move(*stop);
+  std::erase_if(run.events, [&](const DegenerateEvent& e) { return e.t > run.state.t; });
+  run.view_events.clear();
+  if (!run.exact) {
+    run.grid.state = run.state;
+    run.grid.carry.setZero(run.state.y.size());
+    run.grid.t_carry = 0.0;
+  }
+}
+
+// One body (not its companions), with its monitor.
+bool advance_body(Simulation& run, double t_end, std::uint64_t& attempts) {
+  const bool done = advance_body_only(run, t_end, attempts);
+  if (run.monitor) {
+    if (run.exact) monitor_closed_form(run);
+    stop_on_event_before_state(run);
+  }
+  return done;
+}
+
 }  // namespace
 
 bool advance_within(Simulation& run, double t_end, std::uint64_t& attempts) {
@@ -530,6 +591,34 @@ std::vector<DegenerateEvent> events_after(const Simulation& run, double after) {
     for (const DegenerateEvent& e : *events)
       if (e.t > after && e.t <= run.state.t) add_event(list, e.t);
   return list;
+}
+
+State state_after(const Simulation& run, const State& from, double tau) {
+  if (run.exact) return exact_at(run, from.t + tau);
+  const StepProblem f{run.scene, from.chart, run.field.get()};
+  Coords increment;
+  run.integrator->try_step(f, from.y, tau, run.scene.integrator.tolerance, increment);
+  State s = from;
+  s.y += increment;
+  s.t = from.t + tau;
+  return s;
+}
+
+void watch(Simulation& run, MonitorSpec spec) {
+  run.monitor.emplace(std::move(spec), run);
+  run.monitor_checked = run.monitor;
+}
+
+std::vector<double> monitor_values(const Simulation& run) {
+  if (!run.monitor) return {};
+  // The cut step to the state is added to a copy: the sequence's monitor goes on unchanged. A run
+  // stopped by trouble reports up to the last good point of its sequence.
+  const Status s = run.state.status;
+  if (s != Status::ok && s != Status::degenerate_frame && s != Status::event_stop)
+    return run.monitor->values();
+  RunMonitor through = *run.monitor;
+  through.step(run, run.state);
+  return through.values();
 }
 
 bool advance_to(Simulation& run, double t_end, std::uint64_t max_attempts) {
@@ -553,6 +642,9 @@ Vec3 carried_position(const Surface& before, const Surface& after, const Vec3& X
 void retune(Simulation& run, const Scene& next) {
   for (std::size_t i = 0; i < run.companions.size() && i < next.companions.size(); ++i)
     retune(run.companions[i], companion_scene(next, i));
+  // Summaries describe one scene's run (simulate and sweeps never retune): a change ends them.
+  run.monitor.reset();
+  run.monitor_checked.reset();
   // The state asked for becomes a point of the step sequence: a change is hit exactly. New
   // parameters may cure what stopped the run (a step beyond stability): it continues.
   State here = run.state;

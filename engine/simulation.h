@@ -10,6 +10,7 @@
 #include "engine/exact_solution.h"
 #include "engine/integrator.h"
 #include "engine/invariants.h"
+#include "engine/run_summary.h"
 #include "engine/scene.h"
 #include "engine/state.h"
 
@@ -69,6 +70,9 @@ struct Simulation {
   std::uint64_t steps = 0;                   // accepted steps of the sequence
   std::uint64_t rejected = 0;                // rejected step attempts of the sequence
   std::uint64_t recentres = 0;               // chart moves of the sequence
+  // What the run did (engine/run_summary.h): fed each step of the sequence when watch() started it;
+  // `monitor_checked` is its copy at `checked`, so a stop on trouble rewinds it too.
+  std::optional<RunMonitor> monitor, monitor_checked;
   // The companions' runs (scene.companions[i], companion_scene), advanced with this one to the same
   // times. A companion that stops keeps its last good state and status; the others go on.
   std::vector<Simulation> companions;
@@ -120,6 +124,17 @@ Vec3 carried_position(const Surface& before, const Surface& after, const Vec3& X
 // The det L = 0 crossings up to the current state that come after time `after` [time], oldest
 // first: those of the step sequence and those between it and the state (each once).
 std::vector<DegenerateEvent> events_after(const Simulation& run, double after);
+
+// Starts summaries and events of the run from its current state (before it is advanced); refuses a
+// spec check_monitor refuses (std::invalid_argument).
+void watch(Simulation& run, MonitorSpec spec);
+// The summaries' and events' values of the run so far, up to its current state (monitor_columns
+// order): the sequence's steps and the cut step from the last of them to the state.
+std::vector<double> monitor_values(const Simulation& run);
+
+// The state `tau` after `from` [time], a point of the run's step sequence: one sub-step of the
+// run's integrator from it (as the det L events are located), or the closed form at from.t + tau.
+State state_after(const Simulation& run, const State& from, double tau);
 
 // det L of the current state (frame-independent; λ₀² for the rigid model).
 double det_L(const Scene& scene, const State& state);

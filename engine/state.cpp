@@ -10,6 +10,7 @@ std::string_view status_name(Status status) {
     case Status::degenerate_frame: return "degenerate_frame";
     case Status::out_of_range: return "out_of_range";
     case Status::diverged: return "diverged";
+    case Status::event_stop: return "event_stop";
     case Status::inconsistent: return "inconsistent";
   }
   return "unknown";
@@ -33,6 +34,9 @@ std::string_view status_description(Status status) {
     case Status::diverged:
       return "stopped: the energy error grew as large as the energy itself, so the step is beyond this "
              "integrator's stability; the state is the last good one (lower dt, or use auto)";
+    case Status::event_stop:
+      return "stopped: a watched field crossed its level as many times as the run asked to stop at (an "
+             "event's stop=N); the state is the crossing's";
     case Status::inconsistent:
       return "stopped: the closed form failed its consistency check (its start or its conserved quantities "
              "disagree with the run's by more than 1e-8, or can no longer be checked to that, e.g. a motion "

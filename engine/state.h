@@ -43,6 +43,8 @@ enum class Status {
                      // method's stability (or the tolerance too loose); the state is the last good one
   inconsistent,      // the closed form (exact) failed its independent check: its start or its conserved
                      // quantities disagree with the run's; the state is the last one that passed
+  event_stop,        // a watched field crossed its level the number of times the run asked to stop at
+                     // (engine/run_summary.h); the state is the crossing's
 };
 
 std::string_view status_name(Status status);

@@ -38,8 +38,9 @@ py::object cell(const nlohmann::ordered_json& value) {
 py::tuple sweep(
     const std::string& base_text,
     const std::vector<std::tuple<std::string, std::optional<std::string>, std::optional<std::string>>>& axes,
-    bool zip, double t_end, double every, const std::string& fields, std::optional<std::uint64_t> max_steps,
-    int threads, const std::string& command) {
+    bool zip, double t_end, double every, const std::string& fields,
+    const std::vector<std::string>& summaries, const std::vector<std::string>& events,
+    std::optional<std::uint64_t> max_steps, int threads, const std::string& command) {
   if (threads < 0) throw py::value_error("threads: must be >= 1 or None (one per core)");
   sweep::Definition def{.base_text = base_text,
                         .axes = {},
@@ -48,6 +49,8 @@ py::tuple sweep(
                         .every = every,
                         .max_steps = max_steps,
                         .fields = fields,
+                        .summaries = summaries,
+                        .events = events,
                         .trajectories = "",
                         .command = command,
                         .door = sweep::Door::python};
@@ -81,7 +84,8 @@ py::tuple sweep(
 
 void add_sweep(py::module_& m) {
   m.def("sweep", &sweep, py::arg("base"), py::arg("axes"), py::arg("zip"), py::arg("t_end"), py::arg("every"),
-        py::arg("fields"), py::arg("max_steps"), py::arg("threads"), py::arg("command"));
+        py::arg("fields"), py::arg("summaries"), py::arg("events"), py::arg("max_steps"), py::arg("threads"),
+        py::arg("command"));
   m.def("sweep_fields", [] { return sweep::field_names(); });
   m.def("default_sweep_fields", [] { return std::string(sweep::kDefaultFields); });
   // The one scene rule (codec/scene_source.h): a file if one has that name, else a preset.

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/run_summary.h"
 #include "sweep/grid.h"
 
 namespace spinfold::sweep {
@@ -39,6 +40,9 @@ struct Definition {
   double every = 0.5;
   std::optional<std::uint64_t> max_steps;
   std::string fields = std::string(kDefaultFields);  // comma-separated field_names()
+  // What each run did (engine/run_summary.h): summaries ("r", "r.max") and events ("r:up:1.2").
+  std::vector<std::string> summaries;
+  std::vector<std::string> events;
   std::string trajectories;  // a directory for each run's samples as `simulate` prints them, or ""
   std::string command;       // the command line (the trajectories' provenance)
   Door door = Door::cli;
@@ -54,6 +58,7 @@ struct Plan {
   Definition def;
   nlohmann::json base;  // the base scene's canonical document
   std::vector<Column> columns;
+  MonitorSpec monitor;    // the summaries and events, parsed
   std::size_t total = 0;  // runs
 };
 

@@ -20,6 +20,7 @@ std::vector<std::string> column_names(const Plan& plan) {
   for (const Axis& a : plan.def.axes)
     for (const FieldPath* f : a.fields) names.push_back(f->path);
   for (const Column& c : plan.columns) names.push_back(c.name);
+  for (const std::string& c : monitor_columns(plan.monitor)) names.push_back(c);
   for (const char* n : {"events", "status", "detail", "steps", "seconds"}) names.push_back(n);
   return names;
 }
@@ -29,6 +30,8 @@ std::string definition_hash(const Plan& plan) {
   std::string text =
       plan.base.dump() + "|t_end=" + number_text(def.t_end) + "|every=" + number_text(def.every) +
       "|max_steps=" + (def.max_steps ? std::to_string(*def.max_steps) : "") + "|zip=" + (def.zip ? "1" : "0");
+  for (const std::string& m : def.summaries) text += "|summary=" + m;
+  for (const std::string& e : def.events) text += "|event=" + e;
   for (const Axis& a : def.axes) {
     text += "|axis";
     for (const FieldPath* f : a.fields) {

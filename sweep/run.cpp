@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -28,6 +30,7 @@ Row run_one(const Plan& plan, std::size_t index) {
   Row row{.index = index, .cells = {}, .ok = false};
   for (auto& [name, value] : varied_values(plan, index)) row.cells.emplace_back(name, ojson(value));
   std::map<std::string, ojson> first, last;
+  std::vector<double> monitored;  // monitor_columns(plan.monitor)'s values
   std::string status, detail;
   std::uint64_t steps = 0, events = 0;
   const Definition& def = plan.def;
@@ -50,6 +53,7 @@ Row run_one(const Plan& plan, std::size_t index) {
                            .dump()
                     << '\n';
       Simulation run = start_simulation(*parsed.scene);
+      if (!plan.monitor.empty()) watch(run, plan.monitor);
       double reported_until = -1.0;
       const auto sample = [&](std::map<std::string, ojson>* into) {
         if (trajectory || into) {
@@ -77,6 +81,7 @@ Row run_one(const Plan& plan, std::size_t index) {
       detail = budget_left ? last["status_detail"].get<std::string>()
                            : "the step budget (" + option_name(def.door, "--max-steps") + ") ran out";
       steps = run.steps;
+      monitored = monitor_values(run);
     }
   } catch (const std::exception& e) {
     status = "error";
@@ -94,7 +99,15 @@ Row run_one(const Plan& plan, std::size_t index) {
     }
     row.cells.emplace_back(c.name, value);
   }
-  row.ok = status == "ok";
+  const std::vector<std::string> monitor_names = monitor_columns(plan.monitor);
+  for (std::size_t i = 0; i < monitor_names.size(); ++i) {
+    const double v = i < monitored.size() ? monitored[i] : std::numeric_limits<double>::quiet_NaN();
+    ojson value = std::isnan(v) ? ojson(nullptr) : ojson(v);
+    if (monitor_names[i].ends_with(".count") && !std::isnan(v)) value = static_cast<std::uint64_t>(v);
+    row.cells.emplace_back(monitor_names[i], std::move(value));
+  }
+  // A run that stopped where it was asked to (an event's stop=N) ended well.
+  row.ok = status == "ok" || status == "event_stop";
   row.cells.emplace_back("events", events);
   row.cells.emplace_back("status", status);
   row.cells.emplace_back("detail", detail);

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "engine/number_text.h"
 #include "engine/run_limits.h"
@@ -43,9 +44,24 @@ inline double run_limit_value(std::string_view name, const std::string& text) {
 // The exit code of a run that reached its end or stopped: 0, or kExitRunStopped with the reason on
 // stderr (render, plot).
 inline int run_exit_code(const State& state) {
-  if (state.status == Status::ok) return 0;
+  if (state.status == Status::ok || state.status == Status::event_stop) return 0;
   std::cerr << "spinfold: run stopped at t = " << state.t << ": " << status_name(state.status) << "\n";
   return kExitRunStopped;
+}
+
+// --summary and --event (engine/run_summary.h's grammar), as simulate and sweep take them.
+inline void add_monitor_options(CLI::App& cmd, std::vector<std::string>& summaries,
+                                std::vector<std::string>& events) {
+  cmd.add_option(
+         "--summary", summaries,
+         "Reductions over the run's own steps: FIELD (its min, max, mean, final, t_min, t_max) or "
+         "FIELD.REDUCTION; comma-separated, repeatable (fields: r or u, phi, lambda, mu, det_L, energy, "
+         "energy_error, spin, speed, X.0-2, K)")
+      ->delimiter(',');
+  cmd.add_option(
+      "--event", events,
+      "FIELD:up|down|any:LEVEL[:period=P][:stop=N][:name=NAME]: a crossing located inside the steps; "
+      "its count, first and last time (stop=N ends the run at the N-th); repeatable");
 }
 
 // A registered subcommand: run(argc, argv) when it is the one parsed (argv for the provenance).

@@ -36,6 +36,8 @@ struct SimulateOptions {
   std::optional<std::string> max_steps_text;  // read by run_limit_value (engine/run_limits.h)
   std::optional<std::uint64_t> max_steps;
   std::optional<double> max_seconds;
+  std::vector<std::string> summaries;  // engine/run_summary.h's words
+  std::vector<std::string> events;
   bool quiet = false;
   bool list_fields = false;
 };
@@ -71,6 +73,20 @@ int simulate(SimulateOptions opt) {
   const Scene scene = load_scene(opt.scene);
 
   Simulation run = start_simulation(scene);
+  MonitorSpec monitor;
+  try {
+    for (const std::string& text : opt.summaries) monitor.summaries.push_back(parse_summary(text));
+  } catch (const std::invalid_argument& e) {
+    throw BadInput{std::string("--summary: ") + e.what()};
+  }
+  try {
+    for (const std::string& text : opt.events) monitor.events.push_back(parse_event(text));
+    if (!monitor.empty()) watch(run, monitor);
+  } catch (const std::invalid_argument& e) {
+    throw BadInput{
+        std::string(std::string_view(e.what()).starts_with("event") ? "--event: " : "--summary: ") +
+        e.what()};
+  }
   SampleTable table;
   try {
     table = make_sample_table(opt.fields, sample_to_json(run, -1.0));
@@ -153,7 +169,7 @@ int simulate(SimulateOptions opt) {
     stopped = budget == Budget::steps ? "max_steps (the step budget --max-steps ran out)"
                                       : "max_seconds (the time budget --max-seconds ran out)";
     code = kExitRunStopped;
-  } else if (run.state.status != Status::ok) {
+  } else if (run.state.status != Status::ok && run.state.status != Status::event_stop) {
     stopped = std::string(status_name(run.state.status));
     code = kExitRunStopped;
   }
@@ -165,6 +181,23 @@ int simulate(SimulateOptions opt) {
       columns.push_back({"stopped", {end.dump()}});
     else
       write(csv ? "# stopped: " + end.dump() + "\n" : end.dump() + "\n");
+  }
+  if (!monitor.empty()) {  // what the run did: one record after the samples
+    const std::vector<std::string> names = monitor_columns(monitor);
+    const std::vector<double> values = monitor_values(run);
+    nlohmann::ordered_json summary;
+    for (std::size_t i = 0; i < names.size(); ++i)
+      summary[names[i]] = std::isnan(values[i]) ? nlohmann::ordered_json(nullptr)
+                          : names[i].ends_with(".count")
+                              ? nlohmann::ordered_json(static_cast<std::uint64_t>(values[i]))
+                              : nlohmann::ordered_json(values[i]);
+    if (npz) {
+      for (std::size_t i = 0; i < names.size(); ++i)
+        columns.push_back({"summary." + names[i], {summary[names[i]]}});
+    } else {
+      write(csv ? "# summary: " + summary.dump() + "\n"
+                : nlohmann::ordered_json{{"summary", summary}}.dump() + "\n");
+    }
   }
   if (npz) {
     columns.push_back({"provenance", {provenance.dump()}});
@@ -203,6 +236,7 @@ Command register_simulate(CLI::App& app) {
   simulate_cmd->add_option("--fields", sim.fields,
                            "Comma-separated columns (see `spinfold simulate --list-fields`; default: all)");
   simulate_cmd->add_option("--out", sim.out, "File to write (default: stdout)");
+  add_monitor_options(*simulate_cmd, sim.summaries, sim.events);
   simulate_cmd->add_option("--max-steps", sim.max_steps_text, "Stop after this many step attempts (exit 3)");
   simulate_cmd->add_option("--max-seconds", sim.max_seconds, "Stop after this much wall time (exit 3)");
   simulate_cmd->add_flag("--quiet", sim.quiet,

@@ -286,7 +286,8 @@ def sweep_fields() -> list[str]:
 
 def sweep(base: Any, vary: Mapping[str, Any], t_end: float = 10.0, every: float = 0.5, *,
           fields: str | Sequence[str] | None = None, zip: bool = False, max_steps: int | None = None,
-          threads: int | None = None) -> dict[str, np.ndarray]:
+          threads: int | None = None, summaries: str | Sequence[str] = (),
+          events: str | Sequence[str] = ()) -> dict[str, np.ndarray]:
     """``spinfold sweep`` from Python, through the same library: the same definition gives the
     CLI's rows to the bit. `base` with the fields of `vary` (a scene path such as ``"initial.spin"``
     -> its values: a text as ``--set`` takes it, ``"0:2:40"`` (:func:`grid`) or ``"auto,dop853"``,
@@ -295,6 +296,10 @@ def sweep(base: Any, vary: Mapping[str, Any], t_end: float = 10.0, every: float 
     ``--fields`` (None: its default; :func:`sweep_fields`). Returns the CLI's columns, one row per
     run in order: ``index``, the varied fields, `fields`, ``events``, ``status``, ``detail``,
     ``steps``, ``seconds`` (numbers as float arrays, NaN where undefined; counts as integers).
+    `summaries` and `events`: the CLI's ``--summary`` and ``--event`` (``"r"``, ``"r.max"``;
+    ``"r:up:1.2"``, ``"phi:any:0:period=6.283185307179586"``, ``"r:up:1.2:stop=3"``): reductions
+    over each run's own steps and level crossings located in them, one column each
+    (``r.max``, ``r_up_1.2.count``, ``r_up_1.2.t_first``; docs/numerics.md).
     Bad input (an unknown field, a value out of range, more than 10⁷ runs) raises ValueError naming
     it before anything runs.
     """
@@ -327,8 +332,10 @@ def sweep(base: Any, vary: Mapping[str, Any], t_end: float = 10.0, every: float 
         except (TypeError, ValueError) as error:
             raise ValueError(f"vary['{path}']: not a list of numbers or names ({error})") from None
         axes.append((str(path), None, text))
+    summaries = summaries.split(",") if isinstance(summaries, str) else [str(x) for x in summaries]
+    events = [events] if isinstance(events, str) else [str(x) for x in events]
     names, rows = _core.sweep(_scene_text(base, "base"), axes, bool(zip), float(t_end), float(every), fields,
-                              max_steps, threads or 0, "python: spinfold.sweep")
+                              summaries, events, max_steps, threads or 0, "python: spinfold.sweep")
     out: dict[str, np.ndarray] = {}
     for j, name in enumerate(names):
         column = [row[j] for row in rows]

@@ -32,6 +32,8 @@ def sweep(
     t_end: float,
     every: float,
     fields: str,
+    summaries: list[str],
+    events: list[str],
     max_steps: int | None,
     threads: int,
     command: str,

@@ -11,8 +11,8 @@ namespace spinfold {
 namespace {
 
 constexpr Status kStatuses[] = {
-    Status::ok,           Status::non_finite, Status::step_failed, Status::degenerate_frame,
-    Status::out_of_range, Status::diverged,   Status::inconsistent};
+    Status::ok,           Status::non_finite, Status::step_failed,  Status::degenerate_frame,
+    Status::out_of_range, Status::diverged,   Status::inconsistent, Status::event_stop};
 
 // The names are the enumerators' own spelling (the API's status values).
 TEST(State, StatusNamesAreTheEnumerators) {
@@ -23,6 +23,7 @@ TEST(State, StatusNamesAreTheEnumerators) {
   EXPECT_EQ(status_name(Status::out_of_range), "out_of_range");
   EXPECT_EQ(status_name(Status::diverged), "diverged");
   EXPECT_EQ(status_name(Status::inconsistent), "inconsistent");
+  EXPECT_EQ(status_name(Status::event_stop), "event_stop");
 }
 
 // One distinct sentence per status, for a person; none is empty or the bare name.

@@ -1,0 +1,439 @@
+#include "engine/run_summary.h"
+
+#include <algorithm>
+#include <boost/math/tools/minima.hpp>
+#include <boost/math/tools/toms748_solve.hpp>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include "engine/chart.h"
+#include "engine/dynamics.h"
+#include "engine/embedded_run.h"
+#include "engine/invariants.h"
+#include "engine/number_text.h"
+#include "engine/paper_coordinates.h"
+#include "engine/simulation.h"
+
+namespace spinfold {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The field table: the index is the field's place in a Values array.
+enum Field {
+  f_r,
+  f_phi,
+  f_lambda,
+  f_mu,
+  f_det_L,
+  f_energy,
+  f_energy_error,
+  f_spin,
+  f_speed,
+  f_X0,
+  f_X1,
+  f_X2,
+  f_K
+};
+constexpr int kFieldCount = f_K + 1;
+constexpr std::array<std::string_view, kFieldCount> kFieldNames = {
+    "r", "phi", "lambda", "mu", "det_L", "energy", "energy_error", "spin", "speed", "X.0", "X.1", "X.2", "K"};
+
+bool profile(const Scene& scene) {
+  return curvature_varies(scene.surface.kind);
+}
+
+// The field's index for this scene, or -1 (u stands for r where the curvature varies, K exists only there).
+int field_index(const Scene& scene, std::string_view name) {
+  if (name == (profile(scene) ? "u" : "r")) return f_r;
+  if (name == "r" || name == "u") return -1;
+  if (name == "K") return profile(scene) ? f_K : -1;
+  for (int i = 0; i < kFieldCount; ++i)
+    if (kFieldNames[i] == name) return i;
+  return -1;
+}
+
+std::string join(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+std::vector<std::string> split_on(std::string_view text, char sep) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i <= text.size(); ++i)
+    if (i == text.size() || text[i] == sep) {
+      parts.emplace_back(text.substr(start, i - start));
+      start = i + 1;
+    }
+  return parts;
+}
+
+double event_number(std::string_view event, std::string_view what, const std::string& text) {
+  char* end = nullptr;
+  const std::string s(text);
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v))
+    throw std::invalid_argument("event '" + std::string(event) + "': " + std::string(what) +
+                                " must be a finite number (got '" + s + "')");
+  return v;
+}
+
+std::string level_text(double v) {
+  return shortest(v);
+}
+
+}  // namespace
+
+std::vector<std::string> monitor_field_names(const Scene& scene) {
+  std::vector<std::string> names;
+  for (int i = 0; i < kFieldCount; ++i) {
+    if (i == f_K && !profile(scene)) continue;
+    names.emplace_back(i == f_r && profile(scene) ? "u" : kFieldNames[i]);
+  }
+  return names;
+}
+
+SummarySpec parse_summary(std::string_view text) {
+  SummarySpec s;
+  const std::size_t dot = text.rfind('.');
+  if (dot != std::string_view::npos) {
+    const std::string_view tail = text.substr(dot + 1);
+    const auto r = std::find(kReductionNames.begin(), kReductionNames.end(), tail);
+    if (r != kReductionNames.end()) {
+      s.field = std::string(text.substr(0, dot));
+      s.reductions = {static_cast<Reduction>(r - kReductionNames.begin())};
+    }
+  }
+  if (s.field.empty()) {
+    s.field = std::string(text);
+    for (std::size_t i = 0; i < kReductionNames.size(); ++i)
+      s.reductions.push_back(static_cast<Reduction>(i));
+  }
+  if (s.field.empty())
+    throw std::invalid_argument("summary '" + std::string(text) +
+                                "': name a field, or FIELD.REDUCTION (min, max, mean, final, t_min, t_max)");
+  return s;
+}
+
+EventSpec parse_event(std::string_view text) {
+  const std::vector<std::string> parts = split_on(text, ':');
+  const std::string t(text);
+  if (parts.size() < 3 || parts[0].empty())
+    throw std::invalid_argument(
+        "event '" + t + "': write FIELD:DIRECTION:LEVEL[:period=P][:stop=N][:name=NAME], e.g. r:up:1.2");
+  EventSpec e;
+  e.field = parts[0];
+  if (parts[1] == "up")
+    e.direction = Direction::up;
+  else if (parts[1] == "down")
+    e.direction = Direction::down;
+  else if (parts[1] == "any")
+    e.direction = Direction::any;
+  else
+    throw std::invalid_argument("event '" + t + "': the direction must be up, down or any (got '" + parts[1] +
+                                "')");
+  e.level = event_number(t, "the level", parts[2]);
+  for (std::size_t i = 3; i < parts.size(); ++i) {
+    const std::size_t eq = parts[i].find('=');
+    const std::string key = parts[i].substr(0, eq),
+                      value = eq == std::string::npos ? "" : parts[i].substr(eq + 1);
+    if (key == "period") {
+      e.period = event_number(t, "the period", value);
+      if (!(e.period > 0.0))
+        throw std::invalid_argument("event '" + t + "': the period must be > 0 (got " + value + ")");
+    } else if (key == "stop") {
+      const double n = event_number(t, "stop", value);
+      if (!(n >= 1.0 && n <= 1e9 && n == std::floor(n)))
+        throw std::invalid_argument("event '" + t + "': stop must be a whole number from 1 to 1e9 (got " +
+                                    value + ")");
+      e.stop = static_cast<std::uint64_t>(n);
+    } else if (key == "name" && !value.empty()) {
+      e.name = value;
+    } else {
+      throw std::invalid_argument("event '" + t + "': unknown part '" + parts[i] +
+                                  "' (period=P, stop=N or name=NAME)");
+    }
+  }
+  if (e.name.empty()) e.name = e.field + "_" + parts[1] + "_" + level_text(e.level);
+  return e;
+}
+
+void check_monitor(const MonitorSpec& spec, const Scene& scene) {
+  const auto known = [&](const std::string& field, const std::string& what) {
+    if (field_index(scene, field) < 0)
+      throw std::invalid_argument(what + ": unknown field '" + field + "' for this scene (one of " +
+                                  join(monitor_field_names(scene)) + ")");
+  };
+  for (const SummarySpec& s : spec.summaries) known(s.field, "summary '" + s.field + "'");
+  std::vector<std::string> names;
+  for (const EventSpec& e : spec.events) {
+    known(e.field, "event '" + e.name + "'");
+    if (std::find(names.begin(), names.end(), e.name) != names.end())
+      throw std::invalid_argument("event '" + e.name + "': two events have this name (give one name=OTHER)");
+    names.push_back(e.name);
+  }
+}
+
+std::vector<std::string> monitor_columns(const MonitorSpec& spec) {
+  std::vector<std::string> columns;
+  for (const SummarySpec& s : spec.summaries)
+    for (const Reduction r : s.reductions)
+      columns.push_back(s.field + "." + std::string(kReductionNames[static_cast<int>(r)]));
+  for (const EventSpec& e : spec.events) {
+    for (const char* c : {".count", ".t_first", ".t_last"}) columns.push_back(e.name + c);
+    for (const SummarySpec& s : spec.summaries) columns.push_back(e.name + ".at." + s.field);
+  }
+  return columns;
+}
+
+RunMonitor::RunMonitor(MonitorSpec spec, const Simulation& run) : spec_(std::move(spec)) {
+  check_monitor(spec_, run.scene);
+  const auto watch = [&](const std::string& name) {
+    const int f = field_index(run.scene, name);
+    const auto at = std::find(fields_.begin(), fields_.end(), f);
+    if (at != fields_.end()) return static_cast<int>(at - fields_.begin());
+    fields_.push_back(f);
+    return static_cast<int>(fields_.size() - 1);
+  };
+  for (const SummarySpec& s : spec_.summaries) summary_index_.push_back(watch(s.field));
+  for (const EventSpec& e : spec_.events) event_index_.push_back(watch(e.field));
+  last_ = run.state;
+  t_start_ = run.state.t;
+  last_values_ = evaluate(run, last_, nullptr);
+  for (std::size_t k = 0; k < fields_.size(); ++k) {
+    const double v = last_values_[k];
+    tracks_.push_back({v, v, t_start_, t_start_, 0.0, v});
+  }
+  events_.resize(spec_.events.size());
+}
+
+// The watched fields at `s`; phi continues `near` (its turns are counted, not wrapped).
+RunMonitor::Values RunMonitor::evaluate(const Simulation& run, const State& s, const Values* near) const {
+  Values out;
+  out.fill(kNaN);
+  const Scene& scene = run.scene;
+  bool body_needed = false, energy_needed = false;
+  bool position_only = true, x_needed = false;
+  for (const int f : fields_) {
+    (f == f_energy || f == f_energy_error ? energy_needed : body_needed) = true;
+    x_needed = x_needed || f == f_X0 || f == f_X1 || f == f_X2;
+    position_only = position_only && (f == f_energy || f == f_energy_error || f == f_r || f == f_phi ||
+                                      f == f_X0 || f == f_X1 || f == f_X2);
+  }
+  std::array<double, kFieldCount> v;
+  v.fill(kNaN);
+  if (energy_needed) {
+    const EnergyParts e =
+        run.embedded ? embedded_energy_parts(*run.embedded, s.y) : energy_parts(scene, s.chart, s.y);
+    v[f_energy] = e.kinetic + e.potential;
+    v[f_energy_error] = (v[f_energy] - run.initial_energy) / std::max(std::abs(run.initial_energy), 1e-300);
+  }
+  std::optional<double> phi;
+  if (body_needed && run.embedded) {
+    const ProfileReadout p = profile_readout(*run.embedded, s.y);
+    const PaperCoordinates& c = p.coordinates;
+    v[f_r] = c.r;
+    phi = c.phi;
+    v[f_lambda] = c.lambda;
+    v[f_mu] = c.mu;
+    v[f_det_L] = c.det_L;
+    v[f_spin] = c.p_alpha;
+    v[f_speed] = p.speed;
+    for (int i = 0; i < 3; ++i) v[f_X0 + i] = c.X[i];
+    v[f_K] = p.K;
+  } else if (body_needed && position_only && s.chart.global && !x_needed) {
+    // In the scene's own chart r and φ are coordinates of the state (global_body reads them back
+    // through X, which can differ in the last bits): the monitor's cheapest read.
+    v[f_r] = s.y[coord::r];
+    if (!(v[f_r] <= 1e-12 * scene.surface.radius)) phi = s.y[coord::phi];
+  } else if (body_needed && position_only) {
+    // r, φ and X alone: global_body's own first lines (the same numbers), not its frame.
+    const ChartPoint p = chart_point(scene.surface, s.y[coord::r], s.y[coord::phi]);
+    const Vec3 X = s.chart.A * p.X + s.chart.b;
+    const PolarCoordinates pc = polar_coordinates(scene.surface, X);
+    v[f_r] = pc.r;
+    if (!(pc.rho <= 1e-12 * scene.surface.radius)) phi = pc.phi;
+    for (int i = 0; i < 3; ++i) v[f_X0 + i] = X[i];
+  } else if (body_needed) {
+    const GlobalBody g = global_body(scene, s);
+    v[f_r] = g.r;
+    if (!g.at_pole) phi = g.phi;
+    const FrameStretches st = frame_stretches(g.L);
+    v[f_lambda] = st.lambda;
+    v[f_mu] = st.mu;
+    v[f_det_L] = g.L.determinant();
+    v[f_spin] = g.spin;
+    v[f_speed] = g.at_pole ? std::abs(g.r_dot) : std::hypot(g.r_dot, g.S * g.phi_dot);
+    for (int i = 0; i < 3; ++i) v[f_X0 + i] = g.X[i];
+  }
+  for (std::size_t k = 0; k < fields_.size(); ++k) {
+    out[k] = v[fields_[k]];
+    if (fields_[k] == f_phi) {
+      const double previous = near ? (*near)[k] : kNaN;
+      if (!phi)
+        out[k] = previous;  // at a pole φ is undefined: it keeps its last value
+      else
+        out[k] =
+            std::isnan(previous) ? *phi : previous + std::remainder(*phi - previous, 2.0 * std::numbers::pi);
+    }
+  }
+  return out;
+}
+
+void RunMonitor::refine_extremum(const Simulation& run, std::size_t k, bool maximum) {
+  // Brent's method over the two steps around the sequence point `last_`, on their own sub-steps.
+  const double sign = maximum ? -1.0 : 1.0;
+  const auto g = [&](double t) {
+    const bool first = t <= last_.t;
+    const State& from = first ? before_ : last_;
+    const Values& near = first ? before_values_ : last_values_;
+    if (t == from.t) return sign * near[k];
+    return sign * evaluate(run, state_after(run, from, t - from.t), &near)[k];
+  };
+  const auto [t, value] = boost::math::tools::brent_find_minima(g, before_.t, last_.t + (last_.t - before_.t),
+                                                                std::numeric_limits<double>::digits / 2);
+  Track& track = tracks_[k];
+  const double v = sign * value;
+  if (maximum && v > track.max) track.max = v, track.t_max = t;
+  if (!maximum && v < track.min) track.min = v, track.t_min = t;
+}
+
+std::optional<State> RunMonitor::step(const Simulation& run, const State& b_in) {
+  if (stopped_) return std::nullopt;
+  const double h = b_in.t - last_.t;
+  if (!(h > 0.0)) return std::nullopt;
+  State b = b_in;
+  Values vb = evaluate(run, b, &last_values_);
+
+  // Events: every level crossed, located by TOMS 748 on the step's own sub-steps, in time order.
+  struct Hit {
+    double tau;
+    std::size_t event;
+  };
+  std::vector<Hit> hits;  // allocates only when a level was crossed
+  for (std::size_t e = 0; e < spec_.events.size(); ++e) {
+    const EventSpec& spec = spec_.events[e];
+    const int k = event_index_[e];
+    const double ga = last_values_[k], gb = vb[k];
+    if (std::isnan(ga) || std::isnan(gb) || ga == gb) continue;
+    const bool up = gb > ga;
+    if ((up && spec.direction == Direction::down) || (!up && spec.direction == Direction::up)) continue;
+    // Levels L with ga < L <= gb (up) or gb <= L < ga (down).
+    double first = spec.level, last = spec.level;
+    if (spec.period > 0.0) {
+      const double lo = std::min(ga, gb), hi = std::max(ga, gb);
+      first = spec.level + spec.period * (up ? std::floor((lo - spec.level) / spec.period) + 1.0
+                                             : std::ceil((lo - spec.level) / spec.period));
+      last = spec.level + spec.period * (up ? std::floor((hi - spec.level) / spec.period)
+                                            : std::ceil((hi - spec.level) / spec.period) - 1.0);
+    }
+    for (double level = first; level <= last && hits.size() < 10000;
+         level += spec.period > 0.0 ? spec.period : INFINITY) {
+      const bool crossed = up ? (ga < level && gb >= level) : (ga > level && gb <= level);
+      if (!crossed) continue;
+      const auto f = [&](double tau) {
+        if (tau <= 0.0) return ga - level;
+        if (tau >= h) return gb - level;
+        return evaluate(run, state_after(run, last_, tau), &last_values_)[k] - level;
+      };
+      std::uintmax_t iterations = 100;
+      const auto tol = [h](double a, double c) { return std::abs(c - a) <= 1e-14 * h; };
+      const auto [a, c] =
+          boost::math::tools::toms748_solve(f, 0.0, h, ga - level, gb - level, tol, iterations);
+      hits.push_back({0.5 * (a + c), e});
+    }
+  }
+  std::sort(hits.begin(), hits.end(), [](const Hit& x, const Hit& y) { return x.tau < y.tau; });
+  for (const Hit& hit : hits) {
+    Occurrences& o = events_[hit.event];
+    const double t = last_.t + hit.tau;
+    const bool terminal = spec_.events[hit.event].stop == o.count + 1;
+    std::optional<State> at;
+    if (o.count == 0 || terminal) at = state_after(run, last_, hit.tau);
+    if (o.count == 0) {
+      o.t_first = t;
+      const Values values = evaluate(run, *at, &last_values_);
+      for (const int s : summary_index_) o.at_first.push_back(values[s]);
+    }
+    ++o.count;
+    o.t_last = t;
+    if (terminal) {
+      b = *at;
+      b.status = Status::event_stop;
+      vb = evaluate(run, b, &last_values_);
+      stopped_ = true;
+      break;
+    }
+  }
+
+  // Reductions: an interior extremum at last_ is refined where the parabola through the three
+  // points says it beats the one so far; then the new point and the step's trapezoid.
+  const double hb = b.t - last_.t;
+  for (std::size_t k = 0; k < fields_.size(); ++k) {
+    Track& track = tracks_[k];
+    if (has_before_ && hb > 0.0) {
+      const double t0 = before_.t, t1 = last_.t, t2 = b.t;
+      const double g0 = before_values_[k], g1 = last_values_[k], g2 = vb[k];
+      const double d1 = (g1 - g0) / (t1 - t0), d2 = (g2 - g1) / (t2 - t1), a = (d2 - d1) / (t2 - t0);
+      if (a != 0.0 && std::isfinite(a)) {
+        const double ts = 0.5 * (t0 + t1) - d1 / (2.0 * a);
+        const double peak = g0 + d1 * (ts - t0) + a * (ts - t0) * (ts - t1);
+        if (ts > t0 && ts < t2) {
+          if (a < 0.0 && g1 >= g0 && g1 >= g2 && peak > track.max) refine_extremum(run, k, true);
+          if (a > 0.0 && g1 <= g0 && g1 <= g2 && peak < track.min) refine_extremum(run, k, false);
+        }
+      }
+    }
+    const double v = vb[k];
+    if (v > track.max) track.max = v, track.t_max = b.t;
+    if (v < track.min) track.min = v, track.t_min = b.t;
+    // ∫ over the step of the parabola through the last three points: the trapezoid less a·h³/6,
+    // a the second divided difference (the trapezoid alone on the first step).
+    double curvature = 0.0;
+    if (has_before_) {
+      const double t0 = before_.t, t1 = last_.t;
+      const double a =
+          ((v - last_values_[k]) / hb - (last_values_[k] - before_values_[k]) / (t1 - t0)) / (b.t - t0);
+      if (std::isfinite(a)) curvature = a;
+    }
+    track.integral += 0.5 * (last_values_[k] + v) * hb - curvature * hb * hb * hb / 6.0;
+    track.final = v;
+  }
+  before_ = std::move(last_);
+  before_values_ = last_values_;
+  has_before_ = true;
+  last_ = b;
+  last_values_ = vb;
+  if (stopped_) return b;
+  return std::nullopt;
+}
+
+std::vector<double> RunMonitor::values() const {
+  std::vector<double> out;
+  const double duration = last_.t - t_start_;
+  for (std::size_t i = 0; i < spec_.summaries.size(); ++i) {
+    const Track& t = tracks_[summary_index_[i]];
+    for (const Reduction r : spec_.summaries[i].reductions) switch (r) {
+        case Reduction::min: out.push_back(t.min); break;
+        case Reduction::max: out.push_back(t.max); break;
+        case Reduction::mean: out.push_back(duration > 0.0 ? t.integral / duration : t.final); break;
+        case Reduction::final: out.push_back(t.final); break;
+        case Reduction::t_min: out.push_back(t.t_min); break;
+        case Reduction::t_max: out.push_back(t.t_max); break;
+      }
+  }
+  for (const Occurrences& o : events_) {
+    out.push_back(static_cast<double>(o.count));
+    out.push_back(o.count ? o.t_first : kNaN);
+    out.push_back(o.count ? o.t_last : kNaN);
+    for (std::size_t i = 0; i < spec_.summaries.size(); ++i) out.push_back(o.count ? o.at_first[i] : kNaN);
+  }
+  return out;
+}
+
+}  // namespace spinfold

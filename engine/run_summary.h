@@ -1,0 +1,120 @@
+// What a run did, not only where it ended: reductions of scalar fields over the run's own step
+// sequence, and level crossings ("events") located inside its steps as the det L = 0 events are.
+// Neither depends on where the run is sampled (--every). `spinfold simulate`, `spinfold sweep` and
+// Python's sweep name them in this file's words (parse_summary, parse_event), so every front door
+// accepts and refuses alike.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/scene.h"
+#include "engine/state.h"
+
+namespace spinfold {
+
+struct Simulation;
+
+// The fields a summary or an event watches (monitor_field_names): r (u where the curvature varies),
+// phi (continuous: it counts turns instead of wrapping at ±π), lambda, mu, det_L, energy,
+// energy_error, spin, speed, X.0, X.1, X.2, and K where the curvature varies. Each is the number of
+// the same name in a sample, read off the same state.
+std::vector<std::string> monitor_field_names(const Scene& scene);
+
+// Reductions over the run, in the run's time [the field's unit; t_min, t_max in time]:
+//   min, max   over the whole run, between steps too (a step's interior extremum is refined by
+//              Brent's method on the step's own sub-steps);
+//   mean       (1/T)∫ f dt over the step sequence, each step's integral that of the parabola through
+//              it and the point before (error O(h³) in the step h);
+//   final      the value at the run's last state;
+//   t_min, t_max  when the min and the max were reached.
+enum class Reduction { min, max, mean, final, t_min, t_max };
+inline constexpr std::array<std::string_view, 6> kReductionNames = {"min",   "max",   "mean",
+                                                                    "final", "t_min", "t_max"};
+
+struct SummarySpec {
+  std::string field;                  // a monitor_field_names() entry
+  std::vector<Reduction> reductions;  // all six when the text names only the field
+};
+
+enum class Direction { up, down, any };
+
+// A field crossing a level: up (from below to at or above), down, or either. With a period, every
+// level + k·period counts (phi through multiples of 2π: level 0, period 6.283185307179586).
+struct EventSpec {
+  std::string name;  // the columns' prefix; default FIELD_DIRECTION_LEVEL (r_up_1.2)
+  std::string field;
+  Direction direction = Direction::any;
+  double level = 0.0;
+  double period = 0.0;     // 0: the level only
+  std::uint64_t stop = 0;  // stop the run at this occurrence (scipy's `terminal`); 0: never
+};
+
+struct MonitorSpec {
+  std::vector<SummarySpec> summaries;
+  std::vector<EventSpec> events;
+  bool empty() const { return summaries.empty() && events.empty(); }
+};
+
+// "r" (every reduction of r) or "r.max" (one); std::invalid_argument naming the text and the reason.
+SummarySpec parse_summary(std::string_view text);
+// "FIELD:DIRECTION:LEVEL[:period=P][:stop=N][:name=NAME]", DIRECTION up, down or any, e.g.
+// "r:up:1.2", "phi:any:0:period=6.283185307179586", "r:up:1.2:stop=3".
+EventSpec parse_event(std::string_view text);
+// The fields named exist for this scene and the event names are distinct; std::invalid_argument
+// naming the field, the value and the reason otherwise.
+void check_monitor(const MonitorSpec& spec, const Scene& scene);
+
+// The columns the spec adds to a row, in order: FIELD.REDUCTION for each summary, then for each
+// event NAME.count, NAME.t_first, NAME.t_last and NAME.at.FIELD (the summaries' fields at the first
+// occurrence).
+std::vector<std::string> monitor_columns(const MonitorSpec& spec);
+
+// The run's monitor: fed each step of the run's own sequence by engine/simulation.cpp, never the
+// cut steps that reach a sample time (those are recomputed, not kept).
+class RunMonitor {
+ public:
+  RunMonitor(MonitorSpec spec, const Simulation& run);  // the start: run.state
+
+  // A step of the sequence from the monitor's last state to `b`. Returns the state of a terminal
+  // event inside it (status event_stop) when one occurred; the monitor then ends there.
+  std::optional<State> step(const Simulation& run, const State& b);
+
+  // The columns' values (monitor_columns order); NaN where there is none (no occurrence).
+  std::vector<double> values() const;
+  const State& last() const { return last_; }
+  bool stopped() const { return stopped_; }
+  const MonitorSpec& spec() const { return spec_; }
+  std::uint64_t closed_form_points = 0;  // the closed form's virtual steps fed so far
+
+ private:
+  struct Track {  // one watched field
+    double min = 0, max = 0, t_min = 0, t_max = 0, integral = 0, final = 0;
+  };
+  struct Occurrences {
+    std::uint64_t count = 0;
+    double t_first = 0, t_last = 0;
+    std::vector<double> at_first;  // the watched fields at the first occurrence
+  };
+  static constexpr std::size_t kMaxFields = 13;   // monitor_field_names() at most
+  using Values = std::array<double, kMaxFields>;  // the watched fields' values, in fields_ order
+  Values evaluate(const Simulation& run, const State& s, const Values* near) const;
+  void refine_extremum(const Simulation& run, std::size_t k, bool maximum);
+
+  MonitorSpec spec_;
+  std::vector<int> fields_;          // the watched fields (indices into the field table)
+  std::vector<int> summary_index_;   // spec_.summaries[i]'s field in fields_
+  std::vector<int> event_index_;     // spec_.events[i]'s field in fields_
+  std::vector<Track> tracks_;        // per watched field
+  std::vector<Occurrences> events_;  // per event
+  State before_, last_;              // the last two points of the sequence (before_ valid when has_before_)
+  Values before_values_{}, last_values_{};
+  bool has_before_ = false, stopped_ = false;
+  double t_start_ = 0.0;
+};
+
+}  // namespace spinfold

@@ -1,0 +1,232 @@
+// Summaries and events of a run (engine/run_summary.h): checked against a dense trajectory of the
+// same run, against the state at the located times, against the closed form, and for independence
+// of where the run is sampled.
+#include "engine/run_summary.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "engine/sampling.h"
+#include "test_support.h"
+
+namespace spinfold {
+namespace {
+
+Scene w5_with(const char* integrator, double dt, double tolerance) {
+  Scene s = w5_scene();
+  s.integrator = {integrator, dt, tolerance};
+  return s;
+}
+
+MonitorSpec r_and_phi(const std::string& event) {
+  return {.summaries = {parse_summary("r"), parse_summary("phi.max"), parse_summary("energy_error.max")},
+          .events = {parse_event(event)}};
+}
+
+// Runs to t_end sampled every `every`, with the monitor; the monitor's values at the end.
+std::vector<double> summarised(const Scene& scene, const MonitorSpec& spec, double t_end, double every,
+                               Simulation* out = nullptr) {
+  Simulation run = start_simulation(scene);
+  watch(run, spec);
+  sample_run(
+      run, t_end, every, [&](double t) { return advance_to(run, t); }, [] {});
+  std::vector<double> values = monitor_values(run);
+  if (out) *out = std::move(run);
+  return values;
+}
+
+double field_r(const Simulation& run) {
+  return global_body(run.scene, run.state).r;
+}
+
+TEST(RunSummary, ParsesSummariesAndEventsInOneGrammar) {
+  const SummarySpec all = parse_summary("X.0");
+  EXPECT_EQ(all.field, "X.0");
+  EXPECT_EQ(all.reductions.size(), 6u);
+  const SummarySpec one = parse_summary("X.0.t_max");
+  EXPECT_EQ(one.field, "X.0");
+  ASSERT_EQ(one.reductions.size(), 1u);
+  EXPECT_EQ(one.reductions[0], Reduction::t_max);
+
+  const EventSpec e = parse_event("phi:any:0:period=6.283185307179586:stop=3");
+  EXPECT_EQ(e.field, "phi");
+  EXPECT_EQ(e.direction, Direction::any);
+  EXPECT_EQ(e.period, 2.0 * std::numbers::pi);
+  EXPECT_EQ(e.stop, 3u);
+  EXPECT_EQ(e.name, "phi_any_0");
+  EXPECT_EQ(parse_event("r:up:1.2:name=out").name, "out");
+  EXPECT_EQ(parse_event("r:up:1.2").name, "r_up_1.2");
+
+  for (const char* bad :
+       {"r", "r:sideways:1", "r:up:x", "r:up:1:period=0", "r:up:1:stop=0", "r:up:1:colour=red"}) {
+    try {
+      parse_event(bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find(std::string("'") + bad + "'"), std::string::npos)
+          << error.what();
+    }
+  }
+  const Scene scene = w5_scene();
+  EXPECT_THROW(check_monitor({.summaries = {parse_summary("u")}, .events = {}}, scene),
+               std::invalid_argument);
+  EXPECT_THROW(
+      check_monitor({.summaries = {}, .events = {parse_event("r:up:1"), parse_event("r:up:1")}}, scene),
+      std::invalid_argument);
+  // K exists only where the curvature varies.
+  EXPECT_THROW(check_monitor({.summaries = {}, .events = {parse_event("K:up:1")}}, scene),
+               std::invalid_argument);
+}
+
+TEST(RunSummary, ColumnsFollowTheSpec) {
+  const std::vector<std::string> columns =
+      monitor_columns({.summaries = {parse_summary("r.max"), parse_summary("phi.final")},
+                       .events = {parse_event("r:up:1.2")}});
+  const std::vector<std::string> expected = {
+      "r.max",           "phi.final",     "r_up_1.2.count", "r_up_1.2.t_first",
+      "r_up_1.2.t_last", "r_up_1.2.at.r", "r_up_1.2.at.phi"};
+  EXPECT_EQ(columns, expected);
+}
+
+// The monitor watches; it never changes the run: the same states to the bit with and without it.
+TEST(RunSummary, WatchingDoesNotChangeTheRun) {
+  for (const char* integrator : {"rk4", "dop853", "exact"}) {
+    const Scene scene = w5_with(integrator, 0.01, 1e-10);
+    Simulation watched;
+    summarised(scene, r_and_phi("r:up:1.3"), 20.0, 0.37, &watched);
+    Simulation plain = start_simulation(scene);
+    sample_run(
+        plain, 20.0, 0.37, [&](double t) { return advance_to(plain, t); }, [] {});
+    EXPECT_TRUE(test::same_bits(watched.state, plain.state)) << integrator;
+  }
+}
+
+// The values come from the run's own steps: the same to the bit however it is sampled.
+TEST(RunSummary, IndependentOfTheSampling) {
+  for (const char* integrator : {"rk4", "dop853", "exact"}) {
+    const Scene scene = w5_with(integrator, 0.01, 1e-10);
+    const MonitorSpec spec = r_and_phi("r:up:1.3");
+    const std::vector<double> coarse = summarised(scene, spec, 20.0, 0.5);
+    const std::vector<double> fine = summarised(scene, spec, 20.0, 0.013);
+    const std::vector<double> once = summarised(scene, spec, 20.0, 20.0);
+    ASSERT_EQ(coarse.size(), fine.size());
+    for (std::size_t i = 0; i < coarse.size(); ++i) {
+      EXPECT_EQ(std::memcmp(&coarse[i], &fine[i], sizeof(double)), 0) << integrator << " column " << i;
+      EXPECT_EQ(std::memcmp(&coarse[i], &once[i], sizeof(double)), 0) << integrator << " column " << i;
+    }
+  }
+}
+
+// Against a dense trajectory (a sample every 1e-3): the extremes bound every sample's value and
+// exceed the largest by no more than the samples' own spacing allows; the mean is its integral.
+TEST(RunSummary, ReductionsAgreeWithADenseTrajectory) {
+  const Scene scene = w5_with("dop853", 0.01, 1e-12);
+  const MonitorSpec spec{.summaries = {parse_summary("r")}, .events = {}};
+  const double T = 15.0, every = 1e-3;
+  const std::vector<double> v = summarised(scene, spec, T, 0.5);  // min max mean final t_min t_max
+  Simulation run = start_simulation(scene);
+  double lo = INFINITY, hi = -INFINITY, t_lo = 0, t_hi = 0, integral = 0, previous = field_r(run);
+  sample_run(
+      run, T, every, [&](double t) { return advance_to(run, t); },
+      [&] {
+        const double r = field_r(run);
+        if (r < lo) lo = r, t_lo = run.state.t;
+        if (r > hi) hi = r, t_hi = run.state.t;
+        if (run.state.t > 0) integral += 0.5 * (previous + r) * every;
+        previous = r;
+      });
+  EXPECT_LE(v[0], lo + 1e-13);
+  EXPECT_GE(v[1], hi - 1e-13);
+  EXPECT_LT(lo - v[0], 1e-6);  // a sample every 1e-3 misses the true extreme by ~r''·1e-6/8
+  EXPECT_LT(v[1] - hi, 1e-6);
+  EXPECT_NEAR(v[2], integral / T, 1e-6);
+  EXPECT_NEAR(v[3], field_r(run), 1e-14 * field_r(run));  // read off the chart, not through X
+  EXPECT_NEAR(v[4], t_lo, 2e-3);
+  EXPECT_NEAR(v[5], t_hi, 2e-3);
+  EXPECT_GT(v[1] - v[0], 0.05) << "the scene's r oscillates";
+}
+
+// Each located time is where the field meets the level: the run advanced to that time (a cut step
+// from its sequence, as any sample) has r = level to 1e-10 of the field's rate; the count is the
+// dense trajectory's count of sign changes.
+TEST(RunSummary, EventsAreLocatedToTheirLevel) {
+  const Scene scene = w5_with("dop853", 0.01, 1e-12);
+  const double level = 1.3, T = 30.0;
+  std::vector<double> times;
+  Simulation probe = start_simulation(scene);
+  int dense_count = 0;
+  double previous = field_r(probe);
+  sample_run(
+      probe, T, 1e-3, [&](double t) { return advance_to(probe, t); },
+      [&] {
+        const double r = field_r(probe);
+        if (previous < level && r >= level) ++dense_count;
+        previous = r;
+      });
+  ASSERT_GE(dense_count, 2);
+  for (std::uint64_t n = 1; n <= static_cast<std::uint64_t>(dense_count); ++n) {
+    MonitorSpec spec{.summaries = {}, .events = {parse_event("r:up:1.3:stop=" + std::to_string(n))}};
+    Simulation stopped;
+    const std::vector<double> v = summarised(scene, spec, T, 0.5, &stopped);
+    ASSERT_EQ(stopped.state.status, Status::event_stop) << n;
+    EXPECT_EQ(v[0], static_cast<double>(n));
+    EXPECT_EQ(stopped.state.t, v[2]);
+    Simulation at = start_simulation(scene);
+    advance_to(at, v[2]);
+    const GlobalBody g = global_body(scene, at.state);
+    EXPECT_LT(std::abs(g.r - level), 1e-10 * std::max(std::abs(g.r_dot), 1e-3)) << n;
+    EXPECT_GT(g.r_dot, 0.0) << "an upward crossing";
+    times.push_back(v[2]);
+  }
+  const std::vector<double> all =
+      summarised(scene, {.summaries = {}, .events = {parse_event("r:up:1.3")}}, T, 0.5);
+  EXPECT_EQ(all[0], dense_count);
+  EXPECT_EQ(all[1], times.front());
+  EXPECT_EQ(all[2], times.back());
+}
+
+// The closed form and a stepper locate the same crossings: two formulations, to their accuracy.
+TEST(RunSummary, ClosedFormAndStepperAgree) {
+  const MonitorSpec spec{
+      .summaries = {parse_summary("r.max"), parse_summary("r.min")},
+      .events = {parse_event("r:down:1.25"), parse_event("phi:any:0:period=6.283185307179586")}};
+  const std::vector<double> exact = summarised(w5_with("exact", 0.01, 1e-12), spec, 25.0, 0.5);
+  const std::vector<double> stepped = summarised(w5_with("dop853", 0.01, 1e-13), spec, 25.0, 0.5);
+  ASSERT_EQ(exact.size(), stepped.size());
+  EXPECT_NEAR(exact[0], stepped[0], 1e-10);
+  EXPECT_NEAR(exact[1], stepped[1], 1e-10);
+  for (std::size_t i = 2; i < exact.size(); ++i) EXPECT_NEAR(exact[i], stepped[i], 1e-8) << "column " << i;
+  EXPECT_GE(exact[2], 1.0);
+}
+
+// phi counts turns: crossings of multiples of 2π equal the dense trajectory's unwrapped turns.
+TEST(RunSummary, PhiThroughMultiplesOfTwoPi) {
+  const Scene scene = w5_with("dop853", 0.01, 1e-12);
+  const double T = 40.0;
+  Simulation probe = start_simulation(scene);
+  const double p = 2.0 * std::numbers::pi;
+  double unwrapped = global_body(scene, probe.state).phi, raw = unwrapped, turns = 0;
+  sample_run(
+      probe, T, 1e-2, [&](double t) { return advance_to(probe, t); },
+      [&] {
+        const double now = global_body(scene, probe.state).phi;
+        const double next = unwrapped + std::remainder(now - raw, p);
+        // Multiples k·2π with unwrapped < k·2π <= next (up) or next <= k·2π < unwrapped (down).
+        turns += next > unwrapped ? std::floor(next / p) - std::floor(unwrapped / p)
+                                  : std::ceil(unwrapped / p) - std::ceil(next / p);
+        unwrapped = next;
+        raw = now;
+      });
+  const std::vector<double> v = summarised(scene,
+                                           {.summaries = {parse_summary("phi.final")},
+                                            .events = {parse_event("phi:any:0:period=6.283185307179586")}},
+                                           T, 0.5);
+  EXPECT_NEAR(v[0], unwrapped, 1e-9);
+  EXPECT_EQ(v[1], turns);
+  EXPECT_GE(turns, 1.0);
+}
+
+}  // namespace
+}  // namespace spinfold
