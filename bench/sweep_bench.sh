@@ -3,7 +3,9 @@
 #  1. 400 short runs (T = 100, dop853) as one `spinfold sweep --jobs 1` against the same 400 as
 #     `spinfold simulate` processes one after another (what a shell loop does), for the full
 #     binary and for the compute-only one (-DSPINFOLD_COMPUTE_ONLY=ON) when given;
-#  2. a sweep with --jobs 2 against --jobs 1 (longer runs: T = 1000).
+#  2. a sweep with --jobs 2 against --jobs 1 (longer runs: T = 1000);
+#  3. 400 runs with a summary and one event (--summary r --event r:up:1.3) against the same 400
+#     without them, for dop853, rk4 and the closed form (the best of 3, interleaved).
 #
 #   bench/sweep_bench.sh [build/spinfold] [build-compute/spinfold]
 set -euo pipefail
@@ -80,4 +82,24 @@ p2=$(seconds "$t2" "$t3")
 echo "sweep, 200 runs of T = 5000, --jobs 1:      ${j1} s"
 echo "the same, --jobs 2:                         ${j2} s   speed-up $(ratio "$j1" "$j2")x"
 echo "control: 2 processes of 100 runs each:      ${p2} s   speed-up $(ratio "$j1" "$p2")x (what the machine gives now)"
+
+# Summaries and events against none: the same sweep, the best of 3 each, interleaved.
+best() { sort -n | head -1; }
+for integrator in dop853 rk4 exact; do
+  plain=() watched=()
+  for _ in 1 2 3; do
+    for mode in plain watched; do
+      extra=()
+      [[ $mode == watched ]] && extra=(--summary r --event r:up:1.3)
+      t0=$(now)
+      "$full" sweep separable_radial_abc --set initial.phi=0:1:400 --set integrator.name=$integrator \
+        --t-end 100 --every 1 --jobs 1 --quiet "${extra[@]}" --out "$tmp/m.csv"
+      t1=$(now)
+      if [[ $mode == plain ]]; then plain+=("$(seconds "$t0" "$t1")"); else watched+=("$(seconds "$t0" "$t1")"); fi
+    done
+  done
+  p=$(printf '%s\n' "${plain[@]}" | best)
+  w=$(printf '%s\n' "${watched[@]}" | best)
+  echo "400 runs of W5 to T = 100, $integrator: ${p} s; with --summary r --event r:up:1.3: ${w} s   $(awk "BEGIN{printf \"%.2f\", $w / $p}")x"
+done
 echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -547,23 +547,64 @@ void monitor_closed_form(Simulation& run) {
 }
 
 // A terminal event between the sequence's last point and the state asked for stops the run there
-// (the sample then shows it, as a det L stop between samples does).
-void stop_on_event_before_state(Simulation& run) {
+// (the sample then shows it, as a det L stop between samples does). It is located on the run's own
+// steps, never in the cut step to the sample, so that where the run is sampled cannot move it: the
+// sequence's next steps (or the closed form's next points) are taken on a copy, and kept only when
+// they reach the event before the state's time.
+void stop_on_event_before_state(Simulation& run, std::uint64_t& attempts) {
   const bool terminal = std::any_of(run.monitor->spec().events.begin(), run.monitor->spec().events.end(),
                                     [](const EventSpec& e) { return e.stop > 0; });
   if (!terminal || run.state.status != Status::ok || !(run.state.t > run.monitor->last().t)) return;
-  RunMonitor trial = *run.monitor;
-  std::optional<State> stop = trial.step(run, run.state);
-  if (!stop) return;
-  run.monitor = std::move(trial);
-  run.state = std::move(*stop);
-  std::erase_if(run.events, [&](const DegenerateEvent& e) { return e.t > run.state.t; });
-  run.view_events.clear();
-  if (!run.exact) {
-    run.grid.state = run.state;
-    run.grid.carry.setZero(run.state.y.size());
-    run.grid.t_carry = 0.0;
+  {
+    RunMonitor trial = *run.monitor;
+    if (!trial.step(run, run.state)) return;  // no crossing before the state: nothing to do
   }
+  const double t_state = run.state.t;
+  const auto stopped_here = [&](const State& stop) {
+    run.state = stop;
+    std::erase_if(run.events, [&](const DegenerateEvent& e) { return e.t > run.state.t; });
+    run.view_events.clear();
+  };
+  if (run.exact) {
+    RunMonitor m = *run.monitor;
+    const double dt = run.scene.integrator.dt;
+    for (std::uint64_t k = m.closed_form_points + 1;; ++k) {
+      const double t = run.segment_start + static_cast<double>(k) * dt;
+      if (t - dt >= t_state) return;
+      m.closed_form_points = k;
+      State point = exact_at(run, t);
+      if (!all_finite(point)) return;
+      if (std::optional<State> stop = m.step(run, point)) {
+        if (stop->t > t_state) return;
+        run.monitor = std::move(m);
+        stopped_here(*stop);
+        return;
+      }
+    }
+  }
+  // Steppers: the sequence's next whole steps, on copies of what stepping changes.
+  const StepPoint grid = run.grid, checked = run.checked;
+  const std::optional<RunMonitor> monitor = run.monitor, monitor_checked = run.monitor_checked;
+  const std::uint64_t steps = run.steps, rejected = run.rejected, recentres = run.recentres;
+  const std::vector<DegenerateEvent> events = run.events;
+  StepPoint p = run.grid;
+  while (p.state.status == Status::ok && p.state.t <= t_state && attempts > 0) {
+    const double h = run.integrator->info().adaptive ? p.h_next : run.scene.integrator.dt;
+    step_toward(run, p, p.state.t + 2.0 * h, Mode::sequence, attempts, run.events);
+  }
+  if (p.state.status == Status::event_stop && p.state.t <= t_state) {
+    run.grid = p;
+    stopped_here(p.state);
+    return;
+  }
+  run.grid = grid;
+  run.checked = checked;
+  run.monitor = monitor;
+  run.monitor_checked = monitor_checked;
+  run.steps = steps;
+  run.rejected = rejected;
+  run.recentres = recentres;
+  run.events = events;
 }
 
 // One body (not its companions), with its monitor.
@@ -571,7 +612,7 @@ bool advance_body(Simulation& run, double t_end, std::uint64_t& attempts) {
   const bool done = advance_body_only(run, t_end, attempts);
   if (run.monitor) {
     if (run.exact) monitor_closed_form(run);
-    stop_on_event_before_state(run);
+    stop_on_event_before_state(run, attempts);
   }
   return done;
 }

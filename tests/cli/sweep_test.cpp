@@ -317,6 +317,12 @@ TEST(Sweep, BadFieldsAndValuesAreExitTwoNamingThem) {
            // The run limits in simulate's words (engine/run_limits.h); -1 was a whole run.
            {"--set initial.r=1 --max-steps -1", "--max-steps: must be a whole number from 1 to"},
            {"--set initial.r=1 --t-end -1", "--t-end: must be a number >= 0 [time] (got '-1')"},
+           // Summaries and events in the engine's words (engine/run_summary.h).
+           {"--set initial.r=1 --summary nope",
+            "--summary: summary 'nope': unknown field 'nope' for this scene"},
+           {"--set initial.r=1 --event r:sideways:1",
+            "--event: event 'r:sideways:1': the direction must be up, down or any"},
+           {"--set initial.r=1 --event u:up:1", "unknown field 'u' for this scene (one of r, phi,"},
        }) {
     const auto r = run((c.args.find("deformation") != std::string::npos ? "sweep breathing_ellipse_sphere "
                                                                         : "sweep spinning_rigid_sphere ") +
@@ -327,6 +333,45 @@ TEST(Sweep, BadFieldsAndValuesAreExitTwoNamingThem) {
   }
   const auto lambda = run("sweep spinning_rigid_sphere --set initial.lambda=-1");
   EXPECT_NE(lambda.err.find("initial.lambda"), std::string::npos);
+}
+
+// Summaries and events come from each run's own steps: the same cells however the runs are sampled,
+// and the same numbers as simulate's summary record of that run; a terminal event ends a run as
+// event_stop (a good row), at the crossing.
+TEST(Sweep, SummariesAndEventsAreTheRunsOwnWhateverTheSampling) {
+  TempDir dir;
+  const std::string common =
+      "sweep separable_radial_abc --set integrator.name=dop853,exact --set initial.r=1.2,1.1 --t-end 20 "
+      "--fields t,r --summary r,phi.max --event r:up:1.3 --event 'r:down:1.25:stop=1:name=back' --quiet ";
+  ASSERT_EQ(run(common + "--every 0.5 --out " + (dir.path / "a.csv").string()).exit_code, 0);
+  ASSERT_EQ(run(common + "--every 0.07 --out " + (dir.path / "b.csv").string()).exit_code, 0);
+  const Table a = read_csv(slurp(dir.path / "a.csv")), b = read_csv(slurp(dir.path / "b.csv"));
+  ASSERT_EQ(a.rows.size(), 4u);
+  for (const char* c : {"r_max", "r_min", "r_mean", "r_t_max", "phi_max", "r_up_1_3_count",
+                        "r_up_1_3_t_first", "r_up_1_3_at_phi", "back_count", "back_t_last"})
+    ASSERT_NE(std::find(a.columns.begin(), a.columns.end(), c), a.columns.end()) << c;
+  for (std::size_t i = 0; i < a.rows.size(); ++i) {
+    for (const std::string& c : a.columns) {
+      if (c.starts_with("r_") || c.starts_with("phi_") || c.starts_with("back_")) {
+        EXPECT_EQ(a.rows[i].at(c), b.rows[i].at(c)) << "row " << i << " column " << c;
+      }
+    }
+    EXPECT_EQ(a.rows[i].at("status"), "event_stop") << i;
+    EXPECT_EQ(a.rows[i].at("back_count"), "1");
+    EXPECT_EQ(a.rows[i].at("t"), a.rows[i].at("back_t_last")) << "the run ends on the crossing";
+    EXPECT_LT(std::abs(std::stod(a.rows[i].at("r")) - 1.25), 1e-9);
+  }
+  // simulate's summary record of run 0 (dop853, the preset's r = 1.2): the sweep row's numbers.
+  const auto sim =
+      run("simulate separable_radial_abc --integrator dop853 --t-end 20 --every 3 --fields t "
+          "--summary r,phi.max --event r:up:1.3 --event 'r:down:1.25:stop=1:name=back'");
+  EXPECT_EQ(sim.exit_code, 0) << sim.err;
+  {
+    const json summary = json::parse(sim.out.substr(sim.out.rfind("{\"summary\"")))["summary"];
+    EXPECT_EQ(summary["r.max"].dump(), a.rows[0].at("r_max"));
+    EXPECT_EQ(summary["back.t_first"].dump(), a.rows[0].at("back_t_first"));
+    EXPECT_EQ(summary["r_up_1.3.count"].get<int>(), std::stoi(a.rows[0].at("r_up_1_3_count")));
+  }
 }
 
 TEST(Sweep, AFailedRunIsItsRowsStatusNotTheSweepsEnd) {

@@ -103,3 +103,36 @@ def test_default_columns_are_the_clis(binary, tmp_path):
     table = spinfold.sweep("spinning_rigid_sphere", {"initial.r": [1, 1.5]}, t_end=1)
     assert [csv_name(name) for name in table] == columns
     assert "drift.p_phi" in table and "seconds" in table
+
+
+def test_summaries_and_events_are_the_clis_to_the_bit_and_numpy_columns(binary, tmp_path):
+    out = tmp_path / "rows.csv"
+    subprocess.run([binary, "sweep", "trapped_spin_bump", "--set", "initial.spin=0:0.3:4", "--t-end", "15",
+                    "--fields", "t,u", "--summary", "u,energy_error.max", "--event", "u:up:0.5",
+                    "--event", "phi:any:0:period=6.283185307179586:name=turn", "--quiet", "--out", str(out)],
+                   check=True)
+    columns, rows = read_cli_rows(out)
+    table = spinfold.sweep("trapped_spin_bump", {"initial.spin": "0:0.3:4"}, t_end=15, fields="t,u",
+                           summaries="u,energy_error.max",
+                           events=["u:up:0.5", "phi:any:0:period=6.283185307179586:name=turn"])
+    assert [csv_name(name) for name in table] == columns
+    for name in ("u.max", "u.t_min", "energy_error.max", "u_up_0.5.count", "turn.t_first", "turn.at.u"):
+        assert name in table, name
+    for j, name in enumerate(table):
+        if name == "seconds":
+            continue
+        for i, row in enumerate(rows):
+            assert same_cell(row[j], table[name][i]), (name, i, row[j], table[name][i])
+    assert table["turn.count"].dtype == np.uint64
+    assert table["u.max"].dtype == np.float64
+    assert np.all(table["u.min"] <= table["u.mean"]) and np.all(table["u.mean"] <= table["u.max"])
+    # Where a run never crossed, its times are NaN, its count 0.
+    never = table["u_up_0.5.count"] == 0
+    assert np.all(np.isnan(table["u_up_0.5.t_first"][never]))
+
+
+def test_summaries_and_events_refuse_like_the_cli():
+    with pytest.raises(ValueError, match=r"summaries: summary 'r': unknown field 'r' for this scene \(one of u, phi"):
+        spinfold.sweep("trapped_spin_bump", {"initial.spin": [0]}, summaries="r")
+    with pytest.raises(ValueError, match=r"events: event 'u:up': write FIELD:DIRECTION:LEVEL"):
+        spinfold.sweep("trapped_spin_bump", {"initial.spin": [0]}, events="u:up")
