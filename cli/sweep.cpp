@@ -68,6 +68,8 @@ int run_sweep(const SweepOptions& opt, const std::string& command) {
                         .fields = opt.fields,
                         .summaries = opt.summaries,
                         .events = opt.events,
+                        .chaos = opt.chaos,
+                        .chaos_interval = opt.chaos_interval,
                         .trajectories = opt.trajectories,
                         .command = command,
                         .door = sweep::Door::cli};
@@ -126,7 +128,7 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& opt) {
   cmd->add_option("--every", opt.every, "Sample interval (as simulate's)")->capture_default_str();
   cmd->add_option("--fields", opt.fields, "Final-state and drift.NAME columns (see --list-fields)")
       ->capture_default_str();
-  add_monitor_options(*cmd, opt.summaries, opt.events);
+  add_monitor_options(*cmd, opt.summaries, opt.events, opt.chaos, opt.chaos_interval);
   cmd->add_option("--jobs", opt.jobs, "Runs at once (0: one per core)")->capture_default_str();
   cmd->add_option("--out", opt.out, "FILE.csv or FILE.jsonl (default: CSV on stdout)");
   cmd->add_option("--shard", opt.shard, "I/N: run only the runs i with i mod N = I (for job arrays)");

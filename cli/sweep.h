@@ -19,9 +19,11 @@ struct SweepOptions {
   bool zip = false;               // pair the varied values instead of their Cartesian product
   double t_end = 10.0;
   double every = 0.5;
-  std::string fields;                    // the final-state and drift columns (sweep::field_names())
-  std::vector<std::string> summaries;    // "r", "r.max" (engine/run_summary.h)
-  std::vector<std::string> events;       // "r:up:1.2[:period=P][:stop=N][:name=NAME]"
+  std::string fields;                  // the final-state and drift columns (sweep::field_names())
+  std::vector<std::string> summaries;  // "r", "r.max" (engine/run_summary.h)
+  std::vector<std::string> events;     // "r:up:1.2[:period=P][:stop=N][:name=NAME]"
+  bool chaos = false;                  // the Lyapunov exponent and MEGNO (engine/chaos_indicators.h)
+  double chaos_interval = 1.0;
   int jobs = 0;                          // 0: one per core
   std::string out;                       // FILE.csv or FILE.jsonl; "" or "-": CSV on stdout
   std::string shard;                     // "I/N"

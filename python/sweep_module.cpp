@@ -39,8 +39,8 @@ py::tuple sweep(
     const std::string& base_text,
     const std::vector<std::tuple<std::string, std::optional<std::string>, std::optional<std::string>>>& axes,
     bool zip, double t_end, double every, const std::string& fields,
-    const std::vector<std::string>& summaries, const std::vector<std::string>& events,
-    std::optional<std::uint64_t> max_steps, int threads, const std::string& command) {
+    const std::vector<std::string>& summaries, const std::vector<std::string>& events, bool chaos,
+    double chaos_interval, std::optional<std::uint64_t> max_steps, int threads, const std::string& command) {
   if (threads < 0) throw py::value_error("threads: must be >= 1 or None (one per core)");
   sweep::Definition def{.base_text = base_text,
                         .axes = {},
@@ -51,6 +51,8 @@ py::tuple sweep(
                         .fields = fields,
                         .summaries = summaries,
                         .events = events,
+                        .chaos = chaos,
+                        .chaos_interval = chaos_interval,
                         .trajectories = "",
                         .command = command,
                         .door = sweep::Door::python};
@@ -84,8 +86,8 @@ py::tuple sweep(
 
 void add_sweep(py::module_& m) {
   m.def("sweep", &sweep, py::arg("base"), py::arg("axes"), py::arg("zip"), py::arg("t_end"), py::arg("every"),
-        py::arg("fields"), py::arg("summaries"), py::arg("events"), py::arg("max_steps"), py::arg("threads"),
-        py::arg("command"));
+        py::arg("fields"), py::arg("summaries"), py::arg("events"), py::arg("chaos"),
+        py::arg("chaos_interval"), py::arg("max_steps"), py::arg("threads"), py::arg("command"));
   m.def("sweep_fields", [] { return sweep::field_names(); });
   m.def("default_sweep_fields", [] { return std::string(sweep::kDefaultFields); });
   // The one scene rule (codec/scene_source.h): a file if one has that name, else a preset.

@@ -77,6 +77,9 @@ Plan make_plan(Definition def) {
   if (const auto why = samples_refusal(def.t_end, def.every))
     throw SweepError(option("--every") + ": " + *why);
   if (def.max_steps) check("max_steps", static_cast<double>(*def.max_steps));
+  if (def.chaos)
+    if (const auto why = chaos_interval_refusal(def.chaos_interval, def.t_end))
+      throw SweepError(option("--chaos-interval") + ": " + *why);
   Plan plan;
   bool profile = false;  // the base's curvature varies: its chart is (u, φ)
   {

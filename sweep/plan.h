@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/chaos_indicators.h"
 #include "engine/run_summary.h"
 #include "sweep/grid.h"
 
@@ -43,6 +44,9 @@ struct Definition {
   // What each run did (engine/run_summary.h): summaries ("r", "r.max") and events ("r:up:1.2").
   std::vector<std::string> summaries;
   std::vector<std::string> events;
+  // The maximal Lyapunov exponent and MEGNO of each run (engine/chaos_indicators.h), every interval.
+  bool chaos = false;
+  double chaos_interval = kDefaultChaosInterval;
   std::string trajectories;  // a directory for each run's samples as `simulate` prints them, or ""
   std::string command;       // the command line (the trajectories' provenance)
   Door door = Door::cli;

@@ -21,6 +21,8 @@ std::vector<std::string> column_names(const Plan& plan) {
     for (const FieldPath* f : a.fields) names.push_back(f->path);
   for (const Column& c : plan.columns) names.push_back(c.name);
   for (const std::string& c : monitor_columns(plan.monitor)) names.push_back(c);
+  if (plan.def.chaos)
+    for (const std::string_view c : kChaosColumns) names.emplace_back(c);
   for (const char* n : {"events", "status", "detail", "steps", "seconds"}) names.push_back(n);
   return names;
 }
@@ -32,6 +34,7 @@ std::string definition_hash(const Plan& plan) {
       "|max_steps=" + (def.max_steps ? std::to_string(*def.max_steps) : "") + "|zip=" + (def.zip ? "1" : "0");
   for (const std::string& m : def.summaries) text += "|summary=" + m;
   for (const std::string& e : def.events) text += "|event=" + e;
+  if (def.chaos) text += "|chaos=" + number_text(def.chaos_interval);
   for (const Axis& a : def.axes) {
     text += "|axis";
     for (const FieldPath* f : a.fields) {

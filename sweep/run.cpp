@@ -17,6 +17,7 @@
 #include "codec/sample_json.h"
 #include "codec/sample_table.h"
 #include "codec/scene_json.h"
+#include "engine/chaos_indicators.h"
 #include "engine/sampling.h"
 #include "engine/simulation.h"
 
@@ -31,6 +32,7 @@ Row run_one(const Plan& plan, std::size_t index) {
   for (auto& [name, value] : varied_values(plan, index)) row.cells.emplace_back(name, ojson(value));
   std::map<std::string, ojson> first, last;
   std::vector<double> monitored;  // monitor_columns(plan.monitor)'s values
+  std::optional<ChaosIndicators> chaos;
   std::string status, detail;
   std::uint64_t steps = 0, events = 0;
   const Definition& def = plan.def;
@@ -82,6 +84,11 @@ Row run_one(const Plan& plan, std::size_t index) {
                            : "the step budget (" + option_name(def.door, "--max-steps") + ") ran out";
       steps = run.steps;
       monitored = monitor_values(run);
+      if (def.chaos) {  // its own two runs, to where this one ended
+        ChaosMonitor indicators(*parsed.scene, def.chaos_interval, run.start_time);
+        indicators.advance_to(run.state.t);
+        chaos = indicators.indicators();
+      }
     }
   } catch (const std::exception& e) {
     status = "error";
@@ -105,6 +112,13 @@ Row run_one(const Plan& plan, std::size_t index) {
     ojson value = std::isnan(v) ? ojson(nullptr) : ojson(v);
     if (monitor_names[i].ends_with(".count") && !std::isnan(v)) value = static_cast<std::uint64_t>(v);
     row.cells.emplace_back(monitor_names[i], std::move(value));
+  }
+  if (def.chaos) {
+    const std::array<double, 5> values =
+        chaos ? chaos_values(*chaos) : std::array<double, 5>{NAN, NAN, NAN, NAN, NAN};
+    for (std::size_t i = 0; i < values.size(); ++i)
+      row.cells.emplace_back(std::string(kChaosColumns[i]),
+                             std::isfinite(values[i]) ? ojson(values[i]) : ojson(nullptr));
   }
   // A run that stopped where it was asked to (an event's stop=N) ended well.
   row.ok = status == "ok" || status == "event_stop";

@@ -49,9 +49,10 @@ inline int run_exit_code(const State& state) {
   return kExitRunStopped;
 }
 
-// --summary and --event (engine/run_summary.h's grammar), as simulate and sweep take them.
+// --summary and --event (engine/run_summary.h's grammar) and --chaos (engine/chaos_indicators.h), as
+// simulate and sweep take them.
 inline void add_monitor_options(CLI::App& cmd, std::vector<std::string>& summaries,
-                                std::vector<std::string>& events) {
+                                std::vector<std::string>& events, bool& chaos, double& chaos_interval) {
   cmd.add_option(
          "--summary", summaries,
          "Reductions over the run's own steps: FIELD (its min, max, mean, final, t_min, t_max) or "
@@ -62,6 +63,11 @@ inline void add_monitor_options(CLI::App& cmd, std::vector<std::string>& summari
       "--event", events,
       "FIELD:up|down|any:LEVEL[:period=P][:stop=N][:name=NAME]: a crossing located inside the steps; "
       "its count, first and last time (stop=N ends the run at the N-th); repeatable");
+  cmd.add_flag("--chaos", chaos,
+               "Add the maximal Lyapunov exponent and MEGNO (chaos.lyapunov, chaos.megno, chaos.megno_mean, "
+               "chaos.lyapunov_time, chaos.t): two more runs, a shadow restarted every --chaos-interval");
+  cmd.add_option("--chaos-interval", chaos_interval, "The shadow's restart interval [time]")
+      ->capture_default_str();
 }
 
 // A registered subcommand: run(argc, argv) when it is the one parsed (argv for the provenance).

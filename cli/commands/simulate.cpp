@@ -18,6 +18,7 @@
 #include "codec/provenance.h"
 #include "codec/sample_json.h"
 #include "codec/sample_table.h"
+#include "engine/chaos_indicators.h"
 #include "engine/sampling.h"
 #include "engine/simulation.h"
 
@@ -38,6 +39,8 @@ struct SimulateOptions {
   std::optional<double> max_seconds;
   std::vector<std::string> summaries;  // engine/run_summary.h's words
   std::vector<std::string> events;
+  bool chaos = false;  // engine/chaos_indicators.h
+  double chaos_interval = kDefaultChaosInterval;
   bool quiet = false;
   bool list_fields = false;
 };
@@ -87,6 +90,9 @@ int simulate(SimulateOptions opt) {
         std::string(std::string_view(e.what()).starts_with("event") ? "--event: " : "--summary: ") +
         e.what()};
   }
+  if (opt.chaos)
+    if (const auto why = chaos_interval_refusal(opt.chaos_interval, opt.t_end))
+      throw BadInput{"--chaos-interval: " + *why};
   SampleTable table;
   try {
     table = make_sample_table(opt.fields, sample_to_json(run, -1.0));
@@ -182,9 +188,18 @@ int simulate(SimulateOptions opt) {
     else
       write(csv ? "# stopped: " + end.dump() + "\n" : end.dump() + "\n");
   }
-  if (!monitor.empty()) {  // what the run did: one record after the samples
-    const std::vector<std::string> names = monitor_columns(monitor);
-    const std::vector<double> values = monitor_values(run);
+  if (!monitor.empty() || opt.chaos) {  // what the run did: one record after the samples
+    std::vector<std::string> names = monitor_columns(monitor);
+    std::vector<double> values = monitor_values(run);
+    if (opt.chaos) {  // its own two runs, to where this one ended
+      ChaosMonitor indicators(scene, opt.chaos_interval, run.start_time);
+      indicators.advance_to(run.state.t);
+      const std::array<double, 5> c = chaos_values(indicators.indicators());
+      for (std::size_t i = 0; i < c.size(); ++i) {
+        names.emplace_back(kChaosColumns[i]);
+        values.push_back(std::isfinite(c[i]) ? c[i] : NAN);
+      }
+    }
     nlohmann::ordered_json summary;
     for (std::size_t i = 0; i < names.size(); ++i)
       summary[names[i]] = std::isnan(values[i]) ? nlohmann::ordered_json(nullptr)
@@ -236,7 +251,7 @@ Command register_simulate(CLI::App& app) {
   simulate_cmd->add_option("--fields", sim.fields,
                            "Comma-separated columns (see `spinfold simulate --list-fields`; default: all)");
   simulate_cmd->add_option("--out", sim.out, "File to write (default: stdout)");
-  add_monitor_options(*simulate_cmd, sim.summaries, sim.events);
+  add_monitor_options(*simulate_cmd, sim.summaries, sim.events, sim.chaos, sim.chaos_interval);
   simulate_cmd->add_option("--max-steps", sim.max_steps_text, "Stop after this many step attempts (exit 3)");
   simulate_cmd->add_option("--max-seconds", sim.max_seconds, "Stop after this much wall time (exit 3)");
   simulate_cmd->add_flag("--quiet", sim.quiet,

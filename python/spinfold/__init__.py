@@ -287,7 +287,8 @@ def sweep_fields() -> list[str]:
 def sweep(base: Any, vary: Mapping[str, Any], t_end: float = 10.0, every: float = 0.5, *,
           fields: str | Sequence[str] | None = None, zip: bool = False, max_steps: int | None = None,
           threads: int | None = None, summaries: str | Sequence[str] = (),
-          events: str | Sequence[str] = ()) -> dict[str, np.ndarray]:
+          events: str | Sequence[str] = (), chaos: bool = False,
+          chaos_interval: float = 1.0) -> dict[str, np.ndarray]:
     """``spinfold sweep`` from Python, through the same library: the same definition gives the
     CLI's rows to the bit. `base` with the fields of `vary` (a scene path such as ``"initial.spin"``
     -> its values: a text as ``--set`` takes it, ``"0:2:40"`` (:func:`grid`) or ``"auto,dop853"``,
@@ -299,7 +300,10 @@ def sweep(base: Any, vary: Mapping[str, Any], t_end: float = 10.0, every: float 
     `summaries` and `events`: the CLI's ``--summary`` and ``--event`` (``"r"``, ``"r.max"``;
     ``"r:up:1.2"``, ``"phi:any:0:period=6.283185307179586"``, ``"r:up:1.2:stop=3"``): reductions
     over each run's own steps and level crossings located in them, one column each
-    (``r.max``, ``r_up_1.2.count``, ``r_up_1.2.t_first``; docs/numerics.md).
+    (``r.max``, ``r_up_1.2.count``, ``r_up_1.2.t_first``; docs/numerics.md). `chaos`: the CLI's
+    ``--chaos``, the maximal Lyapunov exponent and MEGNO of each run (``chaos.lyapunov``,
+    ``chaos.megno``, ``chaos.megno_mean``, ``chaos.lyapunov_time``, ``chaos.t``), a shadow run
+    restarted every `chaos_interval`.
     Bad input (an unknown field, a value out of range, more than 10⁷ runs) raises ValueError naming
     it before anything runs.
     """
@@ -335,7 +339,8 @@ def sweep(base: Any, vary: Mapping[str, Any], t_end: float = 10.0, every: float 
     summaries = summaries.split(",") if isinstance(summaries, str) else [str(x) for x in summaries]
     events = [events] if isinstance(events, str) else [str(x) for x in events]
     names, rows = _core.sweep(_scene_text(base, "base"), axes, bool(zip), float(t_end), float(every), fields,
-                              summaries, events, max_steps, threads or 0, "python: spinfold.sweep")
+                              summaries, events, bool(chaos), float(chaos_interval), max_steps, threads or 0,
+                              "python: spinfold.sweep")
     out: dict[str, np.ndarray] = {}
     for j, name in enumerate(names):
         column = [row[j] for row in rows]

@@ -34,6 +34,8 @@ def sweep(
     fields: str,
     summaries: list[str],
     events: list[str],
+    chaos: bool,
+    chaos_interval: float,
     max_steps: int | None,
     threads: int,
     command: str,

@@ -323,6 +323,10 @@ TEST(Sweep, BadFieldsAndValuesAreExitTwoNamingThem) {
            {"--set initial.r=1 --event r:sideways:1",
             "--event: event 'r:sideways:1': the direction must be up, down or any"},
            {"--set initial.r=1 --event u:up:1", "unknown field 'u' for this scene (one of r, phi,"},
+           {"--set initial.r=1 --chaos --chaos-interval -1",
+            "--chaos-interval: must be a number > 0 [time] (got -1)"},
+           {"--set initial.r=1 --chaos --chaos-interval 1e-6 --t-end 10",
+            "--chaos-interval: t_end / interval must be at most 1e6"},
        }) {
     const auto r = run((c.args.find("deformation") != std::string::npos ? "sweep breathing_ellipse_sphere "
                                                                         : "sweep spinning_rigid_sphere ") +

@@ -136,3 +136,20 @@ def test_summaries_and_events_refuse_like_the_cli():
         spinfold.sweep("trapped_spin_bump", {"initial.spin": [0]}, summaries="r")
     with pytest.raises(ValueError, match=r"events: event 'u:up': write FIELD:DIRECTION:LEVEL"):
         spinfold.sweep("trapped_spin_bump", {"initial.spin": [0]}, events="u:up")
+
+
+def test_chaos_indicators_are_the_clis_and_tell_chaos_from_order(binary, tmp_path):
+    scene = pathlib.Path(__file__).resolve().parents[2] / "examples" / "chaotic_anisotropic_pseudosphere.json"
+    out = tmp_path / "chaos.csv"
+    subprocess.run([binary, "sweep", str(scene), "--set", "potential.deformation.A=0.1,0", "--t-end", "100",
+                    "--fields", "t", "--chaos", "--quiet", "--out", str(out)], check=True)
+    columns, rows = read_cli_rows(out)
+    table = spinfold.sweep(str(scene), {"potential.deformation.A": [0.1, 0]}, t_end=100, fields="t", chaos=True)
+    assert [csv_name(name) for name in table] == columns
+    for j, name in enumerate(table):
+        if name != "seconds":
+            for i, row in enumerate(rows):
+                assert same_cell(row[j], table[name][i]), (name, i, row[j], table[name][i])
+    assert table["chaos.lyapunov"][0] > 0.3 and table["chaos.megno_mean"][0] > 10
+    with pytest.raises(ValueError, match=r"chaos_interval: must be a number > 0 \[time\] \(got -1\)"):
+        spinfold.sweep(str(scene), {"potential.deformation.A": [0.1]}, chaos=True, chaos_interval=-1)
