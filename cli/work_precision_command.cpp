@@ -81,7 +81,10 @@ int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
   sweep.integrators = parse_integrators(opt.integrators);
   sweep.max_seconds_per_run = opt.max_seconds_per_run;
   const double period = wp::characteristic_period(scene);
-  sweep.t_end = opt.t_end ? *opt.t_end : wp::default_t_end(scene);
+  std::cerr << "work-precision: " << label << ": is the motion chaotic? (Lyapunov exponent and MEGNO)\n";
+  const wp::Horizon chosen = wp::choose_horizon(scene, opt.t_end, opt.target_error);
+  if (!chosen.note.empty()) std::cerr << "  " << chosen.note << "\n";
+  sweep.t_end = chosen.t_end;
   if (const fs::path out(opt.out); fs::exists(out) && !fs::is_directory(out))
     throw BadInput{"--out: '" + opt.out + "' exists and is not a folder"};
   std::error_code error;
@@ -97,13 +100,14 @@ int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
               << ", " << wp::format_cost(p.seconds_per_unit_time) << " µs per unit time\n";
   });
 
-  const std::string line = wp::recommendation(curves, opt.target_error, t_end, wp::auto_picks(scene));
+  const std::string line = wp::recommendation(curves, opt.target_error, chosen, wp::auto_picks(scene));
   std::ostringstream t_text, period_text;
   t_text << t_end;
   period_text << period;
   const std::string horizon =
       "T = " + t_text.str() +
-      (opt.t_end               ? " (--t-end)"
+      (chosen.shortened        ? " (the predictable horizon: " + chosen.note + ")"
+       : opt.t_end             ? " (--t-end)"
        : std::isfinite(period) ? " (" + std::to_string(static_cast<int>(wp::kDefaultPeriods)) +
                                      " characteristic periods of " + period_text.str() + ")"
                                : " (" + std::to_string(static_cast<int>(wp::kDefaultPeriods)) +
@@ -124,6 +128,7 @@ int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
      << "- " << horizon << "; target error " << opt.target_error << "\n"
      << "- Reference: " << reference.kind << ": " << reference.description << "\n"
      << "- Error: " << wp::kErrorMeaning << "\n";
+  if (!chosen.note.empty() && !chosen.shortened) md << "- Chaos: " << chosen.note << "\n";
   if (!scene.companions.empty()) md << "- The main body only: its companions are separate runs.\n";
   for (const auto& [name, why] : wp::skipped_integrators(scene, sweep))
     md << "- Not run: " << name << " (" << why << ")\n";

@@ -146,12 +146,15 @@ void ChaosMonitor::seed_shadow() {
   start_shadow_ = shadow_.state;
 }
 
-void ChaosMonitor::advance_to(double t) {
+void ChaosMonitor::advance_to(double t, std::uint64_t max_attempts) {
   while (!stopped_) {
     const double t_next = t0_ + static_cast<double>(k_ + 1) * interval_;
     if (t_next > t) return;
-    spinfold::advance_to(reference_, t_next);
-    spinfold::advance_to(shadow_, t_next);
+    if (!advance_within(reference_, t_next, max_attempts) || !advance_within(shadow_, t_next, max_attempts)) {
+      stopped_ = true;
+      stopped_reason_ = "the step budget ran out";
+      return;
+    }
     if (reference_.state.status != Status::ok || shadow_.state.status != Status::ok ||
         reference_.state.t != t_next || shadow_.state.t != t_next) {
       stopped_ = true;
@@ -163,7 +166,9 @@ void ChaosMonitor::advance_to(double t) {
     if (scene_.surface.kind == SurfaceKind::pseudosphere &&
         global_body(scene_, reference_.state).r > kChaosMaxHyperbolicDistance * scene_.surface.radius) {
       stopped_ = true;
-      stopped_reason_ = "farther than 5.5 R out on the pseudosphere, where relating two charts rounds to 1/1000 of the separation";
+      stopped_reason_ =
+          "farther than 5.5 R out on the pseudosphere, where relating two charts rounds to 1/1000 of the "
+          "separation";
       return;
     }
     // Both ends in the reference's chart now: a chart move inside the interval is not growth.

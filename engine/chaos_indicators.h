@@ -57,8 +57,9 @@ class ChaosMonitor {
   // For the scene's main body (its companions are not followed), from the scene's initial state at
   // start_time; `interval` Δ > 0 [time].
   ChaosMonitor(const Scene& scene, double interval = kDefaultChaosInterval, double start_time = 0.0);
-  // Through every t₀ + kΔ ≤ t (stops where either run stops).
-  void advance_to(double t);
+  // Through every t₀ + kΔ ≤ t (stops where either run stops), within `max_attempts` step attempts of
+  // the two runs together (a server's job bounds its work so; the indicators stop where they ran out).
+  void advance_to(double t, std::uint64_t max_attempts = kNoStepLimit);
   ChaosIndicators indicators() const;
 
  private:

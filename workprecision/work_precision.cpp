@@ -98,6 +98,37 @@ double default_t_end(const Scene& scene) {
   return kDefaultPeriods * (std::isfinite(period) ? period : 1.0);
 }
 
+Horizon choose_horizon(const Scene& scene_in, std::optional<double> asked, double target,
+                       std::uint64_t max_attempts) {
+  const Scene scene = main_body_only(scene_in);
+  Horizon h;
+  h.t_end = asked ? *asked : default_t_end(scene);
+  ChaosMonitor probe(scene, kDefaultChaosInterval);
+  probe.advance_to(std::min(h.t_end, kChaosProbe), max_attempts);
+  h.chaos = probe.indicators();
+  h.chaotic = h.chaos.intervals > 0 && h.chaos.megno_mean > kChaoticMegno && h.chaos.lyapunov > 0.0;
+  if (!h.chaotic) return h;
+  h.predictable = std::log(target / kRoundingFloor) / h.chaos.lyapunov;
+  const std::string exponent = "the motion is chaotic (Lyapunov exponent " + sci(h.chaos.lyapunov, 3) +
+                               ", MEGNO mean " + sci(h.chaos.megno_mean, 3) +
+                               " over t = " + sci(h.chaos.t, 3) + "): an error of " + sci(kRoundingFloor) +
+                               " grows past " + sci(target) + " in " + sci(h.predictable, 3);
+  if (h.predictable >= h.t_end) {
+    h.note = exponent + ", beyond T";
+  } else if (asked) {
+    h.beyond = true;
+    h.note = exponent + ", so T = " + sci(h.t_end, 4) +
+             " (--t-end) measures the chaos, not the integrators: no setting can be recommended there "
+             "(give --t-end " +
+             sci(h.predictable, 3) + " or less)";
+  } else {
+    h.shortened = true;
+    h.note = exponent + ", so T is that horizon instead of " + sci(h.t_end, 4);
+    h.t_end = h.predictable;
+  }
+  return h;
+}
+
 Reference make_reference(const Scene& scene_in, double t_end) {
   const Scene scene = main_body_only(scene_in);
   const bool closed_form = !exact_unsupported_reason(scene);
@@ -421,6 +452,13 @@ std::string recommendation(const Curves& curves, double target, double t_end, co
       line += "; " + auto_text + sci(it->second->value) + " reaches it too, " + compared(*it->second, base);
   }
   return line + ".";
+}
+
+std::string recommendation(const Curves& curves, double target, const Horizon& horizon,
+                           const std::string& auto_picks) {
+  if (horizon.beyond)
+    return "No recommendation over T = " + sci(horizon.t_end, 4) + ": " + horizon.note + ".";
+  return recommendation(curves, target, horizon.t_end, auto_picks);
 }
 
 std::string csv(const std::string& comments, const Curves& curves) {

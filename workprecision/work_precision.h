@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/chaos_indicators.h"
 #include "engine/scene.h"
 #include "engine/state.h"
 #include "render/figure_page.h"
@@ -65,6 +66,29 @@ double characteristic_period(const Scene& scene);
 inline constexpr double kDefaultPeriods = 20.0;
 double default_t_end(const Scene& scene);
 
+// The horizon the sweep measures errors over, and why (issue 35): on a chaotic scene an error grows
+// like e^{λt}, so past the predictable horizon ln(target / kRoundingFloor)/λ every method's error at T
+// is the chaos's, not the integrator's, and a recommendation from it would name noise. The scene is
+// chaotic when, over min(T, kChaosProbe), its MEGNO mean exceeds kChaoticMegno (2 for quasi-periodic
+// motion, 2k for growth like t^k, λt/2 for chaos; engine/chaos_indicators.h).
+inline constexpr double kChaosProbe = 200.0;  // [time]
+inline constexpr double kChaoticMegno = 8.0;  // [1]
+// The error the tightest double runs make over the first unit of time (dop853 at 1e-15 against the
+// oracle), from which the chaos grows it [1].
+inline constexpr double kRoundingFloor = 1e-13;
+struct Horizon {
+  double t_end = 0.0;      // what the sweep uses [time]
+  bool shortened = false;  // t_end is the predictable horizon, shorter than asked or the default
+  bool beyond = false;     // T was given (--t-end) and lies beyond the predictable horizon
+  ChaosIndicators chaos;   // over the probe
+  bool chaotic = false;
+  double predictable = kNotReached;  // ln(target / kRoundingFloor)/λ where chaotic [time]
+  std::string note;                  // one sentence for the summary ("" where the motion is not chaotic)
+};
+// `asked`: --t-end, or nullopt for default_t_end. The probe spends at most `max_attempts` steps.
+Horizon choose_horizon(const Scene& scene, std::optional<double> asked, double target_error,
+                       std::uint64_t max_attempts = 20'000'000);
+
 struct SweepOptions {
   double t_end = 1.0;
   std::vector<std::string> integrators;  // catalog names and/or "auto"; empty: every catalog entry
@@ -112,6 +136,11 @@ std::string auto_picks(const Scene& scene);
 // others compare (the cheapest stepping setting, exact, auto), or that none reached it and which came
 // closest.
 std::string recommendation(const Curves& curves, double target_error, double t_end,
+                           const std::string& auto_picks);
+
+// recommendation() over the horizon chosen: none where T lies beyond a chaotic scene's predictable
+// horizon (every error there is the chaos's), with the reason.
+std::string recommendation(const Curves& curves, double target_error, const Horizon& horizon,
                            const std::string& auto_picks);
 
 // The CSV of the curves: `comments` ("# ..." lines, each ending in a newline) then kCsvColumns and

@@ -31,9 +31,10 @@ std::string describe_source(const WorkPrecisionJob& job) {
 void draw_plot(const WorkPrecisionJob& job, WorkPrecisionResult& result) {
   const wp::PlotLayout layout{.width = 300, .plot_height = 220, .pixels_per_point = 2.0, .key_below = true};
   try {
-    const render::FigurePage page = wp::plot_page(
-        "work-precision: " + describe_source(job),
-        provenance_json(job.scene, "POST /api/v1/work-precision").dump(), result.curves, job.t_end, layout);
+    const render::FigurePage page =
+        wp::plot_page("work-precision: " + describe_source(job),
+                      provenance_json(job.scene, "POST /api/v1/work-precision").dump(), result.curves,
+                      result.t_end, layout);
     const std::vector<std::uint8_t> svg = render::draw_figure(page, render::FigureFormat::svg);
     const std::vector<std::uint8_t> png = render::raster_figure(page, layout.pixels_per_point);
     result.svg.assign(svg.begin(), svg.end());
@@ -104,12 +105,19 @@ void WorkPrecisionJobs::run(Queue::Entry& entry) {
   JobStatus status = JobStatus::done;
   std::string reason;
   try {
-    const wp::Reference reference = wp::make_reference(job.scene, job.t_end);
+    // A chaotic scene is measured over its predictable horizon (or, past it, recommends nothing).
+    const wp::Horizon horizon = wp::choose_horizon(
+        job.scene, job.t_end_given ? std::optional(job.t_end) : std::nullopt, job.target_error,
+        static_cast<std::uint64_t>(limits_.work_precision_steps_per_run));
+    const double t_end = std::min(horizon.t_end, job.t_end);
+    result->t_end = t_end;
+    result->horizon_note = horizon.note;
+    const wp::Reference reference = wp::make_reference(job.scene, t_end);
     result->reference_kind = reference.kind;
     result->reference_description = reference.description;
     queue_.locked([&](auto&) { entry.state.reference_ready = true; });
     wp::SweepOptions options;
-    options.t_end = job.t_end;
+    options.t_end = t_end;
     options.integrators = job.integrators;
     options.max_seconds_per_run = limits_.work_precision_seconds_per_run;
     options.max_attempts_per_run = static_cast<std::uint64_t>(limits_.work_precision_steps_per_run);
@@ -123,16 +131,16 @@ void WorkPrecisionJobs::run(Queue::Entry& entry) {
     if (!entry.cancel) result->curves = wp::sweep(job.scene, reference, options);
     if (!entry.cancel) {
       result->recommendation =
-          wp::recommendation(result->curves, job.target_error, job.t_end, wp::auto_picks(job.scene));
+          wp::recommendation(result->curves, job.target_error, horizon, wp::auto_picks(job.scene));
       result->recommended = wp::recommended_setting(result->curves, job.target_error);
       result->skipped = wp::skipped_integrators(job.scene, options);
       result->csv =
           wp::csv("# spinfold work-precision " + version_line() +
                       "\n# command: POST /api/v1/work-precision\n# provenance: " +
                       provenance_json(job.scene, "POST /api/v1/work-precision").dump() +
-                      "\n# scene: " + describe_source(job) + "; T = " + shortest(job.t_end) +
-                      "; target error " + shortest(job.target_error) + "\n# reference: " + reference.kind +
-                      ": " + reference.description + "\n# " + wp::kErrorMeaning + "\n",
+                      "\n# scene: " + describe_source(job) + "; T = " + shortest(t_end) + "; target error " +
+                      shortest(job.target_error) + "\n# reference: " + reference.kind + ": " +
+                      reference.description + "\n# " + wp::kErrorMeaning + "\n",
                   result->curves);
       draw_plot(job, *result);
     }

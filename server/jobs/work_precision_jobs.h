@@ -28,10 +28,13 @@ struct WorkPrecisionJob {
   std::string source_name{};               // the preset's name ("" otherwise: a session's id is never shown)
   std::vector<std::string> integrators{};  // catalog names and/or auto; empty: all and auto
   double t_end = 1.0;
+  bool t_end_given = false;  // the request named t_end (else the default, which a chaotic scene shortens)
   double target_error = 1e-10;
 };
 
 struct WorkPrecisionResult {
+  double t_end = 0.0;        // the horizon measured (work_precision::choose_horizon) [time]
+  std::string horizon_note;  // why it differs from the job's, or that T is beyond a chaotic horizon
   work_precision::Curves curves;
   std::string reference_kind, reference_description;
   std::string recommendation;                        // work_precision::recommendation's line

@@ -142,7 +142,7 @@ WorkPrecisionJob work_precision_job(ServerContext& server, const Call& call) {
                               shortest(limits.max_work_precision_t_end) +
                               ", limits.max_work_precision_t_end)"});
       else
-        job.t_end = t;
+        job.t_end = t, job.t_end_given = true;
     }
     job.scene = std::move(*scene);
   } else if (body.contains("t_end") && !(body["t_end"].is_number() && body["t_end"].get<double>() > 0.0)) {
@@ -198,7 +198,9 @@ ordered_json job_json(const WorkPrecisionState& s) {
     recommended = point_json(p);
     recommended["integrator"] = integrator;
   }
-  out["result"] = {{"reference", {{"kind", r.reference_kind}, {"description", r.reference_description}}},
+  out["result"] = {{"t_end", r.t_end},
+                   {"horizon", r.horizon_note.empty() ? ordered_json(nullptr) : ordered_json(r.horizon_note)},
+                   {"reference", {{"kind", r.reference_kind}, {"description", r.reference_description}}},
                    {"error_meaning", wp::kErrorMeaning},
                    {"recommendation", r.recommendation},
                    {"recommended", recommended},

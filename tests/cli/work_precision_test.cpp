@@ -198,6 +198,41 @@ TEST(WorkPrecision, AutoIsRecommendedWhereItIsCheapest) {
   EXPECT_NE(r.out.find("the cheapest stepping setting, dop853 at tol "), std::string::npos) << r.out;
 }
 
+// The researcher's chaotic scene (issue 35): every method's error at the default T was the chaos's
+// (0.3-2.5) and the summary still named one. Now T is the predictable horizon and the setting named
+// reaches the target; a --t-end beyond the horizon gets no recommendation, with the exponent.
+TEST(WorkPrecision, AChaoticSceneIsMeasuredOverItsPredictableHorizon) {
+  TempDir dir;
+  const std::string scene = std::string(SPINFOLD_EXAMPLES_DIR) + "/chaotic_anisotropic_pseudosphere.json";
+  const auto r = run_spinfold("work-precision " + scene +
+                              " --integrators dop853,gauss6 --max-seconds-per-run 0.1 --out " +
+                              (dir.path / "a").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("(the predictable horizon: the motion is chaotic (Lyapunov exponent 0.4"),
+            std::string::npos)
+      << r.out;
+  const std::size_t line = r.out.find("**Recommendation.** For this scene at error 1e-10 over T = 15.");
+  ASSERT_NE(line, std::string::npos) << r.out;
+  const std::size_t error = r.out.find("(error ", line);
+  ASSERT_NE(error, std::string::npos);
+  EXPECT_LE(std::stod(r.out.substr(error + 7)), 1e-10) << r.out.substr(line, 200);
+
+  const auto beyond = run_spinfold("work-precision " + scene +
+                                   " --t-end 60 --integrators dop853 --max-seconds-per-run 0.1 --out " +
+                                   (dir.path / "b").string());
+  ASSERT_EQ(beyond.exit_code, 0) << beyond.err;
+  EXPECT_NE(
+      beyond.out.find("**Recommendation.** No recommendation over T = 60: the motion is chaotic (Lyapunov "
+                      "exponent 0.4"),
+      std::string::npos)
+      << beyond.out;
+  const std::size_t give = beyond.out.find("(give --t-end ");
+  ASSERT_NE(give, std::string::npos) << beyond.out;
+  const double horizon = std::stod(beyond.out.substr(give + 14));
+  EXPECT_GT(horizon, 12.0);  // ln(1e-10 / 1e-13) / λ with λ ≈ 0.4-0.5 from the probe over 60
+  EXPECT_LT(horizon, 20.0);
+}
+
 TEST(WorkPrecision, UnknownPresetExits2AndWritesNothing) {
   TempDir dir;
   const auto r = run_spinfold("work-precision --scene no_such_scene --out " + dir.path.string());
