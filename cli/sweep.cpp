@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "cli/commands/command.h"
+#include "codec/npz_writer.h"
 #include "codec/provenance.h"
 #include "codec/scene_source.h"
 #include "sweep/grid.h"
@@ -71,6 +72,8 @@ int run_sweep(const SweepOptions& opt, const std::string& command) {
                         .chaos = opt.chaos,
                         .chaos_interval = opt.chaos_interval,
                         .trajectories = opt.trajectories,
+                        .trajectory_fields = opt.trajectory_fields,
+                        .trajectory_format = opt.trajectory_format,
                         .command = command,
                         .door = sweep::Door::cli};
   for (const std::string& s : opt.sets) def.axes.push_back(sweep::axis_from_assignment(s));
@@ -79,6 +82,23 @@ int run_sweep(const SweepOptions& opt, const std::string& command) {
   const sweep::Plan plan = sweep::make_plan(std::move(def));
   const std::vector<std::size_t> runs = sweep::shard_runs(plan.total, shard);
 
+  if (format == sweep::Format::npz) {  // one array per column, written when every row is in
+    const std::vector<std::string> names = sweep::column_names(plan);
+    std::vector<NpzColumn> columns;
+    for (const std::string& name : names) columns.push_back({name, {}});
+    sweep::run_all(plan, runs, static_cast<unsigned>(opt.jobs), [&](sweep::Row&& row) {
+      columns[0].cells.emplace_back(row.index);
+      for (std::size_t i = 0; i < row.cells.size(); ++i)
+        columns[i + 1].cells.push_back(std::move(row.cells[i].second));
+    });
+    columns.push_back({"provenance", {sweep::header_text(plan, sweep::Format::jsonl, shard, command)}});
+    try {
+      write_npz(opt.out, columns);
+    } catch (const std::runtime_error& e) {
+      throw SweepError(std::string("--out: ") + e.what());
+    }
+    return 0;
+  }
   FILE* out = stdout;
   if (!opt.out.empty() && opt.out != "-") {
     out = std::fopen(opt.out.c_str(), "w");
@@ -130,11 +150,14 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& opt) {
       ->capture_default_str();
   add_monitor_options(*cmd, opt.summaries, opt.events, opt.chaos, opt.chaos_interval);
   cmd->add_option("--jobs", opt.jobs, "Runs at once (0: one per core)")->capture_default_str();
-  cmd->add_option("--out", opt.out, "FILE.csv or FILE.jsonl (default: CSV on stdout)");
+  cmd->add_option("--out", opt.out, "FILE.csv, FILE.jsonl or FILE.npz (default: CSV on stdout)");
   cmd->add_option("--shard", opt.shard, "I/N: run only the runs i with i mod N = I (for job arrays)");
   cmd->add_option("--merge", opt.merge, "Join these shard outputs into --out, in run order");
   cmd->add_option("--trajectories", opt.trajectories,
                   "Directory: each run's samples as `simulate` prints them, INDEX.jsonl");
+  cmd->add_option("--trajectory-fields", opt.trajectory_fields,
+                  "The trajectories' columns, as simulate's --fields (default: every sample value)");
+  cmd->add_option("--trajectory-format", opt.trajectory_format, "jsonl | csv | npz")->capture_default_str();
   cmd->add_option("--max-steps", opt.max_steps, "Step attempts per run before its status is max_steps");
   cmd->add_flag("--quiet", opt.quiet, "No progress line (there is none when stderr is not a terminal)");
   cmd->add_flag("--list-fields", opt.list_fields, "Print the names --fields accepts and exit");

@@ -24,12 +24,14 @@ struct SweepOptions {
   std::vector<std::string> events;     // "r:up:1.2[:period=P][:stop=N][:name=NAME]"
   bool chaos = false;                  // the Lyapunov exponent and MEGNO (engine/chaos_indicators.h)
   double chaos_interval = 1.0;
-  int jobs = 0;                          // 0: one per core
-  std::string out;                       // FILE.csv or FILE.jsonl; "" or "-": CSV on stdout
-  std::string shard;                     // "I/N"
-  std::vector<std::string> merge;        // shard outputs to join
-  std::string trajectories;              // a directory: each run's samples as `simulate` prints them
-  std::optional<std::string> max_steps;  // as given: read by run_limit_value (engine/run_limits.h)
+  int jobs = 0;                             // 0: one per core
+  std::string out;                          // FILE.csv or FILE.jsonl; "" or "-": CSV on stdout
+  std::string shard;                        // "I/N"
+  std::vector<std::string> merge;           // shard outputs to join
+  std::string trajectories;                 // a directory: each run's samples as `simulate` prints them
+  std::string trajectory_fields;            // their columns (simulate's --fields); "": the whole sample
+  std::string trajectory_format = "jsonl";  // jsonl | csv | npz
+  std::optional<std::string> max_steps;     // as given: read by run_limit_value (engine/run_limits.h)
   bool quiet = false;
   bool list_fields = false;
 };

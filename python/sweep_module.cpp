@@ -54,6 +54,8 @@ py::tuple sweep(
                         .chaos = chaos,
                         .chaos_interval = chaos_interval,
                         .trajectories = "",
+                        .trajectory_fields = "",
+                        .trajectory_format = "jsonl",
                         .command = command,
                         .door = sweep::Door::python};
   std::vector<sweep::Row> rows;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <set>
 
+#include "codec/sample_json.h"
 #include "codec/sample_table.h"
 #include "codec/scene_json.h"
 #include "engine/number_rule.h"
@@ -132,6 +133,21 @@ Plan make_plan(Definition def) {
           structural.push_back(e);
       if (!structural.empty()) throw SweepError(a.label + ": " + describe_errors(structural));
     }
+  const std::string& tf = def.trajectory_format;
+  if (tf != "jsonl" && tf != "csv" && tf != "npz")
+    throw SweepError(option("--trajectory-format") + ": must be jsonl, csv or npz (got '" + tf + "')");
+  if (!def.trajectory_fields.empty() || tf != "jsonl") {
+    if (def.trajectories.empty())
+      throw SweepError(option(def.trajectory_fields.empty() ? "--trajectory-format" : "--trajectory-fields") +
+                       ": give " + option("--trajectories") + " DIR too");
+    // The columns simulate's --fields takes, checked on the base scene's first sample.
+    const SceneParse parsed = parse_scene(plan.base);
+    try {
+      make_sample_table(def.trajectory_fields, sample_to_json(start_simulation(*parsed.scene), -1.0));
+    } catch (const std::invalid_argument& error) {
+      throw SweepError(option("--trajectory-fields") + ": " + error.what());
+    }
+  }
   if (!def.trajectories.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(def.trajectories, ec);

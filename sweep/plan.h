@@ -48,7 +48,10 @@ struct Definition {
   bool chaos = false;
   double chaos_interval = kDefaultChaosInterval;
   std::string trajectories;  // a directory for each run's samples as `simulate` prints them, or ""
-  std::string command;       // the command line (the trajectories' provenance)
+  // Their columns (simulate's --fields; "": every sample value, JSON Lines only) and format.
+  std::string trajectory_fields;
+  std::string trajectory_format = "jsonl";  // jsonl | csv | npz
+  std::string command;                      // the command line (the trajectories' provenance)
   Door door = Door::cli;
 };
 

@@ -12,7 +12,8 @@ using ojson = nlohmann::ordered_json;
 Format format_of(const std::string& out) {
   if (out.empty() || out == "-" || out.ends_with(".csv")) return Format::csv;
   if (out.ends_with(".jsonl")) return Format::jsonl;
-  throw SweepError("--out: must end in .csv or .jsonl (got '" + out + "')");
+  if (out.ends_with(".npz")) return Format::npz;
+  throw SweepError("--out: must end in .csv, .jsonl or .npz (got '" + out + "')");
 }
 
 std::vector<std::string> column_names(const Plan& plan) {

@@ -11,9 +11,10 @@
 
 namespace spinfold::sweep {
 
-enum class Format { csv, jsonl };
+enum class Format { csv, jsonl, npz };
 
-// The format an output path asks for: "", "-" or *.csv: CSV; *.jsonl: JSON Lines; else SweepError.
+// The format an output path asks for: "", "-" or *.csv: CSV; *.jsonl: JSON Lines; *.npz: NumPy's
+// archive (one array per column, written when the sweep ends); else SweepError.
 Format format_of(const std::string& out);
 
 // index, the varied fields' paths, the plan's columns, events, status, detail, steps, seconds.

@@ -13,6 +13,7 @@
 #include <optional>
 #include <thread>
 
+#include "codec/npz_writer.h"
 #include "codec/provenance.h"
 #include "codec/sample_json.h"
 #include "codec/sample_table.h"
@@ -45,23 +46,45 @@ Row run_one(const Plan& plan, std::size_t index) {
       std::replace(detail.begin(), detail.end(), '\n', ';');
     } else {
       // `spinfold simulate`'s loop: samples at k·every up to t_end, the same advances.
-      std::unique_ptr<std::ofstream> trajectory;
-      if (!def.trajectories.empty())
-        trajectory = std::make_unique<std::ofstream>(std::filesystem::path(def.trajectories) /
-                                                     (std::to_string(index) + ".jsonl"));
-      if (trajectory)  // as `spinfold simulate` writes: the provenance record, then the samples
-        *trajectory << ojson{{"provenance", provenance_json(*parsed.scene,
-                                                            def.command + " # run " + std::to_string(index))}}
-                           .dump()
-                    << '\n';
       Simulation run = start_simulation(*parsed.scene);
       if (!plan.monitor.empty()) watch(run, plan.monitor);
+      // The trajectory as `spinfold simulate --fields … --format …` writes it: the provenance, then
+      // the samples (the whole sample as JSON Lines without --trajectory-fields).
+      const std::string& format = def.trajectory_format;
+      std::unique_ptr<std::ofstream> trajectory;
+      std::optional<SampleTable> table;
+      std::vector<NpzColumn> npz;
+      const ojson provenance =
+          provenance_json(*parsed.scene, def.command + " # run " + std::to_string(index));
+      const std::filesystem::path file =
+          std::filesystem::path(def.trajectories) / (std::to_string(index) + "." + format);
+      const bool tracing = !def.trajectories.empty();
+      if (tracing && (format != "jsonl" || !def.trajectory_fields.empty()))
+        table = make_sample_table(def.trajectory_fields, sample_to_json(run, -1.0));
+      if (tracing && format == "npz") {
+        for (const std::string& name : table->header()) npz.push_back({name, {}});
+      } else if (tracing) {
+        trajectory = std::make_unique<std::ofstream>(file);
+        if (format == "csv")
+          *trajectory << table->csv_header() << "# spinfold simulate " << version_line()
+                      << "\n# provenance: " << provenance.dump() << '\n';
+        else
+          *trajectory << ojson{{"provenance", provenance}}.dump() << '\n';
+      }
       double reported_until = -1.0;
       const auto sample = [&](std::map<std::string, ojson>* into) {
-        if (trajectory || into) {
+        if (tracing || into) {
           const ojson s = sample_to_json(run, reported_until);
           events += s["events"].size();
-          if (trajectory) *trajectory << s.dump() << '\n';
+          if (format == "npz" && tracing) {
+            const std::vector<ojson> cells = table->row(s);
+            for (std::size_t i = 0; i < cells.size(); ++i) npz[i].cells.push_back(cells[i]);
+          } else if (trajectory) {
+            if (format == "csv")
+              *trajectory << table->csv_row(s);
+            else
+              *trajectory << (table ? table->json_row(s) : s).dump() << '\n';
+          }
           if (into) *into = flatten_sample(s);
         } else {
           events += events_after(run, reported_until).size();
@@ -83,6 +106,10 @@ Row run_one(const Plan& plan, std::size_t index) {
       detail = budget_left ? last["status_detail"].get<std::string>()
                            : "the step budget (" + option_name(def.door, "--max-steps") + ") ran out";
       steps = run.steps;
+      if (tracing && format == "npz") {
+        npz.push_back({"provenance", {provenance.dump()}});
+        write_npz(file.string(), npz);
+      }
       monitored = monitor_values(run);
       if (def.chaos) {  // its own two runs, to where this one ended
         ChaosMonitor indicators(*parsed.scene, def.chaos_interval, run.start_time);

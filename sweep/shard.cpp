@@ -114,6 +114,10 @@ ShardFile read_shard(const std::string& path, bool jsonl) {
 
 void merge_shards(const std::vector<std::string>& paths, const std::string& out, const std::string& command) {
   if (out.empty() || out == "-") throw SweepError("--merge: --out FILE.csv|FILE.jsonl is required");
+  if (format_of(out) == Format::npz)
+    throw SweepError(
+        "--merge: shards merge as text (--out FILE.csv|FILE.jsonl); numpy.load reads the merged "
+        "CSV with numpy.genfromtxt, or write each shard as .npz and concatenate the arrays");
   const bool jsonl = format_of(out) == Format::jsonl;
   std::vector<ShardFile> shards;
   for (const std::string& path : paths) {

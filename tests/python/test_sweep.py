@@ -153,3 +153,27 @@ def test_chaos_indicators_are_the_clis_and_tell_chaos_from_order(binary, tmp_pat
     assert table["chaos.lyapunov"][0] > 0.3 and table["chaos.megno_mean"][0] > 10
     with pytest.raises(ValueError, match=r"chaos_interval: must be a number > 0 \[time\] \(got -1\)"):
         spinfold.sweep(str(scene), {"potential.deformation.A": [0.1]}, chaos=True, chaos_interval=-1)
+
+
+def test_npz_rows_and_trajectories_load_in_numpy_as_the_csv(binary, tmp_path):
+    common = [binary, "sweep", "spinning_rigid_sphere", "--set", "initial.r=1,1.5", "--t-end", "2",
+              "--summary", "r.max", "--quiet"]
+    subprocess.run([*common, "--out", str(tmp_path / "rows.csv"), "--trajectories", str(tmp_path / "csv"),
+                    "--trajectory-fields", "t,r,X", "--trajectory-format", "csv"], check=True)
+    subprocess.run([*common, "--out", str(tmp_path / "rows.npz"), "--trajectories", str(tmp_path / "npz"),
+                    "--trajectory-fields", "t,r,X", "--trajectory-format", "npz"], check=True)
+    columns, rows = read_cli_rows(tmp_path / "rows.csv")
+    archive = np.load(tmp_path / "rows.npz")
+    assert [csv_name(name) for name in archive.files if name != "provenance"] == columns
+    for j, name in enumerate(archive.files):
+        if name in ("seconds", "provenance"):
+            continue
+        for i, row in enumerate(rows):
+            assert same_cell(row[j], archive[name][i].item()), (name, i, row[j], archive[name][i])
+    assert '"sweep"' in str(archive["provenance"][0])
+    for run in (0, 1):
+        text = np.genfromtxt(tmp_path / "csv" / f"{run}.csv", delimiter=",", names=True, comments="#")
+        arrays = np.load(tmp_path / "npz" / f"{run}.npz")
+        assert arrays.files == ["t", "r", "X.0", "X.1", "X.2", "provenance"]
+        for name in ("t", "r", "X.0", "X.1", "X.2"):
+            assert np.array_equal(arrays[name], text[csv_name(name)]), name
