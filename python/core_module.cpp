@@ -218,7 +218,8 @@ struct BodyColumns {
 struct RunColumns {
   BodyColumns main;
   std::vector<BodyColumns> companions;
-  bool budget_left = true;  // false: max_steps ran out before t_end
+  bool budget_left = true;                              // false: max_steps ran out before t_end
+  std::vector<std::pair<std::string, double>> summary;  // the summaries' and events' values (run_summary.h)
 
   void append(const Simulation& run, double events_since) {
     main.append(run, events_since);
@@ -231,11 +232,12 @@ struct RunColumns {
 };
 
 // `spinfold simulate`'s run: samples at 0, every, 2·every, … and t_end (engine/sampling.h).
-RunColumns run_columns(const Scene& scene, double t_end, double every,
-                       std::optional<std::uint64_t> max_steps) {
+RunColumns run_columns(const Scene& scene, double t_end, double every, std::optional<std::uint64_t> max_steps,
+                       const MonitorSpec& monitor = {}) {
   RunColumns out;
   out.main.reserve(static_cast<std::size_t>(std::ceil(t_end / every)) + 2);
   Simulation run = start_simulation(scene);
+  if (!monitor.empty()) watch(run, monitor);
   double since = -1.0;
   std::uint64_t attempts = max_steps.value_or(kNoStepLimit);
   sample_run(
@@ -247,7 +249,37 @@ RunColumns run_columns(const Scene& scene, double t_end, double every,
         out.append(run, since);
         since = run.state.t;
       });
+  const std::vector<std::string> names = monitor_columns(monitor);
+  const std::vector<double> values = monitor_values(run);
+  for (std::size_t i = 0; i < names.size(); ++i) out.summary.emplace_back(names[i], values[i]);
   return out;
+}
+
+// The summaries and events as Python names them (ValueError "summaries: …" / "events: …"), checked
+// against each scene ("scenes[i]: " before it where there are several).
+MonitorSpec monitor_spec(const std::vector<std::string>& summaries, const std::vector<std::string>& events,
+                         const std::vector<const Scene*>& scenes) {
+  MonitorSpec spec;
+  try {
+    for (const std::string& text : summaries) spec.summaries.push_back(parse_summary(text));
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(std::string("summaries: ") + e.what());
+  }
+  try {
+    for (const std::string& text : events) spec.events.push_back(parse_event(text));
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(std::string("events: ") + e.what());
+  }
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    try {
+      check_monitor(spec, *scenes[i]);
+    } catch (const std::invalid_argument& e) {
+      const bool event = std::string_view(e.what()).starts_with("event");
+      throw py::value_error((scenes.size() > 1 ? "scenes[" + std::to_string(i) + "]: " : std::string()) +
+                            (event ? "events: " : "summaries: ") + e.what());
+    }
+  }
+  return spec;
 }
 
 // A vector handed to NumPy without a copy: the array owns it through a capsule.
@@ -289,19 +321,24 @@ py::dict run_dict(RunColumns&& run, const Scene& scene, const std::string& comma
   for (BodyColumns& c : run.companions) companions.append(body_dict(std::move(c)));
   d["companions"] = companions;
   d["budget_left"] = run.budget_left;
+  py::dict summary;
+  for (const auto& [name, value] : run.summary) summary[py::str(name)] = value;
+  d["summary"] = summary;
   d["provenance"] = provenance_json(scene, command).dump();
   return d;
 }
 
 py::dict simulate(const std::string& scene_text, double t_end, double every,
-                  std::optional<double> max_steps_given, const std::string& command) {
+                  std::optional<double> max_steps_given, const std::string& command,
+                  const std::vector<std::string>& summaries, const std::vector<std::string>& events) {
   check_times(t_end, every);
   const std::optional<std::uint64_t> max_steps = max_steps_of(max_steps_given);
   const Scene scene = scene_of(scene_text);
+  const MonitorSpec monitor = monitor_spec(summaries, events, {&scene});
   RunColumns columns;
   {
     py::gil_scoped_release release;
-    columns = run_columns(scene, t_end, every, max_steps);
+    columns = run_columns(scene, t_end, every, max_steps, monitor);
   }
   return run_dict(std::move(columns), scene, command);
 }
@@ -322,7 +359,8 @@ double engine_seconds(const std::string& scene_text, double t_end, double every,
 
 // Many runs on `threads` C++ threads (0: one per core), the GIL released; results in input order.
 py::list run_many(const std::vector<std::string>& scene_texts, double t_end, double every,
-                  std::optional<double> threads_given, const std::string& command) {
+                  std::optional<double> threads_given, const std::string& command,
+                  const std::vector<std::string>& summaries, const std::vector<std::string>& events) {
   check_times(t_end, every);
   if (threads_given) check_limit("threads", *threads_given);
   const unsigned threads = threads_given ? static_cast<unsigned>(*threads_given) : 0u;
@@ -333,6 +371,9 @@ py::list run_many(const std::vector<std::string>& scene_texts, double t_end, dou
       throw py::value_error("scenes[" + std::to_string(i) + "]: " + describe_errors(parsed.errors));
     scenes.push_back(*parsed.scene);
   }
+  std::vector<const Scene*> each;
+  for (const Scene& scene : scenes) each.push_back(&scene);
+  const MonitorSpec monitor = monitor_spec(summaries, events, each);
   std::vector<RunColumns> results(scenes.size());
   {
     py::gil_scoped_release release;
@@ -341,7 +382,7 @@ py::list run_many(const std::vector<std::string>& scene_texts, double t_end, dou
     std::atomic<std::size_t> next{0};
     const auto work = [&] {
       for (std::size_t i; (i = next++) < scenes.size();)
-        results[i] = run_columns(scenes[i], t_end, every, std::nullopt);
+        results[i] = run_columns(scenes[i], t_end, every, std::nullopt, monitor);
     };
     std::vector<std::thread> pool;
     for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work);
@@ -546,9 +587,11 @@ PYBIND11_MODULE(_core, m) {
   m.def("scene_hash", [](const std::string& text) { return scene_hash(scene_of(text)); });
   m.def("merge_patch", &merge_patch);
   m.def("simulate", &simulate, py::arg("scene"), py::arg("t_end"), py::arg("every"), py::arg("max_steps"),
-        py::arg("command"));
+        py::arg("command"), py::arg("summaries") = std::vector<std::string>{},
+        py::arg("events") = std::vector<std::string>{});
   m.def("run_many", &run_many, py::arg("scenes"), py::arg("t_end"), py::arg("every"), py::arg("threads"),
-        py::arg("command"));
+        py::arg("command"), py::arg("summaries") = std::vector<std::string>{},
+        py::arg("events") = std::vector<std::string>{});
   m.def("render", &render_still, py::arg("scene"), py::arg("t"), py::arg("given"), py::arg("command"));
   // The one rule of each value the front doors share, for the Python layer's checks (the reason in
   // the table's words, or None): a view parameter (render/view_parameters.h), a run limit

@@ -184,6 +184,9 @@ class Result(Mapping[str, np.ndarray]):
         self._undefined_row: np.ndarray = raw["undefined_row"]
         self.label: str = raw.get("label", "")
         """A companion's label ("" for the main body)."""
+        self.summary: dict[str, float] = {k: (math.nan if v is None else float(v))
+                                          for k, v in raw.get("summary", {}).items()}
+        """The run's summaries and events (``simulate(..., summaries=…, events=…)``), by column name."""
         self.integrator: str = raw["integrator"]
         """The integrator that ran (``auto`` resolved)."""
         self.status_detail: str = raw["status_detail"]
@@ -241,7 +244,15 @@ class Result(Mapping[str, np.ndarray]):
         )
 
 
+def _monitor_texts(summaries: str | Sequence[str], events: str | Sequence[str]) -> tuple[list[str], list[str]]:
+    """The CLI's --summary (comma-separated) and --event texts as lists."""
+    summaries = summaries.split(",") if isinstance(summaries, str) else [str(x) for x in summaries]
+    events = [events] if isinstance(events, str) else [str(x) for x in events]
+    return [x for x in summaries if x], events
+
+
 def simulate(scene: Any, t_end: float = 10.0, every: float = 0.5, *, max_steps: int | None = None,
+             summaries: str | Sequence[str] = (), events: str | Sequence[str] = (),
              **overrides: Any) -> Result:
     """Runs a scene and samples it at t = 0, every, 2·every, … and t_end.
 
@@ -249,26 +260,31 @@ def simulate(scene: Any, t_end: float = 10.0, every: float = 0.5, *, max_steps: 
     ``tolerance`` (as the CLI's flags) or any scene field with ``__`` for its dots
     (``initial__spin=1.5``). The numbers are those of ``spinfold simulate`` to the bit.
     `max_steps` bounds the step attempts (``result.complete`` is False when they ran out).
+    `summaries` and `events`: the CLI's ``--summary`` and ``--event``; their values are
+    ``result.summary`` (``{"r.max": …, "r_up_1.2.count": …}``, NaN where there is none).
     """
     t_end, every = _run_limit("t_end", t_end), _run_limit("every", every)
     steps = None if max_steps is None else _run_limit("max_steps", max_steps)
     text = _with_overrides(_scene_text(scene), overrides)
-    return Result(_core.simulate(text, t_end, every, steps, "python: spinfold.simulate"))
+    watched, crossings = _monitor_texts(summaries, events)
+    return Result(_core.simulate(text, t_end, every, steps, "python: spinfold.simulate", watched, crossings))
 
 
 def run_many(scenes: Iterable[Any], t_end: float = 10.0, every: float = 0.5, *,
-             threads: int | None = None) -> list[Result]:
+             threads: int | None = None, summaries: str | Sequence[str] = (),
+             events: str | Sequence[str] = ()) -> list[Result]:
     """Runs many scenes on C++ threads (`threads`; None: one per core) with the GIL released.
 
-    Each run is what ``simulate`` gives for that scene. A refused scene raises ValueError naming its
-    index before anything runs.
+    Each run is what ``simulate`` gives for that scene (its `summaries` and `events` in
+    ``result.summary``). A refused scene raises ValueError naming its index before anything runs.
     """
     if isinstance(scenes, (str, bytes, Mapping)) or not isinstance(scenes, Iterable):
         raise TypeError(f"scenes: must be an iterable of scenes (got {type(scenes).__name__})")
     t_end, every = _run_limit("t_end", t_end), _run_limit("every", every)
     count = None if threads is None else _run_limit("threads", threads)
     texts = [_scene_text(s, f"scenes[{i}]") for i, s in enumerate(scenes)]
-    raw = _core.run_many(texts, t_end, every, count, "python: spinfold.run_many")
+    watched, crossings = _monitor_texts(summaries, events)
+    raw = _core.run_many(texts, t_end, every, count, "python: spinfold.run_many", watched, crossings)
     return [Result(r) for r in raw]
 
 
@@ -336,8 +352,7 @@ def sweep(base: Any, vary: Mapping[str, Any], t_end: float = 10.0, every: float 
         except (TypeError, ValueError) as error:
             raise ValueError(f"vary['{path}']: not a list of numbers or names ({error})") from None
         axes.append((str(path), None, text))
-    summaries = summaries.split(",") if isinstance(summaries, str) else [str(x) for x in summaries]
-    events = [events] if isinstance(events, str) else [str(x) for x in events]
+    summaries, events = _monitor_texts(summaries, events)
     names, rows = _core.sweep(_scene_text(base, "base"), axes, bool(zip), float(t_end), float(every), fields,
                               summaries, events, bool(chaos), float(chaos_interval), max_steps, threads or 0,
                               "python: spinfold.sweep")

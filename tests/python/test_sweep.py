@@ -177,3 +177,21 @@ def test_npz_rows_and_trajectories_load_in_numpy_as_the_csv(binary, tmp_path):
         assert arrays.files == ["t", "r", "X.0", "X.1", "X.2", "provenance"]
         for name in ("t", "r", "X.0", "X.1", "X.2"):
             assert np.array_equal(arrays[name], text[csv_name(name)]), name
+
+
+def test_simulate_and_run_many_give_each_runs_summary_as_the_sweep_does():
+    kwargs = dict(summaries="r", events=["r:up:1.3", "phi:any:0:period=6.283185307179586:name=turn"])
+    table = spinfold.sweep("separable_radial_abc", {"initial.r": [1.2, 1.1]}, t_end=20, **kwargs)
+    one = spinfold.simulate("separable_radial_abc", t_end=20, **kwargs)
+    many = spinfold.run_many(["separable_radial_abc", "separable_radial_abc"], t_end=20, **kwargs)
+    assert set(one.summary) == {"r.min", "r.max", "r.mean", "r.final", "r.t_min", "r.t_max", "r_up_1.3.count",
+                                "r_up_1.3.t_first", "r_up_1.3.t_last", "r_up_1.3.at.r", "turn.count", "turn.t_first",
+                                "turn.t_last", "turn.at.r"}
+    for name, value in one.summary.items():
+        assert value == table[name][0] or (math.isnan(value) and math.isnan(table[name][0])), name
+        assert many[1].summary[name] == value or math.isnan(value), name
+    assert one.summary["r.final"] == one["r"][-1]
+    with pytest.raises(ValueError, match=r"scenes\[1\]: summaries: summary 'r': unknown field 'r'"):
+        spinfold.run_many(["separable_radial_abc", "trapped_spin_bump"], t_end=1, summaries="r")
+    with pytest.raises(ValueError, match=r"events: event 'r:up': write FIELD:DIRECTION:LEVEL"):
+        spinfold.simulate("separable_radial_abc", t_end=1, events="r:up")
