@@ -117,7 +117,7 @@ int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
   const std::string header = "# spinfold work-precision " + version_line() + "\n# command: " + command +
                              "\n# provenance: " + provenance + "\n# scene: " + label + "; " + horizon +
                              "\n# reference: " + reference.kind + ": " + reference.description + "\n# " +
-                             wp::kErrorMeaning + "\n";
+                             wp::kErrorMeaning + "\n# " + wp::kErrorParts + "\n";
   std::ofstream(fs::path(opt.out) / "work_precision.csv") << wp::csv(header, curves);
   const std::string plot =
       wp::write_plot(opt.out, "work_precision", "work-precision: " + label, provenance, curves, t_end);
@@ -127,7 +127,7 @@ int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
      << "**Recommendation.** " << line << "\n\n"
      << "- " << horizon << "; target error " << opt.target_error << "\n"
      << "- Reference: " << reference.kind << ": " << reference.description << "\n"
-     << "- Error: " << wp::kErrorMeaning << "\n";
+     << "- Error: " << wp::kErrorMeaning << "; " << wp::kErrorParts << "\n";
   if (!chosen.note.empty() && !chosen.shortened) md << "- Chaos: " << chosen.note << "\n";
   if (!scene.companions.empty()) md << "- The main body only: its companions are separate runs.\n";
   for (const auto& [name, why] : wp::skipped_integrators(scene, sweep))

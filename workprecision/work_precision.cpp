@@ -62,10 +62,9 @@ struct OracleMeasure {
   Errors operator()(const State& state) const {
     const oracle::EngineBody body = oracle::engine_body(scene, state, oracle_scene);
     const oracle::Difference d = oracle::compare(oracle_scene, reference, body.in_start_frame, body.in_chart);
-    Errors e{std::max({d.position, d.velocity, d.frame}), d.energy};
-    if (!std::isfinite(e.state)) e.state = kNotReached;
-    if (!std::isfinite(e.energy)) e.energy = kNotReached;
-    return e;
+    const auto reached = [](double x) { return std::isfinite(x) ? x : kNotReached; };
+    return {reached(std::max({d.position, d.velocity, d.frame})), reached(d.energy), reached(d.position),
+            reached(d.velocity), reached(d.frame)};
   }
 };
 
@@ -74,7 +73,14 @@ struct OracleMeasure {
 Errors embedded_errors(const Scene& scene, const State& a, const State& reference, double energy0) {
   const double e = embedded_state_error(scene, a, reference);
   const double de = std::abs(energy(scene, a) - energy0) / std::max(std::abs(energy0), 1e-300);
-  return {std::isfinite(e) ? e : kNotReached, std::isfinite(de) ? de : kNotReached};
+  // The parts as embedded_state_error measures them: each vector's largest component difference.
+  const EmbeddedBody x = global_embedding(scene, a), y = global_embedding(scene, reference);
+  const auto part = [](const Vec3& u, const Vec3& v) {
+    return (u - v).cwiseAbs().maxCoeff() / std::max(1.0, v.norm());
+  };
+  const auto reached = [](double v) { return std::isfinite(v) ? v : kNotReached; };
+  return {reached(e), reached(de), reached(part(x.X, y.X)), reached(part(x.V, y.V)),
+          reached(std::max(part(x.e[0], y.e[0]), part(x.e[1], y.e[1])))};
 }
 
 }  // namespace
@@ -212,6 +218,9 @@ Point measure(const Reference& reference, double t_end, const std::string& metho
   const Errors e = reference.errors(final_state);
   p.state_error = e.state;
   p.energy_error = e.energy;
+  p.position_error = e.position;
+  p.velocity_error = e.velocity;
+  p.frame_error = e.frame;
   return p;
 }
 
@@ -468,20 +477,25 @@ std::string csv(const std::string& comments, const Curves& curves) {
     for (const Point& p : curve)
       out << method << "," << p.parameter << "," << format_number(p.value) << ","
           << format_number(p.seconds_per_unit_time) << "," << format_number(p.state_error) << ","
-          << format_number(p.energy_error) << "," << p.steps << "\n";
+          << format_number(p.energy_error) << "," << p.steps << "," << format_number(p.position_error) << ","
+          << format_number(p.velocity_error) << "," << format_number(p.frame_error) << "\n";
   return out.str();
 }
 
 std::string points_table(const Curves& curves) {
   std::ostringstream md;
-  md << "| method | parameter | value | µs per unit time | state error | energy error | steps |\n"
-     << "| --- | --- | --- | --- | --- | --- | --- |\n";
+  md << "| method | parameter | value | µs per unit time | state error | position / velocity / frame | "
+        "energy error | "
+        "steps |\n"
+     << "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  const auto error = [](double e) { return std::isfinite(e) ? sci(e) : std::string("-"); };
   for (const auto& [method, curve] : curves)
     for (const Point& p : curve)
       md << "| " << method << " | " << p.parameter << " | " << (p.parameter == "-" ? "-" : sci(p.value, 3))
          << " | " << format_cost(p.seconds_per_unit_time) << " | "
          << (std::isfinite(p.state_error) ? sci(p.state_error) : "stopped") << " | "
-         << (std::isfinite(p.energy_error) ? sci(p.energy_error) : "-") << " | " << p.steps << " |\n";
+         << error(p.position_error) << " / " << error(p.velocity_error) << " / " << error(p.frame_error)
+         << " | " << error(p.energy_error) << " | " << p.steps << " |\n";
   return md.str();
 }
 

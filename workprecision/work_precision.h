@@ -39,12 +39,21 @@ struct Point {
   double state_error = kNotReached;    // see kErrorMeaning; infinity when the run stopped
   double energy_error = kNotReached;
   long steps = 0;  // accepted steps (ours) or right-hand-side evaluations (Odeint)
+  // The parts of state_error (its largest): the position, velocity and frame errors (kErrorParts).
+  double position_error = kNotReached, velocity_error = kNotReached, frame_error = kNotReached;
 };
 
 struct Errors {
   double state = kNotReached;
   double energy = kNotReached;
+  double position = kNotReached, velocity = kNotReached, frame = kNotReached;  // state = their max
 };
+
+// What the CSV's and the API's position, velocity and frame errors are.
+inline constexpr const char* kErrorParts =
+    "position_error, velocity_error, frame_error: the three parts of state_error (where the oracle runs: "
+    "the geodesic distance [length], |dV| tangential [length/time], max_A |de_A| / max_A |e_A|; elsewhere "
+    "the largest component difference of X, of V and of e_A, each relative to max(1, |v|))";
 
 // The most accurate solution at T available for the scene: the extended-precision oracle where it
 // runs, else the closed form where the engine has one, else gauss6 at period/4096 cross-checked by
@@ -146,7 +155,9 @@ std::string recommendation(const Curves& curves, double target_error, const Hori
 // The CSV of the curves: `comments` ("# ..." lines, each ending in a newline) then kCsvColumns and
 // one row per point (numbers as format_number writes them).
 inline constexpr const char* kCsvColumns =
-    "method,parameter,value,seconds_per_unit_time,state_error,energy_error,steps";
+    "method,parameter,value,seconds_per_unit_time,state_error,energy_error,steps,position_error,velocity_"
+    "error,"
+    "frame_error";
 std::string csv(const std::string& comments, const Curves& curves);
 
 // The markdown table of the curves' points (method, setting, cost, errors, steps).

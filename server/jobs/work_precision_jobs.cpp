@@ -140,7 +140,7 @@ void WorkPrecisionJobs::run(Queue::Entry& entry) {
                       provenance_json(job.scene, "POST /api/v1/work-precision").dump() +
                       "\n# scene: " + describe_source(job) + "; T = " + shortest(t_end) + "; target error " +
                       shortest(job.target_error) + "\n# reference: " + reference.kind + ": " +
-                      reference.description + "\n# " + wp::kErrorMeaning + "\n",
+                      reference.description + "\n# " + wp::kErrorMeaning + "\n# " + wp::kErrorParts + "\n",
                   result->curves);
       draw_plot(job, *result);
     }

@@ -163,6 +163,9 @@ ordered_json point_json(const wp::Point& p) {
           {"seconds_per_unit_time", p.seconds_per_unit_time},
           {"state_error", number_or_null(p.state_error)},
           {"energy_error", number_or_null(p.energy_error)},
+          {"position_error", number_or_null(p.position_error)},
+          {"velocity_error", number_or_null(p.velocity_error)},
+          {"frame_error", number_or_null(p.frame_error)},
           {"steps", p.steps}};
 }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -93,15 +94,17 @@ std::vector<Row> csv_rows(const std::string& text, std::string& comments) {
       continue;
     }
     if (!header_seen) {
-      EXPECT_EQ(line, "method,parameter,value,seconds_per_unit_time,state_error,energy_error,steps");
+      EXPECT_EQ(line,
+                "method,parameter,value,seconds_per_unit_time,state_error,energy_error,steps,position_error,"
+                "velocity_error,frame_error");
       header_seen = true;
       continue;
     }
     std::istringstream cells(line);
     std::vector<std::string> c;
     for (std::string cell; std::getline(cells, cell, ',');) c.push_back(cell);
-    EXPECT_EQ(c.size(), 7u) << line;
-    if (c.size() == 7) rows.push_back({c[0], c[1], std::stod(c[2]), std::stod(c[3]), std::stod(c[4])});
+    EXPECT_EQ(c.size(), 10u) << line;
+    if (c.size() == 10) rows.push_back({c[0], c[1], std::stod(c[2]), std::stod(c[3]), std::stod(c[4])});
   }
   return rows;
 }
@@ -216,6 +219,21 @@ TEST(WorkPrecision, AChaoticSceneIsMeasuredOverItsPredictableHorizon) {
   const std::size_t error = r.out.find("(error ", line);
   ASSERT_NE(error, std::string::npos);
   EXPECT_LE(std::stod(r.out.substr(error + 7)), 1e-10) << r.out.substr(line, 200);
+  // The state error is its position, velocity and frame parts' largest, each in the CSV.
+  std::istringstream csv(read(dir.path / "a" / "work_precision.csv"));
+  int rows = 0;
+  for (std::string row; std::getline(csv, row);) {
+    if (row.empty() || row[0] == '#' || row.starts_with("method,")) continue;
+    std::vector<std::string> cells;
+    std::istringstream in(row);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 10u) << row;
+    if (cells[4] == "inf") continue;
+    const double parts = std::max({std::stod(cells[7]), std::stod(cells[8]), std::stod(cells[9])});
+    EXPECT_EQ(std::stod(cells[4]), parts) << row;
+    ++rows;
+  }
+  EXPECT_GT(rows, 5);
 
   const auto beyond = run_spinfold("work-precision " + scene +
                                    " --t-end 60 --integrators dop853 --max-seconds-per-run 0.1 --out " +
