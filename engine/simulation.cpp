@@ -1,6 +1,7 @@
 #include "engine/simulation.h"
 
 #include <cmath>
+#include <tuple>
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
@@ -546,6 +547,26 @@ void monitor_closed_form(Simulation& run) {
   }
 }
 
+// What taking steps of the sequence changes in a run, to undo a trial of them.
+struct SequenceSnapshot {
+  StepPoint grid, checked;
+  std::optional<RunMonitor> monitor, monitor_checked;
+  std::uint64_t steps, rejected, recentres;
+  std::vector<DegenerateEvent> events;
+};
+SequenceSnapshot snapshot(const Simulation& run) {
+  return {run.grid,  run.checked,  run.monitor,   run.monitor_checked,
+          run.steps, run.rejected, run.recentres, run.events};
+}
+void restore(Simulation& run, SequenceSnapshot&& s) {
+  run.grid = std::move(s.grid);
+  run.checked = std::move(s.checked);
+  run.monitor = std::move(s.monitor);
+  run.monitor_checked = std::move(s.monitor_checked);
+  std::tie(run.steps, run.rejected, run.recentres) = std::tie(s.steps, s.rejected, s.recentres);
+  run.events = std::move(s.events);
+}
+
 // A terminal event between the sequence's last point and the state asked for stops the run there
 // (the sample then shows it, as a det L stop between samples does). It is located on the run's own
 // steps, never in the cut step to the sample, so that where the run is sampled cannot move it: the
@@ -582,11 +603,8 @@ void stop_on_event_before_state(Simulation& run, std::uint64_t& attempts) {
       }
     }
   }
-  // Steppers: the sequence's next whole steps, on copies of what stepping changes.
-  const StepPoint grid = run.grid, checked = run.checked;
-  const std::optional<RunMonitor> monitor = run.monitor, monitor_checked = run.monitor_checked;
-  const std::uint64_t steps = run.steps, rejected = run.rejected, recentres = run.recentres;
-  const std::vector<DegenerateEvent> events = run.events;
+  // Steppers: the sequence's next whole steps, undone unless they reach the event.
+  SequenceSnapshot before = snapshot(run);
   StepPoint p = run.grid;
   while (p.state.status == Status::ok && p.state.t <= t_state && attempts > 0) {
     const double h = run.integrator->info().adaptive ? p.h_next : run.scene.integrator.dt;
@@ -597,14 +615,7 @@ void stop_on_event_before_state(Simulation& run, std::uint64_t& attempts) {
     stopped_here(p.state);
     return;
   }
-  run.grid = grid;
-  run.checked = checked;
-  run.monitor = monitor;
-  run.monitor_checked = monitor_checked;
-  run.steps = steps;
-  run.rejected = rejected;
-  run.recentres = recentres;
-  run.events = events;
+  restore(run, std::move(before));
 }
 
 // One body (not its companions), with its monitor.
