@@ -34,7 +34,7 @@ scene = json.load(open(scene_file))
 rows = [r for r in csv.reader(line for line in open(f"{tmp}/values.csv") if not line.startswith("#"))]
 header, rows = rows[0], rows[1:]
 for row in rows:
-    scene["initial"]["r"] = float(row[header.index("initial.r")])
+    scene["initial"]["r"] = float(row[header.index("initial_r")])  # dots written _
     json.dump(scene, open(f"{tmp}/scene_{row[0]}.json", "w"))
 EOF
 
