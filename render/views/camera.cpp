@@ -82,6 +82,10 @@ double badness(const ViewModel& model, const Surface& surface, const ViewOptions
   const glm::dvec4 h = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
   const glm::dvec3 eye = glm::dvec3(h) / h.w;
   double bad = 0.0;
+  if (!model.on_lit_side(eye)) {  // worse than any camera on the lit side, however much that one hides
+    for (const Sight& p : points) bad += p.weight;
+    return 2.0 * bad + 1.0;
+  }
   for (const Sight& p : points) {
     if (bad >= enough) break;
     // The projection first: a sight out of the frame or under a box costs no ray cast.
@@ -156,6 +160,14 @@ void aim_orbit(const ViewModel& model, ViewOptions& view, const Snapshot& snapsh
   view.distance = radius / std::sin(0.85 * half_fov);
   view.pitch = pitch;
   if (glm::length(glm::dvec2(centre)) > 1e-9) view.yaw = std::atan2(centre.y, centre.x) + yaw_turn;
+  // Steeper until the camera is on the surface's lit side (near the hyperboloid's vertex a camera
+  // drawn back at the preferred pitch ends up under the sheet).
+  const auto eye = [&] {
+    return centre + view.distance * glm::dvec3(std::cos(view.pitch) * std::cos(view.yaw),
+                                               std::cos(view.pitch) * std::sin(view.yaw),
+                                               std::sin(view.pitch));
+  };
+  while (!model.on_lit_side(eye()) && view.pitch < 1.3) view.pitch = std::min(1.3, view.pitch + 0.05);
   clear_the_boxes(model, snapshot.surface, view, points, hud, {1.0, 1.25, 1.6});
 }
 

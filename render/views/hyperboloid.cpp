@@ -55,6 +55,10 @@ class HyperboloidView final : public ViewModel {
     return orbit_camera(view, glm::dvec3(0, 0, 1.6));
   }
   float depth_bias() const override { return kHyperboloidDepthBias; }
+  // Inside the bowl, a fifth of a radius above the sheet (x₃ = w_z + 1 ≥ √(1 + x₁² + x₂²) + 0.2).
+  bool on_lit_side(const glm::dvec3& eye) const override {
+    return eye.z + 1.0 >= std::sqrt(1.0 + eye.x * eye.x + eye.y * eye.y) + 0.2;
+  }
   // From across the bowl (the near side would see the surface edge-on), the vertex's
   // neighbourhood at least.
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {

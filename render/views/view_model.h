@@ -89,6 +89,10 @@ class ViewModel {
   virtual bool hidden(const Surface& /*surface*/, const glm::dvec3& /*at*/, const glm::dvec3& /*eye*/) const {
     return false;
   }
+  // Whether a camera at `eye` [world units] sees the surface from the side it is drawn to be seen
+  // from (the hyperboloid from inside its bowl: from under the sheet a frame is its dark underside
+  // and no body). Aiming never picks a camera on the other side.
+  virtual bool on_lit_side(const glm::dvec3& /*eye*/) const { return true; }
   // Places the camera to show the bodies and their trails clear of the HUD's and legend's boxes
   // (aim_camera_at_body; snapshot.bodies is not empty). Default: the view's fixed camera.
   virtual void aim(ViewOptions& /*view*/, const Snapshot& /*snapshot*/, const HudLayout& /*hud*/) const {}

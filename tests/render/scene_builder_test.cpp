@@ -268,6 +268,16 @@ TEST(SceneBuilder, TheHyperboloidsCameraKeepsTheBodyInTheFrameAndOutOfTheHudFarO
       EXPECT_GT(body->y, 0.05 * h) << "r = " << r << ", " << w << "x" << h;
       EXPECT_LT(body->y, 0.95 * h) << "r = " << r << ", " << w << "x" << h;
       EXPECT_FALSE(scene.hud.hud.contains(*body)) << "r = " << r << ", " << w << "x" << h;
+      // Seen from inside the bowl: the camera above the sheet, the body's face (its Minkowski normal
+      // (−x₁, −x₂, x₃), into the bowl) turned to it. Near the vertex a camera drawn back at the
+      // preferred pitch was under the sheet: a frame of dark underside and no body.
+      const glm::dvec4 e = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
+      const glm::dvec3 eye = glm::dvec3(e) / e.w;
+      EXPECT_GT(eye.z + 1.0, std::sqrt(1.0 + eye.x * eye.x + eye.y * eye.y))
+          << "r = " << r << ", " << w << "x" << h;
+      const Vec3& X = s.bodies[0].X;
+      const glm::dvec3 normal(-X.x(), -X.y(), X.z());
+      EXPECT_GT(glm::dot(normal, eye - world_position(s.surface, view.kind, X)), 0.0) << "r = " << r;
       // The whole ellipse and the trail's last stretch (up to 3 radii back) are in the frame.
       std::vector<Vec3> points = ellipse_points(s.surface, s.bodies[0], view.scale, 16);
       for (int k = 0; k <= 64; ++k)
