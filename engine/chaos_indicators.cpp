@@ -95,6 +95,9 @@ Scene nudged(Scene scene, double size) {
 std::optional<std::string> chaos_interval_refusal(double interval, double t_end) {
   if (!std::isfinite(interval) || !(interval > 0.0))
     return "must be a number > 0 [time] (got " + shortest(interval) + ")";
+  if (interval > t_end)
+    return "must be at most the run's length t_end = " + shortest(t_end) + " (got " + shortest(interval) +
+           "): no interval would end";
   if (t_end / interval > 1e6)
     return "t_end / interval must be at most 1e6 (got " + shortest(t_end / interval) +
            "): each interval restarts the shadow run";

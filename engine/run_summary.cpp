@@ -166,8 +166,10 @@ EventSpec parse_event(std::string_view text) {
 void check_monitor(const MonitorSpec& spec, const Scene& scene) {
   const auto known = [&](const std::string& field, const std::string& what) {
     if (field_index(scene, field) < 0)
-      throw std::invalid_argument(what + ": unknown field '" + field + "' for this scene (one of " +
-                                  join(monitor_field_names(scene)) + ")");
+      throw std::invalid_argument(
+          what + ": unknown field '" + field + "' for this scene (one of " +
+          join(monitor_field_names(scene)) +
+          "; or FIELD.REDUCTION, REDUCTION one of min, max, mean, final, t_min, t_max)");
   };
   for (const SummarySpec& s : spec.summaries) known(s.field, "summary '" + s.field + "'");
   std::vector<std::string> names;

@@ -63,11 +63,13 @@ inline void add_monitor_options(CLI::App& cmd, std::vector<std::string>& summari
       "--event", events,
       "FIELD:up|down|any:LEVEL[:period=P][:stop=N][:name=NAME]: a crossing located inside the steps; "
       "its count, first and last time (stop=N ends the run at the N-th); repeatable");
-  cmd.add_flag("--chaos", chaos,
-               "Add the maximal Lyapunov exponent and MEGNO (chaos.lyapunov, chaos.megno, chaos.megno_mean, "
-               "chaos.lyapunov_time, chaos.t): two more runs, a shadow restarted every --chaos-interval");
+  CLI::Option* chaos_flag = cmd.add_flag(
+      "--chaos", chaos,
+      "Add the maximal Lyapunov exponent and MEGNO (chaos.lyapunov, chaos.megno, chaos.megno_mean, "
+      "chaos.lyapunov_time, chaos.t): two more runs, a shadow restarted every --chaos-interval");
   cmd.add_option("--chaos-interval", chaos_interval, "The shadow's restart interval [time]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(chaos_flag);
 }
 
 // A registered subcommand: run(argc, argv) when it is the one parsed (argv for the provenance).

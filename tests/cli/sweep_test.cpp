@@ -326,6 +326,8 @@ TEST(Sweep, BadFieldsAndValuesAreExitTwoNamingThem) {
            {"--set initial.r=1 --trajectories t --trajectory-format xml",
             "--trajectory-format: must be jsonl, csv or npz (got 'xml')"},
            {"--set initial.r=1 --trajectory-fields t,r", "--trajectory-fields: give --trajectories DIR too"},
+           {"--set initial.r=1 --chaos-interval 2", "--chaos-interval requires --chaos"},
+           {"--set initial.r=1 --summary r.maxx", "or FIELD.REDUCTION, REDUCTION one of min, max, mean"},
            {"--set initial.r=1 --chaos --chaos-interval -1",
             "--chaos-interval: must be a number > 0 [time] (got -1)"},
            {"--set initial.r=1 --chaos --chaos-interval 1e-6 --t-end 10",

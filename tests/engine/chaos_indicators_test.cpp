@@ -106,6 +106,8 @@ TEST(ChaosIndicators, IntervalsAreBoundedAndRefusedInWords) {
   EXPECT_FALSE(chaos_interval_refusal(1.0, 100.0));
   EXPECT_EQ(*chaos_interval_refusal(0.0, 100.0), "must be a number > 0 [time] (got 0)");
   EXPECT_NE(chaos_interval_refusal(1e-6, 100.0)->find("at most 1e6"), std::string::npos);
+  EXPECT_EQ(*chaos_interval_refusal(100.0, 5.0),
+            "must be at most the run's length t_end = 5 (got 100): no interval would end");
   // Far out on H² the indicators stop and say why.
   Scene s = test::rigid_scene(SurfaceKind::pseudosphere, 1.0, 1.0, 0.2, 0.5);
   s.initial.r = 0.5;
