@@ -26,13 +26,13 @@ Scene chaotic(const char* integrator, double tolerance) {
   s.surface = {SurfaceKind::pseudosphere, 1.0};
   s.body = {1.0, 0.1, BodyModel::affine, InertiaMatrix{0.3, 0.1, 0.1, 0.1}};
   s.potential.deformation = AbcPotential{0.1, 0.4, 0.5};
-  s.initial.r = 0.8;
-  s.initial.lambda = 1.3;
-  s.initial.mu = 0.7;
-  s.initial.phi_dot = 0.3;
-  s.initial.alpha_dot = 0.9;
-  s.initial.beta_dot = 0.2;
-  s.initial.lambda_dot = 0.3;
+  s.initial = {.r = 0.8,
+               .lambda = 1.3,
+               .mu = 0.7,
+               .phi_dot = 0.3,
+               .alpha_dot = 0.9,
+               .beta_dot = 0.2,
+               .lambda_dot = 0.3};
   s.integrator = {integrator, 0.01, tolerance};
   return s;
 }
