@@ -311,3 +311,41 @@ def test_a_whole_camera_is_the_aimed_camera_with_all_three_parts_replaced(binary
     parts = spinfold.render(SCENE, t=1, width=96, height=72, yaw=0.3, pitch=0.2, distance=4)
     assert np.array_equal(whole.pixels[:, :, :3], from_cli)
     assert np.array_equal(parts.pixels[:, :, :3], from_cli)
+
+
+# ---- summaries, events and chaos indicators: the engine's words at every door that takes them ----
+# (simulate and sweep in the CLI and Python; the HTTP API has none). Each row: the CLI option and
+# Python argument, the text, and the reason engine/run_summary.cpp or engine/chaos_indicators.cpp words.
+MONITOR_BAD = [
+    ("--summary", "summaries", "nope", "summary 'nope': unknown field 'nope' for this scene"),
+    ("--summary", "summaries", "r.maxx", "or FIELD.REDUCTION, REDUCTION one of min, max, mean"),
+    ("--event", "events", "r:sideways:1", "event 'r:sideways:1': the direction must be up, down or any"),
+    ("--event", "events", "r:up:x", "event 'r:up:x': the level must be a finite number (got 'x')"),
+    ("--event", "events", "r:up:1:stop=0", "stop must be a whole number from 1 to 1e9 (got 0)"),
+    ("--event", "events", "u:up:1", "unknown field 'u' for this scene (one of r, phi,"),
+]
+
+
+@pytest.mark.parametrize("row", MONITOR_BAD, ids=lambda row: f"{row[0]}={row[2]}")
+def test_summaries_and_events_refuse_alike_at_every_door(row, binary):
+    option, argument, text, reason = row
+    for command in (["simulate", "--scene", SCENE, "--t-end", "1", "--quiet"],
+                    ["sweep", SCENE, "--set", "initial.r=1", "--t-end", "1", "--quiet"]):
+        result = cli(binary, *command, option, text)
+        assert result.returncode == 2, (command[0], result.stderr)
+        assert f"spinfold: {option}: " in result.stderr and reason in result.stderr, result.stderr
+    for call in (lambda: spinfold.simulate(SCENE, t_end=1, **{argument: [text]}),
+                 lambda: spinfold.sweep(SCENE, {"initial.r": [1]}, t_end=1, **{argument: [text]}),
+                 lambda: spinfold.run_many([SCENE], t_end=1, **{argument: [text]})):
+        with pytest.raises(ValueError) as caught:
+            call()
+        assert f"{argument}: " in str(caught.value) and reason in str(caught.value), str(caught.value)
+
+
+def test_the_chaos_interval_is_refused_alike(binary):
+    reason = "must be a number > 0 [time] (got -1)"
+    for command in (["simulate", "--scene", SCENE], ["sweep", SCENE, "--set", "initial.r=1"]):
+        result = cli(binary, *command, "--t-end", "1", "--quiet", "--chaos", "--chaos-interval", "-1")
+        assert result.returncode == 2 and f"--chaos-interval: {reason}" in result.stderr, result.stderr
+    with pytest.raises(ValueError, match=r"chaos_interval: must be a number > 0 \[time\] \(got -1\)"):
+        spinfold.sweep(SCENE, {"initial.r": [1]}, t_end=1, chaos=True, chaos_interval=-1)
