@@ -6,6 +6,7 @@
 #include "engine/chart.h"
 #include "engine/embedded_run.h"
 #include "engine/invariants.h"
+#include "engine/number_rule.h"
 #include "engine/number_text.h"
 
 namespace spinfold {
@@ -93,8 +94,8 @@ Scene nudged(Scene scene, double size) {
 }  // namespace
 
 std::optional<std::string> chaos_interval_refusal(double interval, double t_end) {
-  if (!std::isfinite(interval) || !(interval > 0.0))
-    return "must be a number > 0 [time] (got " + shortest(interval) + ")";
+  if (const auto why = refusal(NumberRule{.range = kPositive, .unit = "time"}, interval))
+    return *why + " (got " + shortest(interval) + ")";
   if (interval > t_end)
     return "must be at most the run's length t_end = " + shortest(t_end) + " (got " + shortest(interval) +
            "): no interval would end";

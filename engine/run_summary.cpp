@@ -12,6 +12,7 @@
 #include "engine/dynamics.h"
 #include "engine/embedded_run.h"
 #include "engine/invariants.h"
+#include "engine/number_rule.h"
 #include "engine/number_text.h"
 #include "engine/paper_coordinates.h"
 #include "engine/simulation.h"
@@ -73,14 +74,13 @@ std::vector<std::string> split_on(std::string_view text, char sep) {
   return parts;
 }
 
-double event_number(std::string_view event, std::string_view what, const std::string& text) {
-  char* end = nullptr;
-  const std::string s(text);
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v))
-    throw std::invalid_argument("event '" + std::string(event) + "': " + std::string(what) +
-                                " must be a finite number (got '" + s + "')");
-  return v;
+// One number of an event's text by the one number reader and rule (engine/number_rule.h).
+double event_number(const std::string& event, std::string_view what, const std::string& text,
+                    const NumberRule& rule) {
+  const std::optional<double> x = number_from_text(text);
+  if (!x || !allows(rule, *x))
+    throw MonitorRefusal("event '" + event + "': " + refused(what, must_be(rule), "'" + text + "'"), true);
+  return *x;
 }
 
 std::string level_text(double v) {
@@ -115,8 +115,9 @@ SummarySpec parse_summary(std::string_view text) {
       s.reductions.push_back(static_cast<Reduction>(i));
   }
   if (s.field.empty())
-    throw std::invalid_argument("summary '" + std::string(text) +
-                                "': name a field, or FIELD.REDUCTION (min, max, mean, final, t_min, t_max)");
+    throw MonitorRefusal("summary '" + std::string(text) +
+                             "': name a field, or FIELD.REDUCTION (min, max, mean, final, t_min, t_max)",
+                         false);
   return s;
 }
 
@@ -124,8 +125,9 @@ EventSpec parse_event(std::string_view text) {
   const std::vector<std::string> parts = split_on(text, ':');
   const std::string t(text);
   if (parts.size() < 3 || parts[0].empty())
-    throw std::invalid_argument(
-        "event '" + t + "': write FIELD:DIRECTION:LEVEL[:period=P][:stop=N][:name=NAME], e.g. r:up:1.2");
+    throw MonitorRefusal(
+        "event '" + t + "': write FIELD:DIRECTION:LEVEL[:period=P][:stop=N][:name=NAME], e.g. r:up:1.2",
+        true);
   EventSpec e;
   e.field = parts[0];
   if (parts[1] == "up")
@@ -135,48 +137,50 @@ EventSpec parse_event(std::string_view text) {
   else if (parts[1] == "any")
     e.direction = Direction::any;
   else
-    throw std::invalid_argument("event '" + t + "': the direction must be up, down or any (got '" + parts[1] +
-                                "')");
-  e.level = event_number(t, "the level", parts[2]);
+    throw MonitorRefusal("event '" + t + "': the direction must be up, down or any (got '" + parts[1] + "')",
+                         true);
+  e.level = event_number(t, "the level", parts[2], NumberRule{});
   for (std::size_t i = 3; i < parts.size(); ++i) {
     const std::size_t eq = parts[i].find('=');
     const std::string key = parts[i].substr(0, eq),
                       value = eq == std::string::npos ? "" : parts[i].substr(eq + 1);
     if (key == "period") {
-      e.period = event_number(t, "the period", value);
-      if (!(e.period > 0.0))
-        throw std::invalid_argument("event '" + t + "': the period must be > 0 (got " + value + ")");
+      e.period = event_number(t, "period", value, NumberRule{.range = kPositive});
     } else if (key == "stop") {
-      const double n = event_number(t, "stop", value);
-      if (!(n >= 1.0 && n <= 1e9 && n == std::floor(n)))
-        throw std::invalid_argument("event '" + t + "': stop must be a whole number from 1 to 1e9 (got " +
-                                    value + ")");
-      e.stop = static_cast<std::uint64_t>(n);
+      e.stop = static_cast<std::uint64_t>(event_number(
+          t, "stop", value, NumberRule{.whole = true, .range = {.min = 1.0, .max = kMaxWholeNumber}}));
     } else if (key == "name" && !value.empty()) {
       e.name = value;
     } else {
-      throw std::invalid_argument("event '" + t + "': unknown part '" + parts[i] +
-                                  "' (period=P, stop=N or name=NAME)");
+      throw MonitorRefusal(
+          "event '" + t + "': unknown part '" + parts[i] + "' (period=P, stop=N or name=NAME)", true);
     }
   }
   if (e.name.empty()) e.name = e.field + "_" + parts[1] + "_" + level_text(e.level);
   return e;
 }
 
+MonitorSpec parse_monitor(const std::vector<std::string>& summaries, const std::vector<std::string>& events) {
+  MonitorSpec spec;
+  for (const std::string& text : summaries) spec.summaries.push_back(parse_summary(text));
+  for (const std::string& text : events) spec.events.push_back(parse_event(text));
+  return spec;
+}
+
 void check_monitor(const MonitorSpec& spec, const Scene& scene) {
-  const auto known = [&](const std::string& field, const std::string& what) {
+  const auto known = [&](const std::string& field, const std::string& what, bool event) {
     if (field_index(scene, field) < 0)
-      throw std::invalid_argument(
-          what + ": unknown field '" + field + "' for this scene (one of " +
-          join(monitor_field_names(scene)) +
-          "; or FIELD.REDUCTION, REDUCTION one of min, max, mean, final, t_min, t_max)");
+      throw MonitorRefusal(what + ": unknown field '" + field + "' for this scene (one of " +
+                               join(monitor_field_names(scene)) +
+                               "; or FIELD.REDUCTION, REDUCTION one of min, max, mean, final, t_min, t_max)",
+                           event);
   };
-  for (const SummarySpec& s : spec.summaries) known(s.field, "summary '" + s.field + "'");
+  for (const SummarySpec& s : spec.summaries) known(s.field, "summary '" + s.field + "'", false);
   std::vector<std::string> names;
   for (const EventSpec& e : spec.events) {
-    known(e.field, "event '" + e.name + "'");
+    known(e.field, "event '" + e.name + "'", true);
     if (std::find(names.begin(), names.end(), e.name) != names.end())
-      throw std::invalid_argument("event '" + e.name + "': two events have this name (give one name=OTHER)");
+      throw MonitorRefusal("event '" + e.name + "': two events have this name (give one name=OTHER)", true);
     names.push_back(e.name);
   }
 }
@@ -204,6 +208,13 @@ RunMonitor::RunMonitor(MonitorSpec spec, const Simulation& run) : spec_(std::mov
   };
   for (const SummarySpec& s : spec_.summaries) summary_index_.push_back(watch(s.field));
   for (const EventSpec& e : spec_.events) event_index_.push_back(watch(e.field));
+  // What evaluate() must compute, decided once: the energy, the body, or only its position.
+  for (const int f : fields_) {
+    const bool energy = f == f_energy || f == f_energy_error, x = f == f_X0 || f == f_X1 || f == f_X2;
+    (energy ? reads_.energy : reads_.body) = true;
+    reads_.x = reads_.x || x;
+    reads_.position_only = reads_.position_only && (energy || x || f == f_r || f == f_phi);
+  }
   last_ = run.state;
   t_start_ = run.state.t;
   last_values_ = evaluate(run, last_, nullptr);
@@ -219,14 +230,8 @@ RunMonitor::Values RunMonitor::evaluate(const Simulation& run, const State& s, c
   Values out;
   out.fill(kNaN);
   const Scene& scene = run.scene;
-  bool body_needed = false, energy_needed = false;
-  bool position_only = true, x_needed = false;
-  for (const int f : fields_) {
-    (f == f_energy || f == f_energy_error ? energy_needed : body_needed) = true;
-    x_needed = x_needed || f == f_X0 || f == f_X1 || f == f_X2;
-    position_only = position_only && (f == f_energy || f == f_energy_error || f == f_r || f == f_phi ||
-                                      f == f_X0 || f == f_X1 || f == f_X2);
-  }
+  const bool energy_needed = reads_.energy, body_needed = reads_.body, position_only = reads_.position_only,
+             x_needed = reads_.x;
   std::array<double, kFieldCount> v;
   v.fill(kNaN);
   if (energy_needed) {

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -60,13 +61,23 @@ struct MonitorSpec {
   bool empty() const { return summaries.empty() && events.empty(); }
 };
 
-// "r" (every reduction of r) or "r.max" (one); std::invalid_argument naming the text and the reason.
+// A refusal of a summary's or an event's text, or of a field the scene has not: the message names the
+// text and the reason; `event` says which option a front door names (its --event or --summary).
+struct MonitorRefusal : std::invalid_argument {
+  MonitorRefusal(const std::string& what, bool about_event)
+      : std::invalid_argument(what), event(about_event) {}
+  bool event;
+};
+
+// "r" (every reduction of r) or "r.max" (one); MonitorRefusal naming the text and the reason.
 SummarySpec parse_summary(std::string_view text);
 // "FIELD:DIRECTION:LEVEL[:period=P][:stop=N][:name=NAME]", DIRECTION up, down or any, e.g.
 // "r:up:1.2", "phi:any:0:period=6.283185307179586", "r:up:1.2:stop=3".
 EventSpec parse_event(std::string_view text);
-// The fields named exist for this scene and the event names are distinct; std::invalid_argument
-// naming the field, the value and the reason otherwise.
+// Each text parsed (parse_summary, parse_event).
+MonitorSpec parse_monitor(const std::vector<std::string>& summaries, const std::vector<std::string>& events);
+// The fields named exist for this scene and the event names are distinct; MonitorRefusal naming the
+// field, the value and the reason otherwise.
 void check_monitor(const MonitorSpec& spec, const Scene& scene);
 
 // The columns the spec adds to a row, in order: FIELD.REDUCTION for each summary, then for each
@@ -106,6 +117,9 @@ class RunMonitor {
   void refine_extremum(const Simulation& run, std::size_t k, bool maximum);
 
   MonitorSpec spec_;
+  struct Reads {  // what evaluate() computes for the watched fields
+    bool energy = false, body = false, x = false, position_only = true;
+  } reads_;
   std::vector<int> fields_;          // the watched fields (indices into the field table)
   std::vector<int> summary_index_;   // spec_.summaries[i]'s field in fields_
   std::vector<int> event_index_;     // spec_.events[i]'s field in fields_

@@ -259,24 +259,21 @@ RunColumns run_columns(const Scene& scene, double t_end, double every, std::opti
 // against each scene ("scenes[i]: " before it where there are several).
 MonitorSpec monitor_spec(const std::vector<std::string>& summaries, const std::vector<std::string>& events,
                          const std::vector<const Scene*>& scenes) {
+  const auto named = [](const MonitorRefusal& e) {
+    return std::string(e.event ? "events: " : "summaries: ") + e.what();
+  };
   MonitorSpec spec;
   try {
-    for (const std::string& text : summaries) spec.summaries.push_back(parse_summary(text));
-  } catch (const std::invalid_argument& e) {
-    throw py::value_error(std::string("summaries: ") + e.what());
-  }
-  try {
-    for (const std::string& text : events) spec.events.push_back(parse_event(text));
-  } catch (const std::invalid_argument& e) {
-    throw py::value_error(std::string("events: ") + e.what());
+    spec = parse_monitor(summaries, events);
+  } catch (const MonitorRefusal& e) {
+    throw py::value_error(named(e));
   }
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     try {
       check_monitor(spec, *scenes[i]);
-    } catch (const std::invalid_argument& e) {
-      const bool event = std::string_view(e.what()).starts_with("event");
+    } catch (const MonitorRefusal& e) {
       throw py::value_error((scenes.size() > 1 ? "scenes[" + std::to_string(i) + "]: " : std::string()) +
-                            (event ? "events: " : "summaries: ") + e.what());
+                            named(e));
     }
   }
   return spec;

@@ -96,15 +96,12 @@ Plan make_plan(Definition def) {
   plan.columns = parse_columns(def.fields, door);
   // Summaries and events in the engine's words, behind this door's option names.
   try {
-    for (const std::string& text : def.summaries) plan.monitor.summaries.push_back(parse_summary(text));
-    for (const std::string& text : def.events) plan.monitor.events.push_back(parse_event(text));
-    const SceneParse parsed = parse_scene(plan.base);
-    check_monitor(plan.monitor, *parsed.scene);
-  } catch (const std::invalid_argument& error) {
-    const bool event = std::string_view(error.what()).starts_with("event");
-    throw SweepError(
-        (door == Door::cli ? (event ? "--event: " : "--summary: ") : (event ? "events: " : "summaries: ")) +
-        std::string(error.what()));
+    plan.monitor = parse_monitor(def.summaries, def.events);
+    check_monitor(plan.monitor, *parse_scene(plan.base).scene);
+  } catch (const MonitorRefusal& error) {
+    throw SweepError((door == Door::cli ? (error.event ? "--event: " : "--summary: ")
+                                        : (error.event ? "events: " : "summaries: ")) +
+                     std::string(error.what()));
   }
   std::set<std::string> seen;
   for (const Axis& a : def.axes)

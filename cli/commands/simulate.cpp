@@ -78,17 +78,10 @@ int simulate(SimulateOptions opt) {
   Simulation run = start_simulation(scene);
   MonitorSpec monitor;
   try {
-    for (const std::string& text : opt.summaries) monitor.summaries.push_back(parse_summary(text));
-  } catch (const std::invalid_argument& e) {
-    throw BadInput{std::string("--summary: ") + e.what()};
-  }
-  try {
-    for (const std::string& text : opt.events) monitor.events.push_back(parse_event(text));
+    monitor = parse_monitor(opt.summaries, opt.events);
     if (!monitor.empty()) watch(run, monitor);
-  } catch (const std::invalid_argument& e) {
-    throw BadInput{
-        std::string(std::string_view(e.what()).starts_with("event") ? "--event: " : "--summary: ") +
-        e.what()};
+  } catch (const MonitorRefusal& e) {
+    throw BadInput{std::string(e.event ? "--event: " : "--summary: ") + e.what()};
   }
   if (opt.chaos)
     if (const auto why = chaos_interval_refusal(opt.chaos_interval, opt.t_end))

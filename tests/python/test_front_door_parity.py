@@ -320,8 +320,8 @@ MONITOR_BAD = [
     ("--summary", "summaries", "nope", "summary 'nope': unknown field 'nope' for this scene"),
     ("--summary", "summaries", "r.maxx", "or FIELD.REDUCTION, REDUCTION one of min, max, mean"),
     ("--event", "events", "r:sideways:1", "event 'r:sideways:1': the direction must be up, down or any"),
-    ("--event", "events", "r:up:x", "event 'r:up:x': the level must be a finite number (got 'x')"),
-    ("--event", "events", "r:up:1:stop=0", "stop must be a whole number from 1 to 1e9 (got 0)"),
+    ("--event", "events", "r:up:x", "event 'r:up:x': the level: must be a number (got 'x')"),
+    ("--event", "events", "r:up:1:stop=0", "stop: must be a whole number from 1 to 9007199254740992 (got '0')"),
     ("--event", "events", "u:up:1", "unknown field 'u' for this scene (one of r, phi,"),
 ]
 
