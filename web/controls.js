@@ -5,8 +5,8 @@
 // the set of fields changes (another deformation kind, a field given in its other form), otherwise
 // its values updated in place.
 import { $, el, clear } from "./dom.js";
-import { begin, refused, typedValue } from "./edits.js";
-import { applyChange } from "./session.js";
+import { begin, latest, refused, typedValue } from "./edits.js";
+import { applyChange, earlierAnswered } from "./session.js";
 import { store } from "./state.js";
 import { curvatureForm } from "./surface.js";
 
@@ -170,11 +170,14 @@ function fieldRow(f) {
         radius: node.radius ?? surface?.radius,
         curvature: null,
       });
+    const inForce = () => shown({ ...f, value: lookup(store.get().current, path), replaced: false });
     try {
       await applyChange(patch, edit);
     } catch (e) {
-      if (refused(edit, /** @type {Error} */ (e).message))
-        input.value = shown({ ...f, value: lookup(store.get().current, path), replaced: false });
+      if (!refused(edit, /** @type {Error} */ (e).message)) return;
+      input.value = inForce();
+      await earlierAnswered(edit);
+      if (latest(edit)) input.value = inForce();
     }
   });
   return el("div", { class: "field" }, el("label", { for: id, text: path[path.length - 1] + unit }), input, error);
@@ -201,7 +204,11 @@ function deformationKindField(kinds, value) {
     try {
       await applyChange({ potential: { deformation: replacement } }, edit);
     } catch (e) {
-      if (refused(edit, /** @type {Error} */ (e).message)) input.value = deformation?.kind ?? "none";
+      if (!refused(edit, /** @type {Error} */ (e).message)) return;
+      const inForce = () => store.get().current.potential?.deformation?.kind ?? "none";
+      input.value = inForce();
+      await earlierAnswered(edit);
+      if (latest(edit)) input.value = inForce();
     }
   });
   return el("div", { class: "field" }, el("label", { for: input.id, text: "deformation kind" }), input, error);

@@ -255,6 +255,20 @@ export async function reset() {
   say("Back to t = 0 with the parameters in force.");
 }
 
+/** The changes sent and not answered yet, by their edit's number. @type {Map<number, Promise<any>>} */
+const changing = new Map();
+
+/**
+ * Settles once every change sent before this edit has been answered and its answer handled. A
+ * refused edit shows the value in force at once, and again then: a good answer to an earlier edit
+ * that arrives after the refusal (the server applied it first) changed the value in force.
+ * @param {import("./edits.js").Edit} edit
+ */
+export async function earlierAnswered(edit) {
+  await Promise.allSettled([...changing].filter(([n]) => n < edit.n).map(([, p]) => p));
+  await Promise.resolve(); // each answer's own handler ran on the same settling, before this one
+}
+
 /**
  * A change of parameters (a merge patch): continues the run from now (a mark on the plots), or
  * restarts it at t = 0 when the start, the surface or the comparisons changed; the server says
@@ -266,7 +280,15 @@ export async function reset() {
  * @param {import("./edits.js").Edit} [edit]
  */
 export async function applyChange(patch, edit = begin()) {
-  const res = await call("PATCH", `/sessions/${store.get().id}`, patch);
+  const answer = call("PATCH", `/sessions/${store.get().id}`, patch);
+  changing.set(edit.n, answer);
+  /** @type {any} */
+  let res;
+  try {
+    res = await answer;
+  } finally {
+    changing.delete(edit.n);
+  }
   if (!current(res)) return res; // the scene it changed was replaced meanwhile
   accepted(edit);
   const restarted = res.change.kind === "restarted";

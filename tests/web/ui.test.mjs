@@ -314,6 +314,9 @@ await runSuite(started, async (browser) => {
     await held.done;
     await page.waitForFunction(() => /continuing/.test(document.querySelector("#status").textContent));
     assert.match(await massError(page), /must be > 0/);
+    // The field shows the value in force now: the late good answer's, not the one before it (once
+    // the cause of a failure in CI, where the server's answer to the good edit came in late).
+    assert.equal(await page.inputValue('[name="body.mass"]'), "1.3");
     await page.unroute("**/api/v1/sessions/*");
   });
 
