@@ -3,6 +3,8 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <mutex>
 
 #include "imgui_impl_opengl3.h"
@@ -11,7 +13,17 @@ namespace spinfold::render {
 
 namespace {
 
-constexpr int kMaxHudScale = 4;  // larger frames draw the text at 4×
+// The scales hud_layout() gives: its projector floor 1.25, then half steps up to 4× (larger
+// frames draw the text at 4×).
+constexpr std::array<double, 8> kHudScales{1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0};
+
+// The font made for a scale: the nearest of kHudScales.
+int font_for(double scale) {
+  const auto nearest = std::min_element(kHudScales.begin(), kHudScales.end(), [&](double a, double b) {
+    return std::abs(a - scale) < std::abs(b - scale);
+  });
+  return static_cast<int>(nearest - kHudScales.begin());
+}
 
 // Dear ImGui's current context is one global (Debian's library has no thread-local GImGui), so
 // overlays on several render threads (server/render_pool.h) take turns; drawing one costs ~0.3 ms.
@@ -31,11 +43,11 @@ HudOverlay::HudOverlay() {
   io.IniFilename = nullptr;  // headless: no settings file
   io.LogFilename = nullptr;
   ImGui::StyleColorsLight();
-  // The built-in font at each scale hud_layout() may ask for (1, 1.5, …, 4): a font of its own per
-  // size keeps the glyphs as sharp as the pixel font allows (scaling one would blur it).
-  for (int k = 2; k <= 2 * kMaxHudScale; ++k) {
+  // The built-in font at each scale hud_layout() may ask for (1, 1.25, 1.5, …, 4): a font of its
+  // own per size keeps the glyphs as sharp as the pixel font allows (scaling one would blur it).
+  for (const double scale : kHudScales) {
     ImFontConfig config;
-    config.SizePixels = 6.5f * static_cast<float>(k);
+    config.SizePixels = static_cast<float>(13.0 * scale);
     io.Fonts->AddFontDefault(&config);
   }
   ImGui_ImplOpenGL3_Init("#version 330 core");
@@ -107,10 +119,9 @@ void HudOverlay::draw(const std::vector<std::string>& lines, const std::vector<L
   ImGuiIO& io = ImGui::GetIO();
   io.DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));
   io.DeltaTime = 1.0f / 60.0f;
-  // The font and the lengths at the layout's scale (hud_layout(): 1, 1.5, …).
+  // The font and the lengths at the layout's scale (hud_layout(): 1, 1.25, 1.5, …).
   const float s = static_cast<float>(layout.scale);
-  const int font = std::clamp(static_cast<int>(std::lround(2.0 * layout.scale)), 2, 2 * kMaxHudScale) - 2;
-  io.FontDefault = io.Fonts->Fonts[font];
+  io.FontDefault = io.Fonts->Fonts[font_for(layout.scale)];
   ImGuiStyle& style = ImGui::GetStyle();
   style.WindowPadding = ImVec2(static_cast<float>(layout.padding), static_cast<float>(layout.padding));
   style.ItemSpacing = ImVec2(static_cast<float>(layout.advance), 2.0f * s);

@@ -220,6 +220,9 @@ HudLayout hud_layout(const std::vector<std::string>& lines, const std::vector<st
   HudLayout h;
   const double side = std::min(0.75 * width, static_cast<double>(height)) / 540.0;
   h.scale = std::max(1.0, std::round(2.0 * side) / 2.0);
+  // The projector floor: a frame a page shows large (500 px high in 4:3 terms, the picture of a
+  // 1366-wide page) gets at least 16 px text, legible from the back of a room.
+  if (side * 540.0 >= kHudProjectorSide) h.scale = std::max(h.scale, 1.25);
   h.font_size = 13.0 * h.scale;
   // ImGui snaps the default font's advance to whole pixels (ImFontConfig::PixelSnapH).
   h.advance = std::floor(7.0 * h.scale + 0.5);

@@ -94,8 +94,10 @@ struct PixelBox {
 // Dear ImGui's built-in font (ProggyClean: 13 px, 7 px advance, ASCII) at `scale` times its size;
 // the scale grows with the frame's shorter side in 4:3 terms, min(width·3/4, height)/540, in half
 // steps and never below 1: unchanged up to 640×480 (and in thumbnails), 1.5× at 1280×720, 2× at
-// 1920×1080, so that a frame shown on a projector stays legible. Plain arithmetic, no ImGui: the
+// 1920×1080, so that a frame shown on a projector stays legible; and at least 1.25× (16 px) from
+// kHudProjectorSide up (the ~795×515 picture of a 1366×900 page). Plain arithmetic, no ImGui: the
 // overlay draws exactly these boxes, and the cameras keep the bodies out of them.
+inline constexpr double kHudProjectorSide = 500.0;  // [pixels, the shorter side in 4:3 terms]
 struct HudLayout {
   double scale = 1.0;     // of the font and of every length below
   double font_size = 13;  // [pixels]

@@ -227,7 +227,11 @@ TEST(SceneBuilder, HudTextGrowsWithTheFrameAndKeepsItsSizeInSmallOnes) {
   EXPECT_EQ(thumb.font_size, 13.0);
   EXPECT_EQ(hd.font_size, 19.5);
   EXPECT_EQ(full.font_size, 26.0);                              // 2× at 1080
-  EXPECT_EQ(hud_layout(lines, {}, 1920, 600).font_size, 13.0);  // the shorter side counts
+  EXPECT_EQ(hud_layout(lines, {}, 1920, 460).font_size, 13.0);  // the shorter side counts
+  // The picture of a 1366×900 page (795×515) and anything larger: at least 16 px, for a projector.
+  EXPECT_GE(hud_layout(lines, {}, 795, 515).font_size, 16.0);
+  EXPECT_GE(hud_layout(lines, {}, 1920, 600).font_size, 16.0);
+  EXPECT_EQ(hud_layout(lines, {}, 700, 490).font_size, 13.0);
   EXPECT_NEAR(full.hud.h / small.hud.h, 2.0, 1e-9);
   EXPECT_NEAR(full.hud.w / small.hud.w, 2.0, 1e-9);
   // Compact: the box of six lines keeps to the same share of the frame at every size.
