@@ -1,14 +1,31 @@
 // @ts-check
 // The keyboard and the pointer on the picture: Space play/pause, → step, R reset, F full screen,
 // G geodesic companion, arrows orbit (on the focused picture; Shift+arrows anywhere), + and − zoom,
-// V resets the view (R too), dragging orbits (3-D views). Typing in a field is left alone; Space on another button presses it.
+// V resets the view (R too), ? lists them all, dragging orbits (3-D views). Typing in a field is
+// left alone; Space on another button presses it.
 import { toggleGeodesic } from "./comparisons.js";
-import { $ } from "./dom.js";
+import { $, el } from "./dom.js";
 import { camera, is3d, orbit, resetView, zoom } from "./frame.js";
 import { toggleFullscreen } from "./presentation.js";
 import { say } from "./readout.js";
 import { pause, play, reset, step } from "./session.js";
 import { store } from "./state.js";
+
+/**
+ * Every key the page answers to, as the "?" overlay lists them; onKey below acts on the same keys.
+ * @type {{keys: string[], does: string}[]}
+ */
+export const shortcuts = [
+  { keys: ["Space"], does: "Play or pause" },
+  { keys: ["→"], does: "Step: advance 10 steps" },
+  { keys: ["R"], does: "Reset: back to t = 0, the view aimed afresh" },
+  { keys: ["V"], does: "Reset the view: aim the camera at the bodies again, undo the zoom" },
+  { keys: ["+", "−"], does: "Zoom in, zoom out" },
+  { keys: ["Shift + arrows"], does: "Orbit the camera (3-D views; plain arrows on the focused picture)" },
+  { keys: ["G"], does: "Add or remove the geodesic companion" },
+  { keys: ["F"], does: "Full screen" },
+  { keys: ["?"], does: "This list; Esc closes it" },
+];
 
 const orbitStep = 0.12; // radians per arrow key
 const dragRate = 0.01; // radians per CSS pixel dragged
@@ -30,6 +47,7 @@ function orbitOrSay(dYaw, dPitch) {
 /** @param {KeyboardEvent} e */
 function onKey(e) {
   if (e.ctrlKey || e.metaKey || e.altKey || !store.get().id) return;
+  if (/** @type {HTMLDialogElement} */ ($("shortcuts")).open) return; // a modal list: its own keys only
   const target = /** @type {HTMLInputElement} */ (e.target);
   const tag = target.tagName;
   const typing =
@@ -55,6 +73,7 @@ function onKey(e) {
     run(reset);
   } else if (key === "v" || key === "V") resetView();
   else if (key === "f" || key === "F") toggleFullscreen();
+  else if (key === "?") showShortcuts();
   else if (key === "g" || key === "G") toggleGeodesic();
   else if (key === "+" || key === "=") zoom(1.15);
   else if (key === "-" || key === "_" || key === "−") zoom(1 / 1.15);
@@ -62,7 +81,26 @@ function onKey(e) {
   if (handled) e.preventDefault();
 }
 
+/** Opens the list of shortcuts (a modal dialog: Esc or its button closes it, focus comes back). */
+function showShortcuts() {
+  const dialog = /** @type {HTMLDialogElement} */ ($("shortcuts"));
+  if (!dialog.open) dialog.showModal();
+}
+
+/** Fills the dialog's table from `shortcuts`. */
+function buildShortcuts() {
+  const rows = $("shortcuts-rows");
+  for (const { keys, does } of shortcuts) {
+    const th = el("th", { scope: "row" });
+    keys.forEach((k, i) => th.append(...(i ? [" ", el("kbd", { text: k })] : [el("kbd", { text: k })])));
+    rows.append(el("tr", {}, th, el("td", { text: does })));
+  }
+  $("shortcuts-open").onclick = showShortcuts;
+  $("shortcuts-close").onclick = () => /** @type {HTMLDialogElement} */ ($("shortcuts")).close();
+}
+
 export function setupKeys() {
+  buildShortcuts();
   document.addEventListener("keydown", onKey);
   const frame = $("frame");
   /** @type {{x: number, y: number, yaw: number, pitch: number} | null} */

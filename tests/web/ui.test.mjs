@@ -477,6 +477,28 @@ await runSuite(started, async (browser) => {
     await page.waitForFunction(() => !document.fullscreenElement);
   });
 
+  await test("? lists every shortcut the keys above use; Esc closes the list and the keys work again", async () => {
+    await page.focus("#frame");
+    await page.keyboard.press("?");
+    await page.waitForFunction(() => document.querySelector("#shortcuts").open);
+    const listed = await page.$$eval("#shortcuts kbd", (ks) => ks.map((k) => k.textContent));
+    for (const key of ["Space", "→", "R", "V", "+", "−", "G", "F", "?"]) assert.ok(listed.includes(key), `${key} in ${listed}`);
+    // Modal: the keys do not act behind it (G would add a companion); Esc closes it and the focus is
+    // back on the picture.
+    await page.keyboard.press("g");
+    await page.keyboard.press("ArrowRight");
+    await page.evaluate(async () => (await fetch("/api/v1/health")).ok);
+    assert.equal(await page.getAttribute("#geodesic", "aria-pressed"), "false");
+    await page.keyboard.press("Escape");
+    await page.waitForFunction(() => !document.querySelector("#shortcuts").open);
+    assert.equal(await page.evaluate(() => document.activeElement?.id), "frame");
+    // The toolbar's button opens it too, and Close closes it.
+    await page.click("#shortcuts-open");
+    await page.waitForFunction(() => document.querySelector("#shortcuts").open);
+    await page.click("#shortcuts-close");
+    await page.waitForFunction(() => !document.querySelector("#shortcuts").open);
+  });
+
   await test("comparisons: a fan of spins adds companions, Clear removes them", async () => {
     await page.fill("#fan-from", "0");
     await page.fill("#fan-to", "1.5");
