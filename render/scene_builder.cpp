@@ -302,6 +302,12 @@ std::vector<std::string> readout_lines(const Snapshot& snapshot, const ViewOptio
     lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
   if (!snapshot.bodies.empty() && !on_view(snapshot.surface, view.kind, snapshot.bodies.front().X))
     lines.push_back(std::string(view_model(view.kind).off_view_note()));
+  // A 2-D close-up (aim_close_up): by how much.
+  if (view.zoom > 1.0) {
+    char text[64];
+    std::snprintf(text, sizeof text, "close-up %gx (bodies far out)", view.zoom);
+    lines.push_back(text);
+  }
   // A frame too large to draw at the picture's scale is drawn smaller: say by how much.
   if (!snapshot.bodies.empty() && (view.layers & (kBody | kFrame))) {
     const double shrink =

@@ -74,6 +74,9 @@ struct ViewOptions {
   // by aim_camera_at_body; nullopt: the view's own (the sphere's centre, a point above the
   // hyperboloid's vertex, the plane's origin). The disk view ignores it.
   std::optional<std::array<double, 3>> target;
+  // The 2-D close-up: the view's own window shrunk this many times about target (a power of two),
+  // set by aiming where the bodies would be specks (near the Poincaré disk's rim); 1: the view's own.
+  double zoom = 1.0;
 };
 
 inline constexpr int kMaxImageSide = 4096;

@@ -181,4 +181,63 @@ void aim_at_bodies_centre(const ViewModel& model, ViewOptions& view, const Snaps
   view.target = std::array<double, 3>{c.x, c.y, 0.0};
 }
 
+Window2d zoomed_window(const ViewOptions& view, const glm::dvec2& home, double half) {
+  if (view.zoom <= 1.0) return window_around(view, home, half);
+  return window_around(view, target_or(view, home), half / view.zoom);
+}
+
+namespace {
+
+// How many times smaller the map draws lengths at the main body than at the pole: the geometric
+// mean over its two frame directions (the Klein disk shrinks radially more), by steps of 1e-4 R.
+double shrink_at_main_body(const ViewModel& model, const Snapshot& snapshot) {
+  const Surface& surface = snapshot.surface;
+  const BodySnapshot& body = snapshot.bodies.front();
+  const double step = 1e-4 * surface.radius;
+  const auto moved = [&](const Vec3& a, const Vec3& b) {
+    return glm::length(model.world_position(surface, a) - model.world_position(surface, b)) / step;
+  };
+  const double at_pole = moved(chart_point(surface, step, 0.0).X, chart_point(surface, 0.0, 0.0).X);
+  double at_body = 1.0;
+  for (const int A : {0, 1}) {
+    const double a = step / std::sqrt(body.gram(A, A));  // a degenerate frame: NaN, no close-up
+    at_body *= moved(exp_frame(surface, body, A == 0 ? a : 0.0, A == 1 ? a : 0.0), body.X);
+  }
+  return std::sqrt(at_body) / at_pole;
+}
+
+}  // namespace
+
+void aim_close_up(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud,
+                  double half) {
+  view.zoom = 1.0;
+  const std::vector<Sight> points = sights(model, snapshot, view, true);
+  if (points.empty() || !model.draws(snapshot.surface, snapshot.bodies.front().X)) return;
+  // Comfortable while the main body is drawn at least a third of its size at the pole.
+  const double shrink = shrink_at_main_body(model, snapshot);
+  if (!(shrink < 1.0 / 3.0)) return;
+  glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const Sight& p : points) lo = glm::min(lo, glm::dvec2(p.at)), hi = glm::max(hi, glm::dvec2(p.at));
+  // The half-size of the smallest window (window_around's shape) that holds the sights: they stay
+  // within the middle 60% of the frame.
+  const Window2d unit = window_around(view, glm::dvec2(0.0), 1.0);
+  const double need = std::max(0.5 * (hi.x - lo.x) / unit.hx, 0.5 * (hi.y - lo.y) / unit.hy) / 0.6;
+  double zoom = std::min({1.0 / shrink, half / need, kMaxCloseUp});
+  if (!(zoom >= 2.0)) return;
+  zoom = std::exp2(std::floor(std::log2(zoom)));
+  // The HUD with the zoom's line (readout_lines adds it).
+  HudLayout with_line = hud;
+  if (with_line.hud.w > 0.0) with_line.hud.h += with_line.line;
+  const glm::dvec2 centre = 0.5 * (lo + hi);
+  ViewOptions v = view;
+  v.target = std::array<double, 3>{centre.x, centre.y, 0.0};
+  for (; zoom >= 2.0; zoom /= 2.0) {
+    v.zoom = zoom;
+    if (badness(model, snapshot.surface, v, points, with_line) == 0.0) {
+      view = v;
+      return;
+    }
+  }
+}
+
 }  // namespace spinfold::render

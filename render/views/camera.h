@@ -67,4 +67,23 @@ void aim_orbit(const ViewModel& model, ViewOptions& view, const Snapshot& snapsh
 // A window centred on the bounding box of the bodies' positions (plane, conformal).
 void aim_at_bodies_centre(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot);
 
+// A 2-D view's window: its own (centred on `home`, shorter side 2·half) or, with view.zoom > 1,
+// that window shrunk view.zoom times about view.target.
+Window2d zoomed_window(const ViewOptions& view, const glm::dvec2& home, double half);
+// The disk views' own window: the unit disk and a margin (the shorter half-side [world units]).
+inline constexpr double kDiskWindowHalf = 1.08;
+// The largest close-up considered [times the view's own window].
+inline constexpr double kMaxCloseUp = 1024.0;
+// The disks' rims are polygons of this many sides (and their grid circles of a quarter as many):
+// in the largest close-up a side strays from the circle by ~0.1 pixel (π²/2n² of the radius).
+inline constexpr int kRimSlices = 4096;
+// The 2-D close-up: where the map draws the main body less than a third of its size at the pole
+// (near the Poincaré disk's rim it shrinks lengths like e^{−r/R}), view.zoom becomes the largest
+// power of two up to that shrink's inverse (and kMaxCloseUp) whose window, about the centre of the
+// bodies and their recent trails (view.target), shows them all within the middle 60% of the frame
+// and clear of the boxes; otherwise view.zoom = 1 (the view's own window, shorter half-side `half`).
+// The HUD then says the zoom (readout_lines), one line more than `hud` holds.
+void aim_close_up(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud,
+                  double half);
+
 }  // namespace spinfold::render

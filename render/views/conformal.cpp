@@ -15,9 +15,10 @@ namespace spinfold::render {
 namespace {
 
 // The window: kPlaneHalfHeight [length] about view.target's (x, y), else the origin, as the
-// plane view's, so that at K = 0 the two are the same picture.
+// plane view's, so that at K = 0 the two are the same picture; view.zoom times smaller in a
+// close-up.
 Window2d conformal_window(const ViewOptions& view) {
-  return window_around(view, target_or(view, glm::dvec2(0.0)), kPlaneHalfHeight);
+  return window_around(view, target_or(view, glm::dvec2(0.0)), kPlaneHalfHeight / std::max(1.0, view.zoom));
 }
 
 // The image of normal coordinates p = r(cos φ, sin φ) about the pole: w = T_K(|p|) p/|p|.
@@ -271,8 +272,10 @@ class ConformalView final : public ViewModel {
       for (const auto& [f, body] : frames) add_conformal_arrows(scene, f, view.scale);
   }
   glm::mat4 camera(const ViewOptions& view) const override { return window_camera(conformal_window(view)); }
-  void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& /*hud*/) const override {
+  // On the bodies, and a close-up where the map shrinks them (K < 0, far from the pole).
+  void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
     aim_at_bodies_centre(*this, view, snapshot);
+    aim_close_up(*this, view, snapshot, hud, kPlaneHalfHeight);
   }
   // Lengths, not R: the picture must not change with K (the dial); a sphere of R = 1e6 would
   // otherwise draw a body the size of a continent.

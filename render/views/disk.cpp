@@ -24,9 +24,10 @@ class DiskView final : public ViewModel {
     const SurfaceKind kind = surface.kind;
     StaticGeometry g;
     const Surface unit{kind, 1.0};
-    if (kind == SurfaceKind::pseudosphere) add_geodesic_polar_grid(g.grid, unit, *this, 6.0, 128, 64);
+    if (kind == SurfaceKind::pseudosphere)
+      add_geodesic_polar_grid(g.grid, unit, *this, 6.0, kRimSlices / 4, 64);
     const double radius = kind == SurfaceKind::pseudosphere ? 1.0 : 3.0;
-    const int slices = 128;
+    const int slices = kRimSlices;
     for (int j = 0; j < slices; ++j) {
       const double p0 = 2 * kPi * j / slices, p1 = 2 * kPi * (j + 1) / slices;
       const LitVertex c{{0, 0, 0}, {0, 0, 1}};
@@ -52,9 +53,12 @@ class DiskView final : public ViewModel {
     return g;
   }
 
-  // The unit disk and a margin, centred whatever view.target says.
+  // The unit disk and a margin, or a close-up of the bodies near its rim (aim_close_up).
   glm::mat4 camera(const ViewOptions& view) const override {
-    return window_camera(window_around(view, glm::dvec2(0.0), 1.08));
+    return window_camera(zoomed_window(view, glm::dvec2(0.0), kDiskWindowHalf));
+  }
+  void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
+    aim_close_up(*this, view, snapshot, hud, kDiskWindowHalf);
   }
   std::string grid_caption(const Snapshot& snapshot, const ViewOptions& /*view*/) const override {
     return snapshot.surface.kind == SurfaceKind::sphere ? "Grid: geodesic circles about the pole (parallels "

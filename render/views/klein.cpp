@@ -20,7 +20,7 @@ class KleinView final : public ViewModel {
   StaticGeometry build_static(const Surface& surface) const override {
     const SurfaceKind kind = surface.kind;
     StaticGeometry g;
-    const int slices = 128;
+    const int slices = kRimSlices;
     for (int j = 0; j < slices; ++j) {
       const double p0 = 2 * kPi * j / slices, p1 = 2 * kPi * (j + 1) / slices;
       g.surface.push_back({{0, 0, 0}, {0, 0, 1}});
@@ -28,13 +28,16 @@ class KleinView final : public ViewModel {
       g.surface.push_back({glm::vec3(std::cos(p1), std::sin(p1), 0), {0, 0, 1}});
       add_segment(g.grid, {std::cos(p0), std::sin(p0), 0}, {std::cos(p1), std::sin(p1), 0}, kGridColor);
     }
-    add_geodesic_polar_grid(g.grid, Surface{kind, 1.0}, *this, 6.0, 128, 64);
+    add_geodesic_polar_grid(g.grid, Surface{kind, 1.0}, *this, 6.0, kRimSlices / 4, 64);
     return g;
   }
 
-  // The unit disk and a margin.
+  // The unit disk and a margin, or a close-up of the bodies near its rim (aim_close_up).
   glm::mat4 camera(const ViewOptions& view) const override {
-    return window_camera(window_around(view, glm::dvec2(0.0), 1.08));
+    return window_camera(zoomed_window(view, glm::dvec2(0.0), kDiskWindowHalf));
+  }
+  void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
+    aim_close_up(*this, view, snapshot, hud, kDiskWindowHalf);
   }
   std::string grid_caption(const Snapshot& /*snapshot*/, const ViewOptions& /*view*/) const override {
     return "Grid: geodesic circles about the pole, labelled with their radius r; radial geodesics every 30 "

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "engine/chart.h"
+#include "render/views/camera.h"
 #include "tests/render/views/view_test_support.h"
 
 namespace spinfold::render {
@@ -204,12 +205,12 @@ TEST(SceneBuilder, TheSilhouetteIsTheSpheresLimbAndTheDisksRim) {
   for (const Vertex& v : limb)
     EXPECT_NEAR(glm::dot(glm::normalize(glm::dvec3(v.position)), eye_dir), 1.0 / view.distance,
                 0.1);  // within a face (~0.1 rad) of it
-  // The 2-D views: only the mesh's boundary (the Poincaré disk's rim, 128 segments).
+  // The 2-D views: only the mesh's boundary (the Poincaré disk's rim, kRimSlices segments).
   const Snapshot h = body_at(SurfaceKind::pseudosphere, 1.0, 1.0, 0.0, 1.0, 1.0);
   view.kind = ViewKind::disk;
   const FrameScene disk = build_scene(h, view);
   const std::vector<Vertex> rim = silhouette(*disk.statics, disk);
-  EXPECT_EQ(rim.size(), 2u * 128u);
+  EXPECT_EQ(rim.size(), 2u * kRimSlices);
   for (const Vertex& v : rim) EXPECT_NEAR(glm::length(v.position), 1.0f, 1e-6f);
 }
 
@@ -292,6 +293,66 @@ TEST(SceneBuilder, TheHyperboloidsCameraKeepsTheBodyInTheFrameAndOutOfTheHudFarO
         EXPECT_TRUE(p->x >= 0 && p->x <= w && p->y >= 0 && p->y <= h) << "r = " << r << ", " << w << "x" << h;
       }
     }
+}
+
+// The teacher's dial at K = −1: the body at r ≈ 4.3–5 was a speck on the rim of a fixed disk.
+// The flat maps of H² now close up on the bodies where the map shrinks them, by a power of two
+// that the HUD states, and leave a body near the pole in the whole disk.
+TEST(SceneBuilder, TheFlatMapsOfH2CloseUpOnABodyFarOutAndSaySo) {
+  for (const ViewKind kind : {ViewKind::disk, ViewKind::klein, ViewKind::conformal})
+    for (const double r : {1.3, 3.0, 4.5, 6.0, 9.0})
+      for (const auto& [w, h] : {std::pair{640, 480}, {795, 515}, {1280, 757}}) {
+        // Its recent trail: the last 0.8 R of a radial run (a circle far out is as local).
+        Snapshot s = body_at(SurfaceKind::pseudosphere, 1.0, r, 0.8, 1.0, 1.0);
+        for (int k = 0; k <= 64; ++k)
+          s.bodies[0].trail.push_back(chart_point(s.surface, r - 0.8 + 0.8 * k / 64, 0.8).X);
+        s.hud_lines = hud_of_a_run();
+        ViewOptions view;
+        view.kind = kind;
+        view.width = w;
+        view.height = h;
+        view.scale = 0.25 * (kind == ViewKind::conformal ? 1.0 : s.surface.radius);
+        aim_camera_at_body(view, s);
+        const FrameScene scene = build_scene(s, view);
+        const std::string where = std::string(view_name(kind)) + " r = " + std::to_string(r) + " " +
+                                  std::to_string(w) + "x" + std::to_string(h);
+        const auto at = [&](const Vec3& X) {
+          return *pixel_position(scene, view, world_position(s.surface, view.kind, X));
+        };
+        // The body's outline across [pixels], and what it is at the pole in the view's own window.
+        const auto across = [&](const Snapshot& snap, const FrameScene& sc, const ViewOptions& v) {
+          double most = 0.0;
+          const std::vector<Vec3> outline = ellipse_points(snap.surface, snap.bodies[0], v.scale, 16);
+          for (const Vec3& a : outline)
+            for (const Vec3& b : outline)
+              most =
+                  std::max(most, glm::length(*pixel_position(sc, v, world_position(snap.surface, kind, a)) -
+                                             *pixel_position(sc, v, world_position(snap.surface, kind, b))));
+          return most;
+        };
+        const Snapshot home = out_on_h2(0.0);
+        ViewOptions home_view = view;
+        aim_camera_at_body(home_view, home);
+        const double size = across(s, scene, view),
+                     size_at_pole = across(home, build_scene(home, home_view), home_view);
+        if (r <= 1.3) {
+          EXPECT_EQ(view.zoom, 1.0) << where;  // near the pole: the whole disk
+          continue;
+        }
+        EXPECT_GE(size, size_at_pole / 4.0) << where << ": zoom " << view.zoom;
+        EXPECT_GT(view.zoom, 1.0) << where;
+        const bool said = std::ranges::any_of(scene.hud_lines, [&](const std::string& line) {
+          return line.starts_with("close-up ") && std::stod(line.substr(9)) == view.zoom;
+        });
+        EXPECT_TRUE(said) << where;
+        // The body and the trail's last stretch in the frame and clear of the HUD.
+        const glm::dvec2 body = at(s.bodies[0].X);
+        EXPECT_FALSE(scene.hud.hud.contains(body)) << where;
+        for (int k = 0; k <= 64; ++k) {
+          const glm::dvec2 p = at(s.bodies[0].trail[k]);
+          EXPECT_TRUE(p.x >= 0 && p.x <= w && p.y >= 0 && p.y <= h) << where;
+        }
+      }
 }
 
 TEST(SceneBuilder, ThePlanesGridIsCentredOnTheBodyFillsTheFrameAndStaysPutInTheWorld) {

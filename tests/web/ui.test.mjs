@@ -744,6 +744,10 @@ await runSuite(started, async (browser) => {
       for (const selector of ["#frame", "#play", "#pause", "#step", "#reset", "#view", "#reset-view"])
         assert.equal(await inView(desk, selector, viewport), true);
       assert.equal(await desk.$eval("#layers input[name=layer-hud]", (el) => el.checked), true);
+      // Large enough for the overlay's projector size (16 px text from 500 px high in 4:3 terms,
+      // render/scene_builder.h): the "?" button once wrapped the toolbar and took it below that.
+      const [w, h] = await desk.$eval("#frame", (c) => [c.width, c.height]);
+      assert.ok(Math.min(0.75 * w, h) >= 500, `${viewport.width}: the frame is ${w}×${h}`);
       await desk.close();
     }
   });
