@@ -73,10 +73,11 @@ Window2d zoomed_window(const ViewOptions& view, const glm::dvec2& home, double h
 // The disk views' own window: the unit disk and a margin (the shorter half-side [world units]).
 inline constexpr double kDiskWindowHalf = 1.08;
 // The largest close-up considered [times the view's own window].
-inline constexpr double kMaxCloseUp = 1024.0;
-// The disks' rims are polygons of this many sides (and their grid circles of a quarter as many):
-// in the largest close-up a side strays from the circle by ~0.1 pixel (π²/2n² of the radius).
-inline constexpr int kRimSlices = 4096;
+inline constexpr double kMaxCloseUp = 256.0;
+// The disks' rims are polygons of this many sides (and their grid circles of half as many): in the
+// largest close-up of a 757 px high frame a side strays from the circle by π²/2n² of the radius,
+// ~0.4 pixel (~1.7 on the grid's). More sides cost every frame whose background is not cached.
+inline constexpr int kRimSlices = 1024;
 // The 2-D close-up: where the map draws the main body less than a third of its size at the pole
 // (near the Poincaré disk's rim it shrinks lengths like e^{−r/R}), view.zoom becomes the largest
 // power of two up to that shrink's inverse (and kMaxCloseUp) whose window, about the centre of the

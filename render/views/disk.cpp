@@ -25,7 +25,7 @@ class DiskView final : public ViewModel {
     StaticGeometry g;
     const Surface unit{kind, 1.0};
     if (kind == SurfaceKind::pseudosphere)
-      add_geodesic_polar_grid(g.grid, unit, *this, 6.0, kRimSlices / 4, 64);
+      add_geodesic_polar_grid(g.grid, unit, *this, 6.0, kRimSlices / 2, 64);
     const double radius = kind == SurfaceKind::pseudosphere ? 1.0 : 3.0;
     const int slices = kRimSlices;
     for (int j = 0; j < slices; ++j) {

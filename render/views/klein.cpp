@@ -28,7 +28,7 @@ class KleinView final : public ViewModel {
       g.surface.push_back({glm::vec3(std::cos(p1), std::sin(p1), 0), {0, 0, 1}});
       add_segment(g.grid, {std::cos(p0), std::sin(p0), 0}, {std::cos(p1), std::sin(p1), 0}, kGridColor);
     }
-    add_geodesic_polar_grid(g.grid, Surface{kind, 1.0}, *this, 6.0, kRimSlices / 4, 64);
+    add_geodesic_polar_grid(g.grid, Surface{kind, 1.0}, *this, 6.0, kRimSlices / 2, 64);
     return g;
   }
 
