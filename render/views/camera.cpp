@@ -182,7 +182,6 @@ void aim_at_bodies_centre(const ViewModel& model, ViewOptions& view, const Snaps
 }
 
 Window2d zoomed_window(const ViewOptions& view, const glm::dvec2& home, double half) {
-  if (view.zoom <= 1.0) return window_around(view, home, half);
   return window_around(view, target_or(view, home), half / view.zoom);
 }
 
@@ -208,36 +207,62 @@ double shrink_at_main_body(const ViewModel& model, const Snapshot& snapshot) {
 
 }  // namespace
 
-void aim_close_up(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud,
-                  double half) {
+void aim_2d_window(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud,
+                   double half) {
   view.zoom = 1.0;
   const std::vector<Sight> points = sights(model, snapshot, view, true);
   if (points.empty() || !model.draws(snapshot.surface, snapshot.bodies.front().X)) return;
-  // Comfortable while the main body is drawn at least a third of its size at the pole.
-  const double shrink = shrink_at_main_body(model, snapshot);
-  if (!(shrink < 1.0 / 3.0)) return;
   glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   for (const Sight& p : points) lo = glm::min(lo, glm::dvec2(p.at)), hi = glm::max(hi, glm::dvec2(p.at));
-  // The half-size of the smallest window (window_around's shape) that holds the sights: they stay
-  // within the middle 60% of the frame.
-  const Window2d unit = window_around(view, glm::dvec2(0.0), 1.0);
-  const double need = std::max(0.5 * (hi.x - lo.x) / unit.hx, 0.5 * (hi.y - lo.y) / unit.hy) / 0.6;
-  double zoom = std::min({1.0 / shrink, half / need, kMaxCloseUp});
-  if (!(zoom >= 2.0)) return;
-  zoom = std::exp2(std::floor(std::log2(zoom)));
-  // The HUD with the zoom's line (readout_lines adds it).
-  HudLayout with_line = hud;
-  if (with_line.hud.w > 0.0) with_line.hud.h += with_line.line;
-  const glm::dvec2 centre = 0.5 * (lo + hi);
-  ViewOptions v = view;
-  v.target = std::array<double, 3>{centre.x, centre.y, 0.0};
-  for (; zoom >= 2.0; zoom /= 2.0) {
-    v.zoom = zoom;
-    if (badness(model, snapshot.surface, v, points, with_line) == 0.0) {
-      view = v;
-      return;
+  // Comfortable while the main body is drawn at least a third of its size at the pole.
+  const double shrink =
+      curvature_varies(snapshot.surface.kind) ? 1.0 : shrink_at_main_body(model, snapshot);  // the chart
+  if (shrink < 1.0 / 3.0) {
+    // The half-size of the smallest window (window_around's shape) that holds the sights: they
+    // stay within the middle 60% of the frame.
+    const Window2d unit = window_around(view, glm::dvec2(0.0), 1.0);
+    const double need = std::max(0.5 * (hi.x - lo.x) / unit.hx, 0.5 * (hi.y - lo.y) / unit.hy) / 0.6;
+    double zoom = std::min({1.0 / shrink, half / need, kMaxCloseUp});
+    if (zoom >= 2.0) {
+      // The HUD with the zoom's line (readout_lines adds it).
+      HudLayout with_line = hud;
+      if (with_line.hud.w > 0.0) with_line.hud.h += with_line.line;
+      const glm::dvec2 centre = 0.5 * (lo + hi);
+      ViewOptions v = view;
+      v.target = std::array<double, 3>{centre.x, centre.y, 0.0};
+      for (zoom = std::exp2(std::floor(std::log2(zoom))); zoom >= 2.0; zoom /= 2.0) {
+        v.zoom = zoom;
+        if (badness(model, snapshot.surface, v, points, with_line) == 0.0) {
+          view = v;
+          return;
+        }
+      }
     }
   }
+  // The view's own window, unless a sight is out of it or under a box: then slid away from the
+  // boxes (the HUD top left, the legend top right) by up to 40% of the window each way, and drawn
+  // back by up to 4 times (the stereographic map of a body near the south pole), the first of
+  // these that shows them all, else the one whose badness plus a cost of drawing back,
+  // 8·(1/zoom − 1), is least: a bit of trail under the HUD is better than a picture half as large.
+  double best = badness(model, snapshot.surface, view, points, hud);
+  if (best == 0.0) return;
+  const glm::dvec2 home = target_or(view, glm::dvec2(0.0));
+  constexpr double kSlides[][2] = {{0, 0},      {-0.2, 0},  {0, 0.2},    {-0.2, 0.2}, {-0.4, 0},
+                                   {-0.4, 0.2}, {0, 0.4},   {-0.2, 0.4}, {-0.4, 0.4}, {0.2, 0},
+                                   {0.2, 0.2},  {0.4, 0.2}, {0.4, 0},    {0, -0.2},   {-0.2, -0.2}};
+  const ViewOptions start = view;
+  for (const double zoom : {1.0, 0.8, 0.64, 0.5, 0.25})
+    for (const auto& slide : kSlides) {
+      ViewOptions v = start;
+      v.zoom = zoom;
+      const Window2d w = window_around(v, home, half / zoom);
+      const glm::dvec2 c = home + glm::dvec2(slide[0] * w.hx, slide[1] * w.hy);
+      v.target = std::array<double, 3>{c.x, c.y, 0.0};
+      const double drawn_back = 8.0 * (1.0 / zoom - 1.0);
+      const double bad = drawn_back + badness(model, snapshot.surface, v, points, hud, best - drawn_back);
+      if (bad < best) best = bad, view = v;
+      if (best == 0.0) return;
+    }
 }
 
 }  // namespace spinfold::render

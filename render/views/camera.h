@@ -67,8 +67,8 @@ void aim_orbit(const ViewModel& model, ViewOptions& view, const Snapshot& snapsh
 // A window centred on the bounding box of the bodies' positions (plane, conformal).
 void aim_at_bodies_centre(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot);
 
-// A 2-D view's window: its own (centred on `home`, shorter side 2·half) or, with view.zoom > 1,
-// that window shrunk view.zoom times about view.target.
+// A 2-D view's window: its own (shorter half-side `half`) about view.target, else `home`, view.zoom
+// times smaller (a close-up) or larger (drawn back).
 Window2d zoomed_window(const ViewOptions& view, const glm::dvec2& home, double half);
 // The disk views' own window: the unit disk and a margin (the shorter half-side [world units]).
 inline constexpr double kDiskWindowHalf = 1.08;
@@ -78,13 +78,16 @@ inline constexpr double kMaxCloseUp = 256.0;
 // largest close-up of a 757 px high frame a side strays from the circle by π²/2n² of the radius,
 // ~0.4 pixel (~1.7 on the grid's). More sides cost every frame whose background is not cached.
 inline constexpr int kRimSlices = 1024;
-// The 2-D close-up: where the map draws the main body less than a third of its size at the pole
-// (near the Poincaré disk's rim it shrinks lengths like e^{−r/R}), view.zoom becomes the largest
-// power of two up to that shrink's inverse (and kMaxCloseUp) whose window, about the centre of the
-// bodies and their recent trails (view.target), shows them all within the middle 60% of the frame
-// and clear of the boxes; otherwise view.zoom = 1 (the view's own window, shorter half-side `half`).
-// The HUD then says the zoom (readout_lines), one line more than `hud` holds.
-void aim_close_up(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud,
-                  double half);
+// Aims a 2-D view's window (shorter half-side `half`, about view.target or the origin):
+// - a close-up where the map draws the main body less than a third of its size at the pole (near
+//   the Poincaré disk's rim it shrinks lengths like e^{−r/R}): view.zoom becomes the largest power
+//   of two up to that shrink's inverse (and kMaxCloseUp) whose window, about the centre of the
+//   bodies and their recent trails (view.target), shows them all within the middle 60% of the
+//   frame and clear of the boxes; the HUD then says the zoom (readout_lines), one line more than
+//   `hud` holds;
+// - otherwise the view's own window (view.zoom = 1), unless a sight is out of it or under a box:
+//   then slid away from the boxes and drawn back (view.zoom < 1) until they are clear.
+void aim_2d_window(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud,
+                   double half);
 
 }  // namespace spinfold::render

@@ -73,9 +73,12 @@ class ChartView final : public ViewModel {
     scene.tint_by_curvature = true;
   }
   glm::mat4 camera(const ViewOptions& view) const override {
-    return window_camera(window_around(view, glm::dvec2(0.0), kChartHalfHeight));
+    return window_camera(zoomed_window(view, glm::dvec2(0.0), kChartHalfHeight));
   }
-  // The whole chart is always in the frame: nothing to aim.
+  // The whole chart, slid or drawn back when a body is under the HUD or the legend.
+  void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
+    aim_2d_window(*this, view, snapshot, hud, kChartHalfHeight);
+  }
   double body_scale_length(const Surface& surface) const override {
     return profile_shape(surface).picture.feature;
   }

@@ -16,9 +16,9 @@ namespace {
 
 // The window: kPlaneHalfHeight [length] about view.target's (x, y), else the origin, as the
 // plane view's, so that at K = 0 the two are the same picture; view.zoom times smaller in a
-// close-up.
+// close-up (aim_2d_window).
 Window2d conformal_window(const ViewOptions& view) {
-  return window_around(view, target_or(view, glm::dvec2(0.0)), kPlaneHalfHeight / std::max(1.0, view.zoom));
+  return zoomed_window(view, glm::dvec2(0.0), kPlaneHalfHeight);
 }
 
 // The image of normal coordinates p = r(cos φ, sin φ) about the pole: w = T_K(|p|) p/|p|.
@@ -275,7 +275,7 @@ class ConformalView final : public ViewModel {
   // On the bodies, and a close-up where the map shrinks them (K < 0, far from the pole).
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
     aim_at_bodies_centre(*this, view, snapshot);
-    aim_close_up(*this, view, snapshot, hud, kPlaneHalfHeight);
+    aim_2d_window(*this, view, snapshot, hud, kPlaneHalfHeight);
   }
   // Lengths, not R: the picture must not change with K (the dial); a sphere of R = 1e6 would
   // otherwise draw a body the size of a continent.

@@ -53,12 +53,13 @@ class DiskView final : public ViewModel {
     return g;
   }
 
-  // The unit disk and a margin, or a close-up of the bodies near its rim (aim_close_up).
+  // The unit disk and a margin, or a close-up of the bodies near its rim, or slid clear of the
+  // boxes (aim_2d_window).
   glm::mat4 camera(const ViewOptions& view) const override {
     return window_camera(zoomed_window(view, glm::dvec2(0.0), kDiskWindowHalf));
   }
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
-    aim_close_up(*this, view, snapshot, hud, kDiskWindowHalf);
+    aim_2d_window(*this, view, snapshot, hud, kDiskWindowHalf);
   }
   std::string grid_caption(const Snapshot& snapshot, const ViewOptions& /*view*/) const override {
     return snapshot.surface.kind == SurfaceKind::sphere ? "Grid: geodesic circles about the pole (parallels "

@@ -1,6 +1,7 @@
 // The sphere in space, seen by an orbiting camera.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "render/views/camera.h"
 #include "render/views/drawing.h"
@@ -88,25 +89,44 @@ class SphereView final : public ViewModel {
   }
 
   // Looking at the centre of everything drawn of the bodies, turned and tilted until every body
-  // and as much of every trail as can be are in the frame and out of the boxes.
+  // and as much of every trail as can be are in the frame and out of the boxes. When that loses a
+  // body (trails round the sphere put the centre of everything far from the bodies), looking at
+  // the bodies' own centre instead, then at the main body; the best of these.
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
-    const Vec3 n =
-        snapshot.bodies.size() > 1 ? drawn_centre(snapshot) : snapshot.bodies.front().X.normalized();
-    view.yaw = std::atan2(n.y(), n.x());
-    view.pitch = std::clamp(std::asin(n.z()), -1.3, 1.3);
     view.target.reset();
     const std::vector<Sight> points = sights(*this, snapshot, view, false);
-    // Drawn back as far as 1.75× when nearer cameras cannot clear the boxes: bodies far apart
-    // (one near the pole, one on the equator, with the HUD across the top of a 640×480 frame)
-    // otherwise end with the camera tilted over one of them and the other beside the limb, its
-    // ellipse seen edge-on.
-    clear_the_boxes(*this, snapshot.surface, view, points, hud, {1.0, 1.2, 1.45, 1.75});
-    if (badness(*this, snapshot.surface, view, points, hud) >=
-        points.front().weight) {  // the main body lost: start from it
-      const Vec3 m = snapshot.bodies.front().X.normalized();
-      view.yaw = std::atan2(m.y(), m.x());
-      view.pitch = std::clamp(std::asin(m.z()), -1.3, 1.3);
-      clear_the_boxes(*this, snapshot.surface, view, points, hud, {1.0, 1.2, 1.45, 1.75});
+    Vec3 bodies = Vec3::Zero();
+    for (const BodySnapshot& body : snapshot.bodies) bodies += body.X.normalized();
+    const Vec3 main = snapshot.bodies.front().X.normalized();
+    const Vec3 starts[] = {snapshot.bodies.size() > 1 ? drawn_centre(snapshot) : main,
+                           bodies.norm() > 1e-9 ? Vec3(bodies.normalized()) : main, main};
+    const double a_body = 50.0;  // a companion's weight (sights): less than that lost is trail only
+    double best = std::numeric_limits<double>::infinity();
+    const ViewOptions start = view;
+    for (const Vec3& n : starts) {
+      ViewOptions v = start;
+      v.yaw = std::atan2(n.y(), n.x());
+      v.pitch = std::clamp(std::asin(n.z()), -1.3, 1.3);
+      // Drawn back as far as 1.75× when nearer cameras cannot clear the boxes: bodies far apart
+      // (one near the pole, one on the equator, with the HUD across the top of a 640×480 frame)
+      // otherwise end with the camera tilted over one of them and the other beside the limb, its
+      // ellipse seen edge-on.
+      clear_the_boxes(*this, snapshot.surface, v, points, hud, {1.0, 1.2, 1.45, 1.75});
+      const double bad = badness(*this, snapshot.surface, v, points, hud);
+      if (bad < best) best = bad, view = v;
+      if (best < a_body) return;
+    }
+    // Still a body lost (the turns that clear the HUD take one of two far-apart bodies past the
+    // limb): face the bodies' centre and slide the sphere across the frame instead.
+    for (const double pull : {1.0, 1.2, 1.45}) {
+      ViewOptions v = start;
+      v.yaw = std::atan2(starts[1].y(), starts[1].x());
+      v.pitch = std::clamp(std::asin(starts[1].z()), -1.3, 1.3);
+      v.distance = start.distance * pull;
+      v.target = std::array<double, 3>{0.0, 0.0, 0.0};
+      const double bad = slide_clear_of_boxes(*this, snapshot.surface, v, points, hud);
+      if (bad < best) best = bad, view = v;
+      if (best < a_body) return;
     }
   }
   std::string grid_caption(const Snapshot& /*snapshot*/, const ViewOptions& /*view*/) const override {

@@ -21,26 +21,16 @@
 #include "render/gl_renderer.h"
 #include "render/snapshot.h"
 #include "tests/render/frame_compare.h"
+#include "tests/render/views/view_test_support.h"
 
 namespace spinfold::render {
 namespace {
 
+using testing::preset_snapshot;
+
 Renderer& renderer() {
   static Renderer r;  // one context for the whole test binary (one thread)
   return r;
-}
-
-// The preset's run at t with, when asked, every body's trail sampled at t·k/64.
-Snapshot preset_snapshot(std::string_view name, double t, bool with_trail) {
-  const Scene scene = *parse_scene_text(find_preset(name)->json).scene;
-  Simulation run = start_simulation(scene);
-  Trail trail;
-  trail.spacing = t / 64;
-  if (with_trail)
-    advance_sampling_trail(run, trail, t);
-  else
-    advance_to(run, t);
-  return make_snapshot(run, trail, -1.0);
 }
 
 struct Rgb {

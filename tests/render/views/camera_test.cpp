@@ -3,7 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
 
 #include "render/view_table.h"
 #include "view_test_support.h"
@@ -126,6 +130,85 @@ TEST(Camera, AimingAtTheBodiesCentreTakesTheMiddleOfTheirBoundingBox) {
   aim_at_bodies_centre(view_model(ViewKind::plane), view, s);
   ASSERT_TRUE(view.target);
   EXPECT_EQ(*view.target, (std::array<double, 3>{2.0, -2.0, 0.0}));
+}
+
+// Whether some direction has every body of a sphere snapshot within 60° of it (what the sphere view
+// shows face-on): searched over 20000 directions spread evenly (a Fibonacci sphere).
+bool in_one_cap(const Snapshot& s) {
+  constexpr int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const double z = 1.0 - 2.0 * (i + 0.5) / n, rho = std::sqrt(1.0 - z * z);
+    const double a = i * std::numbers::pi * (3.0 - std::sqrt(5.0));
+    const Vec3 d(rho * std::cos(a), rho * std::sin(a), z);
+    if (std::ranges::all_of(s.bodies, [&](const BodySnapshot& b) { return b.X.normalized().dot(d) >= 0.5; }))
+      return true;
+  }
+  return false;
+}
+
+// Framing is a property: every preset, in every view that shows its surface, at several times and
+// at the pictures of a 1366- and a 1920-wide page, aimed as the server aims it, shows each body's
+// centre in the frame, clear of the HUD and the legend, and not behind the surface. Two kinds of
+// companion are outside what one picture can do, and are left out or counted apart: one beyond the
+// drawn piece of an unbounded surface, or any when the main body is beyond it (the revolution view
+// then follows the main body alone: RevolutionView::aim), and one on the
+// sphere where the bodies are spread too far for any camera to have them all within the 60° of
+// its direction that the sphere view shows face-on (SphereView::hidden).
+TEST(Camera, EveryPresetInEveryViewItOffersShowsItsBodiesClearOfTheBoxes) {
+  int cases = 0, apart = 0;
+  std::vector<std::string> failures;
+  for (const PresetSource& preset : preset_sources())
+    for (const double t : {0.0, 1.0, 2.5, 5.0, 10.0}) {
+      const Snapshot s = testing::preset_snapshot(preset.name, t, t > 0.0);
+      for (const ViewRow& row : view_table()) {
+        if (!shows(row.info, s.surface.kind)) continue;
+        for (const auto& [w, h] : {std::pair{795, 515}, {1280, 757}}) {
+          ViewOptions view;
+          view.kind = row.info.kind;
+          view.width = w;
+          view.height = h;
+          aim_camera_at_body(view, s);
+          const FrameScene scene = build_scene(s, view);
+          const ViewModel& model = row.model();
+          const glm::dvec4 e = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
+          const glm::dvec3 eye = glm::dvec3(e) / e.w;
+          for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+            const Vec3& X = s.bodies[b].X;
+            if (!model.draws(s.surface, X)) continue;  // off the view: the HUD says so (tested apart)
+            // Beyond the drawn piece, or the main body is (the view then follows it alone).
+            if (b > 0 && !(model.on_view(s.surface, X) && model.on_view(s.surface, s.bodies[0].X))) continue;
+            const glm::dvec3 world = model.world_position(s.surface, X);
+            const std::optional<glm::dvec2> px = pixel_position(scene, view, world);
+            std::string why;
+            if (!px || px->x < 0 || px->y < 0 || px->x > w || px->y > h)
+              why = "out of the frame";
+            else if (scene.hud.hud.contains(*px))
+              why = "under the HUD";
+            else if (scene.hud.legend.contains(*px))
+              why = "under the legend";
+            else if (model.hidden(s.surface, world, eye))
+              why = "behind the surface";
+            const bool too_far = view.kind == ViewKind::sphere && b > 0 && !in_one_cap(s);
+            if (too_far && why == "behind the surface") {
+              ++apart;
+              continue;
+            }
+            ++cases;
+            if (!why.empty())
+              failures.push_back(std::string(preset.name) + " t=" + std::to_string(t) + " " +
+                                 std::string(row.info.name) + " " + std::to_string(w) + "x" +
+                                 std::to_string(h) + " body " + std::to_string(b + 1) + ": " + why);
+          }
+        }
+      }
+    }
+  std::string all;
+  for (const std::string& f : failures) all += f + "\n";
+  EXPECT_GT(cases, 1000);
+  EXPECT_TRUE(failures.empty()) << failures.size() << " of " << cases << ":\n" << all;
+  // The far-apart companions on the sphere: spin_vs_geodesic_sphere and spin_fan_sphere at t = 5
+  // (159°), at both sizes; counted so that a change in them is seen.
+  EXPECT_EQ(apart, 8);
 }
 
 }  // namespace

@@ -5,12 +5,30 @@
 #include <cmath>
 #include <glm/glm.hpp>
 #include <optional>
+#include <string_view>
 
+#include "codec/presets.h"
+#include "codec/scene_json.h"
 #include "engine/chart.h"
 #include "engine/revolution.h"
+#include "engine/timeline.h"
 #include "render/scene_builder.h"
+#include "render/snapshot.h"
 
 namespace spinfold::render::testing {
+
+// The preset's run at t with, when asked, every body's trail sampled at t·k/64.
+inline Snapshot preset_snapshot(std::string_view name, double t, bool with_trail) {
+  const Scene scene = *parse_scene_text(find_preset(name)->json).scene;
+  Simulation run = start_simulation(scene);
+  Trail trail;
+  trail.spacing = t / 64;
+  if (with_trail)
+    advance_sampling_trail(run, trail, t);
+  else
+    advance_to(run, t);
+  return make_snapshot(run, trail, -1.0);
+}
 
 // A body at X whose frame is e₁ = λE₁, e₂ = μE₂ (L = diag(λ, μ) in the frame (E₁, E₂)).
 inline void add_body(Snapshot& s, const Vec3& X, const Vec3& E1, const Vec3& E2, double lambda, double mu) {
