@@ -134,11 +134,12 @@ bool same_color(const glm::vec4& a, const glm::vec4& b) {
 }
 
 // Line segments (pairs of vertices, as GL_LINES) as polylines on the page: hidden pieces left out
-// (each segment cut into pieces of about 2 px, each tested at its middle), consecutive segments
-// that meet joined into one path while their colour stays the same.
+// (each segment cut into pieces of about 2 px, each tested at its middle) unless `through` (a
+// ghost, drawn through the surface), consecutive segments that meet joined into one path while
+// their colour stays the same.
 void add_segments(FigurePage& page, const Camera& camera, const ViewOptions& view,
                   const std::vector<Vertex>& segments, double width, const std::string& role,
-                  const std::optional<glm::dvec4>& color = std::nullopt) {
+                  const std::optional<glm::dvec4>& color = std::nullopt, bool through = false) {
   FigurePath* open = nullptr;  // the path the last visible piece ended
   glm::vec4 open_color{-1.0f};
   const auto add_piece = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::vec4& c) {
@@ -168,7 +169,7 @@ void add_segments(FigurePage& page, const Camera& camera, const ViewOptions& vie
       continue;
     }
     const glm::vec4 c = segments[i].color;
-    if (!camera.depth_tested()) {
+    if (!camera.depth_tested() || through) {
       add_piece(*a, *b, c);
       continue;
     }
@@ -432,6 +433,9 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
     else
       add_segments(page, camera, view, boundary_edges(*scene.statics), line_width, "outline", kOutlineColor);
   }
+  // Bodies behind the surface, faintly through it (FrameScene::ghost_fills), under the rest.
+  add_triangles(page, camera, view, scene.ghost_fills, std::nullopt, false, "ghost");
+  add_segments(page, camera, view, scene.ghost_lines, line_width, "ghost", std::nullopt, true);
   add_triangles(page, camera, view, scene.fills, std::nullopt, three_d, "body");
   // The lines: trails (by their colour), then the bodies' outlines and arrows.
   std::vector<Vertex> trails, others;

@@ -362,6 +362,22 @@ void GlRenderer::draw_moving(const FrameScene& scene, float line_width) {
   glDisable(GL_CULL_FACE);
   glDisable(GL_SCISSOR_TEST);
   use_flat_program(scene);
+  if (!scene.ghost_fills.empty() || !scene.ghost_lines.empty()) {  // through the surface, under the rest
+    glDisable(GL_DEPTH_TEST);
+    if (!scene.ghost_fills.empty()) {
+      glEnable(GL_BLEND);
+      glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+      draw_flat(scene.ghost_fills, GL_TRIANGLES);
+      glDisable(GL_BLEND);
+    }
+    if (!scene.ghost_lines.empty()) {
+      upload(dynamic_.vao, dynamic_.vbo, scene.ghost_lines.data(), scene.ghost_lines.size() * sizeof(Vertex),
+             false);
+      draw_lines(scene, dynamic_, static_cast<int>(scene.ghost_lines.size()), line_width);
+    }
+    if (scene.depth_test) glEnable(GL_DEPTH_TEST);
+    use_flat_program(scene);
+  }
   if (!scene.fills.empty()) {
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);  // keeps the frame opaque

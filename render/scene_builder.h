@@ -113,9 +113,12 @@ HudLayout hud_layout(const std::vector<std::string>& lines, const std::vector<st
 struct FrameScene {
   std::shared_ptr<const StaticGeometry> statics;  // null when neither surface nor grid is drawn
   bool draw_surface = false, draw_grid = false;
-  bool tint_by_curvature = false;      // the curvature layer: the surface coloured by its vertices' tint
-  std::vector<Vertex> fills;           // translucent triangles (the ellipse)
-  std::vector<Vertex> lines;           // line segments (trail, outline, arrows)
+  bool tint_by_curvature = false;  // the curvature layer: the surface coloured by its vertices' tint
+  std::vector<Vertex> fills;       // translucent triangles (the ellipse)
+  std::vector<Vertex> lines;       // line segments (trail, outline, arrows)
+  // Bodies behind the surface drawn faintly through it (the sphere view: a companion on the far
+  // side, which no camera can show face-on with the main body): no depth test, drawn first.
+  std::vector<Vertex> ghost_fills, ghost_lines;
   std::vector<std::string> hud_lines;  // empty when the HUD is off
   std::vector<LegendEntry> legend;     // one per body when there is more than one body to tell apart
                                        // and the frame is at least kLegendMinWidth wide

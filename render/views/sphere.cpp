@@ -11,6 +11,8 @@ namespace spinfold::render {
 
 namespace {
 
+constexpr float kGhostAlpha = 0.45f;  // of a body behind the sphere, drawn through it
+
 // FrameScene::depth_bias: overlays lie on the sphere exactly (its mesh is circumscribed, every
 // face outside the unit sphere, so nothing drawn on the sphere pokes out past the mesh's limb) and
 // the bias keeps them in front of the faces.
@@ -92,6 +94,27 @@ class SphereView final : public ViewModel {
   // and as much of every trail as can be are in the frame and out of the boxes. When that loses a
   // body (trails round the sphere put the centre of everything far from the bodies), looking at
   // the bodies' own centre instead, then at the main body; the best of these.
+  // Every body as usual, and a body behind the sphere (its centre hidden) once more, faintly, through
+  // it: bodies far apart on the sphere (a fan, a geodesic companion on the far side) fit in no
+  // camera's face-on cap, and the far one must not vanish.
+  void add_bodies(FrameScene& scene, const Snapshot& snapshot, const ViewOptions& view) const override {
+    ViewModel::add_bodies(scene, snapshot, view);
+    const glm::dvec4 e = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
+    const glm::dvec3 eye = glm::dvec3(e) / e.w;
+    const Surface& surface = snapshot.surface;
+    for (const BodySnapshot& body : snapshot.bodies) {
+      if (!hidden(surface, world_position(surface, body.X), eye)) continue;
+      FrameScene ghost;
+      const double scale = body_drawing_scale(surface, body, view.scale);
+      if (view.layers & kBody) add_body(ghost, surface, *this, scale, body);
+      if (view.layers & kFrame) add_frame_arrows(ghost, surface, *this, scale, body);
+      for (Vertex& v : ghost.fills) v.color.a *= kGhostAlpha;
+      for (Vertex& v : ghost.lines) v.color.a *= kGhostAlpha;
+      scene.ghost_fills.insert(scene.ghost_fills.end(), ghost.fills.begin(), ghost.fills.end());
+      scene.ghost_lines.insert(scene.ghost_lines.end(), ghost.lines.begin(), ghost.lines.end());
+    }
+  }
+
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
     view.target.reset();
     const std::vector<Sight> points = sights(*this, snapshot, view, false);
