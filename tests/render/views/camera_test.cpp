@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "render/snapshot.h"
 #include "render/view_table.h"
 #include "view_test_support.h"
 
@@ -216,6 +217,52 @@ TEST(Camera, EveryPresetInEveryViewItOffersShowsItsBodiesClearOfTheBoxes) {
   // The companions drawn through the sphere: spin_vs_geodesic_sphere and spin_fan_sphere at t = 5
   // (159° apart), at both sizes; counted so that a change in them is seen.
   EXPECT_EQ(apart, 8);
+}
+
+// The teacher's dial: the default scene playing while K is dragged from 1 to −1 (a step every 1.5
+// time units), then on at K = −1, shown in the conformal view as the page shows it: the main body
+// in the frame, clear of the HUD, and never a speck (at least 12 px across: before the close-ups,
+// at r ≈ 4–5 it was 2–3 px on the rim of a fixed window).
+TEST(Camera, TheCurvatureDialKeepsTheBodyInThePictureAndLargeEnough) {
+  Scene scene = *parse_scene_text(find_preset(kDefaultPreset)->json).scene;
+  Simulation run = start_simulation(scene);
+  std::vector<double> far_out;
+  const auto check = [&](const std::string& when) {
+    const Snapshot s = make_snapshot(run, Trail{}, -1.0);
+    if (s.surface.kind == SurfaceKind::pseudosphere)  // R = 1 at K = −1: X₃ = cosh r
+      far_out.push_back(std::acosh(std::max(1.0, s.bodies[0].X.z() / s.surface.radius)));
+    for (const auto& [w, h] : {std::pair{795, 515}, {1280, 757}}) {
+      ViewOptions view;
+      view.kind = ViewKind::conformal;
+      view.width = w;
+      view.height = h;
+      aim_camera_at_body(view, s);
+      const FrameScene frame = build_scene(s, view);
+      const auto at = [&](const Vec3& X) {
+        return *pixel_position(frame, view, world_position(s.surface, view.kind, X));
+      };
+      const glm::dvec2 body = at(s.bodies[0].X);
+      const std::string where = when + " " + std::to_string(w) + "x" + std::to_string(h);
+      EXPECT_TRUE(body.x > 0 && body.x < w && body.y > 0 && body.y < h) << where;
+      EXPECT_FALSE(frame.hud.hud.contains(body)) << where;
+      double across = 0.0;
+      for (const Vec3& P : ellipse_points(s.surface, s.bodies[0], view.scale, 16))
+        across = std::max(across, 2.0 * glm::distance(at(P), body));
+      EXPECT_GE(across, 12.0) << where << ": zoom " << view.zoom;
+    }
+  };
+  for (const double K : {1.0, 0.5, 0.25, 0.0, -0.25, -0.5, -0.75, -1.0}) {
+    advance_to(run, run.state.t + 1.5);
+    scene.surface.curvature_given = K;
+    resolve_curvature(scene.surface);
+    retune(run, scene);
+    check("K = " + std::to_string(K) + " at t = " + std::to_string(run.state.t));
+  }
+  for (int k = 0; k < 12; ++k) {
+    advance_to(run, run.state.t + 1.5);
+    check("K = -1 at t = " + std::to_string(run.state.t));
+  }
+  EXPECT_GT(*std::ranges::max_element(far_out), 3.0);  // the run does reach far out
 }
 
 }  // namespace
