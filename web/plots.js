@@ -3,6 +3,7 @@
 // the history of the samples shown; a dashed line at every parameter change in the timeline.
 import uPlot from "/vendor/uPlot.esm.js";
 import { $ } from "./dom.js";
+import { labelled } from "./marks.js";
 import { store } from "./state.js";
 
 /** The plotted history: t, |ΔH/H₀|, spin, p_φ, C_x, C_y. @type {Array<Array<number|null>>} */
@@ -58,7 +59,8 @@ function draw() {
   });
 }
 
-// A dashed line on the plots at every parameter change (the plots keep their history across it).
+// A dashed line on the plots at every parameter change (the plots keep their history across it),
+// labelled where the label has room (marks.js).
 const changeMarks = {
   hooks: {
     draw: [
@@ -69,17 +71,21 @@ const changeMarks = {
         ctx.strokeStyle = "#888";
         ctx.setLineDash([4, 4]);
         ctx.lineWidth = 1;
-        for (const change of store.get().timeline) {
-          const x = Math.round(u.valToPos(change.t, "x", true));
-          if (x < u.bbox.left || x > u.bbox.left + u.bbox.width) continue;
+        ctx.fillStyle = "#888";
+        ctx.font = `${Math.round(10 * devicePixelRatio)}px system-ui, sans-serif`;
+        const xs = store
+          .get()
+          .timeline.map((/** @type {{t: number}} */ change) => Math.round(u.valToPos(change.t, "x", true)))
+          .filter((/** @type {number} */ x) => x >= u.bbox.left && x <= u.bbox.left + u.bbox.width);
+        const gap = 3 * devicePixelRatio;
+        const named = labelled(xs, ctx.measureText("change").width + 2 * gap);
+        xs.forEach((/** @type {number} */ x, /** @type {number} */ i) => {
           ctx.beginPath();
           ctx.moveTo(x, top);
           ctx.lineTo(x, top + height);
           ctx.stroke();
-          ctx.fillStyle = "#888";
-          ctx.font = `${Math.round(10 * devicePixelRatio)}px system-ui, sans-serif`;
-          ctx.fillText("change", x + 3 * devicePixelRatio, top + 10 * devicePixelRatio);
-        }
+          if (named.has(i)) ctx.fillText("change", x + gap, top + 10 * devicePixelRatio);
+        });
         ctx.restore();
       },
     ],
