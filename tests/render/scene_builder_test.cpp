@@ -257,11 +257,7 @@ TEST(SceneBuilder, TheHyperboloidsCameraKeepsTheBodyInTheFrameAndOutOfTheHudFarO
   for (const double r : {0.0, 1.0, 3.0, 6.0})
     for (const auto& [w, h] : {std::pair{640, 480}, {960, 600}, {1920, 1080}}) {
       const Snapshot s = out_on_h2(r);
-      ViewOptions view;
-      view.kind = ViewKind::hyperboloid;
-      view.width = w;
-      view.height = h;
-      aim_camera_at_body(view, s);
+      const ViewOptions view = testing::aimed_view(ViewKind::hyperboloid, w, h, s);
       const FrameScene scene = build_scene(s, view);
       const auto at = [&](const Vec3& X) {
         return pixel_position(scene, view, world_position(s.surface, view.kind, X));

@@ -164,11 +164,7 @@ TEST(Camera, EveryPresetInEveryViewItOffersShowsItsBodiesClearOfTheBoxes) {
       for (const ViewRow& row : view_table()) {
         if (!shows(row.info, s.surface.kind)) continue;
         for (const auto& [w, h] : {std::pair{795, 515}, {1280, 757}}) {
-          ViewOptions view;
-          view.kind = row.info.kind;
-          view.width = w;
-          view.height = h;
-          aim_camera_at_body(view, s);
+          const ViewOptions view = testing::aimed_view(row.info.kind, w, h, s);
           const FrameScene scene = build_scene(s, view);
           const ViewModel& model = row.model();
           const glm::dvec4 e = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
@@ -232,11 +228,7 @@ TEST(Camera, TheCurvatureDialKeepsTheBodyInThePictureAndLargeEnough) {
     if (s.surface.kind == SurfaceKind::pseudosphere)  // R = 1 at K = −1: X₃ = cosh r
       far_out.push_back(std::acosh(std::max(1.0, s.bodies[0].X.z() / s.surface.radius)));
     for (const auto& [w, h] : {std::pair{795, 515}, {1280, 757}}) {
-      ViewOptions view;
-      view.kind = ViewKind::conformal;
-      view.width = w;
-      view.height = h;
-      aim_camera_at_body(view, s);
+      const ViewOptions view = testing::aimed_view(ViewKind::conformal, w, h, s);
       const FrameScene frame = build_scene(s, view);
       const auto at = [&](const Vec3& X) {
         return *pixel_position(frame, view, world_position(s.surface, view.kind, X));

@@ -30,6 +30,16 @@ inline Snapshot preset_snapshot(std::string_view name, double t, bool with_trail
   return make_snapshot(run, trail, -1.0);
 }
 
+// A view of `kind` at w×h pixels aimed at the snapshot as the server aims it.
+inline ViewOptions aimed_view(ViewKind kind, int w, int h, const Snapshot& s) {
+  ViewOptions view;
+  view.kind = kind;
+  view.width = w;
+  view.height = h;
+  aim_camera_at_body(view, s);
+  return view;
+}
+
 // A body at X whose frame is e₁ = λE₁, e₂ = μE₂ (L = diag(λ, μ) in the frame (E₁, E₂)).
 inline void add_body(Snapshot& s, const Vec3& X, const Vec3& E1, const Vec3& E2, double lambda, double mu) {
   BodySnapshot& b = s.bodies.emplace_back();
