@@ -20,6 +20,8 @@
 #include "render/gl_context.h"
 #include "render/gl_renderer.h"
 #include "render/snapshot.h"
+#include "render/view_table.h"
+#include "render/views/view_model.h"
 #include "tests/render/frame_compare.h"
 #include "tests/render/views/view_test_support.h"
 
@@ -482,6 +484,47 @@ TEST(Renderer, TheConformalFrameIsContinuousInTheCurvatureAndChangesWithIt) {
   EXPECT_LE(differing_pixels(flat, frame({SurfaceKind::pseudosphere, 1e6})), 0);
   EXPECT_GT(differing_pixels(flat, frame({SurfaceKind::sphere, 1.0})), pixels / 10);
   EXPECT_GT(differing_pixels(flat, frame({SurfaceKind::pseudosphere, 1.0})), pixels / 10);
+}
+
+// The framing test (tests/render/views/camera_test.cpp) from the pixels: every preset in every view
+// it offers at t = 5, at the picture of a 1366-wide page, rendered with and without the bodies
+// (the same camera): round each body's centre that the framing test places in the frame, the
+// picture changes — the body is painted there, over the surface, through it as a ghost, under
+// nothing else.
+TEST(Renderer, EveryPresetsBodiesArePaintedWhereTheCameraPutsThem) {
+  int checked = 0;
+  for (const PresetSource& preset : preset_sources()) {
+    const Snapshot s = preset_snapshot(preset.name, 5.0, true);
+    for (const ViewRow& row : view_table()) {
+      if (!shows(row.info, s.surface.kind)) continue;
+      const ViewOptions view = testing::aimed_view(row.info.kind, 795, 515, s);
+      ViewOptions bare = view;
+      bare.layers &= ~static_cast<unsigned>(kBody | kFrame);
+      const FrameScene scene = build_scene(s, view);
+      const std::vector<std::uint8_t> with = renderer().render_image(s, view).rgba;
+      const std::vector<std::uint8_t> without = renderer().render_image(s, bare).rgba;
+      const ViewModel& model = row.model();
+      for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+        const Vec3& X = s.bodies[b].X;
+        if (!model.draws(s.surface, X) ||
+            (b > 0 && !(model.on_view(s.surface, X) && model.on_view(s.surface, s.bodies[0].X))))
+          continue;  // as the framing test: beyond the drawn piece
+        const std::optional<glm::dvec2> px = pixel_position(scene, view, model.world_position(s.surface, X));
+        if (!px || px->x < 3 || px->y < 3 || px->x > view.width - 4 || px->y > view.height - 4) continue;
+        int most = 0;  // the largest change of a channel round the centre [levels]
+        for (int dy = -2; dy <= 2; ++dy)
+          for (int dx = -2; dx <= 2; ++dx) {
+            const std::size_t at =
+                (static_cast<std::size_t>(px->y + dy) * view.width + static_cast<std::size_t>(px->x + dx)) *
+                4;
+            for (int c = 0; c < 3; ++c) most = std::max(most, std::abs(with[at + c] - without[at + c]));
+          }
+        ++checked;
+        EXPECT_GT(most, 20) << preset.name << " " << row.info.name << " body " << b + 1;
+      }
+    }
+  }
+  EXPECT_GT(checked, 60);
 }
 
 struct Golden {
