@@ -36,6 +36,11 @@ glm::dvec2 target_or(const ViewOptions& view, const glm::dvec2& otherwise) {
   return view.target ? glm::dvec2((*view.target)[0], (*view.target)[1]) : otherwise;
 }
 
+glm::dvec3 eye_of(const glm::mat4& view_projection) {
+  const glm::dvec4 h = glm::inverse(glm::dmat4(view_projection)) * glm::dvec4(0, 0, 1, 0);
+  return glm::dvec3(h) / h.w;
+}
+
 glm::mat4 window_camera(const Window2d& w) {
   return glm::mat4(
       glm::ortho(w.centre.x - w.hx, w.centre.x + w.hx, w.centre.y - w.hy, w.centre.y + w.hy, -1.0, 1.0));
@@ -79,8 +84,7 @@ double badness(const ViewModel& model, const Surface& surface, const ViewOptions
     return b.w > 0.0 ? PixelBox{b.x - margin, b.y - margin, b.w + 2 * margin, b.h + 2 * margin} : b;
   };
   const PixelBox hud_box = grown(hud.hud), legend_box = grown(hud.legend);
-  const glm::dvec4 h = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
-  const glm::dvec3 eye = glm::dvec3(h) / h.w;
+  const glm::dvec3 eye = eye_of(scene.view_projection);
   double bad = 0.0;
   if (!model.on_lit_side(eye)) {  // worse than any camera on the lit side, however much that one hides
     for (const Sight& p : points) bad += p.weight;
@@ -97,9 +101,9 @@ double badness(const ViewModel& model, const Surface& surface, const ViewOptions
   return bad;
 }
 
-void clear_the_boxes(const ViewModel& model, const Surface& surface, ViewOptions& view,
-                     const std::vector<Sight>& points, const HudLayout& hud,
-                     std::initializer_list<double> pulls) {
+double clear_the_boxes(const ViewModel& model, const Surface& surface, ViewOptions& view,
+                       const std::vector<Sight>& points, const HudLayout& hud,
+                       std::initializer_list<double> pulls) {
   constexpr double kTurns[][2] = {{0, 0},    {0, 0.1},    {0, 0.2},     {0.1, 0.1},  {-0.1, 0.1},
                                   {0, 0.3},  {0.15, 0.2}, {-0.15, 0.2}, {0.2, 0.3},  {-0.2, 0.3},
                                   {0, 0.45}, {0.3, 0.3},  {-0.3, 0.3},  {0.3, 0.45}, {-0.3, 0.45},
@@ -114,8 +118,9 @@ void clear_the_boxes(const ViewModel& model, const Surface& surface, ViewOptions
       v.distance = start.distance * pull;
       const double bad = badness(model, surface, v, points, hud, best);
       if (bad < best) best = bad, view = v;
-      if (best == 0.0) return;
+      if (best == 0.0) return best;
     }
+  return best;
 }
 
 double slide_clear_of_boxes(const ViewModel& model, const Surface& surface, ViewOptions& view,

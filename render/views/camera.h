@@ -24,6 +24,8 @@ glm::mat4 orbit_camera(const ViewOptions& view, const glm::dvec3& default_target
 Window2d window_around(const ViewOptions& view, const glm::dvec2& centre, double half);
 // view.target's (x, y), or `otherwise` when the view has none.
 glm::dvec2 target_or(const ViewOptions& view, const glm::dvec2& otherwise);
+// Where a perspective camera is: the point its projection sends to w = 0 [world units].
+glm::dvec3 eye_of(const glm::mat4& view_projection);
 // The orthographic projection of a window (z from −1 to 1).
 glm::mat4 window_camera(const Window2d& w);
 
@@ -45,10 +47,10 @@ double badness(const ViewModel& model, const Surface& surface, const ViewOptions
                const std::vector<Sight>& points, const HudLayout& hud,
                double enough = std::numeric_limits<double>::infinity());
 // Tries the camera turned by each of a fixed list of (Δyaw, Δpitch) and drawn back by each factor
-// of `pulls`, in this order, and keeps the first that shows the sights best.
-void clear_the_boxes(const ViewModel& model, const Surface& surface, ViewOptions& view,
-                     const std::vector<Sight>& points, const HudLayout& hud,
-                     std::initializer_list<double> pulls);
+// of `pulls`, in this order, and keeps the first that shows the sights best; returns its badness.
+double clear_the_boxes(const ViewModel& model, const Surface& surface, ViewOptions& view,
+                       const std::vector<Sight>& points, const HudLayout& hud,
+                       std::initializer_list<double> pulls);
 
 // When turning and drawing back leave the sights boxed (a small frame whose HUD covers its
 // centre, where an orbit puts its target): slides the target across the screen plane by a

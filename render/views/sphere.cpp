@@ -99,8 +99,7 @@ class SphereView final : public ViewModel {
   // camera's face-on cap, and the far one must not vanish.
   void add_bodies(FrameScene& scene, const Snapshot& snapshot, const ViewOptions& view) const override {
     ViewModel::add_bodies(scene, snapshot, view);
-    const glm::dvec4 e = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
-    const glm::dvec3 eye = glm::dvec3(e) / e.w;
+    const glm::dvec3 eye = eye_of(scene.view_projection);
     const Surface& surface = snapshot.surface;
     for (const BodySnapshot& body : snapshot.bodies) {
       if (!hidden(surface, world_position(surface, body.X), eye)) continue;
@@ -134,8 +133,7 @@ class SphereView final : public ViewModel {
       // (one near the pole, one on the equator, with the HUD across the top of a 640×480 frame)
       // otherwise end with the camera tilted over one of them and the other beside the limb, its
       // ellipse seen edge-on.
-      clear_the_boxes(*this, snapshot.surface, v, points, hud, {1.0, 1.2, 1.45, 1.75});
-      const double bad = badness(*this, snapshot.surface, v, points, hud);
+      const double bad = clear_the_boxes(*this, snapshot.surface, v, points, hud, {1.0, 1.2, 1.45, 1.75});
       if (bad < best) best = bad, view = v;
       if (best < a_body) return;
     }

@@ -167,8 +167,7 @@ TEST(Camera, EveryPresetInEveryViewItOffersShowsItsBodiesClearOfTheBoxes) {
           const ViewOptions view = testing::aimed_view(row.info.kind, w, h, s);
           const FrameScene scene = build_scene(s, view);
           const ViewModel& model = row.model();
-          const glm::dvec4 e = glm::inverse(glm::dmat4(scene.view_projection)) * glm::dvec4(0, 0, 1, 0);
-          const glm::dvec3 eye = glm::dvec3(e) / e.w;
+          const glm::dvec3 eye = eye_of(scene.view_projection);
           for (std::size_t b = 0; b < s.bodies.size(); ++b) {
             const Vec3& X = s.bodies[b].X;
             if (!model.draws(s.surface, X)) continue;  // off the view: the HUD says so (tested apart)
