@@ -11,6 +11,7 @@
 #include "engine/integer_cast.h"
 #include "engine/surface_geodesics.h"
 #include "render/view_table.h"
+#include "render/views/camera.h"
 #include "render/views/drawing.h"
 #include "render/views/view_model.h"
 
@@ -366,23 +367,9 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   return scene;
 }
 
-namespace {
-
-// The HUD's and legend's boxes the frame of this snapshot will have (as build_scene lays them out).
-HudLayout layout_for(const Snapshot& snapshot, const ViewOptions& view) {
-  std::vector<std::string> labels;
-  if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)) && view.width >= kLegendMinWidth)
-    for (const BodySnapshot& body : snapshot.bodies) labels.push_back(body.label);
-  const std::vector<std::string> lines =
-      view.layers & kHud ? readout_lines(snapshot, view) : std::vector<std::string>{};
-  return hud_layout(lines, labels, view.width, view.height);
-}
-
-}  // namespace
-
 void aim_camera_at_body(ViewOptions& view, const Snapshot& snapshot) {
   if (snapshot.bodies.empty()) return;
-  view_model(view.kind).aim(view, snapshot, layout_for(snapshot, view));
+  view_model(view.kind).aim(view, snapshot, hud_boxes(snapshot, view));
 }
 
 std::optional<glm::dvec2> pixel_position(const FrameScene& scene, const ViewOptions& view,

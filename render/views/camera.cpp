@@ -5,6 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 
+#include "render/view_table.h"
 #include "render/views/drawing.h"
 
 namespace spinfold::render {
@@ -72,6 +73,15 @@ std::vector<Sight> sights(const ViewModel& model, const Snapshot& snapshot, cons
     }
   }
   return out;
+}
+
+HudLayout hud_boxes(const Snapshot& snapshot, const ViewOptions& view) {
+  std::vector<std::string> labels;
+  if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)) && view.width >= kLegendMinWidth)
+    for (const BodySnapshot& body : snapshot.bodies) labels.push_back(body.label);
+  const std::vector<std::string> lines =
+      view.layers & kHud ? readout_lines(snapshot, view) : std::vector<std::string>{};
+  return hud_layout(lines, labels, view.width, view.height);
 }
 
 double badness(const ViewModel& model, const Surface& surface, const ViewOptions& view,
@@ -268,6 +278,15 @@ void aim_2d_window(const ViewModel& model, ViewOptions& view, const Snapshot& sn
       if (bad < best) best = bad, view = v;
       if (best == 0.0) return;
     }
+}
+
+bool shows_main_body(const ViewOptions& view, const Snapshot& snapshot) {
+  if (snapshot.bodies.empty()) return true;
+  const ViewModel& model = view_model(view.kind);
+  const Vec3& X = snapshot.bodies.front().X;
+  if (!model.draws(snapshot.surface, X)) return true;
+  const std::vector<Sight> main{{model.world_position(snapshot.surface, X), 1.0}};
+  return badness(model, snapshot.surface, view, main, hud_boxes(snapshot, view)) == 0.0;
 }
 
 }  // namespace spinfold::render

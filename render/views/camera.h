@@ -39,6 +39,11 @@ struct Sight {
 // `recent_only`, only each trail's last stretch (within 3 radii, intrinsic, of its body).
 std::vector<Sight> sights(const ViewModel& model, const Snapshot& snapshot, const ViewOptions& view,
                           bool recent_only);
+// The HUD's and legend's boxes a frame of this snapshot will have (as build_scene lays them out).
+HudLayout hud_boxes(const Snapshot& snapshot, const ViewOptions& view);
+// Whether the camera shows the main body's centre in the frame, clear of the HUD's and legend's
+// boxes and in sight (what aiming weighs most); true where the view does not draw it.
+bool shows_main_body(const ViewOptions& view, const Snapshot& snapshot);
 // How badly a camera shows the sights: the weight of those hidden (ViewModel::hidden) or behind
 // the camera, out of the frame (less a margin) or under the HUD's or legend's box (grown by the
 // margin). The sum stops once it reaches `enough` (a camera search's best so far: a camera that bad

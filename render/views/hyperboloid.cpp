@@ -51,9 +51,8 @@ class HyperboloidView final : public ViewModel {
   }
 
   // By default orbiting a point above the vertex.
-  glm::mat4 camera(const ViewOptions& view) const override {
-    return orbit_camera(view, glm::dvec3(0, 0, 1.6));
-  }
+  glm::mat4 camera(const ViewOptions& view) const override { return orbit_camera(view, orbit_home()); }
+  glm::dvec3 orbit_home() const override { return glm::dvec3(0, 0, 1.6); }
   float depth_bias() const override { return kHyperboloidDepthBias; }
   // Inside the bowl, a fifth of a radius above the sheet (x₃ = w_z + 1 ≥ √(1 + x₁² + x₂²) + 0.2).
   bool on_lit_side(const glm::dvec3& eye) const override {

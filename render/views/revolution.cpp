@@ -176,7 +176,7 @@ class RevolutionView final : public ViewModel {
     return g;
   }
 
-  glm::mat4 camera(const ViewOptions& view) const override { return orbit_camera(view, glm::dvec3(0.0)); }
+  glm::mat4 camera(const ViewOptions& view) const override { return orbit_camera(view, orbit_home()); }
   float depth_bias() const override { return kRevolutionDepthBias; }
   bool hidden(const Surface& surface, const glm::dvec3& at, const glm::dvec3& eye) const override {
     return occluded(surface, eye, at);

@@ -83,7 +83,7 @@ class SphereView final : public ViewModel {
     return g;
   }
 
-  glm::mat4 camera(const ViewOptions& view) const override { return orbit_camera(view, glm::dvec3(0.0)); }
+  glm::mat4 camera(const ViewOptions& view) const override { return orbit_camera(view, orbit_home()); }
   float depth_bias() const override { return kSphereDepthBias; }
   // Beyond the limb, or so near it (more than 60° from the camera's direction) that it is seen edge-on.
   bool hidden(const Surface& /*surface*/, const glm::dvec3& at, const glm::dvec3& eye) const override {

@@ -84,9 +84,8 @@ class TractricoidView final : public ViewModel {
   }
 
   // By default orbiting a point on the axis above the rim.
-  glm::mat4 camera(const ViewOptions& view) const override {
-    return orbit_camera(view, glm::dvec3(0, 0, 0.8));
-  }
+  glm::mat4 camera(const ViewOptions& view) const override { return orbit_camera(view, orbit_home()); }
+  glm::dvec3 orbit_home() const override { return glm::dvec3(0, 0, 0.8); }
   // From the bodies' own side (the far side faces away), the rim's neighbourhood at least.
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
     aim_orbit(*this, view, snapshot, hud, 0.9, 0.35, 0.0);

@@ -82,6 +82,8 @@ class ViewModel {
   // ---- Camera
   // The view-projection matrix of the frame.
   virtual glm::mat4 camera(const ViewOptions& view) const = 0;
+  // The point a 3-D view's camera orbits when ViewOptions::target is unset [world units].
+  virtual glm::dvec3 orbit_home() const { return glm::dvec3(0.0); }
   // FrameScene::depth_bias: a fraction of the distance to the camera.
   virtual float depth_bias() const { return 0.0f; }
   // Whether a point in the frame is still out of sight from a camera at `eye` (beyond the

@@ -1,0 +1,86 @@
+#include "render/camera_follow.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/view_table.h"
+#include "render/views/camera.h"
+#include "render/views/drawing.h"
+#include "render/views/view_model.h"
+
+namespace spinfold::render {
+
+namespace {
+
+glm::dvec3 target_of(const ViewOptions& view, const glm::dvec3& home) {
+  return view.target ? glm::dvec3((*view.target)[0], (*view.target)[1], (*view.target)[2]) : home;
+}
+
+// b.yaw − a.yaw the shorter way round, in (−π, π].
+double yaw_turn(const ViewOptions& a, const ViewOptions& b) {
+  const double d = std::remainder(b.yaw - a.yaw, 2 * kPi);
+  return d == -kPi ? kPi : d;
+}
+
+}  // namespace
+
+double camera_gap(const ViewOptions& a, const ViewOptions& b, const glm::dvec3& home) {
+  const double turn = std::hypot(yaw_turn(a, b), b.pitch - a.pitch);
+  const double pull = std::abs(std::log(b.distance / a.distance));
+  const double move = glm::length(target_of(b, home) - target_of(a, home)) / std::min(a.distance, b.distance);
+  return std::max({turn, pull, move});
+}
+
+double follow_step(double gap, double seconds) {
+  const double dt = std::clamp(seconds, 0.0, kFollowMaxSeconds);
+  if (gap <= kFollowPassRate * dt) return gap;
+  const double glide = std::max(gap * -std::expm1(-dt / kFollowGlideTime), kFollowPassRate * dt);
+  return std::min({glide, kFollowMaxRate * dt, gap});
+}
+
+bool CameraFollower::place(ViewOptions& view, const ViewRequest& request, const Snapshot& snapshot,
+                           double seconds) {
+  place_camera(view, request, snapshot);
+  const ViewModel& model = view_model(view.kind);
+  const bool aimed = !request.yaw && !request.pitch && !request.distance;
+  const bool follows = aimed && view_info(view.kind).three_d && last_ && last_->kind == view.kind &&
+                       last_->width == view.width && last_->height == view.height &&
+                       last_->layers == view.layers && last_->scale == view.scale;
+  if (!follows) {
+    last_ = view;
+    return true;
+  }
+  const glm::dvec3 home = model.orbit_home();
+  const double gap = camera_gap(*last_, view, home);
+  const double step = follow_step(gap, seconds);
+  if (step >= gap) {
+    last_ = view;
+    return true;
+  }
+  // The camera a share s of the way from the last frame's to the aimed one.
+  const glm::dvec3 from = target_of(*last_, home), to = target_of(view, home);
+  const auto on_way = [&](double s) {
+    ViewOptions v = view;
+    v.yaw = last_->yaw + s * yaw_turn(*last_, view);
+    v.pitch = last_->pitch + s * (view.pitch - last_->pitch);
+    v.distance = last_->distance * std::pow(view.distance / last_->distance, s);
+    const glm::dvec3 at = from + s * (to - from);
+    v.target = std::array<double, 3>{at.x, at.y, at.z};
+    return v;
+  };
+  const double base = step / gap,
+               most = std::min(1.0, kFollowCatchUpRate * std::clamp(seconds, 0.0, kFollowMaxSeconds) / gap);
+  double s = base;
+  ViewOptions next = on_way(s);
+  if (base > 0.0 && !shows_main_body(next, snapshot) && shows_main_body(view, snapshot))
+    for (int k = 2; k * base <= most && !shows_main_body(next, snapshot); ++k) next = on_way(s = k * base);
+  if (s >= 1.0 || !model.on_lit_side(eye_of(model.camera(next)))) {
+    last_ = view;
+    return true;
+  }
+  view = next;
+  last_ = view;
+  return false;
+}
+
+}  // namespace spinfold::render
