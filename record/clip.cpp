@@ -6,6 +6,7 @@
 
 #include "engine/integer_cast.h"
 #include "engine/number_text.h"
+#include "render/camera_follow.h"
 #include "render/scene_builder.h"
 #include "render/view_parameters.h"
 
@@ -58,7 +59,10 @@ double frame_time(const Clip& c, long long k) {
 
 namespace {
 
-render::Image draw(const ClipFrames& f, const TimelineReplay& replay, const RenderFrame& render) {
+// `follower`: the clip's frames in order, each 1/fps of the file after the last (a camera aimed at
+// the bodies glides over the aim's jumps); null for a frame alone (a GIF's palette sample).
+render::Image draw(const ClipFrames& f, const TimelineReplay& replay, const RenderFrame& render,
+                   render::CameraFollower* follower = nullptr, double seconds = 0.0) {
   static const Trail kNoTrail;  // trails are copied only when drawn
   render::Snapshot snapshot = render::make_snapshot(
       replay.run(), f.view.layers & render::kTrail ? replay.trail() : kNoTrail, f.trail_span.value_or(-1.0));
@@ -67,7 +71,10 @@ render::Image draw(const ClipFrames& f, const TimelineReplay& replay, const Rend
   camera.yaw = f.yaw;
   camera.pitch = f.pitch;
   camera.distance = f.distance;
-  render::place_camera(view, camera, snapshot);
+  if (follower)
+    follower->place(view, camera, snapshot, seconds);
+  else
+    render::place_camera(view, camera, snapshot);
   render::Image image = render(std::move(snapshot), view);
   if (image.width != f.view.width || image.height != f.view.height ||
       image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4)
@@ -114,10 +121,11 @@ bool record_clip(const Clip& clip, const ClipFrames& f, ClipWriter& writer, cons
     }
   }
   TimelineReplay replay(f.scene, f.changes, f.trail);
+  render::CameraFollower follower;
   for (long long k = 0; k < n; ++k) {
     const double t = frame_time(clip, k);
     if (!reached(replay, t, f.max_attempts)) stopped(replay, t);
-    writer.add(draw(f, replay, render).rgba.data());
+    writer.add(draw(f, replay, render, &follower, 1.0 / clip.fps).rgba.data());
     if (!step()) return false;
   }
   writer.finish();

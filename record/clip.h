@@ -3,7 +3,9 @@
 // frames play for n/fps seconds. The run is replayed in a copy from t = 0 through the timeline's
 // parameter changes by the engine's TimelineReplay (engine/timeline.h: the same run, bit for bit, as
 // the session or `spinfold render`), and each
-// frame is drawn like a frame of the session: every body, legend, HUD and trail.
+// frame is drawn like a frame of the session: every body, legend, HUD and trail. A camera aimed at
+// the bodies follows them as the live view's does (render/camera_follow.h: it glides over the aim's
+// jumps, 1/fps of the file between frames).
 #pragma once
 
 #include <cstdint>

@@ -72,8 +72,10 @@ bool CameraFollower::place(ViewOptions& view, const ViewRequest& request, const 
                most = std::min(1.0, kFollowCatchUpRate * std::clamp(seconds, 0.0, kFollowMaxSeconds) / gap);
   double s = base;
   ViewOptions next = on_way(s);
-  if (base > 0.0 && !shows_main_body(next, snapshot) && shows_main_body(view, snapshot))
+  if (base > 0.0 && !shows_main_body(next, snapshot) && shows_main_body(view, snapshot)) {
     for (int k = 2; k * base <= most && !shows_main_body(next, snapshot); ++k) next = on_way(s = k * base);
+    if (!shows_main_body(next, snapshot)) s = 1.0;  // no glide shows it: cut to the aimed camera
+  }
   if (s >= 1.0 || !model.on_lit_side(eye_of(model.camera(next)))) {
     last_ = view;
     return true;

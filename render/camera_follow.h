@@ -40,8 +40,9 @@ class CameraFollower {
   // view aimed at the bodies (the request gives no part of the camera) whose last frame had the same
   // view, size, layers and scale, moved from that frame's camera toward the aimed one by follow_step (yaw,
   // pitch, ln distance and target each by the same share of their gap). Where that camera would lose the main
-  // body (shows_main_body) and the aimed one does not, the glide goes on to the first of twice, four times …
-  // the step that shows it (a body lost to a smooth turn is worse than a faster turn); a camera that would
+  // body (shows_main_body) and the aimed one does not, the glide goes on to the first of twice, three times …
+  // the step that shows it, up to kFollowCatchUpRate, and else cuts to the aimed camera (a body lost is worse
+  // than a fast turn, and worse than a cut); a camera that would
   // see the surface from its dark side (the hyperboloid from under the sheet) is not taken: the aimed one is.
   // Returns whether the frame's camera is the aimed one, bit for bit (false: on its way; ask again to reach
   // it).

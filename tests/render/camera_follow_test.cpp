@@ -65,19 +65,19 @@ TEST(CameraFollow, TheGapIsTheLargestOfTurnPullAndTheTargetsMove) {
   EXPECT_NEAR(camera_gap(a, b, glm::dvec3(0.0)), 0.3, 1e-12);
 }
 
-// A jump of the aim (the body moved far between two frames): the camera glides, says it is on its
-// way, and arrives at the aimed camera to the bit (the frame is then the aimed frame), while a 2-D
+// A jump of the aim (the body moved between two frames, still in sight): the camera glides, says it
+// is on its way, and arrives at the aimed camera to the bit (the frame is then the aimed frame), while a 2-D
 // view and a camera the request gives are placed as place_camera places them at once.
 TEST(CameraFollow, AJumpIsGlidedOverToTheAimedCameraToTheBit) {
   const Snapshot near = testing::body_at(SurfaceKind::sphere, 1.0, 0.3, 0.0);
-  const Snapshot far = testing::body_at(SurfaceKind::sphere, 1.0, 2.6, 2.5);
+  const Snapshot far = testing::body_at(SurfaceKind::sphere, 1.0, 0.9, 0.3);
   CameraFollower follower;
   ViewOptions view = view_of(ViewKind::sphere, near), first = view;
   EXPECT_TRUE(follower.place(first, {}, near, 0.04));  // the first frame is aimed
   ViewOptions aimed = view;
   place_camera(aimed, {}, far);
   const double jump = camera_gap(first, aimed, glm::dvec3(0.0));
-  ASSERT_GT(jump, 1.5);
+  ASSERT_GT(jump, 0.5);
   ViewOptions last = first;
   int frames = 0;
   for (bool there = false; !there && frames < 100; ++frames) {
@@ -92,8 +92,12 @@ TEST(CameraFollow, AJumpIsGlidedOverToTheAimedCameraToTheBit) {
     }
     last = v;
   }
-  EXPECT_GE(frames, 5);   // a glide, not a jump
+  EXPECT_GE(frames, 4);   // a glide, not a jump
   EXPECT_LE(frames, 25);  // within a second at 25 frames/s
+  // A body gone where no glide would find it (to the sphere's far side): a cut to the aimed camera.
+  ViewOptions gone = view;
+  EXPECT_TRUE(follower.place(gone, {}, testing::body_at(SurfaceKind::sphere, 1.0, 2.6, 2.5), 0.04));
+  EXPECT_GT(camera_gap(last, gone, glm::dvec3(0.0)), 2.0);
   // No time passes: the camera stays where it was.
   ViewOptions again = view;
   CameraFollower paused;
@@ -119,13 +123,14 @@ TEST(CameraFollow, AJumpIsGlidedOverToTheAimedCameraToTheBit) {
 
 // Playback as the live view and a recording show it: every preset in every 3-D view it offers, 10 s
 // at 25 frames/s, the trail growing. Aimed afresh each frame the camera turns by up to 190° between
-// frames (the search's candidates trade places); followed, by at most the catch-up rate's step, and
-// the main body is kept in the frame, clear of the boxes and in sight in all but a few frames.
+// frames (the search's candidates trade places). Followed, it keeps the main body in the frame, clear
+// of the boxes and in sight as the aim does, and moves by at most the catch-up rate's step but for a
+// few cuts where every glide would lose the body.
 TEST(CameraFollow, EveryPresetsPlaybackTurnsSmoothlyAndKeepsTheMainBody) {
   const double dt = 0.04;
   double raw_most = 0.0;
-  int frames = 0, lost = 0, lost_aimed = 0;
-  std::string losses;
+  int frames = 0, lost_aimed = 0;
+  std::string lost, cuts;
   for (const PresetSource& preset : preset_sources()) {
     const Scene scene = *parse_scene_text(preset.json).scene;
     for (const ViewRow& row : view_table()) {
@@ -135,7 +140,6 @@ TEST(CameraFollow, EveryPresetsPlaybackTurnsSmoothlyAndKeepsTheMainBody) {
       CameraFollower follower;
       ViewOptions last_raw, last;
       const glm::dvec3 home = row.model().orbit_home();
-      double most = 0.0;
       for (int k = 0; k <= 250; ++k) {
         advance_sampling_trail(run, trail, k * dt);
         ASSERT_EQ(run.state.status, Status::ok) << preset.name;
@@ -143,29 +147,28 @@ TEST(CameraFollow, EveryPresetsPlaybackTurnsSmoothlyAndKeepsTheMainBody) {
         ViewOptions raw = view_of(row.info.kind, s), followed = raw;
         place_camera(raw, {}, s);
         follower.place(followed, {}, s, dt);
+        const std::string where =
+            std::string(preset.name) + " " + std::string(row.info.name) + " t=" + std::to_string(k * dt);
         if (k > 0) {
           raw_most = std::max(raw_most, camera_gap(last_raw, raw, home));
-          most = std::max(most, camera_gap(last, followed, home));
+          if (camera_gap(last, followed, home) > kFollowCatchUpRate * dt + 1e-9) cuts += where + "\n";
         }
         ++frames;
         lost_aimed += !main_body_trouble(s, raw).empty();
-        if (const std::string why = main_body_trouble(s, followed); !why.empty()) {
-          ++lost;
-          losses += std::string(preset.name) + " " + std::string(row.info.name) +
-                    " t=" + std::to_string(k * dt) + ": " + why + "\n";
-        }
+        if (const std::string why = main_body_trouble(s, followed); !why.empty())
+          lost += where + ": " + why + "\n";
         last_raw = raw, last = followed;
       }
-      EXPECT_LE(most, kFollowCatchUpRate * dt + 1e-9) << preset.name << " " << row.info.name;
     }
   }
   EXPECT_GT(frames, 6000);
   EXPECT_GT(raw_most, kPi / 2);  // what the follower is for
   EXPECT_EQ(lost_aimed, 0);
-  // Measured: 5 frames of 6777 (4 on the torus, 0.16 s; 1 of the spin fan), each within a glide
-  // whose straight path passes behind the surface.
-  EXPECT_LE(lost, 10) << losses;
-  std::printf("frames %d, the main body lost in %d:\n%s", frames, lost, losses.c_str());
+  EXPECT_EQ(lost, "");
+  // Measured: 5 cuts in 6777 frames (on the torus, where the glide's path passes behind the tube; on
+  // the tractricoid and the sphere of opposite spins, the body at the frame's edge or the HUD's).
+  EXPECT_LE(std::ranges::count(cuts, '\n'), 8) << cuts;
+  std::printf("frames %d, cuts:\n%s", frames, cuts.c_str());
 }
 
 }  // namespace
