@@ -32,8 +32,9 @@ struct FrameJob {
 
 FrameJob frame_job(FrameCache& cache, const std::string& id, Session& s, const FrameRequest& f) {
   const std::lock_guard lock(s.mutex);
-  FrameJob job{frame_etag(id, state_tag(s), f), {s.version, s.run.state.t}, std::nullopt, f.view, {}};
-  if (!cache.contains(job.etag)) {
+  FrameJob job{
+      frame_etag(id, state_tag(s), f), {s.version, s.run.state.t, {}, false}, std::nullopt, f.view, {}};
+  if (f.follow || !cache.contains(job.etag)) {  // a followed camera is placed from the snapshot
     job.view = render::view_options(view_request(f), s.run.scene.surface);
     static const Trail kNoTrail;  // trails are copied only when drawn
     job.snapshot = render::make_snapshot(s.run, f.view.layers & render::kTrail ? s.trail : kNoTrail,
@@ -186,21 +187,47 @@ bool etag_matches(const std::string& if_none_match, const std::string& etag) {
   return false;
 }
 
+namespace {
+
+// Places a followed frame's camera (FrameRequest::follow) in the order frames are asked for.
+bool place_followed(const FrameRequest& f, render::ViewOptions& view, const render::Snapshot& snapshot) {
+  const std::lock_guard lock(f.follow->mutex);
+  const auto now = std::chrono::steady_clock::now();
+  const double seconds =
+      f.still || !f.follow->last ? 0.0 : std::chrono::duration<double>(now - *f.follow->last).count();
+  if (!f.still) f.follow->last = now;
+  return f.follow->follower.place(view, view_request(f), snapshot, seconds);
+}
+
+}  // namespace
+
 FrameBytes session_frame(FrameCache& cache, RenderPool& renderer, const std::string& id, Session& s,
                          const FrameRequest& f, std::string& etag, FrameInfo* info) {
   for (int attempt = 0;; ++attempt) {
     FrameJob job = frame_job(cache, id, s, f);
+    const auto encode = [&](const render::Image& image) {
+      return std::make_shared<const std::vector<std::uint8_t>>(
+          f.jpeg_quality ? render::encode_jpeg(image.rgba.data(), image.width, image.height, *f.jpeg_quality)
+                         : render::encode_png(image.rgba.data(), image.width, image.height, job.texts));
+    };
+    std::optional<render::ViewOptions> placed;
+    if (f.follow) {
+      placed = job.view;
+      job.info.on_way = !place_followed(f, *placed, *job.snapshot);
+      if (render::view_info(placed->kind).three_d)
+        job.info.camera = std::array<double, 3>{placed->yaw, placed->pitch, placed->distance};
+    }
     etag = job.etag;
     if (info) *info = job.info;
     try {
+      if (job.info.on_way) {  // this stream's alone: rendered, not cached
+        etag += "-following";
+        return encode(renderer.render(id, std::move(*job.snapshot), *placed).get());
+      }
       return cache.get(job.etag, [&]() -> FrameBytes {
         if (!job.snapshot) throw Evicted{};
-        render::place_camera(job.view, view_request(f), *job.snapshot);
-        const render::Image image = renderer.render(id, std::move(*job.snapshot), job.view).get();
-        return std::make_shared<const std::vector<std::uint8_t>>(
-            f.jpeg_quality
-                ? render::encode_jpeg(image.rgba.data(), image.width, image.height, *f.jpeg_quality)
-                : render::encode_png(image.rgba.data(), image.width, image.height, job.texts));
+        if (!placed) render::place_camera(job.view, view_request(f), *job.snapshot);
+        return encode(renderer.render(id, std::move(*job.snapshot), placed ? *placed : job.view).get());
       });
     } catch (const Evicted&) {
       if (attempt == 3)

@@ -3,12 +3,17 @@
 // kept in the frame cache).
 #pragma once
 
+#include <array>
+#include <chrono>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/surface.h"
+#include "render/camera_follow.h"
 #include "render/view.h"
 #include "render/view_parameters.h"
 #include "server/frames/frame_cache.h"
@@ -21,6 +26,14 @@ class RenderPool;
 struct Session;
 class Query;
 
+// A live stream's camera (render::CameraFollower): its frames in the order they are placed, each
+// the stream's clock after the last.
+struct FollowedCamera {
+  std::mutex mutex;
+  render::CameraFollower follower;
+  std::optional<std::chrono::steady_clock::time_point> last;
+};
+
 // What the picture shows (checked by the route table; the view against the surface by frame_request).
 struct FrameRequest {
   render::ViewOptions view;                    // kind, width, height, layers; the rest is set per frame
@@ -28,6 +41,10 @@ struct FrameRequest {
   std::optional<double> yaw, pitch, distance;  // absent: the camera is aimed at the body
   std::optional<double> trail;                 // [time] span of the trail; absent: the whole run
   std::optional<int> jpeg_quality;             // 1..100: a JPEG; absent: a PNG
+  // A live stream's: the camera glides over the aim's jumps. A frame on its way is made for this
+  // stream alone (never cached); once there, it is the aimed frame, cached and shared as any.
+  std::shared_ptr<FollowedCamera> follow;
+  bool still = false;  // with `follow`: the same state again (no time passes for the camera)
 };
 
 // The query parameters of a frame (width … trail: one per row of render::view_parameters(), a side
@@ -61,6 +78,9 @@ bool etag_matches(const std::string& if_none_match, const std::string& etag);
 struct FrameInfo {
   std::uint64_t version = 0;  // Session::version
   double t = 0;               // [time]
+  // A 3-D view's camera as drawn: yaw, pitch [rad], distance [surface radii] (the page orbits from it).
+  std::optional<std::array<double, 3>> camera;
+  bool on_way = false;  // a followed camera not yet at the aim (FrameRequest::follow)
 };
 
 // The frame of the session as it is now. Takes the session's lock only to read it; waits for the

@@ -68,6 +68,10 @@ struct LiveStream {
   Clock::duration min_interval;  // 1/fps
   std::uint64_t asked_version = ~std::uint64_t{0}, asked_camera = ~std::uint64_t{0};
   bool still_due = false;  // the last frame asked for was a motion frame
+  // The stream's camera glides over the aim's jumps (render/camera_follow.h); while it is on its
+  // way (the last frame written says so) frames are asked for as if the session changed.
+  std::shared_ptr<FollowedCamera> follow = std::make_shared<FollowedCamera>();
+  bool gliding = false;
   Clock::time_point last_change, last_ask, last_write;
   std::deque<std::future<MadeFrame>> in_flight;  // in the order asked for
   std::uint64_t seq = 0;                         // frames written
@@ -125,7 +129,7 @@ bool live_step(ServerContext& server, LiveStream& live, httplib::DataSink& sink)
   const bool drawable = !render::view_unsupported_reason(f.view.kind, surface);
   const auto now = Clock::now();
   const bool first = live.asked_version == ~std::uint64_t{0};
-  const bool changed = version != live.asked_version || camera != live.asked_camera;
+  const bool changed = version != live.asked_version || camera != live.asked_camera || live.gliding;
   const auto next_ask = live.last_ask + live.min_interval;  // paced to `fps`
   const bool still =
       !changed && live.still_due && now >= live.last_change + (playing ? kPlayingStillDelay : kStillDelay);
@@ -134,6 +138,9 @@ bool live_step(ServerContext& server, LiveStream& live, httplib::DataSink& sink)
     // Motion frames while things move; the first frame of a paused session is its still frame.
     const bool motion = changed && !(first && !playing);
     if (motion) f.jpeg_quality = live.motion_quality;
+    f.follow = live.follow;
+    f.still = !changed;    // the lossless copy of the last motion frame: the same camera
+    live.gliding = false;  // until a frame on its way is written
     live.in_flight.push_back(std::async(std::launch::async, [&server, id = live.id, s, f, motion] {
       MadeFrame made{nullptr, {}, motion};
       std::string etag;
@@ -153,11 +160,16 @@ bool live_step(ServerContext& server, LiveStream& live, httplib::DataSink& sink)
     if (due && oldest.wait_until(next_ask) != std::future_status::ready) return true;
     const MadeFrame made = oldest.get();  // a failed render ends the stream (the client reconnects)
     live.in_flight.pop_front();
-    char headers[256];
-    std::snprintf(headers, sizeof headers, "X-Spinfold-Frame: seq=%llu; version=%llu; t=%.17g; kind=%s\r\n",
+    live.gliding = made.info.on_way;
+    char camera_text[128] = "";
+    if (const auto& c = made.info.camera)
+      std::snprintf(camera_text, sizeof camera_text, "; yaw=%.9g; pitch=%.9g; distance=%.9g; glide=%d",
+                    (*c)[0], (*c)[1], (*c)[2], made.info.on_way ? 1 : 0);
+    char headers[384];
+    std::snprintf(headers, sizeof headers, "X-Spinfold-Frame: seq=%llu; version=%llu; t=%.17g; kind=%s%s\r\n",
                   static_cast<unsigned long long>(++live.seq),
                   static_cast<unsigned long long>(made.info.version), made.info.t,
-                  made.motion ? "motion" : "still");
+                  made.motion ? "motion" : "still", camera_text);
     if (!write_part(sink, made.motion ? "image/jpeg" : "image/png", headers, *made.bytes)) return false;
     live.last_write = Clock::now();
     return true;
@@ -255,8 +267,10 @@ std::vector<Route> live_routes(const Limits& limits) {
             .handler = get_live,
             .summary =
                 "A live stream of frames (multipart/x-mixed-replace): JPEG while the session plays or the "
-                "camera moves, a PNG 70 ms after the last change, nothing while nothing changes; part "
-                "header X-Spinfold-Frame: seq, version, t, kind (motion|still)",
+                "camera moves (an aimed 3-D camera glides over the aim's jumps), a PNG 70 ms after the last "
+                "change, nothing while nothing changes; part header X-Spinfold-Frame: seq, version, t, kind "
+                "(motion|still), and in a 3-D view the camera drawn: yaw, pitch, distance, glide (1: on its "
+                "way to the aimed camera)",
             .query = frame_params(limits),
             .responses = {{200, "multipart/x-mixed-replace"},
                           {409, "another stream of this session has this viewer name"},

@@ -18,6 +18,7 @@
 #include "codec/presets.h"
 #include "codec/scene_json.h"
 #include "decoded_image.h"
+#include "render/camera_follow.h"
 #include "render/snapshot.h"
 #include "server/api.h"
 #include "server/frames/render_pool.h"
@@ -265,6 +266,54 @@ TEST_F(Live, PatchSteersTheStreamsCamera) {
   EXPECT_NE(large->body.find("limits.max_image_pixels"), std::string::npos) << large->body;
   EXPECT_EQ(c.Get(live + "?viewer=steer")->status, 409);
   watch.stop();
+}
+
+// An aimed 3-D camera glides: back from the viewer's own camera to the aim (`aim=body`), frames say
+// where the camera is (yaw, pitch, distance) and that it is on its way (glide=1), each turned from
+// the last by at most the catch-up rate's step at the stream's longest frame interval; the frame it
+// arrives at is the aimed one, to the byte (frame.png), and the stream is then still.
+TEST_F(Live, AnAimedCameraGlidesBackFromTheViewersOwnAndSaysWhereItIs) {
+  const std::string id = create();
+  const std::string live = "/api/v1/sessions/" + id + "/live";
+  Watch watch(live + "?viewer=glide");
+  ASSERT_TRUE(watch.wait_for(1));
+  const Part aimed = watch.frames()[0];
+  ASSERT_EQ(aimed.frame.count("yaw"), 1u);
+  EXPECT_EQ(aimed.frame.at("glide"), "0");
+  const double yaw = std::stod(aimed.frame.at("yaw")), pitch = std::stod(aimed.frame.at("pitch"));
+  auto c = client();
+  const std::string own = "&yaw=" + std::to_string(yaw + 1.2) + "&pitch=" + std::to_string(pitch);
+  // Until the stream has sent a frame after the n-th and is still.
+  const auto settled = [&](std::size_t n) {
+    ASSERT_TRUE(watch.wait_for(n + 1));
+    for (int i = 0; i < 3000 && watch.frames().back().frame.at("kind") != "still"; ++i)
+      std::this_thread::sleep_for(10ms);
+  };
+  EXPECT_EQ(c.Patch(live + "?viewer=glide" + own, "", "text/plain")->status, 204);
+  settled(1);
+  const std::size_t before = watch.frames().size();
+  EXPECT_NEAR(std::stod(watch.frames().back().frame.at("yaw")), yaw + 1.2, 1e-5);
+  EXPECT_EQ(c.Patch(live + "?viewer=glide&aim=body", "", "text/plain")->status, 204);
+  settled(before);
+  std::this_thread::sleep_for(300ms);
+  watch.stop();
+  const auto frames = watch.frames();
+  std::vector<double> yaws{yaw + 1.2};
+  int gliding = 0;
+  for (std::size_t i = before; i < frames.size(); ++i) {
+    yaws.push_back(std::stod(frames[i].frame.at("yaw")));
+    gliding += frames[i].frame.at("glide") == "1";
+  }
+  EXPECT_GE(gliding, 3);  // 1.2 rad at most 0.5 a frame, and gently at first
+  for (std::size_t i = 1; i < yaws.size(); ++i) {
+    EXPECT_LE(yaws[i], yaws[i - 1] + 1e-9) << i;  // always towards the aim
+    EXPECT_LE(yaws[i - 1] - yaws[i], render::kFollowCatchUpRate * render::kFollowMaxSeconds + 1e-6) << i;
+  }
+  const Part& last = frames.back();
+  EXPECT_EQ(last.frame.at("kind"), "still");
+  EXPECT_EQ(last.frame.at("glide"), "0");
+  EXPECT_NEAR(std::stod(last.frame.at("yaw")), yaw, 1e-6);
+  EXPECT_EQ(last.body, c.Get("/api/v1/sessions/" + id + "/frame.png")->body);
 }
 
 // A client that stops reading while the session plays is sent fewer, newer frames: the server
