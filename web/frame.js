@@ -54,6 +54,7 @@ let live;
  */
 export function setupFrame(onGone) {
   live = new LiveView($("frame"));
+  live.onPaint = noteCamera;
   live.onGone = onGone;
   let steered = "";
   store.subscribe((s, b) => {
@@ -147,8 +148,16 @@ function watchFrameSize() {
 }
 
 // ---- The camera: orbit (keys, drag) and zoom, within the route's ranges.
-// Where an orbit starts when the server aimed the camera (render/scene_builder's aim at the body).
+// Where an orbit starts when the server aimed the camera: the camera of the last 3-D frame painted
+// (its X-Spinfold-Frame fields), so that the first turn starts from the picture on the screen.
+// Before any, the server's default camera.
 const aimed = { yaw: 0.7, pitch: 0.45, distance: 3.4 };
+
+/** @param {import("./live.js").FrameInfo} info */
+function noteCamera(info) {
+  if (info.yaw === undefined) return;
+  Object.assign(aimed, { yaw: Number(info.yaw), pitch: Number(info.pitch), distance: Number(info.distance) });
+}
 
 /** @param {AppState} state */
 export const is3d = (state) => Boolean(state.views.find((v) => v.name === state.view.kind)?.three_d);

@@ -99,6 +99,10 @@ export class LiveView {
           t: info.t,
           kind: info.kind,
           painted: this.stats.painted,
+          // A 3-D view's camera as drawn, and whether it is gliding to the aimed one.
+          ...(info.yaw === undefined
+            ? {}
+            : { yaw: info.yaw, pitch: info.pitch, distance: info.distance, glide: info.glide }),
         });
         if (this.onPaint) this.onPaint(info);
       }

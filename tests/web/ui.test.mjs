@@ -477,6 +477,23 @@ await runSuite(started, async (browser) => {
     await page.waitForFunction(() => !document.fullscreenElement);
   });
 
+  await test("the first turn of an aimed 3-D camera starts from the picture on the screen", async () => {
+    // The torus's camera is aimed far from the server's default (yaw 0.7): a turn used to start there.
+    await page.click('.preset[data-name="spin_vs_geodesic_torus"]');
+    await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "spin_vs_geodesic_torus");
+    await page.waitForFunction(() => document.querySelector("#frame").dataset.kind === "still" && document.querySelector("#frame").dataset.glide === "0", null, { timeout: 20000 });
+    const shown = Number(await page.$eval("#frame", (el) => el.dataset.yaw));
+    assert.ok(Math.abs(shown - 0.7) > 0.5, `aimed at yaw ${shown}`);
+    await page.focus("#frame");
+    await page.keyboard.press("ArrowLeft");
+    await page.waitForFunction((y) => document.querySelector("#frame").dataset.yaw !== y, String(shown), { timeout: 10000 });
+    const turned = Number(await page.$eval("#frame", (el) => el.dataset.yaw));
+    assert.ok(Math.abs(Math.abs(turned - shown) - 0.12) < 1e-3, `one key's turn (0.12 rad) from ${shown}: ${turned}`);
+    // Back to the preset the tests after this one start from.
+    await page.click('.preset[data-name="spinning_rigid_sphere"]');
+    await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "spinning_rigid_sphere");
+  });
+
   await test("? lists every shortcut the keys above use; Esc closes the list and the keys work again", async () => {
     await page.focus("#frame");
     await page.keyboard.press("?");
