@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "codec/provenance.h"
+#include "engine/number_text.h"
+#include "engine/timeline.h"
 #include "render/jpeg_encoder.h"
 #include "render/png_encoder.h"
 #include "render/snapshot.h"
@@ -28,12 +30,27 @@ struct FrameJob {
   std::optional<render::Snapshot> snapshot;
   render::ViewOptions view;
   std::vector<render::PngText> texts;  // the provenance of the state shown (PNG only)
+  // With FrameRequest::at: what the replay starts from (the snapshot is made by replaying).
+  struct Replay {
+    Scene scene;
+    std::vector<ParameterChange> changes;
+    Trail trail;  // the spacing and cap, no points
+  };
+  std::optional<Replay> replay;
 };
 
 FrameJob frame_job(FrameCache& cache, const std::string& id, Session& s, const FrameRequest& f) {
   const std::lock_guard lock(s.mutex);
-  FrameJob job{
-      frame_etag(id, state_tag(s), f), {s.version, s.run.state.t, {}, false}, std::nullopt, f.view, {}};
+  FrameJob job{frame_etag(id, state_tag(s), f), {s.version, f.at.value_or(s.run.state.t), {}, false},
+               std::nullopt, f.view, {}, std::nullopt};
+  if (f.at && !cache.contains(job.etag)) {
+    job.view = render::view_options(view_request(f), s.run.scene.surface);
+    Trail trail = s.trail;
+    trail.points.clear();
+    trail.companions.clear();
+    job.replay = FrameJob::Replay{s.scene, s.changes, std::move(trail)};
+    return job;
+  }
   if (f.follow || !cache.contains(job.etag)) {  // a followed camera is placed from the snapshot
     job.view = render::view_options(view_request(f), s.run.scene.surface);
     static const Trail kNoTrail;  // trails are copied only when drawn
@@ -91,6 +108,23 @@ QueryParam quality_param() {
           .description =
               "JPEG quality (libjpeg-turbo, 4:2:0); the default is chosen from "
               "the size/quality table in docs/performance.md"};
+}
+
+QueryParam at_param() {
+  return {.name = "at",
+          .type = ParamType::number,
+          .unit = "time",
+          .minimum = 0.0,
+          .description = "the picture of the run at this earlier time (at most the session's t: a "
+                         "scrubber's), replayed from t = 0 through the timeline; default: now"};
+}
+
+void apply_at(const Query& q, FrameRequest& f, double t, long max_steps) {
+  f.at = q.number("at");
+  f.max_attempts = static_cast<std::uint64_t>(max_steps);
+  if (f.at && *f.at > t)
+    throw bad(422, "Invalid value", "at", shortest(*f.at),
+              "must be <= the session's time t = " + shortest(t) + " (a picture of the run so far)");
 }
 
 render::ViewRequest view_request(const FrameRequest& f) {
@@ -166,7 +200,9 @@ std::string frame_etag(const std::string& id, const std::string& state, const Fr
                 state.c_str(), static_cast<int>(f.view.kind), f.view.width, f.view.height, f.view.layers,
                 f.scale, camera(f.yaw).c_str(), camera(f.pitch).c_str(), camera(f.distance).c_str(),
                 camera(f.trail).c_str(), f.jpeg_quality ? "jpeg" : "png", f.jpeg_quality.value_or(0));
-  return text;
+  std::string tag = text;
+  if (f.at) tag.insert(tag.size() - 1, "-at" + camera(f.at));
+  return tag;
 }
 
 bool etag_matches(const std::string& if_none_match, const std::string& etag) {
@@ -199,6 +235,21 @@ bool place_followed(const FrameRequest& f, render::ViewOptions& view, const rend
   return f.follow->follower.place(view, view_request(f), snapshot, seconds);
 }
 
+// The snapshot of FrameRequest::at, replayed outside the session's lock; 422 naming `at` when the
+// step attempts run out first.
+void replay_snapshot(const FrameRequest& f, FrameJob& job) {
+  TimelineReplay replay(job.replay->scene, job.replay->changes, job.replay->trail);
+  if (!replay.advance_to(*f.at, f.max_attempts))
+    throw bad(422, "Invalid value", "at", shortest(*f.at),
+              "the replay to this time ran out of step attempts (limits.max_steps = " +
+                  std::to_string(f.max_attempts) + ")");
+  static const Trail kNoTrail;
+  job.snapshot = render::make_snapshot(replay.run(), f.view.layers & render::kTrail ? replay.trail() : kNoTrail,
+                                       f.trail.value_or(-1.0));
+  if (!f.jpeg_quality)
+    job.texts = picture_texts(replay.run().scene, "", replay.run().state.t, render::view_name(f.view.kind));
+}
+
 }  // namespace
 
 FrameBytes session_frame(FrameCache& cache, RenderPool& renderer, const std::string& id, Session& s,
@@ -221,10 +272,11 @@ FrameBytes session_frame(FrameCache& cache, RenderPool& renderer, const std::str
     if (info) *info = job.info;
     try {
       if (job.info.on_way) {  // this stream's alone: rendered, not cached
-        etag += "-following";
+        etag.insert(etag.size() - 1, "-following");
         return encode(renderer.render(id, std::move(*job.snapshot), *placed).get());
       }
       return cache.get(job.etag, [&]() -> FrameBytes {
+        if (job.replay) replay_snapshot(f, job);
         if (!job.snapshot) throw Evicted{};
         if (!placed) render::place_camera(job.view, view_request(f), *job.snapshot);
         return encode(renderer.render(id, std::move(*job.snapshot), placed ? *placed : job.view).get());

@@ -44,6 +44,11 @@ struct FrameRequest {
   // A live stream's: the camera glides over the aim's jumps. A frame on its way is made for this
   // stream alone (never cached); once there, it is the aimed frame, cached and shared as any.
   std::shared_ptr<FollowedCamera> follow;
+  // frame.png and frame.jpg's `at` [time]: the run at this earlier time (0 ≤ at ≤ the session's t),
+  // replayed from t = 0 through the timeline in at most `max_attempts` step attempts (the session's
+  // own run, bit for bit: engine/timeline.h); absent: the state now.
+  std::optional<double> at;
+  std::uint64_t max_attempts = 0;
   bool still = false;  // with `follow`: the same state again (no time passes for the camera)
 };
 
@@ -51,6 +56,11 @@ struct FrameRequest {
 // at most limits.max_image_side), and the JPEG quality's.
 std::vector<QueryParam> frame_params(const Limits& limits);
 QueryParam quality_param();
+// `at`: an earlier time of the run (a scrubber's picture).
+QueryParam at_param();
+// The query's `at` into `f` (limits.max_steps for the replay); 422 naming `at` past the session's
+// time `t`.
+void apply_at(const Query& q, FrameRequest& f, double t, long max_steps);
 
 // The view parameters of a frame request (its view as given).
 render::ViewRequest view_request(const FrameRequest& f);

@@ -29,6 +29,7 @@ void send_frame(ServerContext& server, const Call& call, httplib::Response& res,
   {
     const std::lock_guard lock(s->mutex);
     f = frame_request(call.query, s->run.scene.surface.kind, jpeg, server.options.limits.max_image_pixels);
+    apply_at(call.query, f, s->run.state.t, server.options.limits.max_steps);
     etag = frame_etag(call.id, state_tag(*s), f);
     res.set_header("X-Spinfold-Provenance", provenance(*s));
   }
@@ -121,6 +122,7 @@ std::vector<Route> frame_routes(const Limits& limits) {
                           {304, "unchanged (If-None-Match)"},
                           {422, "an invalid parameter, or a view that cannot show this surface"},
                           {503, "rendering unavailable; Retry-After"}}};
+  png.query.push_back(at_param());
   Route jpeg = png;
   jpeg.path = "/api/v1/sessions/{id}/frame.jpg";
   jpeg.operation_id = "get_frame_jpeg";
@@ -130,6 +132,7 @@ std::vector<Route> frame_routes(const Limits& limits) {
   jpeg.query.push_back(quality_param());
   jpeg.responses.front() = {200, "image/jpeg"};
   Route svg = png;
+  svg.query.pop_back();  // `at`: the raster frames' (a scrubber's)
   svg.path = "/api/v1/sessions/{id}/frame.svg";
   svg.operation_id = "get_frame_svg";
   svg.handler = get_frame_svg;

@@ -582,6 +582,40 @@ TEST_F(Api, OpenStreamsAreLimited) {
   remove(id);
 }
 
+// `at`: the picture of the run at an earlier time (the page's scrubber), replayed from t = 0 through
+// the timeline: the same bytes the session's frame had then, across a parameter change; past the
+// session's time it is refused naming `at`.
+TEST_F(Api, AFrameAtAnEarlierTimeIsTheRunThenToTheByte) {
+  const std::string id = create(R"({"preset": "spin_vs_geodesic_sphere"})");
+  const std::string session = "/api/v1/sessions/" + id;
+  auto c = client();
+  const std::string picture = "/frame.png?width=320&height=240";
+  ASSERT_EQ(c.Post(session + "/advance", R"({"until": 1.5})", "application/json")->status, 200);
+  const auto then = c.Get(session + picture);
+  ASSERT_EQ(then->status, 200);
+  // A change after t = 1.5 (a change's own time shows the run after it, as a sample there does).
+  ASSERT_EQ(c.Post(session + "/advance", R"({"until": 2})", "application/json")->status, 200);
+  ASSERT_EQ(c.Patch(session, R"({"body": {"mass": 2}})", "application/merge-patch+json")->status, 200);
+  ASSERT_EQ(c.Post(session + "/advance", R"({"until": 3})", "application/json")->status, 200);
+  const auto now = c.Get(session + picture);
+  const auto at_then = c.Get(session + picture + "&at=1.5");
+  ASSERT_EQ(at_then->status, 200) << at_then->body;
+  EXPECT_TRUE(at_then->body == then->body);  // (bytes: not printed)
+  EXPECT_NE(at_then->get_header_value("ETag"), now->get_header_value("ETag"));
+  EXPECT_TRUE(c.Get(session + picture + "&at=3")->body == now->body);
+  EXPECT_TRUE(at_then->body != now->body);
+
+  const auto jpeg = c.Get(session + "/frame.jpg?width=320&height=240&at=0.5");
+  EXPECT_EQ(jpeg->status, 200);
+  EXPECT_EQ(jpeg->get_header_value("Content-Type"), "image/jpeg");
+  for (const std::string bad : {"3.5", "-1"}) {
+    const auto refused = c.Get(session + picture + "&at=" + bad);
+    EXPECT_EQ(refused->status, 422) << bad;
+    EXPECT_NE(refused->body.find("\"at\""), std::string::npos) << refused->body;
+  }
+  remove(id);
+}
+
 TEST_F(Api, FrameWithEtagAnd304) {
   const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
   auto c = client();
