@@ -78,6 +78,15 @@ export function setupFrame(onGone) {
 
 export const closeFrame = () => live?.close();
 
+/**
+ * Shows a picture in place of the live one (the scrubber's), until showLive().
+ * @param {ImageBitmap} bitmap
+ * @param {Record<string, string>} info the canvas's dataset for it (t, kind, …)
+ */
+export const showPicture = (bitmap, info) => live?.hold(bitmap, info);
+/** The live picture again. */
+export const showLive = () => live?.release();
+
 /** The export links: the frame as shown, at the size asked, the state and the trajectory. */
 export function renderExports(state = store.get()) {
   if (!state.id) return;

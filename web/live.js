@@ -77,10 +77,15 @@ export class LiveView {
     this.session = null;
     this.viewer = null;
     this.decoding = false;
+    /** @type {Part | null} */
     this.newest = null; // the newest part not yet decoded
+    /** @type {Part | null} */
+    this.last = null; // the last part decoded (shown again after a hold)
+    /** @type {{bitmap: ImageBitmap, info: FrameInfo, bytes: Uint8Array, type: string} | null} */
     this.ready = null; // {bitmap, info}: decoded, not yet painted
     this.steering = false;
     this.pendingSteer = null;
+    this.held = false; // hold(): another picture is shown
     this.connected = false; // the server has answered the stream's request: the viewer exists
     const paint = () => {
       if (this.ready) {
@@ -93,17 +98,19 @@ export class LiveView {
         this.context.drawImage(bitmap, 0, 0, this.canvas.width, this.canvas.height);
         bitmap.close();
         this.stats.painted++;
-        Object.assign(this.canvas.dataset, {
+        // What the canvas shows, for tests and tools: the frame's fields, a 3-D view's camera as
+        // drawn and whether it glides (a held picture has only its own).
+        const shown = {
           seq: info.seq,
           version: info.version,
           t: info.t,
           kind: info.kind,
-          painted: this.stats.painted,
-          // A 3-D view's camera as drawn, and whether it is gliding to the aimed one.
-          ...(info.yaw === undefined
-            ? {}
-            : { yaw: info.yaw, pitch: info.pitch, distance: info.distance, glide: info.glide }),
-        });
+          painted: String(this.stats.painted),
+        };
+        Object.assign(shown, { yaw: info.yaw, pitch: info.pitch, distance: info.distance, glide: info.glide });
+        for (const [key, value] of Object.entries(shown))
+          if (value === undefined) delete this.canvas.dataset[key];
+          else this.canvas.dataset[key] = value;
         if (this.onPaint) this.onPaint(info);
       }
       requestAnimationFrame(paint);
@@ -182,10 +189,34 @@ export class LiveView {
         this.ready.bitmap.close();
         this.stats.skipped++;
       }
-      this.ready = { bitmap, info: part.info, bytes: part.bytes, type: part.type };
       this.last = { bytes: part.bytes, type: part.type, info: part.info };
+      if (this.held)
+        bitmap.close(); // another picture is shown (the scrubber's): kept as `last` only
+      else this.ready = { bitmap, info: part.info, bytes: part.bytes, type: part.type };
     } finally {
       this.decoding = false;
+      this.decode();
+    }
+  }
+
+  /**
+   * Shows another picture in place of the stream's (a scrubber's frame of an earlier time) until
+   * release(): frames arriving meanwhile are kept, not painted.
+   * @param {ImageBitmap} bitmap
+   * @param {FrameInfo} info
+   */
+  hold(bitmap, info) {
+    this.held = true;
+    if (this.ready) this.ready.bitmap.close();
+    this.ready = { bitmap, info, bytes: new Uint8Array(), type: "" };
+  }
+
+  /** The stream's pictures again, from its last frame. */
+  release() {
+    if (!this.held) return;
+    this.held = false;
+    if (this.last && !this.newest) {
+      this.newest = { type: this.last.type, info: this.last.info, bytes: this.last.bytes };
       this.decode();
     }
   }

@@ -16,6 +16,7 @@ import { setupPlots } from "./plots.js";
 import { setupPresentation } from "./presentation.js";
 import { renderReadout, say } from "./readout.js";
 import { setupRecording } from "./record.js";
+import { setupScrub } from "./scrub.js";
 import { applyChange, checkSession, firstSession, keepSaved, leave, recover } from "./session.js";
 import { shareUrl } from "./share.js";
 import { mount, store, withView } from "./state.js";
@@ -49,6 +50,7 @@ async function main() {
     if (s.phase !== b.phase || !document.body.dataset.phase) document.body.dataset.phase = s.phase;
   });
   setupPlayback();
+  setupScrub();
   setupViewControls();
   setupComparisons();
   setupKeys();

@@ -36,7 +36,7 @@ async function opened(browser, width, height, colorScheme = "light") {
 
 await runSuite(started, async (browser) => {
   for (const [width, height, scheme] of [[1366, 900, "light"], [390, 844, "light"], [1366, 900, "dark"]]) {
-    await test(`axe-core: no violations at ${width}×${height} (${scheme}), a preset selected and then modified`, async () => {
+    await test(`axe-core: no violations at ${width}×${height} (${scheme}), a preset selected, then modified, then stepped (the scrubber)`, async () => {
       const page = await opened(browser, width, height, scheme);
       assert.equal(await page.textContent(".preset.active .mark"), "selected");
       const first = await new AxeBuilder({ page }).analyze();
@@ -47,6 +47,11 @@ await runSuite(started, async (browser) => {
       await page.waitForFunction(() => document.querySelector(".preset.active .mark")?.textContent === "modified");
       const second = await new AxeBuilder({ page }).analyze();
       assert.equal(second.violations.length, 0, describe(second.violations));
+      // Stepped and paused: the scrubber over the picture (its contrast and its label).
+      await page.click("#step");
+      await page.waitForSelector("#scrub-box:not([hidden])");
+      const third = await new AxeBuilder({ page }).analyze();
+      assert.equal(third.violations.length, 0, describe(third.violations));
       await page.context().close();
     });
   }

@@ -494,6 +494,24 @@ await runSuite(started, async (browser) => {
     await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "spinning_rigid_sphere");
   });
 
+  await test("paused, the scrubber shows the picture of an earlier time, and the live one at its end", async () => {
+    await page.keyboard.press("ArrowRight");
+    await page.waitForFunction(() => Number(document.querySelector("#readout").dataset.t) > 0);
+    await page.waitForSelector("#scrub-box:not([hidden])");
+    const t = Number(await page.$eval("#readout", (el) => el.dataset.t));
+    const setTo = (v) => page.$eval("#scrub", (el, value) => { el.value = String(value); el.dispatchEvent(new Event("input")); }, v);
+    await setTo(t / 2);
+    await page.waitForFunction(() => document.querySelector("#frame").dataset.kind === "scrub", null, { timeout: 20000 });
+    assert.equal(Number(await page.$eval("#frame", (el) => el.dataset.t)), t / 2);
+    assert.match(await page.textContent("#scrub-out"), /^t = [0-9.]+ of [0-9.]+$/);
+    await setTo(t);
+    await page.waitForFunction(() => document.querySelector("#frame").dataset.kind !== "scrub" && document.querySelector("#frame").dataset.scrub === undefined, null, { timeout: 20000 });
+    assert.equal(Number(await page.$eval("#frame", (el) => el.dataset.t)), t);
+    await page.click("#play");
+    await page.waitForSelector("#scrub-box", { state: "hidden" });
+    await page.click("#pause");
+  });
+
   await test("? lists every shortcut the keys above use; Esc closes the list and the keys work again", async () => {
     await page.focus("#frame");
     await page.keyboard.press("?");
