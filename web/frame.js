@@ -5,6 +5,7 @@
 import { api } from "./api.js";
 import { $ } from "./dom.js";
 import { LiveView } from "./live.js";
+import { nextPace, pacedSize } from "./pace.js";
 import { initialState, store, withView } from "./state.js";
 import { clampTo, toApi } from "./viewparams.js";
 
@@ -45,8 +46,40 @@ export function frameUrl(state, width = state.size.width, height = state.size.he
   return `${api}/sessions/${state.id}/frame.png?${new URLSearchParams(/** @type {any} */ ({ ...viewQuery(state), width, height }))}`;
 }
 
+/**
+ * The live stream's query: the frame's, at the paced size while playing (pace.js).
+ * @param {AppState} state
+ */
+function liveQuery(state) {
+  return { ...viewQuery(state), ...pacedSize(state.size, state.playing ? state.pace : 1) };
+}
+
 /** @type {LiveView} */
 let live;
+
+// Painted frames per second, measured each second while playing, set the pace: two seconds at a
+// size decide the next (a change of size starts a new measurement). The address's ?pace=full keeps
+// the picture full size (a screen recording, a measurement of the unpaced page).
+function watchPace() {
+  if (new URLSearchParams(location.search).get("pace") === "full") return;
+  /** @type {number[]} */
+  let rates = [];
+  let painted = live.stats.painted;
+  let asked = "";
+  setInterval(() => {
+    const s = store.get();
+    const now = live.stats.painted;
+    const key = JSON.stringify(liveQuery(s));
+    if (!s.playing || document.hidden || key !== asked) rates = [];
+    else rates.push(now - painted);
+    painted = now;
+    asked = key;
+    if (rates.length < 2) return;
+    const next = nextPace(s.pace, (rates[0] + rates[1]) / 2);
+    rates = [];
+    if (next !== s.pace) store.update({ pace: next });
+  }, 1000);
+}
 
 /**
  * The live view on #frame, following the store; `onGone` when the server no longer knows the session.
@@ -59,12 +92,12 @@ export function setupFrame(onGone) {
   let steered = "";
   store.subscribe((s, b) => {
     if (!s.id || s.phase !== "live") return;
-    const params = viewQuery(s);
+    const params = liveQuery(s);
     const key = JSON.stringify(params);
     if (s.id !== b.id || b.phase !== "live") {
       measureFrame();
-      live.open(s.id, viewQuery(store.get()));
-      steered = JSON.stringify(viewQuery(store.get()));
+      live.open(s.id, liveQuery(store.get()));
+      steered = JSON.stringify(liveQuery(store.get()));
     } else if (key !== steered) {
       steered = key;
       live.steer(s.view.yaw === null ? { ...params, aim: "body" } : params);
@@ -74,6 +107,7 @@ export function setupFrame(onGone) {
   fitFrameToWindow();
   measureFrame();
   watchFrameSize();
+  watchPace();
 }
 
 export const closeFrame = () => live?.close();

@@ -3,6 +3,7 @@
 // play mark follow the store (the session's "playing" and "rate", and a run that stopped).
 import { $ } from "./dom.js";
 import { resetView } from "./frame.js";
+import { pacedSize } from "./pace.js";
 import { say } from "./readout.js";
 import { pause, play, reset, step } from "./session.js";
 import { mount, store } from "./state.js";
@@ -10,13 +11,29 @@ import { mount, store } from "./state.js";
 /** @param {import("./state.js").AppState} s @param {import("./state.js").AppState} b */
 export function renderPlayback(s, b) {
   const status = s.sample?.status;
-  if (s.playing === b.playing && s.rate === b.rate && status === b.sample?.status && b.phase === s.phase) return;
+  if (
+    s.playing === b.playing &&
+    s.rate === b.rate &&
+    status === b.sample?.status &&
+    b.phase === s.phase &&
+    s.pace === b.pace &&
+    s.size === b.size
+  )
+    return;
   document.body.dataset.playing = String(s.playing);
   $("play").setAttribute("aria-pressed", String(s.playing));
   $("pause").setAttribute("aria-pressed", String(!s.playing));
   const stopped = Boolean(s.sample) && status !== "ok";
   const state = stopped ? "stopped" : s.playing ? "playing" : "paused";
-  $("state-badge").textContent = stopped ? `stopped: ${status}` : s.playing ? `playing at ${s.rate}×` : "paused";
+  // A picture asked smaller for smooth motion (pace.js) says its size.
+  const paced =
+    s.playing && s.pace < 1 ? ` · picture ${Object.values(pacedSize(s.size, s.pace)).join("×")} for speed` : "";
+  $("state-badge").textContent = stopped
+    ? `stopped: ${status}`
+    : s.playing
+      ? `playing at ${s.rate}×${paced}`
+      : "paused";
+  $("state-badge").dataset.pace = String(s.playing ? s.pace : 1);
   $("state-badge").dataset.state = state;
   $("play-state").textContent = stopped ? "■ stopped" : s.playing ? "▶" : "❚❚ paused";
   $("play-state").dataset.state = state;

@@ -28,7 +28,7 @@
  *   playing: boolean, rate: number,
  *   preset: string|null, modified: boolean,
  *   view: ViewState,
- *   size: {width: number, height: number},
+ *   size: {width: number, height: number}, pace: number,
  *   schema: any, presets: any[], views: any[],
  *   viewParameters: import("./viewparams.js").ViewControls|null,
  * }} AppState
@@ -113,6 +113,7 @@ export function initialState() {
       hudChosen: false,
     },
     size: { width: 640, height: 480 },
+    pace: 1, // the fraction of `size` the live picture is asked at while playing (pace.js)
     schema: null,
     presets: [],
     views: [],

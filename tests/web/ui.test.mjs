@@ -512,6 +512,27 @@ await runSuite(started, async (browser) => {
     await page.click("#pause");
   });
 
+  await test("a picture paced for a slow machine: smaller while playing, its size said, full size once paused", async () => {
+    // The page measures its painted frames and sets the pace (pace.js, unit-tested); here it is set.
+    const canvasMatchesPace = () =>
+      page.evaluate(async () => {
+        const { store } = await import("/state.js");
+        const s = store.get();
+        const scale = s.playing ? s.pace : 1;
+        const frame = document.querySelector("#frame");
+        return scale < 1 === s.playing && frame.width === Math.max(16, Math.round(s.size.width * scale));
+      });
+    await page.click("#play");
+    await page.evaluate(async () => (await import("/state.js")).store.update({ pace: 0.5 }));
+    await page.waitForFunction(() => /picture \d+×\d+ for speed/.test(document.querySelector("#state-badge").textContent), null, { timeout: 10000 });
+    for (let i = 0; i < 200 && !(await canvasMatchesPace()); i++) await page.waitForTimeout(50);
+    assert.ok(await canvasMatchesPace(), "playing: the frames at the paced size");
+    await page.click("#pause");
+    await page.waitForFunction(() => document.querySelector("#frame").dataset.kind === "still", null, { timeout: 20000 });
+    assert.ok(await canvasMatchesPace(), "paused: the still frame at full size");
+    assert.equal(await page.textContent("#state-badge"), "paused");
+  });
+
   await test("? lists every shortcut the keys above use; Esc closes the list and the keys work again", async () => {
     await page.focus("#frame");
     await page.keyboard.press("?");
