@@ -41,8 +41,12 @@ struct FrameJob {
 
 FrameJob frame_job(FrameCache& cache, const std::string& id, Session& s, const FrameRequest& f) {
   const std::lock_guard lock(s.mutex);
-  FrameJob job{frame_etag(id, state_tag(s), f), {s.version, f.at.value_or(s.run.state.t), {}, false},
-               std::nullopt, f.view, {}, std::nullopt};
+  FrameJob job{frame_etag(id, state_tag(s), f),
+               {s.version, f.at.value_or(s.run.state.t), {}, false},
+               std::nullopt,
+               f.view,
+               {},
+               std::nullopt};
   if (f.at && !cache.contains(job.etag)) {
     job.view = render::view_options(view_request(f), s.run.scene.surface);
     Trail trail = s.trail;
@@ -115,8 +119,9 @@ QueryParam at_param() {
           .type = ParamType::number,
           .unit = "time",
           .minimum = 0.0,
-          .description = "the picture of the run at this earlier time (at most the session's t: a "
-                         "scrubber's), replayed from t = 0 through the timeline; default: now"};
+          .description =
+              "the picture of the run at this earlier time (at most the session's t: a "
+              "scrubber's), replayed from t = 0 through the timeline; default: now"};
 }
 
 void apply_at(const Query& q, FrameRequest& f, double t, long max_steps) {
@@ -244,8 +249,8 @@ void replay_snapshot(const FrameRequest& f, FrameJob& job) {
               "the replay to this time ran out of step attempts (limits.max_steps = " +
                   std::to_string(f.max_attempts) + ")");
   static const Trail kNoTrail;
-  job.snapshot = render::make_snapshot(replay.run(), f.view.layers & render::kTrail ? replay.trail() : kNoTrail,
-                                       f.trail.value_or(-1.0));
+  job.snapshot = render::make_snapshot(
+      replay.run(), f.view.layers & render::kTrail ? replay.trail() : kNoTrail, f.trail.value_or(-1.0));
   if (!f.jpeg_quality)
     job.texts = picture_texts(replay.run().scene, "", replay.run().state.t, render::view_name(f.view.kind));
 }
