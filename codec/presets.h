@@ -1,4 +1,5 @@
-// Preset scenes (assets/scenes/*.json), embedded in the binary at build time.
+// Preset scenes (assets/scenes/*.json) and their lesson cards (assets/lessons/*.txt), embedded in the
+// binary at build time.
 #pragma once
 
 #include <span>
@@ -9,6 +10,9 @@ namespace spinfold {
 struct PresetSource {
   std::string_view name;  // file name without .json
   std::string_view json;  // the scene, in the same format as the CLI and the API accept
+  // What to look for, in plain words, for a class (assets/lessons/NAME.txt): the claim the preset
+  // shows, which its tests check.
+  std::string_view look_for;
 };
 
 std::span<const PresetSource> preset_sources();

@@ -9,7 +9,7 @@ import { applyChange } from "./session.js";
 import { mount, store, withView } from "./state.js";
 
 /** @param {import("./state.js").AppState} s */
-const hasGeodesic = (s) => (s.current?.companions ?? []).some((/** @type {any} */ c) => c.geodesic);
+export const hasGeodesic = (s) => (s.current?.companions ?? []).some((/** @type {any} */ c) => c.geodesic);
 
 /** @param {import("./state.js").AppState} s @param {import("./state.js").AppState} b */
 export function renderComparisons(s, b) {

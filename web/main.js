@@ -10,6 +10,7 @@ import { $ } from "./dom.js";
 import { closeFrame, renderExports, setupFrame, viewQuery } from "./frame.js";
 import { buildGallery, renderExplanation, renderGalleryMarks, thumbnailInProgress } from "./gallery.js";
 import { setupKeys } from "./keys.js";
+import { setupLesson } from "./lesson.js";
 import { renderPhysical } from "./physical.js";
 import { setupPlayback } from "./playback.js";
 import { setupPlots } from "./plots.js";
@@ -51,6 +52,7 @@ async function main() {
   });
   setupPlayback();
   setupScrub();
+  setupLesson();
   setupViewControls();
   setupComparisons();
   setupKeys();

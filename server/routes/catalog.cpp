@@ -56,6 +56,7 @@ void get_scenes(ServerContext&, const Call&, httplib::Response& res) {
     const SceneParse parsed = parse_scene_text(p.json);
     list.push_back({{"name", std::string(p.name)},
                     {"description", parsed.scene ? parsed.scene->description : ""},
+                    {"look_for", std::string(p.look_for)},
                     {"scene", json::parse(p.json)}});
   }
   send_json(res, list);
@@ -184,7 +185,7 @@ std::vector<Route> catalog_routes(const Limits&) {
        .operation_id = "list_scenes",
        .handler = get_scenes,
        .summary = "The preset scenes",
-       .responses = {{200, "name, description, scene"}}},
+       .responses = {{200, "name, description, look_for (what to look for, in plain words), scene"}}},
       {.method = "GET",
        .path = "/api/v1/integrators",
        .operation_id = "list_integrators",

@@ -27,6 +27,20 @@ double angle_from_axis(const Vec3& X, const Vec3& M) {
   return std::acos(X.dot(M) / (X.norm() * M.norm()));
 }
 
+// Every preset has its lesson card (assets/lessons/NAME.txt): what to look for, a short paragraph in
+// plain words (the page shows it; GET /api/v1/scenes serves it as look_for).
+TEST(Presets, EachHasACardSayingWhatToLookFor) {
+  ASSERT_FALSE(preset_sources().empty());
+  for (const PresetSource& p : preset_sources()) {
+    SCOPED_TRACE(std::string(p.name));
+    EXPECT_GE(p.look_for.size(), 80u);
+    EXPECT_LE(p.look_for.size(), 600u);
+    EXPECT_EQ(p.look_for.back(), '.');
+    for (const std::string_view jargon : {"\\", "$", "physics.md", "W5", "nu_", "sqrt("})
+      EXPECT_EQ(p.look_for.find(jargon), std::string_view::npos) << jargon;
+  }
+}
+
 TEST(Presets, GeodesicBodyStaysOnAGreatCircleAndTheSpinningOneDoesNot) {
   for (const auto& [name, expected] : {std::pair{"geodesic_rigid_sphere", std::numbers::pi / 2},
                                        {"spinning_rigid_sphere", std::atan(0.5)}}) {

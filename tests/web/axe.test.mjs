@@ -36,7 +36,7 @@ async function opened(browser, width, height, colorScheme = "light") {
 
 await runSuite(started, async (browser) => {
   for (const [width, height, scheme] of [[1366, 900, "light"], [390, 844, "light"], [1366, 900, "dark"]]) {
-    await test(`axe-core: no violations at ${width}×${height} (${scheme}), a preset selected, then modified, then stepped (the scrubber)`, async () => {
+    await test(`axe-core: no violations at ${width}×${height} (${scheme}), a preset selected, then modified, then stepped (the scrubber), then in simple mode`, async () => {
       const page = await opened(browser, width, height, scheme);
       assert.equal(await page.textContent(".preset.active .mark"), "selected");
       const first = await new AxeBuilder({ page }).analyze();
@@ -52,6 +52,12 @@ await runSuite(started, async (browser) => {
       await page.waitForSelector("#scrub-box:not([hidden])");
       const third = await new AxeBuilder({ page }).analyze();
       assert.equal(third.violations.length, 0, describe(third.violations));
+      // Simple mode: the header's pressed button, the card.
+      await page.click("#simple");
+      await page.waitForSelector("#look-for:not([hidden])");
+      const fourth = await new AxeBuilder({ page }).analyze();
+      assert.equal(fourth.violations.length, 0, describe(fourth.violations));
+      await page.click("#simple");
       await page.context().close();
     });
   }

@@ -533,6 +533,34 @@ await runSuite(started, async (browser) => {
     assert.equal(await page.textContent("#state-badge"), "paused");
   });
 
+  await test("simple mode for class: spin, speed and curvature, the geodesic companion on, what to look for", async () => {
+    const visibleRows = () =>
+      page.$$eval("#physical .phys", (rows) => rows.filter((r) => getComputedStyle(r).display !== "none").map((r) => r.dataset.key));
+    assert.ok((await visibleRows()).length > 3);
+    await page.click("#simple");
+    assert.equal(await page.getAttribute("#simple", "aria-pressed"), "true");
+    assert.deepEqual(await visibleRows(), ["spin", "speed", "curvature"]);
+    for (const hidden of ["#advanced", "#exports", "#plot-energy"]) assert.equal(await page.isVisible(hidden), false, hidden);
+    // The geodesic companion comes on; the card is the open preset's own, from the scenes route.
+    await page.waitForFunction(() => document.querySelector("#geodesic").getAttribute("aria-pressed") === "true", null, { timeout: 20000 });
+    const active = await page.$eval(".preset.active", (el) => el.dataset.name);
+    const scenes = await (await fetch(base + "api/v1/scenes")).json();
+    const card = scenes.find((p) => p.name === active).look_for;
+    assert.ok(card.length > 80);
+    assert.equal(await page.textContent("#look-for-text"), card);
+    assert.ok(await page.isVisible("#look-for"));
+    // Another preset in simple mode: its own card, and its geodesic companion too.
+    await page.click('.preset[data-name="spinning_rigid_pseudosphere"]');
+    await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "spinning_rigid_pseudosphere");
+    await page.waitForFunction(() => document.querySelector("#geodesic").getAttribute("aria-pressed") === "true", null, { timeout: 20000 });
+    assert.equal(await page.textContent("#look-for-text"), scenes.find((p) => p.name === "spinning_rigid_pseudosphere").look_for);
+    await page.click("#simple");
+    assert.ok((await visibleRows()).length > 3);
+    assert.ok(await page.isVisible("#advanced"));
+    await page.click('.preset[data-name="spinning_rigid_sphere"]');
+    await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "spinning_rigid_sphere");
+  });
+
   await test("? lists every shortcut the keys above use; Esc closes the list and the keys work again", async () => {
     await page.focus("#frame");
     await page.keyboard.press("?");

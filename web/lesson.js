@@ -1,0 +1,58 @@
+// @ts-check
+// For class: the open preset's card, "what to look for" (its claim in plain words: the scenes
+// route's look_for, from assets/lessons/), and simple mode — the controls that matter (spin, speed,
+// curvature, the geodesic companion, on by default), the rest of the page out of the way. Simple
+// mode is kept for the browser (localStorage), like the theme.
+import { hasGeodesic, toggleGeodesic } from "./comparisons.js";
+import { $ } from "./dom.js";
+import { mount, store } from "./state.js";
+
+/** @typedef {import("./state.js").AppState} AppState */
+
+const simpleKey = "spinfold.simple";
+
+/** The preset's card, or "" (your own scene, or a preset without one). @param {AppState} s */
+export const lookFor = (s) => s.presets.find((p) => p.name === s.preset)?.look_for ?? "";
+
+/** @param {AppState} s @param {AppState} b */
+function renderLesson(s, b) {
+  if (s.preset !== b.preset || s.presets !== b.presets) {
+    const text = lookFor(s);
+    $("look-for").hidden = !text;
+    $("look-for-text").textContent = text;
+  }
+  // A scene opened in simple mode gets the geodesic companion (once: it can be removed again).
+  if (document.body.classList.contains("simple") && s.id && s.id !== b.id && s.phase === "live" && !hasGeodesic(s))
+    setTimeout(() => {
+      if (store.get().id === s.id && !hasGeodesic(store.get())) toggleGeodesic();
+    }, 0);
+}
+
+/** @param {boolean} on */
+function setSimple(on) {
+  document.body.classList.toggle("simple", on);
+  $("simple").setAttribute("aria-pressed", String(on));
+  $("simple").textContent = on ? "Full controls" : "Simple mode";
+  try {
+    localStorage.setItem(simpleKey, on ? "on" : "off");
+  } catch {
+    /* not kept */
+  }
+}
+
+export function setupLesson() {
+  let on = false;
+  try {
+    on = localStorage.getItem(simpleKey) === "on";
+  } catch {
+    /* off */
+  }
+  setSimple(on);
+  $("simple").onclick = () => {
+    const next = !document.body.classList.contains("simple");
+    setSimple(next);
+    const s = store.get();
+    if (next && s.id && s.phase === "live" && !hasGeodesic(s)) toggleGeodesic();
+  };
+  mount(renderLesson);
+}
