@@ -127,6 +127,9 @@ TEST(CameraFollow, AJumpIsGlidedOverToTheAimedCameraToTheBit) {
 // of the boxes and in sight as the aim does, and moves by at most the catch-up rate's step but for a
 // few cuts where every glide would lose the body.
 TEST(CameraFollow, EveryPresetsPlaybackTurnsSmoothlyAndKeepsTheMainBody) {
+#ifdef SPINFOLD_SLOW_AIMING
+  GTEST_SKIP() << "aiming runs ~200x slower in the sanitizer builds: the release build runs this";
+#endif
   const double dt = 0.04;
   double raw_most = 0.0;
   int frames = 0, lost_aimed = 0;
