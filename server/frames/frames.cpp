@@ -34,7 +34,7 @@ struct FrameJob {
   struct Replay {
     Scene scene;
     std::vector<ParameterChange> changes;
-    Trail trail;  // the spacing and cap, no points
+    Trail trail;  // the spacing and cap at t = 0, no points
   };
   std::optional<Replay> replay;
 };
@@ -49,9 +49,8 @@ FrameJob frame_job(FrameCache& cache, const std::string& id, Session& s, const F
                std::nullopt};
   if (f.at && !cache.contains(job.etag)) {
     job.view = render::view_options(view_request(f), s.run.scene.surface);
-    Trail trail = s.trail;
-    trail.points.clear();
-    trail.companions.clear();
+    Trail trail;  // sampled from t = 0 as the session's was (its spacing has doubled since, if long)
+    trail.max_points = s.trail.max_points;
     job.replay = FrameJob::Replay{s.scene, s.changes, std::move(trail)};
     return job;
   }
