@@ -188,7 +188,8 @@ TEST_F(ViewParameterTable, TheRouteAnswersTheTables) {
 // kind, nothing else), with the table's schema; the recording body has the same fields and schemas.
 TEST_F(ViewParameterTable, OpenApiQueryParametersAndRecordingBodyAreTheTable) {
   const json paths = get("/api/v1/openapi.json")["paths"];
-  const std::set<std::string> others = {"quality", "fps", "viewer", "aim"};  // not the picture's
+  // Not the picture's: the JPEG's quality, the stream's pace and name, its aim, the time (`at`).
+  const std::set<std::string> others = {"quality", "fps", "viewer", "aim", "at"};
   for (const auto& [path, method] :
        {std::pair{"/api/v1/sessions/{id}/frame.png", "get"},
         std::pair{"/api/v1/sessions/{id}/frame.jpg", "get"}, std::pair{"/api/v1/sessions/{id}/live", "get"},
