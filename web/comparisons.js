@@ -4,6 +4,7 @@
 // a newer edit's answer is there already (edits.js).
 import { $ } from "./dom.js";
 import { begin, told } from "./edits.js";
+import { roomForHud } from "./frame.js";
 import { say } from "./readout.js";
 import { applyChange } from "./session.js";
 import { mount, store, withView } from "./state.js";
@@ -19,7 +20,11 @@ export function renderComparisons(s, b) {
   $("geodesic").textContent = on ? "− Geodesic companion" : "+ Geodesic companion";
 }
 
-/** Adds or removes the geodesic companion; its legend needs the hud, which is switched on. */
+/**
+ * Adds or removes the geodesic companion; its legend needs the hud, which is switched on where the
+ * frame has room for it (on a phone the overlay would cover much of the picture: the dashed trail
+ * tells the companion apart there).
+ */
 export async function toggleGeodesic() {
   const s = store.get();
   const companions = s.current.companions ?? [];
@@ -30,7 +35,9 @@ export async function toggleGeodesic() {
   try {
     await applyChange({ companions: next.length ? next : null }, edit);
     store.update((now) =>
-      now.view.layers.includes("hud") ? {} : withView(now, { layers: [...now.view.layers, "hud"], hudChosen: true }),
+      now.view.layers.includes("hud") || !roomForHud()
+        ? {}
+        : withView(now, { layers: [...now.view.layers, "hud"], hudChosen: true }),
     );
   } catch (e) {
     if (told(edit)) say(/** @type {Error} */ (e).message);

@@ -157,6 +157,12 @@ function measureFrame() {
 // readout below the frame says the same. Off by default there, on elsewhere; once the teacher
 // ticks or unticks "hud", theirs is the choice.
 const smallFrame = { width: 520, height: 360 };
+/** Whether the frame as shown has room for the overlay's text (not a phone's). */
+export function roomForHud() {
+  const box = $("frame").getBoundingClientRect();
+  return box.width >= smallFrame.width && box.height >= smallFrame.height;
+}
+
 /** @param {number} shownWidth @param {number} shownHeight */
 function defaultHud(shownWidth, shownHeight) {
   const { view } = store.get();

@@ -851,6 +851,12 @@ await runSuite(started, async (browser) => {
         const b = await (await phone.$(`#${id}`)).boundingBox();
         assert.ok(b.height >= 44 && b.width >= 44, `${id}: ${b.width}×${b.height}`);
       }
+      // The geodesic companion (simple mode turns it on) leaves the overlay off here: it would cover
+      // much of the picture, and the dashed trail tells the companion apart.
+      await phone.click("#geodesic");
+      await phone.waitForFunction(() => document.querySelector("#geodesic").getAttribute("aria-pressed") === "true", null, { timeout: 20000 });
+      await phone.waitForTimeout(300);
+      assert.equal(await phone.$eval("#layers input[name=layer-hud]", (el) => el.checked), false);
       await phone.close();
     }
   });
