@@ -1,13 +1,15 @@
 // @ts-check
 // The keyboard and the pointer on the picture: Space play/pause, → step, R reset, F full screen,
 // G geodesic companion, arrows orbit (on the focused picture; Shift+arrows anywhere), + and − zoom,
-// V resets the view (R too), ? lists them all, dragging orbits (3-D views). Typing in a field is
+// V resets the view (R too), comma and period look back while paused, ? lists them all, dragging
+// orbits (3-D views). Typing in a field is
 // left alone; Space on another button presses it.
 import { toggleGeodesic } from "./comparisons.js";
 import { $, el } from "./dom.js";
 import { camera, is3d, orbit, resetView, zoom } from "./frame.js";
 import { toggleFullscreen } from "./presentation.js";
 import { say } from "./readout.js";
+import { nudgeScrub } from "./scrub.js";
 import { pause, play, reset, step } from "./session.js";
 import { store } from "./state.js";
 
@@ -23,6 +25,7 @@ export const shortcuts = [
   { keys: ["+", "−"], does: "Zoom in, zoom out" },
   { keys: ["Shift + arrows"], does: "Orbit the camera (3-D views; plain arrows on the focused picture)" },
   { keys: ["G"], does: "Add or remove the geodesic companion" },
+  { keys: [",", "."], does: "Look back: an earlier or a later moment of the paused run" },
   { keys: ["F"], does: "Full screen" },
   { keys: ["?"], does: "This list; Esc closes it" },
 ];
@@ -75,6 +78,7 @@ function onKey(e) {
   else if (key === "f" || key === "F") toggleFullscreen();
   else if (key === "?") showShortcuts();
   else if (key === "g" || key === "G") toggleGeodesic();
+  else if (key === "," || key === ".") handled = nudgeScrub(key === "," ? -1 : 1);
   else if (key === "+" || key === "=") zoom(1.15);
   else if (key === "-" || key === "_" || key === "−") zoom(1 / 1.15);
   else handled = false;

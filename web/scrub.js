@@ -63,14 +63,31 @@ function renderScrub(s, b) {
   }
 }
 
-export function setupScrub() {
+/** Shows the slider's position. */
+function scrubbed() {
   const slider = /** @type {HTMLInputElement} */ ($("scrub"));
-  slider.oninput = () => {
-    const now = store.get().t;
-    const at = Math.min(Number(slider.value), now);
-    $("scrub-out").textContent = scrubLabel(at, now);
-    wanted = at;
-    showWanted();
-  };
+  const now = store.get().t;
+  const at = Math.min(Number(slider.value), now);
+  $("scrub-out").textContent = scrubLabel(at, now);
+  wanted = at;
+  showWanted();
+}
+
+/**
+ * The keys' look back: the slider moved by a fiftieth of the run, back (−1) or on (+1); false when
+ * there is no slider (the run plays, or has not begun).
+ * @param {number} direction
+ */
+export function nudgeScrub(direction) {
+  if ($("scrub-box").hidden) return false;
+  const slider = /** @type {HTMLInputElement} */ ($("scrub"));
+  const now = store.get().t;
+  slider.value = String(Math.max(0, Math.min(now, Number(slider.value) + (direction * now) / 50)));
+  scrubbed();
+  return true;
+}
+
+export function setupScrub() {
+  $("scrub").oninput = scrubbed;
   mount(renderScrub);
 }

@@ -504,6 +504,12 @@ await runSuite(started, async (browser) => {
     await page.waitForFunction(() => document.querySelector("#frame").dataset.kind === "scrub", null, { timeout: 20000 });
     assert.equal(Number(await page.$eval("#frame", (el) => el.dataset.t)), t / 2);
     assert.match(await page.textContent("#scrub-out"), /^t = [0-9.]+ of [0-9.]+$/);
+    // The keys: a comma looks a fiftieth of the run further back, a period as far on.
+    await page.focus("#frame");
+    await page.keyboard.press(",");
+    await page.waitForFunction((at) => Math.abs(Number(document.querySelector("#frame").dataset.t) - at) < 1e-9, t / 2 - t / 50, { timeout: 20000 });
+    await page.keyboard.press(".");
+    await page.waitForFunction((at) => Math.abs(Number(document.querySelector("#frame").dataset.t) - at) < 1e-9, t / 2, { timeout: 20000 });
     await setTo(t);
     await page.waitForFunction(() => document.querySelector("#frame").dataset.kind !== "scrub" && document.querySelector("#frame").dataset.scrub === undefined, null, { timeout: 20000 });
     assert.equal(Number(await page.$eval("#frame", (el) => el.dataset.t)), t);
@@ -566,7 +572,7 @@ await runSuite(started, async (browser) => {
     await page.keyboard.press("?");
     await page.waitForFunction(() => document.querySelector("#shortcuts").open);
     const listed = await page.$$eval("#shortcuts kbd", (ks) => ks.map((k) => k.textContent));
-    for (const key of ["Space", "→", "R", "V", "+", "−", "G", "F", "?"]) assert.ok(listed.includes(key), `${key} in ${listed}`);
+    for (const key of ["Space", "→", "R", "V", "+", "−", "G", ",", ".", "F", "?"]) assert.ok(listed.includes(key), `${key} in ${listed}`);
     // Modal: the keys do not act behind it (G would add a companion); Esc closes it and the focus is
     // back on the picture.
     await page.keyboard.press("g");
