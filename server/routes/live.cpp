@@ -58,6 +58,8 @@ struct MadeFrame {
 // Frames in flight per stream: the next one renders while the last one is encoded and written, so
 // one viewer gets render and encode in parallel (two cores), and the queue stays this short.
 constexpr std::size_t kInFlight = 2;
+// Failed frames in a row that end a stream (render unavailable: the client reconnects).
+constexpr int kMaxFailedFrames = 3;
 
 // What a stream has asked for and sent, and what it waits for.
 struct LiveStream {
@@ -75,6 +77,7 @@ struct LiveStream {
   Clock::time_point last_change, last_ask, last_write;
   std::deque<std::future<MadeFrame>> in_flight;  // in the order asked for
   std::uint64_t seq = 0;                         // frames written
+  int failed = 0;                                // frames in a row whose render failed
   ServerContext* server = nullptr;
   ~LiveStream();
 };
@@ -158,7 +161,19 @@ bool live_step(ServerContext& server, LiveStream& live, httplib::DataSink& sink)
     auto& oldest = live.in_flight.front();
     const bool due = changed && live.in_flight.size() < kInFlight;
     if (due && oldest.wait_until(next_ask) != std::future_status::ready) return true;
-    const MadeFrame made = oldest.get();  // a failed render ends the stream (the client reconnects)
+    MadeFrame made;
+    try {
+      made = oldest.get();
+      live.failed = 0;
+    } catch (const std::exception&) {
+      // A frame that failed is dropped and asked again: one can race a change of the session's
+      // surface (its view read before, the surface at the render). Three in a row end the stream
+      // (the client reconnects).
+      live.in_flight.pop_front();
+      if (++live.failed >= kMaxFailedFrames) throw;
+      live.asked_version = ~std::uint64_t{0};  // ask again
+      return true;
+    }
     live.in_flight.pop_front();
     live.gliding = made.info.on_way;
     char camera_text[128] = "";
