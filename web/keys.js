@@ -26,6 +26,10 @@ export const shortcuts = [
   { keys: ["Shift + arrows"], does: "Orbit the camera (3-D views; plain arrows on the focused picture)" },
   { keys: ["G"], does: "Add or remove the geodesic companion" },
   { keys: [",", "."], does: "Look back: an earlier or a later moment of the paused run" },
+  {
+    keys: ["Tab", "arrows"],
+    does: "While paused: to the body's ring or its arrow's tip, then move it (Shift: finer); Enter sends at once, Esc puts it back",
+  },
   { keys: ["F"], does: "Full screen" },
   { keys: ["?"], does: "This list; Esc closes it" },
 ];

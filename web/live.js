@@ -185,14 +185,17 @@ export class LiveView {
     try {
       const bitmap = await createImageBitmap(new Blob([/** @type {BlobPart} */ (part.bytes)], { type: part.type }));
       this.stats.decoded++;
-      if (this.ready) {
-        this.ready.bitmap.close();
-        this.stats.skipped++;
-      }
       this.last = { bytes: part.bytes, type: part.type, info: part.info };
-      if (this.held)
-        bitmap.close(); // another picture is shown (the scrubber's): kept as `last` only
-      else this.ready = { bitmap, info: part.info, bytes: part.bytes, type: part.type };
+      // Another picture is shown (the scrubber's): this one is kept as `last` only, and the held
+      // picture waiting in `ready` (hold() may have come while this one decoded) is left alone.
+      if (this.held) bitmap.close();
+      else {
+        if (this.ready) {
+          this.ready.bitmap.close();
+          this.stats.skipped++;
+        }
+        this.ready = { bitmap, info: part.info, bytes: part.bytes, type: part.type };
+      }
     } finally {
       this.decoding = false;
       this.decode();

@@ -9,6 +9,7 @@ import { renderControls } from "./controls.js";
 import { $ } from "./dom.js";
 import { closeFrame, renderExports, setupFrame, viewQuery } from "./frame.js";
 import { buildGallery, renderExplanation, renderGalleryMarks, thumbnailInProgress } from "./gallery.js";
+import { setupHandles } from "./handles.js";
 import { setupKeys } from "./keys.js";
 import { setupLesson } from "./lesson.js";
 import { renderPhysical } from "./physical.js";
@@ -52,6 +53,7 @@ async function main() {
   });
   setupPlayback();
   setupScrub();
+  setupHandles();
   setupLesson();
   setupViewControls();
   setupComparisons();

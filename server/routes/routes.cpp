@@ -32,8 +32,8 @@ std::string allow_at(const std::vector<Route>& routes, const std::string& path) 
 std::vector<Route> route_table(const Limits& limits) {
   std::vector<Route> routes;
   for (auto part :
-       {catalog_routes(limits), session_routes(limits), frame_routes(limits), event_routes(limits),
-        live_routes(limits), recording_routes(limits), work_precision_routes(limits)})
+       {catalog_routes(limits), session_routes(limits), frame_routes(limits), drag_routes(limits),
+        event_routes(limits), live_routes(limits), recording_routes(limits), work_precision_routes(limits)})
     for (Route& r : part) routes.push_back(std::move(r));
   return routes;
 }

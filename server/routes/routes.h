@@ -21,7 +21,7 @@ struct ServerContext;
 std::vector<Route> route_table(const Limits& limits);
 
 // Each resource's rows (server/routes/: catalog.cpp, sessions.cpp, frames.cpp, events.cpp, live.cpp,
-// recordings.cpp, work_precision.cpp).
+// recordings.cpp, work_precision.cpp, drag.cpp).
 std::vector<Route> catalog_routes(const Limits& limits);
 std::vector<Route> session_routes(const Limits& limits);
 std::vector<Route> frame_routes(const Limits& limits);
@@ -29,6 +29,7 @@ std::vector<Route> event_routes(const Limits& limits);
 std::vector<Route> live_routes(const Limits& limits);
 std::vector<Route> recording_routes(const Limits& limits);
 std::vector<Route> work_precision_routes(const Limits& limits);
+std::vector<Route> drag_routes(const Limits& limits);
 
 // GET /api/v1/view-parameters: the view parameters (a side at most limits.max_image_side), the
 // layers and the recording formats, from their tables.

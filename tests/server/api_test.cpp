@@ -619,6 +619,80 @@ TEST_F(Api, AFrameAtAnEarlierTimeIsTheRunThenToTheByte) {
   remove(id);
 }
 
+// Direct manipulation (server/routes/drag.cpp): the handles are where the frame paints the body,
+// and a drop sent back in the PATCH starts the run where the frame of the same camera then paints
+// it (pixels of the server's own PNGs, not the pick's arithmetic).
+TEST_F(Api, ADropOnAFrameStartsTheRunWhereTheFramePaintsTheBody) {
+  const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
+  const std::string session = "/api/v1/sessions/" + id;
+  auto c = client();
+  ASSERT_EQ(c.Post(session + "/advance", R"({"until": 1})", "application/json")->status, 200);
+  const std::string view = "?width=320&height=240&yaw=0.7&pitch=0.45&distance=3.4&layers=surface,grid,body";
+  const auto orange_near = [&](double x, double y) {
+    int w = 0, h = 0;
+    const auto frame = c.Get(session + "/frame.png" + view);
+    const std::vector<std::uint8_t> rgb = png_pixels(frame->body, w, h);
+    int orange = 0;
+    for (int j = static_cast<int>(y) - 3; j <= static_cast<int>(y) + 3; ++j)
+      for (int i = static_cast<int>(x) - 3; i <= static_cast<int>(x) + 3; ++i) {
+        const std::uint8_t* p = &rgb[3 * (static_cast<std::size_t>(j) * w + i)];
+        orange += p[0] > 200 && p[1] > 100 && p[1] < 190 && p[2] < 130;
+      }
+    return orange;
+  };
+  const auto handles = c.Get(session + "/handles" + view);
+  ASSERT_EQ(handles->status, 200) << handles->body;
+  const json h = json::parse(handles->body);
+  const double bx = h["body"]["x"], by = h["body"]["y"];
+  EXPECT_GT(orange_near(bx, by), 25) << handles->body;
+  EXPECT_EQ(h["t"], 1.0);
+  EXPECT_TRUE(h["arrow"].is_object());
+  EXPECT_EQ(h["place"]["speed"], 0.5);
+
+  // The body dropped 60 px left and 40 down: sent back as the form would send it.
+  char at[64];
+  std::snprintf(at, sizeof at, "&x=%.3f&y=%.3f", bx - 60, by + 40);
+  const auto drop = c.Get(session + "/drop" + view + at);
+  ASSERT_EQ(drop->status, 200) << drop->body;
+  const json fields = json::parse(drop->body);
+  for (const char* f : {"r", "phi", "speed", "heading", "spin"})
+    EXPECT_TRUE(fields["initial"].contains(f)) << f;
+  EXPECT_NE(fields["text"].get<std::string>().find("r = "), std::string::npos);
+  const auto patched =
+      c.Patch(session, json{{"initial", fields["initial"]}}.dump(), "application/merge-patch+json");
+  ASSERT_EQ(patched->status, 200) << patched->body;
+  EXPECT_EQ(json::parse(patched->body)["change"]["kind"], "restarted");
+  EXPECT_GT(orange_near(bx - 60, by + 40), 25);
+  EXPECT_LT(orange_near(bx, by), 5);  // and no longer where it was
+
+  // The arrow: a longer one gives a larger speed, from the body's place now.
+  const json h0 = json::parse(c.Get(session + "/handles" + view)->body);
+  const double ax = h0["arrow"]["x"], ay = h0["arrow"]["y"], x0 = h0["body"]["x"], y0 = h0["body"]["y"];
+  std::snprintf(at, sizeof at, "&x=%.3f&y=%.3f&handle=arrow", x0 + 2 * (ax - x0), y0 + 2 * (ay - y0));
+  const auto arrow = c.Get(session + "/drop" + view + at);
+  ASSERT_EQ(arrow->status, 200) << arrow->body;
+  const json motion = json::parse(arrow->body)["initial"];
+  EXPECT_GT(motion["speed"].get<double>(), 1.5 * h0["place"]["speed"].get<double>());
+  EXPECT_NEAR(motion["heading"].get<double>(), h0["place"]["heading"].get<double>(), 1e-4);  // %.3f px
+  EXPECT_EQ(motion["r"], h0["place"]["r"]);
+
+  // Refusals name the field; none changes the session.
+  const std::string version_before = json::parse(c.Get(session)->body)["state"].dump();
+  for (const auto& [query, field] :
+       std::vector<std::pair<std::string, std::string>>{{"&x=2&y=2", "x"},
+                                                        {"&y=5", "x"},
+                                                        {"&x=5", "y"},
+                                                        {"&x=321&y=5", "x"},
+                                                        {"&x=5&y=-1", "y"},
+                                                        {"&x=5&y=5&handle=tip", "handle"}}) {
+    const auto refused = c.Get(session + "/drop" + view + query);
+    EXPECT_EQ(refused->status, 422) << query;
+    EXPECT_NE(refused->body.find("\"field\":\"" + field + "\""), std::string::npos) << query << refused->body;
+  }
+  EXPECT_EQ(json::parse(c.Get(session)->body)["state"].dump(), version_before);
+  remove(id);
+}
+
 TEST_F(Api, FrameWithEtagAnd304) {
   const std::string id = create(R"({"preset": "spinning_rigid_sphere"})");
   auto c = client();

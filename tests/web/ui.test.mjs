@@ -941,6 +941,80 @@ await runSuite(started, async (browser) => {
     await a.close();
   });
 
+  await test("direct manipulation: the body's ring is on the painted body; a drag starts the run where it is dropped, the arrow's keys change the velocity", async () => {
+    const d = await browser.newPage({ bypassCSP: true, viewport: { width: 1366, height: 900 } });
+    watchConsole(d, "drag page");
+    await d.goto(base);
+    await d.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+    await d.click('.preset[data-name="spinning_rigid_sphere"]');
+    await d.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "spinning_rigid_sphere");
+    await d.waitForFunction(() => document.querySelector("#frame").dataset.kind === "still", null, { timeout: 20000 });
+    await d.waitForSelector("#handle-body:not([hidden])", { timeout: 10000 });
+    for (const id of ["handle-body", "handle-arrow"]) {
+      const b = await (await d.$(`#${id}`)).boundingBox();
+      assert.ok(b.height >= 44 && b.width >= 44, `${id}: ${b.width}×${b.height} (a touch target)`);
+    }
+    // The ring's centre, in the canvas's own pixels; the picture there is the body's orange (the
+    // pixels the server painted, not the handle's own arithmetic).
+    const centre = () => d.$eval("#handle-body", (el) => { const r = el.getBoundingClientRect(); return { x: r.x + r.width / 2, y: r.y + r.height / 2 }; });
+    const orangeNear = (p) => d.evaluate(({ x, y }) => {
+      const canvas = document.querySelector("#frame");
+      const box = canvas.getBoundingClientRect();
+      const scale = Math.min(canvas.clientWidth / canvas.width, canvas.clientHeight / canvas.height);
+      const left = box.left + canvas.clientLeft + (canvas.clientWidth - canvas.width * scale) / 2;
+      const top = box.top + canvas.clientTop + (canvas.clientHeight - canvas.height * scale) / 2;
+      const fx = Math.round((x - left) / scale), fy = Math.round((y - top) / scale);
+      const data = canvas.getContext("2d").getImageData(fx - 6, fy - 6, 13, 13).data;
+      let orange = 0;
+      for (let i = 0; i < data.length; i += 4) if (data[i] > 200 && data[i + 1] > 100 && data[i + 1] < 190 && data[i + 2] < 130) orange++;
+      return orange;
+    }, p);
+    // The viewer's own camera (one orbit key): an aimed one would turn to the body's new start.
+    await d.focus("#frame");
+    await d.keyboard.press("ArrowLeft");
+    await d.waitForFunction(() => document.querySelector("#frame").dataset.kind === "still" && /yaw=/.test(document.querySelector("#export-png").search), null, { timeout: 20000 });
+    // The ring on the painted body (polled: the handles are asked again for the new camera).
+    let before = await centre();
+    for (let i = 0; i < 100 && (await orangeNear(before)) <= 40; i++) {
+      await d.waitForTimeout(100);
+      before = await centre();
+    }
+    assert.ok((await orangeNear(before)) > 40, "the ring sits on the painted body");
+    // Drag the body 60 px left and 40 down: the run restarts there, paused, and its new picture
+    // paints the body under the pointer.
+    const painted = Number(await d.$eval("#frame", (el) => el.dataset.painted));
+    const to = { x: before.x - 60, y: before.y + 40 };
+    await d.mouse.move(before.x, before.y);
+    await d.mouse.down();
+    await d.mouse.move(to.x, to.y, { steps: 6 });
+    await d.waitForFunction(() => /r = [0-9.]+, phi = /.test(document.querySelector("#handle-tip").textContent), null, { timeout: 10000 });
+    await d.mouse.up();
+    await d.waitForFunction(() => /Restarted at t = 0/.test(document.querySelector("#status").textContent), null, { timeout: 10000 });
+    await d.waitForFunction((n) => Number(document.querySelector("#frame").dataset.painted) > n && document.querySelector("#frame").dataset.kind === "still", painted, { timeout: 20000 });
+    await d.waitForFunction(({ x, y }) => {
+      const r = document.querySelector("#handle-body").getBoundingClientRect();
+      return Math.hypot(r.x + r.width / 2 - x, r.y + r.height / 2 - y) < 1.5;
+    }, to, { timeout: 10000 });
+    assert.ok((await orangeNear(to)) > 40, "the body is painted where it was dropped");
+    assert.equal(await d.$eval("body", (el) => el.dataset.playing), "false");
+    assert.equal(Number(await d.inputValue('[name="phys.spin"]')), 1, "the spin kept");
+    // Keys: Tab to the arrow's tip, three steps up; the change goes once the keys stop.
+    const speed = await d.inputValue('[name="phys.speed"]');
+    await d.focus("#handle-arrow");
+    for (let i = 0; i < 3; i++) await d.keyboard.press("ArrowUp");
+    await d.waitForFunction((v) => document.querySelector('[name="phys.speed"]').value !== v, speed, { timeout: 10000 });
+    assert.ok(Number(await d.inputValue('[name="phys.speed"]')) > 0, "a speed, from the arrow's new length");
+    assert.equal(await d.evaluate(() => document.activeElement.id), "handle-arrow", "the focus stays on the handle");
+    // Playing hides the handles; so does looking back.
+    await d.click("#play");
+    await d.waitForSelector("#handle-body[hidden]", { state: "attached", timeout: 10000 });
+    await d.click("#pause");
+    await d.waitForSelector("#handle-body:not([hidden])", { timeout: 10000 });
+    await d.$eval("#scrub", (el) => { el.value = String(Number(el.max) / 2); el.dispatchEvent(new Event("input")); });
+    await d.waitForSelector("#handle-body[hidden]", { state: "attached", timeout: 10000 });
+    await d.close();
+  });
+
   await test("keyboard only: Tab reaches the picture, the controls and the gallery; Enter opens a preset", async () => {
     const k = await browser.newPage({ bypassCSP: true, viewport: { width: 1366, height: 900 } });
     watchConsole(k, "keyboard page");

@@ -1,0 +1,347 @@
+#include "render/drag.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "engine/revolution.h"
+#include "render/view_table.h"
+#include "render/views/camera.h"
+#include "render/views/view_model.h"
+
+namespace spinfold::render {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// The chart point (q, φ) with the orthonormal frame E₁, E₂ there and ρ (= S(r), or the profile's
+// ρ(u)), for either family of surfaces.
+struct PlaceFrame {
+  Vec3 X, E1, E2;
+  double rho = 0.0;
+  double f = 1.0;     // |∂X/∂q| [length per unit q]: 1 for r, the profile's f for u
+  bool pole = false;  // S = 0 or an axis point: E₂'s rate undefined (engine/initial_rates.cpp)
+};
+
+// The chart's range of q and whether it wraps, and the length a picture of it is measured in.
+struct ChartRange {
+  double lo = 0.0, hi = 1.0;
+  bool periodic = false;
+  double length = 1.0;  // R, or the profile's smallest feature [length]
+};
+
+class Chart {
+ public:
+  explicit Chart(const Surface& surface) : surface_(surface), varies_(curvature_varies(surface.kind)) {
+    if (varies_) {
+      revolution_ = revolution_surface(surface);
+      const RevolutionEntry& e = revolution_entry(revolution_.kind);
+      const ProfileDomain d = e.domain(revolution_);
+      const ProfilePicture p = e.picture(revolution_);
+      range_ = {std::max(d.u_min, p.u_min), std::min(d.u_max, p.u_max), d.periodic, p.feature};
+      domain_ = d;
+    } else {
+      const double R = surface.radius;
+      range_ = {0.0, surface.kind == SurfaceKind::sphere ? kPi * R : 8.0 * R, false, R};
+    }
+  }
+
+  PlaceFrame at(double q, double phi) const {
+    if (varies_) {
+      const RevolutionFrame fr = revolution_frame(revolution_, q, phi);
+      const ProfilePlace p = profile_place(revolution_, q);
+      return {fr.X, fr.E1, fr.E2, p.rho, p.f, p.axis};
+    }
+    const ChartPoint c = chart_point(surface_, q, phi);
+    const bool pole = q == 0.0 || (surface_.kind == SurfaceKind::sphere && q == kPi * surface_.radius);
+    return {c.X, c.E1, c.E2, polar_S(surface_, q), 1.0, pole};
+  }
+
+  // (q, φ) as the scene gives them: q ≥ 0 on a polar chart (r < 0 is (|r|, φ + π)), u in its domain
+  // (wrapped where periodic), φ in (−π, π].
+  std::pair<double, double> canonical(double q, double phi) const {
+    if (!varies_ && q < 0.0) q = -q, phi += kPi;
+    if (varies_ && domain_.periodic) q = wrapped(q);
+    if (varies_) q = std::clamp(q, domain_.u_min, domain_.u_max);
+    return {q, wrapped(phi)};
+  }
+  // Keeps a search inside the chart: a profile's u within its domain (the polar chart is valid for
+  // any real r).
+  double inside(double q) const {
+    if (!varies_ || domain_.periodic) return q;
+    return std::clamp(q, domain_.u_min, domain_.u_max);
+  }
+
+  const ChartRange& range() const { return range_; }
+
+ private:
+  static double wrapped(double a) {
+    a = std::remainder(a, 2.0 * kPi);
+    return a <= -kPi ? a + 2.0 * kPi : a;
+  }
+
+  Surface surface_;
+  bool varies_;
+  RevolutionSurface revolution_;
+  ProfileDomain domain_;
+  ChartRange range_;
+};
+
+// A frame's projection: surface point → pixel, with the depth and whether the frame shows it.
+class Projection {
+ public:
+  Projection(const Snapshot& snapshot, const ViewOptions& view)
+      : surface_(snapshot.surface), view_(view), model_(view_model(view.kind)) {
+    scene_.view_projection = model_.camera(view);
+    matrix_ = glm::dmat4(scene_.view_projection);
+  }
+
+  struct Image {
+    glm::dvec2 pixel;
+    double depth;  // clip w: the distance along the camera's axis (1 in a 2-D view)
+  };
+  // The pixel of a surface point, or nullopt where the view does not draw it or it is behind the camera.
+  std::optional<Image> of(const Vec3& X) const {
+    if (!model_.draws(surface_, X)) return std::nullopt;
+    const glm::dvec3 w = model_.world_position(surface_, X);
+    const glm::dvec4 clip = matrix_ * glm::dvec4(w, 1.0);
+    if (!(clip.w > 0.0) || !std::isfinite(clip.x) || !std::isfinite(clip.y)) return std::nullopt;
+    const std::optional<glm::dvec2> px = pixel_position(scene_, view_, w);
+    if (!px) return std::nullopt;
+    return Image{*px, clip.w};
+  }
+  // d pixel / d s along the unit tangent vectors E₁, E₂ at X (columns) [pixels per length]: a
+  // central difference of the view's map along the ambient directions, off the surface by O(h²).
+  std::optional<glm::dmat2> jacobian(const Vec3& X, const Vec3& E1, const Vec3& E2, double length) const {
+    const double h = 1e-6 * length;
+    glm::dmat2 J(0.0);
+    const Vec3 E[2] = {E1, E2};
+    for (int c = 0; c < 2; ++c) {
+      const auto a = of(X + h * E[c]), b = of(X - h * E[c]);
+      if (!a || !b) return std::nullopt;
+      J[c] = (a->pixel - b->pixel) / (2.0 * h);
+    }
+    return J;
+  }
+
+ private:
+  Surface surface_;
+  ViewOptions view_;
+  const ViewModel& model_;
+  FrameScene scene_;
+  glm::dmat4 matrix_;
+};
+
+// Levenberg–Marquardt on the pixel's residual over (q, φ) from a seed: the place whose image is
+// nearest `target`, and that distance [pixels].
+struct Fit {
+  double q, phi, miss, depth;
+};
+std::optional<Fit> refine(const Chart& chart, const Projection& projection, glm::dvec2 target, double q,
+                          double phi) {
+  const double length = chart.range().length;
+  const auto residual = [&](double a, double b) -> std::optional<Projection::Image> {
+    return projection.of(chart.at(chart.inside(a), b).X);
+  };
+  std::optional<Projection::Image> here = residual(q, phi);
+  if (!here) return std::nullopt;
+  double miss = glm::length(here->pixel - target), damping = 1e-3;
+  for (int iteration = 0; iteration < 60 && miss > 1e-6; ++iteration) {
+    // Columns: d pixel / dq and d pixel / dφ, by central differences.
+    const double hq = 1e-7 * std::max(length, std::abs(q)), hp = 1e-7;
+    const auto qa = residual(q + hq, phi), qb = residual(q - hq, phi);
+    const auto pa = residual(q, phi + hp), pb = residual(q, phi - hp);
+    if (!qa || !qb || !pa || !pb) return std::nullopt;
+    const glm::dvec2 Jq = (qa->pixel - qb->pixel) / (2 * hq), Jp = (pa->pixel - pb->pixel) / (2 * hp);
+    const glm::dvec2 r = here->pixel - target;
+    // (JᵀJ + λ diag(JᵀJ)) δ = −Jᵀr
+    const double a = glm::dot(Jq, Jq), b = glm::dot(Jq, Jp), c = glm::dot(Jp, Jp);
+    const double gq = glm::dot(Jq, r), gp = glm::dot(Jp, r);
+    bool improved = false;
+    for (int tries = 0; tries < 12 && !improved; ++tries) {
+      const double A = a * (1 + damping) + 1e-300, C = c * (1 + damping) + 1e-300;
+      const double det = A * C - b * b;
+      if (!(std::abs(det) > 0.0)) {
+        damping *= 10;
+        continue;
+      }
+      const double dq = -(C * gq - b * gp) / det, dp = -(A * gp - b * gq) / det;
+      const auto next = residual(q + dq, phi + dp);
+      const double next_miss =
+          next ? glm::length(next->pixel - target) : std::numeric_limits<double>::infinity();
+      if (next_miss < miss) {
+        q = chart.inside(q + dq), phi += dp, here = next, miss = next_miss;
+        damping = std::max(damping / 10, 1e-9);
+        improved = true;
+      } else {
+        damping *= 10;
+      }
+    }
+    if (!improved) break;
+  }
+  return Fit{q, phi, miss, here->depth};
+}
+
+}  // namespace
+
+BodyPlace body_place(const Readout& readout) {
+  // φ is undefined at a pole (any will do there) and listed as such far out on H², where the
+  // embedding's own angle still places the body to the pixel.
+  const PaperCoordinates& c = readout.coordinates;
+  return {c.r, c.phi.value_or(std::atan2(c.X.y(), c.X.x())), readout.speed.value_or(0.0), readout.heading};
+}
+
+double arrow_pixels_per_speed(const ViewOptions& view, const Surface& surface) {
+  return 0.25 * std::min(view.width, view.height) / body_scale_length(view.kind, surface);
+}
+
+std::optional<DragHandles> drag_handles(const Snapshot& snapshot, const ViewOptions& view,
+                                        const BodyPlace& body) {
+  const Chart chart(snapshot.surface);
+  const Projection projection(snapshot, view);
+  const PlaceFrame at = chart.at(body.q, body.phi);
+  const auto image = projection.of(at.X);
+  if (!image) return std::nullopt;
+  // In 3-D, a body behind a nearer part of the surface (the sphere's far side, the torus's tube):
+  // the pixel belongs to that part.
+  if (view_info(view.kind).three_d) {
+    const auto seen = place_at_pixel(snapshot, view, image->pixel, body);
+    const double length = chart.range().length;
+    if (!seen || (chart.at(seen->first, seen->second).X - at.X).norm() > 1e-4 * std::max(length, at.X.norm()))
+      return std::nullopt;
+  }
+  DragHandles handles{image->pixel, std::nullopt};
+  if (!body.heading) return handles;
+  const auto J = projection.jacobian(at.X, at.E1, at.E2, chart.range().length);
+  if (!J) return handles;
+  const glm::dvec2 d = *J * glm::dvec2(std::cos(*body.heading), std::sin(*body.heading));
+  const double n = glm::length(d);
+  // The direction on screen; a tangent direction the view draws edge-on has none.
+  if (!(n > 1e-6 * glm::length((*J)[0]) + 1e-300)) return handles;
+  handles.arrow =
+      image->pixel + (kArrowBasePixels + arrow_pixels_per_speed(view, snapshot.surface) * body.speed) * d / n;
+  return handles;
+}
+
+std::optional<std::pair<double, double>> place_at_pixel(const Snapshot& snapshot, const ViewOptions& view,
+                                                        glm::dvec2 pixel, const BodyPlace& near) {
+  if (!(pixel.x >= 0 && pixel.y >= 0 && pixel.x <= view.width && pixel.y <= view.height)) return std::nullopt;
+  const Chart chart(snapshot.surface);
+  const Projection projection(snapshot, view);
+  const ChartRange& range = chart.range();
+
+  // Seeds: the chart's range on a grid, and grids of three sizes round the body (a drop is usually
+  // near where the drag began; a close-up shows a small piece of a large range).
+  struct Seed {
+    double q, phi, miss;
+  };
+  std::vector<Seed> seeds;
+  const auto add = [&](double q, double phi) {
+    q = chart.inside(q);
+    if (const auto image = projection.of(chart.at(q, phi).X))
+      seeds.push_back({q, phi, glm::length(image->pixel - pixel)});
+  };
+  const double hi = std::max(range.hi, near.q + 3.0 * range.length);
+  for (int i = 0; i <= 96; ++i)
+    for (int j = 0; j < 96; ++j) add(range.lo + (hi - range.lo) * i / 96.0, -kPi + 2.0 * kPi * j / 96.0);
+  const PlaceFrame body = chart.at(near.q, near.phi);
+  for (const double size : {0.03, 0.3, 1.5}) {
+    const double L = size * range.length;
+    const double dphi = std::min(kPi, L / std::max(body.rho, L));
+    for (int i = -12; i <= 12; ++i)
+      for (int j = -12; j <= 12; ++j) add(near.q + L * i / 12.0, near.phi + dphi * j / 12.0);
+  }
+  if (seeds.empty()) return std::nullopt;
+  std::sort(seeds.begin(), seeds.end(), [](const Seed& a, const Seed& b) { return a.miss < b.miss; });
+  // The 24 nearest the pixel, one per cluster (a seed within 2% of the picture's length of a kept
+  // one adds nothing): in 3-D the far side's seeds must not crowd out the near side's.
+  std::vector<std::pair<Seed, Vec3>> kept;
+  for (const Seed& seed : seeds) {
+    if (kept.size() == 24) break;
+    const Vec3 X = chart.at(seed.q, seed.phi).X;
+    if (std::ranges::none_of(kept,
+                             [&](const auto& k) { return (k.second - X).norm() < 0.02 * range.length; }))
+      kept.emplace_back(seed, X);
+  }
+
+  // The fit nearest the camera among those that land on the pixel (in a 3-D view a ray can meet the
+  // surface more than once: the nearest is the one drawn); of fits at one point (the tractricoid
+  // wraps H²'s strip round its axis), the place nearest the body.
+  constexpr double kLanded = 0.05;  // [pixels]
+  std::optional<Fit> best;
+  double best_apart = 0.0;
+  for (const auto& [seed, X] : kept) {
+    const auto fit = refine(chart, projection, pixel, seed.q, seed.phi);
+    if (!fit || fit->miss > kLanded) continue;
+    const double apart = (chart.at(fit->q, fit->phi).X - body.X).norm();
+    const double tie = 1e-6 * std::abs(fit->depth) + 1e-12;
+    if (best && (fit->depth > best->depth + tie || (fit->depth > best->depth - tie && apart >= best_apart)))
+      continue;
+    best = fit, best_apart = apart;
+  }
+  if (!best) return std::nullopt;
+  return chart.canonical(best->q, best->phi);
+}
+
+std::optional<std::pair<double, double>> velocity_at_pixel(const Snapshot& snapshot, const ViewOptions& view,
+                                                           glm::dvec2 tip, const BodyPlace& body) {
+  const Chart chart(snapshot.surface);
+  const Projection projection(snapshot, view);
+  const PlaceFrame at = chart.at(body.q, body.phi);
+  const auto image = projection.of(at.X);
+  const auto J = projection.jacobian(at.X, at.E1, at.E2, chart.range().length);
+  if (!image || !J) return std::nullopt;
+  const glm::dvec2 d = tip - image->pixel;
+  const double scale = std::max(glm::length((*J)[0]), glm::length((*J)[1]));
+  const double det = glm::determinant(*J);
+  // Edge-on (the sphere's limb): the screen does not say which way along the surface.
+  if (!(std::abs(det) > 1e-3 * scale * scale)) return std::nullopt;
+  const glm::dvec2 c = glm::inverse(*J) * d;
+  const double length = glm::length(d);
+  const double speed =
+      std::max(0.0, length - kArrowBasePixels) / arrow_pixels_per_speed(view, snapshot.surface);
+  return std::pair{speed, std::atan2(c.y, c.x)};
+}
+
+InitialFields place_fields(const Surface& surface, double q, double phi) {
+  return {{curvature_varies(surface.kind) ? "u" : "r", q}, {"phi", phi}};
+}
+
+StartMotion start_motion(const Readout& start) {
+  return {start.spin, start.heading ? start.speed : std::nullopt, start.heading};
+}
+
+InitialFields body_drop_fields(const Surface& surface, double q, double phi, const StartMotion& start) {
+  InitialFields fields = place_fields(surface, q, phi);
+  if (start.speed && start.heading) {
+    fields.emplace_back("speed", *start.speed);
+    fields.emplace_back("heading", *start.heading);
+  }
+  fields.emplace_back("spin", start.spin);
+  return fields;
+}
+
+InitialFields arrow_drop_fields(const Surface& surface, const BodyPlace& body, double speed, double heading,
+                                const StartMotion& start) {
+  const Chart chart(surface);
+  const PlaceFrame at = chart.at(body.q, body.phi);
+  double phi = body.phi;
+  if (at.pole && speed != 0.0) {
+    // E₁ at the pole points along φ: the φ whose E₁ is the velocity's direction (φ + h or φ − h,
+    // as the chart's orientation there says), with heading 0.
+    const Vec3 want = std::cos(heading) * at.E1 + std::sin(heading) * at.E2;
+    const double plus = chart.at(body.q, body.phi + heading).E1.dot(want);
+    const double minus = chart.at(body.q, body.phi - heading).E1.dot(want);
+    phi = chart.canonical(body.q, plus >= minus ? body.phi + heading : body.phi - heading).second;
+    heading = 0.0;
+  }
+  InitialFields fields = place_fields(surface, body.q, phi);
+  fields.emplace_back("speed", speed);
+  fields.emplace_back("heading", heading);
+  fields.emplace_back("spin", start.spin);
+  return fields;
+}
+
+}  // namespace spinfold::render

@@ -1,0 +1,323 @@
+#include "render/drag.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include "codec/presets.h"
+#include "codec/scene_json.h"
+#include "engine/readout.h"
+#include "engine/timeline.h"
+#include "render/scene_builder.h"
+#include "render/view_parameters.h"
+#include "render/view_table.h"
+#include "render/views/camera.h"
+#include "render/views/view_model.h"
+#include "views/view_test_support.h"
+
+namespace spinfold::render {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// A preset's run at t with its trail, as the server draws it.
+struct PresetRun {
+  Scene scene;
+  Simulation run;
+  Snapshot snapshot;
+};
+PresetRun run_to(const Scene& scene, double t) {
+  PresetRun r{scene, start_simulation(scene), {}};
+  Trail trail;
+  trail.spacing = std::max(t, 1.0) / 64;
+  advance_sampling_trail(r.run, trail, t);
+  r.snapshot = make_snapshot(r.run, trail, -1.0);
+  return r;
+}
+
+ViewOptions aimed(ViewKind kind, const Snapshot& s, int w = 795, int h = 515) {
+  ViewOptions view;
+  view.kind = kind, view.width = w, view.height = h;
+  view.scale = 0.25 * body_scale_length(kind, s.surface);
+  place_camera(view, {}, s);
+  return view;
+}
+
+Vec3 embedded(const Surface& surface, double q, double phi) {
+  return curvature_varies(surface.kind) ? revolution_frame(revolution_surface(surface), q, phi).X
+                                        : chart_point(surface, q, phi).X;
+}
+
+// The places a picture of the surface may show: q over the chart's range (out to 3R on H² and the
+// plane, every u of a closed profile, the drawn piece of an unbounded one), φ all round.
+std::pair<double, double> random_place(const Surface& surface, std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double phi = -kPi + 2 * kPi * unit(rng);
+  if (!curvature_varies(surface.kind)) {
+    const double R = surface.radius;
+    return {(surface.kind == SurfaceKind::sphere ? kPi : 3.0) * R * unit(rng), phi};
+  }
+  const RevolutionSurface rs = revolution_surface(surface);
+  const ProfilePicture p = revolution_entry(rs.kind).picture(rs);
+  return {p.u_min + (p.u_max - p.u_min) * unit(rng), phi};
+}
+
+// Every preset, in every view it offers, at its start and at t = 3: a pixel where the frame draws a
+// place gives that place back (2-D maps are one-to-one; in 3-D the place must be in sight, and the
+// nearest point on the ray is the one drawn). The image of the pick lands within 0.05 pixel.
+TEST(Drag, APixelGivesBackThePlaceDrawnThereInEveryPresetAndView) {
+#ifdef SPINFOLD_SLOW_AIMING
+  GTEST_SKIP() << "aims every preset in every view twice (4 s here; ~200x slower in the sanitizer builds)";
+#endif
+  std::mt19937 rng(34);
+  int tried = 0, landed = 0;
+  std::string failures;
+  for (const PresetSource& preset : preset_sources()) {
+    const Scene scene = *parse_scene_text(preset.json).scene;
+    for (const double t : {0.0, 3.0}) {
+      const PresetRun r = run_to(scene, t);
+      const BodyPlace near = body_place(readout(r.run));
+      for (const ViewRow& row : view_table()) {
+        if (!shows(row.info, scene.surface.kind)) continue;
+        const ViewOptions view = aimed(row.info.kind, r.snapshot);
+        const ViewModel& model = row.model();
+        const glm::dvec3 eye = eye_of(model.camera(view));
+        for (int k = 0; k < 12; ++k) {
+          const auto [q, phi] = random_place(scene.surface, rng);
+          const auto handles = drag_handles(r.snapshot, view, {q, phi, 0.0, std::nullopt});
+          const Vec3 X = embedded(scene.surface, q, phi);
+          if (!handles || handles->body.x < 1 || handles->body.y < 1 || handles->body.x > view.width - 1 ||
+              handles->body.y > view.height - 1)
+            continue;
+          if (row.info.three_d && model.hidden(scene.surface, model.world_position(scene.surface, X), eye))
+            continue;
+          ++tried;
+          const std::string where = std::string(preset.name) + " " + std::string(row.info.name) +
+                                    " t=" + std::to_string(t) + " q=" + std::to_string(q) +
+                                    " phi=" + std::to_string(phi);
+          const auto pick = place_at_pixel(r.snapshot, view, handles->body, near);
+          if (!pick) {
+            failures += where + ": no pick\n";
+            continue;
+          }
+          const auto again = drag_handles(r.snapshot, view, {pick->first, pick->second, 0.0, std::nullopt});
+          const double miss = again ? glm::length(again->body - handles->body) : 1e9;
+          // The place itself, by the embedded distance (φ is arbitrary at a pole) relative to the
+          // picture's length: a pixel of an 800-pixel frame is ~1e-3 of it.
+          const double L = curvature_varies(scene.surface.kind)
+                               ? revolution_entry(revolution_surface(scene.surface).kind)
+                                     .picture(revolution_surface(scene.surface))
+                                     .length
+                               : scene.surface.radius;
+          // The tractricoid wraps H²'s strip round its axis: there the point drawn is compared.
+          const Vec3 P = embedded(scene.surface, pick->first, pick->second);
+          const double apart =
+              row.info.kind == ViewKind::tractricoid
+                  ? glm::length(model.world_position(scene.surface, P) -
+                                model.world_position(scene.surface, X))
+                  : (P - X).norm() /
+                        std::max(L, scene.surface.kind == SurfaceKind::pseudosphere ? X.norm() : L);
+          // Another point is right only where it hides this one: nearer the camera on the pixel's ray
+          // (the tractricoid's horn and the torus's tube, whose far sides the aiming's `hidden`
+          // does not count).
+          const auto depth = [&](const Vec3& Y) {
+            return (glm::dmat4(model.camera(view)) * glm::dvec4(model.world_position(scene.surface, Y), 1.0))
+                .w;
+          };
+          const bool nearer = row.info.three_d && depth(P) < depth(X) - 1e-3 * L;
+          if (miss > 0.05 || (apart > 1e-4 && !nearer))
+            failures += where + ": lands " + std::to_string(miss) + " px off, " + std::to_string(apart) +
+                        " of the picture's length away\n";
+          else
+            ++landed;
+        }
+      }
+    }
+  }
+  EXPECT_GT(tried, 800);
+  EXPECT_EQ(failures, "");
+  std::printf("%d of %d places picked back\n", landed, tried);
+}
+
+// Independent of the search: the sphere view's pick is where the pixel's ray first meets the
+// sphere |X| = R (the inverse of its camera, a quadratic), and the Poincaré disk's is the inverse
+// of w = X/(R + X₃): r = 2R artanh|w|, φ = arg w.
+TEST(Drag, TheSphereAndThePoincareDiskPickWhereTheirClosedFormsSay) {
+  const PresetRun sphere = run_to(*parse_scene_text(find_preset("spin_vs_geodesic_sphere")->json).scene, 2.0);
+  const PresetRun disk =
+      run_to(*parse_scene_text(find_preset("spin_vs_geodesic_pseudosphere")->json).scene, 2.0);
+  const ViewOptions sv = aimed(ViewKind::sphere, sphere.snapshot), dv = aimed(ViewKind::disk, disk.snapshot);
+  const glm::dmat4 inv = glm::inverse(glm::dmat4(view_model(ViewKind::sphere).camera(sv)));
+  const glm::dmat4 dinv = glm::inverse(glm::dmat4(view_model(ViewKind::disk).camera(dv)));
+  const double R = sphere.scene.surface.radius, Rh = disk.scene.surface.radius;
+  int hits = 0, disk_hits = 0;
+  for (int i = 1; i < 24; ++i)
+    for (int j = 1; j < 16; ++j) {
+      const glm::dvec2 px(sv.width * i / 24.0, sv.height * j / 16.0);
+      const glm::dvec2 ndc(2 * px.x / sv.width - 1, 1 - 2 * px.y / sv.height);
+      const glm::dvec4 a = inv * glm::dvec4(ndc, -1, 1), b = inv * glm::dvec4(ndc, 1, 1);
+      const glm::dvec3 o = glm::dvec3(a) / a.w, d = glm::normalize(glm::dvec3(b) / b.w - o);
+      const double half_b = glm::dot(o, d), c = glm::dot(o, o) - R * R, disc = half_b * half_b - c;
+      const auto pick = place_at_pixel(sphere.snapshot, sv, px, body_place(readout(sphere.run)));
+      if (disc < 0) {  // the ray misses the sphere: so must the pick
+        EXPECT_FALSE(pick.has_value()) << px.x << "," << px.y;
+        continue;
+      }
+      const glm::dvec3 hit = o + (-half_b - std::sqrt(disc)) * d;
+      if (disc < 1e-3 * R * R) continue;  // the limb: a pixel's worth of sphere
+      ASSERT_TRUE(pick) << px.x << "," << px.y;
+      const Vec3 X = chart_point(sphere.scene.surface, pick->first, pick->second).X;
+      EXPECT_LT((X - Vec3(hit.x, hit.y, hit.z)).norm(), 1e-6 * R) << px.x << "," << px.y;
+      ++hits;
+
+      const glm::dvec2 w =
+          glm::dvec2(dinv * glm::dvec4(2 * px.x / dv.width - 1, 1 - 2 * px.y / dv.height, 0, 1));
+      const auto dpick = place_at_pixel(disk.snapshot, dv, px, body_place(readout(disk.run)));
+      if (glm::length(w) >= 0.999) {
+        if (glm::length(w) >= 1.0) {
+          EXPECT_FALSE(dpick.has_value()) << "outside the disk: " << px.x << "," << px.y;
+        }
+        continue;
+      }
+      ASSERT_TRUE(dpick) << px.x << "," << px.y;
+      EXPECT_NEAR(dpick->first, 2 * Rh * std::atanh(glm::length(w)), 1e-6 * Rh);
+      if (glm::length(w) > 1e-6) {
+        EXPECT_NEAR(std::remainder(dpick->second - std::atan2(w.y, w.x), 2 * kPi), 0.0, 1e-6);
+      }
+      ++disk_hits;
+    }
+  EXPECT_GT(hits, 60);
+  EXPECT_GT(disk_hits, 60);
+}
+
+// The arrow drawn for a velocity, dropped where it is, gives that velocity back; and, independent
+// of the picture's maths, a body started by a dropped arrow moves on the screen the arrow's way, at
+// the speed it says (the engine's own conversion of speed and heading and its first step).
+TEST(Drag, ABodyStartedByTheArrowMovesAlongItOnTheScreen) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> turn(-kPi, kPi), stretch(0.6, 2.0);
+  int checked = 0;
+  std::string failures;
+  for (const PresetSource& preset : preset_sources()) {
+    Scene scene = *parse_scene_text(preset.json).scene;
+    for (const ViewRow& row : view_table()) {
+      if (!shows(row.info, scene.surface.kind)) continue;
+      const PresetRun r = run_to(scene, 1.0);
+      const ViewOptions view = aimed(row.info.kind, r.snapshot);
+      const BodyPlace body = body_place(readout(r.run));
+      const auto handles = drag_handles(r.snapshot, view, body);
+      if (!handles || !handles->arrow) continue;
+      const std::string where = std::string(preset.name) + " " + std::string(row.info.name);
+      // The arrow as drawn gives the body's own velocity.
+      const auto same = velocity_at_pixel(r.snapshot, view, *handles->arrow, body);
+      if (!same || std::abs(same->first - body.speed) > 1e-6 * std::max(1.0, body.speed) ||
+          (body.speed > 1e-9 && std::abs(std::remainder(same->second - *body.heading, 2 * kPi)) > 1e-6)) {
+        failures += where + ": the drawn arrow reads back another velocity\n";
+        continue;
+      }
+      // A new arrow: turned and stretched on the screen.
+      const glm::dvec2 d = *handles->arrow - handles->body;
+      const double a = turn(rng), k = stretch(rng);
+      const glm::dvec2 tip = handles->body + k * glm::dvec2(std::cos(a) * d.x - std::sin(a) * d.y,
+                                                            std::sin(a) * d.x + std::cos(a) * d.y);
+      const auto velocity = velocity_at_pixel(r.snapshot, view, tip, body);
+      if (!velocity) continue;  // edge-on
+      const auto [speed, heading] = *velocity;
+      if (speed < 0.05 * scene.surface.radius) continue;
+      nlohmann::json patch = {{"initial", nlohmann::json::object()}};
+      const StartMotion start = start_motion(readout(start_simulation(scene)));
+      for (const auto& [name, value] : arrow_drop_fields(scene.surface, body, speed, heading, start))
+        patch["initial"][std::string(name)] = value;
+      nlohmann::json document = scene_to_json(scene);
+      merge_scene_patch(document, patch);
+      const SceneParse parsed = parse_scene(document);
+      if (!parsed.scene) {
+        failures += where + ": refused " + describe_errors(parsed.errors) + "\n";
+        continue;
+      }
+      Simulation moved = start_simulation(*parsed.scene);
+      EXPECT_NEAR(readout(moved).speed.value_or(-1), speed, 1e-9 * std::max(1.0, speed)) << where;
+      EXPECT_NEAR(readout(moved).spin, start.spin, 1e-9 * std::max(1.0, std::abs(start.spin))) << where;
+      const Vec3 X0 = readout(moved).coordinates.X;
+      const double eps = 1e-4 * scene.surface.radius / speed;
+      advance_to(moved, eps);
+      const Vec3 X1 = readout(moved).coordinates.X;
+      // Project both with the same camera.
+      const Snapshot& s = r.snapshot;
+      FrameScene fs;
+      fs.view_projection = row.model().camera(view);
+      const auto p0 = pixel_position(fs, view, row.model().world_position(s.surface, X0));
+      const auto p1 = pixel_position(fs, view, row.model().world_position(s.surface, X1));
+      ASSERT_TRUE(p0 && p1) << where;
+      const glm::dvec2 moved_by = *p1 - *p0, drawn = tip - *p0;
+      const double angle =
+          std::acos(std::clamp(glm::dot(glm::normalize(moved_by), glm::normalize(drawn)), -1.0, 1.0));
+      if (!(angle < 0.02)) failures += where + ": moves " + std::to_string(angle) + " rad off the arrow\n";
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 25);
+  EXPECT_EQ(failures, "");
+}
+
+// A body dropped elsewhere starts there with the start's speed, heading and spin, however the
+// scene gave them (the presets give φ̇ and α̇, which at another place would mean others).
+TEST(Drag, ADroppedBodyStartsThereWithTheStartsSpeedHeadingAndSpin) {
+  int checked = 0;
+  for (const PresetSource& preset : preset_sources()) {
+    const Scene scene = *parse_scene_text(preset.json).scene;
+    const PresetRun r = run_to(scene, 0.5);
+    const ViewOptions view = aimed(default_view(scene.surface.kind), r.snapshot);
+    const BodyPlace body = body_place(readout(r.run));
+    const auto handles = drag_handles(r.snapshot, view, body);
+    if (!handles) continue;
+    const glm::dvec2 to = handles->body + glm::dvec2(-25.0, 15.0);
+    const auto place = place_at_pixel(r.snapshot, view, to, body);
+    ASSERT_TRUE(place) << preset.name;
+    const Readout before = readout(start_simulation(scene));
+    nlohmann::json patch = {{"initial", nlohmann::json::object()}};
+    for (const auto& [name, value] :
+         body_drop_fields(scene.surface, place->first, place->second, start_motion(before)))
+      patch["initial"][std::string(name)] = value;
+    nlohmann::json document = scene_to_json(scene);
+    merge_scene_patch(document, patch);
+    const SceneParse parsed = parse_scene(document);
+    ASSERT_TRUE(parsed.scene) << preset.name << ": " << describe_errors(parsed.errors);
+    const Readout after = readout(start_simulation(*parsed.scene));
+    EXPECT_NEAR(after.coordinates.r, place->first, 1e-12 * std::max(1.0, place->first)) << preset.name;
+    EXPECT_NEAR(after.spin, before.spin, 1e-9 * std::max(1.0, std::abs(before.spin))) << preset.name;
+    if (before.heading) {
+      EXPECT_NEAR(*after.speed, *before.speed, 1e-9) << preset.name;
+      EXPECT_NEAR(*after.heading, *before.heading, 1e-9) << preset.name;
+    }
+    // And the frame of the new start draws it on the pixel it was dropped on.
+    const PresetRun moved = run_to(*parsed.scene, 0.0);
+    const auto drawn = drag_handles(moved.snapshot, view, body_place(after));
+    ASSERT_TRUE(drawn) << preset.name;
+    EXPECT_LT(glm::length(drawn->body - to), 0.05) << preset.name;
+    ++checked;
+  }
+  EXPECT_GT(checked, 18);
+}
+
+// At a pole, where the engine takes a speed only with heading 0 or π, the arrow's direction turns
+// the start's φ instead; the body still leaves the pole the arrow's way.
+TEST(Drag, AnArrowDroppedAtAPoleTurnsPhiInstead) {
+  for (const double pole : {0.0, kPi}) {
+    Scene scene = *parse_scene_text(find_preset("spinning_rigid_sphere")->json).scene;
+    scene.initial.r = pole * scene.surface.radius;
+    const BodyPlace body{scene.initial.r, 0.4, 0.5, 0.0};
+    const InitialFields f = arrow_drop_fields(scene.surface, body, 0.5, 1.0, {});
+    ASSERT_EQ(f.size(), 5u);
+    EXPECT_EQ(f[3].second, 0.0);  // heading
+    const ChartPoint at = chart_point(scene.surface, body.q, body.phi);
+    const Vec3 want = std::cos(1.0) * at.E1 + std::sin(1.0) * at.E2;
+    EXPECT_NEAR(chart_point(scene.surface, body.q, f[1].second).E1.dot(want), 1.0, 1e-12) << pole;
+  }
+}
+
+}  // namespace
+}  // namespace spinfold::render
