@@ -1068,6 +1068,21 @@ await runSuite(started, async (browser) => {
       }
       await shot.close();
     }
+    // A drag in progress: the body's ring taken 70 px left, the label saying what the drop sets.
+    for (const [name, viewport] of [["drag-1366x900", { width: 1366, height: 900 }], ["drag-390x844", { width: 390, height: 844 }]]) {
+      const g = await browser.newPage({ bypassCSP: true, viewport });
+      await g.goto(base);
+      await g.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+      await g.waitForSelector("#handle-body:not([hidden])", { timeout: 20000 });
+      const r = await (await g.$("#handle-body")).boundingBox();
+      await g.mouse.move(r.x + r.width / 2, r.y + r.height / 2);
+      await g.mouse.down();
+      await g.mouse.move(r.x + r.width / 2 - 70, r.y + r.height / 2 + 30, { steps: 6 });
+      await g.waitForFunction(() => document.querySelector("#handle-tip").textContent !== "", null, { timeout: 10000 });
+      await g.screenshot({ path: path.join(screenshots, `${name}.png`) });
+      await g.mouse.up();
+      await g.close();
+    }
     const e = await browser.newPage({ bypassCSP: true, viewport: { width: 1366, height: 900 } });
     await e.goto(base + "?embed=1");
     await e.waitForSelector("body[data-ready=true]", { timeout: 20000 });
