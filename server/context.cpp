@@ -89,7 +89,7 @@ std::string provenance(const Session& s) {
 nlohmann::ordered_json session_json(const std::string& id, const Session& s) {
   nlohmann::ordered_json j;
   j["id"] = id;
-  j["state"] = sample_to_json(s.run, s.run.state.t);
+  j["state"] = session_sample(s);
   j["scene"] = scene_to_json(s.scene);        // the parameters at t = 0
   j["timeline"] = s.timeline;                 // the changes since: [{"t", "patch"}]
   j["current"] = scene_to_json(s.run.scene);  // the parameters in force now

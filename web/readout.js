@@ -89,6 +89,11 @@ export function renderReadout(state, before) {
   const readout = clear($("readout"));
   // Each "name = value" unbroken (a narrow screen wraps between them, never inside a number); the
   // text is the same as one string's.
+  // First, and in simple mode too, what a student compares: the circle's radius measured from the
+  // path and the one the theory predicts (the server's line; none where the curvature varies).
+  const circle = $("circle-line");
+  circle.textContent = s.circle?.line ?? "";
+  circle.hidden = !circle.textContent;
   const pairs = [
     [`t = ${num(s.t)}`, `r = ${num(s.r)}`, `phi = ${num(s.phi)}`, `lambda = ${num(s.lambda)}`, `mu = ${num(s.mu)}`],
     [

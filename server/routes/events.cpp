@@ -2,10 +2,10 @@
 #include <chrono>
 #include <thread>
 
-#include "codec/sample_json.h"
 #include "server/context.h"
 #include "server/http/problem.h"
 #include "server/routes/routes.h"
+#include "server/sessions/session.h"
 
 // After Eigen: httplib.h pulls in <resolv.h>, whose `_res` macro breaks Eigen's parameter names.
 #include <httplib.h>
@@ -34,7 +34,7 @@ void get_events(ServerContext& server, const Call& call, httplib::Response& res)
         {
           const std::lock_guard lock(s->mutex);
           if (s->version != sent) {
-            event = "event: state\ndata: " + sample_to_json(s->run, s->run.state.t).dump() + "\n\n";
+            event = "event: state\ndata: " + session_sample(*s).dump() + "\n\n";
             sent = s->version;
           }
         }

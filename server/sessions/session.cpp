@@ -7,6 +7,7 @@
 #include "codec/scene_json.h"
 #include "codec/timeline_json.h"
 #include "engine/number_text.h"
+#include "engine/path_circle.h"
 #include "server/sessions/session_id.h"
 
 namespace spinfold::server {
@@ -22,6 +23,18 @@ void state_changed(Session& session) {
 }
 
 }  // namespace
+
+ordered_json session_sample(const Session& session) {
+  ordered_json sample = sample_to_json(session.run, session.run.state.t);
+  const CircleReadout circle = circle_readout(session.run, session.trail);
+  const auto number = [](const std::optional<double>& v) {
+    return v ? ordered_json(*v) : ordered_json(nullptr);
+  };
+  sample["circle"] = {{"measured", number(circle.measured)},
+                      {"predicted", number(circle.predicted.radius)},
+                      {"line", circle_line(session.run.scene, circle)}};
+  return sample;
+}
 
 std::string state_tag(const Session& session) {
   char text[96];

@@ -48,6 +48,12 @@ struct Session {
 // or while the memory is ahead of the store, this process's version and a number of this process.
 std::string state_tag(const Session& session);
 
+// The session's state as its answers and events send it: the sample (codec/sample_json.h), and
+// "circle": the circle its path is read as (engine/path_circle.h), {"measured", "predicted"}
+// [length] (null where none yet or none at all) and "line", the readout's words ("" where the
+// curvature varies). Needs the session's lock.
+nlohmann::ordered_json session_sample(const Session& session);
+
 // The operations below hold the session's lock. Each records a sample and bumps the version.
 
 // Starts the session over at t = 0 of `scene` with an empty timeline (creation, reset, restart).

@@ -11,8 +11,11 @@
 #include "engine/chart.h"
 #include "engine/invariants.h"
 #include "engine/paper_coordinates.h"
+#include "engine/path_circle.h"
 #include "engine/potentials.h"
+#include "engine/readout.h"
 #include "engine/simulation.h"
+#include "engine/trail.h"
 
 namespace spinfold {
 namespace {
@@ -394,6 +397,36 @@ TEST(Presets, OnTheCatenoidTheNeckIsAGeodesicAndTheSpinningBodyCurlsOffIt) {
   const double rho = std::hypot(p.X.x(), p.X.y()), K = -1.0 / (std::pow(rho, 4) / (c * c));  // K = −c²/ρ⁴
   EXPECT_NEAR(p.kg, K * 0.5 / (scene.body.mass * 1.0), 2e-6);
   EXPECT_LT(p.kg, 0.0);
+}
+
+// The circle a student reads off a preset (engine/path_circle.h): wherever one is predicted, the
+// path the engine integrates is on it: its radius, fitted through a lap of the trail, is the
+// predicted one (deforming and anisotropic bodies included: the orbit is M's isometry orbit,
+// physics.md §8.6). And every preset of constant curvature has one or says why not.
+TEST(Presets, WhereACircleIsPredictedThePathIsOnIt) {
+  int circles = 0;
+  for (const PresetSource& preset : preset_sources()) {
+    const Scene scene = *parse_scene_text(preset.json).scene;
+    Simulation run = start_simulation(scene);
+    const Readout start = readout(run);
+    const PredictedCircle p = predicted_circle(scene, start.spin, start.speed.value_or(0.0));
+    if (curvature_varies(scene.surface.kind)) {
+      EXPECT_EQ(circle_line(scene, {p, std::nullopt}), "") << preset.name;
+      continue;
+    }
+    if (!p.radius) {
+      EXPECT_FALSE(p.why_none.empty()) << preset.name;
+      continue;
+    }
+    Trail trail;
+    trail.spacing = p.period / 256;
+    ASSERT_TRUE(advance_sampling_trail(run, trail, 1.25 * p.period)) << preset.name;
+    const CircleReadout c = circle_readout(run, trail);
+    ASSERT_TRUE(c.measured) << preset.name;
+    EXPECT_NEAR(*c.measured, *p.radius, 1e-6 * scene.surface.radius) << preset.name;
+    ++circles;
+  }
+  EXPECT_GE(circles, 5);
 }
 
 }  // namespace
