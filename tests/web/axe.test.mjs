@@ -36,7 +36,7 @@ async function opened(browser, width, height, colorScheme = "light") {
 
 await runSuite(started, async (browser) => {
   for (const [width, height, scheme] of [[1366, 900, "light"], [390, 844, "light"], [1366, 900, "dark"]]) {
-    await test(`axe-core: no violations at ${width}×${height} (${scheme}), a preset selected, then modified, then stepped (the scrubber), then in simple mode`, async () => {
+    await test(`axe-core: no violations at ${width}×${height} (${scheme}), a preset selected, then modified, then stepped (the scrubber, the drag rings, the circle's line), then in simple mode`, async () => {
       const page = await opened(browser, width, height, scheme);
       assert.equal(await page.textContent(".preset.active .mark"), "selected");
       const first = await new AxeBuilder({ page }).analyze();
@@ -50,6 +50,9 @@ await runSuite(started, async (browser) => {
       // Stepped and paused: the scrubber over the picture (its contrast and its label).
       await page.click("#step");
       await page.waitForSelector("#scrub-box:not([hidden])");
+      // And the drag rings on the body and its arrow, and the circle's line under the card.
+      await page.waitForSelector("#handle-body:not([hidden])", { timeout: 20000 });
+      await page.waitForSelector("#circle-line:not([hidden])", { timeout: 20000 });
       const third = await new AxeBuilder({ page }).analyze();
       assert.equal(third.violations.length, 0, describe(third.violations));
       // Simple mode: the header's pressed button, the card.
