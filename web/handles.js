@@ -220,6 +220,12 @@ function setupHandle(handle) {
     preview();
     draw();
   });
+  // The browser took the pointer (a scroll, another touch): the handle goes back, nothing is sent.
+  button.addEventListener("pointercancel", () => {
+    if (which !== handle) return;
+    moving = null;
+    draw();
+  });
   button.addEventListener("pointerup", (/** @type {PointerEvent} */ e) => {
     if (!moving || which !== handle) return;
     button.releasePointerCapture(e.pointerId);

@@ -74,12 +74,19 @@ void get_handles(ServerContext& server, const Call& call, httplib::Response& res
   send_json(res, out);
 }
 
-// "r = 1.234, phi = 0.5" (4 significant digits): what the page shows beside the pointer.
-std::string fields_text(const render::InitialFields& fields) {
+// What a drop changes, for the label beside the pointer (4 significant digits): the place for a
+// body ("r = 1.234, phi = 0.5"), the velocity for an arrow ("speed = 0.75, heading = 90°"; the
+// panel's heading is in degrees too).
+std::string fields_text(const render::InitialFields& fields, bool arrow) {
   std::string text;
   for (const auto& [name, value] : fields) {
-    char v[32];
-    std::snprintf(v, sizeof v, "%.4g", value);
+    const bool velocity = name == "speed" || name == "heading";
+    if (name == "spin" || velocity != arrow) continue;
+    char v[48];
+    if (name == "heading")
+      std::snprintf(v, sizeof v, "%.4g°", value * 180.0 / 3.141592653589793);
+    else
+      std::snprintf(v, sizeof v, "%.4g", value);
     if (!text.empty()) text += ", ";
     text.append(name).append(" = ").append(v);
   }
@@ -102,7 +109,8 @@ void get_drop(ServerContext& server, const Call& call, httplib::Response& res) {
               "must be <= height = " + std::to_string(d.view.height));
   const glm::dvec2 pixel(*x, *y);
   render::InitialFields fields;
-  if (*call.query.text("handle") == "body") {
+  const bool arrow = *call.query.text("handle") == "arrow";
+  if (!arrow) {
     const auto place = render::place_at_pixel(d.snapshot, d.view, pixel, d.body);
     if (!place)
       throw bad(422, "Invalid value", "x", shortest(*x),
@@ -120,7 +128,7 @@ void get_drop(ServerContext& server, const Call& call, httplib::Response& res) {
   nlohmann::ordered_json initial = nlohmann::ordered_json::object();
   for (const auto& [name, value] : fields) initial[std::string(name)] = value;
   res.set_header("Cache-Control", "no-store");
-  send_json(res, {{"initial", initial}, {"text", fields_text(fields)}});
+  send_json(res, {{"initial", initial}, {"text", fields_text(fields, arrow)}});
 }
 
 }  // namespace
@@ -160,7 +168,9 @@ std::vector<Route> drag_routes(const Limits& limits) {
                         .values = {"body", "arrow"},
                         .default_value = std::string("body"),
                         .description = "what was dragged: the body (its start) or its velocity arrow"});
-  drop.responses = {{200, "{\"initial\": {the fields a drop sets}, \"text\": \"r = 1.2, phi = 0.5\"}"},
+  drop.responses = {{200,
+                     "{\"initial\": {the fields a drop sets}, \"text\": what it changes (\"r = 1.2, phi = "
+                     "0.5\", \"speed = 0.75, heading = 90°\")}"},
                     {422, "an invalid parameter, a pixel off the surface, or a body seen edge-on"}};
   return {handles, drop};
 }

@@ -657,7 +657,8 @@ TEST_F(Api, ADropOnAFrameStartsTheRunWhereTheFramePaintsTheBody) {
   const json fields = json::parse(drop->body);
   for (const char* f : {"r", "phi", "speed", "heading", "spin"})
     EXPECT_TRUE(fields["initial"].contains(f)) << f;
-  EXPECT_NE(fields["text"].get<std::string>().find("r = "), std::string::npos);
+  EXPECT_EQ(fields["text"].get<std::string>().rfind("r = ", 0), 0u) << fields["text"];
+  EXPECT_EQ(fields["text"].get<std::string>().find("speed"), std::string::npos) << fields["text"];
   const auto patched =
       c.Patch(session, json{{"initial", fields["initial"]}}.dump(), "application/merge-patch+json");
   ASSERT_EQ(patched->status, 200) << patched->body;
@@ -672,6 +673,7 @@ TEST_F(Api, ADropOnAFrameStartsTheRunWhereTheFramePaintsTheBody) {
   const auto arrow = c.Get(session + "/drop" + view + at);
   ASSERT_EQ(arrow->status, 200) << arrow->body;
   const json motion = json::parse(arrow->body)["initial"];
+  EXPECT_EQ(json::parse(arrow->body)["text"].get<std::string>().rfind("speed = ", 0), 0u) << arrow->body;
   EXPECT_GT(motion["speed"].get<double>(), 1.5 * h0["place"]["speed"].get<double>());
   EXPECT_NEAR(motion["heading"].get<double>(), h0["place"]["heading"].get<double>(), 1e-4);  // %.3f px
   EXPECT_EQ(motion["r"], h0["place"]["r"]);
