@@ -302,7 +302,10 @@ std::optional<std::pair<double, double>> velocity_at_pixel(const Snapshot& snaps
   const double length = glm::length(d);
   const double speed =
       std::max(0.0, length - kArrowBasePixels) / arrow_pixels_per_speed(view, snapshot.surface);
-  return std::pair{speed, std::atan2(c.y, c.x)};
+  // An arrow drawn along E₁ reads back a heading of a few ulps (5.6e-17): 0, as the panel shows it.
+  double heading = std::atan2(c.y, c.x);
+  if (std::abs(heading) < 1e-12) heading = 0.0;
+  return std::pair{speed, heading};
 }
 
 InitialFields place_fields(const Surface& surface, double q, double phi) {

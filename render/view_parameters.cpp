@@ -9,6 +9,9 @@
 #include "engine/number_rule.h"
 #include "engine/overloaded.h"
 #include "render/scene_builder.h"
+#include "render/view_table.h"
+#include "render/views/camera.h"
+#include "render/views/view_model.h"
 
 namespace spinfold::render {
 
@@ -228,9 +231,18 @@ void place_camera(ViewOptions& view, const ViewRequest& request, const Snapshot&
   if (picture == Picture::figure) view.layers &= ~static_cast<unsigned>(kHud);
   aim_camera_at_body(view, snapshot);
   view.layers = layers;
+  if (!request.yaw && !request.pitch && !request.distance) return;
+  const ViewOptions aimed = view;
   if (request.yaw) view.yaw = *request.yaw;
   if (request.pitch) view.pitch = *request.pitch;
   if (request.distance) view.distance = *request.distance;
+  // The viewer's own angles about the aimed target, which follows the bodies, can land on the
+  // surface's dark side (the hyperboloid from under its sheet once a body moved across the bowl):
+  // tilted up as little as brings it to the lit side, else the aimed camera.
+  const ViewModel& model = view_model(view.kind);
+  const auto lit = [&] { return model.on_lit_side(eye_of(model.camera(view))); };
+  while (!lit() && view.pitch < 1.3) view.pitch = std::min(1.3, view.pitch + 0.05);
+  if (!lit()) view = aimed;
 }
 
 ViewOptions resolve_view(const ViewRequest& request, const Snapshot& snapshot, Picture picture) {

@@ -201,7 +201,9 @@ ViewOptions view_options(const ViewRequest& request, const Surface& surface);
 // figure (its caption is below the picture: no HUD box to keep clear of).
 enum class Picture { frame, figure };
 
-// The camera: aimed at the snapshot's bodies, then the parts the request gives replace the aimed ones.
+// The camera: aimed at the snapshot's bodies, then the parts the request gives replace the aimed ones;
+// a camera they put on the surface's dark side (ViewModel::on_lit_side) is tilted up until it is not,
+// or, where no tilt does it, is the aimed one.
 void place_camera(ViewOptions& view, const ViewRequest& request, const Snapshot& snapshot,
                   Picture picture = Picture::frame);
 

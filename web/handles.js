@@ -170,8 +170,8 @@ async function preview() {
     q.set("handle", which);
     const answer = await request("GET", `/sessions/${s.id}/drop?${q}`);
     $("handle-tip").textContent = answer.text;
-  } catch (e) {
-    $("handle-tip").textContent = which === "body" ? "not on the surface" : /** @type {Error} */ (e).message;
+  } catch {
+    $("handle-tip").textContent = which === "body" ? "off the surface" : "turn the view first";
   } finally {
     previewing = false;
     if (moving) draw();
@@ -191,7 +191,10 @@ async function drop(p) {
     if (store.get().id !== s.id || store.get().playing) return;
     await applyChange({ initial: answer.initial });
   } catch (e) {
-    say(`Not moved: ${/** @type {Error} */ (e).message}`);
+    // The server's reason alone ("shows no part of the surface …"), without the problem's field
+    // and value, which name the frame's pixel.
+    const reason = /** @type {any} */ (e).problem?.errors?.[0]?.reason ?? /** @type {Error} */ (e).message;
+    say(`Not moved: the drop ${reason}.`);
   } finally {
     moving = null;
     $("handle-tip").textContent = "";

@@ -84,7 +84,7 @@ std::string fields_text(const render::InitialFields& fields, bool arrow) {
     if (name == "spin" || velocity != arrow) continue;
     char v[48];
     if (name == "heading")
-      std::snprintf(v, sizeof v, "%.4g°", value * 180.0 / 3.141592653589793);
+      std::snprintf(v, sizeof v, "%.1f°", value * 180.0 / 3.141592653589793);
     else
       std::snprintf(v, sizeof v, "%.4g", value);
     if (!text.empty()) text += ", ";
@@ -114,14 +114,15 @@ void get_drop(ServerContext& server, const Call& call, httplib::Response& res) {
     const auto place = render::place_at_pixel(d.snapshot, d.view, pixel, d.body);
     if (!place)
       throw bad(422, "Invalid value", "x", shortest(*x),
-                "the pixel (" + shortest(*x) + ", " + shortest(*y) + ") is not on the surface in this view");
+                "shows no part of the surface (the pixel (" + shortest(*x) + ", " + shortest(*y) +
+                    ") of this frame): drop the body on the surface");
     fields = render::body_drop_fields(d.snapshot.surface, place->first, place->second, d.start);
   } else {
     const auto velocity = render::velocity_at_pixel(d.snapshot, d.view, pixel, d.body);
     if (!velocity)
       throw bad(422, "Invalid value", "x", shortest(*x),
-                "the body is seen edge-on here (its tangent plane is drawn as a line): turn the view to "
-                "set its velocity");
+                "cannot set a velocity here: the body is seen edge-on (its tangent plane is drawn as a "
+                "line); turn the view first");
     fields =
         render::arrow_drop_fields(d.snapshot.surface, d.body, velocity->first, velocity->second, d.start);
   }

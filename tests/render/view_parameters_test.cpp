@@ -10,6 +10,10 @@
 #include "engine/simulation.h"
 #include "render/scene_builder.h"
 #include "render/snapshot.h"
+#include "render/view_table.h"
+#include "render/views/camera.h"
+#include "render/views/view_model.h"
+#include "views/view_test_support.h"
 
 namespace spinfold::render {
 namespace {
@@ -178,6 +182,32 @@ TEST(ResolveView, AViewThatCannotShowTheSurfaceIsRefusedNamingTheView) {
 }
 
 // The one reader of numbers as text and the one writer of what a number must be (number_rule.h).
+// The viewer's own angles about a target that follows the body (the hyperboloid's) are never a
+// view from under the sheet: such a camera is tilted up (a drop of the body across the bowl left
+// the page's camera looking at the dark underside). A lit one is left as asked.
+TEST(PlaceCamera, TheViewersOwnAnglesNeverLookFromUnderTheHyperboloidsSheet) {
+  const ViewModel& model = view_model(ViewKind::hyperboloid);
+  int tilted = 0, kept = 0;
+  for (const double r : {0.4, 1.5, 3.0})
+    for (int k = 0; k < 21; ++k)
+      for (const double pitch : {0.05, 0.3, 0.6})
+        for (const double distance : {1.5, 3.4, 6.0}) {
+          const Snapshot s = testing::body_at(SurfaceKind::pseudosphere, 1.0, r, 0.3);
+          ViewOptions view;
+          view.kind = ViewKind::hyperboloid, view.width = 640, view.height = 480;
+          const ViewRequest request{
+              .view = ViewKind::hyperboloid, .yaw = 0.3 * k, .pitch = pitch, .distance = distance};
+          place_camera(view, request, s);
+          EXPECT_TRUE(model.on_lit_side(eye_of(model.camera(view)))) << r << " " << k << " " << pitch;
+          if (view.pitch == pitch && view.yaw == 0.3 * k)
+            ++kept;
+          else
+            ++tilted;
+        }
+  EXPECT_GT(tilted, 10);  // the rule is needed
+  EXPECT_GT(kept, 100);   // and a lit camera stays the viewer's
+}
+
 TEST(NumberRule, OneReaderAndOneWriter) {
   EXPECT_EQ(number_from_text("2.5"), 2.5);
   EXPECT_EQ(number_from_text("1e3"), 1000.0);
