@@ -262,9 +262,9 @@ class ConformalView final : public ViewModel {
   void add_bodies(FrameScene& scene, const Snapshot& snapshot, const ViewOptions& view) const override {
     const Window2d window = conformal_window(view);
     std::vector<std::pair<ConformalFrame, const BodySnapshot*>> frames;
-    for (const BodySnapshot& body : snapshot.bodies) {
-      const ConformalFrame f = conformal_frame(snapshot.surface, body);
-      if (window.near(f.w)) frames.emplace_back(f, &body);
+    for (auto body = snapshot.bodies.rbegin(); body != snapshot.bodies.rend(); ++body) {  // main body last
+      const ConformalFrame f = conformal_frame(snapshot.surface, *body);
+      if (window.near(f.w)) frames.emplace_back(f, &*body);
     }
     if (view.layers & kBody)
       for (const auto& [f, body] : frames) add_conformal_body(scene, f, view.scale, *body);

@@ -148,14 +148,16 @@ void add_geodesic_polar_grid(std::vector<Vertex>& grid, const Surface& unit, con
 // The default bodies: every body the view draws, ellipses first, then arrows.
 void ViewModel::add_bodies(FrameScene& scene, const Snapshot& snapshot, const ViewOptions& view) const {
   const Surface& surface = snapshot.surface;
+  // The companions first, the main body last: where they overlap (a geodesic companion at the
+  // same start) the main body is on top, under the page's drag ring.
   if (view.layers & kBody)
-    for (const BodySnapshot& body : snapshot.bodies)
-      if (draws(surface, body.X))
-        add_body(scene, surface, *this, body_drawing_scale(surface, body, view.scale), body);
+    for (auto body = snapshot.bodies.rbegin(); body != snapshot.bodies.rend(); ++body)
+      if (draws(surface, body->X))
+        add_body(scene, surface, *this, body_drawing_scale(surface, *body, view.scale), *body);
   if (view.layers & kFrame)
-    for (const BodySnapshot& body : snapshot.bodies)
-      if (draws(surface, body.X))
-        add_frame_arrows(scene, surface, *this, body_drawing_scale(surface, body, view.scale), body);
+    for (auto body = snapshot.bodies.rbegin(); body != snapshot.bodies.rend(); ++body)
+      if (draws(surface, body->X))
+        add_frame_arrows(scene, surface, *this, body_drawing_scale(surface, *body, view.scale), *body);
 }
 
 double ViewModel::body_drawing_scale(const Surface& surface, const BodySnapshot& body, double scale) const {

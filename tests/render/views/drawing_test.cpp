@@ -96,3 +96,30 @@ TEST(Drawing, ABodyIsAFilledEllipseWithItsOutlineAndTwoArrowsWithBarbs) {
 
 }  // namespace
 }  // namespace spinfold::render
+
+namespace spinfold::render {
+namespace {
+
+// Where a companion starts on the main body (a geodesic companion, simple mode's), the main body is
+// drawn last, over it, in every view: its fill is the frame's last, in its own colour.
+TEST(Drawing, TheMainBodyIsDrawnOverACompanionAtItsPlace) {
+  for (const ViewRow& row : view_table()) {
+    for (const SurfaceKind kind : {SurfaceKind::sphere, SurfaceKind::pseudosphere, SurfaceKind::plane}) {
+      if (!shows(row.info, kind)) continue;
+      Snapshot s = testing::body_at(kind, 1.0, 0.5, 0.3);
+      s.bodies.push_back(s.bodies.front());
+      s.bodies.back().color = {0.0f, 0.42f, 0.75f};
+      ViewOptions view;
+      view.kind = row.info.kind;
+      view.layers = kSurface | kBody;
+      FrameScene scene;
+      row.model().add_bodies(scene, s, view);
+      ASSERT_FALSE(scene.fills.empty()) << row.info.name;
+      EXPECT_FLOAT_EQ(scene.fills.back().color.r, kMainBodyColor[0]) << row.info.name;
+      EXPECT_FLOAT_EQ(scene.fills.front().color.r, 0.0f) << row.info.name;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace spinfold::render
