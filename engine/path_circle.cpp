@@ -38,6 +38,10 @@ PredictedCircle predicted_circle(const Scene& scene, double spin, double speed) 
     rho = R * std::atan2(p, s);  // cos(ρ/R) = s/|M|, |M| = √(s² + m²v²R²)
     circumference = 2.0 * std::numbers::pi * R * std::sin(rho / R);
   } else {
+    if (s <= 1e-12 * p) {  // a hypercycle at distance 0 from its axis
+      out.why_none = "a geodesic: no spin (s = 0)";
+      return out;
+    }
     if (s < p) {
       out.why_none = "a hypercycle: |s| < m v R";
       return out;

@@ -15,7 +15,8 @@ namespace spinfold {
 // The geodesic radius [length] the theory predicts for the run's state (physics.md §8.5: constant
 // curvature, no radial potential, no friction): on S², R·atan2(m v R, |s|), the smaller of the
 // circle's two radii (a great circle, πR/2, at s = 0); on H² with |s| > m v R, R·artanh(m v R/|s|).
-// None elsewhere, with the reason in `why_none` ("a straight line: no curvature (K = 0)", …).
+// None elsewhere, with the reason in `why_none` ("a straight line: no curvature (K = 0)", "a
+// geodesic: no spin (s = 0)" on H², "a hypercycle: |s| < m v R", …).
 struct PredictedCircle {
   std::optional<double> radius;
   double period = 0.0;  // [time] of one lap: its circumference 2πS(ρ) over v

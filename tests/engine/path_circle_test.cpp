@@ -54,6 +54,8 @@ TEST(PathCircle, TheWorkedExamplesCirclesArePredictedAndMeasured) {
   const CircleReadout hyper = after_laps(w4, 1.0);
   EXPECT_FALSE(hyper.predicted.radius || hyper.measured);
   EXPECT_EQ(circle_line(w4, hyper), "no circle: a hypercycle: |s| < m v R");
+  set_rigid_motion(w4, 0.5, kPi / 2, 0.0);
+  EXPECT_EQ(circle_line(w4, after_laps(w4, 1.0)), "no circle: a geodesic: no spin (s = 0)");
   Scene flat = rigid_scene(SurfaceKind::plane, 1.0, 1.0, 0.5, 1.0);
   set_rigid_motion(flat, 0.5, kPi / 2, 1.0);
   EXPECT_EQ(circle_line(flat, after_laps(flat, 1.0)), "no circle: a straight line: no curvature (K = 0)");
