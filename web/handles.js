@@ -28,6 +28,7 @@ let which = "body";
 /** @type {number | undefined} */
 let keyTimer;
 let previewing = false;
+let dragged = false; // the pointer moved since it took hold of a ring
 /** @type {Point | null} */
 let previewWanted = null;
 
@@ -78,6 +79,32 @@ function toFrame(x, y) {
   };
 }
 
+/**
+ * The arrow's tip on the page, drawn back along the arrow to within the picture (18 px in) when a
+ * long arrow ends outside it: its ring stays on the picture to take hold of.
+ * @param {Point} from @param {Point} to CSS pixels in #frame-box
+ */
+function withinPicture(from, to) {
+  const box = pictureBox();
+  const lo = { x: box.left + 18, y: box.top + 18 },
+    hi = { x: box.left + box.width * box.scale - 18, y: box.top + box.height * box.scale - 18 };
+  let f = 1;
+  for (const k of /** @type {("x" | "y")[]} */ (["x", "y"])) {
+    const d = to[k] - from[k];
+    if (to[k] > hi[k] && d > 0) f = Math.min(f, (hi[k] - from[k]) / d);
+    if (to[k] < lo[k] && d < 0) f = Math.min(f, (lo[k] - from[k]) / d);
+  }
+  f = Math.max(0, f);
+  return { x: from.x + f * (to.x - from.x), y: from.y + f * (to.y - from.y) };
+}
+
+/** The arrow's tip as drawn (withinPicture), in frame pixels; null without an arrow. */
+function shownArrow() {
+  if (!placed?.body || !placed.arrow) return null;
+  const at = withinPicture(toPage(placed.body), toPage(placed.arrow));
+  return toFrame(at.x, at.y);
+}
+
 /** Draws the handles and the arrow where they are (or hides them). */
 function draw() {
   const bodyButton = $("handle-body"),
@@ -99,7 +126,7 @@ function draw() {
   Object.assign(bodyButton.style, { left: `${b.x}px`, top: `${b.y}px` });
   bodyButton.hidden = false;
   if (arrow) {
-    const a = toPage(arrow);
+    const a = withinPicture(b, toPage(arrow));
     Object.assign(arrowButton.style, { left: `${a.x}px`, top: `${a.y}px` });
     arrowButton.hidden = false;
     const line = $("arrow-line");
@@ -214,11 +241,13 @@ function setupHandle(handle) {
     button.focus();
     button.setPointerCapture(e.pointerId);
     moving = handle === "body" ? placed.body : placed.arrow;
+    dragged = false;
   });
   button.addEventListener("pointermove", (/** @type {PointerEvent} */ e) => {
     if (!moving || which !== handle || !button.hasPointerCapture(e.pointerId)) return;
     const box = $("frame-box").getBoundingClientRect();
     moving = toFrame(e.clientX - box.left, e.clientY - box.top);
+    dragged = true;
     previewWanted = moving;
     preview();
     draw();
@@ -232,7 +261,11 @@ function setupHandle(handle) {
   button.addEventListener("pointerup", (/** @type {PointerEvent} */ e) => {
     if (!moving || which !== handle) return;
     button.releasePointerCapture(e.pointerId);
-    drop(moving);
+    if (dragged) drop(moving);
+    else {
+      moving = null; // a click (or a tap that focuses the ring) sends nothing
+      draw();
+    }
   });
   button.addEventListener("keydown", (/** @type {KeyboardEvent} */ e) => {
     const d = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, -1], ArrowDown: [0, 1] }[e.key];
@@ -248,7 +281,7 @@ function setupHandle(handle) {
     if (!placed) return;
     if (which !== handle) moving = null;
     which = handle;
-    const from = moving ?? (handle === "body" ? placed.body : placed.arrow);
+    const from = moving ?? (handle === "body" ? placed.body : shownArrow());
     if (!from) return;
     if (!d) {
       if (moving) drop(moving); // Enter

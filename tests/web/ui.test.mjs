@@ -1023,6 +1023,12 @@ await runSuite(started, async (browser) => {
     await d.waitForFunction((v) => document.querySelector('[name="phys.speed"]').value !== v, speed, { timeout: 10000 });
     assert.ok(Number(await d.inputValue('[name="phys.speed"]')) > 0, "a speed, from the arrow's new length");
     assert.equal(await d.evaluate(() => document.activeElement.id), "handle-arrow", "the focus stays on the handle");
+    // A click on a ring, without a drag, sends nothing (a second later the speed is as it was).
+    const speedNow = await d.inputValue('[name="phys.speed"]');
+    const ring = await (await d.$("#handle-arrow")).boundingBox();
+    await d.mouse.click(ring.x + ring.width / 2, ring.y + ring.height / 2);
+    await d.waitForTimeout(1000);
+    assert.equal(await d.inputValue('[name="phys.speed"]'), speedNow);
     // Playing hides the handles; so does looking back.
     await d.click("#play");
     await d.waitForSelector("#handle-body[hidden]", { state: "attached", timeout: 10000 });
