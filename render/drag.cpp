@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
@@ -345,6 +346,22 @@ InitialFields arrow_drop_fields(const Surface& surface, const BodyPlace& body, d
   fields.emplace_back("heading", heading);
   fields.emplace_back("spin", start.spin);
   return fields;
+}
+
+std::string drop_text(const InitialFields& fields, bool arrow) {
+  std::string text;
+  for (const auto& [name, value] : fields) {
+    const bool velocity = name == "speed" || name == "heading";
+    if (name == "spin" || velocity != arrow) continue;
+    char v[48];
+    if (name == "heading")
+      std::snprintf(v, sizeof v, "%.1f°", value * 180.0 / kPi);
+    else
+      std::snprintf(v, sizeof v, "%.4g", value);
+    if (!text.empty()) text += ", ";
+    text.append(name).append(" = ").append(v);
+  }
+  return text;
 }
 
 }  // namespace spinfold::render

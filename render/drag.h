@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -78,5 +79,10 @@ InitialFields body_drop_fields(const Surface& surface, double q, double phi, con
 // speed (E₂ is undefined there), the heading is turned into φ, whose E₁ then points the velocity's way.
 InitialFields arrow_drop_fields(const Surface& surface, const BodyPlace& body, double speed, double heading,
                                 const StartMotion& start);
+
+// What a drop changes, in the words of the label beside the pointer (4 significant digits): the
+// place for a body ("r = 1.234, phi = 0.5"), the velocity for an arrow ("speed = 0.75, heading =
+// 90.0°": degrees, as the physics panel shows the heading).
+std::string drop_text(const InitialFields& fields, bool arrow);
 
 }  // namespace spinfold::render

@@ -183,6 +183,15 @@ function describe(place, handle) {
     : `Drag the tip to change the velocity it starts with (now speed = ${n(place.speed)})`;
 }
 
+/** The drop route's address for a drop of the handle taken at `p`. @param {AppState} s @param {Point} p */
+function dropPath(s, p) {
+  const q = pictureQuery(s);
+  q.set("x", p.x.toFixed(2));
+  q.set("y", p.y.toFixed(2));
+  q.set("handle", which);
+  return `/sessions/${s.id}/drop?${q}`;
+}
+
 /** What a drop at `p` would set, shown beside the pointer while dragging (one question at a time). */
 async function preview() {
   if (previewing || !previewWanted) return;
@@ -190,12 +199,7 @@ async function preview() {
   previewWanted = null;
   previewing = true;
   try {
-    const s = store.get();
-    const q = pictureQuery(s);
-    q.set("x", p.x.toFixed(2));
-    q.set("y", p.y.toFixed(2));
-    q.set("handle", which);
-    const answer = await request("GET", `/sessions/${s.id}/drop?${q}`);
+    const answer = await request("GET", dropPath(store.get(), p));
     $("handle-tip").textContent = answer.text;
   } catch {
     $("handle-tip").textContent = which === "body" ? "off the surface" : "turn the view first";
@@ -210,11 +214,7 @@ async function preview() {
 async function drop(p) {
   const s = store.get();
   try {
-    const q = pictureQuery(s);
-    q.set("x", p.x.toFixed(2));
-    q.set("y", p.y.toFixed(2));
-    q.set("handle", which);
-    const answer = await request("GET", `/sessions/${s.id}/drop?${q}`);
+    const answer = await request("GET", dropPath(s, p));
     if (store.get().id !== s.id || store.get().playing) return;
     await applyChange({ initial: answer.initial });
   } catch (e) {

@@ -56,9 +56,7 @@ FrameJob frame_job(FrameCache& cache, const std::string& id, Session& s, const F
   }
   if (f.follow || !cache.contains(job.etag)) {  // a followed camera is placed from the snapshot
     job.view = render::view_options(view_request(f), s.run.scene.surface);
-    static const Trail kNoTrail;  // trails are copied only when drawn
-    job.snapshot = render::make_snapshot(s.run, f.view.layers & render::kTrail ? s.trail : kNoTrail,
-                                         f.trail.value_or(-1.0));
+    job.snapshot = frame_snapshot(s.run, s.trail, f);
     if (!f.jpeg_quality)
       job.texts = picture_texts(s.run.scene, "", s.run.state.t, render::view_name(f.view.kind));
   }
@@ -129,6 +127,12 @@ void apply_at(const Query& q, FrameRequest& f, double t, long max_steps) {
   if (f.at && *f.at > t)
     throw bad(422, "Invalid value", "at", shortest(*f.at),
               "must be <= the session's time t = " + shortest(t) + " (a picture of the run so far)");
+}
+
+render::Snapshot frame_snapshot(const Simulation& run, const Trail& trail, const FrameRequest& f) {
+  static const Trail kNoTrail;
+  return render::make_snapshot(run, f.view.layers & render::kTrail ? trail : kNoTrail,
+                               f.trail.value_or(-1.0));
 }
 
 render::ViewRequest view_request(const FrameRequest& f) {
@@ -247,9 +251,7 @@ void replay_snapshot(const FrameRequest& f, FrameJob& job) {
     throw bad(422, "Invalid value", "at", shortest(*f.at),
               "the replay to this time ran out of step attempts (limits.max_steps = " +
                   std::to_string(f.max_attempts) + ")");
-  static const Trail kNoTrail;
-  job.snapshot = render::make_snapshot(
-      replay.run(), f.view.layers & render::kTrail ? replay.trail() : kNoTrail, f.trail.value_or(-1.0));
+  job.snapshot = frame_snapshot(replay.run(), replay.trail(), f);
   if (!f.jpeg_quality)
     job.texts = picture_texts(replay.run().scene, "", replay.run().state.t, render::view_name(f.view.kind));
 }

@@ -13,7 +13,9 @@
 #include <vector>
 
 #include "engine/surface.h"
+#include "engine/trail.h"
 #include "render/camera_follow.h"
+#include "render/snapshot.h"
 #include "render/view.h"
 #include "render/view_parameters.h"
 #include "server/frames/frame_cache.h"
@@ -61,6 +63,10 @@ QueryParam at_param();
 // The query's `at` into `f` (limits.max_steps for the replay); 422 naming `at` past the session's
 // time `t`.
 void apply_at(const Query& q, FrameRequest& f, double t, long max_steps);
+
+// The snapshot a frame of `f` draws of a run: the trail copied only when drawn (what the camera
+// aims at depends on it, so the drag handles take theirs from here too).
+render::Snapshot frame_snapshot(const Simulation& run, const Trail& trail, const FrameRequest& f);
 
 // The view parameters of a frame request (its view as given).
 render::ViewRequest view_request(const FrameRequest& f);

@@ -3,7 +3,6 @@
 // as it sends its form, in the session's PATCH: a drop is a restart like any edit, refused alike.
 #include "render/drag.h"
 
-#include <cstdio>
 #include <optional>
 
 #include "engine/number_text.h"
@@ -29,23 +28,21 @@ struct DragFrame {
   render::Snapshot snapshot;
   render::ViewOptions view;
   render::BodyPlace body;
-  render::StartMotion start;  // of the run at t = 0 with the parameters in force
+  std::optional<Scene> scene;  // with_scene: the parameters in force (a drop keeps their start's motion)
   double t = 0.0;
   std::uint64_t version = 0;
 };
 
-DragFrame drag_frame(ServerContext& server, const Call& call) {
+DragFrame drag_frame(ServerContext& server, const Call& call, bool with_scene) {
   const auto s = find_session(server, call.id);
   DragFrame d;
   FrameRequest f;
   {
     const std::lock_guard lock(s->mutex);
     f = frame_request(call.query, s->run.scene.surface.kind, false, server.options.limits.max_image_pixels);
-    static const Trail kNoTrail;  // as session_frame's snapshot: the trail is part of the aim
-    d.snapshot = render::make_snapshot(s->run, f.view.layers & render::kTrail ? s->trail : kNoTrail,
-                                       f.trail.value_or(-1.0));
+    d.snapshot = frame_snapshot(s->run, s->trail, f);  // the frame's own: the camera aims at it
     d.body = render::body_place(readout(s->run));
-    d.start = render::start_motion(readout(start_simulation(s->run.scene)));
+    if (with_scene) d.scene = s->run.scene;
     d.t = s->run.state.t;
     d.version = s->version;
   }
@@ -58,7 +55,7 @@ nlohmann::ordered_json point(const glm::dvec2& p) {
 }
 
 void get_handles(ServerContext& server, const Call& call, httplib::Response& res) {
-  const DragFrame d = drag_frame(server, call);
+  const DragFrame d = drag_frame(server, call, false);
   const auto handles = render::drag_handles(d.snapshot, d.view, d.body);
   nlohmann::ordered_json out = {{"t", d.t}, {"version", d.version}};
   out["body"] = handles ? point(handles->body) : nlohmann::ordered_json(nullptr);
@@ -74,27 +71,8 @@ void get_handles(ServerContext& server, const Call& call, httplib::Response& res
   send_json(res, out);
 }
 
-// What a drop changes, for the label beside the pointer (4 significant digits): the place for a
-// body ("r = 1.234, phi = 0.5"), the velocity for an arrow ("speed = 0.75, heading = 90°"; the
-// panel's heading is in degrees too).
-std::string fields_text(const render::InitialFields& fields, bool arrow) {
-  std::string text;
-  for (const auto& [name, value] : fields) {
-    const bool velocity = name == "speed" || name == "heading";
-    if (name == "spin" || velocity != arrow) continue;
-    char v[48];
-    if (name == "heading")
-      std::snprintf(v, sizeof v, "%.1f°", value * 180.0 / 3.141592653589793);
-    else
-      std::snprintf(v, sizeof v, "%.4g", value);
-    if (!text.empty()) text += ", ";
-    text.append(name).append(" = ").append(v);
-  }
-  return text;
-}
-
 void get_drop(ServerContext& server, const Call& call, httplib::Response& res) {
-  const DragFrame d = drag_frame(server, call);
+  const DragFrame d = drag_frame(server, call, true);
   const auto x = call.query.number("x"), y = call.query.number("y");
   if (!x)
     throw bad(422, "Invalid value", "x", "null",
@@ -108,6 +86,8 @@ void get_drop(ServerContext& server, const Call& call, httplib::Response& res) {
     throw bad(422, "Invalid value", "y", shortest(*y),
               "must be <= height = " + std::to_string(d.view.height));
   const glm::dvec2 pixel(*x, *y);
+  // The motion the run starts with (its t = 0 with the parameters in force), outside the lock.
+  const render::StartMotion start = render::start_motion(readout(start_simulation(*d.scene)));
   render::InitialFields fields;
   const bool arrow = *call.query.text("handle") == "arrow";
   if (!arrow) {
@@ -116,20 +96,19 @@ void get_drop(ServerContext& server, const Call& call, httplib::Response& res) {
       throw bad(422, "Invalid value", "x", shortest(*x),
                 "shows no part of the surface (the pixel (" + shortest(*x) + ", " + shortest(*y) +
                     ") of this frame): drop the body on the surface");
-    fields = render::body_drop_fields(d.snapshot.surface, place->first, place->second, d.start);
+    fields = render::body_drop_fields(d.snapshot.surface, place->first, place->second, start);
   } else {
     const auto velocity = render::velocity_at_pixel(d.snapshot, d.view, pixel, d.body);
     if (!velocity)
       throw bad(422, "Invalid value", "x", shortest(*x),
                 "cannot set a velocity here: the body is seen edge-on (its tangent plane is drawn as a "
                 "line); turn the view first");
-    fields =
-        render::arrow_drop_fields(d.snapshot.surface, d.body, velocity->first, velocity->second, d.start);
+    fields = render::arrow_drop_fields(d.snapshot.surface, d.body, velocity->first, velocity->second, start);
   }
   nlohmann::ordered_json initial = nlohmann::ordered_json::object();
   for (const auto& [name, value] : fields) initial[std::string(name)] = value;
   res.set_header("Cache-Control", "no-store");
-  send_json(res, {{"initial", initial}, {"text", fields_text(fields, arrow)}});
+  send_json(res, {{"initial", initial}, {"text", render::drop_text(fields, arrow)}});
 }
 
 }  // namespace

@@ -64,9 +64,7 @@ void send_figure(ServerContext& server, const Call& call, httplib::Response& res
     etag.insert(etag.size() - 1, suffix);
     res.set_header("X-Spinfold-Provenance", provenance(*s));
     if (!etag_matches(call.http.get_header_value("If-None-Match"), etag)) {
-      static const Trail kNoTrail;  // trails are copied only when drawn
-      snapshot = render::make_snapshot(s->run, f.view.layers & render::kTrail ? s->trail : kNoTrail,
-                                       f.trail.value_or(-1.0));
+      snapshot = frame_snapshot(s->run, s->trail, f);
       const Scene& scene = s->run.scene;
       caption.title = scene.name.empty() ? std::string("Spinfold session ") : scene.name;
       if (scene.name.empty()) caption.title.append(call.id);

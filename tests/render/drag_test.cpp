@@ -303,6 +303,14 @@ TEST(Drag, ADroppedBodyStartsThereWithTheStartsSpeedHeadingAndSpin) {
   EXPECT_GT(checked, 18);
 }
 
+// The label's words: only what the drop changes, the heading in degrees as the panel shows it.
+TEST(Drag, TheLabelSaysWhatTheDropChanges) {
+  const InitialFields fields{
+      {"r", 1.2345678}, {"phi", -0.5}, {"speed", 0.75}, {"heading", kPi / 2}, {"spin", 1.0}};
+  EXPECT_EQ(drop_text(fields, false), "r = 1.235, phi = -0.5");
+  EXPECT_EQ(drop_text(fields, true), "speed = 0.75, heading = 90.0°");
+}
+
 // At a pole, where the engine takes a speed only with heading 0 or π, the arrow's direction turns
 // the start's φ instead; the body still leaves the pole the arrow's way.
 TEST(Drag, AnArrowDroppedAtAPoleTurnsPhiInstead) {
