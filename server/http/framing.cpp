@@ -378,10 +378,13 @@ class ConnectionStream final : public httplib::Stream {
   //   (`/path`): RFC 9112 §3.2.2, a server MUST accept it; httplib would route the whole URI.
   // - A Range header is renamed kRangeHeader, in place, so that httplib neither parses nor applies it
   //   (server/http/byte_ranges.h); a client's own header of that name is renamed away.
-  // The empty line ends the head.
+  // The empty line ends the head: CRLF alone, as httplib reads it. An empty line ended in LF alone
+  // is a line httplib skips (and read_framing refuses the request for it): the head goes on, and a
+  // Range after it must still be renamed (api_fuzzer found one httplib answered with 416).
   std::size_t look_at_line(std::size_t lf) {
     const std::string_view line = std::string_view(buffer_).substr(offset_, lf - offset_);
-    if (line.empty() || line == "\r") {
+    if (line.empty()) return lf;
+    if (line == "\r") {
       if (head_started_) in_head_ = false;  // empty lines before the request line are skipped
       return lf;
     }
