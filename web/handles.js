@@ -166,6 +166,8 @@ async function ask() {
     const answer = await request("GET", `/sessions/${s.id}/handles?${pictureQuery(s)}`);
     if (asked !== query) return; // a newer question was asked meanwhile
     placed = { body: answer.body, arrow: answer.arrow, text: "" };
+    // For tests and tools: the picture the rings were placed on (its query).
+    $("handle-body").dataset.picture = String(pictureQuery(s));
     $("handle-body").title = describe(answer.place, "body");
     $("handle-arrow").title = describe(answer.place, "arrow");
   } catch {

@@ -994,7 +994,9 @@ await runSuite(started, async (browser) => {
     await d.focus("#frame");
     await d.keyboard.press("ArrowLeft");
     await d.waitForFunction(() => document.querySelector("#frame").dataset.kind === "still" && /yaw=/.test(document.querySelector("#export-png").search), null, { timeout: 20000 });
-    // The ring on the painted body (polled: the handles are asked again for the new camera).
+    // The rings placed for the new camera (asked again once it moved; under load their answer can
+    // come after the picture, and the old ring may still lie on the body), then on the painted body.
+    await d.waitForFunction(() => /(^|&)yaw=/.test(document.querySelector("#handle-body").dataset.picture ?? ""), null, { timeout: 20000 });
     let before = await centre();
     for (let i = 0; i < 100 && (await orangeNear(before)) <= 40; i++) {
       await d.waitForTimeout(100);
