@@ -5,7 +5,7 @@ at its peak (sampled every 20 ms until the answer, or until a job is done) and t
     /usr/bin/python3 bench/limit_memory.py build/spinfold [CASE ...]
 
 Cases: frame (a 4096×4096 PNG, the largest image), trajectory (spin_fan_sphere's samples just under
-max_trajectory_bytes), gif, webm, mp4, png-zip (recordings at 1920×1080, the largest frame; FRAMES
+max_trajectory_bytes), trajectory-9-bodies (the same with 8 companions: every multiplier), gif, webm, mp4, png-zip (recordings at 1920×1080, the largest frame; FRAMES
 frames, 300 by default: SPINFOLD_LIMIT_FRAMES), work-precision (a preset at its default, 20 periods).
 """
 import json
@@ -50,6 +50,21 @@ def trajectory(server):
     return f"{status}, {len(body) / 2**20:.1f} MiB of JSON"
 
 
+def trajectory_nine_bodies(server):
+    """The trajectory at its byte limit with the most bodies a scene holds (8 companions, 9 bodies:
+    every multiplier at once, rows x bodies x columns), just under max_trajectory_bytes."""
+    companions = [{"label": f"s = {0.25 * i}", "initial": {"spin": 0.25 * i}} for i in range(8)]
+    scene = {"surface": {"kind": "sphere", "radius": 1.0},
+             "initial": {"r": 0.5, "speed": 0.5, "heading": 1.0, "spin": 1.0}, "companions": companions}
+    status, body = server.call("POST", "/sessions", scene)
+    assert status == 201, body
+    sid = json.loads(body)["id"]
+    status, body = server.call("POST", f"/sessions/{sid}/advance", {"until": 1000})
+    assert status == 200, body
+    status, body = server.call("GET", f"/sessions/{sid}/trajectory?every=0.34&format=json")
+    return f"{status}, {len(body) / 2**20:.1f} MiB of JSON, 9 bodies"
+
+
 def recording(fmt):
     def run(server):
         sid = session(server, "spinning_rigid_sphere")
@@ -69,7 +84,7 @@ def work_precision(server):
     return f"{job['status']}, {len(job.get('result', {}).get('points', []))} points"
 
 
-CASES = {"frame": frame, "trajectory": trajectory, "gif": recording("gif"), "webm": recording("webm"),
+CASES = {"frame": frame, "trajectory": trajectory, "trajectory-9-bodies": trajectory_nine_bodies, "gif": recording("gif"), "webm": recording("webm"),
          "mp4": recording("mp4"), "png-zip": recording("png-zip"), "work-precision": work_precision}
 
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cli/commands/command.h"
+#include "codec/output_file.h"
 #include "codec/presets.h"
 #include "codec/provenance.h"
 #include "codec/sample_json.h"
@@ -26,11 +27,9 @@ namespace {
 
 constexpr double kMaxPlotSamples = 1e6;
 
+// Checked to the close: a full disk is an error naming the file (WriteError, exit 1).
 void write_bytes(const std::string& out, const std::vector<std::uint8_t>& bytes) {
-  std::ofstream file(out, std::ios::binary);
-  if (!file) throw FigureInputError("--out: cannot write '" + out + "'");
-  file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!file) throw FigureInputError("--out: cannot write '" + out + "'");
+  write_whole_file(out, {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
 }
 
 std::string extension_of(const std::string& out) {

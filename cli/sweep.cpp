@@ -11,6 +11,7 @@
 
 #include "cli/commands/command.h"
 #include "codec/npz_writer.h"
+#include "codec/output_file.h"
 #include "codec/provenance.h"
 #include "codec/scene_source.h"
 #include "sweep/grid.h"
@@ -99,23 +100,26 @@ int run_sweep(const SweepOptions& opt, const std::string& command) {
     }
     return 0;
   }
-  FILE* out = stdout;
-  if (!opt.out.empty() && opt.out != "-") {
-    out = std::fopen(opt.out.c_str(), "w");
-    if (!out) throw SweepError("--out: cannot write '" + opt.out + "'");
+  std::optional<OutputFile> opened;
+  try {
+    opened.emplace(opt.out);
+  } catch (const WriteError& e) {
+    throw SweepError(std::string("--out: ") + e.what());
   }
-  std::fputs(sweep::header_text(plan, format, shard, command).c_str(), out);
-  std::fflush(out);
+  OutputFile& out = *opened;
+  // Every write checked (a full disk stops the sweep at that row: exit 1, naming the file).
+  const auto put = [&](const std::string& text) {
+    out.write(text);
+    out.flush();
+  };
+  put(sweep::header_text(plan, format, shard, command));
   // Each row flushed as it comes, so a killed sweep leaves whole lines.
   const bool show = !opt.quiet && isatty(fileno(stderr));
   const auto start = std::chrono::steady_clock::now();
   auto last_drawn = start - std::chrono::seconds(1);
   sweep::run_all(
       plan, runs, static_cast<unsigned>(opt.jobs),
-      [&](sweep::Row&& row) {
-        std::fputs(sweep::row_text(row, format).c_str(), out);
-        std::fflush(out);
-      },
+      [&](sweep::Row&& row) { put(sweep::row_text(row, format)); },
       [&](const sweep::Progress& p) {
         const auto now = std::chrono::steady_clock::now();
         if (show && (now - last_drawn > std::chrono::milliseconds(200) || p.done == p.total)) {
@@ -123,7 +127,7 @@ int run_sweep(const SweepOptions& opt, const std::string& command) {
           last_drawn = now;
         }
       });
-  if (out != stdout) std::fclose(out);
+  out.close();
   return 0;
 }
 

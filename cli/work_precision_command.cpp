@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "codec/output_file.h"
 #include "codec/presets.h"
 #include "codec/provenance.h"
 #include "codec/scene_json.h"
@@ -118,7 +119,7 @@ int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
                              "\n# provenance: " + provenance + "\n# scene: " + label + "; " + horizon +
                              "\n# reference: " + reference.kind + ": " + reference.description + "\n# " +
                              wp::kErrorMeaning + "\n# " + wp::kErrorParts + "\n";
-  std::ofstream(fs::path(opt.out) / "work_precision.csv") << wp::csv(header, curves);
+  write_whole_file((fs::path(opt.out) / "work_precision.csv").string(), wp::csv(header, curves));
   const std::string plot =
       wp::write_plot(opt.out, "work_precision", "work-precision: " + label, provenance, curves, t_end);
 
@@ -141,7 +142,7 @@ int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
     md << "| " << method << " | " << wp::format_cost(wp::cost_at(curve, opt.target_error)) << " |\n";
   md << "\nEvery point:\n\n" << wp::points_table(curves);
   // The file starts with the provenance as a comment (not rendered; the CSV header's lines).
-  std::ofstream(fs::path(opt.out) / "summary.md") << "<!--\n" << header << "-->\n" << md.str();
+  write_whole_file((fs::path(opt.out) / "summary.md").string(), "<!--\n" + header + "-->\n" + md.str());
   std::cout << md.str();
   return 0;
 }

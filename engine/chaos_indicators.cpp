@@ -150,13 +150,36 @@ void ChaosMonitor::seed_shadow() {
   start_shadow_ = shadow_.state;
 }
 
-void ChaosMonitor::advance_to(double t, std::uint64_t max_attempts) {
+void ChaosMonitor::advance_to(double t, std::uint64_t max_attempts,
+                              std::optional<std::chrono::steady_clock::time_point> deadline) {
+  // Each run in slices of step attempts, the clock looked at between them (the numbers do not depend
+  // on where a run was stopped).
+  constexpr std::uint64_t kSlice = 1024;
+  const auto out_of_time = [&] { return deadline && std::chrono::steady_clock::now() > *deadline; };
+  const auto reach = [&](Simulation& run, double t_next) {
+    while (true) {
+      if (out_of_time()) {
+        stopped_reason_ = "the time budget ran out";
+        out_of_time_ = true;
+        return false;
+      }
+      std::uint64_t slice = std::min(kSlice, max_attempts);
+      const std::uint64_t given = slice;
+      const bool reached = advance_within(run, t_next, slice);
+      max_attempts -= given - slice;
+      if (reached) return true;
+      if (max_attempts == 0) {
+        stopped_reason_ = "the step budget ran out";
+        out_of_steps_ = true;
+        return false;
+      }
+    }
+  };
   while (!stopped_) {
     const double t_next = t0_ + static_cast<double>(k_ + 1) * interval_;
     if (t_next > t) return;
-    if (!advance_within(reference_, t_next, max_attempts) || !advance_within(shadow_, t_next, max_attempts)) {
+    if (!reach(reference_, t_next) || !reach(shadow_, t_next)) {
       stopped_ = true;
-      stopped_reason_ = "the step budget ran out";
       return;
     }
     if (reference_.state.status != Status::ok || shadow_.state.status != Status::ok ||
@@ -200,6 +223,8 @@ ChaosIndicators ChaosMonitor::indicators() const {
   c.t = t0_ + static_cast<double>(k_) * interval_;
   c.intervals = k_;
   c.stopped = stopped_reason_;
+  c.out_of_steps = out_of_steps_;
+  c.out_of_time = out_of_time_;
   if (k_ == 0) return c;
   const double elapsed = c.t - t0_;
   c.lyapunov = sum_g_ / elapsed;

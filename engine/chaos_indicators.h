@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -34,6 +35,8 @@ struct ChaosIndicators {
   // 1/λ [time]: an error grows e-fold in this time (infinite where λ ≤ 0).
   double lyapunov_time = std::numeric_limits<double>::quiet_NaN();
   std::string stopped;  // why the indicators end before the time asked for ("" when they do not)
+  // Where they ended on a budget of advance_to (the others are the runs' own stops).
+  bool out_of_steps = false, out_of_time = false;
 };
 
 inline constexpr double kDefaultChaosInterval = 1.0;  // Δ [time]
@@ -58,8 +61,10 @@ class ChaosMonitor {
   // start_time; `interval` Δ > 0 [time].
   ChaosMonitor(const Scene& scene, double interval = kDefaultChaosInterval, double start_time = 0.0);
   // Through every t₀ + kΔ ≤ t (stops where either run stops), within `max_attempts` step attempts of
-  // the two runs together (a server's job bounds its work so; the indicators stop where they ran out).
-  void advance_to(double t, std::uint64_t max_attempts = kNoStepLimit);
+  // the two runs together and before `deadline` (a front door's --max-steps and --max-seconds, a
+  // server's job: the indicators stop where they ran out, saying which).
+  void advance_to(double t, std::uint64_t max_attempts = kNoStepLimit,
+                  std::optional<std::chrono::steady_clock::time_point> deadline = std::nullopt);
   ChaosIndicators indicators() const;
 
  private:
@@ -72,7 +77,7 @@ class ChaosMonitor {
   State start_reference_, start_shadow_;  // the interval's start
   std::uint64_t k_ = 0;
   double sum_g_ = 0.0, sum_weighted_g_ = 0.0, sum_megno_ = 0.0, megno_ = 0.0;
-  bool stopped_ = false;
+  bool stopped_ = false, out_of_steps_ = false, out_of_time_ = false;
   std::string stopped_reason_;
 };
 

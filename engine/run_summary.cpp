@@ -89,6 +89,40 @@ std::string level_text(double v) {
 
 }  // namespace
 
+RunMonitor::Crossed RunMonitor::crossings(const EventSpec& spec, double ga, double gb) {
+  Crossed c;
+  if (std::isnan(ga) || std::isnan(gb) || ga == gb) return c;
+  c.up = gb > ga;
+  if ((c.up && spec.direction == Direction::down) || (!c.up && spec.direction == Direction::up)) return c;
+  c.base = spec.level;
+  c.period = spec.period;
+  // Levels L with ga < L <= gb (up) or gb <= L < ga (down).
+  const auto is_crossed = [&](double level) {
+    return c.up ? (ga < level && gb >= level) : (ga > level && gb <= level);
+  };
+  if (spec.period <= 0.0) {
+    c.n = is_crossed(spec.level) ? 1.0 : 0.0;
+    return c;
+  }
+  const double P = spec.period, L = spec.level;
+  if (P < kMinRelativePeriod * std::max({std::abs(ga), std::abs(gb), std::abs(L)})) {
+    c.unresolved = true;
+    return c;
+  }
+  const double lo = std::min(ga, gb), hi = std::max(ga, gb);
+  double k_lo = c.up ? std::floor((lo - L) / P) + 1.0 : std::ceil((lo - L) / P);
+  double k_hi = c.up ? std::floor((hi - L) / P) : std::ceil((hi - L) / P) - 1.0;
+  // The quotients' rounding can move an end by one: each end is checked against the crossing itself.
+  for (int i = 0; i < 2 && k_lo <= k_hi && !is_crossed(L + k_lo * P); ++i) k_lo += 1.0;
+  for (int i = 0; i < 2 && k_lo <= k_hi && !is_crossed(L + k_hi * P); ++i) k_hi -= 1.0;
+  if (is_crossed(L + (k_lo - 1.0) * P)) k_lo -= 1.0;
+  if (is_crossed(L + (k_hi + 1.0) * P)) k_hi += 1.0;
+  c.n = std::max(0.0, k_hi - k_lo + 1.0);
+  // In time order: up the lowest level first, down the highest.
+  c.k_first = c.up ? k_lo : k_hi;
+  return c;
+}
+
 std::vector<std::string> monitor_field_names(const Scene& scene) {
   std::vector<std::string> names;
   for (int i = 0; i < kFieldCount; ++i) {
@@ -140,12 +174,24 @@ EventSpec parse_event(std::string_view text) {
     throw MonitorRefusal("event '" + t + "': the direction must be up, down or any (got '" + parts[1] + "')",
                          true);
   e.level = event_number(t, "the level", parts[2], NumberRule{});
+  std::vector<std::string> given;  // each key once, as a JSON object's
   for (std::size_t i = 3; i < parts.size(); ++i) {
     const std::size_t eq = parts[i].find('=');
     const std::string key = parts[i].substr(0, eq),
                       value = eq == std::string::npos ? "" : parts[i].substr(eq + 1);
+    const bool known = key == "period" || key == "stop" || key == "name";
+    if (known && std::find(given.begin(), given.end(), key) != given.end())
+      throw MonitorRefusal("event '" + t + "': " + key + "= is given twice (give it once)", true);
+    given.push_back(key);
     if (key == "period") {
       e.period = event_number(t, "period", value, NumberRule{.range = kPositive});
+      if (e.period < kMinRelativePeriod * std::abs(e.level))
+        throw MonitorRefusal("event '" + t + "': period must be at least 1e-12 of |level| (" +
+                                 shortest(kMinRelativePeriod * std::abs(e.level)) +
+                                 ") so that the levels are "
+                                 "distinct in double (got '" +
+                                 value + "')",
+                             true);
     } else if (key == "stop") {
       e.stop = static_cast<std::uint64_t>(event_number(
           t, "stop", value, NumberRule{.whole = true, .range = {.min = 1.0, .max = kMaxWholeNumber}}));
@@ -317,65 +363,72 @@ std::optional<State> RunMonitor::step(const Simulation& run, const State& b_in) 
   State b = b_in;
   Values vb = evaluate(run, b, &last_values_);
 
-  // Events: every level crossed, located by TOMS 748 on the step's own sub-steps, in time order.
-  struct Hit {
-    double tau;
-    std::size_t event;
+  // Events: the levels a step crosses are counted, never visited one by one (a period far below the
+  // field's change over a step would take a root find per level); the first and the last crossing in
+  // time and a terminal one are located by TOMS 748 on the step's own sub-steps.
+  const auto locate = [&](int k, double ga, double gb, double level) {
+    const auto f = [&](double tau) {
+      if (tau <= 0.0) return ga - level;
+      if (tau >= h) return gb - level;
+      return evaluate(run, state_after(run, last_, tau), &last_values_)[k] - level;
+    };
+    std::uintmax_t iterations = 100;
+    const auto tol = [h](double a, double c) { return std::abs(c - a) <= 1e-14 * h; };
+    const auto [a, c] = boost::math::tools::toms748_solve(f, 0.0, h, ga - level, gb - level, tol, iterations);
+    return 0.5 * (a + c);
   };
-  std::vector<Hit> hits;  // allocates only when a level was crossed
+  std::vector<Crossed> crossed(spec_.events.size());
+  double tau_stop = std::numeric_limits<double>::infinity();
+  std::size_t stop_event = spec_.events.size();
   for (std::size_t e = 0; e < spec_.events.size(); ++e) {
     const EventSpec& spec = spec_.events[e];
     const int k = event_index_[e];
-    const double ga = last_values_[k], gb = vb[k];
-    if (std::isnan(ga) || std::isnan(gb) || ga == gb) continue;
-    const bool up = gb > ga;
-    if ((up && spec.direction == Direction::down) || (!up && spec.direction == Direction::up)) continue;
-    // Levels L with ga < L <= gb (up) or gb <= L < ga (down).
-    double first = spec.level, last = spec.level;
-    if (spec.period > 0.0) {
-      const double lo = std::min(ga, gb), hi = std::max(ga, gb);
-      first = spec.level + spec.period * (up ? std::floor((lo - spec.level) / spec.period) + 1.0
-                                             : std::ceil((lo - spec.level) / spec.period));
-      last = spec.level + spec.period * (up ? std::floor((hi - spec.level) / spec.period)
-                                            : std::ceil((hi - spec.level) / spec.period) - 1.0);
+    crossed[e] = crossings(spec, last_values_[k], vb[k]);
+    if (crossed[e].unresolved || static_cast<double>(events_[e].count) + crossed[e].n > kMaxEventCount) {
+      // The levels cannot be told apart here: stop at the step's start, the last state whose
+      // crossings were counted (engine/state.h, event_unresolved).
+      stopped_ = true;
+      State at = last_;
+      at.status = Status::event_unresolved;
+      return at;
     }
-    for (double level = first; level <= last && hits.size() < 10000;
-         level += spec.period > 0.0 ? spec.period : INFINITY) {
-      const bool crossed = up ? (ga < level && gb >= level) : (ga > level && gb <= level);
-      if (!crossed) continue;
-      const auto f = [&](double tau) {
-        if (tau <= 0.0) return ga - level;
-        if (tau >= h) return gb - level;
-        return evaluate(run, state_after(run, last_, tau), &last_values_)[k] - level;
-      };
-      std::uintmax_t iterations = 100;
-      const auto tol = [h](double a, double c) { return std::abs(c - a) <= 1e-14 * h; };
-      const auto [a, c] =
-          boost::math::tools::toms748_solve(f, 0.0, h, ga - level, gb - level, tol, iterations);
-      hits.push_back({0.5 * (a + c), e});
+    const double wanted = static_cast<double>(spec.stop) - static_cast<double>(events_[e].count);
+    if (spec.stop > 0 && wanted >= 1.0 && wanted <= crossed[e].n) {
+      const double tau = locate(k, last_values_[k], vb[k], crossed[e].level(wanted - 1.0));
+      if (tau < tau_stop) tau_stop = tau, stop_event = e;
     }
   }
-  std::sort(hits.begin(), hits.end(), [](const Hit& x, const Hit& y) { return x.tau < y.tau; });
-  for (const Hit& hit : hits) {
-    Occurrences& o = events_[hit.event];
-    const double t = last_.t + hit.tau;
-    const bool terminal = spec_.events[hit.event].stop == o.count + 1;
-    std::optional<State> at;
-    if (o.count == 0 || terminal) at = state_after(run, last_, hit.tau);
+  if (stop_event < spec_.events.size()) {
+    // A terminal event cuts the step: the others count what they crossed before it.
+    b = state_after(run, last_, tau_stop);
+    b.status = Status::event_stop;
+    vb = evaluate(run, b, &last_values_);
+    for (std::size_t e = 0; e < spec_.events.size(); ++e)
+      crossed[e] = e == stop_event
+                       ? crossed[e].first(static_cast<double>(spec_.events[e].stop - events_[e].count))
+                       : crossings(spec_.events[e], last_values_[event_index_[e]], vb[event_index_[e]]);
+    stopped_ = true;
+  }
+  for (std::size_t e = 0; e < spec_.events.size(); ++e) {
+    const Crossed& c = crossed[e];
+    if (!(c.n >= 1.0) || c.unresolved) continue;
+    const int k = event_index_[e];
+    const double gb = vb[k];
+    Occurrences& o = events_[e];
+    const bool last_is_stop = e == stop_event;
+    double tau_first = -1.0;
     if (o.count == 0) {
-      o.t_first = t;
-      const Values values = evaluate(run, *at, &last_values_);
+      tau_first = last_is_stop && c.n == 1.0 ? tau_stop : locate(k, last_values_[k], gb, c.level(0.0));
+      o.t_first = last_.t + tau_first;
+      const Values values = evaluate(run, state_after(run, last_, tau_first), &last_values_);
       for (const int s : summary_index_) o.at_first.push_back(values[s]);
     }
-    ++o.count;
-    o.t_last = t;
-    if (terminal) {
-      b = *at;
-      b.status = Status::event_stop;
-      vb = evaluate(run, b, &last_values_);
-      stopped_ = true;
-      break;
-    }
+    const double tau_last = last_is_stop ? tau_stop
+                            : tau_first >= 0.0 && c.n == 1.0
+                                ? tau_first
+                                : locate(k, last_values_[k], gb, c.level(c.n - 1.0));
+    o.count += static_cast<std::uint64_t>(c.n);
+    o.t_last = last_.t + tau_last;
   }
 
   // Reductions: an interior extremum at last_ is refined where the parabola through the three

@@ -45,7 +45,11 @@ struct SummarySpec {
 enum class Direction { up, down, any };
 
 // A field crossing a level: up (from below to at or above), down, or either. With a period, every
-// level + k·period counts (phi through multiples of 2π: level 0, period 6.283185307179586).
+// level + k·period counts (phi through multiples of 2π: level 0, period 6.283185307179586). A period
+// is at least kMinRelativePeriod of |level| (parse_event refuses less) and of the field's size
+// wherever the run takes it (the run stops there as event_unresolved): closer levels are not told
+// apart in double. A step's crossings are counted, not visited, so any number of them costs two or
+// three root finds; a run counts at most kMaxEventCount (2⁵³, exact in a double column).
 struct EventSpec {
   std::string name;  // the columns' prefix; default FIELD_DIRECTION_LEVEL (r_up_1.2)
   std::string field;
@@ -54,6 +58,9 @@ struct EventSpec {
   double period = 0.0;     // 0: the level only
   std::uint64_t stop = 0;  // stop the run at this occurrence (scipy's `terminal`); 0: never
 };
+
+inline constexpr double kMinRelativePeriod = 1e-12;
+inline constexpr double kMaxEventCount = 9007199254740992.0;  // 2⁵³
 
 struct MonitorSpec {
   std::vector<SummarySpec> summaries;
@@ -111,6 +118,18 @@ class RunMonitor {
     double t_first = 0, t_last = 0;
     std::vector<double> at_first;  // the watched fields at the first occurrence
   };
+  // The levels one step crosses: n of them, the j-th in time order level(j) (0 ≤ j < n).
+  struct Crossed {
+    double n = 0.0, k_first = 0.0, base = 0.0, period = 0.0;
+    bool up = true, unresolved = false;
+    double level(double j) const { return period > 0.0 ? base + (k_first + (up ? j : -j)) * period : base; }
+    Crossed first(double count) const {  // the first `count` of them
+      Crossed c = *this;
+      c.n = count;
+      return c;
+    }
+  };
+  static Crossed crossings(const EventSpec& spec, double ga, double gb);
   static constexpr std::size_t kMaxFields = 13;   // monitor_field_names() at most
   using Values = std::array<double, kMaxFields>;  // the watched fields' values, in fields_ order
   Values evaluate(const Simulation& run, const State& s, const Values* near) const;

@@ -12,6 +12,7 @@ std::string_view status_name(Status status) {
     case Status::diverged: return "diverged";
     case Status::event_stop: return "event_stop";
     case Status::inconsistent: return "inconsistent";
+    case Status::event_unresolved: return "event_unresolved";
   }
   return "unknown";
 }
@@ -37,6 +38,11 @@ std::string_view status_description(Status status) {
     case Status::event_stop:
       return "stopped: a watched field crossed its level as many times as the run asked to stop at (an "
              "event's stop=N); the state is the crossing's";
+    case Status::event_unresolved:
+      return "stopped: an event's levels (level + k·period) are closer together than double precision "
+             "tells apart where its field now is (a period below 1e-12 of the field's size), or were "
+             "crossed more than 2^53 times; the state is the start of the step that met them (choose a "
+             "larger period)";
     case Status::inconsistent:
       return "stopped: the closed form failed its consistency check (its start or its conserved quantities "
              "disagree with the run's by more than 1e-8, or can no longer be checked to that, e.g. a motion "

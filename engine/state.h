@@ -45,6 +45,9 @@ enum class Status {
                      // quantities disagree with the run's; the state is the last one that passed
   event_stop,        // a watched field crossed its level the number of times the run asked to stop at
                      // (engine/run_summary.h); the state is the crossing's
+  event_unresolved,  // an event's levels are closer than double tells apart where its field is (period
+                     // below kMinRelativePeriod of the field), or crossed more than 2⁵³ times; the
+                     // state is the start of the step that met them
 };
 
 std::string_view status_name(Status status);

@@ -19,6 +19,9 @@ ProfilePoint bump_profile(const RevolutionSurface& s, double u) {
   p.rho = u;
   p.rho_u = 1.0;
   p.rho_uu = 0.0;
+  // Where E underflows (u > 38.6 w) the bump is the plane in double: every term has the factor E,
+  // but h/w⁴ can overflow first (a narrow bump far out gave 0 · ∞ = NaN for K).
+  if (E == 0.0) return p;
   p.z = h * E;
   p.z_u = -(h * u / w2) * E;
   p.z_uu = (h / w2) * (u * u / w2 - 1.0) * E;
@@ -36,6 +39,10 @@ ImplicitPoint bump_implicit(const RevolutionSurface& s, const Vec3& X) {
   p.F = X.z() - G;
   p.gradient = Vec3(X.x() * G / w2, X.y() * G / w2, 1.0);
   p.hessian.setZero();
+  if (G == 0.0) {  // the plane in double (bump_profile says why); zeros of the same signs
+    p.gradient = Vec3(X.x() * G, X.y() * G, 1.0);
+    return p;
+  }
   p.hessian(0, 0) = G / w2 - X.x() * X.x() * G / (w2 * w2);
   p.hessian(1, 1) = G / w2 - X.y() * X.y() * G / (w2 * w2);
   p.hessian(0, 1) = p.hessian(1, 0) = -X.x() * X.y() * G / (w2 * w2);

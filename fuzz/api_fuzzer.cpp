@@ -298,14 +298,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
        "/api/v1/sessions/{id}/reset", "/api/v1/sessions/{id}/pause", "/api/v1/sessions/{id}/trajectory",
        "/api/v1/sessions/{id}/frame.png", "/api/v1/sessions/nope", "/api/v1/schema", "/api/v1/scenes",
        "/api/v1/integrators", "/api/v1/health", "/api/v1/", "/api/v1/sessions/{id}/recordings",
-       "/api/v1/sessions/{id}/recordings", "/api/v1/recordings/nope", "/api/v1/sessions%2F{id}/advance"});
+       "/api/v1/sessions/{id}/recordings", "/api/v1/recordings/nope", "/api/v1/sessions%2F{id}/advance",
+       // The drag routes and the other pictures (issue 48: every request bounded).
+       "/api/v1/sessions/{id}/handles", "/api/v1/sessions/{id}/drop", "/api/v1/sessions/{id}/frame.svg",
+       "/api/v1/sessions/{id}/frame.jpg", "/api/v1/views", "/api/v1/view-parameters"});
   std::string target = route;
   if (const auto at = target.find("{id}"); at != std::string::npos) target.replace(at, 4, h.id);
   const int parameters = in.ConsumeIntegralInRange(0, 3);
   for (int k = 0; k < parameters; ++k) {
-    const std::string key =
-        in.PickValueInArray({"format", "width", "height", "view", "layers", "yaw", "pitch", "distance",
-                             "scale", "rate", "trail", "fields", "every", "x"});
+    const std::string key = in.PickValueInArray({"format", "width", "height", "view", "layers", "yaw",
+                                                 "pitch", "distance", "scale", "rate", "trail", "fields",
+                                                 "every", "x", "y", "handle", "at", "quality"});
     target += (k == 0 ? "?" : "&") + key + "=" +
               httplib::detail::encode_query_param(in.ConsumeRandomLengthString(24));
   }

@@ -231,19 +231,50 @@ struct RunColumns {
   }
 };
 
-// `spinfold simulate`'s run: samples at 0, every, 2·every, … and t_end (engine/sampling.h).
+// Python's Ctrl-C while a run goes on with the GIL released: the signal handler only sets a flag,
+// which a thread holding the GIL reads. check() takes the GIL for that moment at most every 50 ms and
+// raises KeyboardInterrupt (py::error_already_set) when it was pressed. The main thread's only: other
+// threads never see a signal.
+class Interrupts {
+ public:
+  void check() {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ < std::chrono::milliseconds(50)) return;
+    last_ = now;
+    py::gil_scoped_acquire acquire;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+// `spinfold simulate`'s run: samples at 0, every, 2·every, … and t_end (engine/sampling.h), in slices
+// of step attempts with `interrupts` looked at between them (the numbers do not depend on where a
+// run was stopped).
 RunColumns run_columns(const Scene& scene, double t_end, double every, std::optional<std::uint64_t> max_steps,
-                       const MonitorSpec& monitor = {}) {
+                       const MonitorSpec& monitor = {}, Interrupts* interrupts = nullptr) {
   RunColumns out;
   out.main.reserve(static_cast<std::size_t>(std::ceil(t_end / every)) + 2);
   Simulation run = start_simulation(scene);
   if (!monitor.empty()) watch(run, monitor);
   double since = -1.0;
   std::uint64_t attempts = max_steps.value_or(kNoStepLimit);
+  constexpr std::uint64_t kSlice = 4096;
   sample_run(
       run, t_end, every,
       [&](double t) {
-        return out.budget_left = max_steps ? advance_within(run, t, attempts) : advance_to(run, t);
+        if (!interrupts)
+          return out.budget_left = max_steps ? advance_within(run, t, attempts) : advance_to(run, t);
+        while (true) {
+          interrupts->check();
+          std::uint64_t slice = std::min(kSlice, attempts);
+          const std::uint64_t given = slice;
+          const bool reached = advance_within(run, t, slice);
+          if (max_steps) attempts -= given - slice;
+          if (reached) return out.budget_left = true;
+          if (attempts == 0) return out.budget_left = false;
+        }
       },
       [&] {
         out.append(run, since);
@@ -335,7 +366,8 @@ py::dict simulate(const std::string& scene_text, double t_end, double every,
   RunColumns columns;
   {
     py::gil_scoped_release release;
-    columns = run_columns(scene, t_end, every, max_steps, monitor);
+    Interrupts interrupts;
+    columns = run_columns(scene, t_end, every, max_steps, monitor, &interrupts);
   }
   return run_dict(std::move(columns), scene, command);
 }

@@ -5,9 +5,13 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstdint>
+#include <exception>
 #include <optional>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -60,6 +64,7 @@ py::tuple sweep(
                         .door = sweep::Door::python};
   std::vector<sweep::Row> rows;
   std::vector<std::string> names;
+  bool interrupted = false;
   {
     py::gil_scoped_release release;
     for (const auto& [path, spec, values] : axes) {
@@ -71,9 +76,34 @@ py::tuple sweep(
     names = sweep::column_names(plan);
     const std::vector<std::size_t> runs = sweep::shard_runs(plan.total, {});
     rows.reserve(runs.size());
-    sweep::run_all(plan, runs, static_cast<unsigned>(threads),
-                   [&](sweep::Row&& row) { rows.push_back(std::move(row)); });
+    // The sweep on a thread of its own; this one looks at Python's signals every 20 ms (its handler
+    // only sets a flag, which only a thread holding the GIL can read), so that Ctrl-C stops the
+    // sweep after the runs in progress and raises KeyboardInterrupt here.
+    std::atomic<bool> cancel{false}, done{false};
+    std::exception_ptr failure;
+    std::thread worker([&] {
+      try {
+        sweep::run_all(
+            plan, runs, static_cast<unsigned>(threads),
+            [&](sweep::Row&& row) { rows.push_back(std::move(row)); }, {}, [&] { return cancel.load(); });
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      done = true;
+    });
+    while (!done) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) {
+        cancel = true;
+        interrupted = true;
+        break;
+      }
+    }
+    worker.join();
+    if (failure) std::rethrow_exception(failure);
   }
+  if (interrupted) throw py::error_already_set();
   py::list out;
   for (const sweep::Row& row : rows) {
     py::list r;

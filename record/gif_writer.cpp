@@ -9,9 +9,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -26,9 +28,9 @@ constexpr int kColors = 256;
 
 class GifWriter final : public ClipWriter {
  public:
-  GifWriter(const std::string& path, const ClipWriterSpec& spec) : spec_(spec) {
+  GifWriter(const std::string& path, const ClipWriterSpec& spec) : spec_(spec), path_(path) {
     file_ = std::fopen(path.c_str(), "wb");
-    if (!file_) throw RecordError("cannot write '" + path + "'");
+    if (!file_) throw RecordError("cannot write '" + path + "': " + std::strerror(errno));
     int error = 0;
     gif_ = EGifOpen(this, &GifWriter::write, &error);
     if (!gif_) {
@@ -106,8 +108,8 @@ class GifWriter final : public ClipWriter {
     gif_ = nullptr;
     const bool flushed = std::fclose(file_) == 0;
     file_ = nullptr;
-    if (closed != GIF_OK) throw RecordError(std::string("giflib: ") + GifErrorString(error));
-    if (!flushed) throw RecordError("cannot finish writing the GIF (disk full?)");
+    if (closed != GIF_OK) throw RecordError(where() + "giflib: " + GifErrorString(error));
+    if (!flushed) throw RecordError(where() + std::strerror(write_errno_ ? write_errno_ : errno));
   }
 
   std::uint64_t bytes() const override { return written_; }
@@ -115,13 +117,19 @@ class GifWriter final : public ClipWriter {
  private:
   static int write(GifFileType* gif, const GifByteType* data, int length) {
     auto* self = static_cast<GifWriter*>(gif->UserData);
+    errno = 0;
     const std::size_t n = std::fwrite(data, 1, static_cast<std::size_t>(length), self->file_);
+    if (n != static_cast<std::size_t>(length) && self->write_errno_ == 0) self->write_errno_ = errno;
     self->written_ += n;
     return static_cast<int>(n);
   }
 
+  // Every error names the file; a write the system refused, its reason (errno).
+  std::string where() const { return "cannot write '" + path_ + "': "; }
   void check(int status) {
-    if (status != GIF_OK) throw RecordError(std::string("giflib: ") + GifErrorString(gif_->Error));
+    if (status == GIF_OK) return;
+    if (write_errno_ != 0) throw RecordError(where() + std::strerror(write_errno_));
+    throw RecordError(where() + "giflib: " + GifErrorString(gif_->Error));
   }
 
   // The palette (from the samples, or from the first frame when none were given), the screen
@@ -201,6 +209,8 @@ class GifWriter final : public ClipWriter {
   }
 
   ClipWriterSpec spec_;
+  std::string path_;
+  int write_errno_ = 0;  // the first write the system refused
   std::FILE* file_ = nullptr;
   GifFileType* gif_ = nullptr;
   std::size_t pixels_ = 0;

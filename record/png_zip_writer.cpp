@@ -20,7 +20,7 @@ namespace {
 class PngZipWriter final : public ClipWriter {
  public:
   PngZipWriter(const std::string& path, const ClipWriterSpec& spec)
-      : spec_(spec), spill_path_(path + ".frames") {
+      : spec_(spec), path_(path), spill_path_(path + ".frames") {
     spill_ = std::fopen(spill_path_.c_str(), "wb");
     if (!spill_)
       throw RecordError("cannot write '" + spill_path_ +
@@ -79,13 +79,16 @@ class PngZipWriter final : public ClipWriter {
   std::uint64_t bytes() const override { return held_; }
 
  private:
-  [[noreturn]] void fail() { throw RecordError(std::string("libzip: ") + zip_strerror(zip_)); }
+  [[noreturn]] void fail() {
+    throw RecordError("cannot write '" + path_ + "': libzip: " + zip_strerror(zip_));
+  }
   void drop_spill() {
     if (spill_) std::fclose(spill_), std::remove(spill_path_.c_str());
     spill_ = nullptr;
   }
 
   ClipWriterSpec spec_;
+  std::string path_;
   std::string spill_path_;
   std::FILE* spill_ = nullptr;
   zip_t* zip_ = nullptr;

@@ -28,7 +28,7 @@ std::string av_message(int code) {
 
 class VideoWriter final : public ClipWriter {
  public:
-  VideoWriter(Format format, const std::string& path, const ClipWriterSpec& spec) : spec_(spec) {
+  VideoWriter(Format format, const std::string& path, const ClipWriterSpec& spec) : spec_(spec), path_(path) {
     const bool webm = format == Format::webm;
     const char* muxer = webm ? "webm" : "mp4";
     const char* encoder = webm ? "libvpx-vp9" : "libx264";
@@ -79,7 +79,7 @@ class VideoWriter final : public ClipWriter {
       stream_->time_base = codec_->time_base;
       stream_->avg_frame_rate = rate;
       output_->flags |= AVFMT_FLAG_BITEXACT;
-      check(avio_open(&output_->pb, path.c_str(), AVIO_FLAG_WRITE), ("cannot write '" + path + "'").c_str());
+      check(avio_open(&output_->pb, path.c_str(), AVIO_FLAG_WRITE), "opening the file");
       if (!spec.provenance.empty()) av_dict_set(&output_->metadata, "comment", spec.provenance.c_str(), 0);
       AVDictionary* mux_options = nullptr;
       if (!webm) av_dict_set(&mux_options, "movflags", "+faststart", 0);  // playable while loading
@@ -94,6 +94,9 @@ class VideoWriter final : public ClipWriter {
                                AV_PIX_FMT_YUV420P, SWS_BILINEAR | SWS_ACCURATE_RND | SWS_BITEXACT, nullptr,
                                nullptr, nullptr);
       if (!scaler_) throw RecordError("libswscale cannot convert RGBA to YUV 4:2:0");
+    } catch (const RecordError& e) {
+      release();
+      throw RecordError("cannot write '" + path + "': " + e.what());
     } catch (...) {
       release();
       throw;
@@ -102,6 +105,28 @@ class VideoWriter final : public ClipWriter {
   ~VideoWriter() override { release(); }
 
   void add(const std::uint8_t* rgba) override {
+    try {
+      encode(rgba);
+    } catch (const RecordError& e) {
+      throw RecordError("cannot write '" + path_ + "': " + e.what());
+    }
+  }
+
+  void finish() override {
+    if (frames_ == 0) throw RecordError("a video needs at least one frame");
+    try {
+      flush_and_close();
+    } catch (const RecordError& e) {
+      throw RecordError("cannot write '" + path_ + "': " + e.what());
+    }
+  }
+
+  std::uint64_t bytes() const override {
+    return output_ && output_->pb ? static_cast<std::uint64_t>(avio_tell(output_->pb)) : written_;
+  }
+
+ private:
+  void encode(const std::uint8_t* rgba) {
     check(av_frame_make_writable(frame_), "the frame buffer");
     const std::uint8_t* source[1] = {rgba};
     const int stride[1] = {4 * spec_.width};
@@ -111,20 +136,17 @@ class VideoWriter final : public ClipWriter {
     drain();
   }
 
-  void finish() override {
-    if (frames_ == 0) throw RecordError("a video needs at least one frame");
+  void flush_and_close() {
     check(avcodec_send_frame(codec_, nullptr), "the encoder");
     drain();
     check(av_write_trailer(output_), "the container trailer");
+    // avio buffers: a write the system refused shows in its error flag, and at the flush.
+    avio_flush(output_->pb);
+    check(output_->pb->error, "writing the file");
     written_ = static_cast<std::uint64_t>(avio_tell(output_->pb));
     check(avio_closep(&output_->pb), "closing the file");
   }
 
-  std::uint64_t bytes() const override {
-    return output_ && output_->pb ? static_cast<std::uint64_t>(avio_tell(output_->pb)) : written_;
-  }
-
- private:
   static void check(int code, const char* what) {
     if (code < 0) throw RecordError(std::string("FFmpeg: ") + what + ": " + av_message(code));
   }
@@ -154,6 +176,7 @@ class VideoWriter final : public ClipWriter {
   }
 
   ClipWriterSpec spec_;
+  std::string path_;
   AVFormatContext* output_ = nullptr;
   AVStream* stream_ = nullptr;
   AVCodecContext* codec_ = nullptr;

@@ -273,9 +273,13 @@ std::optional<std::pair<double, double>> place_at_pixel(const Snapshot& snapshot
   constexpr double kLanded = 0.05;  // [pixels]
   std::optional<Fit> best;
   double best_apart = 0.0;
+  const ViewModel& model = view_model(view.kind);
   for (const auto& [seed, X] : kept) {
     const auto fit = refine(chart, projection, pixel, seed.q, seed.phi);
     if (!fit || fit->miss > kLanded) continue;
+    // Only where the frame paints the surface: beyond the drawn piece of an unbounded surface the
+    // pixel shows background, and a drop there is refused (docs/architecture.md, "Drag handles").
+    if (!model.paints_surface_at(snapshot, chart.at(fit->q, fit->phi).X)) continue;
     const double apart = (chart.at(fit->q, fit->phi).X - body.X).norm();
     const double tie = 1e-6 * std::abs(fit->depth) + 1e-12;
     if (best && (fit->depth > best->depth + tie || (fit->depth > best->depth - tie && apart >= best_apart)))

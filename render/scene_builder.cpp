@@ -302,7 +302,8 @@ std::vector<std::string> readout_lines(const Snapshot& snapshot, const ViewOptio
   if (view.layers & kActions)
     lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
   if (!snapshot.bodies.empty() && !on_view(snapshot.surface, view.kind, snapshot.bodies.front().X))
-    lines.push_back(std::string(view_model(view.kind).off_view_note()));
+    lines.push_back(
+        std::string(view_model(view.kind).off_view_note(snapshot.surface, snapshot.bodies.front().X)));
   // A 2-D close-up (aim_2d_window): by how much.
   if (view.zoom > 1.0) {
     char text[64];

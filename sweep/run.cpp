@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -14,6 +15,7 @@
 #include <thread>
 
 #include "codec/npz_writer.h"
+#include "codec/output_file.h"
 #include "codec/provenance.h"
 #include "codec/sample_json.h"
 #include "codec/sample_table.h"
@@ -51,7 +53,7 @@ Row run_one(const Plan& plan, std::size_t index) {
       // The trajectory as `spinfold simulate --fields … --format …` writes it: the provenance, then
       // the samples (the whole sample as JSON Lines without --trajectory-fields).
       const std::string& format = def.trajectory_format;
-      std::unique_ptr<std::ofstream> trajectory;
+      std::unique_ptr<OutputFile> trajectory;  // every write checked: a failed one is the row's error
       std::optional<SampleTable> table;
       std::vector<NpzColumn> npz;
       const ojson provenance =
@@ -64,12 +66,12 @@ Row run_one(const Plan& plan, std::size_t index) {
       if (tracing && format == "npz") {
         for (const std::string& name : table->header()) npz.push_back({name, {}});
       } else if (tracing) {
-        trajectory = std::make_unique<std::ofstream>(file);
+        trajectory = std::make_unique<OutputFile>(file.string());
         if (format == "csv")
-          *trajectory << table->csv_header() << "# spinfold simulate " << version_line()
-                      << "\n# provenance: " << provenance.dump() << '\n';
+          trajectory->write(table->csv_header() + "# spinfold simulate " + version_line() +
+                            "\n# provenance: " + provenance.dump() + '\n');
         else
-          *trajectory << ojson{{"provenance", provenance}}.dump() << '\n';
+          trajectory->write(ojson{{"provenance", provenance}}.dump() + '\n');
       }
       double reported_until = -1.0;
       const auto sample = [&](std::map<std::string, ojson>* into) {
@@ -81,9 +83,9 @@ Row run_one(const Plan& plan, std::size_t index) {
             for (std::size_t i = 0; i < cells.size(); ++i) npz[i].cells.push_back(cells[i]);
           } else if (trajectory) {
             if (format == "csv")
-              *trajectory << table->csv_row(s);
+              trajectory->write(table->csv_row(s));
             else
-              *trajectory << (table ? table->json_row(s) : s).dump() << '\n';
+              trajectory->write((table ? table->json_row(s) : s).dump() + '\n');
           }
           if (into) *into = flatten_sample(s);
         } else {
@@ -101,6 +103,7 @@ Row run_one(const Plan& plan, std::size_t index) {
             sample(!started ? &first : final ? &last : nullptr);
             started = true;
           });
+      if (trajectory) trajectory->close();
       if (last.empty()) last = flatten_sample(sample_to_json(run, reported_until));
       status = budget_left ? last["status"].get<std::string>() : "max_steps";
       detail = budget_left ? last["status_detail"].get<std::string>()
@@ -113,7 +116,7 @@ Row run_one(const Plan& plan, std::size_t index) {
       monitored = monitor_values(run);
       if (def.chaos) {  // its own two runs, to where this one ended
         ChaosMonitor indicators(*parsed.scene, def.chaos_interval, run.start_time);
-        indicators.advance_to(run.state.t);
+        indicators.advance_to(run.state.t, attempts);  // within what is left of the run's --max-steps
         chaos = indicators.indicators();
       }
     }
@@ -160,7 +163,8 @@ Row run_one(const Plan& plan, std::size_t index) {
 
 void run_all(const Plan& plan, std::span<const std::size_t> runs, unsigned jobs,
              const std::function<void(Row&&)>& on_row,
-             const std::function<void(const Progress&)>& on_progress) {
+             const std::function<void(const Progress&)>& on_progress,
+             const std::function<bool()>& cancelled) {
   // Workers take runs in order; rows go out in run order as soon as all before them are done.
   if (jobs == 0) jobs = std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::optional<Row>> rows(runs.size());
@@ -168,24 +172,39 @@ void run_all(const Plan& plan, std::span<const std::size_t> runs, unsigned jobs,
   std::mutex mutex;
   std::size_t written = 0;
   Progress progress{.done = 0, .not_ok = 0, .total = runs.size()};
+  // The first error of on_row or on_progress (a write that failed) stops the workers taking runs
+  // and is thrown here, on the caller's thread, after they have finished.
+  std::exception_ptr failure;
   const auto work = [&] {
     for (std::size_t k; (k = next++) < runs.size();) {
+      if (cancelled && cancelled()) {
+        next = runs.size();
+        return;
+      }
       Row row = run_one(plan, runs[k]);
       std::lock_guard lock(mutex);
-      ++progress.done;
-      progress.not_ok += row.ok ? 0 : 1;
-      rows[k] = std::move(row);
-      for (; written < rows.size() && rows[written]; ++written) {
-        on_row(std::move(*rows[written]));
-        rows[written].reset();
+      if (failure) return;
+      try {
+        ++progress.done;
+        progress.not_ok += row.ok ? 0 : 1;
+        rows[k] = std::move(row);
+        for (; written < rows.size() && rows[written]; ++written) {
+          on_row(std::move(*rows[written]));
+          rows[written].reset();
+        }
+        if (on_progress) on_progress(progress);
+      } catch (...) {
+        failure = std::current_exception();
+        next = runs.size();
+        return;
       }
-      if (on_progress) on_progress(progress);
     }
   };
   std::vector<std::thread> threads;
   for (unsigned j = 1; j < std::min<std::size_t>(jobs, runs.size()); ++j) threads.emplace_back(work);
   work();
   for (std::thread& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace spinfold::sweep

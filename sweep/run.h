@@ -34,8 +34,12 @@ struct Progress {
 
 // Runs `runs` on `jobs` threads (0: one per core). on_row gets each row in the order of `runs`,
 // as soon as the rows before it are done; on_progress after each run; both one call at a time.
+// An exception of either (a write that failed) stops the sweep and is thrown on the caller's thread.
+// `cancelled`, asked before each run from any worker, ends the sweep early when it says true (Python's
+// Ctrl-C): the rows written so far are every run before the first missing one.
 void run_all(const Plan& plan, std::span<const std::size_t> runs, unsigned jobs,
              const std::function<void(Row&&)>& on_row,
-             const std::function<void(const Progress&)>& on_progress = {});
+             const std::function<void(const Progress&)>& on_progress = {},
+             const std::function<bool()>& cancelled = {});
 
 }  // namespace spinfold::sweep

@@ -7,9 +7,11 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
+#include "codec/output_file.h"
 #include "sweep/grid.h"
 #include "sweep/rows.h"
 
@@ -155,8 +157,13 @@ void merge_shards(const std::vector<std::string>& paths, const std::string& out,
   const ShardFile& first =
       *std::min_element(shards.begin(), shards.end(),
                         [](const ShardFile& a, const ShardFile& b) { return a.shard.index < b.shard.index; });
-  FILE* file = std::fopen(out.c_str(), "w");
-  if (!file) throw SweepError("--out: cannot write '" + out + "'");
+  std::optional<OutputFile> opened;  // every write checked (WriteError naming the file)
+  try {
+    opened.emplace(out);
+  } catch (const WriteError& e) {
+    throw SweepError(std::string("--out: ") + e.what());
+  }
+  OutputFile& file = *opened;
   if (jsonl) {
     const json h = json::parse(shards[0].header[0]);
     // The same key order as a sweep writes.
@@ -170,17 +177,17 @@ void merge_shards(const std::vector<std::string>& paths, const std::string& out,
                   {"shard", "0/1"},
                   {"columns", h["sweep"]["columns"]},
                   {"base", h["sweep"]["base"]}};
-    std::fputs((o.dump() + "\n").c_str(), file);
+    file.write(o.dump() + "\n");
   } else {
     for (const std::string& line : shards[0].header) {
       const std::string text = line == "# command" ? "# command: " + first.command + "\n# merge: " + command
                                : line == "# shard" ? "# shard: 0/1"
                                                    : line;
-      std::fputs((text + "\n").c_str(), file);
+      file.write(text + "\n");
     }
   }
-  for (const auto& [i, row] : rows) std::fputs((row + "\n").c_str(), file);
-  std::fclose(file);
+  for (const auto& [i, row] : rows) file.write(row + "\n");
+  file.close();
 }
 
 }  // namespace spinfold::sweep

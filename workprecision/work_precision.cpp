@@ -9,6 +9,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "codec/output_file.h"
 #include "codec/provenance.h"
 #include "codec/scene_json.h"
 #include "engine/chart.h"
@@ -579,15 +580,14 @@ std::string write_plot(const std::filesystem::path& dir, const std::string& stem
     return e.what();
   }
   const auto write = [&](const std::string& name, const auto& bytes) {
-    std::ofstream out(dir / name, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    return static_cast<bool>(out);
+    write_whole_file((dir / name).string(), {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
   };
   try {
-    if (!write(stem + ".svg", render::draw_figure(page, render::FigureFormat::svg)) ||
-        !write(stem + ".png", render::raster_figure(page, layout.pixels_per_point)) ||
-        !write(stem + ".gp", gnuplot_script(stem, title, provenance, curves, t_end)))
-      return "cannot write the plot's files in " + dir.string();
+    write(stem + ".svg", render::draw_figure(page, render::FigureFormat::svg));
+    write(stem + ".png", render::raster_figure(page, layout.pixels_per_point));
+    write(stem + ".gp", gnuplot_script(stem, title, provenance, curves, t_end));
+  } catch (const WriteError& e) {
+    return std::string("the plot's files: ") + e.what();
   } catch (const std::exception& e) {
     return std::string("the plot was not drawn: ") + e.what();
   }

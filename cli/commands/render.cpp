@@ -10,6 +10,7 @@
 #include "cli/commands/command.h"
 #include "cli/commands/gl_option.h"
 #include "cli/figure_command.h"
+#include "codec/output_file.h"
 #include "codec/provenance.h"
 #include "render/renderer.h"
 #include "render/snapshot.h"
@@ -64,9 +65,7 @@ int render_frame(const RenderOptions& opt, const std::string& format_option) {
     const std::vector<render::PngText> texts =
         picture_texts(scene, opt.scene.command, opt.t, render::view_name(view.kind));
     const std::vector<std::uint8_t> png = renderer.render_png(snapshot, view, texts);
-    std::ofstream file(opt.out, std::ios::binary);
-    if (!file) throw BadInput{"--out: cannot write '" + opt.out + "'"};
-    file.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+    write_whole_file(opt.out, {reinterpret_cast<const char*>(png.data()), png.size()});
   }
   return run_exit_code(run.state);
 }

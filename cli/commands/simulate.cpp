@@ -15,6 +15,7 @@
 #include "cli/commands/command.h"
 #include "cli/commands/scene_options.h"
 #include "codec/npz_writer.h"
+#include "codec/output_file.h"
 #include "codec/provenance.h"
 #include "codec/sample_json.h"
 #include "codec/sample_table.h"
@@ -92,14 +93,17 @@ int simulate(SimulateOptions opt) {
   } catch (const std::invalid_argument& e) {
     throw BadInput{std::string("--fields: ") + e.what()};
   }
-  FILE* out = stdout;
-  if (!to_stdout && !npz) {
-    out = std::fopen(opt.out.c_str(), "w");
-    if (!out) throw BadInput{"--out: cannot write '" + opt.out + "'"};
+  // Line by line: a run killed at a cluster's time limit leaves whole lines (but for one cut in its
+  // write). Every write checked: a full disk stops the command at that line (exit 1, naming the file).
+  std::optional<OutputFile> out;
+  if (!npz) {
+    try {
+      out.emplace(to_stdout ? "-" : opt.out, OutputFile::Buffering::line);
+    } catch (const WriteError& e) {
+      throw BadInput{std::string("--out: ") + e.what()};
+    }
   }
-  // Line by line: a run killed at a cluster's time limit leaves whole lines (but for one cut in its write).
-  std::setvbuf(out, nullptr, _IOLBF, 1 << 16);
-  const auto write = [&](const std::string& line) { std::fputs(line.c_str(), out); };
+  const auto write = [&](const std::string& line) { out->write(line); };
 
   const nlohmann::ordered_json provenance = provenance_json(scene, opt.scene.command);
   // npz: the table's columns, filled as the samples come and written at the end (numpy.load reads
@@ -185,9 +189,24 @@ int simulate(SimulateOptions opt) {
     std::vector<std::string> names = monitor_columns(monitor);
     std::vector<double> values = monitor_values(run);
     if (opt.chaos) {  // its own two runs, to where this one ended
+      // Within what is left of --max-steps and --max-seconds: they bound the whole command.
       ChaosMonitor indicators(scene, opt.chaos_interval, run.start_time);
-      indicators.advance_to(run.state.t);
-      const std::array<double, 5> c = chaos_values(indicators.indicators());
+      std::optional<std::chrono::steady_clock::time_point> deadline;
+      if (opt.max_seconds)
+        deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                               std::chrono::duration<double>(*opt.max_seconds));
+      indicators.advance_to(run.state.t, steps_left, deadline);
+      const ChaosIndicators got = indicators.indicators();
+      if (got.out_of_time || got.out_of_steps) {
+        const bool seconds = got.out_of_time;
+        if (code == 0)
+          stopped = seconds ? "max_seconds (the chaos indicators' runs ran out of --max-seconds at t = " +
+                                  shortest(got.t) + ")"
+                            : "max_steps (the chaos indicators' runs ran out of --max-steps at t = " +
+                                  shortest(got.t) + ")";
+        code = kExitRunStopped;
+      }
+      const std::array<double, 5> c = chaos_values(got);
       for (std::size_t i = 0; i < c.size(); ++i) {
         names.emplace_back(kChaosColumns[i]);
         values.push_back(std::isfinite(c[i]) ? c[i] : NAN);
@@ -214,10 +233,8 @@ int simulate(SimulateOptions opt) {
     } catch (const std::runtime_error& e) {
       throw BadInput{std::string("--out: ") + e.what()};
     }
-  } else if (!to_stdout) {
-    std::fclose(out);
   } else {
-    std::fflush(out);
+    out->close();
   }
   if (code != 0) std::cerr << "spinfold: run stopped at t = " << run.state.t << ": " << stopped << "\n";
   return code;

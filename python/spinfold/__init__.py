@@ -70,10 +70,27 @@ def field_names() -> list[str]:
     return list(_VALUE_NAMES)
 
 
+def _non_finite_path(value: Any, path: str) -> tuple[str, float] | None:
+    """The dotted path and value of the first NaN or infinity in a scene given as Python values."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return path, value
+    items = value.items() if isinstance(value, Mapping) else \
+        ((f"[{i}]", v) for i, v in enumerate(value)) if isinstance(value, (list, tuple)) else ()
+    for key, item in items:
+        found = _non_finite_path(item, f"{path}{key}" if str(key).startswith("[") else f"{path}.{key}")
+        if found:
+            return found
+    return None
+
+
 def _scene_text(scene: Any, field: str = "scene") -> str:
     """JSON text of a scene given as a mapping, JSON text, or a name: a scene file if a file has
     that name, else a preset's name (the one rule of every CLI command, codec/scene_source.h)."""
     if isinstance(scene, Mapping):
+        bad = _non_finite_path(scene, field)
+        if bad:
+            # JSON has no NaN or infinity: refused as the scene's rule refuses a number out of range.
+            raise ValueError(f"{bad[0]}: must be a finite number (got {bad[1]!r})")
         try:
             return json.dumps(scene, allow_nan=False)
         except (TypeError, ValueError) as error:
@@ -244,11 +261,19 @@ class Result(Mapping[str, np.ndarray]):
         )
 
 
+def _texts(value: Any, name: str) -> list[str]:
+    """A text or a sequence of texts, as a list; TypeError naming the argument otherwise."""
+    if isinstance(value, str):
+        return [value]
+    if not isinstance(value, Sequence) or not all(isinstance(x, str) for x in value):
+        raise TypeError(f"{name}: must be a text or a sequence of texts (got {value!r})")
+    return list(value)
+
+
 def _monitor_texts(summaries: str | Sequence[str], events: str | Sequence[str]) -> tuple[list[str], list[str]]:
     """The CLI's --summary (comma-separated) and --event texts as lists."""
-    summaries = summaries.split(",") if isinstance(summaries, str) else [str(x) for x in summaries]
-    events = [events] if isinstance(events, str) else [str(x) for x in events]
-    return [x for x in summaries if x], events
+    summaries = summaries.split(",") if isinstance(summaries, str) else _texts(summaries, "summaries")
+    return [x for x in summaries if x], _texts(events, "events")
 
 
 def simulate(scene: Any, t_end: float = 10.0, every: float = 0.5, *, max_steps: int | None = None,
@@ -342,6 +367,9 @@ def sweep(base: Any, vary: Mapping[str, Any], t_end: float = 10.0, every: float 
             continue
         if isinstance(values, np.ndarray):
             values = values.tolist()
+        if not isinstance(values, (list, tuple, range)):
+            raise TypeError(f"vary['{path}']: must be a text such as '0:2:40' or 'auto,dop853', or a sequence "
+                            f"of values (got {values!r})")
         values = [v.item() if isinstance(v, np.generic) else v for v in values]
         if any(isinstance(v, float) and not math.isfinite(v) for v in values):
             # JSON has no NaN or inf: the values as --set writes them, refused by the library's rule.

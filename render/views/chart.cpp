@@ -32,7 +32,9 @@ class ChartView final : public ViewModel {
     return chart_position(shape.picture, shape.entry->u_of(shape.surface, X), std::atan2(X.y(), X.x()));
   }
   bool on_view(const Surface& surface, const Vec3& X) const override { return on_drawn_piece(surface, X); }
-  std::string_view off_view_note() const override { return kOffDrawnPieceNote; }
+  std::string_view off_view_note(const Surface& surface, const Vec3& X) const override {
+    return off_drawn_piece_note(surface, X);
+  }
   // A step of more than a quarter of the width: across the seam (or over an axis point, where φ jumps).
   bool torn(const glm::dvec3& a, const glm::dvec3& b) const override { return std::abs(a.x - b.x) > 0.5; }
 

@@ -18,6 +18,14 @@ bool on_drawn_piece(const Surface& surface, const Vec3& X) {
   return u >= shape.picture.u_min - margin && u <= shape.picture.u_max + margin;
 }
 
+bool within_drawing_range(const Surface& surface, const Vec3& X) {
+  return X.allFinite() && X.norm() <= kMaxDrawnDistance * profile_shape(surface).picture.length;
+}
+
+std::string_view off_drawn_piece_note(const Surface& surface, const Vec3& X) {
+  return within_drawing_range(surface, X) ? kOffDrawnPieceNote : kBeyondDrawingNote;
+}
+
 std::vector<double> zero_curvature_parallels(const ProfileShape& shape) {
   std::vector<double> zeros;
   const int n = 1024;
@@ -38,8 +46,12 @@ std::vector<double> grid_parallels(const ProfileShape& shape) {
   const double lo = shape.picture.u_min, hi = shape.picture.u_max, step = shape.picture.grid_step;
   std::vector<double> us;
   const double first = std::ceil(lo / step - 1e-9) * step;
-  for (double u = first; u <= hi + 1e-9 * step; u += step)
+  // Counted, not stepped: a step below the rounding of u would never move it.
+  const double count = std::floor((hi + 1e-9 * step - first) / step) + 1.0;
+  for (int k = 0; k < std::min(count, 1024.0); ++k) {
+    const double u = first + k * step;
     if (shape.entry->profile(shape.surface, u).rho > 1e-9 * shape.picture.length) us.push_back(u);
+  }
   return us;
 }
 

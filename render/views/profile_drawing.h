@@ -23,10 +23,22 @@ struct ProfileShape {
 ProfileShape profile_shape(const Surface& surface);
 
 // Whether X lies on the drawn range of u (the bump to 4w, the catenoid to |z| = 2c), and what the
-// HUD says of a main body beyond it (round which the revolution view draws a patch of the surface).
+// HUD says of a main body beyond it (round which the revolution view draws a patch of the surface,
+// within the drawing range).
 bool on_drawn_piece(const Surface& surface, const Vec3& X);
 inline constexpr std::string_view kOffDrawnPieceNote =
     "body 1 is beyond the surface drawn whole (bump: 4w, catenoid: |z| = 2c)";
+inline constexpr std::string_view kBeyondDrawingNote =
+    "body 1 is too far out to draw (over 10^4 picture sizes away)";
+std::string_view off_drawn_piece_note(const Surface& surface, const Vec3& X);
+
+// How far from the centre a point may be drawn, in the picture's length: the GL draws in floats
+// (24-bit mantissa), so at 10⁴ lengths a vertex is placed to ~6e-4 of a length, a hundredth of the
+// patch's quads (kPatchQuads); farther out the patch's grid and the body's ellipse would be noise.
+inline constexpr double kMaxDrawnDistance = 1e4;
+// Whether X is finite and within kMaxDrawnDistance picture lengths of the centre: where the
+// revolution view draws bodies, trails and the patch round a main body.
+bool within_drawing_range(const Surface& surface, const Vec3& X);
 
 // The parallels where K changes sign within the drawn range (bisected to rounding from 1024 steps).
 std::vector<double> zero_curvature_parallels(const ProfileShape& shape);

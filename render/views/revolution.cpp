@@ -28,6 +28,9 @@ constexpr int kRings = 48, kSlices = 72;
 // half-size in arc length, in units of the camera's least framing radius (aim's): it fills the frame.
 constexpr int kPatchQuads = 32;
 constexpr double kPatchHalf = 3.0;
+// The most parallels or meridians a patch draws each way (its step halves until one is no wider
+// than a feature: about 2 × kPatchHalf × 2.5 of them, more only where the feature is uneven).
+constexpr double kMaxPatchLines = 4.0 * kPatchQuads;
 
 // The camera's least framing radius when it follows one body [length]: 2.5 features, at least a
 // third of the picture's unit (aim).
@@ -46,7 +49,7 @@ PatchShape patch_shape(const ProfileShape& shape, double u) {
   const double f = std::hypot(p.rho_u, p.z_u), half = kPatchHalf * framing_radius(shape.picture);
   const double feature = shape.picture.feature;
   const auto halved = [&](double step, double arc_per_unit) {  // step/2ᵏ with arc ≤ feature
-    while (step * arc_per_unit > feature) step /= 2.0;
+    for (int k = 0; k < 64 && step * arc_per_unit > feature; ++k) step /= 2.0;
     return step;
   };
   return {half / f, std::min(kPi, half / p.rho), halved(shape.picture.grid_step, f), halved(kPi / 6, p.rho)};
@@ -77,8 +80,13 @@ class RevolutionView final : public ViewModel {
   }
   // Within the drawn piece (the bump's plane to 4w, the catenoid to |z| = 2c).
   bool on_view(const Surface& surface, const Vec3& X) const override { return on_drawn_piece(surface, X); }
-  std::string_view off_view_note() const override { return kOffDrawnPieceNote; }
-  bool draws(const Surface& /*surface*/, const Vec3& /*X*/) const override { return true; }
+  std::string_view off_view_note(const Surface& surface, const Vec3& X) const override {
+    return off_drawn_piece_note(surface, X);
+  }
+  // Within the drawing range (within_drawing_range): beyond it, floats cannot place a vertex.
+  bool draws(const Surface& surface, const Vec3& X) const override {
+    return within_drawing_range(surface, X);
+  }
 
   // A main body beyond the drawn piece: a patch of the surface round it, its centre on a lattice of
   // powers of two no coarser than a quarter of its half-extents (it moves in steps: a frame and the
@@ -86,6 +94,7 @@ class RevolutionView final : public ViewModel {
   std::optional<std::array<double, 2>> patch_at(const Snapshot& snapshot) const override {
     if (snapshot.bodies.empty() || on_view(snapshot.surface, snapshot.bodies.front().X)) return std::nullopt;
     const Vec3& X = snapshot.bodies.front().X;
+    if (!within_drawing_range(snapshot.surface, X)) return std::nullopt;  // the note says so
     const ProfileShape shape = profile_shape(snapshot.surface);
     const double u = shape.entry->u_of(shape.surface, X), phi = std::atan2(X.y(), X.x());
     const PatchShape patch = patch_shape(shape, u);
@@ -94,6 +103,16 @@ class RevolutionView final : public ViewModel {
       return std::round(v / quantum) * quantum;
     };
     return std::array<double, 2>{snapped(u, patch.du), snapped(phi, patch.dphi)};
+  }
+  bool paints_surface_at(const Snapshot& snapshot, const Vec3& X) const override {
+    if (on_view(snapshot.surface, X)) return true;
+    const std::optional<std::array<double, 2>> at = patch_at(snapshot);
+    if (!at) return false;
+    const ProfileShape shape = profile_shape(snapshot.surface);
+    const PatchShape patch = patch_shape(shape, (*at)[0]);
+    const double u = shape.entry->u_of(shape.surface, X);
+    const double dphi = std::remainder(std::atan2(X.y(), X.x()) - (*at)[1], 2.0 * kPi);
+    return std::abs(u - (*at)[0]) <= patch.du && std::abs(dphi) <= patch.dphi;
   }
   // Lit and tinted as the piece (the same full scale of |K|), with its own parallels and meridians;
   // never over the piece (its range in u stops at the piece's end).
@@ -118,16 +137,23 @@ class RevolutionView final : public ViewModel {
       for (int j = 0; j < kPatchQuads; ++j)
         add_quad(g, vertex(u_of(i), phi_of(j)), vertex(u_of(i + 1), phi_of(j)),
                  vertex(u_of(i + 1), phi_of(j + 1)), vertex(u_of(i), phi_of(j + 1)));
-    for (double u = std::ceil(lo / patch.step_u) * patch.step_u; u <= hi; u += patch.step_u) {
+    // The grid's lines counted, never stepped (a step below the rounding of u would not move it),
+    // and at most kMaxPatchLines each way: a patch whose lines would crowd closer is drawn bare.
+    const auto lines = [](double from, double to, double step, auto&& draw) {
+      const double first = std::ceil(from / step) * step, count = std::floor((to - first) / step) + 1.0;
+      if (!(count <= kMaxPatchLines)) return;
+      for (int k = 0; k < static_cast<int>(count); ++k) draw(first + k * step);
+    };
+    lines(lo, hi, patch.step_u, [&](double u) {
       std::vector<Vec3> pts;
       for (int j = 0; j <= kPatchQuads; ++j) pts.push_back(revolution_frame(shape.surface, u, phi_of(j)).X);
       add_polyline(g.grid, surface, *this, pts, kGridColor, false);
-    }
-    for (double phi = std::ceil(phi0 / patch.step_phi) * patch.step_phi; phi <= phi1; phi += patch.step_phi) {
+    });
+    lines(phi0, phi1, patch.step_phi, [&](double phi) {
       std::vector<Vec3> pts;
       for (int i = 0; i <= kPatchQuads; ++i) pts.push_back(revolution_frame(shape.surface, u_of(i), phi).X);
       add_polyline(g.grid, surface, *this, pts, kGridColor, false);
-    }
+    });
     return g;
   }
   glm::dvec3 normal(const Surface& surface, const glm::dvec3& w) const override {
@@ -196,7 +222,7 @@ class RevolutionView final : public ViewModel {
     const Surface& surface = snapshot.surface;
     const Vec3 n3 =
         embedded_normal(RevolutionImplicit(profile_shape(surface).surface), snapshot.bodies.front().X);
-    const glm::dvec3 n(n3.x(), n3.y(), n3.z());
+    const glm::dvec3 n = n3.allFinite() ? glm::dvec3(n3.x(), n3.y(), n3.z()) : glm::dvec3(0.0, 0.0, 1.0);
     view.target.reset();
     std::vector<Sight> points = sights(*this, snapshot, view, true);
     // The catenoid and the bump are unbounded and what is beyond the drawn piece is drawn too, but
@@ -207,7 +233,7 @@ class RevolutionView final : public ViewModel {
     std::erase_if(points,
                   [&](const Sight& p) { return !on_view(surface, Vec3(p.at.x, p.at.y, p.at.z) * l); });
     const BodySnapshot& main = snapshot.bodies.front();
-    if (!on_view(surface, main.X)) {
+    if (!on_view(surface, main.X) && within_drawing_range(surface, main.X)) {
       points = {{world_position(surface, main.X), 1000.0}};
       for (const Vec3& P : ellipse_points(surface, main, body_drawing_scale(surface, main, view.scale), 8))
         points.push_back({world_position(surface, P), 5.0});

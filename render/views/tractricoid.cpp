@@ -38,7 +38,7 @@ class TractricoidView final : public ViewModel {
   bool on_view(const Surface& surface, const Vec3& X) const override {
     return kTractricoidDilation * half_plane_point(surface, X).y >= 1.0;
   }
-  std::string_view off_view_note() const override {
+  std::string_view off_view_note(const Surface& /*surface*/, const Vec3& /*X*/) const override {
     return "body 1 is beyond the rim: off the part of H2 this surface shows";
   }
   glm::dvec3 normal(const Surface& /*surface*/, const glm::dvec3& w) const override {

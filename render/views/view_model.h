@@ -42,13 +42,21 @@ class ViewModel {
   // Where an embedded point X of `surface` lands in the view's world coordinates (world_position).
   virtual glm::dvec3 world_position(const Surface& surface, const Vec3& X) const = 0;
   // Whether the view shows X (false only off the tractricoid's strip and the revolution view's
-  // drawn piece of an unbounded surface), and what the HUD says of a main body it does not show.
+  // drawn piece of an unbounded surface), and what the HUD says of a main body at X it does not show.
   virtual bool on_view(const Surface& /*surface*/, const Vec3& /*X*/) const { return true; }
-  virtual std::string_view off_view_note() const { return "body 1 is off the view"; }
+  virtual std::string_view off_view_note(const Surface& /*surface*/, const Vec3& /*X*/) const {
+    return "body 1 is off the view";
+  }
   // Whether a body, trail or path point at X is drawn: where the view shows it, or anywhere in a
   // view whose world is ℝ³ itself (the revolution view: off its drawn piece the body, its trail and
   // the camera's aim go on, with the note, and only the surface's mesh is missing).
   virtual bool draws(const Surface& surface, const Vec3& X) const { return on_view(surface, X); }
+  // Whether a frame of `snapshot` paints the surface itself at X (a drop there picks it; elsewhere
+  // the pixel is background, however far the unbounded surface goes): where the view shows X, and in
+  // the revolution view also the patch round a main body beyond the drawn piece.
+  virtual bool paints_surface_at(const Snapshot& snapshot, const Vec3& X) const {
+    return on_view(snapshot.surface, X);
+  }
   // The surface's unit normal at a world point: overlays are lifted along it and arrowheads lie
   // across it. +z in the 2-D views.
   virtual glm::dvec3 normal(const Surface& /*surface*/, const glm::dvec3& /*w*/) const {

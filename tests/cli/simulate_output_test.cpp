@@ -212,6 +212,79 @@ TEST(SimulateOutput, MaxSecondsStopsALongRunWithItsStatus) {
   EXPECT_LT(seconds, 5.0);
 }
 
+// --chaos's two runs go on after the main run only within what is left of --max-seconds (they took
+// 14-27 s for a 3 s limit on the catenoid): the command ends near its limit with exit 3 and says so.
+TEST(SimulateOutput, MaxSecondsBoundsTheChaosIndicatorsRunsToo) {
+  const auto start = std::chrono::steady_clock::now();
+  const Result r = spinfold(
+      "simulate --scene spin_vs_geodesic_catenoid --t-end 1e4 --every 1000 --chaos --chaos-interval 0.01 "
+      "--format csv --max-seconds 1.5");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("max_seconds"), std::string::npos) << r.err;
+  EXPECT_LT(seconds, 1.5 + 4.0);
+}
+
+// An event whose period is far below what double tells apart where its field is (issue 48: it ran
+// until killed, whatever --max-seconds or --max-steps said): the run stops at once with its status.
+TEST(SimulateOutput, AnEventPeriodBelowTheFieldsPrecisionStopsTheRunWithItsStatus) {
+  for (const char* limit : {"--max-seconds 3", "--max-steps 10", ""}) {
+    const auto start = std::chrono::steady_clock::now();
+    const Result r = spinfold(
+        std::string(
+            "simulate spinning_rigid_sphere --t-end 10 --event phi:any:0:period=1e-300 --format csv ") +
+        limit);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(r.exit_code, 3) << limit << ": " << r.err;
+    EXPECT_NE(r.err.find("event_unresolved"), std::string::npos) << r.err;
+    EXPECT_LT(seconds, 3.0) << limit;
+  }
+  // 1e-8: millions of crossings, every one counted (10,000 a step were, silently), in a moment.
+  const auto start = std::chrono::steady_clock::now();
+  const Result r = spinfold(
+      "simulate spinning_rigid_sphere --t-end 10 --every 10 --event phi:any:0:period=1e-8 --format jsonl");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 3.0);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json summary = json::parse(lines_of(r.out).back())["summary"];
+  EXPECT_GT(summary["phi_any_0.count"].get<double>(), 1e6) << summary;
+}
+
+// A write the system refuses (a full disk: /dev/full) is an error naming the file and the reason,
+// exit 1, never a short file and exit 0 (every writer checks its writes, its flush and its close).
+// The zip formats (png-zip, npz) are not asked to: libzip writes a file beside the path and renames
+// it over it, which in /dev would replace the device (their checks: tests/record, tests/codec).
+TEST(SimulateOutput, AFullDeviceIsAnErrorNamingTheFile) {
+  for (const std::string args : {
+           "simulate spinning_rigid_sphere --t-end 1 --format csv --out /dev/full",
+           "simulate spinning_rigid_sphere --t-end 1 --format jsonl --out /dev/full",
+           "simulate spinning_rigid_sphere --t-end 200 --every 0.01 --format csv --out /dev/full",
+           "render spinning_rigid_sphere --width 64 --height 48 --out /dev/full",
+           "render spinning_rigid_sphere --width 64 --height 48 --format svg --out /dev/full",
+           "sweep spinning_rigid_sphere --set initial.spin=0,1 --t-end 1 --out /dev/full",
+           "record spinning_rigid_sphere --t-end 0.3 --fps 10 --width 64 --height 48 --format gif --out "
+           "/dev/full",
+           "record spinning_rigid_sphere --t-end 0.3 --fps 10 --width 64 --height 48 --format webm --out "
+           "/dev/full",
+           "record spinning_rigid_sphere --t-end 0.3 --fps 10 --width 64 --height 48 --format mp4 --out "
+           "/dev/full",
+       }) {
+    const Result r = spinfold(args);
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_NE(r.exit_code, 3) << args << ": not a run's stop";
+    EXPECT_NE(r.err.find("/dev/full"), std::string::npos) << args << ": " << r.err;
+  }
+  for (const std::string args : {"simulate spinning_rigid_sphere --t-end 1 --format csv --out /dev/full",
+                                 "render spinning_rigid_sphere --width 64 --height 48 --out /dev/full"}) {
+    const Result r = spinfold(args);
+    EXPECT_EQ(r.exit_code, 1) << args;
+    EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << args << ": " << r.err;
+  }
+  // Standard output on a full device.
+  const Result r = spinfold("simulate spinning_rigid_sphere --t-end 1 > /dev/full");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("standard output"), std::string::npos) << r.err;
+}
+
 TEST(SimulateOutput, AKilledRunLeavesWholeLinesButTheOneBeingWritten) {
   TempDir dir;
   const fs::path out = dir.path / "run.csv";

@@ -156,5 +156,23 @@ TEST(SurfacesJson, AMissingHeadingNamesTheSurfacesOwnE1) {
   EXPECT_NE(sphere.reason.find("E1 = d/dr"), std::string::npos) << sphere.reason;
 }
 
+// A merge patch of surface.curvature on a spheroid ({"curvature": K, "kind": null, "radius": null})
+// leaves K beside the spheroid's fields: the refusal names curvature, the field the patch gave (it
+// named equatorial_radius and polar_radius, which the patch did not touch).
+TEST(SurfacesJson, CurvatureBesideAnotherKindsFieldsIsRefusedNamingCurvature) {
+  for (const char* surface : {R"({"curvature": 1, "equatorial_radius": 1, "polar_radius": 0.6})",
+                              R"({"curvature": -0.5, "tube_radius": 0.6, "center_radius": 2})",
+                              R"({"curvature": 0, "neck_radius": 1})"}) {
+    const SceneParse p = parse_scene_text(std::string(R"({"surface": )") + surface + "}");
+    ASSERT_EQ(p.errors.size(), 1u) << surface << ": " << describe_errors(p.errors);
+    EXPECT_EQ(p.errors[0].field, "surface.curvature") << surface;
+    EXPECT_NE(p.errors[0].reason.find("set surface.kind first"), std::string::npos) << p.errors[0].reason;
+  }
+  // Another section's error stays.
+  const SceneParse p =
+      parse_scene_text(R"({"surface": {"curvature": 1, "neck_radius": 1}, "initial": {"u": 0.5}})");
+  ASSERT_EQ(p.errors.size(), 2u) << describe_errors(p.errors);
+}
+
 }  // namespace
 }  // namespace spinfold

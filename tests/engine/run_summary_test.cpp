@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <numbers>
 
@@ -60,7 +61,9 @@ TEST(RunSummary, ParsesSummariesAndEventsInOneGrammar) {
   EXPECT_EQ(parse_event("r:up:1.2").name, "r_up_1.2");
 
   for (const char* bad :
-       {"r", "r:sideways:1", "r:up:x", "r:up:1:period=0", "r:up:1:stop=0", "r:up:1:colour=red"}) {
+       {"r", "r:sideways:1", "r:up:x", "r:up:1:period=0", "r:up:1:stop=0", "r:up:1:colour=red",
+        // A key given twice (as a JSON object's is refused), and levels closer than double tells apart.
+        "r:up:1:name=a:name=b", "r:up:1:period=1:period=2", "r:up:1e6:period=1e-7"}) {
     try {
       parse_event(bad);
       ADD_FAILURE() << bad << " was accepted";
@@ -229,6 +232,42 @@ TEST(RunSummary, PhiThroughMultiplesOfTwoPi) {
   EXPECT_NEAR(v[0], unwrapped, 1e-9);
   EXPECT_EQ(v[1], turns);
   EXPECT_GE(turns, 1.0);
+}
+
+// A period far below the field's change over a step: every crossing counted (the levels are counted
+// in each step, not visited one by one; 10,000 a step were kept before and the rest dropped without
+// a word), the first and last located, in the time a few root finds take.
+TEST(RunSummary, CrossingsAreCountedNotVisited) {
+  const Scene scene = w5_with("dop853", 0.01, 1e-12);
+  const double T = 40.0, P = 1e-6;
+  const auto started = std::chrono::steady_clock::now();
+  const std::vector<double> v = summarised(
+      scene, {.summaries = {parse_summary("phi.final")}, .events = {parse_event("phi:any:0:period=1e-6")}}, T,
+      0.5);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 5.0);
+  const Simulation start = start_simulation(scene);
+  const double phi0 = global_body(scene, start.state).phi, phi_T = v[0];
+  // φ increases through the run (w5 circles): the multiples k·P in (φ₀, φ_T].
+  ASSERT_GT(phi_T - phi0, 2.0 * std::numbers::pi);
+  const double expected = std::floor(phi_T / P) - std::floor(phi0 / P);
+  EXPECT_NEAR(v[1], expected, 2.0) << "count";
+  EXPECT_GT(v[1], 6e6);
+  EXPECT_NEAR(v[2], 0.0, 1e-3) << "t_first: the first level just after the start";
+  EXPECT_NEAR(v[3], T, 1e-3) << "t_last: the last level just before the end";
+}
+
+// Levels closer than double tells apart where the field is (1e-300 apart at φ ~ 1): the run stops
+// at the start of the first step that meets them, with event_unresolved, instead of looping there.
+TEST(RunSummary, LevelsDoubleCannotTellApartStopTheRun) {
+  const Scene scene = w5_with("dop853", 0.01, 1e-12);
+  Simulation run;
+  const auto started = std::chrono::steady_clock::now();
+  const std::vector<double> v = summarised(
+      scene, {.summaries = {}, .events = {parse_event("phi:any:0:period=1e-300")}}, 10.0, 0.5, &run);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 2.0);
+  EXPECT_EQ(run.state.status, Status::event_unresolved);
+  EXPECT_LT(run.state.t, 10.0);
+  EXPECT_TRUE(std::isfinite(run.state.y.norm()));
 }
 
 }  // namespace

@@ -10,9 +10,15 @@
 namespace spinfold {
 namespace {
 
-constexpr Status kStatuses[] = {
-    Status::ok,           Status::non_finite, Status::step_failed,  Status::degenerate_frame,
-    Status::out_of_range, Status::diverged,   Status::inconsistent, Status::event_stop};
+constexpr Status kStatuses[] = {Status::ok,
+                                Status::non_finite,
+                                Status::step_failed,
+                                Status::degenerate_frame,
+                                Status::out_of_range,
+                                Status::diverged,
+                                Status::inconsistent,
+                                Status::event_stop,
+                                Status::event_unresolved};
 
 // The names are the enumerators' own spelling (the API's status values).
 TEST(State, StatusNamesAreTheEnumerators) {
@@ -24,6 +30,7 @@ TEST(State, StatusNamesAreTheEnumerators) {
   EXPECT_EQ(status_name(Status::diverged), "diverged");
   EXPECT_EQ(status_name(Status::inconsistent), "inconsistent");
   EXPECT_EQ(status_name(Status::event_stop), "event_stop");
+  EXPECT_EQ(status_name(Status::event_unresolved), "event_unresolved");
 }
 
 // One distinct sentence per status, for a person; none is empty or the bare name.

@@ -195,3 +195,52 @@ def test_simulate_and_run_many_give_each_runs_summary_as_the_sweep_does():
         spinfold.run_many(["separable_radial_abc", "trapped_spin_bump"], t_end=1, summaries="r")
     with pytest.raises(ValueError, match=r"events: event 'r:up': write FIELD:DIRECTION:LEVEL"):
         spinfold.simulate("separable_radial_abc", t_end=1, events="r:up")
+
+
+def test_a_period_below_the_fields_precision_stops_each_run_with_its_status_at_once():
+    # Issue 48: each step visited every level it crossed, so this ran until killed (Ctrl-C could
+    # not stop it); now each run stops with event_unresolved in its first step.
+    import time
+    start = time.monotonic()
+    rows = spinfold.sweep("spinning_rigid_sphere", {"initial.spin": [0.5, 1.0]}, t_end=10.0,
+                          events=["phi:any:0:period=1e-300"])
+    assert time.monotonic() - start < 5.0
+    assert list(rows["status"]) == ["event_unresolved", "event_unresolved"]
+
+
+def test_wrong_types_are_refused_naming_the_argument():
+    # Issue 48: a bare "'int' object is not iterable" before.
+    with pytest.raises(TypeError, match=r"events: must be a text or a sequence of texts \(got 5\)"):
+        spinfold.sweep("spinning_rigid_sphere", {"initial.spin": "0,1"}, events=5)
+    with pytest.raises(TypeError, match=r"summaries: must be a text or a sequence of texts"):
+        spinfold.simulate("spinning_rigid_sphere", 1.0, summaries=7)
+    with pytest.raises(TypeError, match=r"vary\['initial.spin'\]: must be a text such as '0:2:40'"):
+        spinfold.sweep("spinning_rigid_sphere", {"initial.spin": 5})
+
+
+def test_nan_or_infinity_in_a_scene_dict_is_refused_naming_the_field():
+    scene = {"surface": {"kind": "sphere", "radius": 1.0}, "initial": {"r": 0.5, "spin": math.nan}}
+    with pytest.raises(ValueError, match=r"scene.initial.spin: must be a finite number \(got nan\)"):
+        spinfold.simulate(scene, 1.0)
+    scene["initial"]["spin"] = math.inf
+    with pytest.raises(ValueError, match=r"base.initial.spin: must be a finite number \(got inf\)"):
+        spinfold.sweep(scene, {"initial.r": "0.1,0.2"})
+
+
+def test_ctrl_c_stops_a_sweep_after_the_runs_in_progress():
+    import os
+    import signal
+    import sys
+    import time
+    code = ("import spinfold, sys; print('started', flush=True); "
+            "spinfold.sweep('spin_vs_geodesic_torus', {'initial.spin': '0:1:2000'}, t_end=1000.0)")
+    child = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True, env=dict(os.environ))
+    assert child.stdout.readline().strip() == "started"
+    time.sleep(1.0)
+    child.send_signal(signal.SIGINT)
+    start = time.monotonic()
+    _, err = child.communicate(timeout=30)
+    assert time.monotonic() - start < 10.0
+    assert child.returncode != 0
+    assert "KeyboardInterrupt" in err

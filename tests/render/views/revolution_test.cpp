@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -15,6 +17,7 @@
 #include "render/snapshot.h"
 #include "render/view_table.h"
 #include "render/views/drawing.h"
+#include "render/views/profile_drawing.h"
 #include "render/views/view_model.h"
 #include "view_test_support.h"
 
@@ -197,6 +200,61 @@ TEST(RevolutionView, BeyondTheDrawnPieceAPatchOfTheSurfaceIsDrawnRoundTheBody) {
   EXPECT_LT(nearest, picture.feature) << "the patch is under the body";
   // A little later (the body moved by ~1e-3 of its distance from the neck) the frames share the patch.
   EXPECT_EQ(frame_at(8.001).second.statics, off_scene.statics);
+}
+
+// Issue 48's reports, and a range of distances beyond them: a body farther out than floats can draw
+// (the bump at u = 1e17, a bump of width 1e-100 with the body at u = 1, the catenoid at u = 100)
+// took a frame's render thread into an endless loop (the patch's grid stepped by less than the
+// rounding of u) and all the memory it could get. Every one now ends at once, without a patch and
+// without the body, its line in the HUD saying it is too far out to draw; within the range the
+// patch is built and the body framed.
+TEST(RevolutionView, ABodyFarOutEndsItsFrameAtOnceAndTheHudSaysWhy) {
+  struct Case {
+    const char* surface;
+    double u;
+    bool drawable;
+  };
+  const Case cases[] = {
+      {R"({"kind": "bump", "height": 1, "width": 1})", 1e17, false},
+      // A needle 1 high: the picture is 1 across, the body at u = 1 within it, its patch's grid
+      // (steps of w/2 = 5e-101 over a patch ~1 wide) left out, not stepped through.
+      {R"({"kind": "bump", "height": 1, "width": 1e-100})", 1.0, true},
+      {R"({"kind": "bump", "height": 1e-100, "width": 1e-100})", 1.0, false},
+      {R"({"kind": "catenoid", "neck_radius": 1})", 100.0, false},
+      {R"({"kind": "catenoid", "neck_radius": 1})", -300.0, false},
+      {R"({"kind": "bump", "height": 1, "width": 1})", 1e3, true},
+      {R"({"kind": "bump", "height": -2, "width": 1e-3})", 5.0, true},
+      {R"({"kind": "catenoid", "neck_radius": 1})", 8.0, true},
+  };
+  for (const Case& c : cases) {
+    const std::string text = std::string(R"({"surface": )") + c.surface + R"(, "initial": {"u": )" +
+                             std::to_string(c.u) + R"(, "speed": 0.5, "heading": 0}})";
+    const SceneParse parsed = parse_scene_text(text);
+    ASSERT_TRUE(parsed.scene) << text;
+    Simulation run;
+    const Snapshot s = snapshot_at(*parsed.scene, 0.0, true, std::nullopt, run);
+    ViewOptions view;
+    view.kind = ViewKind::revolution;
+    view.width = 96;
+    view.height = 72;
+    const auto started = std::chrono::steady_clock::now();
+    aim_camera_at_body(view, s);
+    const FrameScene frame = build_scene(s, view);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    EXPECT_LT(seconds, 2.0) << text;
+    const std::vector<std::string> lines = readout_lines(s, view);
+    const bool says_too_far = std::ranges::find(lines, std::string(kBeyondDrawingNote)) != lines.end();
+    EXPECT_EQ(says_too_far, !c.drawable) << text;
+    EXPECT_EQ(revolution().patch_at(s).has_value(), c.drawable) << text;
+    EXPECT_EQ(revolution().draws(s.surface, s.bodies[0].X), c.drawable) << text;
+    if (c.drawable) {
+      EXPECT_GT(frame.statics->surface.size(),
+                static_geometry(s.surface, ViewKind::revolution)->surface.size())
+          << text << ": the patch round the body";
+      const auto patch = revolution().build_patch(s.surface, *revolution().patch_at(s));
+      EXPECT_LE(patch.grid.size(), 2u * 128u * 33u * 2u) << text << ": at most kMaxPatchLines lines each way";
+    }
+  }
 }
 
 TEST(RevolutionView, APointBehindTheTubeIsHiddenAndOneInFrontIsNot) {
