@@ -604,19 +604,16 @@ SceneParse parse_scene(const json& document) {
   const std::size_t before_surfaces = result.errors.size();
   refuse_other_surfaces<Scene>(in, document, "", scene.surface.kind);
   // K with the fields of a surface whose curvature varies (a merge patch of surface.curvature on a
-  // spheroid): the field at fault is curvature, which stands in for a kind of constant curvature.
+  // spheroid): the field at fault is curvature, which stands in for a kind of constant curvature;
+  // the other kind's fields it then refuses (the surface's, initial.u, integrator.stepping) are one
+  // error, named there.
   if (scene.surface.curvature_given && document.contains("surface")) {
     std::string others;
-    std::vector<FieldError> kept(result.errors.begin(),
-                                 result.errors.begin() + static_cast<std::ptrdiff_t>(before_surfaces));
-    for (std::size_t i = before_surfaces; i < result.errors.size(); ++i) {
+    for (std::size_t i = before_surfaces; i < result.errors.size(); ++i)
       if (result.errors[i].field.starts_with("surface."))
         others += (others.empty() ? "" : ", ") + result.errors[i].field.substr(8);
-      else
-        kept.push_back(result.errors[i]);
-    }
     if (!others.empty()) {
-      result.errors = std::move(kept);
+      result.errors.resize(before_surfaces);
       in.error(
           "surface.curvature", document["surface"]["curvature"],
           "stands in for the kind and radius of a surface of constant curvature (sphere, pseudosphere or "

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -692,6 +693,49 @@ TEST_F(Api, ADropOnAFrameStartsTheRunWhereTheFramePaintsTheBody) {
     EXPECT_NE(refused->body.find("\"field\":\"" + field + "\""), std::string::npos) << query << refused->body;
   }
   EXPECT_EQ(json::parse(c.Get(session)->body)["state"].dump(), version_before);
+  remove(id);
+}
+
+// Issue 48: each of these sessions was accepted and its first revolution frame never answered (the
+// render thread looped, taking memory without bound), again after every restart. Now every view's
+// frame, the handles and a figure answer at once; the HUD says the body is too far out to draw.
+TEST_F(Api, AFrameOfABodyFarOutOnAnUnboundedSurfaceAnswersAtOnce) {
+  for (const char* scene :
+       {R"({"surface":{"kind":"bump","height":1,"width":1},"initial":{"u":1e17,"speed":0.5,"heading":0}})",
+        R"({"surface":{"kind":"bump","height":1,"width":1e-100},"initial":{"u":1,"speed":0.5,"heading":0}})",
+        R"({"surface":{"kind":"catenoid","neck_radius":1},"initial":{"u":100,"speed":0.5,"heading":0}})"}) {
+    const std::string session = "/api/v1/sessions/" + create(scene);
+    auto c = client();
+    c.set_read_timeout(10, 0);
+    const auto started = std::chrono::steady_clock::now();
+    for (const char* view : {"revolution", "chart"}) {
+      const std::string q = std::string("?view=") + view + "&width=160&height=120";
+      for (const std::string route : {"/frame.png", "/handles", "/frame.svg"}) {
+        const auto res = c.Get(session + route + q);
+        ASSERT_TRUE(res) << scene << route << q;
+        EXPECT_EQ(res->status, 200) << scene << route << q << res->body.substr(0, 200);
+      }
+    }
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 5.0)
+        << scene;
+    remove(session.substr(session.rfind('/') + 1));
+  }
+}
+
+// A merge patch of surface.curvature on a spheroid is refused naming curvature, the field it gave
+// (it named equatorial_radius and polar_radius), and the session is unchanged.
+TEST_F(Api, ACurvaturePatchOnASpheroidIsRefusedNamingCurvature) {
+  const std::string id = create(R"({"preset": "opposite_spins_spheroid"})");
+  auto c = client();
+  const std::string before = c.Get("/api/v1/sessions/" + id)->body;
+  const auto res =
+      c.Patch("/api/v1/sessions/" + id, R"({"surface": {"curvature": 1, "kind": null, "radius": null}})",
+              "application/merge-patch+json");
+  ASSERT_EQ(res->status, 422) << res->body;
+  const json problem = json::parse(res->body);
+  ASSERT_EQ(problem["errors"].size(), 1u) << res->body;
+  EXPECT_EQ(problem["errors"][0]["field"], "surface.curvature") << res->body;
+  EXPECT_EQ(c.Get("/api/v1/sessions/" + id)->body, before);
   remove(id);
 }
 
