@@ -492,7 +492,7 @@ Quadratic squared_radius_coefficients(const PlaneMotion& m) {
 
 }  // namespace
 
-std::vector<double> degenerate_times(const ExactSolution& sol, double t0, double t1) {
+std::vector<double> degenerate_times(const ExactSolution& sol, double t0, double t1, std::size_t max_count) {
   const Scene& scene = sol.scene;
   std::vector<double> times;
   if (scene.body.model != BodyModel::affine || !(t1 > t0)) return times;
@@ -534,15 +534,21 @@ std::vector<double> degenerate_times(const ExactSolution& sol, double t0, double
   const double rho = std::hypot(f.a, f.b), theta0 = std::atan2(f.b, f.a);
   if (!(rho > std::abs(f.c))) return times;
   const double beta = std::acos(-f.c / rho), period = 2.0 * kPi;
+  // Each family's roots counted from its first, at most max_count of them (the oldest of both
+  // families are among the first max_count of each), and never past where k + 1 rounds to k.
   for (const double offset : {theta0 - beta, theta0 + beta}) {
     const double k_first = std::floor((w * t0 - offset) / period);
-    for (double k = k_first;; k += 1.0) {
+    std::size_t kept = 0;
+    for (double k = k_first; kept < max_count && k + 1.0 != k; k += 1.0) {
       const double t = (offset + period * k) / w;
       if (t > t1) break;
+      const std::size_t before = times.size();
       keep(t);
+      kept += times.size() - before;
     }
   }
   std::sort(times.begin(), times.end());
+  if (times.size() > max_count) times.resize(max_count);
   return times;
 }
 

@@ -5,6 +5,7 @@
 // poles), and §8.3/§8.4 for the internal motion.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -83,7 +84,9 @@ State exact_state(const ExactSolution& solution, double t);
 // The times τ in (t0, t1] [time, the solution's own] at which det L changes sign, oldest first:
 // the roots of det L(τ) = |w_pq(τ)|² − |w_uv(τ)|², a trigonometric, hyperbolic or quadratic
 // function of τ (physics.md §8.3; L + τM for a free anisotropic body), solved in closed form, so the
-// crossings do not depend on where the run is sampled. None for the rigid body.
-std::vector<double> degenerate_times(const ExactSolution& solution, double t0, double t1);
+// crossings do not depend on where the run is sampled. None for the rigid body. At most `max_count`
+// of them, the oldest (a breathing body crosses twice a period: a jump of 10⁹ would list ~10⁹).
+std::vector<double> degenerate_times(const ExactSolution& solution, double t0, double t1,
+                                     std::size_t max_count = std::numeric_limits<std::size_t>::max());
 
 }  // namespace spinfold

@@ -295,9 +295,18 @@ void advance_exact(Simulation& run, double t_end) {
   }
   // The sign before the next crossing (only the affine body has crossings, and L in its state).
   bool positive = run.scene.body.model == BodyModel::affine && det_of(run, run.state.y) > 0.0;
-  for (const double tau :
-       degenerate_times(*run.exact, run.state.t - run.segment_start, t_end - run.segment_start)) {
-    const double t = run.segment_start + tau;
+  const std::size_t room = kMaxDegenerateEvents - std::min(kMaxDegenerateEvents, run.events.size());
+  const std::vector<double> crossings =
+      degenerate_times(*run.exact, run.state.t - run.segment_start, t_end - run.segment_start, room + 1);
+  for (std::size_t i = 0; i < crossings.size(); ++i) {
+    const double t = run.segment_start + crossings[i];
+    if (i == room && run.scene.on_degenerate != OnDegenerate::stop) {
+      // One crossing more than a run keeps: the run stops before it (engine/state.h).
+      const State before = at(std::nextafter(t, run.state.t));
+      if (before.t > run.state.t && all_finite(before)) run.state = before;
+      run.state.status = Status::too_many_events;
+      return;
+    }
     if (run.scene.on_degenerate != OnDegenerate::stop) {
       add_event(run.events, t);
       positive = !positive;
@@ -620,11 +629,25 @@ void stop_on_event_before_state(Simulation& run, std::uint64_t& attempts) {
 
 // One body (not its companions), with its monitor.
 bool advance_body(Simulation& run, double t_end, std::uint64_t& attempts) {
-  const bool done = advance_body_only(run, t_end, attempts);
-  if (run.monitor) {
-    if (run.exact) monitor_closed_form(run);
+  if (run.monitor && run.exact) {
+    // The closed form's monitor looks at its points every dt (monitor_closed_form), each one of
+    // `attempts`: a jump over 10⁹ of them is taken in slices that --max-steps and the callers' clocks
+    // bound (the state at any t is the closed form's, however it was reached).
+    if (attempts == 0) return false;
+    const std::uint64_t before = run.monitor->closed_form_points;
+    const double reach =
+        run.segment_start +
+        (static_cast<double>(before) + static_cast<double>(attempts)) * run.scene.integrator.dt;
+    const bool limited = reach < t_end;
+    const bool done = advance_body_only(run, limited ? reach : t_end, attempts);
+    monitor_closed_form(run);
+    attempts -= std::min(attempts, run.monitor->closed_form_points - before);
     stop_on_event_before_state(run, attempts);
+    if (limited && run.state.status == Status::ok) return false;
+    return done;
   }
+  const bool done = advance_body_only(run, t_end, attempts);
+  if (run.monitor) stop_on_event_before_state(run, attempts);
   return done;
 }
 

@@ -17,6 +17,11 @@
 namespace spinfold {
 
 // det L crossed zero: the frame was squashed to a segment and came out mirrored (physics.md §2).
+// The most det L = 0 crossings a run keeps (800 kB): past it the run stops as too_many_events. Only
+// the closed form can meet it cheaply (it jumps over any number of periods in one advance); a
+// stepping run takes steps for each.
+inline constexpr std::size_t kMaxDegenerateEvents = 100'000;
+
 struct DegenerateEvent {
   double t = 0.0;  // time of the crossing [time], located to ~1e-12 of the step
 };

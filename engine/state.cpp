@@ -13,6 +13,7 @@ std::string_view status_name(Status status) {
     case Status::event_stop: return "event_stop";
     case Status::inconsistent: return "inconsistent";
     case Status::event_unresolved: return "event_unresolved";
+    case Status::too_many_events: return "too_many_events";
   }
   return "unknown";
 }
@@ -43,6 +44,10 @@ std::string_view status_description(Status status) {
              "tells apart where its field now is (a period below 1e-12 of the field's size), or were "
              "crossed more than 2^53 times; the state is the start of the step that met them (choose a "
              "larger period)";
+    case Status::too_many_events:
+      return "stopped: det L crossed zero more than 100000 times in the run (each crossing is kept to be "
+             "reported); the state is the last before the crossing past that (run it in shorter pieces, "
+             "or stop at the first crossing: on_degenerate stop)";
     case Status::inconsistent:
       return "stopped: the closed form failed its consistency check (its start or its conserved quantities "
              "disagree with the run's by more than 1e-8, or can no longer be checked to that, e.g. a motion "

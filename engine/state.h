@@ -48,6 +48,8 @@ enum class Status {
   event_unresolved,  // an event's levels are closer than double tells apart where its field is (period
                      // below kMinRelativePeriod of the field), or crossed more than 2⁵³ times; the
                      // state is the start of the step that met them
+  too_many_events,   // det L crossed zero more than kMaxDegenerateEvents times (each is kept to be
+                     // reported); the state is the last before the crossing past that
 };
 
 std::string_view status_name(Status status);

@@ -161,16 +161,21 @@ class Hunt:
                 self.fail(f"{method} {path}", scene, f"{status} {content_type}: {data[:300]!r}")
         return status, data
 
-    def scene(self, schema, views):
-        """A scene of a random surface kind with 1-4 numeric fields of any section (the potentials'
-        and the integrator's too, with the kind their branch needs) at extreme values, and at times a
-        random integrator."""
+    def scene(self, schema, presets):
+        """A scene of a random surface kind, or a preset (every regime the presets show: affine
+        bodies, potentials, det L crossings, friction), with 1-4 numeric fields of any section (the
+        potentials' and the integrator's too, with the kind their branch needs) at extreme values, and
+        at times a random integrator."""
         sections = schema["properties"]
         kinds = sections["surface"]["properties"]["kind"]["enum"]
-        kind = self.rng.choice(kinds)
+        if presets and self.rng.random() < 0.5:
+            scene = json.loads(json.dumps(self.rng.choice(presets)))
+            kind = scene["surface"].get("kind", "sphere")
+        else:
+            kind = self.rng.choice(kinds)
+            scene = {"surface": {"kind": kind}}
         numeric = [leaf for leaf in numeric_leaves(schema, [], [])
                    if kind in leaf[1].get("x-surfaces", kinds) and leaf[0][0] not in ("companions", "vary")]
-        scene = {"surface": {"kind": kind}}
         for path, prop, fixed in self.rng.sample(numeric, k=min(len(numeric), self.rng.randint(1, 4))):
             for fixed_path, value in fixed:
                 put(scene, fixed_path, value)
@@ -185,6 +190,9 @@ class Hunt:
                 initial[b] = self.rng.choice([0.0, 1.0, 1e-300, 3.14159])
         if "curvature" in scene["surface"]:
             scene["surface"] = {"curvature": scene["surface"]["curvature"]}
+        if self.rng.random() < 0.2:  # companions: every body's multiplier (trails, rows, frames)
+            scene["companions"] = [{"label": f"c{i}", "initial": {"spin": self.rng.choice([0.0, -1.0, 3.0, 1e3])}}
+                                   for i in range(self.rng.randint(1, 8))]
         names = sections["integrator"]["properties"].get("name", {}).get("enum")
         if names and self.rng.random() < 0.3:
             put(scene, ["integrator", "name"], self.rng.choice(names))
@@ -197,7 +205,10 @@ class Hunt:
         sid = json.loads(data)["id"]
         self.created += 1
         base = f"/api/v1/sessions/{sid}"
-        status, data = self.check(server, "POST", base + "/advance", scene, {"until": self.rng.choice([0.05, 0.5, 3.0])})
+        # A little, or far (the closed form jumps any distance in one advance; a stepper stops at the
+        # request's 10⁶ step attempts).
+        until = self.rng.choice([0.05, 0.5, 3.0, 3.0, 1e9])
+        status, data = self.check(server, "POST", base + "/advance", scene, {"until": until})
         if status == 200:
             state = json.loads(data)["state"]
             numbers = [v for v in state.values() if isinstance(v, float)]
@@ -227,8 +238,10 @@ class Hunt:
         max_seconds = 2.0
         with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
             json.dump(scene, f)
-        command = [self.args.spinfold, "simulate", f.name, "--t-end", str(self.rng.choice([1, 100, 1e4])),
-                   "--every", "0.5", "--max-seconds", str(max_seconds), "--format", "csv", "--out", os.devnull,
+        t_end = self.rng.choice([1.0, 100.0, 1e4, 1e8])
+        every = self.rng.choice([0.5, t_end / 10, t_end])  # dense, or a few far-apart samples
+        command = [self.args.spinfold, "simulate", f.name, "--t-end", str(t_end), "--every", str(max(every, t_end / 1e6)),
+                   "--max-seconds", str(max_seconds), "--format", "csv", "--out", os.devnull,
                    *events, *summaries, *chaos]
         start = time.monotonic()
         try:
@@ -252,6 +265,8 @@ class Hunt:
             _, _, schema_text, _ = server.request("GET", "/api/v1/schema")
             _, _, views_text, _ = server.request("GET", "/api/v1/views")
             schema = json.loads(schema_text)
+            _, _, presets_text, _ = server.request("GET", "/api/v1/scenes")
+            presets = [p["scene"] for p in json.loads(presets_text)]
             views = {}
             for v in json.loads(views_text):
                 for kind in v["surfaces"]:
@@ -264,7 +279,7 @@ class Hunt:
                     scene = REPORTED[i]
                     kind = scene["surface"]["kind"]
                 else:
-                    kind, scene = self.scene(schema, views)
+                    kind, scene = self.scene(schema, presets)
                 self.session(server, scene, views, kind)
                 if i % 3 == 0:
                     self.simulate(scene)

@@ -256,6 +256,33 @@ TEST(RunSummary, CrossingsAreCountedNotVisited) {
   EXPECT_NEAR(v[3], T, 1e-3) << "t_last: the last level just before the end";
 }
 
+// The closed form looks at its points every dt for a summary: a jump of 10⁸ is 10¹⁰ of them, which
+// ran inside one advance whatever --max-steps or --max-seconds said (issue 48's hunt). Each point is
+// now one of the advance's step attempts: a budget stops it, and the values do not depend on how
+// the run was cut.
+TEST(RunSummary, TheClosedFormsPointsAreStepAttempts) {
+  const Scene scene = w5_with("exact", 0.01, 1e-12);
+  const MonitorSpec spec{.summaries = {parse_summary("r")}, .events = {parse_event("phi:any:0:period=0.1")}};
+  Simulation cut = start_simulation(scene);
+  watch(cut, spec);
+  std::uint64_t attempts = 1000;
+  const auto started = std::chrono::steady_clock::now();
+  EXPECT_FALSE(advance_within(cut, 1e8, attempts));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 1.0);
+  EXPECT_EQ(attempts, 0u);
+  EXPECT_NEAR(cut.state.t, 10.0, 1e-9) << "1000 points of dt = 0.01";
+  for (int k = 0; k < 5; ++k) {
+    std::uint64_t more = 700;
+    advance_within(cut, 40.0, more);
+  }
+  advance_to(cut, 40.0);
+  Simulation whole = start_simulation(scene);
+  watch(whole, spec);
+  advance_to(whole, 40.0);
+  EXPECT_EQ(monitor_values(cut), monitor_values(whole));
+  EXPECT_EQ(cut.state.y, whole.state.y);
+}
+
 // Levels closer than double tells apart where the field is (1e-300 apart at φ ~ 1): the run stops
 // at the start of the first step that meets them, with event_unresolved, instead of looping there.
 TEST(RunSummary, LevelsDoubleCannotTellApartStopTheRun) {

@@ -1,11 +1,13 @@
 // Runs as a whole: invariants along runs, det L = 0 crossings, failed steps, reproducibility.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstring>
 #include <numbers>
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
+#include "engine/exact_solution.h"
 #include "engine/invariants.h"
 #include "engine/paper_coordinates.h"
 #include "test_support.h"
@@ -438,6 +440,45 @@ TEST(ExactCheck, AWrongClosedFormIsNeverOk) {
   Simulation good = start_simulation(scene);
   advance_to(good, 5.0);
   EXPECT_EQ(good.state.status, Status::ok);
+}
+
+}  // namespace
+}  // namespace spinfold
+
+namespace spinfold {
+namespace {
+
+// The closed form jumps any distance in one advance, and a breathing body's det L crosses zero
+// twice a period: one advance of 10⁸ listed ~10⁸ crossings (minutes, gigabytes; issue 48's hunt for
+// unbounded loops). A run keeps kMaxDegenerateEvents of them, every one, and stops just before the
+// one past that with too_many_events, at once.
+TEST(Simulation, AClosedFormRunKeepsAtMostItsCrossingsAndStopsBeforeTheNext) {
+  Scene s;
+  s.surface = {SurfaceKind::sphere, 1.0};
+  s.body = {1.0, 0.2, BodyModel::affine};
+  s.potential.deformation = AbcPotential{0.0, 0.0, 0.5};
+  s.initial.r = 1.2, s.initial.lambda = 1.3, s.initial.mu = 0.7, s.initial.phi_dot = 0.3;
+  s.initial.alpha_dot = 0.2, s.initial.lambda_dot = -5.0, s.initial.mu_dot = 3.0;
+  s.integrator.name = "exact";
+  const auto started = std::chrono::steady_clock::now();
+  Simulation run = start_simulation(s);
+  advance_to(run, 1e8);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 5.0);
+  ASSERT_EQ(run.state.status, Status::too_many_events);
+  EXPECT_EQ(run.events.size(), kMaxDegenerateEvents);
+  // Every crossing kept, oldest first, the stop before the next: the closed form's own list.
+  const std::vector<double> all =
+      degenerate_times(*run.exact, 0.0, run.state.t + 10.0, kMaxDegenerateEvents + 1);
+  ASSERT_EQ(all.size(), kMaxDegenerateEvents + 1);
+  for (std::size_t i = 0; i < kMaxDegenerateEvents; i += 9973)
+    EXPECT_NEAR(run.events[i].t, all[i], 1e-9 * all[i]);
+  EXPECT_LT(run.state.t, all.back());
+  EXPECT_GT(run.state.t, all[kMaxDegenerateEvents - 1]);
+  // In pieces, the same.
+  Simulation pieces = start_simulation(s);
+  for (double t = 1e4; t <= 1e6 && pieces.state.status == Status::ok; t += 1e4) advance_to(pieces, t);
+  EXPECT_EQ(pieces.state.status, Status::too_many_events);
+  EXPECT_EQ(pieces.state.t, run.state.t);
 }
 
 }  // namespace

@@ -18,7 +18,8 @@ constexpr Status kStatuses[] = {Status::ok,
                                 Status::diverged,
                                 Status::inconsistent,
                                 Status::event_stop,
-                                Status::event_unresolved};
+                                Status::event_unresolved,
+                                Status::too_many_events};
 
 // The names are the enumerators' own spelling (the API's status values).
 TEST(State, StatusNamesAreTheEnumerators) {
@@ -31,6 +32,7 @@ TEST(State, StatusNamesAreTheEnumerators) {
   EXPECT_EQ(status_name(Status::inconsistent), "inconsistent");
   EXPECT_EQ(status_name(Status::event_stop), "event_stop");
   EXPECT_EQ(status_name(Status::event_unresolved), "event_unresolved");
+  EXPECT_EQ(status_name(Status::too_many_events), "too_many_events");
 }
 
 // One distinct sentence per status, for a person; none is empty or the bare name.

@@ -716,7 +716,9 @@ TEST_F(Api, AFrameOfABodyFarOutOnAnUnboundedSurfaceAnswersAtOnce) {
         EXPECT_EQ(res->status, 200) << scene << route << q << res->body.substr(0, 200);
       }
     }
-    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 5.0)
+    // Bounded, not fast: before, the first frame never answered (30 s leaves room for the sanitizer
+    // builds' aiming, ~200x slower; the release build answers the six requests in ~0.5 s).
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 30.0)
         << scene;
     remove(session.substr(session.rfind('/') + 1));
   }

@@ -241,7 +241,8 @@ TEST(RevolutionView, ABodyFarOutEndsItsFrameAtOnceAndTheHudSaysWhy) {
     aim_camera_at_body(view, s);
     const FrameScene frame = build_scene(s, view);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    EXPECT_LT(seconds, 2.0) << text;
+    // Bounded, not fast: before, it never ended (20 s leaves room for the sanitizer builds' aiming).
+    EXPECT_LT(seconds, 20.0) << text;
     const std::vector<std::string> lines = readout_lines(s, view);
     const bool says_too_far = std::ranges::find(lines, std::string(kBeyondDrawingNote)) != lines.end();
     EXPECT_EQ(says_too_far, !c.drawable) << text;
