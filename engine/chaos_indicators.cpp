@@ -8,6 +8,7 @@
 #include "engine/invariants.h"
 #include "engine/number_rule.h"
 #include "engine/number_text.h"
+#include "engine/sliced_advance.h"
 
 namespace spinfold {
 
@@ -152,28 +153,19 @@ void ChaosMonitor::seed_shadow() {
 
 void ChaosMonitor::advance_to(double t, std::uint64_t max_attempts,
                               std::optional<std::chrono::steady_clock::time_point> deadline) {
-  // Each run in slices of step attempts, the clock looked at between them (the numbers do not depend
-  // on where a run was stopped).
-  constexpr std::uint64_t kSlice = 1024;
-  const auto out_of_time = [&] { return deadline && std::chrono::steady_clock::now() > *deadline; };
+  // Each run in slices of step attempts, the clock looked at between them.
   const auto reach = [&](Simulation& run, double t_next) {
-    while (true) {
-      if (out_of_time()) {
-        stopped_reason_ = "the time budget ran out";
-        out_of_time_ = true;
-        return false;
-      }
-      std::uint64_t slice = std::min(kSlice, max_attempts);
-      const std::uint64_t given = slice;
-      const bool reached = advance_within(run, t_next, slice);
-      max_attempts -= given - slice;
-      if (reached) return true;
-      if (max_attempts == 0) {
-        stopped_reason_ = "the step budget ran out";
-        out_of_steps_ = true;
-        return false;
-      }
+    const Advanced got = advance_in_slices(
+        run, t_next, max_attempts, [&] { return !deadline || std::chrono::steady_clock::now() <= *deadline; },
+        1024);
+    if (got == Advanced::stopped_by_caller) {
+      stopped_reason_ = "the time budget ran out";
+      out_of_time_ = true;
+    } else if (got == Advanced::out_of_attempts) {
+      stopped_reason_ = "the step budget ran out";
+      out_of_steps_ = true;
     }
+    return got == Advanced::reached;
   };
   while (!stopped_) {
     const double t_next = t0_ + static_cast<double>(k_ + 1) * interval_;

@@ -29,6 +29,7 @@
 #include "engine/run_limits.h"
 #include "engine/sampling.h"
 #include "engine/simulation.h"
+#include "engine/sliced_advance.h"
 #include "engine/timeline.h"
 #include "render/png_encoder.h"
 #include "render/renderer.h"
@@ -266,15 +267,14 @@ RunColumns run_columns(const Scene& scene, double t_end, double every, std::opti
       [&](double t) {
         if (!interrupts)
           return out.budget_left = max_steps ? advance_within(run, t, attempts) : advance_to(run, t);
-        while (true) {
-          interrupts->check();
-          std::uint64_t slice = std::min(kSlice, attempts);
-          const std::uint64_t given = slice;
-          const bool reached = advance_within(run, t, slice);
-          if (max_steps) attempts -= given - slice;
-          if (reached) return out.budget_left = true;
-          if (attempts == 0) return out.budget_left = false;
-        }
+        const Advanced got = advance_in_slices(
+            run, t, attempts,
+            [&] {
+              interrupts->check();
+              return true;
+            },
+            kSlice);
+        return out.budget_left = got == Advanced::reached;
       },
       [&] {
         out.append(run, since);

@@ -22,6 +22,7 @@
 #include "engine/chaos_indicators.h"
 #include "engine/sampling.h"
 #include "engine/simulation.h"
+#include "engine/sliced_advance.h"
 
 namespace spinfold::cli {
 
@@ -144,22 +145,16 @@ int simulate(SimulateOptions opt) {
   std::uint64_t steps_left = opt.max_steps.value_or(kNoStepLimit);
   Budget budget = Budget::left;
   const auto advance = [&](double t) {
-    while (true) {
-      if (opt.max_seconds && elapsed() > *opt.max_seconds) {
-        budget = Budget::seconds;
-        return false;
-      }
-      std::uint64_t slice = std::min(kSlice, steps_left);
-      const std::uint64_t before = slice;
-      const bool reached = advance_within(run, t, slice);
-      steps_left -= before - slice;
-      if (show && elapsed() - drawn_at > 0.25) draw_run_progress(run, opt.t_end, drawn_at = elapsed());
-      if (reached) return true;
-      if (steps_left == 0) {
-        budget = Budget::steps;
-        return false;
-      }
-    }
+    const Advanced got = advance_in_slices(
+        run, t, steps_left,
+        [&] {
+          if (show && elapsed() - drawn_at > 0.25) draw_run_progress(run, opt.t_end, drawn_at = elapsed());
+          return !(opt.max_seconds && elapsed() > *opt.max_seconds);
+        },
+        kSlice);
+    if (got == Advanced::stopped_by_caller) budget = Budget::seconds;
+    if (got == Advanced::out_of_attempts) budget = Budget::steps;
+    return got == Advanced::reached;
   };
   sample_run(run, opt.t_end, opt.every, advance, emit);
   if (show && drawn_at > 0.0) {
