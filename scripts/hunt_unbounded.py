@@ -207,7 +207,7 @@ class Hunt:
         base = f"/api/v1/sessions/{sid}"
         # A little, or far (the closed form jumps any distance in one advance; a stepper stops at the
         # request's 10⁶ step attempts).
-        until = self.rng.choice([0.05, 0.5, 3.0, 3.0, 1e9])
+        until = self.rng.choice([0.05, 0.5, 3.0, 3.0, 1e6])
         status, data = self.check(server, "POST", base + "/advance", scene, {"until": until})
         if status == 200:
             state = json.loads(data)["state"]
