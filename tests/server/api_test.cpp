@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <thread>
+#include <vector>
 
 // Eigen (through the codec) must come before httplib.h (through bad_requests.h).
 // clang-format off
