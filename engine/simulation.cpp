@@ -635,9 +635,8 @@ bool advance_body(Simulation& run, double t_end, std::uint64_t& attempts) {
     // bound (the state at any t is the closed form's, however it was reached).
     if (attempts == 0) return false;
     const std::uint64_t before = run.monitor->closed_form_points;
-    const double reach =
-        run.segment_start +
-        (static_cast<double>(before) + static_cast<double>(attempts)) * run.scene.integrator.dt;
+    const double reach = run.segment_start + (static_cast<double>(before) + static_cast<double>(attempts)) *
+                                                 run.scene.integrator.dt;
     const bool limited = reach < t_end;
     const bool done = advance_body_only(run, limited ? reach : t_end, attempts);
     monitor_closed_form(run);
