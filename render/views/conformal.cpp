@@ -136,7 +136,8 @@ std::vector<Vertex> conformal_grid(const ViewOptions& view, double K) {
   const auto add_line = [&](const glm::dvec2& origin, const glm::dvec2& along, double from, double to) {
     const double k0 = std::floor(from / quarter), k1 = std::min(std::ceil(to / quarter), k0 + 16384.0);
     glm::dvec2 p0 = origin + k0 * quarter * along, w0 = conformal_image(K, p0);
-    for (double k = k0 + 1.0; k <= k1; ++k) {
+    // Counted too: far out (k ~ 1e100) ++k no longer moves k (issue 48's hunt).
+    for (double k = k0 + 1.0, n = 0; k <= k1 && n < 16384; ++k, ++n) {
       const glm::dvec2 p1 = origin + k * quarter * along, w1 = conformal_image(K, p1);
       add_piece(add_piece, p0, p1, w0, w1, 0);
       p0 = p1, w0 = w1;

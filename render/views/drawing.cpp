@@ -10,6 +10,7 @@ namespace {
 
 // The geodesic companion's trail: dashes and gaps of these lengths [world units, radii].
 constexpr double kDash = 0.045, kGap = 0.03;
+constexpr int kMaxDashes = 4096;  // ~300 world units of one segment: several hundred frames across
 
 // The body-frame vector a e₁ + b e₂ and its intrinsic length from the Gram matrix.
 struct FrameVector {
@@ -64,8 +65,12 @@ void add_dashed_polyline(std::vector<Vertex>& lines, const Surface& surface, con
     if (clip && !(clip->near(glm::dvec2(a)) && clip->near(glm::dvec2(b)))) continue;
     if (view.torn(a, b)) continue;
     const double length = glm::length(b - a);
+    if (!std::isfinite(length)) continue;
+    // At most kMaxDashes dash periods of a segment, from its start: a longer one (a geodesic
+    // companion run off to r = 250 R on the hyperboloid, ~1e108 world units) reaches far outside any
+    // frame, and dashing it whole never ended (issue 48's hunt: a frame took ~1 GB/s).
     double done = 0.0;
-    while (done < length) {
+    for (int pieces = 0; done < length && pieces < 2 * kMaxDashes; ++pieces) {
       const bool on = phase < kDash;
       const double step = std::min(length - done, (on ? kDash : kDash + kGap) - phase);
       if (on)

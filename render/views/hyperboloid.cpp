@@ -16,12 +16,20 @@ constexpr float kHyperboloidDepthBias = 0.004f;
 // Extent of the mesh and of the grid: geodesic distance from the vertex [radii].
 constexpr double kHyperboloidExtent = 7.0;
 
+constexpr double kMaxDrawnRadii = 1e4;
+
 class HyperboloidView final : public ViewModel {
  public:
   // X/R moved down by one radius: the vertex at the origin.
   glm::dvec3 world_position(const Surface& surface, const Vec3& X) const override {
     const double R = surface.radius;
     return glm::dvec3(X.x() / R, X.y() / R, X.z() / R - 1.0);
+  }
+  // Bodies, trails and paths within 10⁴ radii of the vertex (r ≤ ~9.9 R): the GL draws in floats, and
+  // a geodesic companion run off to r = 250 R (~1e108 radii) made lines that llvmpipe took minutes
+  // over (issue 48's hunt).
+  bool draws(const Surface& surface, const Vec3& X) const override {
+    return X.allFinite() && X.norm() <= kMaxDrawnRadii * surface.radius;
   }
   // The Minkowski normal (−x₁, −x₂, x₃) at the world point w (x₃ = w_z + 1), normalised.
   glm::dvec3 normal(const Surface& /*surface*/, const glm::dvec3& w) const override {

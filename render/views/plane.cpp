@@ -20,10 +20,14 @@ std::vector<Vertex> plane_grid(const ViewOptions& view) {
   const Window2d w = plane_window(view);
   const double x0 = w.centre.x - w.hx, x1 = w.centre.x + w.hx, y0 = w.centre.y - w.hy, y1 = w.centre.y + w.hy;
   std::vector<Vertex> lines;
-  for (double k = std::floor(x0 / kPlaneGridSpacing); k <= std::ceil(x1 / kPlaneGridSpacing); ++k)
+  // Counted, at most 2000 lines each way (a window far out, where ++k no longer moves k, or a huge
+  // one, drew for ever; issue 48's hunt).
+  for (double k = std::floor(x0 / kPlaneGridSpacing), n = 0;
+       k <= std::ceil(x1 / kPlaneGridSpacing) && n < 2000; ++k, ++n)
     add_segment(lines, {k * kPlaneGridSpacing, y0 - 1.0, 0}, {k * kPlaneGridSpacing, y1 + 1.0, 0},
                 kGridColor);
-  for (double k = std::floor(y0 / kPlaneGridSpacing); k <= std::ceil(y1 / kPlaneGridSpacing); ++k)
+  for (double k = std::floor(y0 / kPlaneGridSpacing), n = 0;
+       k <= std::ceil(y1 / kPlaneGridSpacing) && n < 2000; ++k, ++n)
     add_segment(lines, {x0 - 1.0, k * kPlaneGridSpacing, 0}, {x1 + 1.0, k * kPlaneGridSpacing, 0},
                 kGridColor);
   return lines;
