@@ -10,16 +10,13 @@
 #include <sstream>
 #include <string>
 
+#include "tests/error_of.h"
+
 namespace spinfold {
 namespace {
 
 std::string message_of(const auto& write) {
-  try {
-    write();
-  } catch (const WriteError& e) {
-    return e.what();
-  }
-  return "";
+  return test::error_of<WriteError>(write);
 }
 
 TEST(OutputFile, AFullDeviceFailsAtTheWriteOrTheCloseNamingThePathAndTheReason) {
