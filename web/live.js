@@ -232,18 +232,21 @@ export class LiveView {
     // Until the stream is connected there is no viewer to steer: its answer sends what is pending.
     if (this.steering || !this.connected) return;
     this.steering = true;
+    const { session, viewer } = this;
     let retries = 0;
     try {
-      while (this.pendingSteer) {
+      while (this.pendingSteer && this.session === session && this.viewer === viewer) {
         const q = new URLSearchParams(this.pendingSteer);
         this.pendingSteer = null;
-        q.set("viewer", /** @type {string} */ (this.viewer));
-        const res = await fetch(`/api/v1/sessions/${this.session}/live?${q}`, { method: "PATCH", body: "" });
-        if ((res.status === 429 || res.status === 404) && (retries += 1) <= 30) {
-          // Over the rate limit, or the stream is (re)connecting: the newest wish, a little later.
+        q.set("viewer", /** @type {string} */ (viewer));
+        const res = await fetch(`/api/v1/sessions/${session}/live?${q}`, { method: "PATCH", body: "" });
+        if (res.status === 429 || res.status === 404) {
+          // Over the rate limit, or the stream is (re)connecting: the newest wish, a little later,
+          // backing off to once a second. Never dropped (a dropped steer is a turn or a size the
+          // picture never shows); it ends with this stream: open() starts the next with the wish.
           q.delete("viewer");
           this.pendingSteer = { ...Object.fromEntries(q), ...(this.pendingSteer || {}) };
-          await new Promise((r) => setTimeout(r, 100));
+          await new Promise((r) => setTimeout(r, Math.min(1000, 100 * 2 ** Math.min(retries++, 4))));
         }
       }
     } finally {
