@@ -1,5 +1,6 @@
 #include "bench/surfaces_bench.h"
 
+#include <algorithm>
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <cstdio>
@@ -8,9 +9,11 @@
 #include <vector>
 
 #include "bench/timing.h"
+#include "engine/constraint_projection.h"
 #include "engine/embedded_dynamics.h"
 #include "engine/embedded_run.h"
 #include "engine/field_stepping.h"
+#include "engine/formula_surface.h"
 #include "engine/integrator.h"
 #include "engine/revolution_chart.h"
 
@@ -206,6 +209,68 @@ int run_surfaces_bench(const SurfacesBenchOptions& options) {
   std::printf("orbit-only (tolerance %.1e) against stepping all 18 (%.1e): %.2g (relative, max)\n",
               orbit_tolerance, engine_tolerance,
               distance(orbit_run(orbit_tolerance), Embedded(engine_run("dop853", engine_tolerance))));
+
+  // The same torus written as a formula (engine/formula_surface.h): its F, ∇F and Hess F from the
+  // formula's jet, the same dop853 at the same tolerance (issue 49's target: at most 2× the time).
+  const FormulaSurfaceParse parsed = parse_formula_surface(
+      FormulaSurfaceForm::implicit, "(x^2 + y^2 + z^2 + c^2 - a^2)^2 - 4*c^2*(x^2 + y^2)",
+      {{"a", model.surface.tube_radius}, {"c", model.surface.center_radius}});
+  const EmbeddedModel formula_model{*parsed.surface, model.body};
+  const VectorField formula_field = [&](const Coords& y, Coords& dy) {
+    Embedded d;
+    embedded_vector_field(formula_model, y, d);
+    dy = d;
+  };
+  const StepProblem formula_problem{unused_scene, unused_chart, &formula_field};
+  Coords built_in_end, formula_end;
+  const int repeats = std::max(5, options.repeats);
+  // Interleaved, so that the machine's noise falls on both alike.
+  double built_in_ms = 0.0, formula_ms = 0.0;
+  for (int round = 0; round < 3; ++round) {
+    built_in_ms += median_ms(repeats, [&] {
+      std::unique_ptr<Integrator> integrator = find_integrator("dop853")->make();
+      built_in_end = step_field(*integrator, problem, start, options.t_end, 1e-3, 1e-10).y;
+    });
+    formula_ms += median_ms(repeats, [&] {
+      std::unique_ptr<Integrator> integrator = find_integrator("dop853")->make();
+      formula_end = step_field(*integrator, formula_problem, start, options.t_end, 1e-3, 1e-10).y;
+    });
+  }
+  // Projection onto the constraints after each accepted step (engine/constraint_projection.h) on the
+  // built-in torus: should it be the default on the surfaces of revolution too? The error at T against
+  // the reference, the evaluations, the residuals.
+  for (const double tolerance : {1e-8, 1e-10, 1e-12}) {
+    ConstraintResidual off{}, on{};
+    const auto track = [&torus](ConstraintResidual& worst, bool project) {
+      return [&worst, project, &torus](Coords& y) {
+        Embedded Y = y;
+        if (project) project_onto_constraints(torus, Y);
+        const ConstraintResidual r = constraint_residual(torus, Y);
+        worst.distance = std::max(worst.distance, r.distance);
+        worst.tangency = std::max(worst.tangency, r.tangency);
+        y = Y;
+      };
+    };
+    std::unique_ptr<Integrator> a = find_integrator("dop853")->make(), b = find_integrator("dop853")->make();
+    evaluations = 0;
+    const Coords plain = step_field(*a, problem, start, options.t_end, 1e-3, tolerance, track(off, false)).y;
+    const long plain_evaluations = evaluations;
+    evaluations = 0;
+    const Coords projected =
+        step_field(*b, problem, start, options.t_end, 1e-3, tolerance, track(on, true)).y;
+    std::printf(
+        "projection after each step, dop853 at %.0e: error at T %.2g -> %.2g, distance %.2g -> %.2g, "
+        "tangency %.2g -> "
+        "%.2g, evaluations %ld -> %ld (the projection's Newton steps not counted)\n",
+        tolerance, distance(plain, reference), distance(projected, reference), off.distance, on.distance,
+        off.tangency, on.tangency, plain_evaluations, evaluations);
+  }
+  std::printf(
+      "formula torus against the built-in torus, dop853 at 1e-10 to T = %g: %.3f ms against %.3f ms, ratio "
+      "%.2f; "
+      "the two paths differ by %.2g (relative, max)\n",
+      options.t_end, formula_ms / 3, built_in_ms / 3, formula_ms / built_in_ms,
+      distance(formula_end, Embedded(built_in_end)));
   return 0;
 }
 

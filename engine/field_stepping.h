@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 
 #include "engine/integrator.h"
 
@@ -20,8 +21,11 @@ struct FieldRun {
 
 // Steps y from 0 to t_end: fixed steps of h, or for an adaptive method steps it chooses at
 // `tolerance` from a first trial h [time].
+// `after_step`, when given, is applied to the state after each accepted step (a projection back
+// onto the constraints: engine/constraint_projection.h).
 inline FieldRun step_field(Integrator& integrator, const StepProblem& problem, Coords y, double t_end,
-                           double h, double tolerance) {
+                           double h, double tolerance,
+                           const std::function<void(Coords&)>& after_step = nullptr) {
   FieldRun run;
   const bool adaptive = integrator.info().adaptive;
   Coords increment;
@@ -39,6 +43,7 @@ inline FieldRun step_field(Integrator& integrator, const StepProblem& problem, C
       continue;
     }
     y += increment;
+    if (after_step) after_step(y);
     t += step;
     ++run.steps;
   }

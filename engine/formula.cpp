@@ -193,6 +193,12 @@ double integer_power(double a, double n) {
 double apply_unary(FormulaOp op, double a, double number) {
   switch (op) {
     case FormulaOp::neg: return -a;
+    case FormulaOp::add_c: return a + number;
+    case FormulaOp::sub_c: return a - number;
+    case FormulaOp::rsub_c: return number - a;
+    case FormulaOp::mul_c: return number * a;
+    case FormulaOp::div_c: return a / number;
+    case FormulaOp::rdiv_c: return number / a;
     case FormulaOp::power_int: return integer_power(a, number);
     case FormulaOp::power_real: return std::pow(a, number);
     case FormulaOp::sqrt: return std::sqrt(a);
@@ -231,10 +237,12 @@ bool binary(FormulaOp op) {
 
 // ---- The second-order jet: a value with its gradient and Hessian in (x, y, z).
 
+// No initialisers: the evaluation's stack of 64 is not cleared at every call (each entry is written
+// when pushed).
 struct Jet {
-  double v = 0.0;
-  Eigen::Vector3d g = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+  double v;
+  Eigen::Vector3d g;
+  Eigen::Matrix3d h;
 };
 
 // f(a) by the chain rule: ∇f = f′∇a, Hess f = f′ Hess a + f″ ∇a∇aᵀ.
@@ -249,6 +257,12 @@ void unary_jet(FormulaOp op, Jet& a, double number) {
   const double f0 = apply_unary(op, x, number);
   switch (op) {
     case FormulaOp::neg: chain(a, f0, -1.0, 0.0); return;
+    case FormulaOp::add_c:
+    case FormulaOp::sub_c: a.v = f0; return;
+    case FormulaOp::rsub_c: chain(a, f0, -1.0, 0.0); return;
+    case FormulaOp::mul_c: a.v = f0, a.g *= number, a.h *= number; return;
+    case FormulaOp::div_c: a.v = f0, a.g /= number, a.h /= number; return;
+    case FormulaOp::rdiv_c: return chain(a, f0, -f0 / x, 2.0 * f0 / (x * x));  // c/u: −c/u², 2c/u³
     case FormulaOp::power_int: {
       const double n = number;
       if (n == 0.0) return chain(a, f0, 0.0, 0.0);
@@ -419,8 +433,8 @@ struct FormulaCompiler {
 
   void binary_op(FormulaOp op, std::size_t left, std::size_t right, std::size_t position,
                  std::string_view name) {
-    if (constant_from(right) && program().size() == right + 1 && right == left + 1 &&
-        program()[left].op == FormulaOp::constant) {
+    const bool left_constant = right == left + 1 && program()[left].op == FormulaOp::constant;
+    if (constant_from(right) && left_constant) {
       const double a = program()[left].number, b = program()[right].number;
       const double value = apply_binary(op, a, b);
       if (!std::isfinite(value))
@@ -429,6 +443,31 @@ struct FormulaCompiler {
       program().pop_back();
       program().back().number = value;
       return;
+    }
+    // One operand a number: an instruction that holds it (no jet of zeros pushed and combined).
+    const auto immediate = [](FormulaOp o, bool number_on_left) -> std::optional<FormulaOp> {
+      switch (o) {
+        case FormulaOp::add: return FormulaOp::add_c;
+        case FormulaOp::sub: return number_on_left ? FormulaOp::rsub_c : FormulaOp::sub_c;
+        case FormulaOp::mul: return FormulaOp::mul_c;
+        case FormulaOp::div: return number_on_left ? FormulaOp::rdiv_c : FormulaOp::div_c;
+        default: return std::nullopt;
+      }
+    };
+    if (constant_from(right)) {
+      if (const auto o = immediate(op, false)) {
+        const double c = program()[right].number;
+        program().pop_back();
+        emit(*o, c);
+        return;
+      }
+    } else if (left_constant) {
+      if (const auto o = immediate(op, true)) {
+        const double c = program()[left].number;
+        program().erase(program().begin() + static_cast<std::ptrdiff_t>(left));
+        emit(*o, c);
+        return;
+      }
     }
     emit(op);
   }
@@ -685,7 +724,7 @@ std::string Formula::identity() const {
   char number[40];
   for (const FormulaInstruction& i : program_) {
     key += std::to_string(static_cast<int>(i.op));
-    if (i.op == FormulaOp::constant || i.op == FormulaOp::power_int || i.op == FormulaOp::power_real) {
+    if (i.op == FormulaOp::constant || (i.op >= FormulaOp::power_int && i.op <= FormulaOp::rdiv_c)) {
       std::snprintf(number, sizeof number, ":%a", i.number);
       key += number;
     }

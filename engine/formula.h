@@ -65,6 +65,13 @@ enum class FormulaOp : std::uint8_t {
   neg,
   power_int,
   power_real,  // pop one, push one (the exponent in the instruction)
+  // pop one, push one, with the number c in the instruction: u + c, u − c, c − u, c·u, u/c, c/u
+  add_c,
+  sub_c,
+  rsub_c,
+  mul_c,
+  div_c,
+  rdiv_c,
   sqrt,
   exp,
   log,
@@ -79,7 +86,7 @@ enum class FormulaOp : std::uint8_t {
 };
 struct FormulaInstruction {
   FormulaOp op = FormulaOp::constant;
-  double number = 0.0;  // constant: its value; power_int, power_real: the exponent
+  double number = 0.0;  // constant: its value; power_int, power_real: the exponent; add_c …: c
 };
 
 class Formula {
