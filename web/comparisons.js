@@ -3,7 +3,7 @@
 // drawn in the picture by the server (the hud layer). A refusal is said in the status line, unless
 // a newer edit's answer is there already (edits.js).
 import { $ } from "./dom.js";
-import { begin, told } from "./edits.js";
+import { begin, told, typedValue } from "./edits.js";
 import { roomForHud } from "./frame.js";
 import { say } from "./readout.js";
 import { applyChange } from "./session.js";
@@ -46,8 +46,14 @@ export async function toggleGeodesic() {
 
 /** Companions from the same start with spins spread over the range asked. */
 async function addFan() {
-  const from = Number($("fan-from").value);
-  const to = Number($("fan-to").value);
+  const typedFrom = typedValue(/** @type {HTMLInputElement} */ ($("fan-from")).value);
+  const typedTo = typedValue(/** @type {HTMLInputElement} */ ($("fan-to")).value);
+  if ("error" in typedFrom || "error" in typedTo) {
+    say(`The fan's spins: ${"error" in typedFrom ? typedFrom.error : /** @type {{error: string}} */ (typedTo).error}`);
+    return;
+  }
+  const from = /** @type {number} */ (typedFrom.value);
+  const to = /** @type {number} */ (typedTo.value);
   const count = Math.max(2, Math.min(8, Math.round(Number($("fan-count").value) || 4)));
   const values = Array.from({ length: count }, (_, i) =>
     Number((from + ((to - from) * i) / (count - 1)).toPrecision(6)),

@@ -134,7 +134,7 @@ function fieldRow(f) {
   } else if (matrixOrNumber(spec)) {
     input = el("input", { type: "text", placeholder: "0.5 or [[0.6, 0.1], [0.1, 0.3]]" });
   } else {
-    input = el("input", { type: "number", step: "any" });
+    input = el("input", { type: "text", inputmode: "decimal", autocomplete: "off", class: "number" });
   }
   Object.assign(input, { name, id, title: spec.description || "" });
   input.value = shown(f);

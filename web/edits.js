@@ -83,10 +83,16 @@ export function told(edit) {
   return true;
 }
 
+// A decimal number as a person writes it: digits with one decimal mark, a point or a comma ("0.5",
+// "0,5", ",5"), an optional sign and exponent. Not hexadecimal, "Infinity" or thousands separators.
+const decimal = /^[+-]?(\d+([.,]\d*)?|[.,]\d+)(e[+-]?\d+)?$/i;
+
 /**
  * What a typed field would send: a finite number, or, where a matrix may stand instead (`matrix`),
- * a JSON number or a non-empty array of them, nested. An empty, partial or non-numeric text, or one
- * past a double's range (`1e400`), sends nothing: `error` says what to enter instead, and the
+ * a JSON number or a non-empty array of them, nested. A decimal comma is the decimal mark ("0,5" is
+ * 0.5: a European teacher's value, which a number field on an English page read as 5); a text with
+ * two marks ("1,000.5", "1.000,5") is refused, not guessed. An empty, partial or non-numeric text,
+ * or one past a double's range (`1e400`), sends nothing: `error` says what to enter instead, and the
  * session keeps its value (`Number("")` is 0, and JSON turns Infinity into null).
  * @param {string} text
  * @param {boolean} [matrix]
@@ -97,13 +103,19 @@ export function typedValue(text, matrix = false) {
   /** @type {(v: unknown) => boolean} */
   const finite = (v) =>
     typeof v === "number" ? Number.isFinite(v) : Array.isArray(v) && v.length > 0 && v.every(finite);
-  let value;
-  try {
-    value = trimmed === "" ? NaN : matrix ? JSON.parse(trimmed) : Number(trimmed);
-  } catch {
-    value = NaN;
+  if (!matrix || !trimmed.startsWith("[")) {
+    if ((trimmed.match(/[.,]/g) ?? []).length > 1)
+      return { error: `enter one decimal mark, a point or a comma (got ${trimmed})` };
+    const value = decimal.test(trimmed) ? Number(trimmed.replace(",", ".")) : NaN;
+    if (Number.isFinite(value)) return { value };
+  } else {
+    try {
+      const value = JSON.parse(trimmed);
+      if (finite(value)) return { value };
+    } catch {
+      // not JSON: said below
+    }
   }
-  if (finite(value)) return { value };
   const what = matrix ? "enter a number or a matrix such as [[0.6, 0.1], [0.1, 0.3]]" : "enter a number";
   return { error: trimmed === "" ? what : `${what} (got ${trimmed})` };
 }

@@ -6,7 +6,7 @@
 // model or potential), otherwise updated in place, so that focus and a dragged slider stay put.
 import { sleep } from "./api.js";
 import { $, el, clear } from "./dom.js";
-import { begin, refused } from "./edits.js";
+import { begin, refused, typedValue } from "./edits.js";
 import { applyChange } from "./session.js";
 import { store, withView } from "./state.js";
 import { curvatureForm, curvatureVaries, shownRadius, surfaceKinds, surfaceSwitch, surfaceTitle } from "./surface.js";
@@ -294,9 +294,32 @@ function physicalRow(spec) {
     id: `${id}-range`,
     "aria-label": `${spec.label} slider`,
   });
-  const number = el("input", { type: "number", step: "any", id, name: `phys.${spec.key}` });
+  // A text field with its own parser (edits.js typedValue): a number field drops a decimal comma.
+  const number = el("input", {
+    type: "text",
+    inputmode: "decimal",
+    autocomplete: "off",
+    spellcheck: "false",
+    class: "number",
+    id,
+    name: `phys.${spec.key}`,
+  });
   const unit = el("span", { class: "unit", text: spec.unit });
   const help = el("small", { class: "help", id: `${id}-help` });
+  // Help on demand: shown by its button, not on hover or focus (a row that grows under the pointer
+  // moved the field a triple-click aimed at, and the typed digits went nowhere).
+  const helpButton = el("button", {
+    type: "button",
+    class: "help-toggle",
+    "aria-expanded": "false",
+    "aria-controls": help.id,
+    "aria-label": `What ${spec.label} means`,
+    text: "?",
+  });
+  helpButton.addEventListener("click", () => {
+    const open = row.classList.toggle("help-open");
+    helpButton.setAttribute("aria-expanded", String(open));
+  });
   const error = el("span", { class: "error", id: `${id}-error`, role: "alert" });
   const helpText = () => (spec.note ? `${spec.note} ` : "") + spec.help;
   help.textContent = helpText();
@@ -381,7 +404,7 @@ function physicalRow(spec) {
   });
   // The slider's value on its grid of steps (−2 + 200 × 0.01 is 0, not 1e-16).
   const stepped = () => Number(Number(range.value).toFixed(6));
-  const typed = () => (number.value === "" ? NaN : Number(number.value));
+  const typed = () => typedValue(number.value);
   range.addEventListener("input", () => {
     fill(stepped());
     if (spec.live) live(stepped());
@@ -389,10 +412,17 @@ function physicalRow(spec) {
   range.addEventListener("change", () => (spec.live ? live(stepped()) : apply(stepped())));
   number.addEventListener("change", () => {
     if (number.value === written) return;
-    if (spec.live && Number.isFinite(typed())) live(typed());
-    else apply(typed());
+    const t = typed();
+    if ("error" in t) {
+      // Nothing is sent: the reason beside the field, the value in force back in it.
+      if (refused(begin(error), t.error)) show(spec.value);
+      return;
+    }
+    const v = /** @type {number} */ (t.value);
+    if (spec.live) live(v);
+    else apply(v);
   });
-  row.append(label, range, number, unit, help, error);
+  row.append(label, range, number, unit, helpButton, help, error);
   return row;
 }
 

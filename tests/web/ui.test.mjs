@@ -147,6 +147,49 @@ await runSuite(started, async (browser) => {
     }
   });
 
+  await test("typed as a hurried hand types: 0,5 lands as 0.5, 1,000.5 is refused with why, help opens on its button only", async () => {
+    const current = async () => (await (await fetch(await page.$eval("#export-state", (a) => a.href))).json()).current;
+    const before = await current();
+    // A physical row (spin) and an advanced field (the body's mass), each typed with a decimal comma.
+    for (const [selector, path] of [["#phys-spin", ["initial", "spin"]], ['[name="body.mass"]', ["body", "mass"]]]) {
+      await page.click(selector, { clickCount: 3 });
+      await page.keyboard.type("0,5");
+      await page.keyboard.press("Tab");
+      let value;
+      for (let i = 0; i < 100; i++) {
+        value = path.reduce((o, k) => o?.[k], await current());
+        if (value === 0.5) break;
+        await page.waitForTimeout(100);
+      }
+      assert.equal(value, 0.5, `${selector}: 0,5 reached the server as 0.5`);
+    }
+    await page.click("#phys-spin", { clickCount: 3 });
+    await page.keyboard.type("1,000.5");
+    await page.keyboard.press("Tab");
+    await page.waitForFunction(() => /one decimal mark/.test(document.querySelector("#phys-spin-error").textContent));
+    assert.equal(await page.inputValue("#phys-spin"), "0.5", "the value in force back");
+    // Help: hidden until its button is pressed; hovering and focusing a row move nothing under the pointer.
+    const row = '.phys[data-key="speed"]';
+    const box = async () => (await page.locator(`${row} input.number`).boundingBox()).y;
+    const top = await box();
+    await page.hover(`${row} input.number`);
+    await page.focus(`${row} input.number`);
+    assert.equal(await page.isVisible(`${row} .help`), false);
+    assert.equal(await box(), top);
+    await page.click(`${row} .help-toggle`);
+    assert.equal(await page.isVisible(`${row} .help`), true);
+    assert.equal(await page.getAttribute(`${row} .help-toggle`, "aria-expanded"), "true");
+    await page.click(`${row} .help-toggle`);
+    assert.equal(await page.isVisible(`${row} .help`), false);
+    // The values before this test back, for the tests after it.
+    for (const [selector, value] of [['[name="body.mass"]', before.body.mass], ["#phys-spin", before.initial.spin]]) {
+      if (value === undefined) continue;
+      await page.fill(selector, String(value));
+      await page.dispatchEvent(selector, "change");
+    }
+    for (let i = 0; i < 100 && (await current()).body.mass !== before.body.mass; i++) await page.waitForTimeout(100);
+  });
+
   await test("switching the deformation kind replaces its fields on the server and in the form", async () => {
     // The parameters in force (a change after t = 0 is a timeline entry; the scene is t = 0's).
     const scene = async () => (await (await fetch(await page.$eval("#export-state", (a) => a.href))).json()).current;
@@ -961,7 +1004,7 @@ await runSuite(started, async (browser) => {
     assert.equal(await t.getAttribute("#theme", "aria-pressed"), "true");
     const darkBg = await luma(t, "body", "backgroundColor"), darkFg = await luma(t, "body", "color");
     assert.ok(darkBg < 50 && darkFg > 200, `dark: ${darkBg} on ${darkFg}`);
-    assert.ok(await luma(t, ".phys input[type=number]", "backgroundColor") < 80, "form fields follow the theme");
+    assert.ok(await luma(t, ".phys input.number", "backgroundColor") < 80, "form fields follow the theme");
     await t.reload();
     await t.waitForSelector("body[data-ready=true]", { timeout: 20000 });
     assert.equal(await t.$eval("html", (el) => el.dataset.theme), "dark");

@@ -28,7 +28,7 @@ const shown = (unit) => ({ "1": "pure number", rad: "degrees" })[unit] ?? unit;
 const physicalRows = (page) => page.$$eval("#physical .phys[data-key]", (rows) => rows.map((row) => ({
   key: row.dataset.key, field: row.dataset.field, label: row.querySelector("label").textContent,
   unit: row.querySelector(".unit").textContent, help: row.querySelector(".help").textContent,
-  title: row.querySelector('input[type="number"]').title,
+  title: row.querySelector('input.number').title,
 })));
 
 function checkPhysical(schema, rows) {

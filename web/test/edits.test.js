@@ -80,3 +80,14 @@ test("a typed field sends a finite number or matrix, and nothing for empty, part
   for (const text of ["[]", "[[1, null]]", '"1"', "[[0.6, 0.1], [0.1,", "true"])
     assert.ok("error" in typedValue(text, true), text);
 });
+
+test("a decimal comma is the decimal mark; two marks, hexadecimal and words are refused", () => {
+  assert.deepEqual(typedValue("0,5"), { value: 0.5 }, "a European 0,5 (a number field read 5)");
+  assert.deepEqual(typedValue(",25"), { value: 0.25 });
+  assert.deepEqual(typedValue("-1,5e-3"), { value: -0.0015 });
+  assert.deepEqual(typedValue("0,5", true), { value: 0.5 }, "a number where a matrix may stand");
+  assert.deepEqual(typedValue("1,000.5"), { error: "enter one decimal mark, a point or a comma (got 1,000.5)" });
+  assert.deepEqual(typedValue("1.000,5"), { error: "enter one decimal mark, a point or a comma (got 1.000,5)" });
+  assert.deepEqual(typedValue("5,"), { value: 5 }, "as Number('5.') is");
+  for (const text of ["0x10", "Infinity", "1 000", "1e5.5", "+-1"]) assert.ok("error" in typedValue(text), text);
+});
