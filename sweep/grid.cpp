@@ -13,8 +13,11 @@ using json = nlohmann::json;
 std::vector<double> grid_values(double a, double b, std::size_t n) {
   if (n <= 1) return {a};
   std::vector<double> values(n);
-  for (std::size_t k = 0; k + 1 < n; ++k)
-    values[k] = a + (b - a) * static_cast<double>(k) / static_cast<double>(n - 1);
+  const double delta = b - a, div = static_cast<double>(n - 1), step = delta / div;
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const double y = static_cast<double>(k);
+    values[k] = (step == 0.0 ? (y / div) * delta : y * step) + a;
+  }
   values[n - 1] = b;
   return values;
 }

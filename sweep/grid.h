@@ -25,9 +25,10 @@ struct SweepError : std::invalid_argument {
 // A sweep is at most kMaxRuns runs (engine/run_limits.h), refused before anything is allocated.
 using spinfold::kMaxRuns;
 
-// The grid `a:b:n`: n values from a to b, both included. Value k is a + (b − a)·k/(n − 1) for
-// k < n − 1 and the last is b exactly (not a + (b − a), which can round off); n = 1 is a alone.
-// (NumPy's linspace computes a + k·((b − a)/(n − 1)): other doubles in the last bit.)
+// The grid `a:b:n`: n values from a to b, both included, numpy.linspace(a, b, n) to the bit (its
+// formula, NumPy 1.24): step = (b − a)/(n − 1), value k = k·step + a, or (k/(n − 1))·(b − a) + a
+// where step is 0 (it underflowed); the last is b exactly; n = 1 is a alone. So a sweep's rows and
+// a researcher's numpy grid name the same doubles.
 std::vector<double> grid_values(double a, double b, std::size_t n);
 
 // A scene field a sweep can set, by its dotted path: the engine's walk of the tables

@@ -72,12 +72,17 @@ def test_the_readme_examples_give_the_same_rows_to_the_bit(binary, tmp_path):
     assert set(table["status"]) == {"ok"}
 
 
-def test_the_grid_is_the_cli_grid_not_linspace():
-    values = spinfold.grid(0, 2, 40)
-    assert values[-1] == 2.0 and len(values) == 40
-    assert all(values[k] == 0 + (2 - 0) * k / 39 for k in range(39))
-    rows = spinfold.sweep("spinning_rigid_sphere", {"initial.spin": "0:2:5"}, t_end=0.5, every=0.5)
-    assert list(rows["initial.spin"]) == list(spinfold.grid(0, 2, 5))
+def test_the_grid_is_numpys_linspace_to_the_bit():
+    # Structured and random (a, b, n), across signs, scales and counts; the CLI's grid is the same function.
+    rng = np.random.default_rng(51)
+    cases = [(0, 2, 31), (0, 2, 40), (0.1, 0.7, 3), (0.7, 0.1, 7), (-3, 5, 1), (0, 1e-320, 4), (1e-3, 1e3, 101)]
+    cases += [(float(a), float(b), int(n)) for a, b, n in zip(rng.normal(0, 10, 500), rng.normal(0, 10, 500),
+                                                               rng.integers(1, 400, 500))]
+    for a, b, n in cases:
+        ours = np.array(spinfold.grid(a, b, n), dtype=np.float64)
+        assert np.array_equal(ours.view(np.uint64), np.linspace(a, b, n).view(np.uint64)), (a, b, n)
+    rows = spinfold.sweep("spinning_rigid_sphere", {"initial.spin": "0:2:31"}, t_end=0.5, every=0.5)
+    assert np.array_equal(np.asarray(rows["initial.spin"]).view(np.uint64), np.linspace(0, 2, 31).view(np.uint64))
 
 
 def test_python_refuses_like_the_cli_naming_the_field():

@@ -15,20 +15,21 @@ std::string error_of(const auto& call) {
   return test::error_of<SweepError>(call);
 }
 
-TEST(SweepGrid, ValuesAreTheDocumentedFormulaWithTheLastExactlyB) {
-  const auto v = grid_values(0.0, 2.0, 40);
-  ASSERT_EQ(v.size(), 40u);
-  for (std::size_t k = 0; k + 1 < v.size(); ++k)
-    EXPECT_EQ(v[k], 0.0 + (2.0 - 0.0) * static_cast<double>(k) / 39.0);
+// NumPy's linspace formula (its check against numpy itself, for many a, b, n: tests/python/test_sweep.py).
+TEST(SweepGrid, ValuesAreNumpysLinspaceWithTheLastExactlyB) {
+  const auto v = grid_values(0.0, 2.0, 31);
+  ASSERT_EQ(v.size(), 31u);
+  for (std::size_t k = 0; k + 1 < v.size(); ++k) EXPECT_EQ(v[k], static_cast<double>(k) * (2.0 / 30.0) + 0.0);
   EXPECT_EQ(v.back(), 2.0);
+  // The last bit where the old formula a + (b − a)·k/(n − 1) differs (issue 51: index 23 of 0:2:31).
+  EXPECT_NE(v[23], 0.0 + 2.0 * 23.0 / 30.0);
   EXPECT_EQ(grid_values(0.1, 0.7, 1), std::vector<double>{0.1});
   // b exactly even where a + (b − a) rounds off.
   EXPECT_NE(0.7 + (0.1 - 0.7), 0.1);
   EXPECT_EQ(grid_values(0.7, 0.1, 3).back(), 0.1);
-  // NumPy's linspace (a + k·step) gives other doubles for some values: the grid is one formula.
-  int differ = 0;
-  for (std::size_t k = 0; k < v.size(); ++k) differ += v[k] != 0.0 + static_cast<double>(k) * (2.0 / 39.0);
-  EXPECT_GT(differ, 0);
+  // A step that underflows: (k/(n − 1))·(b − a) + a, as NumPy does.
+  const auto tiny = grid_values(0.0, 1e-320, 4);
+  EXPECT_EQ(tiny[1], (1.0 / 3.0) * 1e-320);
 }
 
 TEST(SweepGrid, AxesFromASpecValuesOrATable) {
