@@ -254,6 +254,17 @@ RunMonitor::RunMonitor(MonitorSpec spec, const Simulation& run) : spec_(std::mov
   };
   for (const SummarySpec& s : spec_.summaries) summary_index_.push_back(watch(s.field));
   for (const EventSpec& e : spec_.events) event_index_.push_back(watch(e.field));
+  // The angles: φ, and u where the profile's domain is a circle (the torus's tube angle). Their
+  // values are continuous (turns counted, not wrapped), and an event's level on one is a level on
+  // the circle: level + k·period for every k, the period the angle's own unless the text gave one.
+  angle_period_.fill(0.0);
+  angle_period_[f_phi] = 2.0 * std::numbers::pi;
+  if (run.embedded) {
+    const ProfileDomain d = revolution_entry(run.embedded->surface.kind).domain(run.embedded->surface);
+    if (d.periodic) angle_period_[f_r] = d.u_max - d.u_min;
+  }
+  for (std::size_t e = 0; e < spec_.events.size(); ++e)
+    if (spec_.events[e].period == 0.0) spec_.events[e].period = angle_period_[fields_[event_index_[e]]];
   // What evaluate() must compute, decided once: the energy, the body, or only its position.
   for (const int f : fields_) {
     const bool energy = f == f_energy || f == f_energy_error, x = f == f_X0 || f == f_X1 || f == f_X2;
@@ -326,7 +337,10 @@ RunMonitor::Values RunMonitor::evaluate(const Simulation& run, const State& s, c
   }
   for (std::size_t k = 0; k < fields_.size(); ++k) {
     out[k] = v[fields_[k]];
-    if (fields_[k] == f_phi) {
+    if (fields_[k] == f_r && angle_period_[f_r] > 0.0) {  // the torus's u: continued like φ
+      const double previous = near ? (*near)[k] : kNaN;
+      if (!std::isnan(previous)) out[k] = previous + std::remainder(out[k] - previous, angle_period_[f_r]);
+    } else if (fields_[k] == f_phi) {
       const double previous = near ? (*near)[k] : kNaN;
       if (!phi)
         out[k] = previous;  // at a pole φ is undefined: it keeps its last value

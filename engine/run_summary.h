@@ -21,7 +21,8 @@ namespace spinfold {
 struct Simulation;
 
 // The fields a summary or an event watches (monitor_field_names): r (u where the curvature varies),
-// phi (continuous: it counts turns instead of wrapping at ±π), lambda, mu, det_L, energy,
+// phi (continuous: it counts turns instead of wrapping at ±π; so is u on the torus, whose profile is
+// a circle), lambda, mu, det_L, energy,
 // energy_error, spin, speed, X.0, X.1, X.2, and K where the curvature varies. Each is the number of
 // the same name in a sample, read off the same state.
 std::vector<std::string> monitor_field_names(const Scene& scene);
@@ -45,7 +46,9 @@ struct SummarySpec {
 enum class Direction { up, down, any };
 
 // A field crossing a level: up (from below to at or above), down, or either. With a period, every
-// level + k·period counts (phi through multiples of 2π: level 0, period 6.283185307179586). A period
+// level + k·period counts (phi through multiples of 2π: level 0, period 6.283185307179586). On an
+// angle (φ; u on the torus) a level is a level on the circle: the period is the angle's own (2π)
+// unless the text gives one, and the wrap from π to −π is no crossing (the angle is continuous). A period
 // is at least kMinRelativePeriod of |level| (parse_event refuses less) and of the field's size
 // wherever the run takes it (the run stops there as event_unresolved): closer levels are not told
 // apart in double. A step's crossings are counted, not visited, so any number of them costs two or
@@ -139,12 +142,13 @@ class RunMonitor {
   struct Reads {  // what evaluate() computes for the watched fields
     bool energy = false, body = false, x = false, position_only = true;
   } reads_;
-  std::vector<int> fields_;          // the watched fields (indices into the field table)
-  std::vector<int> summary_index_;   // spec_.summaries[i]'s field in fields_
-  std::vector<int> event_index_;     // spec_.events[i]'s field in fields_
-  std::vector<Track> tracks_;        // per watched field
-  std::vector<Occurrences> events_;  // per event
-  State before_, last_;              // the last two points of the sequence (before_ valid when has_before_)
+  std::vector<int> fields_;                        // the watched fields (indices into the field table)
+  std::array<double, kMaxFields> angle_period_{};  // by field-table index: the angles' period, 0 else
+  std::vector<int> summary_index_;                 // spec_.summaries[i]'s field in fields_
+  std::vector<int> event_index_;                   // spec_.events[i]'s field in fields_
+  std::vector<Track> tracks_;                      // per watched field
+  std::vector<Occurrences> events_;                // per event
+  State before_, last_;  // the last two points of the sequence (before_ valid when has_before_)
   Values before_values_{}, last_values_{};
   bool has_before_ = false, stopped_ = false;
   double t_start_ = 0.0;

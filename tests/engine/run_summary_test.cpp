@@ -9,6 +9,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "engine/embedded_run.h"
+#include "engine/initial_rates.h"
 #include "engine/sampling.h"
 #include "test_support.h"
 
@@ -232,6 +234,56 @@ TEST(RunSummary, PhiThroughMultiplesOfTwoPi) {
   EXPECT_NEAR(v[0], unwrapped, 1e-9);
   EXPECT_EQ(v[1], turns);
   EXPECT_GE(turns, 1.0);
+}
+
+// The torus's tube angle u is a circle (issue 51): u is read wrapped to (−π, π], and each wrap was
+// counted as a crossing (u:up:1.5 gave 12 where there are 6), stop=2 stopped at a wrap, u.max read
+// ±π. Now u is continuous and a level on it is a level on the circle; checked against a dense
+// trajectory of the same run, unwrapped here.
+TEST(RunSummary, TheTorussTubeAngleIsACircle) {
+  Scene scene;
+  scene.surface.kind = SurfaceKind::torus;
+  scene.surface.tube_radius = 1.0;
+  scene.surface.center_radius = 2.5;
+  scene.body = {1.0, 0.1, BodyModel::rigid};
+  scene.initial.u = 0.2;
+  scene.initial.speed = 1.2;
+  scene.initial.heading = 0.15;  // mostly round the tube
+  scene.initial.spin = 0.05;
+  ASSERT_TRUE(resolve_initial_rates(scene).empty());
+  scene.integrator = {"dop853", 0.01, 1e-12};
+  const double T = 40.0, level = 1.5, p = 2.0 * std::numbers::pi;
+  Simulation probe = start_simulation(scene);
+  const auto wrapped_u = [&] { return profile_readout(*probe.embedded, probe.state.y).coordinates.r; };
+  double raw = wrapped_u(), unwrapped = raw, highest = raw;
+  int circle_ups = 0, wraps = 0;
+  sample_run(
+      probe, T, 1e-3, [&](double t) { return advance_to(probe, t); },
+      [&] {
+        const double now = wrapped_u();
+        if (std::abs(now - raw) > std::numbers::pi) ++wraps;
+        const double next = unwrapped + std::remainder(now - raw, p);
+        if (next > unwrapped)
+          circle_ups +=
+              static_cast<int>(std::floor((next - level) / p) - std::floor((unwrapped - level) / p));
+        unwrapped = next, raw = now, highest = std::max(highest, next);
+      });
+  ASSERT_GE(circle_ups, 3);
+  ASSERT_GE(wraps, 3);  // the wrapped u jumps: each jump was a crossing before
+  const std::vector<double> v = summarised(
+      scene,
+      {.summaries = {parse_summary("u.max"), parse_summary("u.final")}, .events = {parse_event("u:up:1.5")}},
+      T, 0.5);
+  EXPECT_NEAR(v[0], highest, 1e-6);  // the continuous angle's maximum, not ±π
+  EXPECT_GT(v[0], 2.0 * p);
+  EXPECT_NEAR(v[1], unwrapped, 1e-8);
+  EXPECT_EQ(v[2], circle_ups);
+  // stop=2 stops at the second crossing of the circle u = 1.5, not at a wrap.
+  Simulation stopped;
+  summarised(scene, {.summaries = {}, .events = {parse_event("u:up:1.5:stop=2")}}, T, 0.5, &stopped);
+  ASSERT_EQ(stopped.state.status, Status::event_stop);
+  EXPECT_NEAR(std::remainder(profile_readout(*stopped.embedded, stopped.state.y).coordinates.r - level, p),
+              0.0, 1e-9);
 }
 
 // A period far below the field's change over a step: every crossing counted (the levels are counted
