@@ -444,7 +444,13 @@ function surfaceKindRow(s) {
     try {
       // Fields of the other kinds go (initial.r on a torus); from the curvature form, that form
       // goes and the radius it implied stays (1 from the plane).
-      const patch = surfaceSwitch(store.get().schema, current, select.value);
+      const start = store.get().start ?? {};
+      const physical = {
+        spin: current.initial.spin ?? start.spin,
+        speed: current.initial.speed ?? start.speed,
+        heading: current.initial.heading ?? start.heading,
+      };
+      const patch = surfaceSwitch(store.get().schema, current, select.value, physical);
       if (curvatureForm(current.surface) && !curvatureVaries(store.get().schema, select.value))
         patch.surface = { kind: select.value, radius: surface?.radius ?? 1, curvature: null };
       await applyChange(patch, edit);

@@ -52,13 +52,19 @@ export const curvatureVaries = (schema, kind) => (kindSpec(schema)["x-curvature-
  * The merge patch that switches a scene to another surface kind: the kind, and null for every
  * field the scene gives that the schema marks as belonging to other kinds only ("x-surfaces":
  * initial.r on a torus, the torus's radii or friction on a sphere), so the server refuses nothing.
+ * The physical values the teacher sees (spin, speed, heading) go with it: the coordinate rates
+ * alone mean another spin and speed on another surface (a torus made spin 1 into 0.679 and speed
+ * 0.5 into 2.08 without a word).
  * @param {any} schema the scene's JSON Schema
  * @param {any} scene the scene in force
  * @param {string} kind
+ * @param {{spin?: number, speed?: number, heading?: number}} [physical] the values shown
  */
-export function surfaceSwitch(schema, scene, kind) {
+export function surfaceSwitch(schema, scene, kind, physical = {}) {
   /** @type {any} */
   const patch = { surface: { kind } };
+  for (const [key, value] of Object.entries(physical))
+    if (typeof value === "number" && Number.isFinite(value)) (patch.initial ??= {})[key] = value;
   const foreign = (/** @type {any} */ spec) => spec?.["x-surfaces"] && !spec["x-surfaces"].includes(kind);
   for (const [section, spec] of Object.entries(schema.properties ?? {})) {
     const given = scene[section];

@@ -763,6 +763,28 @@ await runSuite(started, async (browser) => {
     assert.equal(await trailPixels(), 0);
   });
 
+  await test("a switch of surface keeps the spin, speed and heading the teacher set", async () => {
+    // The coordinate rates alone meant another spin and speed on the torus (spin 1 → 0.679, speed
+    // 0.5 → 2.08, without a word).
+    await openPreset("spinning_rigid_sphere");
+    const shown = async () => Object.fromEntries(await Promise.all(["spin", "speed", "heading"].map(async (k) => [k, Number(await page.inputValue(`#phys-${k}`))])));
+    const before = await shown();
+    const state = async () => (await (await fetch(await page.$eval("#export-state", (a) => a.href))).json());
+    for (const kind of ["torus", "pseudosphere", "sphere"]) {
+      await page.selectOption("#phys-surface", kind);
+      let session;
+      for (let i = 0; i < 100; i++) {
+        session = await state();
+        if (session.current.surface.kind === kind) break;
+        await page.waitForTimeout(100);
+      }
+      assert.equal(session.current.surface.kind, kind);
+      for (const k of ["spin", "speed", "heading"])
+        assert.ok(Math.abs(session.current.initial[k] - before[k] * (k === "heading" ? Math.PI / 180 : 1)) < 1e-9, `${kind}: ${k} ${session.current.initial[k]}`);
+      await page.waitForFunction((b) => ["spin", "speed", "heading"].every((k) => Math.abs(Number(document.querySelector(`#phys-${k}`).value) - b[k]) < 1e-4), before, { timeout: 30000 });
+    }
+  });
+
   await test("a pseudosphere is offered its six pictures, from the server's table, and each is drawn", async () => {
     await page.click('.preset[data-name="spinning_rigid_pseudosphere"]');
     await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "spinning_rigid_pseudosphere");
