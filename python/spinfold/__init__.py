@@ -16,6 +16,7 @@ reasons of sample i and ``result.reasons`` every reason met in the run.
 from __future__ import annotations
 
 import builtins
+import difflib
 import json
 import math
 import numbers
@@ -104,13 +105,23 @@ def _scene_text(scene: Any, field: str = "scene") -> str:
     return _core.scene_text(scene, field)
 
 
-def _with_overrides(text: str, overrides: Mapping[str, Any]) -> str:
+def _with_overrides(text: str, overrides: Mapping[str, Any], options: Sequence[str] = ()) -> str:
     """Applies `integrator=`, `dt=`, `tolerance=` (as the CLI's flags) and dotted paths, checked by the
-    scene's validation (ValueError naming each refused field, NaN and infinities included)."""
+    scene's validation (ValueError naming each refused field, NaN and infinities included). A keyword
+    that is none of those but close to one of the function's `options` is a misspelt option, not a
+    scene field: TypeError naming it and the option meant (``summary=`` for ``summaries=``)."""
     if not overrides:
         return text
     pairs = []
     for key, value in overrides.items():
+        if key in ("chaos", "chaos_interval"):
+            raise TypeError(f"{key}: simulate has no chaos indicators yet; spinfold.sweep(..., chaos=True) and "
+                            f"`spinfold simulate --chaos` have them")
+        if "__" not in key and key not in ("integrator", "dt", "tolerance"):
+            meant = difflib.get_close_matches(key, list(options), n=1, cutoff=0.75)
+            if meant:
+                raise TypeError(f"{key}: not an option (did you mean {meant[0]}=?); a scene field is "
+                                f"written with __ for its dots, such as initial__spin")
         path = {"integrator": "integrator.name", "dt": "integrator.dt", "tolerance": "integrator.tolerance"}.get(
             key, key.replace("__", ".")
         )
@@ -276,6 +287,16 @@ def _monitor_texts(summaries: str | Sequence[str], events: str | Sequence[str]) 
     return [x for x in summaries if x], _texts(events, "events")
 
 
+_SIMULATE_OPTIONS = ("t_end", "every", "max_steps", "summaries", "events")
+
+
+def _flag(name: str, value: Any) -> bool:
+    """A yes-or-no option: True or False (a NumPy bool too), never a text or a number taken for one."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name}: must be True or False (got {value!r})")
+    return bool(value)
+
+
 def simulate(scene: Any, t_end: float = 10.0, every: float = 0.5, *, max_steps: int | None = None,
              summaries: str | Sequence[str] = (), events: str | Sequence[str] = (),
              **overrides: Any) -> Result:
@@ -290,7 +311,7 @@ def simulate(scene: Any, t_end: float = 10.0, every: float = 0.5, *, max_steps: 
     """
     t_end, every = _run_limit("t_end", t_end), _run_limit("every", every)
     steps = None if max_steps is None else _run_limit("max_steps", max_steps)
-    text = _with_overrides(_scene_text(scene), overrides)
+    text = _with_overrides(_scene_text(scene), overrides, _SIMULATE_OPTIONS)
     watched, crossings = _monitor_texts(summaries, events)
     return Result(_core.simulate(text, t_end, every, steps, "python: spinfold.simulate", watched, crossings))
 
@@ -315,8 +336,7 @@ def run_many(scenes: Iterable[Any], t_end: float = 10.0, every: float = 0.5, *,
 
 def grid(a: float, b: float, n: int) -> np.ndarray:
     """The values of a sweep's ``a:b:n`` (``spinfold sweep --set FIELD=a:b:n``): n values from a to
-    b, value k = a + (b − a)·k/(n − 1) and the last b exactly. Not ``np.linspace``, which differs in
-    the last bit for some values."""
+    b, ``np.linspace(a, b, n)`` to the bit (NumPy's formula, k·((b − a)/(n − 1)) + a, the last b)."""
     return np.array(_core.grid(float(a), float(b), int(n)))
 
 
@@ -350,6 +370,7 @@ def sweep(base: Any, vary: Mapping[str, Any], t_end: float = 10.0, every: float 
     """
     if not isinstance(vary, Mapping):
         raise TypeError(f"vary: must be a mapping of field paths to values (got {type(vary).__name__})")
+    zip, chaos = _flag("zip", zip), _flag("chaos", chaos)
     if fields is None:
         fields = _core.default_sweep_fields()
     elif not isinstance(fields, str):

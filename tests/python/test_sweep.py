@@ -249,3 +249,19 @@ def test_ctrl_c_stops_a_sweep_after_the_runs_in_progress():
     assert time.monotonic() - start < 10.0
     assert child.returncode != 0
     assert "KeyboardInterrupt" in err
+
+
+def test_options_are_strict_and_told_apart_from_scene_fields():
+    # A yes-or-no option takes True or False only: "yes" was accepted as true (issue 51, item 6).
+    for bad in ("yes", 1, None):
+        with pytest.raises(TypeError, match=r"chaos: must be True or False"):
+            spinfold.sweep("spinning_rigid_sphere", {"initial.spin": "0:1:2"}, t_end=0.5, chaos=bad)
+    with pytest.raises(TypeError, match=r"zip: must be True or False"):
+        spinfold.sweep("spinning_rigid_sphere", {"initial.spin": "0:1:2"}, t_end=0.5, zip="no")
+    # A misspelt option is named as one, not as an unknown scene field.
+    with pytest.raises(TypeError, match=r"summary: not an option \(did you mean summaries=\?\)"):
+        spinfold.simulate("spinning_rigid_sphere", t_end=0.5, summary="r")
+    with pytest.raises(TypeError, match=r"chaos: simulate has no chaos indicators yet"):
+        spinfold.simulate("spinning_rigid_sphere", t_end=0.5, chaos=True)
+    # Scene fields and the flags still pass.
+    assert spinfold.simulate("spinning_rigid_sphere", t_end=0.5, initial__spin=0.5, tolerance=1e-9) is not None
