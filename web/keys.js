@@ -19,7 +19,7 @@ import { store } from "./state.js";
  */
 export const shortcuts = [
   { keys: ["Space"], does: "Play or pause" },
-  { keys: ["→"], does: "Step: advance 10 steps" },
+  { keys: ["→"], does: "Step: advance 10 steps (on the focused picture the arrows orbit instead)" },
   { keys: ["R"], does: "Reset: back to t = 0, the view aimed afresh" },
   { keys: ["V"], does: "Reset the view: aim the camera at the bodies again, undo the zoom" },
   { keys: ["+", "−"], does: "Zoom in, zoom out" },
