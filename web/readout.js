@@ -124,6 +124,6 @@ export function renderReadout(state, before) {
       `time ${Number(s.t).toFixed(2)}, spin ${Number(s.spin).toPrecision(3)}, ` +
       `energy error ${Number(s.energy_error ?? 0).toExponential(1)}, ` +
       `${s.status === "ok" ? (state.playing ? "playing" : "paused") : s.status}`;
-    announce.dataset.at = String(Math.round(now));
+    announce.dataset.at = String(now); // when it was written [ms, performance.now()]: what the rule spaces
   }
 }

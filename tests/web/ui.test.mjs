@@ -1061,7 +1061,12 @@ await runSuite(started, async (browser) => {
     assert.equal(await a.getAttribute("#announce", "aria-live"), "polite");
     await a.evaluate(() => {
       window.heard = [];
-      new MutationObserver(() => window.heard.push({ at: performance.now(), text: document.querySelector("#announce").textContent }))
+      // The page's own time of each announcement (its data-at): the observer's callback runs after the
+      // rest of the writing task, later by however long that took on a busy machine (1.5 ms was seen).
+      new MutationObserver(() => {
+        const announce = document.querySelector("#announce");
+        window.heard.push({ at: Number(announce.dataset.at), text: announce.textContent });
+      })
         .observe(document.querySelector("#announce"), { childList: true, characterData: true, subtree: true });
     });
     await a.click("#play");
@@ -1070,7 +1075,7 @@ await runSuite(started, async (browser) => {
     const heard = await a.evaluate(() => window.heard);
     // The stream sends states many times a second; the announcements are 1 s apart or more.
     assert.ok(heard.length >= 3 && heard.length <= 6, `${heard.length} announcements in 4.5 s`);
-    for (let i = 1; i < heard.length; i++) assert.ok(heard[i].at - heard[i - 1].at >= 990, `${heard[i].at - heard[i - 1].at} ms apart`);
+    for (let i = 1; i < heard.length; i++) assert.ok(heard[i].at - heard[i - 1].at >= 1000, `${heard[i].at - heard[i - 1].at} ms apart`);
     // Each says the time, spin, energy error and play state; while playing, "playing" (the last may
     // already say "paused": the pause is announced too when a second has passed).
     for (const h of heard) assert.match(h.text, /^time \d+\.\d\d, spin 1\.00, energy error .*, (playing|paused)$/);
