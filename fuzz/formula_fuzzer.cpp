@@ -4,21 +4,14 @@
 // within the text; an accepted formula is within the caps, evaluates without a fault at a point, and
 // its jet's value is its double evaluation's.
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
+#include <cstddef>
+#include <cstdint>
 #include <string_view>
 
 #include "engine/formula.h"
+#include "fuzz/text_property.h"
 
-namespace {
-
-[[noreturn]] void violated(const char* what, std::string_view text) {
-  std::fprintf(stderr, "property violated: %s\ninput: %.*s\n", what, static_cast<int>(text.size()),
-               text.data());
-  std::abort();
-}
-
-}  // namespace
+using spinfold::fuzz::violated;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace spinfold;

@@ -2,21 +2,14 @@
 // Properties (a violation aborts): no crash, no exception and no sanitizer report on any input;
 // every error has a reason (and a field, unless the text is not JSON at all); an accepted scene
 // passes validation and its JSON reads back to the same JSON.
-#include <cstdio>
-#include <cstdlib>
+#include <cstddef>
+#include <cstdint>
 #include <string_view>
 
 #include "codec/scene_json.h"
+#include "fuzz/text_property.h"
 
-namespace {
-
-[[noreturn]] void violated(const char* what, std::string_view text) {
-  std::fprintf(stderr, "property violated: %s\ninput: %.*s\n", what, static_cast<int>(text.size()),
-               text.data());
-  std::abort();
-}
-
-}  // namespace
+using spinfold::fuzz::violated;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace spinfold;

@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <boost/numeric/odeint.hpp>
 #include <cstdio>
 
 #include "engine/chart.h"
@@ -15,12 +14,11 @@
 #include "engine/formula_surface.h"
 #include "engine/implicit_start.h"
 #include "engine/integrator.h"
+#include "tests/engine/formula_examples.h"
 #include "tests/engine/revolution_examples.h"
 
 namespace spinfold {
 namespace {
-
-namespace odeint = boost::numeric::odeint;
 
 FormulaSurface surface(std::string_view text, const FormulaParameters& p) {
   FormulaSurfaceParse parsed = parse_formula_surface(FormulaSurfaceForm::implicit, text, p);
@@ -30,17 +28,7 @@ FormulaSurface surface(std::string_view text, const FormulaParameters& p) {
 
 template <int N, class Field>
 Eigen::Matrix<double, N, 1> reference(const Field& field, const Eigen::Matrix<double, N, 1>& Y0, double T) {
-  using State = std::vector<double>;
-  State x(Y0.data(), Y0.data() + N);
-  auto rhs = [&](const State& in, State& out, double) {
-    Eigen::Matrix<double, N, 1> y, d;
-    for (int i = 0; i < N; ++i) y(i) = in[i];
-    field(y, d);
-    out.assign(d.data(), d.data() + N);
-  };
-  odeint::integrate_adaptive(odeint::make_controlled(1e-14, 1e-14, odeint::runge_kutta_fehlberg78<State>()),
-                             rhs, x, 0.0, T, 1e-3);
-  return Eigen::Map<Eigen::Matrix<double, N, 1>>(x.data());
+  return test::rkf78<N>(field, Y0, T, 1e-14);
 }
 
 struct Measured {

@@ -5,16 +5,14 @@
 
 #include <gtest/gtest.h>
 
-#include <boost/numeric/odeint.hpp>
 #include <random>
 
 #include "engine/embedded_dynamics.h"
+#include "tests/engine/formula_examples.h"
 #include "tests/engine/revolution_examples.h"
 
 namespace spinfold {
 namespace {
-
-namespace odeint = boost::numeric::odeint;
 
 FormulaSurface surface(FormulaSurfaceForm form, std::string_view text, const FormulaParameters& p = {}) {
   FormulaSurfaceParse parsed = parse_formula_surface(form, text, p);
@@ -84,20 +82,8 @@ TEST(FormulaSurface, TheFormulaTorusGivesTheBuiltInTorussPath) {
   const RevolutionImplicit built_in(m.surface);
   const auto run = [&](const ImplicitSurface& s) {
     const EmbeddedModel model{s, m.body};
-    using State = std::vector<double>;
-    const Embedded Y0 = test::ws1_state();
-    State x(Y0.data(), Y0.data() + 18);
-    auto rhs = [&](const State& in, State& out, double) {
-      Embedded y, d;
-      for (int i = 0; i < 18; ++i) y(i) = in[i];
-      embedded_vector_field(model, y, d);
-      out.assign(d.data(), d.data() + 18);
-    };
-    odeint::integrate_adaptive(odeint::make_controlled(1e-13, 1e-13, odeint::runge_kutta_fehlberg78<State>()),
-                               rhs, x, 0.0, 5.0, 1e-3);
-    Embedded Y;
-    for (int i = 0; i < 18; ++i) Y(i) = x[i];
-    return Y;
+    return test::rkf78<18>([&](const Embedded& y, Embedded& d) { embedded_vector_field(model, y, d); },
+                           test::ws1_state(), 5.0, 1e-13);
   };
   const Embedded a = run(formula), b = run(built_in);
   EXPECT_LT((a - b).lpNorm<Eigen::Infinity>(), 1e-12);

@@ -12,6 +12,8 @@
 #include <random>
 #include <string>
 
+#include "tests/engine/formula_examples.h"
+
 namespace spinfold {
 namespace {
 
@@ -226,40 +228,6 @@ TEST(Formula, EachFunctionsJetIsExact) {
   EXPECT_NEAR(p.hessian(0, 1), std::pow(base, e - 1) * (1 + e * std::log(base)), 1e-14);
 }
 
-// A random formula over the whole grammar (every operator and function, parameters, nesting).
-std::string random_formula(std::mt19937_64& rng, int depth) {
-  std::uniform_int_distribution<int> pick(0, depth <= 0 ? 4 : 22);
-  std::uniform_real_distribution<double> number(-2.0, 2.0);
-  const auto sub = [&] { return random_formula(rng, depth - 1); };
-  switch (pick(rng)) {
-    case 0: return "x";
-    case 1: return "y";
-    case 2: return "z";
-    case 3: return std::to_string(number(rng));
-    case 4: return "a";
-    case 5: return "(" + sub() + " + " + sub() + ")";
-    case 6: return "(" + sub() + " - " + sub() + ")";
-    case 7: return "(" + sub() + " * " + sub() + ")";
-    case 8: return "(" + sub() + ") / (2.5 + sin(" + sub() + "))";
-    case 9: return "(" + sub() + ")^2";
-    case 10: return "(" + sub() + ")**3";
-    case 11: return "-(" + sub() + ")";
-    case 12: return "sqrt(1.5 + cos(" + sub() + "))";
-    case 13: return "exp(sin(" + sub() + "))";
-    case 14: return "log(2 + sin(" + sub() + "))";
-    case 15: return "sin(" + sub() + ")";
-    case 16: return "cos(" + sub() + ")";
-    case 17: return "tan(0.4*sin(" + sub() + "))";
-    case 18: return "sinh(sin(" + sub() + "))";
-    case 19: return "cosh(sin(" + sub() + "))";
-    case 20: return "tanh(" + sub() + ")";
-    case 21: return "atan(" + sub() + ") + asinh(" + sub() + ")";
-    default:
-      return "atan2(" + sub() + ", 3 + cos(" + sub() + ")) + (1.5 + sin(" + sub() + "))^(0.5 + 0.1*" + sub() +
-             ")";
-  }
-}
-
 // 300 random formulas: the jet's value is the double evaluation's, its gradient and Hessian agree
 // with central differences of the value and of the gradient (step 1e-5: error ~1e-9 relative).
 TEST(Formula, RandomFormulasJetsAgreeWithDifferences) {
@@ -267,7 +235,7 @@ TEST(Formula, RandomFormulasJetsAgreeWithDifferences) {
   std::uniform_real_distribution<double> coordinate(-1.5, 1.5);
   int checked = 0;
   for (int trial = 0; trial < 300; ++trial) {
-    const std::string text = random_formula(rng, 4);
+    const std::string text = test::random_formula(rng, 4);
     const FormulaParse parsed = parse_formula(text, {{"a", 0.7}});
     ASSERT_TRUE(parsed.formula) << text << ": " << parsed.error.reason;
     const Formula& f = *parsed.formula;

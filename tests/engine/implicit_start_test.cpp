@@ -7,7 +7,6 @@
 
 #include <gtest/gtest.h>
 
-#include <boost/numeric/odeint.hpp>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -15,13 +14,13 @@
 #include "engine/chart.h"
 #include "engine/dynamics.h"
 #include "engine/formula_surface.h"
+#include "tests/engine/formula_examples.h"
 #include "tests/engine/revolution_examples.h"
 
 namespace spinfold {
 namespace {
 
 using nlohmann::json;
-namespace odeint = boost::numeric::odeint;
 
 const json& examples() {
   static const json data = [] {
@@ -132,18 +131,8 @@ TEST(ImplicitStart, AnAffineBodyOnAGraphWF2) {
   EXPECT_NEAR(embedded_rayleigh(model, Y0), w["R"].get<double>(), 1e-14);
   EXPECT_NEAR(bordered_hessian_curvature(graph.at(X0)), w["K"].get<double>(), 1e-15);
 
-  using State = std::vector<double>;
-  State x(Y0.data(), Y0.data() + 18);
-  auto rhs = [&](const State& in, State& out, double) {
-    Embedded y, d;
-    for (int i = 0; i < 18; ++i) y(i) = in[i];
-    embedded_vector_field(model, y, d);
-    out.assign(d.data(), d.data() + 18);
-  };
-  odeint::integrate_adaptive(odeint::make_controlled(1e-14, 1e-14, odeint::runge_kutta_fehlberg78<State>()),
-                             rhs, x, 0.0, 1.0, 1e-3);
-  Embedded Y1;
-  for (int i = 0; i < 18; ++i) Y1(i) = x[i];
+  const Embedded Y1 = test::rkf78<18>(
+      [&](const Embedded& y, Embedded& d) { embedded_vector_field(model, y, d); }, Y0, 1.0, 1e-14);
   expect_close(Y1.segment<3>(embedded::X), vec(w["X(1)"]), 1e-12);
   expect_close(Y1.segment<3>(embedded::e1), vec(w["e1(1)"]), 1e-12);
   EXPECT_NEAR(embedded_energy(model, Y1).total(), w["H(1)"].get<double>(), 1e-12);

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "engine/formula.h"
+#include "tests/engine/formula_examples.h"
 
 namespace spinfold::oracle {
 namespace {
@@ -37,33 +38,6 @@ TEST(OracleFormula, BothReadersAcceptAndRefuseTheSameTexts) {
   EXPECT_GT(refused, 1000);
 }
 
-std::string random_formula(std::mt19937_64& rng, int depth) {
-  std::uniform_int_distribution<int> pick(0, depth <= 0 ? 3 : 18);
-  std::uniform_real_distribution<double> number(-2.0, 2.0);
-  const auto sub = [&] { return random_formula(rng, depth - 1); };
-  switch (pick(rng)) {
-    case 0: return "x";
-    case 1: return "y";
-    case 2: return "z";
-    case 3: return std::to_string(number(rng));
-    case 4: return "(" + sub() + " + " + sub() + ")";
-    case 5: return "(" + sub() + " - " + sub() + ")";
-    case 6: return "(" + sub() + " * " + sub() + ")";
-    case 7: return "(" + sub() + ") / (2 + cos(" + sub() + "))";
-    case 8: return "(" + sub() + ")^3";
-    case 9: return "-(" + sub() + ")^2";
-    case 10: return "sqrt(2 + sin(" + sub() + "))";
-    case 11: return "exp(cos(" + sub() + "))";
-    case 12: return "log(1.5 + sin(" + sub() + "))";
-    case 13: return "tan(0.5*sin(" + sub() + "))";
-    case 14: return "sinh(sin(" + sub() + ")) * cosh(cos(" + sub() + "))";
-    case 15: return "tanh(" + sub() + ") + atan(" + sub() + ")";
-    case 16: return "asinh(" + sub() + ")";
-    case 17: return "atan2(" + sub() + ", 2.5 + sin(" + sub() + "))";
-    default: return "(1.5 + cos(" + sub() + "))^(0.5 + 0.25*sin(" + sub() + "))";
-  }
-}
-
 // 300 random formulas at random points: the engine's double jet against the oracle's 50 digits. The
 // bound is round-off's: 1e-12 of the formula's own scale (|F| + |∇F| + |Hess F| + 1).
 TEST(OracleFormula, TheEnginesJetIsTheOraclesToRoundOff) {
@@ -71,10 +45,10 @@ TEST(OracleFormula, TheEnginesJetIsTheOraclesToRoundOff) {
   std::uniform_real_distribution<double> coordinate(-1.5, 1.5);
   double worst = 0.0;
   for (int trial = 0; trial < 300; ++trial) {
-    const std::string text = random_formula(rng, 3);
-    const FormulaParse engine = parse_formula(text);
+    const std::string text = test::random_formula(rng, 3);
+    const FormulaParse engine = parse_formula(text, {{"a", 0.7}});
     std::string why;
-    const std::optional<OracleFormula> oracle = OracleFormula::read(text, {}, false, &why);
+    const std::optional<OracleFormula> oracle = OracleFormula::read(text, {{"a", 0.7}}, false, &why);
     ASSERT_TRUE(engine.formula) << text << ": " << engine.error.reason;
     ASSERT_TRUE(oracle) << text << ": " << why;
     const Eigen::Vector3d X(coordinate(rng), coordinate(rng), coordinate(rng));
