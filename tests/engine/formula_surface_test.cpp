@@ -76,7 +76,8 @@ TEST(FormulaSurface, TheBuiltInSurfacesWrittenAsFormulasAreTheSameFunctions) {
 // same start, integrated by RKF78 at 1e-13 to t = 5: the same path within 1e-12.
 TEST(FormulaSurface, TheFormulaTorusGivesTheBuiltInTorussPath) {
   const RevolutionModel m = test::ws1_model();
-  const Written& w = written_out()[0];
+  const std::vector<Written> all = written_out();  // kept: w refers into it
+  const Written& w = all[0];
   ASSERT_EQ(w.built_in.center_radius, m.surface.center_radius);
   const FormulaSurface formula = surface(w.form, w.text, w.parameters);
   const RevolutionImplicit built_in(m.surface);
