@@ -40,23 +40,25 @@ json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_event
   json j;
   // Where the curvature varies the chart is (u, φ): u, u_dot and p_u stand where r, r_dot and p_r
   // stand elsewhere, and K follows det_L.
-  const bool profile = r.curvature.has_value();
+  // On a formula surface (r.embedded) there is no chart: no r or u, and the body in ℝ³ follows X.
+  const bool free = r.embedded.has_value();
+  const bool profile = r.curvature.has_value() && !free;
   j["t"] = number(r.t);
-  j[profile ? "u" : "r"] = number(c.r);
+  if (!free) j[profile ? "u" : "r"] = number(c.r);
   j["phi"] = number(c.phi);
   j["alpha"] = number(c.alpha);
   j["beta"] = number(c.beta);
   j["theta"] = number(c.theta);
   j["lambda"] = number(c.lambda);
   j["mu"] = number(c.mu);
-  j[profile ? "u_dot" : "r_dot"] = number(c.r_dot);
+  if (!free) j[profile ? "u_dot" : "r_dot"] = number(c.r_dot);
   j["phi_dot"] = number(c.phi_dot);
   j["alpha_dot"] = number(c.alpha_dot);
   j["beta_dot"] = number(c.beta_dot);
   j["theta_dot"] = number(c.theta_dot);
   j["lambda_dot"] = number(c.lambda_dot);
   j["mu_dot"] = number(c.mu_dot);
-  j[profile ? "p_u" : "p_r"] = number(c.p_r);
+  if (!free) j[profile ? "p_u" : "p_r"] = number(c.p_r);
   // p_φ far out on H² is computed but has lost its digits: null, with the reason under undefined.
   const bool p_phi_lost = std::any_of(c.undefined.begin(), c.undefined.end(),
                                       [](const UndefinedValue& u) { return u.field == "p_phi"; });
@@ -65,12 +67,20 @@ json sample_to_json(const Readout& r, std::span<const DegenerateEvent> new_event
   j["p_beta"] = number(c.p_beta);
   j["p_lambda"] = number(c.p_lambda);
   j["p_mu"] = number(c.p_mu);
-  j["X"] = {number(c.X.x()), number(c.X.y()), number(c.X.z())};
+  const auto vector = [](const Vec3& v) { return json{number(v.x()), number(v.y()), number(v.z())}; };
+  j["X"] = vector(c.X);
+  if (free) {
+    j["V"] = vector(r.embedded->V);
+    j["e1"] = vector(r.embedded->e1);
+    j["e2"] = vector(r.embedded->e2);
+    j["n"] = vector(r.embedded->n);
+  }
   j["L"] =
       c.L ? json{{number((*c.L)(0, 0)), number((*c.L)(0, 1))}, {number((*c.L)(1, 0)), number((*c.L)(1, 1))}}
           : json(nullptr);
   j["det_L"] = number(r.det_L);
-  if (profile) j["K"] = number(*r.curvature);
+  if (r.curvature) j["K"] = number(*r.curvature);
+  if (free) j["constraint_drift"] = number(r.embedded->drift);
 
   j["energy"] = number(r.energy);
   j["energy_error"] = number(r.energy_error);
@@ -134,9 +144,13 @@ void sample_values(const Readout& r, std::span<double> out) {
   const bool p_phi_lost = std::any_of(c.undefined.begin(), c.undefined.end(),
                                       [](const UndefinedValue& u) { return u.field == "p_phi"; });
   const ActionVariables* a = r.actions ? &*r.actions : nullptr;
-  const bool profile = r.curvature.has_value();  // (u, φ): u, u̇, p_u in the last columns
+  const bool free = r.embedded.has_value();                // no chart: X, V, e₁, e₂, n at the end
+  const bool profile = r.curvature.has_value() && !free;  // (u, φ): u, u̇, p_u in the last columns
   const auto chart = [&](bool polar, const std::optional<double>& v) {
-    return polar == !profile ? optional(v) : nan;
+    return !free && polar == !profile ? optional(v) : nan;
+  };
+  const auto embedded = [&](const Vec3 Readout::Embedded::*member, int i) {
+    return free ? finite((*r.embedded.*member)[i]) : nan;
   };
   // In the order of sample_value_names(); a test holds the two to the same names and numbers.
   const double values[] = {
@@ -198,6 +212,19 @@ void sample_values(const Readout& r, std::span<double> out) {
       chart(false, c.r_dot),
       chart(false, c.p_r),
       optional(r.curvature),
+      embedded(&Readout::Embedded::V, 0),
+      embedded(&Readout::Embedded::V, 1),
+      embedded(&Readout::Embedded::V, 2),
+      embedded(&Readout::Embedded::e1, 0),
+      embedded(&Readout::Embedded::e1, 1),
+      embedded(&Readout::Embedded::e1, 2),
+      embedded(&Readout::Embedded::e2, 0),
+      embedded(&Readout::Embedded::e2, 1),
+      embedded(&Readout::Embedded::e2, 2),
+      embedded(&Readout::Embedded::n, 0),
+      embedded(&Readout::Embedded::n, 1),
+      embedded(&Readout::Embedded::n, 2),
+      free ? finite(r.embedded->drift) : nan,
   };
   std::copy(std::begin(values), std::end(values), out.begin());
 }

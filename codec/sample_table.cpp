@@ -71,6 +71,10 @@ const std::vector<std::string>& value_names() {
     for (const char* f : {"r", "phi", "x", "y"}) n.push_back(std::string("frequencies.") + f);
     // Where the curvature varies: the chart (u, φ) in place of (r, φ), and the curvature at the body.
     for (const char* f : {"u", "u_dot", "p_u", "K"}) n.push_back(f);
+    // On a formula surface (no chart): the body's vectors in ℝ³, the normal and the drift off F = 0.
+    for (const char* v : {"V", "e1", "e2", "n"})
+      for (const char* i : {".0", ".1", ".2"}) n.push_back(std::string(v) + i);
+    n.push_back("constraint_drift");
     return n;
   }();
   return names;
@@ -160,6 +164,19 @@ constexpr ColumnLabel kColumnLabels[] = {
     {"u_dot", "u\u0307", "1/time"},
     {"p_u", "p_u", ""},
     {"K", "K", "1/length²"},
+    {"V.0", "V₀", "length/time"},
+    {"V.1", "V₁", "length/time"},
+    {"V.2", "V₂", "length/time"},
+    {"e1.0", "e₁₀", "length"},
+    {"e1.1", "e₁₁", "length"},
+    {"e1.2", "e₁₂", "length"},
+    {"e2.0", "e₂₀", "length"},
+    {"e2.1", "e₂₁", "length"},
+    {"e2.2", "e₂₂", "length"},
+    {"n.0", "n₀", ""},
+    {"n.1", "n₁", ""},
+    {"n.2", "n₂", ""},
+    {"constraint_drift", "|F|/|∇F|", "length"},
 };
 
 const ColumnLabel* column_label(std::string_view name) {
@@ -299,11 +316,18 @@ SampleTable make_sample_table(std::string_view fields, const ordered_json& first
   if (fields.empty()) {
     // The chart's columns that this scene's samples have: (u, φ) and K where the curvature varies,
     // (r, φ) elsewhere; every other column always.
+    // On a formula surface neither chart: X, V, e₁, e₂, n and the drift off F = 0, and K.
     const bool profile = first_sample.contains("u");
+    const bool free = first_sample.contains("n");
     for (const std::string& name : known) {
       const bool polar_only = name == "r" || name == "r_dot" || name == "p_r";
-      const bool profile_only = name == "u" || name == "u_dot" || name == "p_u" || name == "K";
-      if (profile ? !polar_only : !profile_only) table.columns.push_back(name);
+      const bool profile_only = name == "u" || name == "u_dot" || name == "p_u";
+      const bool free_only = name == "constraint_drift" || name.starts_with("V.") || name.starts_with("e1.") ||
+                             name.starts_with("e2.") || name.starts_with("n.");
+      const bool keep = free      ? !polar_only && !profile_only
+                        : profile ? !polar_only && !free_only
+                                  : !profile_only && !free_only && name != "K";
+      if (keep) table.columns.push_back(name);
     }
   } else {
     std::size_t start = 0;

@@ -78,6 +78,47 @@ class Reader {
     error(join(path, key), *it, "must be one of: " + allowed);
   }
 
+  // [x, y, z]: three numbers.
+  void point(const json& j, const std::string& path, std::array<double, 3>& out) {
+    if (j.is_array() && j.size() == 3 &&
+        std::all_of(j.begin(), j.end(), [](const json& v) { return v.is_number(); })) {
+      for (int k = 0; k < 3; ++k) out[k] = j[k].get<double>();
+      return;
+    }
+    error(path, j, "must be a point [x, y, z] of three numbers");
+  }
+
+  // {"name": number, ...}: every value a number (the names' rules are the validator's).
+  void named_numbers(const json& j, const std::string& path, SurfaceParameters& out) {
+    if (!j.is_object()) {
+      error(path, j, "must be a JSON object of named numbers, {\"a\": 2, \"b\": 1.3}");
+      return;
+    }
+    SurfaceParameters read;
+    const std::size_t before = count();
+    for (const auto& [key, value] : j.items()) {
+      if (value.is_number())
+        read[key] = value.get<double>();
+      else
+        error(join(path, key), value, "must be a number");
+    }
+    if (count() == before) out = std::move(read);
+  }
+
+  // [[x₀, x₁], [y₀, y₁], [z₀, z₁]].
+  void box(const json& j, const std::string& path, std::optional<SurfaceBounds>& out) {
+    const auto pair = [](const json& r) {
+      return r.is_array() && r.size() == 2 && r[0].is_number() && r[1].is_number();
+    };
+    if (j.is_array() && j.size() == 3 && std::all_of(j.begin(), j.end(), pair)) {
+      SurfaceBounds b{};
+      for (int k = 0; k < 3; ++k) b[k] = {j[k][0].get<double>(), j[k][1].get<double>()};
+      out = b;
+      return;
+    }
+    error(path, j, "must be a box [[x0, x1], [y0, y1], [z0, z1]] of numbers");
+  }
+
   void error(const std::string& field, const json& value, const std::string& reason) {
     errors_.push_back({field, value.dump(), reason});
   }
@@ -179,7 +220,13 @@ void read_table(Reader& in, const json& j, const std::string& path, S& out) {
       const auto it = j.find(field.name);
       if (it == j.end()) return;
       const std::string sub = Reader::join(path, field.name);
-      if constexpr (HasFields<T>) {
+      if constexpr (Point3<T>) {
+        in.point(*it, sub, value);
+      } else if constexpr (NamedNumbers<T>) {
+        in.named_numbers(*it, sub, value);
+      } else if constexpr (OptionalBox<T>) {
+        in.box(*it, sub, value);
+      } else if constexpr (HasFields<T>) {
         read_section(in, *it, sub, value);
       } else if constexpr (OptionalSection<T>) {
         value.emplace();
@@ -299,6 +346,17 @@ json write_fields(const S& in, SurfaceKind kind) {
     } else if constexpr (Enumerated<T>) {
       if (std::find(replaced.begin(), replaced.end(), field.name) == replaced.end())
         j[key] = enum_name(value);
+    } else if constexpr (Point3<T>) {
+      j[key] = json::array({value[0], value[1], value[2]});
+    } else if constexpr (NamedNumbers<T>) {
+      json named = json::object();
+      for (const auto& [name, number] : value) named[name] = number;
+      j[key] = named;
+    } else if constexpr (OptionalBox<T>) {
+      if (value)
+        j[key] = json::array({json::array({(*value)[0][0], (*value)[0][1]}),
+                              json::array({(*value)[1][0], (*value)[1][1]}),
+                              json::array({(*value)[2][0], (*value)[2][1]})});
     } else if constexpr (HasFields<T>) {
       j[key] = write_fields(value, kind);
     } else if constexpr (OptionalSection<T>) {
@@ -347,9 +405,18 @@ json companion_base(const json& document) {
 json geodesic_base(const Scene& main) {
   const InitialState& in = main.initial;
   const double scale = std::sqrt(in.lambda * in.mu);
-  json initial = {{"phi", in.phi},   {"phi_dot", in.phi_dot}, {"alpha", in.alpha}, {"beta", in.beta},
-                  {"lambda", scale}, {"mu", scale},           {"spin", 0.0}};
-  if (curvature_varies(main.surface.kind)) {
+  json initial = {{"alpha", in.alpha}, {"beta", in.beta}, {"lambda", scale}, {"mu", scale}, {"spin", 0.0}};
+  if (given_by_formula(main.surface.kind)) {  // no chart: the start point, speed and heading
+    initial["X"] = json::array({in.X[0], in.X[1], in.X[2]});
+    if (in.speed && in.heading) {
+      initial["speed"] = *in.speed;
+      initial["heading"] = *in.heading;
+    }
+  } else {
+    initial["phi"] = in.phi;
+    initial["phi_dot"] = in.phi_dot;
+  }
+  if (has_profile_chart(main.surface.kind)) {
     initial["u"] = in.u;
     initial["u_dot"] = in.u_dot;
   } else {

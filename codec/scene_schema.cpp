@@ -3,6 +3,7 @@
 #include <cmath>
 #include <type_traits>
 
+#include "engine/formula.h"
 #include "engine/scene_fields.h"
 
 namespace spinfold {
@@ -81,7 +82,28 @@ json property_of(const Field& field) {
   } else if constexpr (std::is_same_v<T, std::string>) {
     if (field.text_rule == TextRule::integrator_name)
       return {{"enum", integrator_names()}, {"default", field.fallback()}};
+    if (field.text_rule == TextRule::formula)
+      return {{"type", "string"},
+              {"maxLength", kMaxFormulaLength},
+              {"default", field.fallback()},
+              {"description", field.description},
+              {"x-formula", true}};
     return {{"type", "string"}};
+  } else if constexpr (Point3<T>) {
+    const auto d = field.fallback();
+    return {{"type", "array"},      {"items", {{"type", "number"}}},        {"minItems", 3},
+            {"maxItems", 3},        {"default", json::array({d[0], d[1], d[2]})}, {"description", field.description},
+            {"x-unit", "length"}};
+  } else if constexpr (NamedNumbers<T>) {
+    return {{"type", "object"},
+            {"additionalProperties", {{"type", "number"}}},
+            {"propertyNames", {{"pattern", "^[A-Za-z][A-Za-z0-9_]*$"}, {"maxLength", kMaxFormulaNameLength}}},
+            {"maxProperties", kMaxFormulaParameters},
+            {"description", field.description}};
+  } else if constexpr (OptionalBox<T>) {
+    const json pair = {{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 2}, {"maxItems", 2}};
+    return {{"type", "array"}, {"items", pair},         {"minItems", 3},
+            {"maxItems", 3},   {"x-unit", "length"},    {"description", field.description}};
   } else if constexpr (Enumerated<T>) {
     json names = json::array(), titles = json::object();
     for (const EnumName<T>& n : enum_names(std::type_identity<T>{})) {

@@ -1,10 +1,16 @@
 #include "engine/embedded_run.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "engine/chart.h"
+#include "engine/constraint_projection.h"
 #include "engine/exact_solution.h"
+#include "engine/formula_surface.h"
+#include "engine/implicit_start.h"
 #include "engine/inertia.h"
+#include "engine/number_text.h"
 
 namespace spinfold {
 
@@ -37,12 +43,50 @@ bool steps_orbit_only(const Scene& scene) {
          scene.friction.value_or(Friction{}).internal == 0.0;
 }
 
+SurfaceFoot start_foot(const FormulaSurface& surface, const std::array<double, 3>& X) {
+  const Vec3 guess(X[0], X[1], X[2]);
+  if (surface.form() == FormulaSurfaceForm::graph) {  // §6: keep (x₀, y₀), z₀ = f(x₀, y₀)
+    SurfaceFoot foot;
+    const Vec3 on(guess.x(), guess.y(), surface.height(guess.x(), guess.y()));
+    const ImplicitPoint p = surface.at(on);
+    if (on.allFinite() && p.gradient.allFinite() && p.hessian.allFinite())
+      foot.X = on;
+    else
+      foot.refusal = "the formula z = f(x, y) is not defined at (x, y) = (" + shortest(guess.x()) + ", " +
+                     shortest(guess.y()) + ") (its value or a derivative is not a finite number)";
+    return foot;
+  }
+  const double scale = std::max(1.0, guess.norm());
+  return project_onto_surface(surface, guess, scale, scale);
+}
+
+std::shared_ptr<const ImplicitSurface> implicit_of(const Surface& surface,
+                                                   const std::shared_ptr<const FormulaSurface>& formula) {
+  if (formula) return formula;
+  return std::make_shared<const RevolutionImplicit>(revolution_surface(surface));
+}
+
+bool projects_onto_constraints(const Scene& scene) {
+  switch (scene.integrator.projection) {
+    case Projection::on:
+      return curvature_varies(scene.surface.kind);
+    case Projection::off:
+      return false;
+    case Projection::automatic:
+      break;
+  }
+  return given_by_formula(scene.surface.kind);
+}
+
 EmbeddedScene::EmbeddedScene(const Scene& scene)
-    : surface(revolution_surface(scene.surface)),
-      implicit(surface),
+    : profile(has_profile_chart(scene.surface.kind)),
+      surface(profile ? revolution_surface(scene.surface) : RevolutionSurface{}),
+      formula(given_by_formula(scene.surface.kind) ? formula_surface_of(scene.surface) : nullptr),
+      implicit(implicit_of(scene.surface, formula)),
       body(surface_body(scene)),
       rigid(scene.body.model == BodyModel::rigid),
-      orbit_only(steps_orbit_only(scene)) {
+      orbit_only(steps_orbit_only(scene)),
+      project(projects_onto_constraints(scene)) {
   if (const AbcPotential* abc = std::get_if<AbcPotential>(&scene.potential.deformation)) internal = *abc;
 }
 
@@ -83,7 +127,7 @@ Embedded embedded_full_state(const EmbeddedScene& model, const Coords& y) {
   if (!model.orbit_only) return affine_of(y);
   // §4: the internal motion is the flat one in the parallel-transported frame (E, n × E).
   const Vec3 X = y.segment<3>(embedded_orbit::X);
-  const Vec3 n = embedded_normal(model.implicit, X);
+  const Vec3 n = embedded_normal(*model.implicit, X);
   const Vec3 F1 = y.segment<3>(embedded_orbit::E).normalized(), F2 = n.cross(F1);
   const auto [L, M] = flat_internal_motion(model.body.inertia.J, model.internal, matrix_at(y, kL0),
                                            matrix_at(y, kM0), y(embedded_orbit::tau));
@@ -102,7 +146,7 @@ Coords embedded_layout(const EmbeddedScene& model, const EmbeddedScene& from, co
   const Embedded Y = embedded_full_state(from, y);
   if (!model.orbit_only) return Coords(Y);
   const Vec3 X = Y.segment<3>(embedded::X);
-  const Vec3 n = embedded_normal(model.implicit, X);
+  const Vec3 n = embedded_normal(*model.implicit, X);
   // E: the one carried so far, or the profile's E₁ there (any unit tangent would do)
   Vec3 E = from.orbit_only ? Vec3(y.segment<3>(embedded_orbit::E).normalized()) : Vec3::Zero();
   if (!from.orbit_only) {
@@ -123,6 +167,25 @@ std::shared_ptr<const EmbeddedScene> make_embedded_scene(const Scene& scene) {
   return std::make_shared<const EmbeddedScene>(scene);
 }
 
+namespace {
+
+// A formula surface's start (physics-anysurface.md §5, §6): the foot of initial.X, the convention's
+// frame there, V, e_A, W_A from speed, heading, L and L̇ (relative to parallel transport: M = L̇).
+Coords formula_start(const EmbeddedScene& model, const InitialState& q, const Mat2& L, const Mat2& L_dot) {
+  const SurfaceFoot foot = start_foot(*model.formula, q.X);
+  if (!foot.X) throw std::invalid_argument("initial.X: " + foot.refusal);
+  const StartFrame frame = start_frame(*model.implicit, *foot.X);
+  const double v = q.speed.value_or(0.0), heading = q.heading.value_or(0.0);
+  if (model.rigid)
+    return Coords(
+        rigid_start_in_frame(frame, *foot.X, v, heading, L, spin_from_rate(model.body.inertia, L, L_dot)));
+  const Embedded Y = affine_start_in_frame(frame, *foot.X, v, heading, L, L_dot);
+  if (!model.orbit_only) return Coords(Y);
+  return orbit_state(*foot.X, Y.segment<3>(embedded::V), frame.E1, L, L_dot);
+}
+
+}  // namespace
+
 Coords embedded_start(const EmbeddedScene& model, const InitialState& q) {
   // §7 "Conversions", with no division by ρ (regular at an axis point): V = f u̇ E₁ + ρ φ̇ E₂,
   // e_A = E_B L_BA, W_A = E_B M_BA with M = L̇ + Cφ̇εL and L̇ = α̇εL − β̇Lε + U(α)diag(λ̇, μ̇)U(β)ᵀ.
@@ -130,6 +193,7 @@ Coords embedded_start(const EmbeddedScene& model, const InitialState& q) {
   const Mat2 L = Ua * Eigen::Vector2d(q.lambda, q.mu).asDiagonal() * Ub.transpose();
   const Mat2 L_dot = q.alpha_dot * eps * L - q.beta_dot * L * eps +
                      Ua * Eigen::Vector2d(q.lambda_dot, q.mu_dot).asDiagonal() * Ub.transpose();
+  if (!model.profile) return formula_start(model, q, L, L_dot);
   const ProfilePoint p = revolution_entry(model.surface.kind).profile(model.surface, q.u);
   const ProfileMetric metric = profile_metric(p);
   const RevolutionFrame frame = revolution_frame(model.surface, q.u, q.phi);
@@ -149,6 +213,26 @@ Coords embedded_start(const EmbeddedScene& model, const InitialState& q) {
     Y.segment<3>(embedded::W1 + 3 * A) = M(0, A) * frame.E1 + M(1, A) * frame.E2;
   }
   return Coords(Y);
+}
+
+void project_state(const EmbeddedScene& model, Coords& y) {
+  if (model.rigid) {
+    EmbeddedRigid Y = rigid_of(y);
+    project_onto_constraints(*model.implicit, Y, Y.segment<3>(embedded::e1).norm());
+    y.head<10>() = Y;
+    return;
+  }
+  if (!model.orbit_only) {
+    Embedded Y = affine_of(y);
+    project_onto_constraints(*model.implicit, Y);
+    y.head<18>() = Y;
+    return;
+  }
+  // [X, V, E, τ, L₀, M₀]: the affine layout's projection of X, V and E (e₁'s place), τ and the rest kept.
+  Embedded Y = Embedded::Zero();
+  Y.segment<9>(embedded::X) = y.segment<9>(embedded_orbit::X);
+  project_onto_constraints(*model.implicit, Y);
+  y.segment<9>(embedded_orbit::X) = Y.segment<9>(embedded::X);
 }
 
 VectorField embedded_field(std::shared_ptr<const EmbeddedScene> model) {
@@ -214,7 +298,7 @@ double embedded_spin_of(const EmbeddedScene& model, const Coords& y) {
 double embedded_p_phi(const EmbeddedScene& model, const Coords& y) {
   const Vec3 X = y.segment<3>(embedded::X), V = y.segment<3>(embedded::V);
   return model.body.mass * X.cross(V).z() +
-         embedded_spin_of(model, y) * embedded_normal(model.implicit, X).z();
+         embedded_spin_of(model, y) * embedded_normal(*model.implicit, X).z();
 }
 
 double embedded_dissipation(const EmbeddedScene& model, const Coords& y) {
@@ -234,7 +318,7 @@ EmbeddedBody embedded_body(const EmbeddedScene& model, const Coords& y) {
   b.X = y.segment<3>(embedded::X);
   b.V = y.segment<3>(embedded::V);
   if (model.rigid) {
-    const Vec3 n = embedded_normal(model.implicit, b.X);
+    const Vec3 n = embedded_normal(*model.implicit, b.X);
     b.e[0] = y.segment<3>(embedded::e1);
     b.e[1] = n.cross(b.e[0]);
     const double I = b.e[0].squaredNorm() * model.body.inertia.matrix.trace();
@@ -306,6 +390,45 @@ ProfileReadout profile_readout(const EmbeddedScene& model, const Coords& y) {
   c.phi = phi;
   c.phi_dot = phi_dot;
   out.heading = std::atan2(v2, v1);
+  return out;
+}
+
+FreeReadout free_readout(const EmbeddedScene& model, const Coords& y) {
+  FreeReadout out;
+  out.body = embedded_body(model, y);
+  const Vec3& X = out.body.X;
+  const ImplicitPoint p = model.implicit->at(X);
+  out.normal = embedded_normal(*model.implicit, X);
+  out.K = bordered_hessian_curvature(p);
+  out.speed = out.body.V.norm();
+  out.distance = std::abs(p.F) / p.gradient.norm();
+  double tangency = 0.0;
+  for (const Vec3& u : {out.body.V, out.body.e[0], out.body.e[1], out.body.W[0], out.body.W[1]})
+    tangency = std::max(tangency, std::abs(u.dot(out.normal)));
+  out.tangency = tangency;
+
+  const StartFrame frame = start_frame(*model.implicit, X);
+  const Vec3 E[2] = {frame.E1, frame.E2};
+  Mat2 L, M;
+  for (int A = 0; A < 2; ++A)
+    for (int B = 0; B < 2; ++B) {
+      L(B, A) = E[B].dot(out.body.e[A]);
+      M(B, A) = E[B].dot(out.body.W[A]);
+    }
+  PaperCoordinates& c = out.coordinates;
+  c.X = X;
+  c.det_L = embedded_det(model, y);
+  c.p_alpha = embedded_spin_of(model, y);
+  c.p_phi = embedded_p_phi(model, y);
+  c.p_beta = -(L * epsilon()).cwiseProduct(momentum_from_rate(model.body.inertia, M)).sum();
+  set_internal_coordinates(c, L, M, M, model.body.inertia, model.rigid ? BodyModel::rigid : BodyModel::affine,
+                           true);
+  const std::string why = "a formula surface has no chart: the position is X, the velocity V";
+  for (const char* f : {"phi", "phi_dot"}) c.undefined.push_back({f, why});
+  c.r_dot.reset();
+  c.p_r.reset();
+  c.phi.reset();
+  c.phi_dot.reset();
   return out;
 }
 

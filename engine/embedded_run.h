@@ -19,6 +19,8 @@
 #include "engine/chart.h"
 #include "engine/dynamics.h"
 #include "engine/embedded_dynamics.h"
+#include "engine/formula_surface.h"
+#include "engine/implicit_start.h"
 #include "engine/integrator.h"
 #include "engine/paper_coordinates.h"
 #include "engine/scene.h"
@@ -26,27 +28,47 @@
 namespace spinfold {
 
 // What the equations need of the scene, kept together because EmbeddedModel holds the surface by
-// reference: its profile table row, its implicit F, the body and its forces.
+// reference: its implicit F (every surface), its profile chart where it has one, the body and its
+// forces.
 struct EmbeddedScene {
   explicit EmbeddedScene(const Scene& scene);
-  RevolutionSurface surface;
-  RevolutionImplicit implicit;
+  bool profile = false;       // the surface has the profile chart (u, φ), and `surface` is it
+  RevolutionSurface surface;  // meaningful when profile
+  std::shared_ptr<const FormulaSurface> formula;  // a formula surface (else null)
+  std::shared_ptr<const ImplicitSurface> implicit;
   SurfaceBody body;
   bool rigid = false;
   bool orbit_only = false;  // steps_orbit_only(scene)
+  bool project = false;     // projects_onto_constraints(scene)
   AbcPotential internal;    // the internal potential of the closed form (zero: none)
-  EmbeddedModel model() const { return {implicit, body}; }
+  EmbeddedModel model() const { return {*implicit, body}; }
 };
 
 // Whether the run steps only the orbit (the header's comment says when).
 bool steps_orbit_only(const Scene& scene);
 
+// Whether the run brings its state back onto the constraints after each accepted step
+// (engine/constraint_projection.h): integrator.projection, whose auto is on for formula surfaces
+// (physics-anysurface.md §8) and off on the surfaces of revolution (their outputs stay as they were).
+bool projects_onto_constraints(const Scene& scene);
+
+// The state `y` brought back onto the constraints: X onto F = 0, then V, e_A, W_A (the orbit-only
+// layout's V and E) onto the tangent plane there; the rigid body's e₁ keeps its length.
+void project_state(const EmbeddedScene& model, Coords& y);
+
 // The scene's model (shared by the run's field and its read-outs). The scene's kind must vary.
 std::shared_ptr<const EmbeddedScene> make_embedded_scene(const Scene& scene);
 
-// The chart-free state of the scene's initial values (u, φ, L = U(α)diag(λ, μ)U(β)ᵀ in E₁ = X_u/f,
-// E₂ = X_φ/ρ, and their rates; physics-surfaces.md §7 "Conversions").
+// The chart-free state of the scene's initial values: on a surface of revolution u, φ,
+// L = U(α)diag(λ, μ)U(β)ᵀ in E₁ = X_u/f, E₂ = X_φ/ρ, and their rates (physics-surfaces.md §7
+// "Conversions"); on a formula surface X brought onto F = 0, the frame of physics-anysurface.md §5
+// there, speed, heading, L and its rates relative to parallel transport. std::invalid_argument
+// naming initial.X when the start has no foot on the surface (the validator says so first).
 Coords embedded_start(const EmbeddedScene& model, const InitialState& initial);
+
+// The foot on a formula surface of initial.X (physics-anysurface.md §6), or why there is none: Newton
+// along ∇F on an implicit surface (a move of at most max(1, |X|)), z = f(x, y) on a graph.
+SurfaceFoot start_foot(const FormulaSurface& surface, const std::array<double, 3>& X);
 
 // dy/dt of the chart-free equations, as a StepProblem's field (the model is kept alive by it).
 VectorField embedded_field(std::shared_ptr<const EmbeddedScene> model);
@@ -83,6 +105,22 @@ struct ProfileReadout {
   std::optional<double> heading;  // from E₁ towards E₂ [rad]; none at an axis point
 };
 ProfileReadout profile_readout(const EmbeddedScene& model, const Coords& y);
+
+// The run's state on a surface with no chart (a formula surface): the body in ℝ³, the normal, K at
+// the body and how far the state is off its constraints; the paper's internal coordinates of L in
+// the convention's frame at X (physics-anysurface.md §5: E₁ along the world x-axis's tangential
+// part), with rates relative to parallel transport, so that at t = 0 they read back as the scene
+// gave them. PaperCoordinates::r, r_dot, p_r, phi and phi_dot are not defined (no chart).
+struct FreeReadout {
+  PaperCoordinates coordinates;
+  EmbeddedBody body;
+  Vec3 normal = Vec3::UnitZ();
+  double K = 0.0;         // Gaussian curvature at the body [1/length²], from F (§1)
+  double speed = 0.0;     // |V| [length/time]
+  double distance = 0.0;  // |F|/|∇F| at X [length]: the drift off the surface
+  double tangency = 0.0;  // the largest normal part of V, e_A, W_A [their units]
+};
+FreeReadout free_readout(const EmbeddedScene& model, const Coords& y);
 
 // The curvature at a point of the surface [1/length²] (the profile's closed form).
 double profile_curvature(const Surface& surface, double u);

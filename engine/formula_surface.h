@@ -4,11 +4,13 @@
 // formula's jet (formula.h).
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string_view>
 
 #include "engine/formula.h"
 #include "engine/revolution.h"
+#include "engine/surface.h"
 
 namespace spinfold {
 
@@ -45,5 +47,20 @@ struct FormulaSurfaceParse {
 // parameters; refused as parse_formula refuses.
 FormulaSurfaceParse parse_formula_surface(FormulaSurfaceForm form, std::string_view text,
                                           const FormulaParameters& parameters = {});
+
+// The scene's formula surface (surface.kind implicit or graph): its form, and the text it reads
+// (surface.F or surface.z) with the scene's key for it.
+FormulaSurfaceForm formula_form(const Surface& surface);
+const std::string& formula_text(const Surface& surface);
+std::string_view formula_key(const Surface& surface);  // "F" or "z"
+
+// The scene's surface parsed, or why not (the validator's message).
+FormulaSurfaceParse parse_scene_formula(const Surface& surface);
+
+// The scene's surface parsed once per (form, text, parameters) and shared: runs, read-outs and
+// pictures of one scene ask it many times. A cache of at most kFormulaSurfaceCacheSize entries,
+// thread-safe. std::invalid_argument for a formula the validator refuses (it names why first).
+inline constexpr std::size_t kFormulaSurfaceCacheSize = 64;
+std::shared_ptr<const FormulaSurface> formula_surface_of(const Surface& surface);
 
 }  // namespace spinfold

@@ -34,6 +34,9 @@ struct StartPlace {
 };
 StartPlace start_place(const Scene& scene) {
   const InitialState& q = scene.initial;
+  // A formula surface has no chart: the velocity is speed and heading themselves, and the frame's
+  // rates are relative to parallel transport (C = 0, physics-anysurface.md §5).
+  if (given_by_formula(scene.surface.kind)) return {false, 1.0, 0.0, 1.0, 0.0, 0.0, "speed"};
   if (curvature_varies(scene.surface.kind)) {
     if (!finite(q.u)) return {false, 0.0, 0.0, 1.0, q.u, q.u_dot, "u_dot"};
     const ProfilePlace p = profile_place(revolution_surface(scene.surface), q.u);
@@ -135,9 +138,10 @@ std::vector<FieldError> resolve_initial_rates(Scene& scene) {
   }
 
   if (!errors.empty()) return errors;
+  scene.initial.alpha_dot = alpha_dot;
+  if (given_by_formula(scene.surface.kind)) return errors;  // the start reads speed and heading
   (curvature_varies(scene.surface.kind) ? scene.initial.u_dot : scene.initial.r_dot) = q_dot;
   scene.initial.phi_dot = phi_dot;
-  scene.initial.alpha_dot = alpha_dot;
   return errors;
 }
 

@@ -153,8 +153,9 @@ namespace {
 // (E, n × E) at the body, E along e₁: a, b and their rates' a, b are invariant under the frame's
 // rotation (physics-surfaces.md §4: the internal motion is the flat one in a transported frame).
 InternalState embedded_internal_state(const Scene& scene, const State& state) {
-  const EmbeddedBody b = embedded_body(EmbeddedScene(scene), state.y);
-  const Vec3 n = embedded_normal(RevolutionImplicit(revolution_surface(scene.surface)), b.X);
+  const EmbeddedScene model(scene);
+  const EmbeddedBody b = embedded_body(model, state.y);
+  const Vec3 n = embedded_normal(*model.implicit, b.X);
   const Vec3 E1 = (b.e[0] - b.e[0].dot(n) * n).normalized(), E2 = n.cross(E1);
   InternalState in;
   for (int A = 0; A < 2; ++A) {

@@ -63,6 +63,27 @@ void read_profile(const Simulation& run, Readout& r) {
   r.actions_unsupported = *actions_unsupported_reason(run.scene);
 }
 
+// The read-out on a surface with no chart (engine/embedded_run.h FreeReadout).
+void read_free(const Simulation& run, Readout& r) {
+  const EmbeddedScene& model = *run.embedded;
+  const Coords& y = run.state.y;
+  const FreeReadout f = free_readout(model, y);
+  r.coordinates = f.coordinates;
+  r.curvature = f.K;
+  const EnergyParts parts = embedded_energy_parts(model, y);
+  r.energy = parts.kinetic + parts.potential;
+  const EmbeddedEnergy split = embedded_energy_split(model, y);
+  r.energy_orbital = split.orbital;
+  r.energy_deformation = r.energy - split.orbital;
+  r.spin = f.coordinates.p_alpha;
+  r.speed = f.speed;
+  r.vorticity = f.coordinates.p_beta;
+  r.det_L = f.coordinates.det_L;
+  r.separated = separated_energies(run.scene, run.state);
+  r.actions_unsupported = *actions_unsupported_reason(run.scene);
+  r.embedded = Readout::Embedded{f.body.V, f.body.e[0], f.body.e[1], f.normal, f.distance, f.tangency};
+}
+
 }  // namespace
 
 namespace {
@@ -118,8 +139,10 @@ Readout readout(const Simulation& run) {
   const State& state = run.state;
   Readout r;
   r.t = state.t;
-  if (run.embedded)
+  if (run.embedded && run.embedded->profile)
     read_profile(run, r);
+  else if (run.embedded)
+    read_free(run, r);
   else
     read_chart(run, r);
   r.energy_error = (r.energy - run.initial_energy) / std::max(std::abs(run.initial_energy), 1e-300);

@@ -37,6 +37,14 @@ struct Readout {
   // Where the curvature varies: the Gaussian curvature K at the body [1/length²], and
   // coordinates.r, r_dot, p_r hold u, u̇, p_u (the sample names them so); none elsewhere.
   std::optional<double> curvature;
+  // On a surface with no chart (a formula surface): the body in ℝ³ and the constraints' drift
+  // (engine/embedded_run.h FreeReadout); coordinates.r, r_dot, p_r are then not defined.
+  struct Embedded {
+    Vec3 V, e1, e2, n;      // [length/time], [length], [length], [1]
+    double drift = 0.0;     // |F|/|∇F| at X [length]
+    double tangency = 0.0;  // largest normal part of V, e_A, W_A
+  };
+  std::optional<Embedded> embedded;
   // Action variables and frequencies of the separable scenes (engine/actions.h); none with the
   // reason in actions_unsupported otherwise.
   std::optional<ActionVariables> actions;

@@ -46,9 +46,14 @@ constexpr std::array<std::string_view, kFieldCount> kFieldNames = {
 bool profile(const Scene& scene) {
   return curvature_varies(scene.surface.kind);
 }
+// A surface with no chart (a formula surface): no r, u or φ.
+bool chartless(const Scene& scene) {
+  return curvature_varies(scene.surface.kind) && !has_profile_chart(scene.surface.kind);
+}
 
 // The field's index for this scene, or -1 (u stands for r where the curvature varies, K exists only there).
 int field_index(const Scene& scene, std::string_view name) {
+  if (chartless(scene) && (name == "r" || name == "u" || name == "phi")) return -1;
   if (name == (profile(scene) ? "u" : "r")) return f_r;
   if (name == "r" || name == "u") return -1;
   if (name == "K") return profile(scene) ? f_K : -1;
@@ -127,6 +132,7 @@ std::vector<std::string> monitor_field_names(const Scene& scene) {
   std::vector<std::string> names;
   for (int i = 0; i < kFieldCount; ++i) {
     if (i == f_K && !profile(scene)) continue;
+    if ((i == f_r || i == f_phi) && chartless(scene)) continue;
     names.emplace_back(i == f_r && profile(scene) ? "u" : kFieldNames[i]);
   }
   return names;
@@ -259,7 +265,7 @@ RunMonitor::RunMonitor(MonitorSpec spec, const Simulation& run) : spec_(std::mov
   // the circle: level + k·period for every k, the period the angle's own unless the text gave one.
   angle_period_.fill(0.0);
   angle_period_[f_phi] = 2.0 * std::numbers::pi;
-  if (run.embedded) {
+  if (run.embedded && run.embedded->profile) {
     const ProfileDomain d = revolution_entry(run.embedded->surface.kind).domain(run.embedded->surface);
     if (d.periodic) angle_period_[f_r] = d.u_max - d.u_min;
   }
@@ -298,7 +304,17 @@ RunMonitor::Values RunMonitor::evaluate(const Simulation& run, const State& s, c
     v[f_energy_error] = (v[f_energy] - run.initial_energy) / std::max(std::abs(run.initial_energy), 1e-300);
   }
   std::optional<double> phi;
-  if (body_needed && run.embedded) {
+  if (body_needed && run.embedded && !run.embedded->profile) {
+    const FreeReadout p = free_readout(*run.embedded, s.y);
+    const PaperCoordinates& c = p.coordinates;
+    v[f_lambda] = c.lambda;
+    v[f_mu] = c.mu;
+    v[f_det_L] = c.det_L;
+    v[f_spin] = c.p_alpha;
+    v[f_speed] = p.speed;
+    for (int i = 0; i < 3; ++i) v[f_X0 + i] = c.X[i];
+    v[f_K] = p.K;
+  } else if (body_needed && run.embedded) {
     const ProfileReadout p = profile_readout(*run.embedded, s.y);
     const PaperCoordinates& c = p.coordinates;
     v[f_r] = c.r;

@@ -121,6 +121,11 @@ struct InitialState {
   // the constant-curvature fields keep their meaning):
   double u = 0.0;      // the profile parameter (physics-surfaces.md §1) [rad or length]
   double u_dot = 0.0;  // [per time]
+  // On a formula surface, in place of a chart: the start point (brought onto F = 0 along ∇F by
+  // Newton; a graph keeps x, y and takes z = f(x, y)) [length], and the frame there by the
+  // convention of physics-anysurface.md §5 (E₁ along the world x-axis's tangential part); the
+  // velocity is speed and heading only.
+  std::array<double, 3> X = {1.0, 0.0, 0.0};
 };
 
 // What the integrator steps where the curvature varies.
@@ -129,11 +134,20 @@ enum class Stepping {
   full,       // every number of the chart-free state (a check of the above, or a benchmark's baseline)
 };
 
+// Whether the state is brought back onto the surface after each step where the curvature varies
+// (engine/constraint_projection.h, physics-anysurface.md §8).
+enum class Projection {
+  automatic,  // on formula surfaces, off on the surfaces of revolution
+  on,
+  off,
+};
+
 struct IntegratorSettings {
   std::string name = "auto";  // a catalog name (integrator.h), or "auto": the engine chooses
   double dt = 0.01;           // [time]: the step of fixed-step methods, the first trial step otherwise
   double tolerance = 1e-10;   // relative and absolute error per step of adaptive methods
   Stepping stepping = Stepping::automatic;
+  Projection projection = Projection::automatic;
 };
 
 enum class OnDegenerate {

@@ -54,6 +54,11 @@ inline constexpr EnumName<SurfaceKind> kSurfaceKindNames[] = {
     {"catenoid", SurfaceKind::catenoid,
      "the catenoid ρ = c cosh(z/c) (neck_radius c): a minimal surface, K < 0",
      "catenoid (K < 0, most negative on the neck)"},
+    {"implicit", SurfaceKind::implicit,
+     "any surface F(x, y, z) = 0 given by a formula F (docs/formula-language.md), with parameters",
+     "your own surface F(x, y, z) = 0"},
+    {"graph", SurfaceKind::graph, "a graph z = f(x, y) given by a formula z, with parameters",
+     "your own graph z = f(x, y)"},
 };
 inline constexpr EnumName<BodyModel> kBodyModelNames[] = {
     {"affine", BodyModel::affine, "L free: 4 internal degrees of freedom"},
@@ -75,6 +80,11 @@ inline constexpr EnumName<Stepping> kSteppingNames[] = {
      "(affine body, isotropic inertia, abc or no internal potential, no internal friction)"},
     {"full", Stepping::full, "step every number of the state"},
 };
+inline constexpr EnumName<Projection> kProjectionNames[] = {
+    {"auto", Projection::automatic, "on formula surfaces: after each step, back onto the surface"},
+    {"on", Projection::on, "after each step bring X back onto F = 0 and V, e_A, W_A onto its tangent plane"},
+    {"off", Projection::off, "never: the state drifts off the surface with the integrator's error"},
+};
 
 // The names table of an enumerated type (found by argument-dependent lookup).
 constexpr std::span<const EnumName<SurfaceKind>> enum_names(std::type_identity<SurfaceKind>) {
@@ -91,6 +101,9 @@ constexpr std::span<const EnumName<OnDegenerate>> enum_names(std::type_identity<
 }
 constexpr std::span<const EnumName<Stepping>> enum_names(std::type_identity<Stepping>) {
   return kSteppingNames;
+}
+constexpr std::span<const EnumName<Projection>> enum_names(std::type_identity<Projection>) {
+  return kProjectionNames;
 }
 
 // The name of an enumerated value ("" for a value outside its table).
@@ -136,14 +149,17 @@ std::vector<std::string_view> integrator_names();
 enum class TextRule {
   any,              // free, informational text: written only when not empty
   integrator_name,  // one of integrator_names()
+  formula,          // a formula of docs/formula-language.md (engine/formula.h), always written
 };
 
 // ---- fields ------------------------------------------------------------------------------------
 
 // One field of the struct S, of type T: a number (double), an optional number (std::optional<double>:
 // written only when set, no default), a text (std::string), an enumerated value (an enum with a
-// names table), or a nested struct with a table of its own (a section; also std::optional of one
-// and DeformationPotential, a section chosen by its "kind").
+// names table), a point (std::array<double, 3>), named numbers (SurfaceParameters: an object of
+// numbers), a box (std::optional<SurfaceBounds>: [[x₀, x₁], [y₀, y₁], [z₀, z₁]], written only when
+// set), or a nested struct with a table of its own (a section; also std::optional of one and
+// DeformationPotential, a section chosen by its "kind").
 template <typename S, typename T>
 struct Field {
   using Struct = S;
@@ -248,6 +264,22 @@ inline constexpr std::tuple kSurfaceFields{
     only_on(surface_bit(SurfaceKind::catenoid),
             number_field("neck_radius", &Surface::neck_radius, "Neck radius c", "length", kPositive,
                          "the catenoid ρ = c cosh(z/c): its narrowest circle; K = −1/(c² cosh⁴(z/c))")),
+    only_on(surface_bit(SurfaceKind::implicit),
+            value_field("F", &Surface::F,
+                        "the surface F(x, y, z) = 0: a formula in x, y, z and the parameters (numbers, + - * / "
+                        "^, sqrt exp log sin cos tan sinh cosh tanh atan asinh atan2 pi), of class C²",
+                        TextRule::formula)),
+    only_on(surface_bit(SurfaceKind::graph),
+            value_field("z", &Surface::z, "the graph z = f(x, y): a formula in x, y and the parameters",
+                        TextRule::formula)),
+    only_on(kFormulaSurfaces,
+            value_field("parameters", &Surface::parameters,
+                        "the formula's named numbers, {\"a\": 2, \"b\": 1.3}: each a finite number, its name a "
+                        "letter then letters, digits or _")),
+    only_on(kFormulaSurfaces,
+            value_field("bounds", &Surface::bounds,
+                        "the piece drawn, [[x0, x1], [y0, y1], [z0, z1]] (absent: a box round the start "
+                        "chosen from the formula's scale); never where the body may go")),
 };
 
 // body.inertia: the number below (isotropic J), or a symmetric positive-definite matrix
@@ -326,14 +358,20 @@ inline constexpr std::tuple kInitialStateFields{
             number_field("r", &InitialState::r, "Distance r", "length", kNonNegative,
                          "geodesic distance from the pole (<= pi R on the sphere)",
                          "geodesic distance from the pole")),
-    only_on(kVaryingCurvatureSurfaces,
+    only_on(kFormulaSurfaces,
+            value_field("X", &InitialState::X,
+                        "the start point [x, y, z] [length], brought onto F = 0 along the gradient (a graph "
+                        "keeps x, y and takes z = f(x, y)); the frame there: E1 along the world x-axis's "
+                        "tangential part (the y-axis's where that is shorter than 0.1), E2 = n x E1")),
+    only_on(kProfileSurfaces,
             number_field(
                 "u", &InitialState::u, "Profile position u", "rad (torus, spheroid); length (bump, catenoid)",
                 kAnyNumber,
                 "where along the profile: the torus's tube angle (0 the outer equator, −π/2 the top "
                 "circle), the spheroid's polar angle from the north pole (0 to π), the distance from the "
                 "bump's axis (>= 0), −z on the catenoid")),
-    number_field("phi", &InitialState::phi, "Polar angle φ", "rad", kAnyNumber, "polar angle"),
+    only_on(kConstantCurvatureSurfaces | kProfileSurfaces,
+            number_field("phi", &InitialState::phi, "Polar angle φ", "rad", kAnyNumber, "polar angle")),
     number_field("alpha", &InitialState::alpha, "Rotation α", "rad", kAnyNumber,
                  "left rotation angle of L = U(α) diag(λ, μ) U(β)ᵀ"),
     number_field("beta", &InitialState::beta, "Rotation β", "rad", kAnyNumber, "right rotation angle"),
@@ -345,10 +383,11 @@ inline constexpr std::tuple kInitialStateFields{
     only_on(kConstantCurvatureSurfaces,
             number_field("r_dot", &InitialState::r_dot, "Rate ṙ", "length/time", kAnyNumber, "rate of r")),
     only_on(
-        kVaryingCurvatureSurfaces,
+        kProfileSurfaces,
         number_field("u_dot", &InitialState::u_dot, "Rate u̇",
                      "rad/time (torus, spheroid); length/time (bump, catenoid)", kAnyNumber, "rate of u")),
-    number_field("phi_dot", &InitialState::phi_dot, "Rate φ̇", "rad/time", kAnyNumber, "rate of phi"),
+    only_on(kConstantCurvatureSurfaces | kProfileSurfaces,
+            number_field("phi_dot", &InitialState::phi_dot, "Rate φ̇", "rad/time", kAnyNumber, "rate of phi")),
     number_field("alpha_dot", &InitialState::alpha_dot, "Rate α̇", "rad/time", kAnyNumber, "rate of alpha"),
     number_field("beta_dot", &InitialState::beta_dot, "Rate β̇", "rad/time", kAnyNumber, "rate of beta"),
     number_field("lambda_dot", &InitialState::lambda_dot, "Rate λ̇", "1/time", kAnyNumber,
@@ -383,6 +422,10 @@ inline constexpr std::tuple kIntegratorSettingsFields{
             value_field("stepping", &IntegratorSettings::stepping,
                         "auto: only the orbit where the internal motion has a closed form; full: every "
                         "number")),
+    only_on(kFormulaSurfaces,
+            value_field("projection", &IntegratorSettings::projection,
+                        "auto (on), on: bring the state back onto F = 0 after each step; off: let it drift "
+                        "with the integrator's error")),
 };
 
 inline constexpr std::tuple kSceneFields{
@@ -447,6 +490,16 @@ template <typename T>
 concept Enumerated = std::is_enum_v<T> && requires {
   enum_names(std::type_identity<T>{});
 };
+
+// std::array<double, 3>: a point [x, y, z].
+template <typename T>
+concept Point3 = std::is_same_v<T, std::array<double, 3>>;
+// SurfaceParameters: named numbers, an object {"a": 2}.
+template <typename T>
+concept NamedNumbers = std::is_same_v<T, SurfaceParameters>;
+// std::optional<SurfaceBounds>: a box [[x₀, x₁], [y₀, y₁], [z₀, z₁]], present or absent.
+template <typename T>
+concept OptionalBox = std::is_same_v<T, std::optional<SurfaceBounds>>;
 
 // std::optional<double>: a number that is present or absent.
 template <typename T>

@@ -1,6 +1,10 @@
 #include "engine/scene_paths.h"
 
 #include <algorithm>
+#include <deque>
+#include <mutex>
+
+#include "engine/formula.h"
 
 namespace spinfold {
 
@@ -41,7 +45,15 @@ const std::vector<ScenePath>& scene_paths() {
 const ScenePath* find_scene_path(std::string_view path) {
   for (const ScenePath& p : scene_paths())
     if (p.path == path) return &p;
-  return nullptr;
+  if (!path.starts_with(kParametersPath) || parameter_name_problem(path.substr(kParametersPath.size())))
+    return nullptr;
+  // The parameters' paths, made as they are asked for and kept (a deque keeps its elements' places).
+  static std::mutex mutex;
+  static std::deque<ScenePath> parameters;
+  const std::lock_guard lock(mutex);
+  for (const ScenePath& p : parameters)
+    if (p.path == path) return &p;
+  return &parameters.emplace_back(ScenePath{std::string(path), ScenePath::Leaf::number, kAnyNumber, {}, kFormulaSurfaces});
 }
 
 }  // namespace spinfold

@@ -29,6 +29,8 @@ void walk_fields(const std::string& path, std::string_view kind, unsigned surfac
     if constexpr (std::is_same_v<T, double> || OptionalNumber<T> || std::is_same_v<T, std::string> ||
                   Enumerated<T>) {
       fn(name, kind, field, here);
+    } else if constexpr (Point3<T> || NamedNumbers<T> || OptionalBox<T>) {
+      // not one leaf: a formula's parameters are paths of their own (find_scene_path)
     } else if constexpr (HasFields<T>) {
       walk_fields<T>(name, kind, field.surfaces, here, fn);
     } else if constexpr (OptionalSection<T>) {
@@ -84,7 +86,9 @@ struct ScenePath {
 
 // Every path, each once, in table order, with the deformation's "kind" before its coefficients.
 const std::vector<ScenePath>& scene_paths();
-// The path's leaf, or nullptr.
+// The path's leaf, or nullptr. A formula's parameter, surface.parameters.NAME (NAME a valid
+// parameter name, engine/formula.h), is a number leaf on the formula surfaces.
+inline constexpr std::string_view kParametersPath = "surface.parameters.";
 const ScenePath* find_scene_path(std::string_view path);
 
 }  // namespace spinfold

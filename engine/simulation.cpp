@@ -397,6 +397,10 @@ bool step_toward(Simulation& run, StepPoint& p, double t_end, Mode mode, std::ui
     }
     p.carry = corrected - (y_next - state.y);
     state.y = y_next;
+    if (run.embedded && run.embedded->project) {  // back onto F = 0 (its bits are new: no carry)
+      project_state(*run.embedded, state.y);
+      p.carry.setZero(state.y.size());
+    }
     // Time is summed with compensation too: over millions of steps a plain sum drifts by ~Nεt,
     // and the last step, cut to land on t_end, would absorb that drift as a phase error.
     if (last) {

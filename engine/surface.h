@@ -1,11 +1,16 @@
 // The surfaces a body moves on. Sphere, pseudosphere and plane have constant curvature and the polar
 // chart of physics.md §1 (the functions below); the torus, spheroid, bump and catenoid are surfaces of
-// revolution whose curvature varies (engine/revolution.h, physics-surfaces.md §1), run by the
-// chart-free equations (engine/embedded_dynamics.h).
+// revolution whose curvature varies (engine/revolution.h, physics-surfaces.md §1), and implicit and
+// graph surfaces are given by a formula (engine/formula_surface.h, physics-anysurface.md); every
+// surface whose curvature varies is run by the chart-free equations (engine/embedded_dynamics.h).
 #pragma once
 
 #include <Eigen/Dense>
+#include <array>
+#include <functional>
+#include <map>
 #include <optional>
+#include <string>
 
 namespace spinfold {
 
@@ -17,7 +22,7 @@ using Mat3 = Eigen::Matrix3d;
 // with a kind serves every formula (K = σ/R²) without a visitor per function. The four after them
 // are the surfaces of revolution of engine/revolution.h, one file each behind its table; the
 // constant-curvature functions below are not defined on them (std::logic_error).
-enum class SurfaceKind { sphere, pseudosphere, plane, torus, spheroid, bump, catenoid };
+enum class SurfaceKind { sphere, pseudosphere, plane, torus, spheroid, bump, catenoid, implicit, graph };
 
 // The bit of one surface kind in a set of kinds (a scene field's or a view's), and the two families.
 constexpr unsigned surface_bit(SurfaceKind kind) {
@@ -26,15 +31,35 @@ constexpr unsigned surface_bit(SurfaceKind kind) {
 inline constexpr unsigned kConstantCurvatureSurfaces = surface_bit(SurfaceKind::sphere) |
                                                        surface_bit(SurfaceKind::pseudosphere) |
                                                        surface_bit(SurfaceKind::plane);
-inline constexpr unsigned kVaryingCurvatureSurfaces =
-    surface_bit(SurfaceKind::torus) | surface_bit(SurfaceKind::spheroid) | surface_bit(SurfaceKind::bump) |
-    surface_bit(SurfaceKind::catenoid);
+// The surfaces of revolution: the profile chart (u, φ) of engine/revolution.h.
+inline constexpr unsigned kProfileSurfaces = surface_bit(SurfaceKind::torus) |
+                                             surface_bit(SurfaceKind::spheroid) |
+                                             surface_bit(SurfaceKind::bump) | surface_bit(SurfaceKind::catenoid);
+// The surfaces given by a formula: no chart, no symmetry (physics-anysurface.md).
+inline constexpr unsigned kFormulaSurfaces = surface_bit(SurfaceKind::implicit) | surface_bit(SurfaceKind::graph);
+inline constexpr unsigned kVaryingCurvatureSurfaces = kProfileSurfaces | kFormulaSurfaces;
 
-// True for the torus, spheroid, bump and catenoid (physics-surfaces.md), false for S², H², the plane.
-// (A value outside the enumeration, which the validator names, is no kind of either family.)
-constexpr bool curvature_varies(SurfaceKind kind) {
-  return static_cast<unsigned>(kind) < 32 && (surface_bit(kind) & kVaryingCurvatureSurfaces) != 0;
+constexpr bool in_surface_set(SurfaceKind kind, unsigned set) {
+  return static_cast<unsigned>(kind) < 32 && (surface_bit(kind) & set) != 0;
 }
+// True where the chart-free equations run (the surfaces of revolution and formula surfaces), false
+// for S², H², the plane. (A value outside the enumeration, which the validator names, is neither.)
+constexpr bool curvature_varies(SurfaceKind kind) {
+  return in_surface_set(kind, kVaryingCurvatureSurfaces);
+}
+// Whether the surface has the profile chart (u, φ) of a surface of revolution.
+constexpr bool has_profile_chart(SurfaceKind kind) {
+  return in_surface_set(kind, kProfileSurfaces);
+}
+// Whether the surface is given by a formula (implicit F = 0, or a graph z = f(x, y)).
+constexpr bool given_by_formula(SurfaceKind kind) {
+  return in_surface_set(kind, kFormulaSurfaces);
+}
+
+// A formula's named numbers ({"a": 2, "b": 1.3}), sweepable as surface.parameters.a.
+using SurfaceParameters = std::map<std::string, double, std::less<>>;
+// The drawn piece of a formula surface: [[x₀, x₁], [y₀, y₁], [z₀, z₁]] [length].
+using SurfaceBounds = std::array<std::array<double, 2>, 3>;
 
 // Farthest a body may go on H², in units of R: the global embedding grows as R e^{r/R}/2 and the
 // outputs built from it (X, p_φ, the paper's frame) must stay finite in double (e^250 ≈ 1e108).
@@ -54,6 +79,12 @@ struct Surface {
   double height = 1.0;             // bump: h, either sign (z = h exp(−ρ²/(2w²)))
   double width = 1.0;              // bump: w > 0
   double neck_radius = 1.0;        // catenoid: c
+  // Formula surfaces (physics-anysurface.md §9, docs/formula-language.md): implicit F(x, y, z) = 0
+  // or graph z = f(x, y), the formula's parameters, and the box drawn (none: the model chooses).
+  std::string F = "x^2 + y^2 + z^2 - 1";  // implicit
+  std::string z = "0";                    // graph
+  SurfaceParameters parameters;
+  std::optional<SurfaceBounds> bounds;
   // K [1/length²] when the scene gave the curvature instead of kind and radius (a dial through 0):
   // resolve_curvature sets kind and radius from it; kept to write the scene back as given.
   std::optional<double> curvature_given;

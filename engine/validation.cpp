@@ -7,6 +7,7 @@
 #include "engine/chart.h"
 #include "engine/embedded_run.h"
 #include "engine/exact_solution.h"
+#include "engine/formula_surface.h"
 #include "engine/integrator.h"
 #include "engine/invariants.h"
 #include "engine/number_text.h"
@@ -105,6 +106,27 @@ void check_fields(Checker& c, const std::string& path, const S& value) {
     } else if constexpr (Enumerated<T>) {
       if (enum_name(v).empty())
         c.add_text(name, std::to_string(static_cast<int>(v)), "is not a known " + std::string(field.name));
+    } else if constexpr (Point3<T>) {
+      for (int k = 0; k < 3; ++k) c.finite(name + "[" + std::to_string(k) + "]", v[k]);
+    } else if constexpr (NamedNumbers<T>) {
+      if (v.size() > kMaxFormulaParameters)
+        c.add_text(name, std::to_string(v.size()) + " names",
+                   "at most " + std::to_string(kMaxFormulaParameters) + " parameters");
+      for (const auto& [key, number] : v) {
+        if (const auto problem = parameter_name_problem(key))
+          c.add_text(join(name, key), key, "cannot name a parameter: " + *problem);
+        else
+          c.finite(join(name, key), number);
+      }
+    } else if constexpr (OptionalBox<T>) {
+      if (v)
+        for (int k = 0; k < 3; ++k) {
+          const std::string axis = name + "[" + std::to_string(k) + "]";
+          if (c.finite(axis + "[0]", (*v)[k][0]) && c.finite(axis + "[1]", (*v)[k][1]) &&
+              !((*v)[k][0] < (*v)[k][1]))
+            c.add_text(axis, "[" + shortest((*v)[k][0]) + ", " + shortest((*v)[k][1]) + "]",
+                       "must be an interval [low, high] with low < high");
+        }
     } else if constexpr (HasFields<T>) {
       check_fields(c, name, v);
     } else if constexpr (OptionalSection<T>) {
@@ -133,12 +155,38 @@ void check_torus_radii(const Surface& surface, Checker& c) {
               "): the tube would cross the axis and the torus intersect itself");
 }
 
+// A formula surface's text, read as the engine reads it: refused naming the position and why.
+// True when it parses.
+bool check_formula(const Surface& surface, Checker& c) {
+  if (!given_by_formula(surface.kind)) return true;
+  for (const auto& [key, number] : surface.parameters)
+    if (parameter_name_problem(key) || !std::isfinite(number)) return false;  // named by check_fields
+  const FormulaSurfaceParse parsed = parse_scene_formula(surface);
+  if (parsed.surface) return true;
+  c.add_text("surface." + std::string(formula_key(surface)), formula_text(surface),
+             "at position " + std::to_string(parsed.error.position) + ": " + parsed.error.reason);
+  return false;
+}
+
+// The start on a formula surface: initial.X must have a foot on F = 0 (physics-anysurface.md §6).
+void check_formula_start(const Scene& scene, Checker& c) {
+  const std::array<double, 3>& X = scene.initial.X;
+  for (const double v : X)
+    if (!std::isfinite(v) || std::abs(v) > kMaxSceneMagnitude) return;  // named by check_fields
+  const SurfaceFoot foot = start_foot(*formula_surface_of(scene.surface), X);
+  if (!foot.X)
+    c.add_text("initial.X", "[" + shortest(X[0]) + ", " + shortest(X[1]) + ", " + shortest(X[2]) + "]",
+               foot.refusal);
+}
+
 void check_varying_surface(const Scene& scene, Checker& c) {
   const Surface& surface = scene.surface;
   const std::string kind(enum_name(surface.kind));
   check_torus_radii(surface, c);
   const double u = scene.initial.u;
-  if (std::isfinite(u) && std::abs(u) <= kMaxSceneMagnitude) {
+  if (given_by_formula(surface.kind)) {
+    if (check_formula(surface, c)) check_formula_start(scene, c);
+  } else if (std::isfinite(u) && std::abs(u) <= kMaxSceneMagnitude) {
     const ProfileDomain d =
         revolution_entry(revolution_surface(surface).kind).domain(revolution_surface(surface));
     if (!d.periodic && (u < d.u_min || u > d.u_max))
@@ -351,6 +399,7 @@ std::vector<FieldError> validate_surface(const Scene& scene) {
   Checker c;
   check_fields(c, "surface", scene.surface);
   check_torus_radii(scene.surface, c);
+  if (c.errors.empty()) check_formula(scene.surface, c);
   return c.errors;
 }
 

@@ -1,5 +1,6 @@
 #include "oracle/differential.h"
 
+#include <array>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -132,13 +133,15 @@ Verdict check(std::string_view scene_json, const IntegratorCase& c, double t_end
 const std::vector<std::string>& regimes() {
   static const std::vector<std::string> names = {
       "generic",  "undeformed", "pole",     "band_edge", "far_h2",      "degenerate",    "torus",
-      "spheroid", "bump",       "catenoid", "axis",      "zero_circle", "inner_equator", "friction"};
+      "spheroid", "bump",       "catenoid", "axis",      "zero_circle", "inner_equator", "friction",
+      "formula"};
   return names;
 }
 
 bool varying_regime(const std::string& regime) {
   return regime == "torus" || regime == "spheroid" || regime == "bump" || regime == "catenoid" ||
-         regime == "axis" || regime == "zero_circle" || regime == "inner_equator" || regime == "friction";
+         regime == "axis" || regime == "zero_circle" || regime == "inner_equator" || regime == "friction" ||
+         regime == "formula";
 }
 
 namespace {
@@ -160,6 +163,90 @@ json random_inertia(Uni& uni, Coin& coin, double anisotropic) {
 // regime; placed generically, on or near an axis point heading over it (`axis`: the spheroid's poles, the
 // bump's top), along and across the torus's K = 0 circles (`zero_circle`), on a thin torus's inner equator
 // where K is most negative (`inner_equator`).
+// A scene on a formula surface (physics-anysurface.md): a triaxial ellipsoid, a monkey saddle, an egg
+// crate, two bumps (graphs) or a genus-2 surface, with random parameters, a random guess near it
+// (Newton takes it onto F = 0), an affine or rigid body, any potentials and sometimes friction.
+std::string random_formula_scene(std::mt19937_64& rng, unsigned long long seed) {
+  auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  auto coin = [&](double p) { return uni(0, 1) < p; };
+  auto pick = [&](int n) { return static_cast<int>(std::uniform_int_distribution<int>(0, n - 1)(rng)); };
+  const double pi = std::numbers::pi;
+  json j;
+  j["name"] = "oracle_formula_" + std::to_string(seed);
+  std::array<double, 3> X{};
+  switch (pick(5)) {
+    case 0: {
+      const double a = uni(1.0, 2.0), b = uni(0.7, 1.5), c = uni(0.5, 1.2);
+      j["surface"] = {{"kind", "implicit"},
+                      {"F", "x^2/a^2 + y^2/b^2 + z^2/c^2 - 1"},
+                      {"parameters", {{"a", a}, {"b", b}, {"c", c}}}};
+      const double t = uni(-pi, pi), p = uni(-1.2, 1.2);
+      X = {a * std::cos(p) * std::cos(t) * 1.05, b * std::cos(p) * std::sin(t), c * std::sin(p) * 0.95};
+      break;
+    }
+    case 1:
+      j["surface"] = {{"kind", "graph"}, {"z", "k*(x^3 - 3*x*y^2)"}, {"parameters", {{"k", uni(0.1, 0.5)}}}};
+      X = {uni(-0.8, 0.8), uni(-0.8, 0.8), 0.0};
+      break;
+    case 2:
+      j["surface"] = {{"kind", "graph"},
+                      {"z", "h*sin(k*x)*sin(k*y)"},
+                      {"parameters", {{"h", uni(0.1, 0.4)}, {"k", uni(0.8, 2.0)}}}};
+      X = {uni(-2.0, 2.0), uni(-2.0, 2.0), 0.0};
+      break;
+    case 3:
+      j["surface"] = {{"kind", "graph"},
+                      {"z", "h*exp(-((x - d)^2 + y^2)/(2*w^2)) + h*exp(-((x + d)^2 + y^2)/(2*w^2))"},
+                      {"parameters", {{"h", uni(0.3, 1.0) * (coin(0.5) ? 1 : -1)}, {"d", uni(0.8, 1.5)},
+                                      {"w", uni(0.5, 1.0)}}}};
+      X = {uni(-2.0, 2.0), uni(-1.5, 1.5), 0.0};
+      break;
+    default: {  // the genus-2 surface of physics-anysurface.md §7 (regular for 0 < r < a⁴)
+      j["surface"] = {{"kind", "implicit"},
+                      {"F", "((x^2 + y^2)^2 - 2*a^2*(x^2 - y^2))^2 + (z/c)^2 - r^2"},
+                      {"parameters", {{"a", 1.0}, {"c", uni(0.4, 0.7)}, {"r", uni(0.5, 0.8)}}}};
+      const double t = uni(-0.6, 0.6);
+      X = {(coin(0.5) ? 1.0 : -1.0) * (1.2 + uni(-0.1, 0.1)) * std::cos(t), 1.2 * std::sin(t), uni(-0.2, 0.2)};
+      break;
+    }
+  }
+  const bool rigid = coin(0.35);
+  j["body"] = {{"mass", uni(0.5, 2.0)}, {"model", rigid ? "rigid" : "affine"}};
+  j["body"]["inertia"] = random_inertia(uni, coin, 0.35);
+  double lambda = uni(0.6, 1.4), mu = uni(0.3, 1.2);
+  if (std::abs(lambda - mu) < 0.1) mu = lambda - 0.2;
+  double lambda_dot = uni(-0.3, 0.3), mu_dot = uni(-0.3, 0.3), beta_dot = uni(-0.5, 0.5);
+  if (rigid) mu = lambda, lambda_dot = mu_dot = beta_dot = 0;
+  json potential = json::object();
+  const int height = pick(3);
+  if (height == 1) potential["height"] = {{"kind", "gravity"}, {"g", uni(-0.5, 0.5)}};
+  if (height == 2) potential["height"] = {{"kind", "spring"}, {"k", uni(0.1, 1.0)}};
+  if (!rigid && coin(0.5))
+    potential["deformation"] = {{"kind", "abc"},
+                                {"A", coin(0.5) ? uni(0.005, 0.05) : 0.0},
+                                {"B", coin(0.7) ? uni(0.05, 0.4) : 0.0},
+                                {"C", uni(0.05, 0.3)}};
+  j["potential"] = potential;
+  if (coin(0.25)) j["friction"] = {{"translational", uni(0.0, 0.3)}, {"internal", uni(0.0, 0.2)}};
+  json q = {{"X", X},
+            {"alpha", uni(-pi, pi)},
+            {"beta", uni(-pi, pi)},
+            {"lambda", lambda},
+            {"mu", mu},
+            {"lambda_dot", lambda_dot},
+            {"mu_dot", mu_dot},
+            {"beta_dot", beta_dot},
+            {"speed", uni(0.0, 1.0)},
+            {"heading", uni(-pi, pi)}};
+  if (coin(0.5))
+    q["spin"] = uni(-1.0, 1.0);
+  else
+    q["alpha_dot"] = uni(-1.0, 1.0);
+  j["initial"] = q;
+  j["integrator"] = {{"name", "auto"}};
+  return j.dump(2);
+}
+
 std::string random_varying_scene(const std::string& regime, std::mt19937_64& rng, unsigned long long seed) {
   auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
   auto coin = [&](double p) { return uni(0, 1) < p; };
@@ -298,6 +385,7 @@ std::string random_varying_scene(const std::string& regime, std::mt19937_64& rng
 
 std::string random_scene(const std::string& regime, unsigned long long seed) {
   std::mt19937_64 rng(seed * 7919 + std::hash<std::string>{}(regime));
+  if (regime == "formula") return random_formula_scene(rng, seed);
   if (varying_regime(regime)) return random_varying_scene(regime, rng, seed);
   auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
   auto coin = [&](double p) { return uni(0, 1) < p; };

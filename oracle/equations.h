@@ -6,6 +6,7 @@
 #include <array>
 #include <vector>
 
+#include "oracle/formula.h"
 #include "oracle/oracle.h"
 #include "oracle/scalars.h"
 
@@ -45,6 +46,10 @@ struct Problem {
   HeightKind height;
   T height_k;  // g (gravity) or k (spring)
   T gamma_t, gamma_i;
+
+  // a formula surface (Kind::formula): its reader's F (or f, F = z − f for a graph)
+  const OracleFormula* formula = nullptr;
+  bool graph = false;
 
   bool implicit() const { return implicit_kind(kind); }
   T eta() const { return kind == Kind::pseudosphere ? T(-1) : T(1); }
@@ -102,11 +107,25 @@ struct Problem {
     bool valid = false;
   };
   mutable Geometry geometry;
+  // A formula's ∇F and Hess F in 50 digits (hyper-dual numbers, oracle/formula.h), in T.
+  void formula_at(const V3<T>& X, V3<T>& g, M3<T>& H) const {
+    const FormulaValue f = formula->at({num::big(X[0]), num::big(X[1]), num::big(X[2])});
+    const T sign = graph ? T(-1) : T(1);  // a graph's F = z − f: ∇F = ẑ − ∇f, Hess F = −Hess f
+    for (int i = 0; i < 3; ++i) {
+      g[i] = sign * num::convert<T>(f.gradient[i]);
+      for (int k = 0; k < 3; ++k) H[i][k] = sign * num::convert<T>(f.hessian[i][k]);
+    }
+    if (graph) g[2] = T(1);
+  }
   const Geometry& at(const V3<T>& X) const {
     if (!geometry.valid || geometry.X != X) {
       geometry.X = X;
-      geometry.g = grad_of(X);
-      geometry.H = hess_of(X);
+      if (kind == Kind::formula) {
+        formula_at(X, geometry.g, geometry.H);
+      } else {
+        geometry.g = grad_of(X);
+        geometry.H = hess_of(X);
+      }
       geometry.n = (T(1) / num::sqrt(dot3(geometry.g, geometry.g))) * geometry.g;
       geometry.valid = true;
     }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "oracle/equations.h"
+#include "oracle/formula.h"
 #include "oracle/scalars.h"
 
 namespace spinfold::oracle {
@@ -50,6 +51,8 @@ Problem<T> make_problem(const OracleScene& s) {
   p.height = s.height;
   p.height_k = T(s.height_coefficient);
   p.gamma_t = T(s.friction_t), p.gamma_i = T(s.friction_i);
+  p.formula = s.formula.get();
+  p.graph = s.graph;
   return p;
 }
 
@@ -104,6 +107,30 @@ ProfileAt<T> profile_at(const OracleScene& s, const T& u) {
   }
 }
 
+// A formula surface's start (physics-anysurface.md §6), the oracle's own way: a graph's (x, y, f(x, y));
+// otherwise Newton along ∇F from initial.X, in T, to the last digits (at most 60 steps).
+template <class T>
+V3<T> formula_foot(const OracleScene& s) {
+  const auto F_at = [&](const V3<T>& X, V3<T>& g) {
+    const FormulaValue v = s.formula->at({num::big(X[0]), num::big(X[1]), num::big(X[2])});
+    for (int i = 0; i < 3; ++i) g[i] = num::convert<T>(v.gradient[i]);
+    return num::convert<T>(v.F);
+  };
+  V3<T> X{T(s.X[0]), T(s.X[1]), T(s.X[2])};
+  V3<T> g;
+  if (s.graph) {
+    X[2] = F_at(X, g);
+    return X;
+  }
+  for (int k = 0; k < 60; ++k) {
+    const T F = F_at(X, g), g2 = dot3(g, g);
+    const V3<T> step = (F / g2) * g;
+    X = X - step;
+    if (num::abs(F) <= T(1e-30) * num::sqrt(g2)) break;
+  }
+  return X;
+}
+
 // The scene's initial values (physics.md §1–§3, §13; spin, speed, heading as the scene format
 // defines them) as a state vector in the start frame, where E₁ = x̂, E₂ = ŷ at X₀ (constant
 // curvature), or in the scene's frame (where the curvature varies).
@@ -112,7 +139,17 @@ std::vector<T> start_state(const OracleScene& s, Problem<T>& p) {
   const T r(s.r), R(s.R);
   T S, C, f(1), q_dot(s.r_dot);
   V3<T> X0, E1{T(1), T(0), T(0)}, E2{T(0), T(1), T(0)};
-  if (implicit_kind(s.kind)) {
+  if (s.kind == Kind::formula) {
+    // §5's convention: E₁ the x-axis's tangential part normalised (the y-axis's where that is
+    // shorter than 0.1), E₂ = n × E₁; no chart (S = 1, C = 0: the rates are relative to transport).
+    X0 = formula_foot<T>(s);
+    const V3<T> n = p.normal(X0);
+    V3<T> t = V3<T>{T(1), T(0), T(0)} - n[0] * n;
+    if (num::sqrt(dot3(t, t)) < T(0.1)) t = V3<T>{T(0), T(1), T(0)} - n[1] * n;
+    E1 = (T(1) / num::sqrt(dot3(t, t))) * t;
+    E2 = cross(n, E1);
+    S = T(1), C = T(0), q_dot = T(0);
+  } else if (implicit_kind(s.kind)) {
     const T u(s.u), phi(s.phi);
     const ProfileAt<T> at = profile_at(s, u);
     X0 = {at.rho * num::cos(phi), at.rho * num::sin(phi), at.z};

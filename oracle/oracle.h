@@ -20,6 +20,7 @@
 
 #include <array>
 #include <boost/multiprecision/cpp_bin_float.hpp>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -30,11 +31,14 @@ namespace spinfold::oracle {
 // have entries of e^30 ≈ 1e13; their products cancel to O(1)).
 using Big = boost::multiprecision::cpp_bin_float_50;
 
-enum class Kind { sphere, pseudosphere, plane, torus, spheroid, bump, catenoid };
-// The surfaces of revolution whose curvature varies, given by an implicit F(X) = 0.
+enum class Kind { sphere, pseudosphere, plane, torus, spheroid, bump, catenoid, formula };
+// The surfaces whose curvature varies, given by an implicit F(X) = 0: the surfaces of revolution
+// (their F written out here) and a formula's (read by oracle/formula.h: F, or z − f for a graph).
 inline bool implicit_kind(Kind k) {
-  return k == Kind::torus || k == Kind::spheroid || k == Kind::bump || k == Kind::catenoid;
+  return k == Kind::torus || k == Kind::spheroid || k == Kind::bump || k == Kind::catenoid ||
+         k == Kind::formula;
 }
+class OracleFormula;
 enum class Model { affine, rigid, incompressible };
 enum class DefKind { none, abc, polar };
 enum class HeightKind { none, gravity, spring };
@@ -60,6 +64,10 @@ struct OracleScene {
   double A = 0, B = 0, C = 0;   // abc
   double ghat = 0, gtilde = 0;  // polar
   bool literal = false;         // polar form
+  // a formula surface: F (or a graph's f, with F = z − f) and the start's guess initial.X
+  std::shared_ptr<const OracleFormula> formula;
+  bool graph = false;
+  std::array<double, 3> X{1.0, 0.0, 0.0};
   double u = 0, u_dot = 0;      // the position along the profile where the curvature varies
   double r = 1, phi = 0, alpha = 0, beta = 0, lambda = 1, mu = 1;
   double r_dot = 0, phi_dot = 0, alpha_dot = 0, beta_dot = 0, lambda_dot = 0, mu_dot = 0;

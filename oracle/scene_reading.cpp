@@ -1,9 +1,12 @@
 // The oracle's own reading of a scene (the scene format's fields and defaults, nlohmann-json
 // directly, no engine code) and the exact isometry that moves the start to the embedding's origin.
+#include <algorithm>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 
+#include "oracle/formula.h"
 #include "oracle/oracle.h"
 #include "oracle/scalars.h"
 
@@ -48,14 +51,29 @@ OracleScene read_scene(std::string_view json_text) {
     }
   } else {
     const std::string kind = surface.value("kind", std::string("sphere"));
+    if (kind == "implicit" || kind == "graph") {  // the formula, read by the oracle's own reader
+      s.kind = Kind::formula;
+      s.graph = kind == "graph";
+      const char* key = s.graph ? "z" : "F";
+      const std::string text = surface.value(key, std::string(s.graph ? "0" : "x^2 + y^2 + z^2 - 1"));
+      std::map<std::string, double> parameters;
+      if (const auto it = surface.find("parameters"); it != surface.end() && it->is_object())
+        for (const auto& [name, value] : it->items()) parameters[name] = value.get<double>();
+      std::string why;
+      auto formula = OracleFormula::read(text, parameters, s.graph, &why);
+      if (!formula) throw std::runtime_error(std::string("surface.") + key + ": " + why);
+      s.formula = std::make_shared<const OracleFormula>(std::move(*formula));
+    }
     const std::pair<const char*, Kind> kinds[] = {
         {"sphere", Kind::sphere},    {"pseudosphere", Kind::pseudosphere}, {"plane", Kind::plane},
         {"torus", Kind::torus},      {"spheroid", Kind::spheroid},         {"bump", Kind::bump},
         {"catenoid", Kind::catenoid}};
     const auto it =
         std::find_if(std::begin(kinds), std::end(kinds), [&](const auto& k) { return kind == k.first; });
-    if (it == std::end(kinds)) throw std::runtime_error("surface.kind: unknown '" + kind + "'");
-    s.kind = it->second;
+    if (it != std::end(kinds))
+      s.kind = it->second;
+    else if (!s.formula)
+      throw std::runtime_error("surface.kind: unknown '" + kind + "'");
     s.R = number(surface, "radius", 1.0, "surface");
     s.tube_radius = number(surface, "tube_radius", s.tube_radius, "surface");
     s.center_radius = number(surface, "center_radius", s.center_radius, "surface");
@@ -124,6 +142,8 @@ OracleScene read_scene(std::string_view json_text) {
   s.alpha_dot = number(q, "alpha_dot", 0.0, p), s.beta_dot = number(q, "beta_dot", 0.0, p);
   s.lambda_dot = number(q, "lambda_dot", 0.0, p), s.mu_dot = number(q, "mu_dot", 0.0, p);
   s.spin = maybe(q, "spin", p), s.speed = maybe(q, "speed", p), s.heading = maybe(q, "heading", p);
+  if (const auto it = q.find("X"); it != q.end() && it->is_array() && it->size() == 3)
+    for (int k = 0; k < 3; ++k) s.X[k] = (*it)[k].get<double>();
   return s;
 }
 

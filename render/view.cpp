@@ -40,6 +40,9 @@ std::optional<std::string> view_unsupported_reason(ViewKind view, SurfaceKind su
   std::string names;
   for (const ViewInfo& v : views())
     if (shows(v, surface)) names += (names.empty() ? "" : ", ") + std::string(v.name);
+  if (names.empty())
+    return "no view draws a surface of kind " + std::string(enum_name(surface)) +
+           " yet (formula surfaces run, sample and sweep; their pictures are not built)";
   return "the " + std::string(enum_name(surface)) + " is shown in these views: " + names;
 }
 

@@ -51,11 +51,11 @@ constexpr ViewRow kViews[] = {
       "any curvature K in one flat map, angles true: stereographic (K > 0), the plane itself (K = 0), the "
       "Poincaré disk (K < 0), in lengths and following the body, so the picture changes continuously with K"},
      &conformal_view},
-    {{"revolution", ViewKind::revolution, true, kVaryingCurvatureSurfaces, "3-D surface of revolution",
+    {{"revolution", ViewKind::revolution, true, kProfileSurfaces, "3-D surface of revolution",
       "the torus, spheroid, bump or catenoid in space, with its meridians and parallels, its K = 0 "
       "circles marked, and the curvature layer colouring it by K"},
      &revolution_view},
-    {{"chart", ViewKind::chart, false, kVaryingCurvatureSurfaces, "chart (u, φ) with K",
+    {{"chart", ViewKind::chart, false, kProfileSurfaces, "chart (u, φ) with K",
       "the surface's chart unrolled: φ across, u down, the background coloured by the curvature K (warm "
       "> 0, cool < 0) with the K = 0 parallels dark; lengths and angles are not true"},
      &chart_view},

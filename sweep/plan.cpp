@@ -83,13 +83,16 @@ Plan make_plan(Definition def) {
       throw SweepError(option("--chaos-interval") + ": " + *why);
   Plan plan;
   bool profile = false;  // the base's curvature varies: its chart is (u, φ)
+  bool formula = false;  // the base is a formula surface: no chart
   {
     const SceneParse parsed = parse_scene_text(def.base_text);
     if (!parsed.errors.empty()) throw SweepError("the base scene: " + describe_errors(parsed.errors));
     plan.base = scene_to_json(*parsed.scene);
-    profile = curvature_varies(parsed.scene->surface.kind);
+    profile = has_profile_chart(parsed.scene->surface.kind);
+    formula = given_by_formula(parsed.scene->surface.kind);
   }
   if (profile && def.fields == kDefaultFields) def.fields = std::string(kDefaultProfileFields);
+  if (formula && def.fields == kDefaultFields) def.fields = std::string(kDefaultFormulaFields);
   if (def.axes.empty())
     throw SweepError(door == Door::cli ? "sweep: nothing to vary (give --set FIELD=... or --table FILE)"
                                        : "vary: give at least one field and its values");

@@ -22,6 +22,9 @@ inline constexpr std::string_view kDefaultFields =
 // The same where the base scene's curvature varies: its chart's u in place of r, and K at the end.
 inline constexpr std::string_view kDefaultProfileFields =
     "t,u,phi,lambda,mu,energy,energy_error,drift.energy,drift.p_phi,K";
+// On a formula surface (no chart): the position in ℝ³, the drift off the surface, K at the end.
+inline constexpr std::string_view kDefaultFormulaFields =
+    "t,X.0,X.1,X.2,lambda,mu,energy,energy_error,drift.energy,spin,constraint_drift,K";
 
 // The names `fields` accepts: final-state values of a sample (nested ones flattened with dots:
 // X.0, L.0.1, actions.J_r, frequencies.r), integrator, status_detail, and drift.NAME (final minus

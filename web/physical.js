@@ -429,7 +429,10 @@ function physicalRow(spec) {
 /** The surface's kind; switching restarts the run. @param {AppState} s */
 function surfaceKindRow(s) {
   const select = el("select", { id: "phys-surface", name: "phys.surface", "aria-describedby": "phys-surface-help" });
-  for (const value of surfaceKinds(s.schema)) select.add(new Option(surfaceTitle(s.schema, value), value));
+  // Only the kinds some view draws (a formula surface has no picture yet): the views say what they show.
+  const drawn = (/** @type {string} */ kind) => !s.views.length || s.views.some((v) => v.surfaces.includes(kind));
+  for (const value of surfaceKinds(s.schema).filter(drawn))
+    select.add(new Option(surfaceTitle(s.schema, value), value));
   select.value = /** @type {import("./surface.js").ResolvedSurface} */ (s.surface).kind;
   const help = el("small", {
     class: "help",

@@ -55,6 +55,60 @@ TEST(SceneJson, RoundTripKeepsEveryField) {
   EXPECT_EQ(written["on_degenerate"], "stop");
 }
 
+TEST(SceneJson, AFormulaSurfaceReadsWritesAndReadsBackTheSame) {
+  const std::string text = R"({"surface": {"kind": "implicit", "F": "x^2/a^2 + y^2/b^2 + z^2/c^2 - 1",
+      "parameters": {"a": 2, "b": 1.5, "c": 1}, "bounds": [[-2.5, 2.5], [-2, 2], [-1.5, 1.5]]},
+      "initial": {"X": [1.0, 0.8, 0.5], "speed": 0.5, "heading": 0.3, "spin": 0.2},
+      "integrator": {"projection": "off"}})";
+  const SceneParse parsed = parse_scene_text(text);
+  ASSERT_TRUE(parsed.errors.empty()) << describe_errors(parsed.errors);
+  const Scene& scene = *parsed.scene;
+  EXPECT_EQ(scene.surface.kind, SurfaceKind::implicit);
+  EXPECT_EQ(scene.surface.parameters.at("b"), 1.5);
+  ASSERT_TRUE(scene.surface.bounds);
+  EXPECT_EQ((*scene.surface.bounds)[1][0], -2.0);
+  EXPECT_EQ(scene.initial.X[1], 0.8);
+  EXPECT_EQ(scene.integrator.projection, Projection::off);
+  const nlohmann::json written = scene_to_json(scene);
+  EXPECT_EQ(written["surface"]["F"], "x^2/a^2 + y^2/b^2 + z^2/c^2 - 1");
+  EXPECT_FALSE(written["initial"].contains("phi"));  // no chart on a formula surface
+  EXPECT_FALSE(written["surface"].contains("radius"));
+  const SceneParse again = parse_scene(written);
+  ASSERT_TRUE(again.errors.empty()) << describe_errors(again.errors);
+  EXPECT_EQ(scene_to_json(*again.scene), written);
+}
+
+TEST(SceneJson, AFormulaSurfacesRefusalsNameTheirFields) {
+  const auto first_error = [](const std::string& text) {
+    const SceneParse parsed = parse_scene_text(text);
+    return parsed.errors.empty() ? FieldError{} : parsed.errors.front();
+  };
+  FieldError e = first_error(R"({"surface": {"kind": "graph", "z": "x^2 + floor(y)"}})");
+  EXPECT_EQ(e.field, "surface.z");
+  EXPECT_NE(e.reason.find("at position 6"), std::string::npos) << e.reason;
+  e = first_error(R"({"surface": {"kind": "graph", "z": "a*x^2", "parameters": {"a": "2"}}})");
+  EXPECT_EQ(e.field, "surface.parameters.a");
+  e = first_error(R"({"surface": {"kind": "graph", "z": "x"}, "initial": {"X": [1, 2]}})");
+  EXPECT_EQ(e.field, "initial.X");
+  e = first_error(R"({"surface": {"kind": "torus"}, "initial": {"X": [1, 2, 3]}})");
+  EXPECT_EQ(e.field, "initial.X");
+  EXPECT_NE(e.reason.find("only on the implicit or graph"), std::string::npos) << e.reason;
+  e = first_error(R"({"surface": {"kind": "implicit", "F": "x^2 + y^2 + z^2 - 1"}, "initial": {"u": 1}})");
+  EXPECT_EQ(e.field, "initial.u");
+}
+
+TEST(SceneJson, TheSchemaDescribesTheFormulaSurfaces) {
+  const auto schema = scene_schema();
+  const auto& surface = schema["properties"]["surface"]["properties"];
+  EXPECT_TRUE(surface["F"]["x-formula"].get<bool>());
+  EXPECT_EQ(surface["F"]["x-surfaces"], nlohmann::json::array({"implicit"}));
+  EXPECT_EQ(surface["parameters"]["type"], "object");
+  EXPECT_EQ(surface["bounds"]["minItems"], 3);
+  const auto& X = schema["properties"]["initial"]["properties"]["X"];
+  EXPECT_EQ(X["maxItems"], 3);
+  EXPECT_EQ(X["x-surfaces"], nlohmann::json::array({"implicit", "graph"}));
+}
+
 TEST(SceneJson, EveryPresetIsValidAndDescribed) {
   ASSERT_FALSE(preset_sources().empty());
   ASSERT_NE(find_preset(kDefaultPreset), nullptr);

@@ -19,11 +19,22 @@ TEST(ScenePaths, EveryLeafOnceWithItsRangeOrNames) {
   const ScenePath* kind = find_scene_path("surface.kind");
   ASSERT_NE(kind, nullptr);
   EXPECT_EQ(kind->names, (std::vector<std::string>{"sphere", "pseudosphere", "plane", "torus", "spheroid",
-                                                   "bump", "catenoid"}));
-  // A leaf knows the surfaces it belongs to: r the constant-curvature ones, u the others.
+                                                   "bump", "catenoid", "implicit", "graph"}));
+  // A leaf knows the surfaces it belongs to: r the constant-curvature ones, u the surfaces of
+  // revolution, F the implicit surface.
   EXPECT_EQ(r->surfaces, kConstantCurvatureSurfaces);
   ASSERT_NE(find_scene_path("initial.u"), nullptr);
-  EXPECT_EQ(find_scene_path("initial.u")->surfaces, kVaryingCurvatureSurfaces);
+  EXPECT_EQ(find_scene_path("initial.u")->surfaces, kProfileSurfaces);
+  ASSERT_NE(find_scene_path("surface.F"), nullptr);
+  EXPECT_EQ(find_scene_path("surface.F")->surfaces, surface_bit(SurfaceKind::implicit));
+  // A formula's parameter is a number leaf of its own name, once, on the formula surfaces.
+  const ScenePath* a = find_scene_path("surface.parameters.a");
+  ASSERT_NE(a, nullptr);
+  EXPECT_EQ(a->leaf, ScenePath::Leaf::number);
+  EXPECT_EQ(a->surfaces, kFormulaSurfaces);
+  EXPECT_EQ(find_scene_path("surface.parameters.a"), a);
+  EXPECT_EQ(find_scene_path("surface.parameters.pi"), nullptr);  // not a parameter's name
+  EXPECT_EQ(find_scene_path("surface.parameters."), nullptr);
   ASSERT_NE(find_scene_path("potential.height.g"), nullptr);
   EXPECT_EQ(find_scene_path("potential.height.g")->surfaces,
             kVaryingCurvatureSurfaces | surface_bit(SurfaceKind::sphere));

@@ -46,6 +46,17 @@ TEST(SweepGrid, AxesFromASpecValuesOrATable) {
   EXPECT_EQ(table.values[1][1], 0.5);
 }
 
+TEST(SweepGrid, AFormulasParameterIsAFieldOfItsOwnName) {
+  const Axis a = axis_from_spec("surface.parameters.a", "1:3:9", "--set surface.parameters.a");
+  ASSERT_EQ(a.values.size(), 9u);
+  EXPECT_EQ(a.values[4][0], 2.0);
+  EXPECT_EQ(a.fields[0]->path, "surface.parameters.a");
+  // A name the formula language cannot have is no field.
+  EXPECT_NE(error_of([] { axis_from_assignment("surface.parameters.2a=1"); })
+                .find("no scene field 'surface.parameters.2a'"),
+            std::string::npos);
+}
+
 TEST(SweepGrid, BadInputNamesTheLabelAndTheField) {
   EXPECT_NE(
       error_of([] { axis_from_assignment("initial.nope=1"); }).find("--set: no scene field 'initial.nope'"),
