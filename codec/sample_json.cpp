@@ -144,7 +144,7 @@ void sample_values(const Readout& r, std::span<double> out) {
   const bool p_phi_lost = std::any_of(c.undefined.begin(), c.undefined.end(),
                                       [](const UndefinedValue& u) { return u.field == "p_phi"; });
   const ActionVariables* a = r.actions ? &*r.actions : nullptr;
-  const bool free = r.embedded.has_value();                // no chart: X, V, e₁, e₂, n at the end
+  const bool free = r.embedded.has_value();               // no chart: X, V, e₁, e₂, n at the end
   const bool profile = r.curvature.has_value() && !free;  // (u, φ): u, u̇, p_u in the last columns
   const auto chart = [&](bool polar, const std::optional<double>& v) {
     return !free && polar == !profile ? optional(v) : nan;

@@ -322,8 +322,8 @@ SampleTable make_sample_table(std::string_view fields, const ordered_json& first
     for (const std::string& name : known) {
       const bool polar_only = name == "r" || name == "r_dot" || name == "p_r";
       const bool profile_only = name == "u" || name == "u_dot" || name == "p_u";
-      const bool free_only = name == "constraint_drift" || name.starts_with("V.") || name.starts_with("e1.") ||
-                             name.starts_with("e2.") || name.starts_with("n.");
+      const bool free_only = name == "constraint_drift" || name.starts_with("V.") ||
+                             name.starts_with("e1.") || name.starts_with("e2.") || name.starts_with("n.");
       const bool keep = free      ? !polar_only && !profile_only
                         : profile ? !polar_only && !free_only
                                   : !profile_only && !free_only && name != "K";

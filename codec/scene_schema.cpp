@@ -91,8 +91,12 @@ json property_of(const Field& field) {
     return {{"type", "string"}};
   } else if constexpr (Point3<T>) {
     const auto d = field.fallback();
-    return {{"type", "array"},      {"items", {{"type", "number"}}},        {"minItems", 3},
-            {"maxItems", 3},        {"default", json::array({d[0], d[1], d[2]})}, {"description", field.description},
+    return {{"type", "array"},
+            {"items", {{"type", "number"}}},
+            {"minItems", 3},
+            {"maxItems", 3},
+            {"default", json::array({d[0], d[1], d[2]})},
+            {"description", field.description},
             {"x-unit", "length"}};
   } else if constexpr (NamedNumbers<T>) {
     return {{"type", "object"},
@@ -102,8 +106,8 @@ json property_of(const Field& field) {
             {"description", field.description}};
   } else if constexpr (OptionalBox<T>) {
     const json pair = {{"type", "array"}, {"items", {{"type", "number"}}}, {"minItems", 2}, {"maxItems", 2}};
-    return {{"type", "array"}, {"items", pair},         {"minItems", 3},
-            {"maxItems", 3},   {"x-unit", "length"},    {"description", field.description}};
+    return {{"type", "array"}, {"items", pair},      {"minItems", 3},
+            {"maxItems", 3},   {"x-unit", "length"}, {"description", field.description}};
   } else if constexpr (Enumerated<T>) {
     json names = json::array(), titles = json::object();
     for (const EnumName<T>& n : enum_names(std::type_identity<T>{})) {

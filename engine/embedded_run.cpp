@@ -68,12 +68,9 @@ std::shared_ptr<const ImplicitSurface> implicit_of(const Surface& surface,
 
 bool projects_onto_constraints(const Scene& scene) {
   switch (scene.integrator.projection) {
-    case Projection::on:
-      return curvature_varies(scene.surface.kind);
-    case Projection::off:
-      return false;
-    case Projection::automatic:
-      break;
+    case Projection::on: return curvature_varies(scene.surface.kind);
+    case Projection::off: return false;
+    case Projection::automatic: break;
   }
   return given_by_formula(scene.surface.kind);
 }
@@ -233,6 +230,16 @@ void project_state(const EmbeddedScene& model, Coords& y) {
   Y.segment<9>(embedded::X) = y.segment<9>(embedded_orbit::X);
   project_onto_constraints(*model.implicit, Y);
   y.segment<9>(embedded_orbit::X) = Y.segment<9>(embedded::X);
+}
+
+void carry_onto_surface(const EmbeddedScene& model, Coords& y) {
+  const Vec3 X = y.segment<3>(embedded::X);
+  const double scale = std::max(1.0, X.norm());
+  const SurfaceFoot foot = model.formula && model.formula->form() == FormulaSurfaceForm::graph
+                               ? start_foot(*model.formula, {X.x(), X.y(), X.z()})
+                               : project_onto_surface(*model.implicit, X, scale, scale);
+  if (foot.X) y.segment<3>(embedded::X) = *foot.X;
+  project_state(model, y);
 }
 
 VectorField embedded_field(std::shared_ptr<const EmbeddedScene> model) {

@@ -52,6 +52,11 @@ bool steps_orbit_only(const Scene& scene);
 // (physics-anysurface.md §8) and off on the surfaces of revolution (their outputs stay as they were).
 bool projects_onto_constraints(const Scene& scene);
 
+// The state `y` carried onto the model's surface from off it (after a change of the formula): X to
+// its foot by Newton along ∇F (as far as max(1, |X|)), then project_state. Where there is no foot,
+// project_state alone (the run's checks stop it if that is not enough).
+void carry_onto_surface(const EmbeddedScene& model, Coords& y);
+
 // The state `y` brought back onto the constraints: X onto F = 0, then V, e_A, W_A (the orbit-only
 // layout's V and E) onto the tangent plane there; the rigid body's e₁ keeps its length.
 void project_state(const EmbeddedScene& model, Coords& y);

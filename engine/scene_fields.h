@@ -264,18 +264,20 @@ inline constexpr std::tuple kSurfaceFields{
     only_on(surface_bit(SurfaceKind::catenoid),
             number_field("neck_radius", &Surface::neck_radius, "Neck radius c", "length", kPositive,
                          "the catenoid ρ = c cosh(z/c): its narrowest circle; K = −1/(c² cosh⁴(z/c))")),
-    only_on(surface_bit(SurfaceKind::implicit),
-            value_field("F", &Surface::F,
-                        "the surface F(x, y, z) = 0: a formula in x, y, z and the parameters (numbers, + - * / "
-                        "^, sqrt exp log sin cos tan sinh cosh tanh atan asinh atan2 pi), of class C²",
-                        TextRule::formula)),
+    only_on(
+        surface_bit(SurfaceKind::implicit),
+        value_field("F", &Surface::F,
+                    "the surface F(x, y, z) = 0: a formula in x, y, z and the parameters (numbers, + - * / "
+                    "^, sqrt exp log sin cos tan sinh cosh tanh atan asinh atan2 pi), of class C²",
+                    TextRule::formula)),
     only_on(surface_bit(SurfaceKind::graph),
             value_field("z", &Surface::z, "the graph z = f(x, y): a formula in x, y and the parameters",
                         TextRule::formula)),
-    only_on(kFormulaSurfaces,
-            value_field("parameters", &Surface::parameters,
-                        "the formula's named numbers, {\"a\": 2, \"b\": 1.3}: each a finite number, its name a "
-                        "letter then letters, digits or _")),
+    only_on(
+        kFormulaSurfaces,
+        value_field("parameters", &Surface::parameters,
+                    "the formula's named numbers, {\"a\": 2, \"b\": 1.3}: each a finite number, its name a "
+                    "letter then letters, digits or _")),
     only_on(kFormulaSurfaces,
             value_field("bounds", &Surface::bounds,
                         "the piece drawn, [[x0, x1], [y0, y1], [z0, z1]] (absent: a box round the start "
@@ -382,10 +384,9 @@ inline constexpr std::tuple kInitialStateFields{
                  "the ellipse's second axis relative to the reference body (= λ for a rigid body)"),
     only_on(kConstantCurvatureSurfaces,
             number_field("r_dot", &InitialState::r_dot, "Rate ṙ", "length/time", kAnyNumber, "rate of r")),
-    only_on(
-        kProfileSurfaces,
-        number_field("u_dot", &InitialState::u_dot, "Rate u̇",
-                     "rad/time (torus, spheroid); length/time (bump, catenoid)", kAnyNumber, "rate of u")),
+    only_on(kProfileSurfaces, number_field("u_dot", &InitialState::u_dot, "Rate u̇",
+                                           "rad/time (torus, spheroid); length/time (bump, catenoid)",
+                                           kAnyNumber, "rate of u")),
     only_on(kConstantCurvatureSurfaces | kProfileSurfaces,
             number_field("phi_dot", &InitialState::phi_dot, "Rate φ̇", "rad/time", kAnyNumber, "rate of phi")),
     number_field("alpha_dot", &InitialState::alpha_dot, "Rate α̇", "rad/time", kAnyNumber, "rate of alpha"),

@@ -738,6 +738,11 @@ void retune(Simulation& run, const Scene& next) {
           inertia_of(next.body).matrix.trace() / run.embedded->body.inertia.matrix.trace();
     else
       here.y = embedded_layout(EmbeddedScene(next), *run.embedded, here.y);
+    // A formula surface that changed (its text or a parameter): the body carried onto the new one
+    // from where it is (Newton along ∇F, then V, e_A, W_A onto the new tangent plane).
+    if (given_by_formula(next.surface.kind) && (next.surface.F != before.F || next.surface.z != before.z ||
+                                                next.surface.parameters != before.parameters))
+      carry_onto_surface(EmbeddedScene(next), here.y);
   } else if (dialled(before, next.surface)) {
     // The same geodesic polar place (r, φ), velocity and frame in (E₁, E₂) on the new surface.
     const GlobalBody g = global_body(run.scene, here);

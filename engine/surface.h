@@ -32,11 +32,12 @@ inline constexpr unsigned kConstantCurvatureSurfaces = surface_bit(SurfaceKind::
                                                        surface_bit(SurfaceKind::pseudosphere) |
                                                        surface_bit(SurfaceKind::plane);
 // The surfaces of revolution: the profile chart (u, φ) of engine/revolution.h.
-inline constexpr unsigned kProfileSurfaces = surface_bit(SurfaceKind::torus) |
-                                             surface_bit(SurfaceKind::spheroid) |
-                                             surface_bit(SurfaceKind::bump) | surface_bit(SurfaceKind::catenoid);
+inline constexpr unsigned kProfileSurfaces =
+    surface_bit(SurfaceKind::torus) | surface_bit(SurfaceKind::spheroid) | surface_bit(SurfaceKind::bump) |
+    surface_bit(SurfaceKind::catenoid);
 // The surfaces given by a formula: no chart, no symmetry (physics-anysurface.md).
-inline constexpr unsigned kFormulaSurfaces = surface_bit(SurfaceKind::implicit) | surface_bit(SurfaceKind::graph);
+inline constexpr unsigned kFormulaSurfaces =
+    surface_bit(SurfaceKind::implicit) | surface_bit(SurfaceKind::graph);
 inline constexpr unsigned kVaryingCurvatureSurfaces = kProfileSurfaces | kFormulaSurfaces;
 
 constexpr bool in_surface_set(SurfaceKind kind, unsigned set) {

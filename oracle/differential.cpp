@@ -132,9 +132,8 @@ Verdict check(std::string_view scene_json, const IntegratorCase& c, double t_end
 // ---- the scene generator --------------------------------------------------------------------
 const std::vector<std::string>& regimes() {
   static const std::vector<std::string> names = {
-      "generic",  "undeformed", "pole",     "band_edge", "far_h2",      "degenerate",    "torus",
-      "spheroid", "bump",       "catenoid", "axis",      "zero_circle", "inner_equator", "friction",
-      "formula"};
+      "generic", "undeformed", "pole", "band_edge",   "far_h2",        "degenerate", "torus",  "spheroid",
+      "bump",    "catenoid",   "axis", "zero_circle", "inner_equator", "friction",   "formula"};
   return names;
 }
 
@@ -195,10 +194,11 @@ std::string random_formula_scene(std::mt19937_64& rng, unsigned long long seed) 
       X = {uni(-2.0, 2.0), uni(-2.0, 2.0), 0.0};
       break;
     case 3:
-      j["surface"] = {{"kind", "graph"},
-                      {"z", "h*exp(-((x - d)^2 + y^2)/(2*w^2)) + h*exp(-((x + d)^2 + y^2)/(2*w^2))"},
-                      {"parameters", {{"h", uni(0.3, 1.0) * (coin(0.5) ? 1 : -1)}, {"d", uni(0.8, 1.5)},
-                                      {"w", uni(0.5, 1.0)}}}};
+      j["surface"] = {
+          {"kind", "graph"},
+          {"z", "h*exp(-((x - d)^2 + y^2)/(2*w^2)) + h*exp(-((x + d)^2 + y^2)/(2*w^2))"},
+          {"parameters",
+           {{"h", uni(0.3, 1.0) * (coin(0.5) ? 1 : -1)}, {"d", uni(0.8, 1.5)}, {"w", uni(0.5, 1.0)}}}};
       X = {uni(-2.0, 2.0), uni(-1.5, 1.5), 0.0};
       break;
     default: {  // the genus-2 surface of physics-anysurface.md §7 (regular for 0 < r < a⁴)
@@ -206,7 +206,8 @@ std::string random_formula_scene(std::mt19937_64& rng, unsigned long long seed) 
                       {"F", "((x^2 + y^2)^2 - 2*a^2*(x^2 - y^2))^2 + (z/c)^2 - r^2"},
                       {"parameters", {{"a", 1.0}, {"c", uni(0.4, 0.7)}, {"r", uni(0.5, 0.8)}}}};
       const double t = uni(-0.6, 0.6);
-      X = {(coin(0.5) ? 1.0 : -1.0) * (1.2 + uni(-0.1, 0.1)) * std::cos(t), 1.2 * std::sin(t), uni(-0.2, 0.2)};
+      X = {(coin(0.5) ? 1.0 : -1.0) * (1.2 + uni(-0.1, 0.1)) * std::cos(t), 1.2 * std::sin(t),
+           uni(-0.2, 0.2)};
       break;
     }
   }

@@ -108,14 +108,14 @@ struct Problem {
   };
   mutable Geometry geometry;
   // A formula's ∇F and Hess F in 50 digits (hyper-dual numbers, oracle/formula.h), in T.
-  void formula_at(const V3<T>& X, V3<T>& g, M3<T>& H) const {
+  void formula_at(const V3<T>& X, V3<T>& gradient, M3<T>& H) const {
     const FormulaValue f = formula->at({num::big(X[0]), num::big(X[1]), num::big(X[2])});
     const T sign = graph ? T(-1) : T(1);  // a graph's F = z − f: ∇F = ẑ − ∇f, Hess F = −Hess f
     for (int i = 0; i < 3; ++i) {
-      g[i] = sign * num::convert<T>(f.gradient[i]);
+      gradient[i] = sign * num::convert<T>(f.gradient[i]);
       for (int k = 0; k < 3; ++k) H[i][k] = sign * num::convert<T>(f.hessian[i][k]);
     }
-    if (graph) g[2] = T(1);
+    if (graph) gradient[2] = T(1);
   }
   const Geometry& at(const V3<T>& X) const {
     if (!geometry.valid || geometry.X != X) {

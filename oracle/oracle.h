@@ -68,7 +68,7 @@ struct OracleScene {
   std::shared_ptr<const OracleFormula> formula;
   bool graph = false;
   std::array<double, 3> X{1.0, 0.0, 0.0};
-  double u = 0, u_dot = 0;      // the position along the profile where the curvature varies
+  double u = 0, u_dot = 0;  // the position along the profile where the curvature varies
   double r = 1, phi = 0, alpha = 0, beta = 0, lambda = 1, mu = 1;
   double r_dot = 0, phi_dot = 0, alpha_dot = 0, beta_dot = 0, lambda_dot = 0, mu_dot = 0;
   std::optional<double> spin, speed, heading;

@@ -42,9 +42,12 @@ TEST(SampleTable, EveryValueOfASampleHasAColumnAndEveryColumnAValue) {
   // casimir): each key of a sample is a column, and each column is a key of some sample.
   const std::vector<std::string> names = sample_column_names();
   std::set<std::string> seen;
-  // And a torus, whose chart is (u, φ) and whose samples carry K.
+  // And a torus, whose chart is (u, φ) and whose samples carry K, and a formula surface, with no
+  // chart: X, V, e₁, e₂, n and the drift off F = 0.
   std::vector<std::string> scenes{
-      R"({"surface": {"kind": "torus"}, "initial": {"u": 0.3, "u_dot": 0.2, "phi_dot": 0.4, "mu": 0.7}})"};
+      R"({"surface": {"kind": "torus"}, "initial": {"u": 0.3, "u_dot": 0.2, "phi_dot": 0.4, "mu": 0.7}})",
+      R"j({"surface": {"kind": "graph", "z": "0.2*x*y"}, "initial": {"X": [0.3, 0.1, 0], "speed": 0.5,
+          "heading": 0.4, "mu": 0.7}})j"};
   for (const PresetSource& preset : preset_sources()) scenes.emplace_back(preset.json);
   for (const std::string& json : scenes) {
     Simulation run = start_simulation(*parse_scene_text(json).scene);
@@ -122,9 +125,31 @@ TEST(SampleTable, UnknownFieldsAreRefusedByName) {
     std::erase_if(names, [&](const std::string& n) { return dropped.contains(n); });
     return names;
   };
-  EXPECT_EQ(make_sample_table("", sample).columns, without({"u", "u_dot", "p_u", "K"}));
+  const std::set<std::string> free_only = {"V.0",
+                                           "V.1",
+                                           "V.2",
+                                           "e1.0",
+                                           "e1.1",
+                                           "e1.2",
+                                           "e2.0",
+                                           "e2.1",
+                                           "e2.2",
+                                           "n.0",
+                                           "n.1",
+                                           "n.2",
+                                           "constraint_drift"};
+  std::set<std::string> dropped = free_only;
+  dropped.insert({"u", "u_dot", "p_u", "K"});
+  EXPECT_EQ(make_sample_table("", sample).columns, without(dropped));
   const Simulation torus = start_simulation(*parse_scene_text(R"({"surface": {"kind": "torus"}})").scene);
-  EXPECT_EQ(make_sample_table("", sample_to_json(torus, -1.0)).columns, without({"r", "r_dot", "p_r"}));
+  dropped = free_only;
+  dropped.insert({"r", "r_dot", "p_r"});
+  EXPECT_EQ(make_sample_table("", sample_to_json(torus, -1.0)).columns, without(dropped));
+  // On a formula surface neither chart's coordinates: the body in ℝ³, and K.
+  const Simulation graph =
+      start_simulation(*parse_scene_text(R"j({"surface": {"kind": "graph", "z": "0.2*x*y"}})j").scene);
+  EXPECT_EQ(make_sample_table("", sample_to_json(graph, -1.0)).columns,
+            without({"r", "r_dot", "p_r", "u", "u_dot", "p_u"}));
 }
 
 // A vector, a matrix, a matrix's row or a group names its components (issue 35: `--fields X` was

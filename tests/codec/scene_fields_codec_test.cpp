@@ -92,7 +92,8 @@ typename Field::Value test_value(const Field& field) {
     return other_number(field);
   } else if constexpr (std::is_same_v<T, std::string>) {
     if (field.text_rule == TextRule::any) return "some text";
-    for (const std::string_view name : integrator_names())  // one that every scene can use
+    if (field.text_rule == TextRule::formula) return "x^2 + y^2 - 2";  // a formula in x, y: any form reads it
+    for (const std::string_view name : integrator_names())             // one that every scene can use
       if (name != field.fallback() && name != exact_info.name) return std::string(name);
     return "";
   } else {
@@ -259,6 +260,13 @@ TEST(SceneFieldsCodec, EveryFieldIsInTheSchemaAsInItsTable) {
     }
   };
   count(count, schema);
+  // The formula surfaces' fields that are not one leaf of the walk (a point, named numbers, a box;
+  // engine/scene_paths.h): each in the schema with its shape.
+  for (const auto& [path, type] :
+       {std::pair{"surface.parameters", "object"}, {"surface.bounds", "array"}, {"initial.X", "array"}}) {
+    EXPECT_EQ(schema_property(path, "")["type"], type) << path;
+    ++described;
+  }
   EXPECT_EQ(leaves, described);
 }
 

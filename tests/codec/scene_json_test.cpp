@@ -56,10 +56,10 @@ TEST(SceneJson, RoundTripKeepsEveryField) {
 }
 
 TEST(SceneJson, AFormulaSurfaceReadsWritesAndReadsBackTheSame) {
-  const std::string text = R"({"surface": {"kind": "implicit", "F": "x^2/a^2 + y^2/b^2 + z^2/c^2 - 1",
+  const std::string text = R"j({"surface": {"kind": "implicit", "F": "x^2/a^2 + y^2/b^2 + z^2/c^2 - 1",
       "parameters": {"a": 2, "b": 1.5, "c": 1}, "bounds": [[-2.5, 2.5], [-2, 2], [-1.5, 1.5]]},
       "initial": {"X": [1.0, 0.8, 0.5], "speed": 0.5, "heading": 0.3, "spin": 0.2},
-      "integrator": {"projection": "off"}})";
+      "integrator": {"projection": "off"}})j";
   const SceneParse parsed = parse_scene_text(text);
   ASSERT_TRUE(parsed.errors.empty()) << describe_errors(parsed.errors);
   const Scene& scene = *parsed.scene;
@@ -83,17 +83,17 @@ TEST(SceneJson, AFormulaSurfacesRefusalsNameTheirFields) {
     const SceneParse parsed = parse_scene_text(text);
     return parsed.errors.empty() ? FieldError{} : parsed.errors.front();
   };
-  FieldError e = first_error(R"({"surface": {"kind": "graph", "z": "x^2 + floor(y)"}})");
+  FieldError e = first_error(R"j({"surface": {"kind": "graph", "z": "x^2 + floor(y)"}})j");
   EXPECT_EQ(e.field, "surface.z");
   EXPECT_NE(e.reason.find("at position 6"), std::string::npos) << e.reason;
-  e = first_error(R"({"surface": {"kind": "graph", "z": "a*x^2", "parameters": {"a": "2"}}})");
+  e = first_error(R"j({"surface": {"kind": "graph", "z": "a*x^2", "parameters": {"a": "2"}}})j");
   EXPECT_EQ(e.field, "surface.parameters.a");
-  e = first_error(R"({"surface": {"kind": "graph", "z": "x"}, "initial": {"X": [1, 2]}})");
+  e = first_error(R"j({"surface": {"kind": "graph", "z": "x"}, "initial": {"X": [1, 2]}})j");
   EXPECT_EQ(e.field, "initial.X");
-  e = first_error(R"({"surface": {"kind": "torus"}, "initial": {"X": [1, 2, 3]}})");
+  e = first_error(R"j({"surface": {"kind": "torus"}, "initial": {"X": [1, 2, 3]}})j");
   EXPECT_EQ(e.field, "initial.X");
   EXPECT_NE(e.reason.find("only on the implicit or graph"), std::string::npos) << e.reason;
-  e = first_error(R"({"surface": {"kind": "implicit", "F": "x^2 + y^2 + z^2 - 1"}, "initial": {"u": 1}})");
+  e = first_error(R"j({"surface": {"kind": "implicit", "F": "x^2 + y^2 + z^2 - 1"}, "initial": {"u": 1}})j");
   EXPECT_EQ(e.field, "initial.u");
 }
 

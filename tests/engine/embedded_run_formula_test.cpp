@@ -274,5 +274,86 @@ TEST(EmbeddedRunFormula, ABodyThatLeavesTheFormulasDomainStopsWithItsLastGoodSta
   EXPECT_LE(run.state.t, 0.5 * std::numbers::pi + 1e-6);
 }
 
+// Joachimsthal's integral on the triaxial ellipsoid x²/a² + y²/b² + z²/c² = 1: along a geodesic the
+// distance p from the centre to the tangent plane times the semi-diameter D parallel to the velocity
+// is constant. A body without spin (s = 0, no potentials) follows a geodesic and keeps it; a spinning
+// one is pushed off the geodesic by K s (physics-anysurface.md §2) and does not.
+double joachimsthal(const Readout& r, double a, double b, double c) {
+  const Vec3 X = r.coordinates.X, t = r.embedded->V.normalized();
+  const double p = 1.0 / std::sqrt(X.x() * X.x() / std::pow(a, 4) + X.y() * X.y() / std::pow(b, 4) +
+                                   X.z() * X.z() / std::pow(c, 4));
+  const double D =
+      1.0 / std::sqrt(t.x() * t.x() / (a * a) + t.y() * t.y() / (b * b) + t.z() * t.z() / (c * c));
+  return p * D;
+}
+
+TEST(EmbeddedRunFormula, OnTheTriaxialEllipsoidJoachimsthalsIntegralHoldsWithoutSpinAndNotWithIt) {
+  const double a = 2.0, b = 1.4, c = 0.9;
+  for (const double spin : {0.0, 0.5}) {
+    Scene scene;
+    scene.surface.kind = SurfaceKind::implicit;
+    scene.surface.F = "x^2/a^2 + y^2/b^2 + z^2/c^2 - 1";
+    scene.surface.parameters = {{"a", a}, {"b", b}, {"c", c}};
+    scene.body.model = BodyModel::rigid;
+    scene.initial.X = {1.2, 0.9, 0.4};
+    scene.initial.speed = 0.8;
+    scene.initial.heading = 0.7;
+    scene.initial.spin = spin;
+    scene.integrator.tolerance = 1e-12;
+    ASSERT_TRUE(resolve_initial_rates(scene).empty());
+    ASSERT_TRUE(validate_scene(scene).empty()) << validate_scene(scene).front().reason;
+    Simulation run = start_simulation(scene);
+    const double first = joachimsthal(readout(run), a, b, c);
+    double spread = 0.0;
+    for (int k = 1; k <= 40; ++k) {
+      ASSERT_TRUE(advance_to(run, 0.5 * k));
+      spread = std::max(spread, std::abs(joachimsthal(readout(run), a, b, c) / first - 1.0));
+    }
+    if (spin == 0.0)
+      EXPECT_LT(spread, 1e-9);
+    else
+      EXPECT_GT(spread, 1e-2);
+  }
+}
+
+// The headline on a surface with no symmetry, measured from the path alone: a spinning rigid body's
+// geodesic curvature κ_g = n·(V × A)/|V|³ (V and A by central differences of the sampled X) is
+// K s/(m v) with K from F at the body (physics-anysurface.md §2), over the monkey saddle's K < 0.
+TEST(EmbeddedRunFormula, TheMonkeySaddleBendsThePathByKsOverMv) {
+  Scene scene;
+  scene.surface.kind = SurfaceKind::graph;
+  scene.surface.z = "k*(x^3 - 3*x*y^2)";
+  scene.surface.parameters = {{"k", 0.4}};
+  scene.body.model = BodyModel::rigid;
+  scene.body.mass = 1.3;
+  scene.initial.X = {0.3, -0.2, 0.0};
+  scene.initial.speed = 0.6;
+  scene.initial.heading = 2.0;
+  scene.initial.spin = 0.7;
+  scene.integrator.tolerance = 1e-13;
+  ASSERT_TRUE(resolve_initial_rates(scene).empty());
+  Simulation run = start_simulation(scene);
+  const double h = 1e-3;
+  int checked = 0;
+  for (double t = 0.5; t <= 4.0; t += 0.5) {
+    // The run lands on any time exactly, whatever the times asked before (simulation.h).
+    Vec3 X[3];
+    Readout r;
+    for (int i = 0; i < 3; ++i) {
+      ASSERT_TRUE(advance_to(run, t + (i - 1) * h));
+      const Readout here = readout(run);
+      X[i] = here.coordinates.X;
+      if (i == 1) r = here;
+    }
+    const Vec3 V = (X[2] - X[0]) / (2 * h), A = (X[2] - 2 * X[1] + X[0]) / (h * h);
+    const double kappa = r.embedded->n.dot(V.cross(A)) / std::pow(V.norm(), 3);
+    const double predicted = *r.curvature * r.spin / (scene.body.mass * *r.speed);
+    EXPECT_NEAR(kappa, predicted, 1e-5 * (1.0 + std::abs(predicted))) << "t = " << t;
+    EXPECT_LT(*r.curvature, 0.0);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 8);
+}
+
 }  // namespace
 }  // namespace spinfold

@@ -89,6 +89,34 @@ def test_a_torus_scene_equals_the_cli_to_the_bit(binary, tmp_path):
         spinfold.simulate(scene, t_end=1, initial__r=1.0)
 
 
+def test_a_formula_surface_equals_the_cli_to_the_bit(binary, tmp_path):
+    # No chart: X, V, e1, e2, n, K and the drift off F = 0 are columns, r and u are NaN.
+    scene = {"surface": {"kind": "implicit", "F": "x^2/a^2 + y^2/b^2 + z^2/c^2 - 1",
+                         "parameters": {"a": 2, "b": 1.5, "c": 1}},
+             "potential": {"deformation": {"kind": "abc", "C": 0.3}},
+             "initial": {"X": [1.0, 0.8, 0.5], "lambda": 1.2, "mu": 0.8, "speed": 0.7, "heading": 0.4,
+                         "spin": 0.3}}
+    path = tmp_path / "ellipsoid.json"
+    path.write_text(json.dumps(scene))
+    result = spinfold.simulate(scene, t_end=2, every=0.5)
+    assert_same_numbers(result, cli_samples(binary, str(path), "--t-end", "2", "--every", "0.5"))
+    assert np.isnan(result["r"]).all() and np.isnan(result["u"]).all()
+    for name in ("V.0", "e1.2", "n.1", "K", "constraint_drift"):
+        assert not np.isnan(result[name]).any(), name
+    assert (result["constraint_drift"] < 1e-14).all()
+    # On the surface: x²/a² + y²/b² + z²/c² = 1 at every sample, read by numpy.
+    x, y, z = result["X"].T
+    assert np.allclose(x**2 / 4 + y**2 / 2.25 + z**2, 1.0, atol=1e-13)
+    # A parameter is a field of its own name: swept, and refused with its reason.
+    sweep = spinfold.sweep(scene, {"surface.parameters.c": [0.8, 1.0, 1.2]}, t_end=1)
+    assert list(sweep["surface.parameters.c"]) == [0.8, 1.0, 1.2]
+    with pytest.raises(ValueError, match=r"surface\.F: at position 0"):
+        spinfold.simulate({**scene, "surface": {"kind": "implicit", "F": "abs(x) + y^2 + z^2 - 1"}}, t_end=1)
+    with pytest.raises(ValueError, match="initial.X"):
+        spinfold.simulate({**scene, "initial": {"X": [0, 0, 0]},
+                           "surface": {"kind": "implicit", "F": "x^2 + y^2 - z^2"}}, t_end=1)
+
+
 def test_a_scene_as_dict_json_path_or_preset_and_overrides_run_the_same(binary, tmp_path):
     scene = {"surface": {"kind": "sphere"}, "initial": {"r": 0.8, "spin": 1.2}}
     path = tmp_path / "scene.json"

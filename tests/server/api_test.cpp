@@ -300,6 +300,59 @@ TEST_F(Api, TorusSessionRunsAndIsDrawnInTheRevolutionView) {
   EXPECT_EQ(deleted->status, 204);
 }
 
+// A formula surface runs, samples without a chart and changes its parameters mid-run; a formula the
+// language refuses is a 422 naming its position; its pictures are refused, saying why, never a 5xx.
+TEST_F(Api, AFormulaSurfaceSessionRunsAndItsRefusalsNameTheField) {
+  auto c = client();
+  auto created = c.Post("/api/v1/sessions",
+                        R"j({"surface": {"kind": "implicit", "F": "x^2/a^2 + y^2/b^2 + z^2/c^2 - 1",
+                             "parameters": {"a": 2, "b": 1.5, "c": 1}},
+                            "initial": {"X": [1.0, 0.8, 0.5], "speed": 0.5, "heading": 0.3, "spin": 0.2}})j",
+                        "application/json");
+  ASSERT_TRUE(created);
+  ASSERT_EQ(created->status, 201) << created->body;
+  const std::string id = json::parse(created->body)["id"];
+  auto advanced = c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 2})", "application/json");
+  ASSERT_TRUE(advanced);
+  ASSERT_EQ(advanced->status, 200) << advanced->body;
+  const json state = json::parse(advanced->body)["state"];
+  EXPECT_EQ(state["status"], "ok");
+  EXPECT_TRUE(state.contains("n") && state.contains("K") && state.contains("e1") && !state.contains("u") &&
+              !state.contains("r"))
+      << state.dump();
+  EXPECT_LT(state["constraint_drift"].get<double>(), 1e-14);
+  // A new parameter continues from the body's place, brought onto the new surface.
+  auto patched = c.Patch("/api/v1/sessions/" + id, R"({"surface": {"parameters": {"c": 1.2}}})",
+                         "application/merge-patch+json");
+  ASSERT_TRUE(patched);
+  EXPECT_EQ(patched->status, 200) << patched->body;
+  auto after = c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 3})", "application/json");
+  ASSERT_TRUE(after);
+  ASSERT_EQ(after->status, 200) << after->body;
+  const json moved = json::parse(after->body)["state"];
+  EXPECT_EQ(moved["status"], "ok") << moved.dump();
+  EXPECT_LT(moved["constraint_drift"].get<double>(), 1e-14) << moved.dump();
+  auto wrong = c.Patch("/api/v1/sessions/" + id, R"j({"surface": {"F": "x^2 + max(y, z) - 1"}})j",
+                       "application/merge-patch+json");
+  ASSERT_TRUE(wrong);
+  EXPECT_EQ(wrong->status, 422);
+  EXPECT_NE(wrong->body.find("surface.F"), std::string::npos) << wrong->body;
+  EXPECT_NE(wrong->body.find("at position 6"), std::string::npos) << wrong->body;
+  auto trajectory = c.Get("/api/v1/sessions/" + id +
+                          "/trajectory?format=csv&fields=t,X.0,X.1,X.2,n.0,n.1,n.2,K,constraint_drift");
+  ASSERT_TRUE(trajectory);
+  EXPECT_EQ(trajectory->status, 200) << trajectory->body;
+  EXPECT_NE(trajectory->body.find("t,X_0,X_1,X_2,n_0,n_1,n_2,K,constraint_drift"), std::string::npos)
+      << trajectory->body.substr(0, 300);
+  auto frame = c.Get("/api/v1/sessions/" + id + "/frame.png");
+  ASSERT_TRUE(frame);
+  EXPECT_EQ(frame->status, 422) << frame->body;
+  EXPECT_NE(frame->body.find("no view draws a surface of kind implicit"), std::string::npos) << frame->body;
+  auto deleted = c.Delete("/api/v1/sessions/" + id);
+  ASSERT_TRUE(deleted);
+  EXPECT_EQ(deleted->status, 204);
+}
+
 TEST_F(Api, SessionLifecycle) {
   auto c = client();
   auto created = c.Post("/api/v1/sessions", R"({"preset": "separable_radial_abc"})", "application/json");

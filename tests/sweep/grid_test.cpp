@@ -52,8 +52,9 @@ TEST(SweepGrid, AFormulasParameterIsAFieldOfItsOwnName) {
   EXPECT_EQ(a.values[4][0], 2.0);
   EXPECT_EQ(a.fields[0]->path, "surface.parameters.a");
   // A name the formula language cannot have is no field.
-  EXPECT_NE(error_of([] { axis_from_assignment("surface.parameters.2a=1"); })
-                .find("no scene field 'surface.parameters.2a'"),
+  EXPECT_NE(error_of([] {
+              axis_from_assignment("surface.parameters.2a=1");
+            }).find("no scene field 'surface.parameters.2a'"),
             std::string::npos);
 }
 
