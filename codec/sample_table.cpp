@@ -324,7 +324,8 @@ SampleTable make_sample_table(std::string_view fields, const ordered_json& first
       const bool profile_only = name == "u" || name == "u_dot" || name == "p_u";
       const bool free_only = name == "constraint_drift" || name.starts_with("V.") ||
                              name.starts_with("e1.") || name.starts_with("e2.") || name.starts_with("n.");
-      const bool keep = free      ? !polar_only && !profile_only
+      const bool chart_angle = name == "phi" || name == "phi_dot";  // none without a chart
+      const bool keep = free      ? !polar_only && !profile_only && !chart_angle
                         : profile ? !polar_only && !free_only
                                   : !profile_only && !free_only && name != "K";
       if (keep) table.columns.push_back(name);

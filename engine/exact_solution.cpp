@@ -243,7 +243,8 @@ std::pair<Vec2, Vec2> plane_motion_at(const PlaneMotion& m, double t) {
 std::optional<std::string> exact_unsupported_reason(const Scene& scene) {
   if (curvature_varies(scene.surface.kind))
     return "the closed forms hold where the curvature is constant (physics.md §8); on the " +
-           std::string(enum_name(scene.surface.kind)) + " use an integrator";
+           std::string(enum_name(scene.surface.kind)) +
+           (given_by_formula(scene.surface.kind) ? " surface" : "") + " use an integrator";
   if (scene.friction && scene.friction->any())
     return "with friction the motion has no closed form here (physics-surfaces.md §13): use an integrator";
   if (!std::holds_alternative<std::monostate>(scene.potential.height))

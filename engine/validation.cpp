@@ -181,7 +181,8 @@ void check_formula_start(const Scene& scene, Checker& c) {
 
 void check_varying_surface(const Scene& scene, Checker& c) {
   const Surface& surface = scene.surface;
-  const std::string kind(enum_name(surface.kind));
+  const std::string kind =
+      std::string(enum_name(surface.kind)) + (given_by_formula(surface.kind) ? " surface" : "");
   check_torus_radii(surface, c);
   const double u = scene.initial.u;
   if (given_by_formula(surface.kind)) {

@@ -149,7 +149,7 @@ TEST(SampleTable, UnknownFieldsAreRefusedByName) {
   const Simulation graph =
       start_simulation(*parse_scene_text(R"j({"surface": {"kind": "graph", "z": "0.2*x*y"}})j").scene);
   EXPECT_EQ(make_sample_table("", sample_to_json(graph, -1.0)).columns,
-            without({"r", "r_dot", "p_r", "u", "u_dot", "p_u"}));
+            without({"r", "r_dot", "p_r", "u", "u_dot", "p_u", "phi", "phi_dot"}));
 }
 
 // A vector, a matrix, a matrix's row or a group names its components (issue 35: `--fields X` was
