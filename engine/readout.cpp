@@ -42,45 +42,37 @@ std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0
 
 namespace {
 
-// The read-out where the curvature varies (engine/embedded_run.h): the chart (u, φ) and K.
-void read_profile(const Simulation& run, Readout& r) {
+// What every chart-free read-out shares: the coordinates given (a chart's or the convention
+// frame's), K, the energies, spin, vorticity, det L, C_x and C_y.
+void read_embedded(const Simulation& run, const PaperCoordinates& c, double K, double speed, Readout& r) {
   const EmbeddedScene& model = *run.embedded;
   const Coords& y = run.state.y;
-  const ProfileReadout p = profile_readout(model, y);
-  r.coordinates = p.coordinates;
-  r.curvature = p.K;
+  r.coordinates = c;
+  r.curvature = K;
   const EnergyParts parts = embedded_energy_parts(model, y);
   r.energy = parts.kinetic + parts.potential;
   const EmbeddedEnergy split = embedded_energy_split(model, y);
   r.energy_orbital = split.orbital;
   r.energy_deformation = r.energy - split.orbital;
-  r.spin = p.coordinates.p_alpha;
-  r.speed = p.speed;
-  r.heading = p.heading;
-  r.vorticity = p.coordinates.p_beta;
-  r.det_L = p.coordinates.det_L;
+  r.spin = c.p_alpha;
+  r.speed = speed;
+  r.vorticity = c.p_beta;
+  r.det_L = c.det_L;
   r.separated = separated_energies(run.scene, run.state);
   r.actions_unsupported = *actions_unsupported_reason(run.scene);
 }
 
+// The read-out where the curvature varies (engine/embedded_run.h): the chart (u, φ) and K.
+void read_profile(const Simulation& run, Readout& r) {
+  const ProfileReadout p = profile_readout(*run.embedded, run.state.y);
+  read_embedded(run, p.coordinates, p.K, p.speed, r);
+  r.heading = p.heading;
+}
+
 // The read-out on a surface with no chart (engine/embedded_run.h FreeReadout).
 void read_free(const Simulation& run, Readout& r) {
-  const EmbeddedScene& model = *run.embedded;
-  const Coords& y = run.state.y;
-  const FreeReadout f = free_readout(model, y);
-  r.coordinates = f.coordinates;
-  r.curvature = f.K;
-  const EnergyParts parts = embedded_energy_parts(model, y);
-  r.energy = parts.kinetic + parts.potential;
-  const EmbeddedEnergy split = embedded_energy_split(model, y);
-  r.energy_orbital = split.orbital;
-  r.energy_deformation = r.energy - split.orbital;
-  r.spin = f.coordinates.p_alpha;
-  r.speed = f.speed;
-  r.vorticity = f.coordinates.p_beta;
-  r.det_L = f.coordinates.det_L;
-  r.separated = separated_energies(run.scene, run.state);
-  r.actions_unsupported = *actions_unsupported_reason(run.scene);
+  const FreeReadout f = free_readout(*run.embedded, run.state.y);
+  read_embedded(run, f.coordinates, f.K, f.speed, r);
   r.embedded = Readout::Embedded{f.body.V, f.body.e[0], f.body.e[1], f.normal, f.distance, f.tangency};
 }
 
