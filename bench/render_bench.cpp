@@ -14,9 +14,12 @@
 #include "codec/presets.h"
 #include "codec/scene_json.h"
 #include "engine/chart.h"
+#include "engine/formula_examples.h"
 #include "engine/simulation.h"
+#include "engine/surface_shape.h"
 #include "render/gl_context.h"
 #include "render/gl_renderer.h"
+#include "render/implicit_mesh.h"
 #include "render/jpeg_encoder.h"
 #include "render/overlay.h"
 #include "render/png_encoder.h"
@@ -236,6 +239,70 @@ void anti_aliasing_and_cache_tables(int frames) {
       if (f >= 2) ts.push_back(ms), tt.push_back(mt);
     }
     std::printf("| %dx%d | %.2f | %.2f | %.2f |\n", w, h, median(ts), median(tt), median(tt) / median(ts));
+  }
+  // A surface given by a formula: the same torus written as F = 0 (the same bodies at the same
+  // places) in the formula view against the built-in torus in the revolution view, each frame aimed,
+  // built and drawn, interleaved. Issue 49's target: formula / built-in ≤ 1.5. The mesh is cached
+  // (its first build is timed below).
+  std::vector<render::Snapshot> formula_torus = torus;
+  for (render::Snapshot& s : formula_torus) {
+    s.surface.kind = SurfaceKind::implicit;
+    s.surface.F = "(x^2 + y^2 + z^2 + c^2 - a^2)^2 - 4*c^2*(x^2 + y^2)";
+    s.surface.parameters = {{"a", 1.0}, {"c", 2.5}};
+  }
+  std::printf(
+      "| size | torus frame ms (revolution view) | formula torus frame ms (formula view) | formula / "
+      "built-in |\n"
+      "| --- | --- | --- | --- |\n");
+  for (const auto& [w, h] : {std::pair{640, 480}, std::pair{1280, 720}}) {
+    std::vector<double> tb, tf;
+    const auto frame_ms = [&](const render::Snapshot& s, render::ViewKind kind) {
+      const auto t = std::chrono::steady_clock::now();
+      render::ViewOptions view;
+      view.kind = kind;
+      view.width = w;
+      view.height = h;
+      view.scale *= render::body_scale_length(kind, s.surface);
+      render::aim_camera_at_body(view, s);
+      const render::FrameScene scene = render::build_scene(s, view);
+      c.render_ms(context, scene, w, h);
+      return ms_since(t);
+    };
+    for (int f = 0; f < n; ++f) {
+      const double mb = frame_ms(torus[f], render::ViewKind::revolution);
+      const double mf = frame_ms(formula_torus[f], render::ViewKind::formula);
+      if (f >= 2) tb.push_back(mb), tf.push_back(mf);
+    }
+    std::printf("| %dx%d | %.2f | %.2f | %.2f |\n", w, h, median(tb), median(tf), median(tf) / median(tb));
+  }
+  // Meshing each example surface at the default resolution (render/implicit_mesh.h), and the whole
+  // static geometry (mesh, grid, K = 0 curves, edges) of its view: the first frame's extra cost.
+  // Issue 49's target: ≤ 300 ms.
+  std::printf(
+      "\n| example | mesh ms | triangles | a new shape ms (box search, mesh, grid, edges) |\n| --- | --- | "
+      "--- | --- |\n");
+  for (const FormulaExample& example : formula_examples()) {
+    const Surface surface = example_surface(example);
+    const std::shared_ptr<const SurfaceShape> shape = surface_shape_of(surface);
+    std::size_t triangles = 0;
+    std::vector<double> mesh_ms;
+    for (int k = 0; k < 3; ++k) {
+      const auto t = std::chrono::steady_clock::now();
+      triangles = render::mesh_implicit_surface(*shape, shape->box).triangles.size();
+      mesh_ms.push_back(ms_since(t));
+    }
+    // A new parameter value each time, so that the cache misses.
+    std::vector<double> static_ms;
+    for (int k = 0; k < 3; ++k) {
+      Surface fresh = surface;
+      fresh.bounds = SurfaceBounds{};
+      for (int i = 0; i < 3; ++i) (*fresh.bounds)[i] = {shape->box[i][0] - 1e-6 * (k + 1), shape->box[i][1]};
+      const auto t = std::chrono::steady_clock::now();
+      (void)render::static_geometry(fresh, render::ViewKind::formula);
+      static_ms.push_back(ms_since(t));
+    }
+    std::printf("| %s | %.1f | %zu | %.1f |\n", std::string(example.title).c_str(), median(mesh_ms),
+                triangles, median(static_ms));
   }
   std::printf("\n");
 }

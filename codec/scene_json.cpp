@@ -415,13 +415,10 @@ json geodesic_base(const Scene& main) {
   } else {
     initial["phi"] = in.phi;
     initial["phi_dot"] = in.phi_dot;
-  }
-  if (has_profile_chart(main.surface.kind)) {
-    initial["u"] = in.u;
-    initial["u_dot"] = in.u_dot;
-  } else {
-    initial["r"] = in.r;
-    initial["r_dot"] = in.r_dot;
+    // The profile chart's u, else the polar chart's r.
+    const bool profile = has_profile_chart(main.surface.kind);
+    initial[profile ? "u" : "r"] = profile ? in.u : in.r;
+    initial[profile ? "u_dot" : "r_dot"] = profile ? in.u_dot : in.r_dot;
   }
   return {{"body", {{"mass", main.body.mass}, {"inertia", main.body.inertia}, {"model", "rigid"}}},
           {"initial", initial}};

@@ -4,6 +4,7 @@
 #include <type_traits>
 
 #include "engine/formula.h"
+#include "engine/formula_examples.h"
 #include "engine/scene_fields.h"
 
 namespace spinfold {
@@ -67,6 +68,24 @@ json property(const Field& field) {
   return p;
 }
 
+// The examples (engine/formula_examples.h) of the surface kind whose formula field this is (F:
+// implicit, z: graph): each its name, title, formula, parameters, start point and note.
+json formula_examples_json(std::string_view field) {
+  json list = json::array();
+  for (const FormulaExample& e : formula_examples()) {
+    if ((e.kind == SurfaceKind::graph) != (field == "z")) continue;
+    json parameters = json::object();
+    for (int i = 0; i < e.count; ++i) parameters[std::string(e.parameters[i].first)] = e.parameters[i].second;
+    list.push_back({{"name", e.name},
+                    {"title", e.title},
+                    {"formula", e.formula},
+                    {"parameters", parameters},
+                    {"X", json::array({e.start[0], e.start[1], e.start[2]})},
+                    {"note", e.note}});
+  }
+  return list;
+}
+
 template <typename Field>
 json property_of(const Field& field) {
   using T = typename Field::Value;
@@ -84,10 +103,12 @@ json property_of(const Field& field) {
       return {{"enum", integrator_names()}, {"default", field.fallback()}};
     if (field.text_rule == TextRule::formula)
       return {{"type", "string"},
+              {"title", field.name == "z" ? "z = f(x, y)" : "F(x, y, z) = 0"},
               {"maxLength", kMaxFormulaLength},
               {"default", field.fallback()},
               {"description", field.description},
-              {"x-formula", true}};
+              {"x-formula", true},
+              {"x-examples", formula_examples_json(field.name)}};
     return {{"type", "string"}};
   } else if constexpr (Point3<T>) {
     const auto d = field.fallback();

@@ -280,8 +280,9 @@ inline constexpr std::tuple kSurfaceFields{
                     "letter then letters, digits or _")),
     only_on(kFormulaSurfaces,
             value_field("bounds", &Surface::bounds,
-                        "the piece drawn, [[x0, x1], [y0, y1], [z0, z1]] (absent: a box round the start "
-                        "chosen from the formula's scale); never where the body may go")),
+                        "the piece drawn, [[x0, x1], [y0, y1], [z0, z1]] (absent: a box chosen from the "
+                        "formula, a closed surface whole, an unbounded one about the origin); never where "
+                        "the body may go")),
 };
 
 // body.inertia: the number below (isotropic J), or a symmetric positive-definite matrix

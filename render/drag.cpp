@@ -198,6 +198,13 @@ double arrow_pixels_per_speed(const ViewOptions& view, const Surface& surface) {
   return 0.25 * std::min(view.width, view.height) / body_scale_length(view.kind, surface);
 }
 
+std::optional<std::string> drag_unsupported_reason(const Surface& surface) {
+  if (curvature_varies(surface.kind) && !has_profile_chart(surface.kind))
+    return "has no chart to drag the body over yet: on a surface given by a formula, set its start as "
+           "initial.X";
+  return std::nullopt;
+}
+
 std::optional<DragHandles> drag_handles(const Snapshot& snapshot, const ViewOptions& view,
                                         const BodyPlace& body) {
   const Chart chart(snapshot.surface);

@@ -18,6 +18,11 @@
 
 namespace spinfold::render {
 
+// Why a frame of this surface has no drag handles, or nullopt: the search runs over a chart (the
+// polar one, a surface of revolution's (u, φ)), and a surface given by a formula has none (its start
+// is initial.X, typed).
+std::optional<std::string> drag_unsupported_reason(const Surface& surface);
+
 // Where the main body is and how it moves, in the scene's chart (engine/readout.h).
 struct BodyPlace {
   double q = 0.0;                 // r [length] on S², H² and the plane; u where the curvature varies

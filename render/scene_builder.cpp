@@ -10,6 +10,7 @@
 
 #include "engine/integer_cast.h"
 #include "engine/surface_geodesics.h"
+#include "engine/surface_shape.h"
 #include "render/view_table.h"
 #include "render/views/camera.h"
 #include "render/views/drawing.h"
@@ -27,12 +28,10 @@ namespace {
 // the surface), so that a trail follows the surface instead of cutting through it.
 void append_path(std::vector<Vec3>& out, const Surface& surface, const Vec3& a, const Vec3& b) {
   if (curvature_varies(surface.kind)) {  // chords of 1/32 of the smallest feature, pushed back onto it
-    const RevolutionSurface shape = revolution_surface(surface);
-    const RevolutionImplicit implicit(shape);
-    const double feature = revolution_entry(shape.kind).picture(shape).feature;
-    const int n = clamped_integer(std::ceil(32.0 * (b - a).norm() / feature), 1, 16);
+    const std::shared_ptr<const SurfaceShape> shape = surface_shape_of(surface);
+    const int n = clamped_integer(std::ceil(32.0 * (b - a).norm() / shape->feature), 1, 16);
     for (int i = 1; i < n; ++i)
-      out.push_back(project_onto_surface(implicit, a + (b - a) * (static_cast<double>(i) / n)));
+      out.push_back(project_onto_surface(*shape->implicit, a + (b - a) * (static_cast<double>(i) / n)));
     out.push_back(b);
     return;
   }
@@ -132,13 +131,28 @@ StaticGeometry built_static(const Surface& surface, ViewKind view) {
   return g;
 }
 
-// A varying surface's shape: its kind and every parameter a profile reads.
-using ShapeKey = std::tuple<SurfaceKind, ViewKind, std::array<double, 7>>;
+// A varying surface's mesh in a view: its shape (held, so that its address is never another's) and
+// the view.
+using ShapeKey = std::pair<std::shared_ptr<const SurfaceShape>, ViewKind>;
 ShapeKey shape_key(const Surface& s, ViewKind view) {
-  return {s.kind,
-          view,
-          {s.tube_radius, s.center_radius, s.equatorial_radius, s.polar_radius, s.height, s.width,
-           s.neck_radius}};
+  return {surface_shape_of(s), view};
+}
+
+std::size_t bytes_of(const StaticGeometry& g) {
+  return g.surface.size() * sizeof(LitVertex) + g.grid.size() * sizeof(Vertex) +
+         g.edges.size() * sizeof(SurfaceEdge) + sizeof g;
+}
+
+// Keeps the newest entries within kStaticGeometryCache entries and kStaticGeometryBytes (the newest
+// always, however large).
+template <class Entries>
+void trim(Entries& recent) {
+  std::size_t bytes = 0;
+  for (const auto& entry : recent) bytes += bytes_of(*entry.second);
+  while (recent.size() > 1 && (recent.size() > kStaticGeometryCache || bytes > kStaticGeometryBytes)) {
+    bytes -= bytes_of(*recent.front().second);
+    recent.erase(recent.begin());
+  }
 }
 
 }  // namespace
@@ -173,14 +187,13 @@ std::shared_ptr<const StaticGeometry> static_geometry(const Surface& surface, Vi
   auto built = std::make_shared<const StaticGeometry>(built_static(surface, view));  // outside the lock
   const std::lock_guard lock(mutex);
   recent.emplace_back(key, built);
-  if (recent.size() > kStaticGeometryCache) recent.erase(recent.begin());
+  trim(recent);
   return built;
 }
 
-std::shared_ptr<const StaticGeometry> static_geometry(const Surface& surface, ViewKind view,
-                                                      std::array<double, 2> at) {
+std::shared_ptr<const StaticGeometry> static_geometry(const Surface& surface, ViewKind view, PatchPlace at) {
   static std::mutex mutex;
-  using Key = std::pair<ShapeKey, std::array<double, 2>>;
+  using Key = std::pair<ShapeKey, PatchPlace>;
   static std::vector<std::pair<Key, std::shared_ptr<const StaticGeometry>>> recent;  // newest last
   const Key key{shape_key(surface, view), at};
   {
@@ -201,6 +214,7 @@ std::shared_ptr<const StaticGeometry> static_geometry(const Surface& surface, Vi
   const std::lock_guard lock(mutex);
   recent.emplace_back(key, built);
   if (recent.size() > 4) recent.erase(recent.begin());
+  trim(recent);
   return built;
 }
 
@@ -256,10 +270,9 @@ Vec3 exponential_map(const Surface& surface, const Vec3& X, const Vec3& v, doubl
   if (curvature_varies(surface.kind)) {
     // RK4's error is O((|v|κ/steps)⁴): a step per eighth of the smallest feature (a body's ellipse,
     // a quarter feature across, takes 2) keeps it under 1e-4 of the length drawn, below a pixel.
-    const RevolutionSurface shape = revolution_surface(surface);
-    const double feature = revolution_entry(shape.kind).picture(shape).feature;
-    const int steps = clamped_integer(std::ceil(8.0 * length / feature), 1, 16);
-    return implicit_exponential_map(RevolutionImplicit(shape), X, v, steps);
+    const std::shared_ptr<const SurfaceShape> shape = surface_shape_of(surface);
+    const int steps = clamped_integer(std::ceil(8.0 * length / shape->feature), 1, 16);
+    return implicit_exponential_map(*shape->implicit, X, v, steps);
   }
   return polar_C(surface, length) * X + (polar_S(surface, length) / length) * v;
 }
@@ -279,10 +292,7 @@ double drawn_scale(const Surface& surface, const BodySnapshot& body, double scal
   const double half_trace = 0.5 * (g(0, 0) + g(1, 1)), half_gap = 0.5 * (g(0, 0) - g(1, 1));
   const double extent = std::sqrt(std::max(0.0, half_trace + std::hypot(half_gap, g(0, 1))));
   double radius = surface.radius;
-  if (curvature_varies(surface.kind)) {
-    const RevolutionSurface shape = revolution_surface(surface);
-    radius = revolution_entry(shape.kind).picture(shape).feature;
-  }
+  if (curvature_varies(surface.kind)) radius = surface_shape_of(surface)->feature;
   const double limit = kMaxDrawnExtent * radius;
   return scale * extent > limit ? limit / extent : scale;
 }
@@ -332,7 +342,7 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   scene.draw_surface = (view.layers & kSurface) != 0;
   scene.draw_grid = (view.layers & kGrid) != 0;
   if ((scene.draw_surface || scene.draw_grid) && model.uses_static()) {
-    const std::optional<std::array<double, 2>> patch = model.patch_at(snapshot);
+    const std::optional<PatchPlace> patch = model.patch_at(snapshot);
     scene.statics = patch ? static_geometry(surface, view.kind, *patch) : static_geometry(surface, view.kind);
   }
   scene.tint_by_curvature = (view.layers & kCurvature) != 0;

@@ -47,10 +47,15 @@ const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view);
 // (its parameters), so the last kStaticGeometryCache of those are kept and older ones freed once no
 // frame holds them (a slider dragged through a thousand tube radii keeps eight meshes).
 inline constexpr std::size_t kStaticGeometryCache = 8;
+// And at most this many bytes of them (a formula surface's mesh is ~4 MB; the newest is kept whatever
+// its size), the patches' four included.
+inline constexpr std::size_t kStaticGeometryBytes = std::size_t{64} << 20;
 std::shared_ptr<const StaticGeometry> static_geometry(const Surface& surface, ViewKind view);
+// Where a view's patch of the surface is (ViewModel::patch_at): the revolution view's (u, φ, 0), the
+// formula view's box centre [length].
+using PatchPlace = std::array<double, 3>;
 // The same with the view's patch at `at` added (ViewModel::patch_at; the last four are kept).
-std::shared_ptr<const StaticGeometry> static_geometry(const Surface& surface, ViewKind view,
-                                                      std::array<double, 2> at);
+std::shared_ptr<const StaticGeometry> static_geometry(const Surface& surface, ViewKind view, PatchPlace at);
 
 // The curvature layer's diverging colour of K·ℓ² (ℓ: the surface's length, so that the colour is
 // the same for any size): white at 0, warm (orange-red) for K > 0, cool (blue) for K < 0, saturated

@@ -14,6 +14,8 @@ ViewKind default_view(SurfaceKind surface) {
     case SurfaceKind::sphere: return ViewKind::sphere;
     case SurfaceKind::pseudosphere: return ViewKind::disk;
     case SurfaceKind::plane: return ViewKind::plane;
+    case SurfaceKind::implicit:
+    case SurfaceKind::graph: return ViewKind::formula;
     default: return ViewKind::revolution;
   }
 }
@@ -40,9 +42,7 @@ std::optional<std::string> view_unsupported_reason(ViewKind view, SurfaceKind su
   std::string names;
   for (const ViewInfo& v : views())
     if (shows(v, surface)) names += (names.empty() ? "" : ", ") + std::string(v.name);
-  if (names.empty())
-    return "no view draws a surface of kind " + std::string(enum_name(surface)) +
-           " yet (formula surfaces run, sample and sweep; their pictures are not built)";
+  if (names.empty()) return "no view draws a surface of kind " + std::string(enum_name(surface));
   return "the " + std::string(enum_name(surface)) + " is shown in these views: " + names;
 }
 

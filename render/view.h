@@ -22,6 +22,7 @@ enum class ViewKind {
   conformal,    // every surface: stereographic (S²), identity (plane), Poincaré (H²), continuous in K, 2-D
   revolution,   // a surface of revolution whose curvature varies (torus, spheroid, bump, catenoid) in ℝ³
   chart,        // the same surfaces' chart (u, φ) unrolled flat, K as the background's colour, 2-D
+  formula,      // a surface given by a formula (implicit F = 0 or a graph z = f(x, y)) in ℝ³
 };
 
 // The one table of views: the name the API, the CLI and the UI use, the surfaces each shows, and
@@ -84,7 +85,7 @@ inline constexpr int kMaxImageSide = 4096;
 // Whether a view can show a surface kind.
 bool shows(const ViewInfo& view, SurfaceKind surface);
 // The view a surface is shown in by default: sphere → sphere, pseudosphere → disk, plane → plane,
-// the surfaces whose curvature varies → revolution.
+// the surfaces of revolution → revolution, the formula surfaces → formula.
 ViewKind default_view(SurfaceKind surface);
 // Why a view cannot show a surface, or nullopt.
 std::optional<std::string> view_unsupported_reason(ViewKind view, SurfaceKind surface);

@@ -19,6 +19,7 @@ const ViewModel& conformal_view();
 
 const ViewModel& revolution_view();
 const ViewModel& chart_view();
+const ViewModel& formula_view();
 
 namespace {
 
@@ -59,6 +60,11 @@ constexpr ViewRow kViews[] = {
       "the surface's chart unrolled: φ across, u down, the background coloured by the curvature K (warm "
       "> 0, cool < 0) with the K = 0 parallels dark; lengths and angles are not true"},
      &chart_view},
+    {{"formula", ViewKind::formula, true, kFormulaSurfaces, "3-D surface F = 0",
+      "a surface given by a formula in space, its drawn box meshed and shaded by the exact normal, with "
+      "the level curves of x, y and z as its grid, its K = 0 curves marked, and the curvature layer "
+      "colouring it by K"},
+     &formula_view},
 };
 
 constexpr auto kInfos = [] {

@@ -31,6 +31,7 @@ packages=(
   python3-yaml gettext-base                       # the Kubernetes recipe's test: PyYAML, envsubst
   python3-setuptools python3-pip                  # pip install --no-build-isolation of the package
   jupyter-nbconvert python3-nbconvert python3-ipykernel python3-matplotlib  # the notebook (examples/)
+  libopenvdb-dev                                  # meshes of formula surfaces (OpenVDB's volume-to-mesh)
   libcairo2-dev fonts-dejavu-core               # vector figures (SVG, PDF): cairo, Debian-packaged and
                                                   # mature, one API for both, text in DejaVu Sans
   libxml2-utils poppler-utils librsvg2-bin        # the figures' checks: xmllint, pdfinfo/pdftoppm, rsvg-convert

@@ -7,6 +7,8 @@
 import { sleep } from "./api.js";
 import { $, el, clear } from "./dom.js";
 import { begin, refused, typedValue } from "./edits.js";
+import { formulaField } from "./formula.js";
+import { formulaRow, updateFormulaRow } from "./formularow.js";
 import { applyChange } from "./session.js";
 import { store, withView } from "./state.js";
 import { curvatureForm, curvatureVaries, shownRadius, surfaceKinds, surfaceSwitch, surfaceTitle } from "./surface.js";
@@ -200,7 +202,10 @@ function shapeRows(s) {
   const words = (spec) => ({ label: spec.title, unit: displayUnit(spec["x-unit"]), help: spec.description });
   /** @type {Row[]} */
   const rows = Object.entries(fields)
-    .filter(([, spec]) => /** @type {any} */ (spec)["x-surfaces"]?.includes(kind))
+    .filter(
+      ([, spec]) =>
+        /** @type {any} */ (spec)["x-surfaces"]?.includes(kind) && /** @type {any} */ (spec).type === "number",
+    )
     .map(([key, spec]) => ({
       key,
       field: `surface.${key}`,
@@ -212,6 +217,25 @@ function shapeRows(s) {
       value: current.surface?.[key] ?? /** @type {any} */ (spec).default,
       patch: (/** @type {number} */ v) => ({ surface: { [key]: v } }),
     }));
+  // A formula's parameters (surface.parameters), each a slider over a range about its value.
+  const parameters = /** @type {Record<string, number>} */ (current.surface?.parameters ?? {});
+  const parameterSpec = fields.parameters;
+  for (const [name, value] of Object.entries(parameters)) {
+    const reach = Math.max(5, 2 * Math.abs(value));
+    rows.push({
+      key: `parameter-${name}`,
+      field: `surface.parameters.${name}`,
+      label: name,
+      unit: "",
+      help: `The formula's parameter ${name}. ${parameterSpec?.description ?? ""}`,
+      min: value < 0 ? -reach : 0,
+      max: reach,
+      step: 0.01,
+      restarts: true,
+      value,
+      patch: (/** @type {number} */ v) => ({ surface: { parameters: { [name]: v } } }),
+    });
+  }
   const height = current.potential?.height;
   if (height?.kind !== "spring") {
     const gravity = s.schema.properties.potential.properties.height.oneOf.find(
@@ -261,10 +285,11 @@ export function renderPhysical(s, b) {
     return;
   const form = $("physical");
   const rows = physicalRows(s);
-  const keys = rows.map((r) => r.key).join(",");
+  const keys = [formulaField(s)?.key ?? "", ...rows.map((r) => r.key)].join(",");
   if (form.dataset.keys === keys) {
     for (const row of rows) updates.get(row.key)?.(row);
     $("phys-surface").value = s.surface.kind;
+    updateFormulaRow(s);
     return;
   }
   form.dataset.keys = keys;
@@ -278,6 +303,8 @@ export function renderPhysical(s, b) {
     }),
     surfaceKindRow(s),
   );
+  const formula = formulaRow(s);
+  if (formula) form.append(formula);
   for (const row of rows) form.append(physicalRow(row));
 }
 
@@ -429,7 +456,7 @@ function physicalRow(spec) {
 /** The surface's kind; switching restarts the run. @param {AppState} s */
 function surfaceKindRow(s) {
   const select = el("select", { id: "phys-surface", name: "phys.surface", "aria-describedby": "phys-surface-help" });
-  // Only the kinds some view draws (a formula surface has no picture yet): the views say what they show.
+  // Only the kinds some view draws: the views say what they show.
   const drawn = (/** @type {string} */ kind) => !s.views.length || s.views.some((v) => v.surfaces.includes(kind));
   for (const value of surfaceKinds(s.schema).filter(drawn))
     select.add(new Option(surfaceTitle(s.schema, value), value));

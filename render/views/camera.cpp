@@ -289,4 +289,70 @@ bool shows_main_body(const ViewOptions& view, const Snapshot& snapshot) {
   return badness(model, snapshot.surface, view, main, hud_boxes(snapshot, view)) == 0.0;
 }
 
+void aim_in_space(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud,
+                  const SpaceAim& aim) {
+  const Surface& surface = snapshot.surface;
+  const glm::dvec3 n = aim.normal;
+  view.target.reset();
+  std::vector<Sight> points = sights(model, snapshot, view, true);
+  // An unbounded surface is drawn beyond its piece too, but the camera frames what is on the piece
+  // (a companion escaping to infinity is not followed) — unless the main body is beyond: then it
+  // follows that body, framing it and its outline alone (the HUD says where it is).
+  std::erase_if(points, [&](const Sight& p) { return !aim.on_piece(p.at); });
+  const BodySnapshot& main = snapshot.bodies.front();
+  if (!aim.on_piece(model.world_position(surface, main.X)) && model.draws(surface, main.X)) {
+    points = {{model.world_position(surface, main.X), 1000.0}};
+    for (const Vec3& P :
+         ellipse_points(surface, main, model.body_drawing_scale(surface, main, view.scale), 8))
+      points.push_back({model.world_position(surface, P), 5.0});
+  }
+  if (points.empty()) return;
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const Sight& p : points) lo = glm::min(lo, p.at), hi = glm::max(hi, p.at);
+  const glm::dvec3 centre = 0.5 * (lo + hi);
+  double radius = aim.radius;
+  for (const Sight& p : points) radius = std::max(radius, glm::length(p.at - centre));
+  const double aspect = static_cast<double>(view.width) / view.height;
+  const double half_fov = std::atan(std::tan(glm::radians(kFovY) / 2) * std::min(1.0, aspect));
+  view.target = std::array<double, 3>{centre.x, centre.y, centre.z};
+  const double base = radius / std::sin(0.85 * half_fov);
+  double best = std::numeric_limits<double>::infinity();
+  // The preferences first: the badness is summed only while the camera can still win.
+  const auto cost = [&](const ViewOptions& v, double pull) {
+    const glm::dvec3 towards(std::cos(v.pitch) * std::cos(v.yaw), std::cos(v.pitch) * std::sin(v.yaw),
+                             std::sin(v.pitch));
+    const double preference = 4.0 * (pull - 1.0) / 0.6 + 1.5 * (1.0 - std::abs(glm::dot(towards, n))) +
+                              0.5 * std::abs(v.pitch - 0.5);
+    return badness(model, surface, v, points, hud, best - preference) + preference;
+  };
+  const auto consider = [&](double yaw, double pitch, double pull) {
+    ViewOptions v = view;
+    v.yaw = yaw, v.pitch = pitch, v.distance = base * pull;
+    const double c = cost(v, pull);
+    if (c < best) best = c, view = v;
+  };
+  const double normal_yaw =
+      std::hypot(n.x, n.y) > 1e-6 ? std::atan2(n.y, n.x) : std::atan2(centre.y, centre.x);
+  const double facing_pitch = std::clamp(std::asin(std::clamp(n.z, -1.0, 1.0)), -1.2, 1.2);
+  // Most frames end here: from the body's own side, a little above, everything is seen (badness
+  // 0); the wide search (183 cameras, each casting a ray per sight) is for the rest.
+  for (const double pitch : {std::max(facing_pitch, 0.5), facing_pitch}) consider(normal_yaw, pitch, 1.0);
+  if (best < 3.0) return;  // nothing hidden or boxed: only the preferences are left to weigh
+  for (const double pull : {1.0, 1.3, 1.6}) {
+    consider(normal_yaw, facing_pitch, pull);
+    for (const double pitch : {1.15, 0.75, 0.35, -0.35, -0.75})
+      for (int k = 0; k < 12; ++k) consider(normal_yaw + 2 * kPi * k / 12, pitch, pull);
+  }
+  // The main body still hidden or boxed: in a small frame the HUD covers the centre, where every
+  // orbit puts the body. Slide it to the free side, seen from its own side if that clears it.
+  if (best >= 1000.0) {
+    ViewOptions facing = view;
+    facing.yaw = normal_yaw, facing.pitch = std::max(facing_pitch, 0.5), facing.distance = base;
+    if (slide_clear_of_boxes(model, surface, facing, points, hud) < 1000.0)
+      view = facing;
+    else
+      slide_clear_of_boxes(model, surface, view, points, hud);
+  }
+}
+
 }  // namespace spinfold::render

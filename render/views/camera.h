@@ -3,6 +3,7 @@
 // and how badly a candidate shows it (aim_camera_at_body).
 #pragma once
 
+#include <functional>
 #include <initializer_list>
 #include <limits>
 #include <vector>
@@ -96,5 +97,20 @@ inline constexpr int kRimSlices = 1024;
 //   then slid away from the boxes and drawn back (view.zoom < 1) until they are clear.
 void aim_2d_window(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud,
                    double half);
+
+// The aiming of a view of a surface in space (revolution, formula): orbiting the centre of the bodies
+// and their recent trails on the drawn piece at the distance that frames them (at least `radius`),
+// from the best of: the main body's normal, and every 30° round z at five elevations, drawn back as
+// far as 1.6×. The cost of a camera is its badness (a hidden or boxed main body 1000, each trail 10 in
+// all) plus up to 4 for drawing back, up to 1.5 for looking at the main body obliquely and a little
+// for an elevation far from 0.5 rad (a surface is read best from a little above): a near camera facing
+// the body that shows most of its path wins over a far one that shows all of it edge-on.
+struct SpaceAim {
+  glm::dvec3 normal{0.0, 0.0, 1.0};                 // the surface's unit normal at the main body
+  double radius = 1.0;                              // the least framing radius [world units]
+  std::function<bool(const glm::dvec3&)> on_piece;  // whether a world point is on the drawn piece
+};
+void aim_in_space(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud,
+                  const SpaceAim& aim);
 
 }  // namespace spinfold::render

@@ -91,7 +91,7 @@ class RevolutionView final : public ViewModel {
   // A main body beyond the drawn piece: a patch of the surface round it, its centre on a lattice of
   // powers of two no coarser than a quarter of its half-extents (it moves in steps: a frame and the
   // next share one).
-  std::optional<std::array<double, 2>> patch_at(const Snapshot& snapshot) const override {
+  std::optional<PatchPlace> patch_at(const Snapshot& snapshot) const override {
     if (snapshot.bodies.empty() || on_view(snapshot.surface, snapshot.bodies.front().X)) return std::nullopt;
     const Vec3& X = snapshot.bodies.front().X;
     if (!within_drawing_range(snapshot.surface, X)) return std::nullopt;  // the note says so
@@ -102,11 +102,11 @@ class RevolutionView final : public ViewModel {
       const double quantum = std::exp2(std::floor(std::log2(extent / 4)));
       return std::round(v / quantum) * quantum;
     };
-    return std::array<double, 2>{snapped(u, patch.du), snapped(phi, patch.dphi)};
+    return PatchPlace{snapped(u, patch.du), snapped(phi, patch.dphi), 0.0};
   }
   bool paints_surface_at(const Snapshot& snapshot, const Vec3& X) const override {
     if (on_view(snapshot.surface, X)) return true;
-    const std::optional<std::array<double, 2>> at = patch_at(snapshot);
+    const std::optional<PatchPlace> at = patch_at(snapshot);
     if (!at) return false;
     const ProfileShape shape = profile_shape(snapshot.surface);
     const PatchShape patch = patch_shape(shape, (*at)[0]);
@@ -116,7 +116,7 @@ class RevolutionView final : public ViewModel {
   }
   // Lit and tinted as the piece (the same full scale of |K|), with its own parallels and meridians;
   // never over the piece (its range in u stops at the piece's end).
-  StaticGeometry build_patch(const Surface& surface, std::array<double, 2> at) const override {
+  StaticGeometry build_patch(const Surface& surface, PatchPlace at) const override {
     const ProfileShape shape = profile_shape(surface);
     const double l = shape.picture.length, full = largest_curvature(shape, kRings);
     const PatchShape patch = patch_shape(shape, at[0]);
@@ -211,83 +211,18 @@ class RevolutionView final : public ViewModel {
     return profile_shape(surface).picture.feature;
   }
 
-  // Orbiting the centre of the bodies and their recent trails at the distance that frames them
-  // (aim_orbit's framing), from the best of: the main body's normal, and every 30° round the axis at
-  // five elevations, drawn back as far as 1.6×. The cost of a camera is its badness (a hidden or
-  // boxed main body 1000, each trail 10 in all) plus up to 4 for drawing back, up to 1.5 for
-  // looking at the main body obliquely and a little for an elevation far from 0.5 rad (a surface
-  // is read best from a little above): a near camera facing the body that shows most of its path
-  // wins over a far one that shows all of it edge-on.
+  // Orbiting the bodies from their side (aim_in_space), on the drawn piece, framing at least 2.5
+  // features.
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
     const Surface& surface = snapshot.surface;
     const Vec3 n3 =
         embedded_normal(RevolutionImplicit(profile_shape(surface).surface), snapshot.bodies.front().X);
-    const glm::dvec3 n = n3.allFinite() ? glm::dvec3(n3.x(), n3.y(), n3.z()) : glm::dvec3(0.0, 0.0, 1.0);
-    view.target.reset();
-    std::vector<Sight> points = sights(*this, snapshot, view, true);
-    // The catenoid and the bump are unbounded and what is beyond the drawn piece is drawn too, but
-    // the camera frames what is on it (a companion escaping to infinity is not followed) — unless the
-    // main body is beyond: then it follows that body, framing it and its outline alone (the HUD says
-    // where it is).
-    const double l = profile_shape(surface).picture.length;
-    std::erase_if(points,
-                  [&](const Sight& p) { return !on_view(surface, Vec3(p.at.x, p.at.y, p.at.z) * l); });
-    const BodySnapshot& main = snapshot.bodies.front();
-    if (!on_view(surface, main.X) && within_drawing_range(surface, main.X)) {
-      points = {{world_position(surface, main.X), 1000.0}};
-      for (const Vec3& P : ellipse_points(surface, main, body_drawing_scale(surface, main, view.scale), 8))
-        points.push_back({world_position(surface, P), 5.0});
-    }
-    if (points.empty()) return;
-    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-    for (const Sight& p : points) lo = glm::min(lo, p.at), hi = glm::max(hi, p.at);
-    const glm::dvec3 centre = 0.5 * (lo + hi);
-    // At least 2.5 features round the body (a torus's tube and more), never less than a third of
-    // the picture's unit: the body is seen on its surface, not alone.
     const ProfilePicture picture = profile_shape(surface).picture;
-    double radius = framing_radius(picture) / picture.length;
-    for (const Sight& p : points) radius = std::max(radius, glm::length(p.at - centre));
-    const double aspect = static_cast<double>(view.width) / view.height;
-    const double half_fov = std::atan(std::tan(glm::radians(kFovY) / 2) * std::min(1.0, aspect));
-    view.target = std::array<double, 3>{centre.x, centre.y, centre.z};
-    const double base = radius / std::sin(0.85 * half_fov);
-    double best = std::numeric_limits<double>::infinity();
-    // The preferences first: the badness is summed only while the camera can still win.
-    const auto cost = [&](const ViewOptions& v, double pull) {
-      const glm::dvec3 towards(std::cos(v.pitch) * std::cos(v.yaw), std::cos(v.pitch) * std::sin(v.yaw),
-                               std::sin(v.pitch));
-      const double preference = 4.0 * (pull - 1.0) / 0.6 + 1.5 * (1.0 - std::abs(glm::dot(towards, n))) +
-                                0.5 * std::abs(v.pitch - 0.5);
-      return badness(*this, surface, v, points, hud, best - preference) + preference;
-    };
-    const auto consider = [&](double yaw, double pitch, double pull) {
-      ViewOptions v = view;
-      v.yaw = yaw, v.pitch = pitch, v.distance = base * pull;
-      const double c = cost(v, pull);
-      if (c < best) best = c, view = v;
-    };
-    const double normal_yaw =
-        std::hypot(n.x, n.y) > 1e-6 ? std::atan2(n.y, n.x) : std::atan2(centre.y, centre.x);
-    const double facing_pitch = std::clamp(std::asin(std::clamp(n.z, -1.0, 1.0)), -1.2, 1.2);
-    // Most frames end here: from the body's own side, a little above, everything is seen (badness
-    // 0); the wide search (183 cameras, each casting a ray per sight) is for the rest.
-    for (const double pitch : {std::max(facing_pitch, 0.5), facing_pitch}) consider(normal_yaw, pitch, 1.0);
-    if (best < 3.0) return;  // nothing hidden or boxed: only the preferences are left to weigh
-    for (const double pull : {1.0, 1.3, 1.6}) {
-      consider(normal_yaw, facing_pitch, pull);
-      for (const double pitch : {1.15, 0.75, 0.35, -0.35, -0.75})
-        for (int k = 0; k < 12; ++k) consider(normal_yaw + 2 * kPi * k / 12, pitch, pull);
-    }
-    // The main body still hidden or boxed: in a small frame the HUD covers the centre, where every
-    // orbit puts the body. Slide it to the free side, seen from its own side if that clears it.
-    if (best >= 1000.0) {
-      ViewOptions facing = view;
-      facing.yaw = normal_yaw, facing.pitch = std::max(facing_pitch, 0.5), facing.distance = base;
-      if (slide_clear_of_boxes(*this, surface, facing, points, hud) < 1000.0)
-        view = facing;
-      else
-        slide_clear_of_boxes(*this, surface, view, points, hud);
-    }
+    const double l = picture.length;
+    aim_in_space(*this, view, snapshot, hud,
+                 {n3.allFinite() ? glm::dvec3(n3.x(), n3.y(), n3.z()) : glm::dvec3(0.0, 0.0, 1.0),
+                  framing_radius(picture) / l,
+                  [&](const glm::dvec3& w) { return on_view(surface, Vec3(w.x, w.y, w.z) * l); }});
   }
   std::string grid_caption(const Snapshot& snapshot, const ViewOptions& view) const override {
     return std::string("Grid: meridians every 30 degrees and parallels; the K = 0 parallels darker.") +

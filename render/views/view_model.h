@@ -80,12 +80,8 @@ class ViewModel {
   // Where the main body is off the piece build_static draws (an unbounded surface's), the frame adds
   // a patch of the surface round it: patch_at says where (equal places, one patch: it moves in
   // steps, and frames share it), build_patch builds it as build_static builds the piece.
-  virtual std::optional<std::array<double, 2>> patch_at(const Snapshot& /*snapshot*/) const {
-    return std::nullopt;
-  }
-  virtual StaticGeometry build_patch(const Surface& /*surface*/, std::array<double, 2> /*at*/) const {
-    return {};
-  }
+  virtual std::optional<PatchPlace> patch_at(const Snapshot& /*snapshot*/) const { return std::nullopt; }
+  virtual StaticGeometry build_patch(const Surface& /*surface*/, PatchPlace /*at*/) const { return {}; }
 
   // ---- Camera
   // The view-projection matrix of the frame.

@@ -7,6 +7,7 @@
 
 #include "engine/number_text.h"
 #include "engine/readout.h"
+#include "engine/scene_fields.h"
 #include "render/snapshot.h"
 #include "render/view_parameters.h"
 #include "server/context.h"
@@ -46,6 +47,8 @@ DragFrame drag_frame(ServerContext& server, const Call& call, bool with_scene) {
     d.t = s->run.state.t;
     d.version = s->version;
   }
+  if (const auto why = render::drag_unsupported_reason(d.snapshot.surface))
+    throw bad(422, "Invalid value", "surface.kind", std::string(enum_name(d.snapshot.surface.kind)), *why);
   d.view = render::resolve_view(view_request(f), d.snapshot);
   return d;
 }

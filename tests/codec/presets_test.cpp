@@ -431,3 +431,105 @@ TEST(Presets, WhereACircleIsPredictedThePathIsOnIt) {
 
 }  // namespace
 }  // namespace spinfold
+
+namespace spinfold {
+namespace {
+
+// The formula presets' claims (issue 49): measured from the sampled path as a reader of the picture
+// would, not from the equations that made it.
+
+// Joachimsthal's integral p·D on x²/a² + y²/b² + z²/c² = 1 at X moving along V: p the distance from
+// the centre to the tangent plane, D the semi-diameter parallel to V.
+double joachimsthal_of(const Readout& r, double a, double b, double c) {
+  const Vec3 X = r.coordinates.X, t = r.embedded->V.normalized();
+  const double p = 1.0 / std::sqrt(X.x() * X.x() / std::pow(a, 4) + X.y() * X.y() / std::pow(b, 4) +
+                                   X.z() * X.z() / std::pow(c, 4));
+  const double D =
+      1.0 / std::sqrt(t.x() * t.x() / (a * a) + t.y() * t.y() / (b * b) + t.z() * t.z() / (c * c));
+  return p * D;
+}
+
+TEST(Presets, OnTheTriaxialEllipsoidTheGeodesicKeepsJoachimsthalsIntegralAndTheSpinningBodyDoesNot) {
+  const Scene scene = preset("joachimsthal_ellipsoid");
+  const double a = scene.surface.parameters.at("a"), b = scene.surface.parameters.at("b"),
+               c = scene.surface.parameters.at("c");
+  Simulation run = start_simulation(scene);
+  const double main0 = joachimsthal_of(readout(run), a, b, c);
+  const double geodesic0 = joachimsthal_of(readout(run.companions.at(0)), a, b, c);
+  EXPECT_NEAR(main0, geodesic0, 1e-12);  // the same start
+  double main_spread = 0.0, geodesic_spread = 0.0;
+  for (double t = 0.5; t <= 20.0; t += 0.5) {
+    ASSERT_TRUE(advance_to(run, t));
+    main_spread = std::max(main_spread, std::abs(joachimsthal_of(readout(run), a, b, c) / main0 - 1.0));
+    geodesic_spread = std::max(
+        geodesic_spread, std::abs(joachimsthal_of(readout(run.companions.at(0)), a, b, c) / geodesic0 - 1.0));
+  }
+  EXPECT_LT(geodesic_spread, 1e-9);
+  EXPECT_GT(main_spread, 1e-2);
+}
+
+// κ_g = n·(V × A)/|V|³ of the path at t, V and A by central differences of the sampled X, and the
+// K s/(m v) predicted there (physics-anysurface.md §2).
+struct Bend {
+  double measured, predicted, K;
+};
+Bend bend_at(Simulation& run, double t, double mass) {
+  const double h = 1e-3;
+  Vec3 X[3];
+  Readout r;
+  for (int i = 0; i < 3; ++i) {
+    advance_to(run, t + (i - 1) * h);
+    const Readout here = readout(run);
+    X[i] = here.coordinates.X;
+    if (i == 1) r = here;
+  }
+  const Vec3 V = (X[2] - X[0]) / (2 * h), A = (X[2] - 2 * X[1] + X[0]) / (h * h);
+  return {r.embedded->n.dot(V.cross(A)) / std::pow(V.norm(), 3), *r.curvature * r.spin / (mass * *r.speed),
+          *r.curvature};
+}
+
+// Every preset on a formula surface whose main body is a spinning rigid body without forces: its path
+// bends by K s/(m v) at every sampled time; the egg crate's bends both ways (K of both signs).
+TEST(Presets, OnEveryFormulaPresetTheSpinningPathBendsByKsOverMv) {
+  int presets = 0;
+  for (const PresetSource& source : preset_sources()) {
+    const Scene scene = *parse_scene_text(source.json).scene;
+    if (!given_by_formula(scene.surface.kind)) continue;
+    ++presets;
+    Simulation run = start_simulation(scene);
+    int left = 0, right = 0;
+    for (double t = 0.5; t <= 12.0; t += 0.5) {
+      const Bend bend = bend_at(run, t, scene.body.mass);
+      ASSERT_EQ(run.state.status, Status::ok) << source.name;
+      EXPECT_NEAR(bend.measured, bend.predicted, 1e-4 * (1.0 + std::abs(bend.predicted)))
+          << source.name << " t = " << t;
+      if (std::abs(bend.predicted) > 0.05) (bend.predicted > 0 ? left : right) += 1;
+    }
+    if (source.name == "egg_crate_spin") {
+      EXPECT_GE(left, 3) << "bends towards one side over the crests and hollows (K > 0)";
+      EXPECT_GE(right, 3) << "and towards the other over the saddles (K < 0)";
+    }
+  }
+  EXPECT_GE(presets, 4);
+}
+
+TEST(Presets, BetweenTwoBumpsTheSpinningBodyStaysOnItsBumpAndTheGeodesicLeaves) {
+  const Scene scene = preset("two_bumps_trap");
+  const double d = scene.surface.parameters.at("d"), w = scene.surface.parameters.at("w");
+  const auto from_bump = [&](const Simulation& r) {
+    const Vec3 X = readout(r).coordinates.X;
+    return std::hypot(X.x() - d, X.y());
+  };
+  Simulation run = start_simulation(scene);
+  double main_far = 0.0, geodesic_far = 0.0;
+  for (double t = 0.5; t <= 40.0; t += 0.5) {
+    ASSERT_TRUE(advance_to(run, t));
+    main_far = std::max(main_far, from_bump(run));
+    geodesic_far = std::max(geodesic_far, from_bump(run.companions.at(0)));
+  }
+  EXPECT_LT(main_far, w);            // on its bump's K > 0 cap, never near the other (2d away)
+  EXPECT_GT(geodesic_far, 3.0 * w);  // off onto the plain
+}
+
+}  // namespace
+}  // namespace spinfold

@@ -78,6 +78,33 @@ TEST(SceneJson, AFormulaSurfaceReadsWritesAndReadsBackTheSame) {
   EXPECT_EQ(scene_to_json(*again.scene), written);
 }
 
+// A geodesic companion on every kind of surface starts where the main body does, at its speed and
+// heading, with no spin: on a formula surface with X (no chart's r, u, φ).
+TEST(SceneJson, AGeodesicCompanionReadsOnEveryKindOfSurface) {
+  const char* surfaces[] = {R"j({"kind": "sphere"})j", R"j({"kind": "torus"})j",
+                            R"j({"kind": "implicit", "F": "x^2/4 + y^2 + z^2 - 1"})j",
+                            R"j({"kind": "graph", "z": "x^3 - 3*x*y^2"})j"};
+  for (const char* surface : surfaces) {
+    const bool formula = std::string(surface).find("\"F\"") != std::string::npos ||
+                         std::string(surface).find("\"z\"") != std::string::npos;
+    const std::string start = formula ? R"j("X": [0.4, 0.2, 0.1])j" : R"j("phi": 0.2)j";
+    const std::string text = std::string(R"j({"surface": )j") + surface + R"j(, "initial": {)j" + start +
+                             R"j(, "speed": 0.5, "heading": 0.4, "spin": 0.8},
+        "companions": [{"geodesic": true, "label": "geodesic"}]})j";
+    const SceneParse parsed = parse_scene_text(text);
+    ASSERT_TRUE(parsed.errors.empty()) << surface << ": " << describe_errors(parsed.errors);
+    ASSERT_EQ(parsed.scene->companions.size(), 1u);
+    const Companion& c = parsed.scene->companions[0];
+    EXPECT_TRUE(c.geodesic);
+    EXPECT_EQ(c.initial.spin.value_or(-1.0), 0.0) << surface;
+    if (formula) {
+      EXPECT_EQ(c.initial.X, parsed.scene->initial.X) << surface;
+      EXPECT_EQ(c.initial.speed, parsed.scene->initial.speed) << surface;
+      EXPECT_EQ(c.initial.heading, parsed.scene->initial.heading) << surface;
+    }
+  }
+}
+
 TEST(SceneJson, AFormulaSurfacesRefusalsNameTheirFields) {
   const auto first_error = [](const std::string& text) {
     const SceneParse parsed = parse_scene_text(text);
@@ -107,6 +134,23 @@ TEST(SceneJson, TheSchemaDescribesTheFormulaSurfaces) {
   const auto& X = schema["properties"]["initial"]["properties"]["X"];
   EXPECT_EQ(X["maxItems"], 3);
   EXPECT_EQ(X["x-surfaces"], nlohmann::json::array({"implicit", "graph"}));
+  // The menu's examples, by kind: each composes a scene the reader takes as it is.
+  std::size_t count = 0;
+  for (const auto& [key, kind] : {std::pair{"F", "implicit"}, std::pair{"z", "graph"}}) {
+    const auto& examples = surface[key]["x-examples"];
+    ASSERT_TRUE(examples.is_array()) << key;
+    EXPECT_GE(examples.size(), 2u) << key;
+    for (const auto& e : examples) {
+      const nlohmann::json scene = {
+          {"surface", {{"kind", kind}, {key, e["formula"]}, {"parameters", e["parameters"]}}},
+          {"initial", {{"X", e["X"]}, {"speed", 0.5}, {"heading", 0.3}, {"spin", 1.0}}}};
+      const SceneParse parsed = parse_scene(scene);
+      EXPECT_TRUE(parsed.errors.empty()) << e["name"] << ": " << describe_errors(parsed.errors);
+      EXPECT_FALSE(e["title"].get<std::string>().empty());
+      ++count;
+    }
+  }
+  EXPECT_EQ(count, 5u);
 }
 
 TEST(SceneJson, EveryPresetIsValidAndDescribed) {

@@ -10,6 +10,7 @@
 #include "codec/presets.h"
 #include "codec/scene_json.h"
 #include "engine/readout.h"
+#include "engine/scene_fields.h"
 #include "engine/timeline.h"
 #include "render/scene_builder.h"
 #include "render/view_parameters.h"
@@ -77,6 +78,7 @@ TEST(Drag, APixelGivesBackThePlaceDrawnThereInEveryPresetAndView) {
   std::string failures;
   for (const PresetSource& preset : preset_sources()) {
     const Scene scene = *parse_scene_text(preset.json).scene;
+    if (drag_unsupported_reason(scene.surface)) continue;  // no chart to drag over (a formula's)
     for (const double t : {0.0, 3.0}) {
       const PresetRun r = run_to(scene, t);
       const BodyPlace near = body_place(readout(r.run));
@@ -203,6 +205,7 @@ TEST(Drag, ABodyStartedByTheArrowMovesAlongItOnTheScreen) {
   std::string failures;
   for (const PresetSource& preset : preset_sources()) {
     Scene scene = *parse_scene_text(preset.json).scene;
+    if (drag_unsupported_reason(scene.surface)) continue;  // no chart to drag over (a formula's)
     for (const ViewRow& row : view_table()) {
       if (!shows(row.info, scene.surface.kind)) continue;
       const PresetRun r = run_to(scene, 1.0);
@@ -269,6 +272,7 @@ TEST(Drag, ADroppedBodyStartsThereWithTheStartsSpeedHeadingAndSpin) {
   int checked = 0;
   for (const PresetSource& preset : preset_sources()) {
     const Scene scene = *parse_scene_text(preset.json).scene;
+    if (drag_unsupported_reason(scene.surface)) continue;  // no chart to drag over (a formula's)
     const PresetRun r = run_to(scene, 0.5);
     const ViewOptions view = aimed(default_view(scene.surface.kind), r.snapshot);
     const BodyPlace body = body_place(readout(r.run));
@@ -359,6 +363,14 @@ TEST(Drag, ADropOnTheBlankBackgroundBeyondTheDrawnPieceIsRefused) {
   ASSERT_TRUE(handles);
   EXPECT_TRUE(place_at_pixel(far.snapshot, view, handles->body + glm::dvec2(6.0, 4.0), near))
       << "a pixel of the patch beside the body";
+}
+
+TEST(Drag, OnlyASurfaceWithoutAChartHasNoHandles) {
+  for (const EnumName<SurfaceKind>& e : enum_names(std::type_identity<SurfaceKind>{})) {
+    Surface surface;
+    surface.kind = e.value;
+    EXPECT_EQ(drag_unsupported_reason(surface).has_value(), given_by_formula(e.value)) << e.name;
+  }
 }
 
 }  // namespace

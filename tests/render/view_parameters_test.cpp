@@ -90,8 +90,8 @@ TEST(ViewParameters, RefusalsSayWhatIsAllowed) {
   EXPECT_EQ(why("distance", std::string("1e400")), "must be a number from 1.2 to 100 [radii]");
   EXPECT_EQ(why("trail", -1.0), "must be a number >= 0 [time]");
   EXPECT_EQ(why("view", std::string("cube")),
-            "must be sphere, disk, hyperboloid, klein, halfplane, tractricoid, plane, conformal, revolution "
-            "or chart");
+            "must be sphere, disk, hyperboloid, klein, halfplane, tractricoid, plane, conformal, revolution, "
+            "chart or formula");
   // Every layer is listed, `actions` included.
   EXPECT_EQ(why("layers", std::string("surface,sparkles")),
             "'sparkles' is not one of surface, grid, body, frame, trail, hud, actions, curvature");

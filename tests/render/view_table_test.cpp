@@ -7,6 +7,8 @@
 #include <set>
 #include <string>
 
+#include "engine/surface_geodesics.h"
+#include "engine/surface_shape.h"
 #include "render/scene_builder.h"
 #include "render/views/view_model.h"
 #include "views/view_test_support.h"
@@ -19,15 +21,27 @@ using testing::body_on;
 using testing::in_frame;
 using testing::pixel_of;
 
-constexpr ViewKind kAllKinds[] = {
-    ViewKind::sphere,    ViewKind::hyperboloid, ViewKind::disk,      ViewKind::plane,      ViewKind::klein,
-    ViewKind::halfplane, ViewKind::tractricoid, ViewKind::conformal, ViewKind::revolution, ViewKind::chart};
-constexpr SurfaceKind kSurfaces[] = {SurfaceKind::sphere,  SurfaceKind::pseudosphere, SurfaceKind::plane,
-                                     SurfaceKind::torus,   SurfaceKind::spheroid,     SurfaceKind::bump,
-                                     SurfaceKind::catenoid};
+constexpr ViewKind kAllKinds[] = {ViewKind::sphere,      ViewKind::hyperboloid, ViewKind::disk,
+                                  ViewKind::plane,       ViewKind::klein,       ViewKind::halfplane,
+                                  ViewKind::tractricoid, ViewKind::conformal,   ViewKind::revolution,
+                                  ViewKind::chart,       ViewKind::formula};
+constexpr SurfaceKind kSurfaces[] = {SurfaceKind::sphere,   SurfaceKind::pseudosphere, SurfaceKind::plane,
+                                     SurfaceKind::torus,    SurfaceKind::spheroid,     SurfaceKind::bump,
+                                     SurfaceKind::catenoid, SurfaceKind::implicit,     SurfaceKind::graph};
 
-// A body off every special point of the surface, with a deformed frame.
+// A body off every special point of the surface, with a deformed frame (on a formula surface, the
+// default formula's: the unit sphere, the plane z = 0).
 Snapshot sample_body(SurfaceKind surface) {
+  if (given_by_formula(surface)) {
+    Snapshot s;
+    s.surface.kind = surface;
+    const auto shape = surface_shape_of(s.surface);
+    const Vec3 X = project_onto_surface(*shape->implicit, Vec3(0.5, 0.3, 0.6));
+    const Vec3 n = embedded_normal(*shape->implicit, X);
+    const Vec3 E1 = (Vec3::UnitX() - Vec3::UnitX().dot(n) * n).normalized();
+    testing::add_body(s, X, E1, n.cross(E1), 1.2, 0.8);
+    return s;
+  }
   return curvature_varies(surface) ? body_on(surface, 0.7, 0.7, 1.2, 0.8)
                                    : body_at(surface, 2.0, 0.4, 0.7, 1.2, 0.8);
 }

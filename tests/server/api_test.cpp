@@ -344,10 +344,21 @@ TEST_F(Api, AFormulaSurfaceSessionRunsAndItsRefusalsNameTheField) {
   EXPECT_EQ(trajectory->status, 200) << trajectory->body;
   EXPECT_NE(trajectory->body.find("t,X_0,X_1,X_2,n_0,n_1,n_2,K,constraint_drift"), std::string::npos)
       << trajectory->body.substr(0, 300);
-  auto frame = c.Get("/api/v1/sessions/" + id + "/frame.png");
+  // Its picture: the formula view by default; a view of another surface is refused naming the one.
+  auto frame = c.Get("/api/v1/sessions/" + id + "/frame.png?width=320&height=240");
   ASSERT_TRUE(frame);
-  EXPECT_EQ(frame->status, 422) << frame->body;
-  EXPECT_NE(frame->body.find("no view draws a surface of kind implicit"), std::string::npos) << frame->body;
+  EXPECT_EQ(frame->status, 200) << frame->body;
+  EXPECT_EQ(frame->get_header_value("Content-Type"), "image/png");
+  EXPECT_EQ(frame->body.substr(1, 3), "PNG");
+  // No drag handles: no chart to drag over (its start is initial.X).
+  auto handles = c.Get("/api/v1/sessions/" + id + "/handles");
+  ASSERT_TRUE(handles);
+  EXPECT_EQ(handles->status, 422) << handles->body;
+  EXPECT_NE(handles->body.find("initial.X"), std::string::npos) << handles->body;
+  auto other = c.Get("/api/v1/sessions/" + id + "/frame.png?view=revolution");
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 422) << other->body;
+  EXPECT_NE(other->body.find("shown in these views: formula"), std::string::npos) << other->body;
   auto deleted = c.Delete("/api/v1/sessions/" + id);
   ASSERT_TRUE(deleted);
   EXPECT_EQ(deleted->status, 204);
@@ -1119,7 +1130,7 @@ TEST_F(Api, QueryValuesOutOfRangeOrOfTheWrongTypeNameTheValue) {
       {frame + "yaw=nan", "yaw: must be a number from -100 to 100 [rad] (got nan)"},
       {frame + "view=cube",
        "view: must be sphere, disk, hyperboloid, klein, halfplane, tractricoid, plane, conformal, "
-       "revolution or chart (got cube)"},
+       "revolution, chart or formula (got cube)"},
       {frame + "view=klein", "view: the sphere is shown in these views: sphere, disk, conformal (got klein)"},
       {frame + "layers=body,glitter",
        "layers: 'glitter' is not one of surface, grid, body, frame, trail, hud, actions, curvature (got "
