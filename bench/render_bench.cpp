@@ -219,23 +219,30 @@ void anti_aliasing_and_cache_tables(int frames) {
       "\n| size | sphere frame ms (aim + build + draw) | torus frame ms (revolution view) | torus / sphere "
       "|\n"
       "| --- | --- | --- | --- |\n");
+  // A frame as the server makes it: aimed, built and drawn [ms: aim, build, draw, all], and its
+  // surface's triangles.
+  const auto aimed_frame = [&](const render::Snapshot& s, render::ViewKind kind, int w, int h,
+                               std::size_t* triangles = nullptr) {
+    const auto t = std::chrono::steady_clock::now();
+    render::ViewOptions view;
+    view.kind = kind;
+    view.width = w;
+    view.height = h;
+    view.scale *= render::body_scale_length(kind, s.surface);
+    render::aim_camera_at_body(view, s);
+    const double aimed = ms_since(t);
+    const render::FrameScene scene = render::build_scene(s, view);
+    const double built = ms_since(t);
+    c.render_ms(context, scene, w, h);
+    const double all = ms_since(t);
+    if (triangles) *triangles = scene.statics ? scene.statics->surface.size() / 3 : 0;
+    return std::array<double, 4>{aimed, built - aimed, all - built, all};
+  };
   for (const auto& [w, h] : {std::pair{640, 480}, std::pair{1280, 720}}) {
     std::vector<double> ts, tt;
-    const auto frame_ms = [&](const render::Snapshot& s, render::ViewKind kind) {
-      const auto t = std::chrono::steady_clock::now();
-      render::ViewOptions view;
-      view.kind = kind;
-      view.width = w;
-      view.height = h;
-      view.scale *= render::body_scale_length(kind, s.surface);
-      render::aim_camera_at_body(view, s);
-      const render::FrameScene scene = render::build_scene(s, view);
-      c.render_ms(context, scene, w, h);
-      return ms_since(t);
-    };
     for (int f = 0; f < n; ++f) {
-      const double ms = frame_ms(sphere[f], render::ViewKind::sphere);
-      const double mt = frame_ms(torus[f], render::ViewKind::revolution);
+      const double ms = aimed_frame(sphere[f], render::ViewKind::sphere, w, h)[3];
+      const double mt = aimed_frame(torus[f], render::ViewKind::revolution, w, h)[3];
       if (f >= 2) ts.push_back(ms), tt.push_back(mt);
     }
     std::printf("| %dx%d | %.2f | %.2f | %.2f |\n", w, h, median(ts), median(tt), median(tt) / median(ts));
@@ -251,36 +258,35 @@ void anti_aliasing_and_cache_tables(int frames) {
     s.surface.parameters = {{"a", 1.0}, {"c", 2.5}};
   }
   std::printf(
-      "| size | torus frame ms (revolution view) | formula torus frame ms (formula view) | formula / "
-      "built-in |\n"
-      "| --- | --- | --- | --- |\n");
+      "| size | torus frame ms (revolution view: aim, build, draw) | formula torus frame ms (formula view: "
+      "aim, "
+      "build, draw) | formula / built-in | triangles, built-in and formula |\n"
+      "| --- | --- | --- | --- | --- |\n");
   for (const auto& [w, h] : {std::pair{640, 480}, std::pair{1280, 720}}) {
-    std::vector<double> tb, tf;
-    const auto frame_ms = [&](const render::Snapshot& s, render::ViewKind kind) {
-      const auto t = std::chrono::steady_clock::now();
-      render::ViewOptions view;
-      view.kind = kind;
-      view.width = w;
-      view.height = h;
-      view.scale *= render::body_scale_length(kind, s.surface);
-      render::aim_camera_at_body(view, s);
-      const render::FrameScene scene = render::build_scene(s, view);
-      c.render_ms(context, scene, w, h);
-      return ms_since(t);
-    };
+    struct Parts {
+      std::vector<double> aim, build, draw, all;
+      std::size_t triangles = 0;
+    } pb, pf;
     for (int f = 0; f < n; ++f) {
-      const double mb = frame_ms(torus[f], render::ViewKind::revolution);
-      const double mf = frame_ms(formula_torus[f], render::ViewKind::formula);
-      if (f >= 2) tb.push_back(mb), tf.push_back(mf);
+      const auto mb = aimed_frame(torus[f], render::ViewKind::revolution, w, h, &pb.triangles);
+      const auto mf = aimed_frame(formula_torus[f], render::ViewKind::formula, w, h, &pf.triangles);
+      if (f < 2) continue;
+      for (auto [parts, ms] : {std::pair{&pb, mb}, std::pair{&pf, mf}})
+        parts->aim.push_back(ms[0]), parts->build.push_back(ms[1]), parts->draw.push_back(ms[2]),
+            parts->all.push_back(ms[3]);
     }
-    std::printf("| %dx%d | %.2f | %.2f | %.2f |\n", w, h, median(tb), median(tf), median(tf) / median(tb));
+    std::printf("| %dx%d | %.2f (%.2f, %.2f, %.2f) | %.2f (%.2f, %.2f, %.2f) | %.2f | %zu, %zu |\n", w, h,
+                median(pb.all), median(pb.aim), median(pb.build), median(pb.draw), median(pf.all),
+                median(pf.aim), median(pf.build), median(pf.draw), median(pf.all) / median(pb.all),
+                pb.triangles, pf.triangles);
   }
   // Meshing each example surface at the default resolution (render/implicit_mesh.h), and the whole
   // static geometry (mesh, grid, K = 0 curves, edges) of its view: the first frame's extra cost.
   // Issue 49's target: ≤ 300 ms.
   std::printf(
-      "\n| example | mesh ms | triangles | a new shape ms (box search, mesh, grid, edges) |\n| --- | --- | "
-      "--- | --- |\n");
+      "\n| example | mesh ms (72 cubes a side) | triangles | a new shape ms (box search, then the view's "
+      "mesh, "
+      "grid, edges) |\n| --- | --- | --- | --- |\n");
   for (const FormulaExample& example : formula_examples()) {
     const Surface surface = example_surface(example);
     const std::shared_ptr<const SurfaceShape> shape = surface_shape_of(surface);

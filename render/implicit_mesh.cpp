@@ -3,6 +3,7 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Dense.h>
 #include <openvdb/tools/VolumeToMesh.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -92,7 +93,17 @@ void cut_at_box(ImplicitMesh& mesh, const std::vector<std::array<std::uint32_t, 
 
 }  // namespace
 
-ImplicitMesh mesh_implicit_surface(const SurfaceShape& shape, const SurfaceBounds& box, int cells) {
+int mesh_cells(const SurfaceShape& shape) {
+  double longest = 0.0;
+  for (const auto& side : shape.box) longest = std::max(longest, side[1] - side[0]);
+  const double cells = std::ceil(kCubesPerFeature * longest / shape.feature);
+  return std::isfinite(cells)
+             ? static_cast<int>(std::clamp(cells, double{kLeastMeshCells}, double{kMostMeshCells}))
+             : kMeshCells;
+}
+
+ImplicitMesh mesh_implicit_surface(const SurfaceShape& shape, const SurfaceBounds& box, int cells,
+                                   double adaptivity) {
   initialize_openvdb();
   cells = std::clamp(cells, 2, kMaxMeshCells);
   ImplicitMesh mesh;
@@ -123,7 +134,11 @@ ImplicitMesh mesh_implicit_surface(const SurfaceShape& shape, const SurfaceBound
   std::vector<openvdb::Vec3s> points;
   std::vector<openvdb::Vec3I> triangles;
   std::vector<openvdb::Vec4I> quads;
-  openvdb::tools::volumeToMesh(*grid, points, triangles, quads, 0.0, 0.0, false);
+  // On the calling thread alone (an arena of one slot): a frame is drawn on one of the server's
+  // render threads, each already a core's work, and no TBB worker then touches our vectors.
+  tbb::task_arena one_thread(1);
+  one_thread.execute(
+      [&] { openvdb::tools::volumeToMesh(*grid, points, triangles, quads, 0.0, adaptivity, true); });
 
   // Each vertex onto F = 0; those Newton cannot bring there within a cube, or that land more than a
   // cube outside the box (the caps on the grid's faces), are dropped.

@@ -176,7 +176,14 @@ function physicalRows(s) {
   rows.push({
     key: "scale",
     label: "Body size on screen",
-    unit: s.view.kind === "conformal" ? "lengths" : varies ? "× the tube, width or neck" : "surface radii",
+    unit:
+      s.view.kind === "conformal"
+        ? "lengths"
+        : formulaField(s)
+          ? "× the surface's feature, 1/√max|K|"
+          : varies
+            ? "× the tube, width or neck"
+            : "surface radii",
     min: 0.05,
     max: 1,
     step: 0.01,

@@ -94,8 +94,17 @@ export function renderReadout(state, before) {
   const circle = $("circle-line");
   circle.textContent = s.circle?.line ?? "";
   circle.hidden = !circle.textContent;
+  // The place in the surface's chart (r or u, and phi), or where it has none (a formula's) in space.
+  const place =
+    s.r !== undefined
+      ? [`r = ${num(s.r)}`, `phi = ${num(s.phi)}`]
+      : s.u !== undefined
+        ? [`u = ${num(s.u)}`, `phi = ${num(s.phi)}`]
+        : Array.isArray(s.X)
+          ? [`X = (${s.X.map(num).join(", ")})`, `K = ${num(s.K)}`]
+          : [];
   const pairs = [
-    [`t = ${num(s.t)}`, `r = ${num(s.r)}`, `phi = ${num(s.phi)}`, `lambda = ${num(s.lambda)}`, `mu = ${num(s.mu)}`],
+    [`t = ${num(s.t)}`, ...place, `lambda = ${num(s.lambda)}`, `mu = ${num(s.mu)}`],
     [
       `energy = ${num(s.energy)}`,
       `energy error = ${num(s.energy_error)}`,

@@ -26,7 +26,6 @@ constexpr float kFormulaDepthBias = 0.01f;
 // The patch round a main body beyond the box: a cube of this many framing radii each way, at most
 // the box's half-size, meshed as finely as the box.
 constexpr double kPatchHalf = 3.0;
-constexpr int kPatchCells = kMeshCells;
 // How far from the box's centre a point may be drawn, in its half-size (profile_drawing.h says why).
 constexpr double kMaxDrawn = kMaxDrawnDistance;
 
@@ -207,7 +206,11 @@ class FormulaView final : public ViewModel {
   }
   StaticGeometry build_patch(const Surface& surface, PatchPlace at) const override {
     const auto shape = shape_of(surface);
-    return geometry_of(*shape, mesh_implicit_surface(*shape, patch_box(*shape, at), kPatchCells));
+    // As fine as the box: its cubes' side, over the patch's side.
+    double longest = 0.0;
+    for (const auto& side : shape->box) longest = std::max(longest, side[1] - side[0]);
+    const int cells = static_cast<int>(std::ceil(2.0 * patch_half(*shape) / (longest / mesh_cells(*shape))));
+    return geometry_of(*shape, mesh_implicit_surface(*shape, patch_box(*shape, at), cells));
   }
   glm::dvec3 normal(const Surface& surface, const glm::dvec3& w) const override {
     const auto shape = shape_of(surface);
@@ -216,7 +219,7 @@ class FormulaView final : public ViewModel {
   }
   StaticGeometry build_static(const Surface& surface) const override {
     const auto shape = shape_of(surface);
-    return geometry_of(*shape, mesh_implicit_surface(*shape, shape->box));
+    return geometry_of(*shape, mesh_implicit_surface(*shape, shape->box, mesh_cells(*shape)));
   }
 
   glm::mat4 camera(const ViewOptions& view) const override { return orbit_camera(view, orbit_home()); }

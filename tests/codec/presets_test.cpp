@@ -16,6 +16,7 @@
 #include "engine/readout.h"
 #include "engine/simulation.h"
 #include "engine/trail.h"
+#include "tests/engine/formula_surfaces.h"
 
 namespace spinfold {
 namespace {
@@ -438,15 +439,8 @@ namespace {
 // The formula presets' claims (issue 49): measured from the sampled path as a reader of the picture
 // would, not from the equations that made it.
 
-// Joachimsthal's integral p·D on x²/a² + y²/b² + z²/c² = 1 at X moving along V: p the distance from
-// the centre to the tangent plane, D the semi-diameter parallel to V.
 double joachimsthal_of(const Readout& r, double a, double b, double c) {
-  const Vec3 X = r.coordinates.X, t = r.embedded->V.normalized();
-  const double p = 1.0 / std::sqrt(X.x() * X.x() / std::pow(a, 4) + X.y() * X.y() / std::pow(b, 4) +
-                                   X.z() * X.z() / std::pow(c, 4));
-  const double D =
-      1.0 / std::sqrt(t.x() * t.x() / (a * a) + t.y() * t.y() / (b * b) + t.z() * t.z() / (c * c));
-  return p * D;
+  return test::joachimsthal_integral(r.coordinates.X, r.embedded->V, a, b, c);
 }
 
 TEST(Presets, OnTheTriaxialEllipsoidTheGeodesicKeepsJoachimsthalsIntegralAndTheSpinningBodyDoesNot) {

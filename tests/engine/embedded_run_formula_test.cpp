@@ -16,6 +16,7 @@
 #include "engine/readout.h"
 #include "engine/simulation.h"
 #include "engine/validation.h"
+#include "formula_surfaces.h"
 
 namespace spinfold {
 namespace {
@@ -279,12 +280,7 @@ TEST(EmbeddedRunFormula, ABodyThatLeavesTheFormulasDomainStopsWithItsLastGoodSta
 // is constant. A body without spin (s = 0, no potentials) follows a geodesic and keeps it; a spinning
 // one is pushed off the geodesic by K s (physics-anysurface.md §2) and does not.
 double joachimsthal(const Readout& r, double a, double b, double c) {
-  const Vec3 X = r.coordinates.X, t = r.embedded->V.normalized();
-  const double p = 1.0 / std::sqrt(X.x() * X.x() / std::pow(a, 4) + X.y() * X.y() / std::pow(b, 4) +
-                                   X.z() * X.z() / std::pow(c, 4));
-  const double D =
-      1.0 / std::sqrt(t.x() * t.x() / (a * a) + t.y() * t.y() / (b * b) + t.z() * t.z() / (c * c));
-  return p * D;
+  return test::joachimsthal_integral(r.coordinates.X, r.embedded->V, a, b, c);
 }
 
 TEST(EmbeddedRunFormula, OnTheTriaxialEllipsoidJoachimsthalsIntegralHoldsWithoutSpinAndNotWithIt) {

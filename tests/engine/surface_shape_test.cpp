@@ -10,24 +10,13 @@
 #include <stdexcept>
 
 #include "engine/formula_surface.h"
+#include "formula_surfaces.h"
 
 namespace spinfold {
 namespace {
 
-Surface implicit(const std::string& F, SurfaceParameters parameters = {}) {
-  Surface s;
-  s.kind = SurfaceKind::implicit;
-  s.F = F;
-  s.parameters = std::move(parameters);
-  return s;
-}
-
-Surface graph(const std::string& z) {
-  Surface s;
-  s.kind = SurfaceKind::graph;
-  s.z = z;
-  return s;
-}
+using test::graph_surface;
+using test::implicit_surface;
 
 TEST(SurfaceShape, AClosedSurfaceIsBoxedWholeWithAnEighthToSpare) {
   // The triaxial ellipsoid x²/a² + y²/b² + z²/c² = 1 at several sizes: its box holds ±(a, b, c) and
@@ -35,7 +24,7 @@ TEST(SurfaceShape, AClosedSurfaceIsBoxedWholeWithAnEighthToSpare) {
   for (const double scale : {0.3, 1.0, 2.5, 9.0}) {
     const double a = 2.0 * scale, b = 1.4 * scale, c = 0.9 * scale;
     const auto shape =
-        surface_shape_of(implicit("x^2/a^2 + y^2/b^2 + z^2/c^2 - 1", {{"a", a}, {"b", b}, {"c", c}}));
+        surface_shape_of(implicit_surface("x^2/a^2 + y^2/b^2 + z^2/c^2 - 1", {{"a", a}, {"b", b}, {"c", c}}));
     EXPECT_TRUE(shape->closed) << scale;
     const double half[3] = {a, b, c};
     for (int k = 0; k < 3; ++k) {
@@ -56,30 +45,30 @@ TEST(SurfaceShape, AClosedSurfaceIsBoxedWholeWithAnEighthToSpare) {
 TEST(SurfaceShape, AnUnboundedSurfaceIsDrawnInTheCubeAboutTheOrigin) {
   // The monkey saddle's height spans 4h³ on the square of half-side h: 32 > 4·2 at h = 2, 4 ≤ 4·1 at
   // h = 1, so it is drawn on the unit square, z over [−2, 2] and a spare eighth, cut to the cube.
-  const auto saddle = surface_shape_of(graph("x^3 - 3*x*y^2"));
+  const auto saddle = surface_shape_of(graph_surface("x^3 - 3*x*y^2"));
   EXPECT_FALSE(saddle->closed);
   EXPECT_DOUBLE_EQ(saddle->box[0][0], -1.0);
   EXPECT_DOUBLE_EQ(saddle->box[1][1], 1.0);
   EXPECT_DOUBLE_EQ(saddle->box[2][0], -1.0);
   EXPECT_DOUBLE_EQ(saddle->box[2][1], 1.0);
   // A gentle one keeps the square of h = 2.
-  const auto bowl = surface_shape_of(graph("0.2*(x^2 + y^2)"));
+  const auto bowl = surface_shape_of(graph_surface("0.2*(x^2 + y^2)"));
   EXPECT_DOUBLE_EQ(bowl->box[0][1], 2.0);
   EXPECT_NEAR(bowl->box[2][1], 1.6 + 0.2, 1e-9);
   // A flat graph: z spans a sliver about its height.
-  const auto flat = surface_shape_of(graph("0.5"));
+  const auto flat = surface_shape_of(graph_surface("0.5"));
   EXPECT_LT(flat->box[2][0], 0.5);
   EXPECT_GT(flat->box[2][1], 0.5);
   EXPECT_LT(flat->box[2][1] - flat->box[2][0], 0.5);
   // An implicit cylinder reaches every cube's faces along z.
-  const auto cylinder = surface_shape_of(implicit("x^2 + y^2 - 0.25"));
+  const auto cylinder = surface_shape_of(implicit_surface("x^2 + y^2 - 0.25"));
   EXPECT_FALSE(cylinder->closed);
   EXPECT_DOUBLE_EQ(cylinder->box[2][1], 2.0);
   EXPECT_NEAR(cylinder->feature, 2.0 / 3.0, 1e-12);  // K = 0: a third of the box's half-size
 }
 
 TEST(SurfaceShape, AGivenBoxIsKept) {
-  Surface s = implicit("x^2 + y^2 + z^2 - 1");
+  Surface s = implicit_surface("x^2 + y^2 + z^2 - 1");
   s.bounds = SurfaceBounds{{{-1.5, 1.5}, {-1.5, 1.5}, {0.0, 1.5}}};
   const auto shape = surface_shape_of(s);
   EXPECT_EQ(shape->box, *s.bounds);
@@ -112,7 +101,7 @@ TEST(SurfaceShape, ProfileSurfacesKeepTheirPictures) {
 }
 
 TEST(SurfaceShape, OneSurfaceIsResolvedOnceAndAnotherIsAnother) {
-  const Surface a = implicit("x^2 + y^2 + z^2 - r^2", {{"r", 1.0}});
+  const Surface a = implicit_surface("x^2 + y^2 + z^2 - r^2", {{"r", 1.0}});
   EXPECT_EQ(surface_shape_of(a), surface_shape_of(a));
   Surface b = a;
   b.parameters["r"] = 2.0;

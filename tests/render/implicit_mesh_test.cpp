@@ -11,15 +11,13 @@
 #include <set>
 
 #include "engine/formula_surface.h"
+#include "tests/engine/formula_surfaces.h"
 
 namespace spinfold::render {
 namespace {
 
 Surface implicit(const std::string& F) {
-  Surface s;
-  s.kind = SurfaceKind::implicit;
-  s.F = F;
-  return s;
+  return test::implicit_surface(F);
 }
 
 struct Topology {
@@ -70,8 +68,8 @@ void expect_on_the_surface(const SurfaceShape& shape, const ImplicitMesh& mesh) 
   }
 }
 
-// Closed surfaces of genus 0, 1 and 2 at the default resolution: no crack, the right topology, and
-// fewer than 1% of the triangles with an angle under 10° (none under 1°).
+// Closed surfaces of genus 0, 1 and 2 at the default resolution and the view's: no crack, the right
+// topology, and fewer than 1% of the triangles with an angle under 10° (none under 1°).
 TEST(ImplicitMesh, ClosedSurfacesHaveNoCrackAndTheirGenus) {
   struct Case {
     const char* F;
@@ -86,12 +84,15 @@ TEST(ImplicitMesh, ClosedSurfacesHaveNoCrackAndTheirGenus) {
   for (const Case& c : cases) {
     const auto shape = surface_shape_of(implicit(c.F));
     ASSERT_TRUE(shape->closed) << c.F;
+    // At the view's resolution too (mesh_cells: 6 cubes a feature).
+    for (const int cells : {kMeshCells, mesh_cells(*shape)}) {
+      const Topology top = topology_of(mesh_implicit_surface(*shape, shape->box, cells));
+      EXPECT_EQ(top.open_edges, 0) << c.F << " at " << cells;
+      EXPECT_EQ(top.crowded_edges, 0) << c.F << " at " << cells;
+      EXPECT_EQ(top.euler(), c.euler) << c.F << " at " << cells;
+    }
     const ImplicitMesh mesh = mesh_implicit_surface(*shape, shape->box);
     expect_on_the_surface(*shape, mesh);
-    const Topology top = topology_of(mesh);
-    EXPECT_EQ(top.open_edges, 0) << c.F;
-    EXPECT_EQ(top.crowded_edges, 0) << c.F;
-    EXPECT_EQ(top.euler(), c.euler) << c.F;
     long thin = 0;
     double least = 180.0;
     for (const auto& t : mesh.triangles) {
