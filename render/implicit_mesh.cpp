@@ -130,15 +130,18 @@ ImplicitMesh mesh_implicit_surface(const SurfaceShape& shape, const SurfaceBound
                        std::isfinite(F) && std::abs(F) < kBackground ? static_cast<float>(F) : kBackground);
       }
   const openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(kBackground);
-  openvdb::tools::copyFromDense(dense, *grid, 0.0f);
   std::vector<openvdb::Vec3s> points;
   std::vector<openvdb::Vec3I> triangles;
   std::vector<openvdb::Vec4I> quads;
-  // On the calling thread alone (an arena of one slot): a frame is drawn on one of the server's
-  // render threads, each already a core's work, and no TBB worker then touches our vectors.
+  // All of OpenVDB's work on the calling thread alone (the copy serial, the mesher in an arena of one
+  // slot): a frame is drawn on one of the server's render threads, each already a core's work, and
+  // no TBB worker touches what this function owns (ThreadSanitizer cannot see TBB's own
+  // synchronisation, and reported its workers' accesses as races).
   tbb::task_arena one_thread(1);
-  one_thread.execute(
-      [&] { openvdb::tools::volumeToMesh(*grid, points, triangles, quads, 0.0, adaptivity, true); });
+  one_thread.execute([&] {
+    openvdb::tools::copyFromDense(dense, *grid, 0.0f, /*serial=*/true);
+    openvdb::tools::volumeToMesh(*grid, points, triangles, quads, 0.0, adaptivity, true);
+  });
 
   // Each vertex onto F = 0; those Newton cannot bring there within a cube, or that land more than a
   // cube outside the box (the caps on the grid's faces), are dropped.
