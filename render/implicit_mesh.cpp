@@ -129,16 +129,16 @@ ImplicitMesh mesh_implicit_surface(const SurfaceShape& shape, const SurfaceBound
         dense.setValue(i, j, k,
                        std::isfinite(F) && std::abs(F) < kBackground ? static_cast<float>(F) : kBackground);
       }
-  const openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(kBackground);
   std::vector<openvdb::Vec3s> points;
   std::vector<openvdb::Vec3I> triangles;
   std::vector<openvdb::Vec4I> quads;
-  // All of OpenVDB's work on the calling thread alone (the copy serial, the mesher in an arena of one
-  // slot): a frame is drawn on one of the server's render threads, each already a core's work, and
-  // no TBB worker touches what this function owns (ThreadSanitizer cannot see TBB's own
-  // synchronisation, and reported its workers' accesses as races).
+  // All of OpenVDB's work, the grid's life included (its tree is cleared in parallel), on the calling
+  // thread alone (an arena of one slot, the copy serial): a frame is drawn on one of the server's
+  // render threads, each already a core's work, and no TBB worker touches what this function owns
+  // (ThreadSanitizer cannot see TBB's own synchronisation, and reported its workers as races).
   tbb::task_arena one_thread(1);
   one_thread.execute([&] {
+    const openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(kBackground);
     openvdb::tools::copyFromDense(dense, *grid, 0.0f, /*serial=*/true);
     openvdb::tools::volumeToMesh(*grid, points, triangles, quads, 0.0, adaptivity, true);
   });
