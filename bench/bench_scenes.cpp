@@ -30,7 +30,7 @@ Scene deforming(SurfaceKind kind) {
   s.body = {1.0, 0.3, BodyModel::affine};
   s.potential.deformation = AbcPotential{0.02, 0.1, 0.4};
   s.initial = {1.2, 0.0, 0.3, -0.4, 1.4, 0.6, 0.1, 0.5, 0.6, -0.2, 0.1, -0.05};
-  if (kind == SurfaceKind::pseudosphere) {
+  if (offers(kind, Offer::negative_curvature)) {
     s.initial.alpha_dot = 2.0;  // spin > mvR: a bounded orbit (a circle for the orbit's centre)
     s.initial.phi_dot = 0.3;
   }

@@ -26,7 +26,7 @@ constexpr double kPi = std::numbers::pi;
 std::pair<double, double> constraint_residuals(const Scene& scene, const State& s) {
   const EmbeddedBody b = global_embedding(scene, s);
   const Surface& surface = scene.surface;
-  if (surface.kind == SurfaceKind::plane)
+  if (offers(surface, Offer::zero_curvature))
     return {std::abs(b.X.z()), std::abs(b.e[0].z()) + std::abs(b.e[1].z())};
   const double radial = std::abs(curvature(surface) * dot(surface, b.X, b.X) - 1.0);
   double tangency = 0.0;

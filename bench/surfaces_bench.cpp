@@ -27,7 +27,7 @@ using OdeState = std::vector<double>;
 // internal motion, so that the error at T measures the methods and not a Lyapunov exponent.
 RevolutionModel torus_model() {
   RevolutionModel model;
-  model.surface.kind = RevolutionKind::torus;
+  model.surface.kind = SurfaceKind::torus;
   model.surface.tube_radius = 1.0;
   model.surface.center_radius = 3.0;
   model.body.mass = 2.0;

@@ -36,8 +36,7 @@ nlohmann::ordered_json provenance_json(const Scene& scene, std::string_view comm
                      {"dt", scene.integrator.dt},
                      {"tolerance", scene.integrator.tolerance}};
   // where the curvature varies: whether the orbit alone was stepped (engine/embedded_run.h)
-  if (curvature_varies(scene.surface.kind))
-    j["integrator"]["steps"] = steps_orbit_only(scene) ? "orbit" : "all";
+  if (chart_free(scene.surface)) j["integrator"]["steps"] = steps_orbit_only(scene) ? "orbit" : "all";
   if (!command.empty()) j["command"] = std::string(command);
   return j;
 }

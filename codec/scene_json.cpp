@@ -298,8 +298,9 @@ void refuse_other_surfaces(Reader& in, const json& j, const std::string& path, S
       std::string reason = "is not defined on the " + std::string(enum_name(kind)) + ": only on the " +
                            surface_names(field.surfaces);
       if (std::is_same_v<S, InitialState>)
-        reason += curvature_varies(kind) ? " (here the position is initial.u, its rate initial.u_dot)"
-                                         : " (here the position is initial.r, its rate initial.r_dot)";
+        reason += offers(kind, Offer::implicit_equation)
+                      ? " (here the position is initial.u, its rate initial.u_dot)"
+                      : " (here the position is initial.r, its rate initial.r_dot)";
       in.error(sub, *it, reason);
       return;
     }
@@ -406,7 +407,7 @@ json geodesic_base(const Scene& main) {
   const InitialState& in = main.initial;
   const double scale = std::sqrt(in.lambda * in.mu);
   json initial = {{"alpha", in.alpha}, {"beta", in.beta}, {"lambda", scale}, {"mu", scale}, {"spin", 0.0}};
-  if (given_by_formula(main.surface.kind)) {  // no chart: the start point, speed and heading
+  if (offers(main.surface, Offer::formula)) {  // no chart: the start point, speed and heading
     initial["X"] = json::array({in.X[0], in.X[1], in.X[2]});
     if (in.speed && in.heading) {
       initial["speed"] = *in.speed;
@@ -416,7 +417,7 @@ json geodesic_base(const Scene& main) {
     initial["phi"] = in.phi;
     initial["phi_dot"] = in.phi_dot;
     // The profile chart's u, else the polar chart's r.
-    const bool profile = has_profile_chart(main.surface.kind);
+    const bool profile = offers(main.surface, Offer::profile_chart);
     initial[profile ? "u" : "r"] = profile ? in.u : in.r;
     initial[profile ? "u_dot" : "r_dot"] = profile ? in.u_dot : in.r_dot;
   }
@@ -773,7 +774,7 @@ std::string restart_reason(const json& patch, const Scene& before, const Scene& 
   if (patch.contains("companions") || patch.contains("vary") ||
       before.companions.size() != after.companions.size())
     return "the companions changed: the run starts over at t = 0";
-  if (curvature_varies(before.surface.kind) && before.surface.kind == after.surface.kind &&
+  if (chart_free(before.surface) && before.surface.kind == after.surface.kind &&
       scene_to_json(before)["surface"] != scene_to_json(after)["surface"])
     return "the surface's shape changed: the run starts over at t = 0 on the new " +
            std::string(enum_name(after.surface.kind));

@@ -5,6 +5,7 @@
 
 #include "engine/formula.h"
 #include "engine/formula_examples.h"
+#include "engine/formula_surface.h"
 #include "engine/scene_fields.h"
 
 namespace spinfold {
@@ -73,7 +74,7 @@ json property(const Field& field) {
 json formula_examples_json(std::string_view field) {
   json list = json::array();
   for (const FormulaExample& e : formula_examples()) {
-    if ((e.kind == SurfaceKind::graph) != (field == "z")) continue;
+    if (formula_key(example_surface(e)) != field) continue;
     json parameters = json::object();
     for (int i = 0; i < e.count; ++i) parameters[std::string(e.parameters[i].first)] = e.parameters[i].second;
     list.push_back({{"name", e.name},
@@ -140,7 +141,7 @@ json property_of(const Field& field) {
     if constexpr (std::is_same_v<T, SurfaceKind>) {
       json varies = json::array();  // the kinds whose K varies from place to place (no one radius)
       for (const EnumName<T>& n : enum_names(std::type_identity<T>{}))
-        if (curvature_varies(n.value)) varies.push_back(n.name);
+        if (offers(n.value, Offer::implicit_equation)) varies.push_back(n.name);
       e["x-curvature-varies"] = varies;
     }
     return e;

@@ -40,14 +40,14 @@ double deformation_period(double J, double C) {
 }  // namespace
 
 std::optional<std::string> actions_unsupported_reason(const Scene& scene) {
-  if (curvature_varies(scene.surface.kind))
+  if (chart_free(scene.surface))
     return "action variables are computed where the curvature is constant (physics.md §8); here the orbit "
            "does not separate";
   if (scene.friction && scene.friction->any())
     return "with friction nothing is conserved to make action variables of (physics-surfaces.md §13)";
   if (!std::holds_alternative<std::monostate>(scene.potential.height))
     return "the height potential: its action variables (physics-surfaces.md §5) are not computed here";
-  if (scene.surface.kind == SurfaceKind::plane)
+  if (offers(scene.surface, Offer::zero_curvature))
     return "the flat limit has no action formulas here (physics.md §8.9, §8.10 are for S² and H²)";
   if (has_deformation_potential(scene.potential) && !abc_of(scene))
     return "the polar deformation potential: its actions (physics.md §8.10) are not computed here";
@@ -73,7 +73,7 @@ ActionVariables action_variables(const Scene& scene, const State& state) {
   if (half_plus == 0.0 || half_minus == 0.0)
     a.undefined.push_back(
         {"nu_phi", "the orbit passes through a pole (no barrier, p_phi = +-s): phi jumps there"});
-  if (scene.surface.kind == SurfaceKind::sphere) {
+  if (offers(scene.surface, Offer::positive_curvature)) {
     const double root = std::sqrt(radial + J_alpha * J_alpha);
     a.J_r = root - half_plus - half_minus;
     a.nu_r = root / (4.0 * pi * pi * m * R * R);
@@ -139,7 +139,7 @@ std::optional<double> energy_from_actions(const Scene& scene, const ActionVariab
   const auto [half_plus, half_minus] = half_roots(barrier_term(scene), *a.J_phi, *a.J_alpha);
   const double scale = 8.0 * pi * pi * m * R * R, Ja2 = *a.J_alpha * *a.J_alpha;
   double E = 0.0;
-  if (scene.surface.kind == SurfaceKind::sphere) {
+  if (offers(scene.surface, Offer::positive_curvature)) {
     const double Q = *a.J_r + half_plus + half_minus;  // √(8π²mR²E′ + J_α²)
     E = (Q * Q - Ja2) / scale;
   } else {

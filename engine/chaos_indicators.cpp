@@ -57,14 +57,14 @@ Eigen::Matrix<double, 18, 1> embedded_in(const Simulation& run, const State& sta
 // (the origin of the plane): a boost on H², a rotation on S², a translation on the plane. Norms
 // measured after it are the same wherever the reference body is: the metric is intrinsic.
 void to_pole(const Surface& surface, const Vec3& at, Eigen::Matrix<double, 18, 1>& v) {
-  if (surface.kind == SurfaceKind::plane) {
+  if (offers(surface, Offer::zero_curvature)) {
     v.segment<3>(0) -= at;
     return;
   }
   const double rho = std::hypot(at.x(), at.y());
   if (!(rho > 0.0)) return;
   const double nx = at.x() / rho, ny = at.y() / rho, c = at.z() / surface.radius, s = rho / surface.radius;
-  const bool hyperbolic = surface.kind == SurfaceKind::pseudosphere;
+  const bool hyperbolic = offers(surface, Offer::negative_curvature);
   for (int block = 0; block < 6; ++block) {
     Vec3 w = v.segment<3>(3 * block);
     const double along = nx * w.x() + ny * w.y(), across = -ny * w.x() + nx * w.y();
@@ -182,7 +182,7 @@ void ChaosMonitor::advance_to(double t, std::uint64_t max_attempts,
       stopped_reason_ = "the runs stopped: " + std::string(status_name(why));
       return;
     }
-    if (scene_.surface.kind == SurfaceKind::pseudosphere &&
+    if (offers(scene_.surface, Offer::negative_curvature) &&
         global_body(scene_, reference_.state).r > kChaosMaxHyperbolicDistance * scene_.surface.radius) {
       stopped_ = true;
       stopped_reason_ =

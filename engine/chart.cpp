@@ -19,7 +19,7 @@ Mat2 rotation2(double psi) {
 }
 
 Mat3 inverse_linear(const Surface& surface, const Mat3& A) {
-  if (surface.kind != SurfaceKind::pseudosphere) return A.transpose();
+  if (!offers(surface, Offer::negative_curvature)) return A.transpose();
   const Eigen::DiagonalMatrix<double, 3> eta(1.0, 1.0, -1.0);
   return eta * A.transpose() * eta;
 }
@@ -87,7 +87,7 @@ namespace {
 // radius is its scale.
 constexpr double kMaxChartScale = 100.0;  // [length]
 double chart_scale(const Surface& surface) {
-  return surface.kind == SurfaceKind::plane ? surface.radius : std::min(surface.radius, kMaxChartScale);
+  return offers(surface, Offer::zero_curvature) ? surface.radius : std::min(surface.radius, kMaxChartScale);
 }
 
 // Bounds of |S(r)|/ℓ (away from the pole, and on S² from its antipode) and of r/ℓ, ℓ the chart scale.
@@ -98,11 +98,12 @@ struct Band {
 bool in_band(const Surface& surface, double r, Band band) {
   const double R = surface.radius, l = chart_scale(surface), x = r / R;
   if (l != R) {  // a nearly flat S² or H²: as on the plane, and clear of S²'s antipode
-    const bool clear = surface.kind != SurfaceKind::sphere ||
+    const bool clear = !offers(surface, Offer::positive_curvature) ||
                        (x > 0.0 && x < std::numbers::pi && R * std::sin(x) >= band.low * l);
     return clear && r >= band.low * l && r <= band.high * l;
   }
-  if (surface.kind == SurfaceKind::sphere) return x > 0.0 && x < std::numbers::pi && std::sin(x) >= band.low;
+  if (offers(surface, Offer::positive_curvature))
+    return x > 0.0 && x < std::numbers::pi && std::sin(x) >= band.low;
   return x >= band.low && x <= band.high;
 }
 
@@ -121,7 +122,7 @@ namespace {
 // Distance of the body from a new chart's pole: the middle of the well-conditioned band.
 double recentre_distance(const Surface& surface) {
   const double l = chart_scale(surface);
-  return surface.kind == SurfaceKind::sphere && l == surface.radius ? 0.5 * std::numbers::pi * l : l;
+  return offers(surface, Offer::positive_curvature) && l == surface.radius ? 0.5 * std::numbers::pi * l : l;
 }
 
 }  // namespace
@@ -139,7 +140,7 @@ void recentre(const Scene& scene, const BodyKinematics& body, Chart& chart, Coor
   const double d0 = recentre_distance(surface);
   const double Sd = polar_S(surface, d0), Cd = polar_C(surface, d0);
   Vec3 pole, a1, b_rel = Vec3::Zero();
-  if (surface.kind == SurfaceKind::plane) {
+  if (offers(surface, Offer::zero_curvature)) {
     pole = X - d0 * u;
     a1 = u;
     b_rel = pole;
@@ -199,7 +200,7 @@ double embedded_state_error(const Scene& scene, const State& a, const State& b) 
 }
 
 EmbeddedBody global_embedding(const Scene& scene, const State& state) {
-  if (curvature_varies(scene.surface.kind)) return embedded_body(EmbeddedScene(scene), state.y);
+  if (chart_free(scene.surface)) return embedded_body(EmbeddedScene(scene), state.y);
   const BodyKinematics body = chart_kinematics(scene, state.y);
   const Mat3& A = state.chart.A;
   const Vec3 F2 = rotate_quarter(scene.surface, body.X, body.F1);
@@ -216,7 +217,7 @@ EmbeddedBody global_embedding(const Scene& scene, const State& state) {
 State place_body(const Scene& scene, const PlacedBody& p) {
   State state;
   const Surface& surface = scene.surface;
-  if (surface.kind == SurfaceKind::pseudosphere && p.r > recentre_distance(surface) &&
+  if (offers(surface, Offer::negative_curvature) && p.r > recentre_distance(surface) &&
       !chart_well_conditioned(surface, p.r)) {
     // Far out on H² the global embedding is ~R e^{r/R}/2 and ⟨X, X⟩ = −R² drowns in its round-off
     // (from r ≈ 8R on), so a chart is not built from X: first a chart whose pole lies on the
@@ -244,7 +245,7 @@ State place_body(const Scene& scene, const PlacedBody& p) {
 
 State initial_state(const Scene& scene) {
   const InitialState& q = scene.initial;
-  if (curvature_varies(scene.surface.kind)) {  // the chart-free state (engine/embedded_run.h)
+  if (chart_free(scene.surface)) {  // the chart-free state (engine/embedded_run.h)
     State state;
     state.y = embedded_start(EmbeddedScene(scene), q);
     return state;

@@ -37,7 +37,7 @@ EmbeddedRigid rigid_of(const Coords& y) {
 
 bool steps_orbit_only(const Scene& scene) {
   const DeformationPotential& d = scene.potential.deformation;
-  return curvature_varies(scene.surface.kind) && scene.integrator.stepping == Stepping::automatic &&
+  return chart_free(scene.surface) && scene.integrator.stepping == Stepping::automatic &&
          scene.body.model == BodyModel::affine && inertia_of(scene.body).isotropic &&
          (std::holds_alternative<std::monostate>(d) || std::holds_alternative<AbcPotential>(d)) &&
          scene.friction.value_or(Friction{}).internal == 0.0;
@@ -68,17 +68,17 @@ std::shared_ptr<const ImplicitSurface> implicit_of(const Surface& surface,
 
 bool projects_onto_constraints(const Scene& scene) {
   switch (scene.integrator.projection) {
-    case Projection::on: return curvature_varies(scene.surface.kind);
+    case Projection::on: return chart_free(scene.surface);
     case Projection::off: return false;
     case Projection::automatic: break;
   }
-  return given_by_formula(scene.surface.kind);
+  return offers(scene.surface, Offer::formula);
 }
 
 EmbeddedScene::EmbeddedScene(const Scene& scene)
-    : profile(has_profile_chart(scene.surface.kind)),
+    : profile(offers(scene.surface, Offer::profile_chart)),
       surface(profile ? revolution_surface(scene.surface) : RevolutionSurface{}),
-      formula(given_by_formula(scene.surface.kind) ? formula_surface_of(scene.surface) : nullptr),
+      formula(offers(scene.surface, Offer::formula) ? formula_surface_of(scene.surface) : nullptr),
       implicit(implicit_of(scene.surface, formula)),
       body(surface_body(scene)),
       rigid(scene.body.model == BodyModel::rigid),

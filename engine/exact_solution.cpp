@@ -142,7 +142,7 @@ struct OrbitPoint {
 // physics.md §8.2 (S², H²) and §8.9 (plane).
 OrbitPoint radial_orbit_at(const Surface& surface, double m, const RadialOrbit& o, double t) {
   const double s = o.spin, p = o.p_phi, G = o.strength;
-  if (surface.kind == SurfaceKind::plane) {
+  if (offers(surface, Offer::zero_curvature)) {
     // r² = r₀² + 2r₀ṙ₀t + (2E/m)t², φ̇ = (p_φ − s)/(mr²), D = φ − φ₀.
     const double a = 2.0 * o.energy / m, b = 2.0 * o.r0 * o.r_dot0, c = o.r0 * o.r0;
     const double discriminant = 4.0 * ((p - s) * (p - s) / (m * m) + 2.0 * G / m);
@@ -157,7 +157,7 @@ OrbitPoint radial_orbit_at(const Surface& surface, double m, const RadialOrbit& 
   // (1 − u₊)(1 − u₋) and (1 + u₊)(1 + u₋), the cancellation-free products of §8.2.
   const double P_minus = K * K * ((p - s) * (p - s) + 2.0 * m * G) / (m * m * L);
   const double P_plus = K * K * ((p + s) * (p + s) + 2.0 * m * G) / (m * m * L);
-  const bool sphere = surface.kind == SurfaceKind::sphere;
+  const bool sphere = offers(surface, Offer::positive_curvature);
   if (L > 0.0) {
     const double w = std::sqrt(L), B = u_dot0 / w;
     u = o.u_c + A * std::cos(w * t) + B * std::sin(w * t);
@@ -241,10 +241,10 @@ std::pair<Vec2, Vec2> plane_motion_at(const PlaneMotion& m, double t) {
 }
 
 std::optional<std::string> exact_unsupported_reason(const Scene& scene) {
-  if (curvature_varies(scene.surface.kind))
+  if (chart_free(scene.surface))
     return "the closed forms hold where the curvature is constant (physics.md §8); on the " +
            std::string(enum_name(scene.surface.kind)) +
-           (given_by_formula(scene.surface.kind) ? " surface" : "") + " use an integrator";
+           (offers(scene.surface, Offer::formula) ? " surface" : "") + " use an integrator";
   if (scene.friction && scene.friction->any())
     return "with friction the motion has no closed form here (physics-surfaces.md §13): use an integrator";
   if (!std::holds_alternative<std::monostate>(scene.potential.height))
@@ -361,7 +361,7 @@ Vec3 momentum_of(const Scene& scene, const BodyKinematics& body) {
 Chart orbit_motion(const Scene& scene, const BodyKinematics& start, double t) {
   Chart g;
   g.global = false;
-  if (scene.surface.kind == SurfaceKind::plane)
+  if (offers(scene.surface, Offer::zero_curvature))
     g.b = t * start.V;
   else
     g.A = orbital_isometry(scene.surface, momentum_of(scene, start), scene.body.mass, t);
@@ -424,7 +424,7 @@ State exact_state(const ExactSolution& sol, double t) {
   if (sol.radial) {
     state.y = radial_exact_coords(sol, t);
     const double r = state.y[coord::r], R = scene.surface.radius;
-    if (scene.surface.kind == SurfaceKind::pseudosphere && r > 2.0 * R) {
+    if (offers(scene.surface, Offer::negative_curvature) && r > 2.0 * R) {
       // Far out on H²: a chart whose pole lies on the body's own radial geodesic at distance R
       // behind it (rotation by φ after a boost along x by r − R). The frame (E₁, E₂) is the same
       // in both charts, so L, P and p_r carry over and only p_φ changes: no e^{r/R} cancels.

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "engine/formula_surface.h"
+
 namespace spinfold {
 
 namespace {
@@ -58,7 +60,7 @@ std::span<const FormulaExample> formula_examples() {
 Surface example_surface(const FormulaExample& example) {
   Surface s;
   s.kind = example.kind;
-  (example.kind == SurfaceKind::graph ? s.z : s.F) = std::string(example.formula);
+  (formula_form(s) == FormulaSurfaceForm::graph ? s.z : s.F) = std::string(example.formula);
   for (int i = 0; i < example.count; ++i)
     s.parameters[std::string(example.parameters[i].first)] = example.parameters[i].second;
   return s;

@@ -37,7 +37,7 @@ FormulaSurfaceParse parse_formula_surface(FormulaSurfaceForm form, std::string_v
 }
 
 FormulaSurfaceForm formula_form(const Surface& surface) {
-  if (!given_by_formula(surface.kind)) throw std::logic_error("formula_form: not a formula surface");
+  if (!offers(surface, Offer::formula)) throw std::logic_error("formula_form: not a formula surface");
   return surface.kind == SurfaceKind::graph ? FormulaSurfaceForm::graph : FormulaSurfaceForm::implicit;
 }
 

@@ -21,7 +21,7 @@ bool finite(double v) {
 // The chart's poles, where S(r) = 0 and φ, E₂ are undefined: r = 0, and r = πR on the sphere
 // (where R sin(r/R) rounds to ~1e-16 R, not 0).
 bool at_pole(const Surface& surface, double r) {
-  return r == 0.0 || (surface.kind == SurfaceKind::sphere && r == std::numbers::pi * surface.radius);
+  return r == 0.0 || (offers(surface, Offer::positive_curvature) && r == std::numbers::pi * surface.radius);
 }
 
 // The start's place as the rates see it: V = f q̇ E₁ + S φ̇ E₂ with q = r (f = 1, S = S(r), C = C(r))
@@ -36,8 +36,8 @@ StartPlace start_place(const Scene& scene) {
   const InitialState& q = scene.initial;
   // A formula surface has no chart: the velocity is speed and heading themselves, and the frame's
   // rates are relative to parallel transport (C = 0, physics-anysurface.md §5).
-  if (given_by_formula(scene.surface.kind)) return {false, 1.0, 0.0, 1.0, 0.0, 0.0, "speed"};
-  if (curvature_varies(scene.surface.kind)) {
+  if (offers(scene.surface, Offer::formula)) return {false, 1.0, 0.0, 1.0, 0.0, 0.0, "speed"};
+  if (chart_free(scene.surface)) {
     if (!finite(q.u)) return {false, 0.0, 0.0, 1.0, q.u, q.u_dot, "u_dot"};
     const ProfilePlace p = profile_place(revolution_surface(scene.surface), q.u);
     return {p.axis, p.rho, p.C, p.f, q.u, q.u_dot, "u_dot"};
@@ -92,8 +92,7 @@ std::vector<FieldError> resolve_initial_rates(Scene& scene) {
     if (q.speed)
       errors.push_back({"initial.heading", "null",
                         std::string("is missing: speed comes with heading (the angle of the velocity from ") +
-                            (curvature_varies(scene.surface.kind) ? "E1 = X_u/f" : "E1 = d/dr") +
-                            " towards E2, rad)"});
+                            (chart_free(scene.surface) ? "E1 = X_u/f" : "E1 = d/dr") + " towards E2, rad)"});
     else
       errors.push_back({"initial.speed", "null", "is missing: heading comes with speed (|velocity| >= 0)"});
   } else if (q.speed && finite(*q.speed) && finite(*q.heading) && finite(place.q)) {
@@ -102,7 +101,7 @@ std::vector<FieldError> resolve_initial_rates(Scene& scene) {
     if (pole && v != 0.0 && !along_E1(h)) {
       errors.push_back(
           {"initial.heading", shortest(h),
-           curvature_varies(scene.surface.kind)
+           chart_free(scene.surface)
                ? "cannot be converted at an axis point (rho(u) = 0, where E2 = X_phi/rho is "
                  "undefined): with speed > 0 give heading 0 or pi, or u_dot and phi_dot, or start "
                  "away from the axis"
@@ -139,8 +138,8 @@ std::vector<FieldError> resolve_initial_rates(Scene& scene) {
 
   if (!errors.empty()) return errors;
   scene.initial.alpha_dot = alpha_dot;
-  if (given_by_formula(scene.surface.kind)) return errors;  // the start reads speed and heading
-  (curvature_varies(scene.surface.kind) ? scene.initial.u_dot : scene.initial.r_dot) = q_dot;
+  if (offers(scene.surface, Offer::formula)) return errors;  // the start reads speed and heading
+  (chart_free(scene.surface) ? scene.initial.u_dot : scene.initial.r_dot) = q_dot;
   scene.initial.phi_dot = phi_dot;
   return errors;
 }

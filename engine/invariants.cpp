@@ -25,7 +25,7 @@ GlobalBody global_body(const Scene& scene, const State& state) {
   g.r = pc.r;
   g.phi = pc.phi;
   g.S = pc.rho;
-  g.C = surface.kind == SurfaceKind::plane ? 1.0 : g.X.z() / surface.radius;
+  g.C = offers(surface, Offer::zero_curvature) ? 1.0 : g.X.z() / surface.radius;
   g.at_pole = pc.rho <= 1e-12 * surface.radius;
   g.L = body.L;
   g.M = body.M;
@@ -36,7 +36,8 @@ GlobalBody global_body(const Scene& scene, const State& state) {
   Vec3 E1 = body.F1;
   if (!chart.global) {
     const Mat3 A_inv = inverse_linear(surface, chart.A);
-    const Vec3 O_global = surface.kind == SurfaceKind::plane ? Vec3::Zero() : Vec3(0.0, 0.0, surface.radius);
+    const Vec3 O_global =
+        offers(surface, Offer::zero_curvature) ? Vec3::Zero() : Vec3(0.0, 0.0, surface.radius);
     const Vec3 towards = tangential(surface, body.X, A_inv * (O_global - chart.b) - body.X);
     E1 = -towards / std::sqrt(dot(surface, towards, towards));
   }
@@ -50,7 +51,7 @@ GlobalBody global_body(const Scene& scene, const State& state) {
 }
 
 double energy(const Scene& scene, const State& state) {
-  if (curvature_varies(scene.surface.kind)) {
+  if (chart_free(scene.surface)) {
     const EnergyParts e = embedded_energy_parts(EmbeddedScene(scene), state.y);
     return e.kinetic + e.potential;
   }
@@ -58,8 +59,7 @@ double energy(const Scene& scene, const State& state) {
 }
 
 double orbital_energy(const Scene& scene, const State& state) {
-  if (curvature_varies(scene.surface.kind))
-    return embedded_energy_split(EmbeddedScene(scene), state.y).orbital;
+  if (chart_free(scene.surface)) return embedded_energy_split(EmbeddedScene(scene), state.y).orbital;
   const double m = scene.body.mass, r = state.y[coord::r];
   const double S = polar_S(scene.surface, r), C = polar_C(scene.surface, r);
   const double Pi = state.y[coord::p_phi] - C * spin_of(scene, state.y);
@@ -69,8 +69,7 @@ double orbital_energy(const Scene& scene, const State& state) {
 }
 
 double deformation_energy(const Scene& scene, const State& state) {
-  if (curvature_varies(scene.surface.kind))
-    return embedded_energy_split(EmbeddedScene(scene), state.y).deformation;
+  if (chart_free(scene.surface)) return embedded_energy_split(EmbeddedScene(scene), state.y).deformation;
   const Inertia inertia = inertia_of(scene.body);
   const InternalState in = internal_state(scene, state.y);
   // ½ tr(M J Mᵀ) (physics.md §13); the rigid body is the isotropic one with J = tr(J)/2.
@@ -85,7 +84,7 @@ double deformation_energy(const Scene& scene, const State& state) {
 }
 
 double spin(const Scene& scene, const State& state) {
-  if (curvature_varies(scene.surface.kind)) return embedded_spin_of(EmbeddedScene(scene), state.y);
+  if (chart_free(scene.surface)) return embedded_spin_of(EmbeddedScene(scene), state.y);
   return spin_of(scene, state.y);
 }
 
@@ -104,7 +103,7 @@ ChartMomentum chart_momentum(const Scene& scene, const State& state) {
   // (AX) × (AV) = det(A) A^{-T}(X × V), A^{-T} = ηAη for a Lorentz transform or a rotation, and
   // η(AX) = ηAη(ηX).
   Mat3 B = A;
-  if (surface.kind == SurfaceKind::pseudosphere) {
+  if (offers(surface, Offer::negative_curvature)) {
     const Eigen::DiagonalMatrix<double, 3> eta(1.0, 1.0, -1.0);
     B = eta * A * eta;
   }
@@ -112,8 +111,8 @@ ChartMomentum chart_momentum(const Scene& scene, const State& state) {
   // −3.1 for a proper chart at r = 13R, which flipped the orbital part of p_φ). An isometry of the
   // upper sheet keeps time (A₃₃ ≥ 1) and is R₁·boost·R₂, so its orientation is that of the spatial
   // 2×2 block, whose determinant is cosh β ≥ 1 times ±1 and has no cancellation.
-  const double det = (surface.kind == SurfaceKind::pseudosphere ? A.topLeftCorner<2, 2>().determinant()
-                                                                : A.determinant()) < 0.0
+  const double det = (offers(surface, Offer::negative_curvature) ? A.topLeftCorner<2, 2>().determinant()
+                                                                 : A.determinant()) < 0.0
                          ? -1.0
                          : 1.0;
   const Vec3 orbital = scene.body.mass * body.X.cross(body.V);
@@ -134,16 +133,16 @@ bool well_conditioned(double rounding, double scale) {
 }
 
 double angular_momentum(const Scene& scene, const State& state) {
-  if (curvature_varies(scene.surface.kind)) return embedded_p_phi(EmbeddedScene(scene), state.y);
+  if (chart_free(scene.surface)) return embedded_p_phi(EmbeddedScene(scene), state.y);
   if (state.chart.global) return state.y[coord::p_phi];
-  if (scene.surface.kind != SurfaceKind::plane) return chart_momentum(scene, state).global.z();  // M₃
+  if (!offers(scene.surface, Offer::zero_curvature)) return chart_momentum(scene, state).global.z();  // M₃
   const GlobalBody g = global_body(scene, state);
   const double orbital = scene.body.mass * (g.X.x() * g.V.y() - g.X.y() * g.V.x());
   return orbital + g.C * g.spin;  // M₃ = mS²φ̇ + Cs
 }
 
 double angular_momentum_rounding(const Scene& scene, const State& state) {
-  if (state.chart.global || scene.surface.kind == SurfaceKind::plane) return 0.0;
+  if (state.chart.global || offers(scene.surface, Offer::zero_curvature)) return 0.0;
   return chart_momentum(scene, state).rounding.z();
 }
 
@@ -176,8 +175,8 @@ std::optional<SeparatedEnergies> separated_energies(const Scene& scene, const St
   else if (has_deformation_potential(scene.potential))
     return std::nullopt;
   const double J = inertia_of(scene.body).J;
-  const InternalState in = curvature_varies(scene.surface.kind) ? embedded_internal_state(scene, state)
-                                                                : internal_state(scene, state.y);
+  const InternalState in =
+      chart_free(scene.surface) ? embedded_internal_state(scene, state) : internal_state(scene, state.y);
   const DeformationInvariants inv = deformation_invariants(in.L);
   const DeformationInvariants rate = deformation_invariants(in.M);  // 2(u_M² + v_M²), 2(p_M² + q_M²)
   SeparatedEnergies e{0.5 * J * rate.a, 0.5 * J * rate.b};
@@ -189,10 +188,9 @@ std::optional<SeparatedEnergies> separated_energies(const Scene& scene, const St
 }
 
 std::optional<Vec3> momentum_map(const Scene& scene, const State& state) {
-  if (scene.potential.radial || curvature_varies(scene.surface.kind))
-    return std::nullopt;  // no SO(3)/SO(2,1)
+  if (scene.potential.radial || chart_free(scene.surface)) return std::nullopt;  // no SO(3)/SO(2,1)
   const Surface& surface = scene.surface;
-  if (surface.kind != SurfaceKind::plane) return chart_momentum(scene, state).global;
+  if (!offers(surface, Offer::zero_curvature)) return chart_momentum(scene, state).global;
   const GlobalBody g = global_body(scene, state);
   const double m = scene.body.mass;
   return Vec3(m * g.V.x(), m * g.V.y(), m * (g.X.x() * g.V.y() - g.X.y() * g.V.x()) + g.spin);

@@ -116,7 +116,7 @@ PaperCoordinates paper_coordinates(const Scene& scene, const State& state) {
   out.p_alpha = g.spin;
   out.p_beta = vorticity(scene, state);
   out.p_phi = angular_momentum(scene, state);
-  if (!state.chart.global && scene.surface.kind != SurfaceKind::plane) {
+  if (!state.chart.global && !offers(scene.surface, Offer::zero_curvature)) {
     const ChartMomentum cm = chart_momentum(scene, state);
     if (!well_conditioned(cm.rounding.z(), std::abs(cm.global.z()) + cm.local.cwiseAbs().sum())) {
       out.undefined.push_back(

@@ -12,11 +12,11 @@ namespace spinfold {
 PredictedCircle predicted_circle(const Scene& scene, double spin, double speed) {
   PredictedCircle out;
   const Surface& surface = scene.surface;
-  if (curvature_varies(surface.kind)) {
+  if (chart_free(surface)) {
     out.why_none = "the curvature varies along the path";
     return out;
   }
-  if (surface.kind == SurfaceKind::plane) {
+  if (offers(surface, Offer::zero_curvature)) {
     out.why_none = "a straight line: no curvature (K = 0)";
     return out;
   }
@@ -34,7 +34,7 @@ PredictedCircle predicted_circle(const Scene& scene, double spin, double speed) 
   }
   const double R = surface.radius, p = scene.body.mass * speed * R, s = std::abs(spin);
   double rho = 0.0, circumference = 0.0;
-  if (surface.kind == SurfaceKind::sphere) {
+  if (offers(surface, Offer::positive_curvature)) {
     rho = R * std::atan2(p, s);  // cos(ρ/R) = s/|M|, |M| = √(s² + m²v²R²)
     circumference = 2.0 * std::numbers::pi * R * std::sin(rho / R);
   } else {
@@ -59,8 +59,7 @@ PredictedCircle predicted_circle(const Scene& scene, double spin, double speed) 
 }
 
 std::optional<double> circle_through(const Surface& surface, std::span<const Vec3> points, double* off) {
-  if (points.size() < 3 || curvature_varies(surface.kind) || surface.kind == SurfaceKind::plane)
-    return std::nullopt;
+  if (points.size() < 3 || chart_free(surface) || offers(surface, Offer::zero_curvature)) return std::nullopt;
   Vec3 centroid = Vec3::Zero();
   for (const Vec3& X : points) centroid += X;
   centroid /= static_cast<double>(points.size());
@@ -80,7 +79,7 @@ std::optional<double> circle_through(const Surface& surface, std::span<const Vec
   }
   const double R = surface.radius;
   double rho = 0.0;
-  if (surface.kind == SurfaceKind::sphere) {
+  if (offers(surface, Offer::positive_curvature)) {
     // Each point's distance from the axis n and its height along it: ρ = R atan2(|X − (n·X)n|, |n·X|),
     // well-conditioned at any radius (acos of the height alone loses digits near a pole).
     for (const Vec3& X : points) rho += R * std::atan2((X - n.dot(X) * n).norm(), std::abs(n.dot(X)));
@@ -118,7 +117,7 @@ CircleReadout circle_readout(const Simulation& run, const Trail& trail) {
 }
 
 std::string circle_line(const Scene& scene, const CircleReadout& circle) {
-  if (curvature_varies(scene.surface.kind)) return "";
+  if (chart_free(scene.surface)) return "";
   char text[96];
   if (!circle.predicted.radius)
     std::snprintf(text, sizeof text, "no circle: %s", circle.predicted.why_none.c_str());

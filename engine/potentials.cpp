@@ -6,7 +6,7 @@ namespace spinfold {
 
 double radial_strength(const Surface& surface, const RadialPotential& radial) {
   const double R = surface.radius;
-  return surface.kind == SurfaceKind::sphere ? radial.gamma * R * R : radial.gamma;
+  return offers(surface, Offer::positive_curvature) ? radial.gamma * R * R : radial.gamma;
 }
 
 double radial_potential(const Surface& surface, const RadialPotential& radial, const Vec3& X) {

@@ -106,7 +106,7 @@ void read_chart(const Simulation& run, Readout& r) {
   else
     r.actions = action_variables(scene, state);
   r.momentum_map = momentum_map(scene, state);
-  if (r.momentum_map && scene.surface.kind != SurfaceKind::plane) {
+  if (r.momentum_map && !offers(scene.surface, Offer::zero_curvature)) {
     // The casimir from M in the body's chart (an invariant of the isometry): no cancellation.
     const ChartMomentum cm = chart_momentum(scene, state);
     r.casimir = casimir(scene.surface, cm.local);
@@ -166,8 +166,8 @@ std::vector<std::string> readout_lines(const Scene& scene, const Readout& readou
                      : format("energy error = %.2e", readout.energy_error),
       "integrator: " + std::string(readout.integrator) + (readout.status == Status::ok ? "" : "  [stopped]"),
       std::string(enum_name(scene.surface.kind)) +
-          (curvature_varies(scene.surface.kind) ? format("  K = %.4f", readout.curvature.value_or(0.0))
-                                                : format("  R = %g", scene.surface.radius)),
+          (chart_free(scene.surface) ? format("  K = %.4f", readout.curvature.value_or(0.0))
+                                     : format("  R = %g", scene.surface.radius)),
       format("m = %g  ", scene.body.mass) + inertia_text(scene.body) + "  " +
           std::string(enum_name(scene.body.model)),
       format("spin = %.4f  det L = %.4f", readout.spin, readout.det_L),

@@ -4,18 +4,14 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace spinfold {
 
 RevolutionSurface revolution_surface(const Surface& surface) {
+  if (!offers(surface, Offer::profile_chart)) throw std::logic_error("revolution_surface: no profile chart");
   RevolutionSurface r;
-  switch (surface.kind) {
-    case SurfaceKind::torus: r.kind = RevolutionKind::torus; break;
-    case SurfaceKind::spheroid: r.kind = RevolutionKind::spheroid; break;
-    case SurfaceKind::bump: r.kind = RevolutionKind::bump; break;
-    case SurfaceKind::catenoid: r.kind = RevolutionKind::catenoid; break;
-    default: throw std::logic_error("revolution_surface: a constant-curvature surface");
-  }
+  r.kind = surface.kind;
   r.tube_radius = surface.tube_radius;
   r.center_radius = surface.center_radius;
   r.equatorial_radius = surface.equatorial_radius;
@@ -26,15 +22,19 @@ RevolutionSurface revolution_surface(const Surface& surface) {
   return r;
 }
 
-std::span<const RevolutionEntry> revolution_catalog() {
-  static const std::array<RevolutionEntry, 4> table{torus_entry, spheroid_entry, bump_entry, catenoid_entry};
+std::span<const std::reference_wrapper<const RevolutionEntry>> revolution_catalog() {
+  static const std::vector<std::reference_wrapper<const RevolutionEntry>> table = [] {
+    std::vector<std::reference_wrapper<const RevolutionEntry>> rows;
+    for (const SurfaceRow& row : kSurfaceCatalog)
+      if (row.profile) rows.emplace_back(*row.profile);
+    return rows;
+  }();
   return table;
 }
 
-const RevolutionEntry& revolution_entry(RevolutionKind kind) {
-  for (const RevolutionEntry& entry : revolution_catalog())
-    if (entry.kind == kind) return entry;
-  return revolution_catalog().front();  // unreachable: every kind has its row
+const RevolutionEntry& revolution_entry(SurfaceKind kind) {
+  if (!offers(kind, Offer::profile_chart)) throw std::logic_error("revolution_entry: no profile chart");
+  return *kSurfaceCatalog[static_cast<unsigned>(kind)].profile;
 }
 
 const RevolutionEntry* find_revolution(std::string_view name) {

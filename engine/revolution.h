@@ -5,26 +5,27 @@
 // and so hold on any implicit surface, with or without a symmetry.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "engine/surface.h"
 
 namespace spinfold {
 
-enum class RevolutionKind { torus, spheroid, bump, catenoid };
-
 // One surface, its parameters named as the scene format names them [length]. Only the kind's own
 // parameters are read: torus (tube_radius a, center_radius c > a), spheroid (equatorial_radius a,
 // polar_radius b; oblate a > b, prolate a < b, a = b the sphere), bump (height h of either sign,
 // width w > 0), catenoid (neck_radius c).
+// The defaults are the scene's (engine/surface.h).
 struct RevolutionSurface {
-  RevolutionKind kind = RevolutionKind::torus;
+  SurfaceKind kind = SurfaceKind::torus;
   double tube_radius = 1.0;
   double center_radius = 2.5;
   double equatorial_radius = 1.0;
-  double polar_radius = 1.0;
+  double polar_radius = 0.6;
   double height = 1.0;
   double width = 1.0;
   double neck_radius = 1.0;
@@ -75,9 +76,16 @@ struct ProfilePicture {
   double grid_step = 1.0;
 };
 
+// A rule that ties a kind's parameters together, broken: the field named and why.
+struct ParameterProblem {
+  std::string_view field;  // under surface.
+  double value = 0.0;
+  std::string reason;
+};
+
 // One table row per surface: the functions its file defines.
 struct RevolutionEntry {
-  RevolutionKind kind;
+  SurfaceKind kind;
   std::string_view name;  // the scene format's surface.kind
   std::string_view summary;
   ProfilePoint (*profile)(const RevolutionSurface& surface, double u);
@@ -86,21 +94,22 @@ struct RevolutionEntry {
   double (*u_of)(const RevolutionSurface& surface, const Vec3& X);
   ProfileDomain (*domain)(const RevolutionSurface& surface);
   ProfilePicture (*picture)(const RevolutionSurface& surface);
+  // What u is, in a refusal of initial.u (" (the distance from the axis)"); empty where u's name says it.
+  std::string_view u_meaning = {};
+  // The rule tying the parameters together, where there is one (the torus's c > a), else null.
+  std::optional<ParameterProblem> (*parameter_problem)(const RevolutionSurface& surface) = nullptr;
 };
 
 // The scene's surface (engine/surface.h) as these functions read it; std::logic_error for a
 // constant-curvature kind.
 RevolutionSurface revolution_surface(const Surface& surface);
 
-std::span<const RevolutionEntry> revolution_catalog();
-const RevolutionEntry& revolution_entry(RevolutionKind kind);
+// The rows of the surface catalog (engine/surface.h) that offer a profile chart, in its order.
+std::span<const std::reference_wrapper<const RevolutionEntry>> revolution_catalog();
+const RevolutionEntry& revolution_entry(SurfaceKind kind);
 const RevolutionEntry* find_revolution(std::string_view name);
 
-// The rows, one per surface_<name>.cpp.
-extern const RevolutionEntry torus_entry;
-extern const RevolutionEntry spheroid_entry;
-extern const RevolutionEntry bump_entry;
-extern const RevolutionEntry catenoid_entry;
+// The rows, one per surface_<name>.cpp, are declared in engine/surface.h's catalog.
 
 // A RevolutionSurface seen through its implicit equation.
 class RevolutionImplicit final : public ImplicitSurface {

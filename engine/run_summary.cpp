@@ -44,11 +44,11 @@ constexpr std::array<std::string_view, kFieldCount> kFieldNames = {
     "r", "phi", "lambda", "mu", "det_L", "energy", "energy_error", "spin", "speed", "X.0", "X.1", "X.2", "K"};
 
 bool profile(const Scene& scene) {
-  return curvature_varies(scene.surface.kind);
+  return chart_free(scene.surface);
 }
 // A surface with no chart (a formula surface): no r, u or φ.
 bool chartless(const Scene& scene) {
-  return curvature_varies(scene.surface.kind) && !has_profile_chart(scene.surface.kind);
+  return chart_free(scene.surface) && !offers(scene.surface, Offer::profile_chart);
 }
 
 // The field's index for this scene, or -1 (u stands for r where the curvature varies, K exists only there).

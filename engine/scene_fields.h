@@ -230,12 +230,12 @@ inline constexpr std::tuple kSurfaceFields{
         "kind", &Surface::kind,
         "the surface: sphere, pseudosphere or plane (constant curvature), or torus, spheroid, bump or "
         "catenoid (curvature that varies)"),
-    only_on(kConstantCurvatureSurfaces,
+    only_on(surfaces_offering(Offer::polar_chart),
             number_field(
                 "radius", &Surface::radius, "Surface radius R", "length", kPositive,
                 "the size of the surface: curvature K = +1/R² on the sphere, −1/R² on the pseudosphere; a "
                 "larger radius is a flatter surface (on the plane only a length scale)")),
-    only_on(kConstantCurvatureSurfaces,
+    only_on(surfaces_offering(Offer::polar_chart),
             optional_number_field(
                 "curvature", &Surface::curvature_given, "Curvature K", "1/length²", kAnyNumber,
                 "K instead of kind and radius: K > 0 a sphere of radius 1/√K, 0 the flat plane, K < 0 "
@@ -274,11 +274,11 @@ inline constexpr std::tuple kSurfaceFields{
             value_field("z", &Surface::z, "the graph z = f(x, y): a formula in x, y and the parameters",
                         TextRule::formula)),
     only_on(
-        kFormulaSurfaces,
+        surfaces_offering(Offer::formula),
         value_field("parameters", &Surface::parameters,
                     "the formula's named numbers, {\"a\": 2, \"b\": 1.3}: each a finite number, its name a "
                     "letter then letters, digits or _")),
-    only_on(kFormulaSurfaces,
+    only_on(surfaces_offering(Offer::formula),
             value_field("bounds", &Surface::bounds,
                         "the piece drawn, [[x0, x1], [y0, y1], [z0, z1]] (absent: a box chosen from the "
                         "formula, a closed surface whole, an unbounded one about the origin); never where "
@@ -338,12 +338,12 @@ inline constexpr std::tuple kSpringPotentialFields{
 };
 
 inline constexpr std::tuple kPotentialsFields{
-    only_on(kConstantCurvatureSurfaces,
+    only_on(surfaces_offering(Offer::polar_chart),
             value_field("radial", &Potentials::radial,
                         "the radial potential V_r (absent: none); only where the curvature is constant")),
     value_field("deformation", &Potentials::deformation,
                 "the deformation potential, abc or polar (absent: none)"),
-    only_on(kVaryingCurvatureSurfaces | surface_bit(SurfaceKind::sphere),
+    only_on(surfaces_offering(Offer::implicit_equation) | surfaces_offering(Offer::positive_curvature),
             value_field("height", &Potentials::height,
                         "a potential of the embedded height z, gravity (m g z) or spring (k z²/2) (absent: "
                         "none); not on the plane (z = 0 there) nor the pseudosphere (no height in ℝ³)")),
@@ -357,23 +357,23 @@ inline constexpr std::tuple kFrictionFields{
 };
 
 inline constexpr std::tuple kInitialStateFields{
-    only_on(kConstantCurvatureSurfaces,
+    only_on(surfaces_offering(Offer::polar_chart),
             number_field("r", &InitialState::r, "Distance r", "length", kNonNegative,
                          "geodesic distance from the pole (<= pi R on the sphere)",
                          "geodesic distance from the pole")),
-    only_on(kFormulaSurfaces,
+    only_on(surfaces_offering(Offer::formula),
             value_field("X", &InitialState::X,
                         "the start point [x, y, z] [length], brought onto F = 0 along the gradient (a graph "
                         "keeps x, y and takes z = f(x, y)); the frame there: E1 along the world x-axis's "
                         "tangential part (the y-axis's where that is shorter than 0.1), E2 = n x E1")),
-    only_on(kProfileSurfaces,
+    only_on(surfaces_offering(Offer::profile_chart),
             number_field(
                 "u", &InitialState::u, "Profile position u", "rad (torus, spheroid); length (bump, catenoid)",
                 kAnyNumber,
                 "where along the profile: the torus's tube angle (0 the outer equator, −π/2 the top "
                 "circle), the spheroid's polar angle from the north pole (0 to π), the distance from the "
                 "bump's axis (>= 0), −z on the catenoid")),
-    only_on(kConstantCurvatureSurfaces | kProfileSurfaces,
+    only_on(surfaces_offering(Offer::polar_chart) | surfaces_offering(Offer::profile_chart),
             number_field("phi", &InitialState::phi, "Polar angle φ", "rad", kAnyNumber, "polar angle")),
     number_field("alpha", &InitialState::alpha, "Rotation α", "rad", kAnyNumber,
                  "left rotation angle of L = U(α) diag(λ, μ) U(β)ᵀ"),
@@ -383,12 +383,13 @@ inline constexpr std::tuple kInitialStateFields{
                  "a rigid body's size"),
     number_field("mu", &InitialState::mu, "Stretch μ", "1", kPositive,
                  "the ellipse's second axis relative to the reference body (= λ for a rigid body)"),
-    only_on(kConstantCurvatureSurfaces,
+    only_on(surfaces_offering(Offer::polar_chart),
             number_field("r_dot", &InitialState::r_dot, "Rate ṙ", "length/time", kAnyNumber, "rate of r")),
-    only_on(kProfileSurfaces, number_field("u_dot", &InitialState::u_dot, "Rate u̇",
-                                           "rad/time (torus, spheroid); length/time (bump, catenoid)",
-                                           kAnyNumber, "rate of u")),
-    only_on(kConstantCurvatureSurfaces | kProfileSurfaces,
+    only_on(
+        surfaces_offering(Offer::profile_chart),
+        number_field("u_dot", &InitialState::u_dot, "Rate u̇",
+                     "rad/time (torus, spheroid); length/time (bump, catenoid)", kAnyNumber, "rate of u")),
+    only_on(surfaces_offering(Offer::polar_chart) | surfaces_offering(Offer::profile_chart),
             number_field("phi_dot", &InitialState::phi_dot, "Rate φ̇", "rad/time", kAnyNumber, "rate of phi")),
     number_field("alpha_dot", &InitialState::alpha_dot, "Rate α̇", "rad/time", kAnyNumber, "rate of alpha"),
     number_field("beta_dot", &InitialState::beta_dot, "Rate β̇", "rad/time", kAnyNumber, "rate of beta"),
@@ -420,11 +421,11 @@ inline constexpr std::tuple kIntegratorSettingsFields{
                  "step (fixed-step) or first trial step"),
     number_field("tolerance", &IntegratorSettings::tolerance, "Tolerance", "1",
                  Range{.min = 1e-15, .max = 1e-2}, "error per step (adaptive)"),
-    only_on(kVaryingCurvatureSurfaces,
+    only_on(surfaces_offering(Offer::implicit_equation),
             value_field("stepping", &IntegratorSettings::stepping,
                         "auto: only the orbit where the internal motion has a closed form; full: every "
                         "number")),
-    only_on(kFormulaSurfaces,
+    only_on(surfaces_offering(Offer::formula),
             value_field("projection", &IntegratorSettings::projection,
                         "auto (on), on: bring the state back onto F = 0 after each step; off: let it drift "
                         "with the integrator's error")),

@@ -53,8 +53,8 @@ const ScenePath* find_scene_path(std::string_view path) {
   const std::lock_guard lock(mutex);
   for (const ScenePath& p : parameters)
     if (p.path == path) return &p;
-  return &parameters.emplace_back(
-      ScenePath{std::string(path), ScenePath::Leaf::number, kAnyNumber, {}, kFormulaSurfaces});
+  return &parameters.emplace_back(ScenePath{
+      std::string(path), ScenePath::Leaf::number, kAnyNumber, {}, surfaces_offering(Offer::formula)});
 }
 
 }  // namespace spinfold

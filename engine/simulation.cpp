@@ -11,7 +11,7 @@
 namespace spinfold {
 
 double det_L(const Scene& scene, const State& state) {
-  if (curvature_varies(scene.surface.kind)) return embedded_det(EmbeddedScene(scene), state.y);
+  if (chart_free(scene.surface)) return embedded_det(EmbeddedScene(scene), state.y);
   return internal_state(scene, state.y).L.determinant();
 }
 
@@ -42,7 +42,7 @@ EnergyParts parts_of(const Simulation& run, const State& state) {
 
 // The run's model and field for a scene whose curvature varies (none otherwise).
 void use_surface(Simulation& run) {
-  if (!curvature_varies(run.scene.surface.kind)) {
+  if (!chart_free(run.scene.surface)) {
     run.embedded.reset();
     run.field.reset();
     return;
@@ -149,7 +149,7 @@ void prepare_exact_check(Simulation& run) {
   const double J = rigid_inertia(inertia_of(scene.body));
   c.momentum_scale = std::abs(c.spin) + std::sqrt(2.0 * m * run.energy_scale) * R +
                      std::sqrt(2.0 * J * run.energy_scale) * L_norm;
-  if (scene.surface.kind != SurfaceKind::plane)
+  if (!offers(scene.surface, Offer::zero_curvature))
     c.momentum_scale += chart_momentum(scene, start).local.cwiseAbs().sum();
   c.p_phi = angular_momentum(scene, start);
   c.p_phi_checked = well_conditioned(angular_momentum_rounding(scene, start), c.momentum_scale);
@@ -271,7 +271,7 @@ Status health(const Simulation& run, const State& state) {
   const double error = dissipative ? E - run.initial_energy : std::abs(E - run.initial_energy);
   if (!std::isfinite(E)) return Status::non_finite;
   if (error > run.energy_scale && error > 0.5 * energy_scale(now)) return Status::diverged;
-  if (run.scene.surface.kind == SurfaceKind::pseudosphere &&
+  if (offers(run.scene.surface, Offer::negative_curvature) &&
       global_body(run.scene, state).r > kMaxHyperbolicDistance * run.scene.surface.radius)
     return Status::out_of_range;
   return Status::ok;
@@ -712,7 +712,7 @@ Vec3 carried_position(const Surface& before, const Surface& after, const Vec3& X
     const PolarCoordinates pc = polar_coordinates(before, X);
     return chart_point(after, pc.r, pc.phi).X;
   }
-  if (before.kind != SurfaceKind::plane && after.radius != before.radius)
+  if (!offers(before, Offer::zero_curvature) && after.radius != before.radius)
     return X * (after.radius / before.radius);
   return X;
 }
@@ -728,7 +728,7 @@ void retune(Simulation& run, const Scene& next) {
   State here = run.state;
   here.status = Status::ok;
   const Surface& before = run.scene.surface;
-  if (curvature_varies(before.kind)) {
+  if (chart_free(before)) {
     // The chart-free state keeps X, V, e_A and W_A (so the velocities and frame rates); the rigid
     // body's spin follows its rate s/I with the new inertia I = |e₁|² tr J.
     // An orbit-only state (embedded_run.h) starts its closed form again here, with the new internal
@@ -740,8 +740,8 @@ void retune(Simulation& run, const Scene& next) {
       here.y = embedded_layout(EmbeddedScene(next), *run.embedded, here.y);
     // A formula surface that changed (its text or a parameter): the body carried onto the new one
     // from where it is (Newton along ∇F, then V, e_A, W_A onto the new tangent plane).
-    if (given_by_formula(next.surface.kind) && (next.surface.F != before.F || next.surface.z != before.z ||
-                                                next.surface.parameters != before.parameters))
+    if (offers(next.surface, Offer::formula) && (next.surface.F != before.F || next.surface.z != before.z ||
+                                                 next.surface.parameters != before.parameters))
       carry_onto_surface(EmbeddedScene(next), here.y);
   } else if (dialled(before, next.surface)) {
     // The same geodesic polar place (r, φ), velocity and frame in (E₁, E₂) on the new surface.
@@ -760,7 +760,7 @@ void retune(Simulation& run, const Scene& next) {
     here.y = placed.y;
   } else {
     BodyKinematics body = chart_kinematics(run.scene, here.y);
-    if (before.kind != SurfaceKind::plane && next.surface.radius != before.radius)
+    if (!offers(before, Offer::zero_curvature) && next.surface.radius != before.radius)
       body.X *= next.surface.radius / before.radius;  // the same place on the surface
     // Velocities and frame rates are kept; the spin follows from the new inertia (s = tr((εL)ᵀMJ)).
     body.spin = spin_from_rate(inertia_of(next.body), body.L, body.M);

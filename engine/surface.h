@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <array>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <string>
@@ -20,41 +21,81 @@ using Mat3 = Eigen::Matrix3d;
 
 // The three constant-curvature surfaces differ only in the sign σ of the curvature, so one struct
 // with a kind serves every formula (K = σ/R²) without a visitor per function. The four after them
-// are the surfaces of revolution of engine/revolution.h, one file each behind its table; the
-// constant-curvature functions below are not defined on them (std::logic_error).
+// are the surfaces of revolution of engine/revolution.h, one file each behind its table, and the last
+// two are given by a formula (engine/formula_surface.h); the constant-curvature functions below are not
+// defined on them (std::logic_error).
 enum class SurfaceKind { sphere, pseudosphere, plane, torus, spheroid, bump, catenoid, implicit, graph };
 
-// The bit of one surface kind in a set of kinds (a scene field's or a view's), and the two families.
+// What a surface offers. Code outside the catalog below asks what the surface offers (a chart, a
+// closed form, a formula), never which kind it is, so that a new kind is one row and its own file.
+enum class Offer : unsigned {
+  polar_chart,         // K = σ/R² constant: the polar chart (r, φ), the closed forms of physics.md §1 and
+                       // the chart state; without it the chart-free equations run on the implicit F
+  positive_curvature,  // σ = +1: S² ⊂ ℝ³ (r ≤ πR, the antipode a second pole)
+  negative_curvature,  // σ = −1: H² ⊂ ℝ^{2,1} (the Minkowski product, the recentring)
+  zero_curvature,      // σ = 0: the plane (the normal ẑ, translations)
+  profile_chart,       // the chart (u, φ) of a surface of revolution and its closed forms (revolution.h)
+  implicit_equation,   // F, ∇F and Hess F in ℝ³: the chart-free equations, the shape and the mesh
+  formula,             // a person's text F or z with parameters: the start is a point initial.X, no chart
+};
+
+constexpr unsigned offer_bit(Offer offer) {
+  return 1u << static_cast<unsigned>(offer);
+}
+
+// A surface of revolution's profile chart and implicit F (engine/revolution.h), one file each.
+struct RevolutionEntry;
+extern const RevolutionEntry torus_entry;
+extern const RevolutionEntry spheroid_entry;
+extern const RevolutionEntry bump_entry;
+extern const RevolutionEntry catenoid_entry;
+
+// The one catalog of surfaces: what each kind offers, in the enumeration's order, and the file that
+// gives its profile chart where it offers one.
+struct SurfaceRow {
+  SurfaceKind kind;
+  unsigned offers;  // offer_bit of each Offer
+  const RevolutionEntry* profile = nullptr;
+};
+inline constexpr SurfaceRow kSurfaceCatalog[] = {
+    {SurfaceKind::sphere, offer_bit(Offer::polar_chart) | offer_bit(Offer::positive_curvature)},
+    {SurfaceKind::pseudosphere, offer_bit(Offer::polar_chart) | offer_bit(Offer::negative_curvature)},
+    {SurfaceKind::plane, offer_bit(Offer::polar_chart) | offer_bit(Offer::zero_curvature)},
+    {SurfaceKind::torus, offer_bit(Offer::profile_chart) | offer_bit(Offer::implicit_equation), &torus_entry},
+    {SurfaceKind::spheroid, offer_bit(Offer::profile_chart) | offer_bit(Offer::implicit_equation),
+     &spheroid_entry},
+    {SurfaceKind::bump, offer_bit(Offer::profile_chart) | offer_bit(Offer::implicit_equation), &bump_entry},
+    {SurfaceKind::catenoid, offer_bit(Offer::profile_chart) | offer_bit(Offer::implicit_equation),
+     &catenoid_entry},
+    {SurfaceKind::implicit, offer_bit(Offer::implicit_equation) | offer_bit(Offer::formula)},
+    {SurfaceKind::graph, offer_bit(Offer::implicit_equation) | offer_bit(Offer::formula)},
+};
+
+static_assert([] {
+  for (unsigned i = 0; i < std::size(kSurfaceCatalog); ++i) {
+    const SurfaceRow& row = kSurfaceCatalog[i];
+    if (static_cast<unsigned>(row.kind) != i) return false;
+    if ((row.profile != nullptr) != ((row.offers & offer_bit(Offer::profile_chart)) != 0)) return false;
+  }
+  return true;
+}());
+
+// The bit of one surface kind in a set of kinds (a scene field's or a view's).
 constexpr unsigned surface_bit(SurfaceKind kind) {
   return 1u << static_cast<unsigned>(kind);
 }
-inline constexpr unsigned kConstantCurvatureSurfaces = surface_bit(SurfaceKind::sphere) |
-                                                       surface_bit(SurfaceKind::pseudosphere) |
-                                                       surface_bit(SurfaceKind::plane);
-// The surfaces of revolution: the profile chart (u, φ) of engine/revolution.h.
-inline constexpr unsigned kProfileSurfaces =
-    surface_bit(SurfaceKind::torus) | surface_bit(SurfaceKind::spheroid) | surface_bit(SurfaceKind::bump) |
-    surface_bit(SurfaceKind::catenoid);
-// The surfaces given by a formula: no chart, no symmetry (physics-anysurface.md).
-inline constexpr unsigned kFormulaSurfaces =
-    surface_bit(SurfaceKind::implicit) | surface_bit(SurfaceKind::graph);
-inline constexpr unsigned kVaryingCurvatureSurfaces = kProfileSurfaces | kFormulaSurfaces;
 
-constexpr bool in_surface_set(SurfaceKind kind, unsigned set) {
-  return static_cast<unsigned>(kind) < 32 && (surface_bit(kind) & set) != 0;
+// Whether `kind` offers `offer` (false for a value outside the enumeration, which the validator names).
+constexpr bool offers(SurfaceKind kind, Offer offer) {
+  const auto i = static_cast<unsigned>(kind);
+  return i < std::size(kSurfaceCatalog) && (kSurfaceCatalog[i].offers & offer_bit(offer)) != 0;
 }
-// True where the chart-free equations run (the surfaces of revolution and formula surfaces), false
-// for S², H², the plane. (A value outside the enumeration, which the validator names, is neither.)
-constexpr bool curvature_varies(SurfaceKind kind) {
-  return in_surface_set(kind, kVaryingCurvatureSurfaces);
-}
-// Whether the surface has the profile chart (u, φ) of a surface of revolution.
-constexpr bool has_profile_chart(SurfaceKind kind) {
-  return in_surface_set(kind, kProfileSurfaces);
-}
-// Whether the surface is given by a formula (implicit F = 0, or a graph z = f(x, y)).
-constexpr bool given_by_formula(SurfaceKind kind) {
-  return in_surface_set(kind, kFormulaSurfaces);
+// The set of kinds (surface_bit) that offer `offer`.
+constexpr unsigned surfaces_offering(Offer offer) {
+  unsigned set = 0;
+  for (const SurfaceRow& row : kSurfaceCatalog)
+    if ((row.offers & offer_bit(offer)) != 0) set |= surface_bit(row.kind);
+  return set;
 }
 
 // A formula's named numbers ({"a": 2, "b": 1.3}), sweepable as surface.parameters.a.
@@ -90,6 +131,16 @@ struct Surface {
   // resolve_curvature sets kind and radius from it; kept to write the scene back as given.
   std::optional<double> curvature_given;
 };
+
+// What the scene's surface offers (the catalog above).
+inline bool offers(const Surface& surface, Offer offer) {
+  return offers(surface.kind, offer);
+}
+// Whether the chart-free equations run on the implicit F (engine/embedded_dynamics.h): the surfaces
+// whose curvature varies; false for S², H², the plane (the polar chart) and a kind the validator refuses.
+inline bool chart_free(const Surface& surface) {
+  return offers(surface.kind, Offer::implicit_equation);
+}
 
 // Below this |K| [1/length²] a given curvature is the plane: R > 1e12, and over any distance r up to
 // 1e4 lengths K r² < 1e-16 is below double round-off (the plane and the surface are one picture).

@@ -65,13 +65,14 @@ ProfilePicture bump_picture(const RevolutionSurface& s) {
 }  // namespace
 
 const RevolutionEntry bump_entry{
-    RevolutionKind::bump,
+    SurfaceKind::bump,
     "bump",
     "a Gaussian bump z = h exp(-r^2/(2w^2)) on the plane; K > 0 on top, < 0 round it",
     bump_profile,
     bump_implicit,
     bump_u,
     bump_domain,
-    bump_picture};
+    bump_picture,
+    " (the distance from the axis)"};
 
 }  // namespace spinfold

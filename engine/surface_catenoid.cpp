@@ -51,8 +51,8 @@ ProfilePicture catenoid_picture(const RevolutionSurface& s) {
 }  // namespace
 
 const RevolutionEntry catenoid_entry{
-    RevolutionKind::catenoid, "catenoid",        "neck radius c; K < 0 everywhere, most negative on the neck",
-    catenoid_profile,         catenoid_implicit, catenoid_u,
-    catenoid_domain,          catenoid_picture};
+    SurfaceKind::catenoid, "catenoid",        "neck radius c; K < 0 everywhere, most negative on the neck",
+    catenoid_profile,      catenoid_implicit, catenoid_u,
+    catenoid_domain,       catenoid_picture};
 
 }  // namespace spinfold

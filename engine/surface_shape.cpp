@@ -187,7 +187,7 @@ ShapeKey key_of(const Surface& s) {
       {},
       {},
       {}};
-  if (given_by_formula(s.kind))
+  if (offers(s, Offer::formula))
     key.F = s.F, key.z = s.z, key.parameters = s.parameters, key.bounds = s.bounds;
   return key;
 }
@@ -195,7 +195,7 @@ ShapeKey key_of(const Surface& s) {
 }  // namespace
 
 std::shared_ptr<const SurfaceShape> surface_shape_of(const Surface& surface) {
-  if (!curvature_varies(surface.kind)) throw std::logic_error("surface_shape_of: the curvature is constant");
+  if (!chart_free(surface)) throw std::logic_error("surface_shape_of: the curvature is constant");
   static std::mutex mutex;
   static std::list<std::pair<ShapeKey, std::shared_ptr<const SurfaceShape>>> cache;  // most recent first
   ShapeKey key = key_of(surface);
@@ -208,7 +208,7 @@ std::shared_ptr<const SurfaceShape> surface_shape_of(const Surface& surface) {
       }
   }
   auto shape = std::make_shared<const SurfaceShape>(
-      given_by_formula(surface.kind) ? formula_shape(surface) : profile_shape_of(surface));
+      offers(surface, Offer::formula) ? formula_shape(surface) : profile_shape_of(surface));
   const std::lock_guard lock(mutex);
   cache.emplace_front(std::move(key), shape);
   if (cache.size() > kSurfaceShapeCacheSize) cache.pop_back();

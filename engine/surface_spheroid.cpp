@@ -53,13 +53,14 @@ ProfilePicture spheroid_picture(const RevolutionSurface& s) {
 
 }  // namespace
 
-const RevolutionEntry spheroid_entry{RevolutionKind::spheroid,
+const RevolutionEntry spheroid_entry{SurfaceKind::spheroid,
                                      "spheroid",
                                      "equatorial radius a, polar radius b: oblate a > b, prolate a < b",
                                      spheroid_profile,
                                      spheroid_implicit,
                                      spheroid_u,
                                      spheroid_domain,
-                                     spheroid_picture};
+                                     spheroid_picture,
+                                     " (the polar angle from the north pole)"};
 
 }  // namespace spinfold

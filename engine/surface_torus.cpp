@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "engine/number_text.h"
 #include "engine/revolution.h"
 
 namespace spinfold {
@@ -52,16 +53,27 @@ ProfilePicture torus_picture(const RevolutionSurface& s) {
           std::numbers::pi / 6};
 }
 
+// c > a: else the tube would cross the axis.
+std::optional<ParameterProblem> torus_radii(const RevolutionSurface& s) {
+  if (!std::isfinite(s.tube_radius) || !std::isfinite(s.center_radius) || s.center_radius > s.tube_radius)
+    return std::nullopt;
+  return ParameterProblem{"center_radius", s.center_radius,
+                          "must be > tube_radius (" + shortest(s.tube_radius) +
+                              "): the tube would cross the axis and the torus intersect itself"};
+}
+
 }  // namespace
 
 const RevolutionEntry torus_entry{
-    RevolutionKind::torus,
+    SurfaceKind::torus,
     "torus",
     "tube radius a round a centre circle of radius c > a; K > 0 outside, < 0 inside",
     torus_profile,
     torus_implicit,
     torus_u,
     torus_domain,
-    torus_picture};
+    torus_picture,
+    {},
+    torus_radii};
 
 }  // namespace spinfold

@@ -145,20 +145,20 @@ void check_fields(Checker& c, const std::string& path, const S& value) {
 
 // The rules that tie fields together (the fields' own ranges are in scene_fields.h).
 
-// A surface whose curvature varies (physics-surfaces.md §1): its parameters together, u on the
-// profile's domain, and what runs only where the curvature is constant.
-void check_torus_radii(const Surface& surface, Checker& c) {
-  if (surface.kind == SurfaceKind::torus && std::isfinite(surface.tube_radius) &&
-      std::isfinite(surface.center_radius) && !(surface.center_radius > surface.tube_radius))
-    c.add("surface.center_radius", surface.center_radius,
-          "must be > tube_radius (" + shortest(surface.tube_radius) +
-              "): the tube would cross the axis and the torus intersect itself");
+// A surface whose curvature varies (physics-surfaces.md §1): its parameters together (the kind's own
+// rule), u on the profile's domain, and what runs only where the curvature is constant.
+void check_profile_parameters(const Surface& surface, Checker& c) {
+  if (!offers(surface, Offer::profile_chart)) return;
+  const RevolutionSurface s = revolution_surface(surface);
+  if (const auto rule = revolution_entry(s.kind).parameter_problem)
+    if (const std::optional<ParameterProblem> problem = rule(s))
+      c.add("surface." + std::string(problem->field), problem->value, problem->reason);
 }
 
 // A formula surface's text, read as the engine reads it: refused naming the position and why.
 // True when it parses.
 bool check_formula(const Surface& surface, Checker& c) {
-  if (!given_by_formula(surface.kind)) return true;
+  if (!offers(surface, Offer::formula)) return true;
   for (const auto& [key, number] : surface.parameters)
     if (parameter_name_problem(key) || !std::isfinite(number)) return false;  // named by check_fields
   const FormulaSurfaceParse parsed = parse_scene_formula(surface);
@@ -182,21 +182,19 @@ void check_formula_start(const Scene& scene, Checker& c) {
 void check_varying_surface(const Scene& scene, Checker& c) {
   const Surface& surface = scene.surface;
   const std::string kind =
-      std::string(enum_name(surface.kind)) + (given_by_formula(surface.kind) ? " surface" : "");
-  check_torus_radii(surface, c);
+      std::string(enum_name(surface.kind)) + (offers(surface, Offer::formula) ? " surface" : "");
+  check_profile_parameters(surface, c);
   const double u = scene.initial.u;
-  if (given_by_formula(surface.kind)) {
+  if (offers(surface, Offer::formula)) {
     if (check_formula(surface, c)) check_formula_start(scene, c);
   } else if (std::isfinite(u) && std::abs(u) <= kMaxSceneMagnitude) {
-    const ProfileDomain d =
-        revolution_entry(revolution_surface(surface).kind).domain(revolution_surface(surface));
+    const RevolutionSurface s = revolution_surface(surface);
+    const RevolutionEntry& entry = revolution_entry(s.kind);
+    const ProfileDomain d = entry.domain(s);
     if (!d.periodic && (u < d.u_min || u > d.u_max))
       c.add("initial.u", u,
             "must be in [" + shortest(d.u_min) + ", " + (std::isfinite(d.u_max) ? shortest(d.u_max) : "inf") +
-                "] on the " + kind +
-                (surface.kind == SurfaceKind::spheroid ? " (the polar angle from the north pole)"
-                 : surface.kind == SurfaceKind::bump   ? " (the distance from the axis)"
-                                                       : ""));
+                "] on the " + kind + std::string(entry.u_meaning));
   }
   if (scene.body.model == BodyModel::incompressible)
     c.add_text(
@@ -219,7 +217,7 @@ void check_varying_surface(const Scene& scene, Checker& c) {
 // it, and the incompressible body runs only under them (physics.md §15). Where the curvature varies
 // neither runs at all (check_varying_surface says so).
 void check_friction(const Scene& scene, Checker& c) {
-  if (!scene.friction || !scene.friction->any() || curvature_varies(scene.surface.kind)) return;
+  if (!scene.friction || !scene.friction->any() || chart_free(scene.surface)) return;
   if (scene.body.model == BodyModel::incompressible) {
     c.add_text("friction", "present",
                "the incompressible body runs only under split4/split6 (RATTLE on det L), which compose "
@@ -236,23 +234,24 @@ void check_friction(const Scene& scene, Checker& c) {
 void check_initial(const Scene& scene, Checker& c) {
   const InitialState& q = scene.initial;
   const Surface& surface = scene.surface;
-  if (curvature_varies(surface.kind)) {
+  if (chart_free(surface)) {
     check_varying_surface(scene, c);
     return;
   }
-  if (surface.kind != SurfaceKind::sphere && !std::holds_alternative<std::monostate>(scene.potential.height))
+  if (!offers(surface, Offer::positive_curvature) &&
+      !std::holds_alternative<std::monostate>(scene.potential.height))
     c.add_text(
         "potential.height", "present",
-        surface.kind == SurfaceKind::plane
+        offers(surface, Offer::zero_curvature)
             ? "is constant on the plane (z = 0 there): only on the sphere, torus, spheroid, bump and catenoid"
             : "needs a height in ℝ³, which the pseudosphere has not: only on the sphere, torus, spheroid, "
               "bump and catenoid");
   if (!std::isfinite(q.r) || std::abs(q.r) > kMaxSceneMagnitude || !std::isfinite(surface.radius) ||
       !(surface.radius > 0.0))
     return;
-  if (surface.kind == SurfaceKind::sphere && q.r > std::numbers::pi * surface.radius)
+  if (offers(surface, Offer::positive_curvature) && q.r > std::numbers::pi * surface.radius)
     c.add("initial.r", q.r, "must be <= pi * radius on the sphere (the south pole)");
-  if (surface.kind == SurfaceKind::pseudosphere && q.r > kMaxHyperbolicDistance * surface.radius)
+  if (offers(surface, Offer::negative_curvature) && q.r > kMaxHyperbolicDistance * surface.radius)
     c.add("initial.r", q.r,
           "must be <= " + shortest(kMaxHyperbolicDistance) +
               " * radius on the pseudosphere (farther out its global coordinates overflow)");
@@ -323,8 +322,8 @@ void check_potentials(const Scene& scene, Checker& c) {
   const Potentials& pot = scene.potential;
   const InitialState& q = scene.initial;
   const bool isotropic = q.lambda == q.mu;
-  if (pot.radial && !curvature_varies(scene.surface.kind)) {
-    const bool at_pole = q.r == 0.0 || (scene.surface.kind == SurfaceKind::sphere &&
+  if (pot.radial && !chart_free(scene.surface)) {
+    const bool at_pole = q.r == 0.0 || (offers(scene.surface, Offer::positive_curvature) &&
                                         q.r == std::numbers::pi * scene.surface.radius);
     if (pot.radial->gamma > 0.0 && at_pole)
       c.add("initial.r", q.r, "the radial potential is infinite at a pole: start away from it");
@@ -343,7 +342,7 @@ void check_potentials(const Scene& scene, Checker& c) {
 }
 
 bool finite_start(const Scene& scene) {
-  if (curvature_varies(scene.surface.kind)) {
+  if (chart_free(scene.surface)) {
     const EmbeddedScene model(scene);
     const Coords y = embedded_start(model, scene.initial);
     const EnergyParts e = embedded_energy_parts(model, y);
@@ -399,7 +398,7 @@ void check_finite_start(const Scene& scene, Checker& c) {
 std::vector<FieldError> validate_surface(const Scene& scene) {
   Checker c;
   check_fields(c, "surface", scene.surface);
-  check_torus_radii(scene.surface, c);
+  check_profile_parameters(scene.surface, c);
   if (c.errors.empty()) check_formula(scene.surface, c);
   return c.errors;
 }

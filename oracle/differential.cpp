@@ -62,7 +62,7 @@ B3 chart_apply(const Mat3& M, const B3& v) {
 }  // namespace
 
 EngineBody engine_body(const Scene& sc, const State& state, const OracleScene& scene) {
-  if (curvature_varies(sc.surface.kind)) {  // the chart-free state, in the scene's frame
+  if (chart_free(sc.surface)) {  // the chart-free state, in the scene's frame
     const EmbeddedBody b = embedded_body(*make_embedded_scene(sc), state.y);
     EngineBody out;
     Body3& body = out.in_start_frame;

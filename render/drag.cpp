@@ -35,7 +35,7 @@ struct ChartRange {
 
 class Chart {
  public:
-  explicit Chart(const Surface& surface) : surface_(surface), varies_(curvature_varies(surface.kind)) {
+  explicit Chart(const Surface& surface) : surface_(surface), varies_(chart_free(surface)) {
     if (varies_) {
       revolution_ = revolution_surface(surface);
       const RevolutionEntry& e = revolution_entry(revolution_.kind);
@@ -45,7 +45,7 @@ class Chart {
       domain_ = d;
     } else {
       const double R = surface.radius;
-      range_ = {0.0, surface.kind == SurfaceKind::sphere ? kPi * R : 8.0 * R, false, R};
+      range_ = {0.0, offers(surface, Offer::positive_curvature) ? kPi * R : 8.0 * R, false, R};
     }
   }
 
@@ -56,7 +56,7 @@ class Chart {
       return {fr.X, fr.E1, fr.E2, p.rho, p.f, p.axis};
     }
     const ChartPoint c = chart_point(surface_, q, phi);
-    const bool pole = q == 0.0 || (surface_.kind == SurfaceKind::sphere && q == kPi * surface_.radius);
+    const bool pole = q == 0.0 || (offers(surface_, Offer::positive_curvature) && q == kPi * surface_.radius);
     return {c.X, c.E1, c.E2, polar_S(surface_, q), 1.0, pole};
   }
 
@@ -199,7 +199,7 @@ double arrow_pixels_per_speed(const ViewOptions& view, const Surface& surface) {
 }
 
 std::optional<std::string> drag_unsupported_reason(const Surface& surface) {
-  if (curvature_varies(surface.kind) && !has_profile_chart(surface.kind))
+  if (chart_free(surface) && !offers(surface, Offer::profile_chart))
     return "has no chart to drag the body over yet: on a surface given by a formula, set its start as "
            "initial.X";
   return std::nullopt;
@@ -321,7 +321,7 @@ std::optional<std::pair<double, double>> velocity_at_pixel(const Snapshot& snaps
 }
 
 InitialFields place_fields(const Surface& surface, double q, double phi) {
-  return {{curvature_varies(surface.kind) ? "u" : "r", q}, {"phi", phi}};
+  return {{chart_free(surface) ? "u" : "r", q}, {"phi", phi}};
 }
 
 StartMotion start_motion(const Readout& start) {

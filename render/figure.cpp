@@ -273,7 +273,7 @@ struct Box {
 void add_circle_labels(FigurePage& page, const Snapshot& snapshot, const ViewOptions& view,
                        const FrameScene& scene) {
   const Surface& surface = snapshot.surface;
-  const bool sphere = surface.kind == SurfaceKind::sphere;
+  const bool sphere = offers(surface, Offer::positive_curvature);
   std::vector<double> radii;  // [R], those of the grid (render/scene_builder.cpp's build_static)
   if (sphere)
     for (int k = 1; k < 10; ++k) radii.push_back(kPi * k / 12);

@@ -27,7 +27,7 @@ namespace {
 // Points along the geodesic-like path between two nearby embedded points (chords pushed back onto
 // the surface), so that a trail follows the surface instead of cutting through it.
 void append_path(std::vector<Vec3>& out, const Surface& surface, const Vec3& a, const Vec3& b) {
-  if (curvature_varies(surface.kind)) {  // chords of 1/32 of the smallest feature, pushed back onto it
+  if (chart_free(surface)) {  // chords of 1/32 of the smallest feature, pushed back onto it
     const std::shared_ptr<const SurfaceShape> shape = surface_shape_of(surface);
     const int n = clamped_integer(std::ceil(32.0 * (b - a).norm() / shape->feature), 1, 16);
     for (int i = 1; i < n; ++i)
@@ -44,9 +44,9 @@ void append_path(std::vector<Vec3>& out, const Surface& surface, const Vec3& a, 
   const int n = clamped_integer(std::ceil(gap / 0.03), 1, 16);  // clamped before the cast (NaN: 1)
   for (int i = 1; i <= n; ++i) {
     Vec3 p = a + (b - a) * (static_cast<double>(i) / n);
-    if (surface.kind == SurfaceKind::sphere)
+    if (offers(surface, Offer::positive_curvature))
       p *= R / p.norm();
-    else if (surface.kind == SurfaceKind::pseudosphere)
+    else if (offers(surface, Offer::negative_curvature))
       p *= R / std::sqrt(std::max(1e-300, -dot(surface, p, p)));
     out.push_back(p);
   }
@@ -168,7 +168,7 @@ const StaticGeometry& static_geometry(SurfaceKind surface, ViewKind view) {
 }
 
 std::shared_ptr<const StaticGeometry> static_geometry(const Surface& surface, ViewKind view) {
-  if (!curvature_varies(surface.kind))  // kept for ever: a shared_ptr that frees nothing
+  if (!chart_free(surface))  // kept for ever: a shared_ptr that frees nothing
     return std::shared_ptr<const StaticGeometry>(std::shared_ptr<void>(),
                                                  &static_geometry(surface.kind, view));
   static std::mutex mutex;
@@ -266,8 +266,8 @@ HudLayout hud_layout(const std::vector<std::string>& lines, const std::vector<st
 }
 
 Vec3 exponential_map(const Surface& surface, const Vec3& X, const Vec3& v, double length) {
-  if (length == 0.0 || surface.kind == SurfaceKind::plane) return X + v;
-  if (curvature_varies(surface.kind)) {
+  if (length == 0.0 || offers(surface, Offer::zero_curvature)) return X + v;
+  if (chart_free(surface)) {
     // RK4's error is O((|v|κ/steps)⁴): a step per eighth of the smallest feature (a body's ellipse,
     // a quarter feature across, takes 2) keeps it under 1e-4 of the length drawn, below a pixel.
     const std::shared_ptr<const SurfaceShape> shape = surface_shape_of(surface);
@@ -286,13 +286,13 @@ bool on_view(const Surface& surface, ViewKind view, const Vec3& X) {
 }
 
 double drawn_scale(const Surface& surface, const BodySnapshot& body, double scale) {
-  if (surface.kind == SurfaceKind::plane) return scale;
+  if (offers(surface, Offer::zero_curvature)) return scale;
   // The frame's largest length over a² + b² = 1: √ of the Gram matrix's larger eigenvalue [length].
   const Mat2& g = body.gram;
   const double half_trace = 0.5 * (g(0, 0) + g(1, 1)), half_gap = 0.5 * (g(0, 0) - g(1, 1));
   const double extent = std::sqrt(std::max(0.0, half_trace + std::hypot(half_gap, g(0, 1))));
   double radius = surface.radius;
-  if (curvature_varies(surface.kind)) radius = surface_shape_of(surface)->feature;
+  if (chart_free(surface)) radius = surface_shape_of(surface)->feature;
   const double limit = kMaxDrawnExtent * radius;
   return scale * extent > limit ? limit / extent : scale;
 }
@@ -349,7 +349,7 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   scene.view_projection = model.camera(view);
   scene.depth_test = view_info(view.kind).three_d;
   scene.depth_bias = model.depth_bias();
-  if (surface.kind == SurfaceKind::pseudosphere) scene.surface_color = {0.83f, 0.86f, 0.78f, 1.0f};
+  if (offers(surface, Offer::negative_curvature)) scene.surface_color = {0.83f, 0.86f, 0.78f, 1.0f};
   model.add_background(scene, surface, view);
 
   // Trails first, then the bodies over them: every body's, main body first.

@@ -10,14 +10,10 @@
 namespace spinfold::render {
 
 ViewKind default_view(SurfaceKind surface) {
-  switch (surface) {
-    case SurfaceKind::sphere: return ViewKind::sphere;
-    case SurfaceKind::pseudosphere: return ViewKind::disk;
-    case SurfaceKind::plane: return ViewKind::plane;
-    case SurfaceKind::implicit:
-    case SurfaceKind::graph: return ViewKind::formula;
-    default: return ViewKind::revolution;
-  }
+  // The table lists each surface's own view before the maps it shares with others.
+  for (const ViewInfo& v : views())
+    if (shows(v, surface)) return v.kind;
+  return ViewKind::revolution;  // a kind the validator refuses
 }
 
 std::string joined_view_names(std::string_view separator) {

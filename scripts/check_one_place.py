@@ -10,6 +10,15 @@
    kind's name as a string literal, except the three of constant curvature, which the curvature
    dial reaches by the sign of K (web/surface.js). They read the kinds, their menu words and
    whether K varies from the scene's schema, which engine/scene_fields.h's table makes.
+3. No C++ source branches on a surface kind outside the surface catalog: `== SurfaceKind::`,
+   `!= SurfaceKind::`, `case SurfaceKind::` and a set of kinds `surface_bit(SurfaceKind::…)` are
+   written only in the catalog (engine/surface.h), the kinds' own files (engine/surface.cpp for the
+   three of constant curvature, engine/surface_<name>.cpp, engine/revolution.*,
+   engine/formula_surface.*) and the vocabulary (engine/scene_fields.h: a kind's own parameters).
+   Elsewhere code asks what the surface offers (`offers(surface, Offer::…)`).
+4. docs/architecture.md's "Adding a surface kind" is counted from the code: it names every product
+   file that writes a surface of revolution's enumerator (`SurfaceKind::<name>`), and the number of
+   files it says a new one takes is the number that write one of theirs.
 
 Exit status 1 and one line per problem. --self-test shows both rules refusing a bad line."""
 import pathlib
@@ -23,6 +32,20 @@ FRONT_DOORS = ("web/", "cli/", "server/", "python/", "sweep/", "record/", "workp
 DIAL_KINDS = {"sphere", "pseudosphere", "plane"}  # K > 0, K < 0, K = 0: the dial's family
 VIEW_KIND = re.compile(r"\bViewKind::(\w+)")
 SOURCE = (".cpp", ".h", ".js", ".mjs", ".py")
+# Rule 3's catalog: the places that may say which kind a surface is.
+CATALOG = ("engine/surface.h", "engine/surface.cpp", "engine/revolution.h", "engine/revolution.cpp",
+           "engine/formula_surface.h", "engine/formula_surface.cpp", "engine/scene_fields.h")
+KIND_FILE = re.compile(r"^engine/surface_(\w+)\.cpp$")  # a kind's own file (not surface_shape.cpp)
+KIND_BRANCH = re.compile(r"(?:[=!]=\s*|\bcase\s+|surface_bit\(\s*)SurfaceKind::(\w+)")
+# Rule 4: where a kind's enumerator may be written in the product (the oracle is separate code).
+NOT_PRODUCT = FREE + ("oracle/",)
+NUMBER_WORDS = {"one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8,
+                "nine": 9, "ten": 10}
+
+
+def in_catalog(path, kinds):
+    m = KIND_FILE.match(path)
+    return path in CATALOG or bool(m and m.group(1) in kinds)
 
 
 def surface_kinds():
@@ -44,6 +67,11 @@ def problems_of(path, text, kinds):
             for view in VIEW_KIND.findall(line):
                 problems.append(f"{path}:{n}: names the view ViewKind::{view}: ask the view "
                                 "(render/views/view_model.h) instead")
+    if path.endswith((".cpp", ".h")) and not in_catalog(path, kinds):
+        for n, line in enumerate(lines, 1):
+            for kind in KIND_BRANCH.findall(line):
+                problems.append(f"{path}:{n}: branches on the surface kind SurfaceKind::{kind}: ask "
+                                "what the surface offers (offers(surface, Offer::…), engine/surface.h)")
     if path.startswith(FRONT_DOORS):
         names = [k for k in kinds if k not in DIAL_KINDS]
         literal = re.compile(r"""["'](%s)["']""" % "|".join(map(re.escape, names))) if names else None
@@ -65,6 +93,44 @@ def tracked_sources():
             yield rel, path.read_text(errors="replace")
 
 
+def recipe_problems(sources, kinds, recipe_text):
+    """Rule 4: the recipe names every product file that writes a kind's enumerator, and its count of
+    the files a new surface of revolution takes is the count of the files that write one of theirs."""
+    problems = []
+    start = recipe_text.find("## Adding a surface kind")
+    if start < 0:
+        return ["docs/architecture.md: no section \"## Adding a surface kind\""]
+    section = recipe_text[start:]
+    section = section[:section.find("\n## ", 3) if "\n## " in section[3:] else len(section)]
+    writers = {}
+    for rel, text in sources:
+        if rel.startswith(NOT_PRODUCT) or not rel.endswith((".cpp", ".h")):
+            continue
+        for kind in kinds:
+            if re.search(r"\bSurfaceKind::%s\b" % kind, text):
+                writers.setdefault(kind, set()).add(rel)
+    profile_kinds = [k for k in kinds if f"engine/surface_{k}.cpp" in writers.get(k, set())]
+    for kind in profile_kinds:
+        for rel in sorted(writers[kind]):
+            m = KIND_FILE.match(rel)
+            named = f"`{rel}`" in section or (m and "`engine/surface_<name>.cpp`" in section)
+            if not named:
+                problems.append(f"docs/architecture.md: \"Adding a surface kind\" does not name {rel}, "
+                                f"which writes SurfaceKind::{kind}")
+    said = re.search(r"is (\w+) product files", section)
+    counted = min((len(writers[k]) for k in profile_kinds), default=0)  # the default kind has one more
+    if not said:
+        problems.append("docs/architecture.md: \"Adding a surface kind\" does not say \"is N product "
+                        "files\"")
+    else:
+        word = said.group(1)
+        n = NUMBER_WORDS.get(word, int(word) if word.isdigit() else -1)
+        if n != counted:
+            problems.append(f"docs/architecture.md: \"Adding a surface kind\" says {word} product files; "
+                            f"counted from the code, a surface of revolution's enumerator is in {counted}")
+    return problems
+
+
 def self_test(kinds):
     """Each rule refuses its bad line, and neither refuses the places that may say it."""
     cases = [
@@ -74,6 +140,13 @@ def self_test(kinds):
         ("web/physical.js", f'  if (kind === "{kinds[-1]}") rows.push(x);', 1),
         ("web/surface.js", '  return K > 0 ? "sphere" : "plane";', 0),
         ("server/routes/catalog.cpp", f'  // e.g. "{kinds[-1]}"', 0),
+        ("render/figure.cpp", "  if (surface.kind == SurfaceKind::sphere) return;", 1),
+        ("engine/invariants.cpp", "    case SurfaceKind::plane: return 0.0;", 1),
+        ("render/view_table.cpp", "constexpr unsigned kS = surface_bit(SurfaceKind::sphere);", 1),
+        ("engine/surface.cpp", "    case SurfaceKind::plane: return r;", 0),
+        (f"engine/surface_{kinds[3]}.cpp", f"  if (s.kind != SurfaceKind::{kinds[3]}) return;", 0),
+        ("engine/surface_shape.cpp", "  if (s.kind == SurfaceKind::graph) return;", 1),
+        ("tests/engine/surface_test.cpp", "  if (s.kind == SurfaceKind::plane) return;", 0),
     ]
     failed = 0
     for path, line, expected in cases:
@@ -81,6 +154,19 @@ def self_test(kinds):
         if got != expected:
             print(f"self-test: {path}: {line.strip()!r} gave {got} problems, expected {expected}")
             failed += 1
+    kind = kinds[3]
+    sources = [("engine/surface.h", f"SurfaceKind::{kind}"), (f"engine/surface_{kind}.cpp", f"SurfaceKind::{kind}")]
+    recipe_cases = [
+        (f"## Adding a surface kind\nis two product files: `engine/surface.h`, `engine/surface_<name>.cpp`.", 0),
+        (f"## Adding a surface kind\nis three product files: `engine/surface.h`, `engine/surface_<name>.cpp`.", 1),
+        (f"## Adding a surface kind\nis two product files: `engine/surface_<name>.cpp`.", 1),
+    ]
+    for text, expected in recipe_cases:
+        got = len(recipe_problems(sources, kinds, text))
+        if got != expected:
+            print(f"self-test: recipe {text!r} gave {got} problems, expected {expected}")
+            failed += 1
+    cases += recipe_cases
     print("self-test: " + ("failed" if failed else f"{len(cases)} cases as expected"))
     return 1 if failed else 0
 
@@ -92,7 +178,9 @@ def main():
         return 1
     if "--self-test" in sys.argv:
         return self_test(kinds)
-    problems = [p for rel, text in tracked_sources() for p in problems_of(rel, text, kinds)]
+    sources = list(tracked_sources())
+    problems = [p for rel, text in sources for p in problems_of(rel, text, kinds)]
+    problems += recipe_problems(sources, kinds, (ROOT / "docs/architecture.md").read_text())
     for p in problems:
         print(p)
     return 1 if problems else 0

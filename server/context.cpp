@@ -104,11 +104,10 @@ nlohmann::ordered_json session_json(const std::string& id, const Session& s) {
   // state, "K").
   for (const auto& kind : kSurfaceKindNames)
     if (kind.value == surface.kind)
-      j["surface"] =
-          curvature_varies(surface.kind)
-              ? nlohmann::ordered_json{{"kind", kind.name}}
-              : nlohmann::ordered_json{
-                    {"kind", kind.name}, {"radius", surface.radius}, {"curvature", curvature(surface)}};
+      j["surface"] = chart_free(surface) ? nlohmann::ordered_json{{"kind", kind.name}}
+                                         : nlohmann::ordered_json{{"kind", kind.name},
+                                                                  {"radius", surface.radius},
+                                                                  {"curvature", curvature(surface)}};
   return j;
 }
 

@@ -14,7 +14,10 @@ struct Limits {
   long max_steps = 1000000;                // step attempts per advance request (and fixed steps)
   long max_play_steps = 20000;             // step attempts per session per player tick (120 Hz)
   double max_advance_time = 1e6;           // simulated time per advance request
-  int max_image_side = 4096;               // [pixels]
+  // Work per advance request [s of wall clock]: past it the request answers "complete": false with
+  // the progress kept (a formula surface's step costs more than a chart's: 10⁶ attempts took 4 s).
+  double max_advance_seconds = 2.0;
+  int max_image_side = 4096;  // [pixels]
   // A frame's width × height (frame.png, frame.jpg, the live view) [pixels]: 4K UHD. The memory a frame
   // takes grows with it, ~28 bytes a pixel (targets, readback, the PNG): 232 MiB at this size, 443 at
   // 4096 × 4096 (bench/limit_memory.py). Vector figures (frame.svg, frame.pdf) have no such bound.

@@ -88,8 +88,8 @@ Plan make_plan(Definition def) {
     const SceneParse parsed = parse_scene_text(def.base_text);
     if (!parsed.errors.empty()) throw SweepError("the base scene: " + describe_errors(parsed.errors));
     plan.base = scene_to_json(*parsed.scene);
-    profile = has_profile_chart(parsed.scene->surface.kind);
-    formula = given_by_formula(parsed.scene->surface.kind);
+    profile = offers(parsed.scene->surface, Offer::profile_chart);
+    formula = offers(parsed.scene->surface, Offer::formula);
   }
   if (profile && def.fields == kDefaultFields) def.fields = std::string(kDefaultProfileFields);
   if (formula && def.fields == kDefaultFields) def.fields = std::string(kDefaultFormulaFields);

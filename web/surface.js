@@ -45,7 +45,7 @@ export const surfaceKinds = (schema) => kindSpec(schema).enum ?? [];
 /** A menu's words for a kind ("hyperbolic plane (negative curvature)"); its name before the schema is in. @param {any} schema @param {string} kind */
 export const surfaceTitle = (schema, kind) => kindSpec(schema)["x-titles"]?.[kind] ?? kind;
 
-/** Whether the curvature varies from place to place on a kind (the engine's curvature_varies). @param {any} schema @param {string} kind */
+/** Whether the curvature varies from place to place on a kind (the engine's chart_free: no polar chart). @param {any} schema @param {string} kind */
 export const curvatureVaries = (schema, kind) => (kindSpec(schema)["x-curvature-varies"] ?? []).includes(kind);
 
 /**

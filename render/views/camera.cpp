@@ -65,7 +65,7 @@ std::vector<Sight> sights(const ViewModel& model, const Snapshot& snapshot, cons
     for (std::size_t i = 0; i < body.trail.size(); i += stride) {
       const Vec3& P = body.trail[i];
       if (!model.draws(surface, P)) continue;
-      if (recent_only && !curvature_varies(surface.kind)) {  // the trail's last stretch: within 3 radii
+      if (recent_only && !chart_free(surface)) {  // the trail's last stretch: within 3 radii
         const double R = surface.radius, c = -dot(surface, P, body.X) / (R * R);  // (intrinsic) of its body
         if (R * std::acosh(std::max(1.0, c)) > 3.0 * R) continue;
       }
@@ -231,7 +231,7 @@ void aim_2d_window(const ViewModel& model, ViewOptions& view, const Snapshot& sn
   for (const Sight& p : points) lo = glm::min(lo, glm::dvec2(p.at)), hi = glm::max(hi, glm::dvec2(p.at));
   // Comfortable while the main body is drawn at least a third of its size at the pole.
   const double shrink =
-      curvature_varies(snapshot.surface.kind) ? 1.0 : shrink_at_main_body(model, snapshot);  // the chart
+      chart_free(snapshot.surface) ? 1.0 : shrink_at_main_body(model, snapshot);  // the chart
   if (shrink < 1.0 / 3.0) {
     // The half-size of the smallest window (window_around's shape) that holds the sights: they
     // stay within the middle 60% of the frame.

@@ -313,12 +313,13 @@ double conformal_factor(double curvature, const glm::dvec2& w) {
 }
 
 glm::dvec2 conformal_point(const Surface& surface, const Vec3& X) {
-  if (surface.kind == SurfaceKind::plane) return {X.x(), X.y()};
+  if (offers(surface, Offer::zero_curvature)) return {X.x(), X.y()};
   const PolarCoordinates p = polar_coordinates(surface, X);
   if (p.rho == 0.0)  // the pole, or the sphere's antipode (at infinity: as far as double goes)
-    return {
-        surface.kind == SurfaceKind::sphere && X.z() < 0.0 ? conformal_radius(curvature(surface), p.r) : 0.0,
-        0.0};
+    return {offers(surface, Offer::positive_curvature) && X.z() < 0.0
+                ? conformal_radius(curvature(surface), p.r)
+                : 0.0,
+            0.0};
   return conformal_radius(curvature(surface), p.r) / p.rho * glm::dvec2(X.x(), X.y());
 }
 

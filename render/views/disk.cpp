@@ -24,9 +24,9 @@ class DiskView final : public ViewModel {
     const SurfaceKind kind = surface.kind;
     StaticGeometry g;
     const Surface unit{kind, 1.0};
-    if (kind == SurfaceKind::pseudosphere)
+    if (offers(kind, Offer::negative_curvature))
       add_geodesic_polar_grid(g.grid, unit, *this, 6.0, kRimSlices / 2, 64);
-    const double radius = kind == SurfaceKind::pseudosphere ? 1.0 : 3.0;
+    const double radius = offers(kind, Offer::negative_curvature) ? 1.0 : 3.0;
     const int slices = kRimSlices;
     for (int j = 0; j < slices; ++j) {
       const double p0 = 2 * kPi * j / slices, p1 = 2 * kPi * (j + 1) / slices;
@@ -35,7 +35,7 @@ class DiskView final : public ViewModel {
       g.surface.push_back({glm::vec3(radius * std::cos(p0), radius * std::sin(p0), 0), {0, 0, 1}});
       g.surface.push_back({glm::vec3(radius * std::cos(p1), radius * std::sin(p1), 0), {0, 0, 1}});
     }
-    if (kind == SurfaceKind::sphere) {
+    if (offers(kind, Offer::positive_curvature)) {
       for (int k = 1; k < 10; ++k)  // parallels down to 150°
         add_grid_curve(
             g.grid, unit, *this, [&](double s) { return chart_point(unit, kPi * k / 12, 2 * kPi * s).X; },
@@ -62,11 +62,12 @@ class DiskView final : public ViewModel {
     aim_2d_window(*this, view, snapshot, hud, kDiskWindowHalf);
   }
   std::string grid_caption(const Snapshot& snapshot, const ViewOptions& /*view*/) const override {
-    return snapshot.surface.kind == SurfaceKind::sphere ? "Grid: geodesic circles about the pole (parallels "
-                                                          "every 15 degrees); meridians every 30 degrees."
-                                                        : "Grid: geodesic circles about the pole, labelled "
-                                                          "with their radius r; radial geodesics every 30 "
-                                                          "degrees.";
+    return offers(snapshot.surface, Offer::positive_curvature)
+               ? "Grid: geodesic circles about the pole (parallels "
+                 "every 15 degrees); meridians every 30 degrees."
+               : "Grid: geodesic circles about the pole, labelled "
+                 "with their radius r; radial geodesics every 30 "
+                 "degrees.";
   }
   FigureScale figure_scale() const override { return FigureScale::circle_labels; }
 };

@@ -216,15 +216,18 @@ void advance_session(ServerContext& server, const Call& call, httplib::Response&
   const Limits& limits = server.options.limits;
   const std::lock_guard lock(s->mutex);
   const double target = advance_target(body, *s, limits);
-  const bool complete = advance(*s, target, static_cast<std::uint64_t>(limits.max_steps));
+  const AdvanceEnd end =
+      advance(*s, target, static_cast<std::uint64_t>(limits.max_steps), limits.max_advance_seconds);
   commit(server, call.id, *s);
   res.set_header("X-Spinfold-Provenance", provenance(*s));
   ordered_json out = session_json(call.id, *s);
-  out["advance"] = {{"until", target}, {"complete", complete}};
-  if (!complete)
-    out["advance"]["reason"] = "stopped after " + shortest(static_cast<long long>(limits.max_steps)) +
-                               " step attempts, the limit per request, at t = " + shortest(s->run.state.t) +
-                               ": advance again to continue";
+  out["advance"] = {{"until", target}, {"complete", end == AdvanceEnd::reached}};
+  if (end != AdvanceEnd::reached)
+    out["advance"]["reason"] =
+        "stopped after " +
+        (end == AdvanceEnd::attempts ? shortest(static_cast<long long>(limits.max_steps)) + " step attempts"
+                                     : shortest(limits.max_advance_seconds) + " s of work") +
+        ", the limit per request, at t = " + shortest(s->run.state.t) + ": advance again to continue";
   send_json(res, out);
 }
 

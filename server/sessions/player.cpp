@@ -1,6 +1,7 @@
 #include "server/sessions/player.h"
 
 #include <chrono>
+#include <limits>
 #include <mutex>
 
 #include "server/sessions/session_store.h"
@@ -37,7 +38,8 @@ void Player::loop() {
       if (!s->playing) continue;
       played = true;
       // A stiff scene falls behind real time rather than holding the player from the others.
-      advance(*s, s->run.state.t + s->rate * wall, static_cast<std::uint64_t>(max_steps_));
+      advance(*s, s->run.state.t + s->rate * wall, static_cast<std::uint64_t>(max_steps_),
+              std::numeric_limits<double>::infinity());
       s->unsaved = true;
       if (s->run.state.status != Status::ok) s->playing = false;
       sessions_.save_played(id, *s);  // with a store: about once a second, and when it stops

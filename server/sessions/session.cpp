@@ -1,5 +1,7 @@
 #include "server/sessions/session.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -59,10 +61,24 @@ void restart(Session& session, const Scene& scene) {
   state_changed(session);
 }
 
-bool advance(Session& session, double t, std::uint64_t max_attempts) {
-  const bool complete = advance_sampling_trail(session.run, session.trail, t, max_attempts);
+AdvanceEnd advance(Session& session, double t, std::uint64_t max_attempts, double max_seconds) {
+  const auto start = std::chrono::steady_clock::now();
+  AdvanceEnd end = AdvanceEnd::reached;
+  for (std::uint64_t left = max_attempts;;) {
+    const std::uint64_t slice = std::min(left, kAdvanceSliceAttempts);
+    if (advance_sampling_trail(session.run, session.trail, t, slice)) break;
+    left -= slice;  // a slice that did not reach t spent all its attempts
+    if (left == 0) {
+      end = AdvanceEnd::attempts;
+      break;
+    }
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= max_seconds) {
+      end = AdvanceEnd::seconds;
+      break;
+    }
+  }
   state_changed(session);
-  return complete;
+  return end;
 }
 
 ChangeOutcome change(Session& session, const json& patch) {

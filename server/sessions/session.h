@@ -59,8 +59,18 @@ nlohmann::ordered_json session_sample(const Session& session);
 // Starts the session over at t = 0 of `scene` with an empty timeline (creation, reset, restart).
 void restart(Session& session, const Scene& scene);
 
-// Advances to `t` [time] recording the trail; false when `max_attempts` ran out first.
-bool advance(Session& session, double t, std::uint64_t max_attempts);
+// How an advance ended.
+enum class AdvanceEnd {
+  reached,   // at `t`, or stopped there by the run's own status
+  attempts,  // `max_attempts` ran out first: the progress is kept
+  seconds,   // `max_seconds` of work ran out first: the progress is kept
+};
+// Steps are taken in slices of this many attempts; the clock is read between slices.
+inline constexpr std::uint64_t kAdvanceSliceAttempts = 4096;
+// Advances to `t` [time] recording the trail, making at most `max_attempts` step attempts and
+// working at most about `max_seconds` [s] (to the end of the slice running then). The state is the
+// same however the advance was cut: continuing gives the bits of one uncut advance.
+AdvanceEnd advance(Session& session, double t, std::uint64_t max_attempts, double max_seconds);
 
 // What a merge patch of the parameters did.
 struct ChangeOutcome {

@@ -156,8 +156,9 @@ TEST(CurvatureDial, ALiveDialContinuesThroughZero) {
     // The trail lies on the new surface: ⟨X, X⟩ = σR² (the plane: X₃ = 0).
     for (const TrailPoint& p : trail.points) {
       const Surface& s = live.scene.surface;
-      const double expected = s.kind == SurfaceKind::plane ? 0.0 : curvature_sign(s) * s.radius * s.radius;
-      const double got = s.kind == SurfaceKind::plane ? p.X.z() : dot(s, p.X, p.X);
+      const double expected =
+          offers(s, Offer::zero_curvature) ? 0.0 : curvature_sign(s) * s.radius * s.radius;
+      const double got = offers(s, Offer::zero_curvature) ? p.X.z() : dot(s, p.X, p.X);
       EXPECT_NEAR(got, expected, 1e-9 * (1 + std::abs(expected))) << change.t;
     }
   }

@@ -411,7 +411,7 @@ TEST(Presets, WhereACircleIsPredictedThePathIsOnIt) {
     Simulation run = start_simulation(scene);
     const Readout start = readout(run);
     const PredictedCircle p = predicted_circle(scene, start.spin, start.speed.value_or(0.0));
-    if (curvature_varies(scene.surface.kind)) {
+    if (chart_free(scene.surface)) {
       EXPECT_EQ(circle_line(scene, {p, std::nullopt}), "") << preset.name;
       continue;
     }
@@ -488,7 +488,7 @@ TEST(Presets, OnEveryFormulaPresetTheSpinningPathBendsByKsOverMv) {
   int presets = 0;
   for (const PresetSource& source : preset_sources()) {
     const Scene scene = *parse_scene_text(source.json).scene;
-    if (!given_by_formula(scene.surface.kind)) continue;
+    if (!offers(scene.surface, Offer::formula)) continue;
     ++presets;
     Simulation run = start_simulation(scene);
     int left = 0, right = 0;

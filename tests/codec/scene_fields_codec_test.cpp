@@ -48,7 +48,7 @@ json document(const std::string& path, std::string_view kind, const T& value, co
               unsigned surfaces) {
   const Scene base = base_scene(value, surfaces);
   json doc = {{"initial", {{"mu", base.initial.mu}}}};
-  if (base.surface.kind != SurfaceKind::sphere) doc["surface"]["kind"] = enum_name(base.surface.kind);
+  if (!offers(base.surface, Offer::positive_curvature)) doc["surface"]["kind"] = enum_name(base.surface.kind);
   json* at = &doc;
   for (const std::string& part : split(path)) at = &(*at)[part];
   *at = text;

@@ -52,7 +52,7 @@ TEST(SceneSchema, EveryDescribedPropertyIsAccepted) {
 
 // The UI's Surface menu and its "is K one number" test come from surface.kind's schema entry.
 // Every kind has a menu title; the kinds said to have a K that varies are exactly those that have
-// no radius (read off the radius field's own "x-surfaces", not off curvature_varies).
+// no radius (read off the radius field's own "x-surfaces", not off chart_free).
 TEST(SceneSchema, SurfaceKindsCarryTheirMenuWordsAndWhetherKVaries) {
   const json schema = scene_schema();
   const json& kind = schema["properties"]["surface"]["properties"]["kind"];

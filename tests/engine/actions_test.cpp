@@ -84,7 +84,7 @@ TEST(Actions, EnergyFromTheActionsIsH) {
   }
   // And without a radial potential (k = 0) on both surfaces.
   for (const SurfaceKind kind : {SurfaceKind::sphere, SurfaceKind::pseudosphere}) {
-    Scene scene = kind == SurfaceKind::sphere ? w5_scene() : bounded_h2_scene();
+    Scene scene = offers(kind, Offer::positive_curvature) ? w5_scene() : bounded_h2_scene();
     scene.potential.radial.reset();
     const State start = initial_state(scene);
     const ActionVariables a = action_variables(scene, start);

@@ -182,7 +182,7 @@ TEST(EmbeddedDynamics, WorkedNumbersWS4OnTheAxis) {
   body.mass = 1.5;
   body.inertia = inertia_matrix(0.3, 0.0, 0.3);
   RevolutionSurface surface;
-  surface.kind = RevolutionKind::spheroid;
+  surface.kind = SurfaceKind::spheroid;
   surface.equatorial_radius = 2.0;
   surface.polar_radius = 1.0;
   const RevolutionImplicit spheroid(surface);
@@ -204,7 +204,7 @@ TEST(EmbeddedDynamics, WorkedNumbersWS4OnTheAxis) {
 // the invariants hold through the pass (the chart would be singular there, §8).
 TEST(EmbeddedDynamics, PassesOverAnAxisPoint) {
   RevolutionModel model;
-  model.surface = {.kind = RevolutionKind::spheroid, .equatorial_radius = 1.0, .polar_radius = 0.6};
+  model.surface = {.kind = SurfaceKind::spheroid, .equatorial_radius = 1.0, .polar_radius = 0.6};
   model.body.mass = 1.0;
   model.body.inertia = inertia_matrix(0.3, 0.05, 0.2);
   model.body.deformation = AbcPotential{0.01, 0.02, 0.3};

@@ -29,19 +29,19 @@ struct Written {
 
 std::vector<Written> written_out() {
   return {
-      {{.kind = RevolutionKind::torus, .tube_radius = 1.0, .center_radius = 3.0},
+      {{.kind = SurfaceKind::torus, .tube_radius = 1.0, .center_radius = 3.0},
        FormulaSurfaceForm::implicit,
        "(x^2 + y^2 + z^2 + c^2 - a^2)^2 - 4*c^2*(x^2 + y^2)",
        {{"a", 1.0}, {"c", 3.0}}},
-      {{.kind = RevolutionKind::spheroid, .equatorial_radius = 1.3, .polar_radius = 0.7},
+      {{.kind = SurfaceKind::spheroid, .equatorial_radius = 1.3, .polar_radius = 0.7},
        FormulaSurfaceForm::implicit,
        "(x^2 + y^2)/a^2 + z^2/b^2 - 1",
        {{"a", 1.3}, {"b", 0.7}}},
-      {{.kind = RevolutionKind::bump, .height = 0.8, .width = 0.6},
+      {{.kind = SurfaceKind::bump, .height = 0.8, .width = 0.6},
        FormulaSurfaceForm::graph,
        "h*exp(-(x^2 + y^2)/(2*w^2))",
        {{"h", 0.8}, {"w", 0.6}}},
-      {{.kind = RevolutionKind::catenoid, .neck_radius = 1.2},
+      {{.kind = SurfaceKind::catenoid, .neck_radius = 1.2},
        FormulaSurfaceForm::implicit,
        "x^2 + y^2 - c^2*cosh(z/c)^2",
        {{"c", 1.2}}},

@@ -82,7 +82,7 @@ TEST(Readout, EqualsTheEngineQueriesOfTheCurrentState) {
     EXPECT_NEAR(r.det_L, det_L(scene, state), 1e-12 * (1 + std::abs(r.det_L)));
     EXPECT_EQ(r.separated.has_value(), separated_energies(scene, state).has_value());
     EXPECT_EQ(r.momentum_map.has_value(), momentum_map(scene, state).has_value());
-    EXPECT_EQ(r.casimir.has_value(), r.momentum_map.has_value() && kind != SurfaceKind::plane);
+    EXPECT_EQ(r.casimir.has_value(), r.momentum_map.has_value() && !offers(kind, Offer::zero_curvature));
     EXPECT_EQ(r.status, state.status);
     EXPECT_EQ(r.status_name, status_name(state.status));
     EXPECT_EQ(r.status_detail, status_description(state.status));

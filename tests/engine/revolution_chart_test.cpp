@@ -89,7 +89,7 @@ TEST(RevolutionChart, SpheroidWithEqualRadiiIsTheSphere) {
   scene.body = {1.7, 0.3, BodyModel::affine};
   scene.potential.deformation = AbcPotential{0.02, 0.05, 0.3};
   RevolutionModel model;
-  model.surface.kind = RevolutionKind::spheroid;
+  model.surface.kind = SurfaceKind::spheroid;
   model.surface.equatorial_radius = model.surface.polar_radius = R;
   model.body.mass = 1.7;
   model.body.inertia = inertia_of(scene.body);

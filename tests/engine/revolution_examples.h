@@ -22,7 +22,7 @@ inline Inertia inertia_matrix(double J11, double J12, double J22) {
 }
 
 inline RevolutionModel ws1_model() {
-  return {.surface = {.kind = RevolutionKind::torus, .tube_radius = 1.0, .center_radius = 3.0},
+  return {.surface = {.kind = SurfaceKind::torus, .tube_radius = 1.0, .center_radius = 3.0},
           .body = {.mass = 2.0,
                    .inertia = inertia_matrix(0.6, 0.1, 0.4),
                    .height = GravityPotential{0.5},
@@ -32,7 +32,7 @@ inline RevolutionModel ws1_model() {
 
 // A surface of the given kind with every kind's parameters set off their defaults (each kind reads its
 // own): the tests that loop over revolution_catalog().
-inline RevolutionSurface off_default_surface(RevolutionKind kind) {
+inline RevolutionSurface off_default_surface(SurfaceKind kind) {
   return {.kind = kind,
           .tube_radius = 0.8,
           .center_radius = 2.0,
@@ -45,7 +45,7 @@ inline RevolutionSurface off_default_surface(RevolutionKind kind) {
 
 // §11's WS2: oblate spheroid a = 2, b = 1; rigid m = 1, J = diag(0.5, 0.5), spring k = 0.7.
 inline RevolutionModel ws2_model() {
-  return {.surface = {.kind = RevolutionKind::spheroid, .equatorial_radius = 2.0, .polar_radius = 1.0},
+  return {.surface = {.kind = SurfaceKind::spheroid, .equatorial_radius = 2.0, .polar_radius = 1.0},
           .body = {.mass = 1.0,
                    .inertia = inertia_matrix(0.5, 0.0, 0.5),
                    .height = SpringPotential{0.7},

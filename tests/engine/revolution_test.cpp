@@ -17,22 +17,22 @@ struct Case {
 
 std::vector<Case> cases() {
   std::vector<Case> out;
-  RevolutionSurface torus{.kind = RevolutionKind::torus, .tube_radius = 1.0, .center_radius = 2.5};
+  RevolutionSurface torus{.kind = SurfaceKind::torus, .tube_radius = 1.0, .center_radius = 2.5};
   out.push_back({torus, {0.0, 0.7, 1.5707963267948966, -1.2, 2.9, 3.14159, -2.5}});
-  RevolutionSurface oblate{.kind = RevolutionKind::spheroid, .equatorial_radius = 2.0, .polar_radius = 1.0};
+  RevolutionSurface oblate{.kind = SurfaceKind::spheroid, .equatorial_radius = 2.0, .polar_radius = 1.0};
   out.push_back({oblate, {0.05, 0.7, 1.5707963267948966, 2.4, 3.1}});
   RevolutionSurface prolate = oblate;
   prolate.equatorial_radius = 0.6;
   prolate.polar_radius = 1.7;
   out.push_back({prolate, {0.05, 0.9, 2.0, 3.0}});
-  RevolutionSurface bump{.kind = RevolutionKind::bump, .height = 1.5, .width = 0.7};
+  RevolutionSurface bump{.kind = SurfaceKind::bump, .height = 1.5, .width = 0.7};
   out.push_back({bump, {0.01, 0.35, 0.7, 1.4, 3.0}});
   RevolutionSurface dent = bump;
   dent.height = -0.8;
   dent.width = 1.3;
   out.push_back({dent, {0.2, 1.3, 2.5}});
   RevolutionSurface catenoid;
-  catenoid.kind = RevolutionKind::catenoid;
+  catenoid.kind = SurfaceKind::catenoid;
   catenoid.neck_radius = 0.8;
   out.push_back({catenoid, {-2.0, -0.3, 0.0, 0.6, 1.8}});
   return out;
@@ -105,7 +105,7 @@ TEST(Revolution, ImplicitDerivativesMatchDifferences) {
 
 // physics-surfaces.md §11 WS3: the bump h = 1.5, w = 0.7.
 TEST(Revolution, WorkedNumbersWS3) {
-  RevolutionSurface bump{.kind = RevolutionKind::bump, .height = 1.5, .width = 0.7};
+  RevolutionSurface bump{.kind = SurfaceKind::bump, .height = 1.5, .width = 0.7};
   const double u[] = {0.0, 0.35, 0.7, 1.4};
   const double K[] = {9.371095376926283, 1.525821045282344, 0.0, -0.2883065112090633};
   const double C[] = {1.0, 0.7266184146004692, 0.609796644864093, 0.8650280519307838};

@@ -22,22 +22,22 @@ TEST(ScenePaths, EveryLeafOnceWithItsRangeOrNames) {
                                                    "bump", "catenoid", "implicit", "graph"}));
   // A leaf knows the surfaces it belongs to: r the constant-curvature ones, u the surfaces of
   // revolution, F the implicit surface.
-  EXPECT_EQ(r->surfaces, kConstantCurvatureSurfaces);
+  EXPECT_EQ(r->surfaces, surfaces_offering(Offer::polar_chart));
   ASSERT_NE(find_scene_path("initial.u"), nullptr);
-  EXPECT_EQ(find_scene_path("initial.u")->surfaces, kProfileSurfaces);
+  EXPECT_EQ(find_scene_path("initial.u")->surfaces, surfaces_offering(Offer::profile_chart));
   ASSERT_NE(find_scene_path("surface.F"), nullptr);
   EXPECT_EQ(find_scene_path("surface.F")->surfaces, surface_bit(SurfaceKind::implicit));
   // A formula's parameter is a number leaf of its own name, once, on the formula surfaces.
   const ScenePath* a = find_scene_path("surface.parameters.a");
   ASSERT_NE(a, nullptr);
   EXPECT_EQ(a->leaf, ScenePath::Leaf::number);
-  EXPECT_EQ(a->surfaces, kFormulaSurfaces);
+  EXPECT_EQ(a->surfaces, surfaces_offering(Offer::formula));
   EXPECT_EQ(find_scene_path("surface.parameters.a"), a);
   EXPECT_EQ(find_scene_path("surface.parameters.pi"), nullptr);  // not a parameter's name
   EXPECT_EQ(find_scene_path("surface.parameters."), nullptr);
   ASSERT_NE(find_scene_path("potential.height.g"), nullptr);
   EXPECT_EQ(find_scene_path("potential.height.g")->surfaces,
-            kVaryingCurvatureSurfaces | surface_bit(SurfaceKind::sphere));
+            surfaces_offering(Offer::implicit_equation) | surface_bit(SurfaceKind::sphere));
   EXPECT_EQ(find_scene_path("friction.internal")->surfaces, ~0u);
   EXPECT_EQ(find_scene_path("surface.tube_radius")->surfaces, surface_bit(SurfaceKind::torus));
   EXPECT_EQ(find_scene_path("body.mass")->surfaces, ~0u);

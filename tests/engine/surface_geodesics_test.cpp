@@ -10,12 +10,12 @@ namespace spinfold {
 namespace {
 
 RevolutionSurface spheroid(double a, double b) {
-  RevolutionSurface s{.kind = RevolutionKind::spheroid, .equatorial_radius = a, .polar_radius = b};
+  RevolutionSurface s{.kind = SurfaceKind::spheroid, .equatorial_radius = a, .polar_radius = b};
   return s;
 }
 
 TEST(SurfaceGeodesics, ProjectionLandsOnTheSurface) {
-  RevolutionSurface torus{.kind = RevolutionKind::torus, .tube_radius = 0.7, .center_radius = 2.0};
+  RevolutionSurface torus{.kind = SurfaceKind::torus, .tube_radius = 0.7, .center_radius = 2.0};
   const RevolutionImplicit F(torus);
   for (const Vec3& off : {Vec3(2.9, 0.1, 0.3), Vec3(1.1, 0.4, -0.2), Vec3(-0.5, 2.2, 0.65)}) {
     const Vec3 p = project_onto_surface(F, off);
@@ -43,7 +43,7 @@ TEST(SurfaceGeodesics, TheExponentialMapOfASphereShapedSpheroidIsTheGreatCircle)
 }
 
 TEST(SurfaceGeodesics, TheTorussOuterEquatorIsAGeodesic) {
-  RevolutionSurface torus{.kind = RevolutionKind::torus, .tube_radius = 1.0, .center_radius = 2.5};
+  RevolutionSurface torus{.kind = SurfaceKind::torus, .tube_radius = 1.0, .center_radius = 2.5};
   const RevolutionImplicit F(torus);
   const Vec3 X(3.5, 0.0, 0.0);
   const Vec3 p = implicit_exponential_map(F, X, Vec3(0.0, 1.4, 0.0), 16);

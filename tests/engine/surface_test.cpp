@@ -6,12 +6,72 @@
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "engine/revolution.h"
+#include "engine/scene_fields.h"
 
 namespace spinfold {
 namespace {
 
 const Surface kSurfaces[] = {
     {SurfaceKind::sphere, 2.0}, {SurfaceKind::pseudosphere, 2.0}, {SurfaceKind::plane, 2.0}};
+
+// The catalog's offers are consistent for every kind: each runs either in the polar chart (with one
+// sign of K) or by the chart-free equations on its F; a profile chart or a formula comes with an F;
+// every profile chart has its entry, named as the scene names the kind.
+TEST(Surface, EveryKindOffersOneConsistentSetOfCapabilities) {
+  ASSERT_EQ(std::size(kSurfaceCatalog), std::size(kSurfaceKindNames));
+  std::size_t profiles = 0;
+  for (const EnumName<SurfaceKind>& n : kSurfaceKindNames) {
+    const SurfaceKind k = n.value;
+    SCOPED_TRACE(std::string(n.name));
+    const bool polar = offers(k, Offer::polar_chart), implicit = offers(k, Offer::implicit_equation);
+    EXPECT_NE(polar, implicit);
+    Surface s;
+    s.kind = k;
+    EXPECT_EQ(chart_free(s), implicit);
+    const int signs = offers(k, Offer::positive_curvature) + offers(k, Offer::negative_curvature) +
+                      offers(k, Offer::zero_curvature);
+    EXPECT_EQ(signs, polar ? 1 : 0);
+    if (offers(k, Offer::profile_chart) || offers(k, Offer::formula)) {
+      EXPECT_TRUE(implicit);
+    }
+    EXPECT_FALSE(offers(k, Offer::profile_chart) && offers(k, Offer::formula));
+    EXPECT_EQ((surfaces_offering(Offer::polar_chart) & surface_bit(k)) != 0, polar);
+    if (offers(k, Offer::profile_chart)) {
+      ++profiles;
+      EXPECT_EQ(revolution_entry(k).kind, k);
+      EXPECT_EQ(revolution_entry(k).name, n.name);
+      EXPECT_EQ(find_revolution(n.name), &revolution_entry(k));
+    } else {
+      EXPECT_THROW(revolution_entry(k), std::logic_error);
+      EXPECT_EQ(find_revolution(n.name), nullptr);
+    }
+    if (polar) {
+      EXPECT_NO_THROW(curvature_sign(s));
+    } else {
+      EXPECT_THROW(curvature_sign(s), std::logic_error);
+    }
+  }
+  EXPECT_EQ(revolution_catalog().size(), profiles);
+  EXPECT_FALSE(offers(static_cast<SurfaceKind>(99), Offer::implicit_equation));
+}
+
+// The scene's defaults and the profile chart's parameter record agree (they once did not: the
+// spheroid's polar radius was 0.6 in one and 1.0 in the other).
+TEST(Surface, ProfileParametersDefaultAsTheScene) {
+  const Surface scene;
+  const RevolutionSurface profile;
+  EXPECT_EQ(profile.tube_radius, scene.tube_radius);
+  EXPECT_EQ(profile.center_radius, scene.center_radius);
+  EXPECT_EQ(profile.equatorial_radius, scene.equatorial_radius);
+  EXPECT_EQ(profile.polar_radius, scene.polar_radius);
+  EXPECT_EQ(profile.height, scene.height);
+  EXPECT_EQ(profile.width, scene.width);
+  EXPECT_EQ(profile.neck_radius, scene.neck_radius);
+}
 
 TEST(Surface, CurvatureIsSignOverRadiusSquared) {
   EXPECT_EQ(curvature_sign(kSurfaces[0]), 1.0);
@@ -67,14 +127,14 @@ TEST(Surface, ChartPointFrameIsOrthonormalAndTangent) {
       for (const double phi : {0.0, 1.0, -2.5}) {
         const ChartPoint p = chart_point(s, r, phi);
         const double R = s.radius;
-        if (s.kind == SurfaceKind::plane)
+        if (offers(s, Offer::zero_curvature))
           EXPECT_EQ(p.X.z(), 0.0);
         else
           EXPECT_NEAR(dot(s, p.X, p.X), curvature_sign(s) * R * R, 1e-12);
         EXPECT_NEAR(dot(s, p.E1, p.E1), 1.0, 1e-12);
         EXPECT_NEAR(dot(s, p.E2, p.E2), 1.0, 1e-12);
         EXPECT_NEAR(dot(s, p.E1, p.E2), 0.0, 1e-12);
-        if (s.kind != SurfaceKind::plane) {
+        if (!offers(s, Offer::zero_curvature)) {
           EXPECT_NEAR(dot(s, p.E1, p.X), 0.0, 1e-12);
           EXPECT_NEAR(dot(s, p.E2, p.X), 0.0, 1e-12);
         }
@@ -118,7 +178,7 @@ TEST(Surface, TangentialProjects) {
     const ChartPoint p = chart_point(s, 0.9, 2.0);
     EXPECT_LT((tangential(s, p.X, p.E1) - p.E1).norm(), 1e-14);
     EXPECT_LT((tangential(s, p.X, p.E2) - p.E2).norm(), 1e-14);
-    if (s.kind == SurfaceKind::plane) {
+    if (offers(s, Offer::zero_curvature)) {
       EXPECT_EQ(tangential(s, p.X, w), Vec3(0.3, -1.2, 0.0));
     } else {
       EXPECT_LT(tangential(s, p.X, p.X).norm(), 1e-14);

@@ -48,8 +48,8 @@ ViewOptions aimed(ViewKind kind, const Snapshot& s, int w = 795, int h = 515) {
 }
 
 Vec3 embedded(const Surface& surface, double q, double phi) {
-  return curvature_varies(surface.kind) ? revolution_frame(revolution_surface(surface), q, phi).X
-                                        : chart_point(surface, q, phi).X;
+  return chart_free(surface) ? revolution_frame(revolution_surface(surface), q, phi).X
+                             : chart_point(surface, q, phi).X;
 }
 
 // The places a picture of the surface may show: q over the chart's range (out to 3R on H² and the
@@ -57,9 +57,9 @@ Vec3 embedded(const Surface& surface, double q, double phi) {
 std::pair<double, double> random_place(const Surface& surface, std::mt19937& rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double phi = -kPi + 2 * kPi * unit(rng);
-  if (!curvature_varies(surface.kind)) {
+  if (!chart_free(surface)) {
     const double R = surface.radius;
-    return {(surface.kind == SurfaceKind::sphere ? kPi : 3.0) * R * unit(rng), phi};
+    return {(offers(surface, Offer::positive_curvature) ? kPi : 3.0) * R * unit(rng), phi};
   }
   const RevolutionSurface rs = revolution_surface(surface);
   const ProfilePicture p = revolution_entry(rs.kind).picture(rs);
@@ -109,7 +109,7 @@ TEST(Drag, APixelGivesBackThePlaceDrawnThereInEveryPresetAndView) {
           const double miss = again ? glm::length(again->body - handles->body) : 1e9;
           // The place itself, by the embedded distance (φ is arbitrary at a pole) relative to the
           // picture's length: a pixel of an 800-pixel frame is ~1e-3 of it.
-          const double L = curvature_varies(scene.surface.kind)
+          const double L = chart_free(scene.surface)
                                ? revolution_entry(revolution_surface(scene.surface).kind)
                                      .picture(revolution_surface(scene.surface))
                                      .length
@@ -121,7 +121,7 @@ TEST(Drag, APixelGivesBackThePlaceDrawnThereInEveryPresetAndView) {
                   ? glm::length(model.world_position(scene.surface, P) -
                                 model.world_position(scene.surface, X))
                   : (P - X).norm() /
-                        std::max(L, scene.surface.kind == SurfaceKind::pseudosphere ? X.norm() : L);
+                        std::max(L, offers(scene.surface, Offer::negative_curvature) ? X.norm() : L);
           // Another point is right only where it hides this one: nearer the camera on the pixel's ray
           // (the tractricoid's horn and the torus's tube, whose far sides the aiming's `hidden`
           // does not count).
@@ -369,7 +369,7 @@ TEST(Drag, OnlyASurfaceWithoutAChartHasNoHandles) {
   for (const EnumName<SurfaceKind>& e : enum_names(std::type_identity<SurfaceKind>{})) {
     Surface surface;
     surface.kind = e.value;
-    EXPECT_EQ(drag_unsupported_reason(surface).has_value(), given_by_formula(e.value)) << e.name;
+    EXPECT_EQ(drag_unsupported_reason(surface).has_value(), offers(e.value, Offer::formula)) << e.name;
   }
 }
 

@@ -26,8 +26,8 @@ Snapshot body_at(SurfaceKind kind, double R, double r, double phi, double lambda
 
 double geodesic_distance(const Surface& surface, const Vec3& a, const Vec3& b) {
   const double R = surface.radius, c = dot(surface, a, b) / (R * R);
-  return surface.kind == SurfaceKind::sphere ? R * std::acos(std::clamp(c, -1.0, 1.0))
-                                             : R * std::acosh(std::max(1.0, -c));
+  return offers(surface, Offer::positive_curvature) ? R * std::acos(std::clamp(c, -1.0, 1.0))
+                                                    : R * std::acosh(std::max(1.0, -c));
 }
 
 TEST(SceneBuilder, EllipseLiesOnTheSurfaceCentredOnTheBodyWithTheAxesOfL) {

@@ -32,7 +32,7 @@ constexpr SurfaceKind kSurfaces[] = {SurfaceKind::sphere,   SurfaceKind::pseudos
 // A body off every special point of the surface, with a deformed frame (on a formula surface, the
 // default formula's: the unit sphere, the plane z = 0).
 Snapshot sample_body(SurfaceKind surface) {
-  if (given_by_formula(surface)) {
+  if (offers(surface, Offer::formula)) {
     Snapshot s;
     s.surface.kind = surface;
     const auto shape = surface_shape_of(s.surface);
@@ -42,8 +42,8 @@ Snapshot sample_body(SurfaceKind surface) {
     testing::add_body(s, X, E1, n.cross(E1), 1.2, 0.8);
     return s;
   }
-  return curvature_varies(surface) ? body_on(surface, 0.7, 0.7, 1.2, 0.8)
-                                   : body_at(surface, 2.0, 0.4, 0.7, 1.2, 0.8);
+  return offers(surface, Offer::implicit_equation) ? body_on(surface, 0.7, 0.7, 1.2, 0.8)
+                                                   : body_at(surface, 2.0, 0.4, 0.7, 1.2, 0.8);
 }
 
 // The first surface a view shows.

@@ -504,6 +504,53 @@ TEST_F(Api, AdvanceStopsAtTheStepLimitAndKeepsTheProgress) {
   remove(id);
 }
 
+// The work of one advance request is bounded in seconds as well as in attempts (a formula
+// surface's step costs several times a chart's): past its seconds the answer says so, keeps the
+// progress, and continuing gives the bits of one uncut advance.
+TEST(ApiLimits, AdvanceStopsAfterItsSecondsOfWorkAndKeepsTheProgress) {
+  ServerOptions options;
+  options.port = 0;
+  options.threads = 2;
+  options.limits.max_steps = 1'000'000'000;
+  options.limits.max_advance_seconds = 0.05;
+  options.limits.requests_per_second_per_client = 0.0;
+  test::TestServer server;
+  server.start(options);
+  auto c = server.client(180);
+  const std::string scene = R"({"potential": {"deformation": {"kind": "abc", "C": 1e8}},
+      "initial": {"lambda": 1.3, "mu": 0.7}, "integrator": {"name": "dop853", "tolerance": 1e-14}})";
+  auto created = c.Post("/api/v1/sessions", scene, "application/json");
+  ASSERT_TRUE(created);
+  ASSERT_EQ(created->status, 201) << created->body;
+  const std::string id = json::parse(created->body)["id"];
+  const std::string advance = "/api/v1/sessions/" + id + "/advance";
+  auto first = c.Post(advance, R"({"until": 1000})", "application/json");
+  ASSERT_TRUE(first);
+  ASSERT_EQ(first->status, 200) << first->body;
+  const json a = json::parse(first->body);
+  EXPECT_EQ(a["advance"]["complete"], false);
+  const std::string reason = a["advance"]["reason"];
+  EXPECT_NE(reason.find("0.05 s of work, the limit per request"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("advance again"), std::string::npos) << reason;
+  const double t1 = a["state"]["t"];
+  ASSERT_GT(t1, 0.0);
+  ASSERT_LT(t1, 1000.0);
+  auto second = c.Post(advance, R"({"until": 1000})", "application/json");
+  ASSERT_TRUE(second);
+  const double t2 = json::parse(second->body)["state"]["t"];
+  EXPECT_GT(t2, t1);
+  auto last = c.Post(advance, json{{"until", t2 + 1e-3}}.dump(), "application/json");
+  ASSERT_TRUE(last);
+  const json b = json::parse(last->body);
+  EXPECT_EQ(b["advance"]["complete"], true);
+  // The same scene advanced in one go to the same time, here.
+  Simulation run = start_simulation(*parse_scene_text(scene).scene);
+  ASSERT_TRUE(advance_to(run, t2 + 1e-3));
+  const nlohmann::ordered_json uncut = sample_to_json(run, run.state.t);
+  for (const auto& [key, value] : uncut.items()) EXPECT_EQ(b["state"][key], json::parse(value.dump())) << key;
+  server.stop();
+}
+
 TEST_F(Api, PatchContinuesFromTheCurrentStateUnderNewParameters) {
   const std::string id = create(R"({"preset": "breathing_ellipse_sphere"})");
   auto c = client();

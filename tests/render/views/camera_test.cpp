@@ -224,7 +224,7 @@ TEST(Camera, TheCurvatureDialKeepsTheBodyInThePictureAndLargeEnough) {
   std::vector<double> far_out;
   const auto check = [&](const std::string& when) {
     const Snapshot s = make_snapshot(run, Trail{}, -1.0);
-    if (s.surface.kind == SurfaceKind::pseudosphere)  // R = 1 at K = −1: X₃ = cosh r
+    if (offers(s.surface, Offer::negative_curvature))  // R = 1 at K = −1: X₃ = cosh r
       far_out.push_back(std::acosh(std::max(1.0, s.bodies[0].X.z() / s.surface.radius)));
     for (const auto& [w, h] : {std::pair{795, 515}, {1280, 757}}) {
       const ViewOptions view = testing::aimed_view(ViewKind::conformal, w, h, s);

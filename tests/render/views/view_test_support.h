@@ -82,8 +82,8 @@ inline bool in_frame(const std::optional<glm::dvec2>& px, const ViewOptions& vie
 // Geodesic distance on the sphere or H² from the embedding's inner product.
 inline double geodesic_distance(const Surface& surface, const Vec3& a, const Vec3& b) {
   const double R = surface.radius, c = dot(surface, a, b) / (R * R);
-  return surface.kind == SurfaceKind::sphere ? R * std::acos(std::clamp(c, -1.0, 1.0))
-                                             : R * std::acosh(std::max(1.0, -c));
+  return offers(surface, Offer::positive_curvature) ? R * std::acos(std::clamp(c, -1.0, 1.0))
+                                                    : R * std::acosh(std::max(1.0, -c));
 }
 
 }  // namespace spinfold::render::testing
