@@ -209,6 +209,21 @@ std::vector<std::string> expand_field(std::string_view name, std::span<const std
   return out;
 }
 
+std::vector<std::string> sample_field_names() {
+  std::vector<std::string> names;
+  const std::vector<std::string> columns = sample_column_names();
+  for (const std::string& column : columns) {
+    for (std::size_t dot = column.find('.'); dot != std::string::npos; dot = column.find('.', dot + 1)) {
+      const std::string group = column.substr(0, dot);
+      if (std::ranges::find(names, group) == names.end() &&
+          std::ranges::find(columns, group) == columns.end())
+        names.push_back(group);
+    }
+    names.push_back(column);
+  }
+  return names;
+}
+
 std::map<std::string, ordered_json> flatten_sample(const ordered_json& sample) {
   std::map<std::string, ordered_json> out;
   for (auto it = sample.begin(); it != sample.end(); ++it) {

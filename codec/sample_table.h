@@ -41,6 +41,9 @@ std::string column_unit(std::string_view name);
 // "actions": actions.J_r …), in the table's order; none for an unknown name. `names` is the
 // vocabulary (sample_column_names(), or a part of it).
 std::vector<std::string> expand_field(std::string_view name, std::span<const std::string> names);
+// Every name `fields` takes: the columns (sample_column_names()) and each group of them that
+// expand_field selects ("X", "L", "L.1", "actions", …), in the columns' order.
+std::vector<std::string> sample_field_names();
 
 // The sample's values by flattened name (objects by key, arrays by index); "events" becomes the
 // count of events and "undefined" the names joined by ';'. Companions are left out.

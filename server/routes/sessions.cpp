@@ -508,9 +508,10 @@ std::vector<Route> session_routes(const Limits& limits) {
                                  size_text(static_cast<double>(limits.max_trajectory_bytes)) + ")"},
                  {.name = "fields",
                   .type = ParamType::list,
-                  .values = sample_column_names(),
-                  .description = "the columns (as `spinfold simulate --fields`); absent: every column "
-                                 "(csv) or the whole sample (json)"}},
+                  .values = sample_field_names(),
+                  .description =
+                      "the columns or groups of them (X for X.0, X.1, X.2; as `spinfold "
+                      "simulate --fields`); absent: every column (csv) or the whole sample (json)"}},
        .responses = {{200, "application/json or text/csv"},
                      {422, "more than 100000 samples, or an answer over " +
                                size_text(static_cast<double>(limits.max_trajectory_bytes)) +

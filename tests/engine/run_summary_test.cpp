@@ -7,11 +7,13 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "engine/embedded_run.h"
 #include "engine/initial_rates.h"
 #include "engine/sampling.h"
+#include "formula_surfaces.h"
 #include "test_support.h"
 
 namespace spinfold {
@@ -122,6 +124,31 @@ TEST(RunSummary, IndependentOfTheSampling) {
       EXPECT_EQ(std::memcmp(&coarse[i], &once[i], sizeof(double)), 0) << integrator << " column " << i;
     }
   }
+}
+
+// The same on a surface given by a formula, which has no chart: the summaries of X, K and the
+// constraint's drift and the events on the height, with projection after each step, to the bit.
+TEST(RunSummary, IndependentOfTheSamplingOnAFormulaSurface) {
+  Scene scene;
+  scene.surface = test::graph_surface("a*sin(x)*sin(y)", {{"a", 0.4}});
+  scene.initial.X = {0.3, 0.2, 0.0};
+  scene.initial.speed = 0.6;
+  scene.initial.heading = 0.4;
+  scene.initial.spin = 0.8;
+  scene.body.model = BodyModel::rigid;
+  scene.integrator = {"dop853", 0.01, 1e-10};
+  const MonitorSpec spec{.summaries = {parse_summary("X.0"), parse_summary("K"), parse_summary("X.2.max")},
+                         .events = {parse_event("X.2:up:0.05"), parse_event("K:any:0")}};
+  const std::vector<double> coarse = summarised(scene, spec, 12.0, 0.5);
+  const std::vector<double> fine = summarised(scene, spec, 12.0, 0.017);
+  const std::vector<double> once = summarised(scene, spec, 12.0, 12.0);
+  ASSERT_EQ(coarse.size(), fine.size());
+  ASSERT_EQ(coarse.size(), once.size());
+  for (std::size_t i = 0; i < coarse.size(); ++i) {
+    EXPECT_EQ(std::memcmp(&coarse[i], &fine[i], sizeof(double)), 0) << "column " << i;
+    EXPECT_EQ(std::memcmp(&coarse[i], &once[i], sizeof(double)), 0) << "column " << i;
+  }
+  EXPECT_GT(coarse[1] - coarse[0], 0.1) << "X.0 varies";
 }
 
 // Against a dense trajectory (a sample every 1e-3): the extremes bound every sample's value and

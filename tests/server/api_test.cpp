@@ -467,6 +467,15 @@ TEST_F(Api, TrajectoryRowsDoNotDependOnHowTheSessionWasAdvanced) {
   auto many = c.Get("/api/v1/sessions/" + a + "/trajectory?every=1e-5");
   EXPECT_EQ(many->status, 422);
   EXPECT_NE(many->body.find("\"every\""), std::string::npos) << many->body;
+  // A group names its members, as `simulate --fields` does: X is X.0, X.1, X.2; L.1 is L.1.0, L.1.1.
+  auto grouped = c.Get("/api/v1/sessions/" + a + "/trajectory?fields=t,X,L.1");
+  auto listed = c.Get("/api/v1/sessions/" + a + "/trajectory?fields=t,X.0,X.1,X.2,L.1.0,L.1.1");
+  ASSERT_TRUE(grouped && listed);
+  EXPECT_EQ(grouped->status, 200) << grouped->body;
+  EXPECT_EQ(grouped->body, listed->body);
+  EXPECT_NE(grouped->body.find(R"({"t":0.0,"X.0":)"), std::string::npos) << grouped->body;
+  EXPECT_NE(grouped->body.find(R"("X.2":)"), std::string::npos) << grouped->body;
+  EXPECT_NE(grouped->body.find(R"("L.1.1":)"), std::string::npos) << grouped->body;
   auto unknown = c.Get("/api/v1/sessions/" + a + "/trajectory?fields=t,rr");
   EXPECT_EQ(unknown->status / 100, 4);
   EXPECT_NE(unknown->body.find("fields"), std::string::npos) << unknown->body;
