@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "engine/implicit_start.h"
 #include "engine/scene_fields.h"
 
 namespace spinfold {
@@ -74,6 +75,11 @@ void read_free(const Simulation& run, Readout& r) {
   const FreeReadout f = free_readout(*run.embedded, run.state.y);
   read_embedded(run, f.coordinates, f.K, f.speed, r);
   r.embedded = Readout::Embedded{f.body.V, f.body.e[0], f.body.e[1], f.normal, f.distance, f.tangency};
+  // The heading as a start gives it: from the convention's E₁ towards E₂ at X (undefined at rest).
+  if (f.speed > 0.0) {
+    const StartFrame frame = start_frame(*run.embedded->implicit, f.body.X);
+    r.heading = std::atan2(f.body.V.dot(frame.E2), f.body.V.dot(frame.E1));
+  }
 }
 
 }  // namespace

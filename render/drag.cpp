@@ -6,7 +6,9 @@
 #include <limits>
 #include <numbers>
 
+#include "engine/implicit_start.h"
 #include "engine/revolution.h"
+#include "engine/surface_shape.h"
 #include "render/view_table.h"
 #include "render/views/camera.h"
 #include "render/views/view_model.h"
@@ -135,6 +137,73 @@ class Projection {
   glm::dmat4 matrix_;
 };
 
+// The place a drag works with on either kind of surface: the chart's point (q, φ) where there is a
+// chart, else the body's X with the start convention's frame there (engine/implicit_start.h), the
+// frame its heading is read in.
+struct DragPlace {
+  PlaceFrame frame;
+  double length = 1.0;  // the picture's length for differences [length]
+};
+DragPlace drag_place(const Surface& surface, const BodyPlace& body) {
+  if (drags_by_point(surface)) {
+    const auto shape = surface_shape_of(surface);
+    const StartFrame f = start_frame(*shape->implicit, body.X);
+    return {{body.X, f.E1, f.E2, 1.0, 1.0, false}, shape->feature};
+  }
+  const Chart chart(surface);
+  return {chart.at(body.q, body.phi), chart.range().length};
+}
+
+// The pixel's ray in the world of the view (near and far planes).
+std::pair<glm::dvec3, glm::dvec3> pixel_ray(const ViewModel& model, const ViewOptions& view,
+                                            glm::dvec2 pixel) {
+  const glm::dmat4 inverse = glm::inverse(glm::dmat4(model.camera(view)));
+  const double x = 2.0 * pixel.x / view.width - 1.0, y = 1.0 - 2.0 * pixel.y / view.height;
+  const glm::dvec4 a = inverse * glm::dvec4(x, y, -1.0, 1.0), b = inverse * glm::dvec4(x, y, 1.0, 1.0);
+  return {glm::dvec3(a) / a.w, glm::dvec3(b) / b.w};
+}
+
+// The view's map from space to its world as X ↦ A X + c, when it is one (probed, and checked at a
+// point off the probes to 1e-9 of the picture's length).
+struct AffineMap {
+  Mat3 A;
+  Vec3 c;
+};
+std::optional<AffineMap> affine_world(const ViewModel& model, const Surface& surface,
+                                      const SurfaceShape& shape) {
+  const auto world = [&](const Vec3& X) {
+    const glm::dvec3 w = model.world_position(surface, X);
+    return Vec3(w.x, w.y, w.z);
+  };
+  const double L = shape.length;
+  AffineMap m;
+  m.c = world(shape.centre);
+  for (int k = 0; k < 3; ++k) m.A.col(k) = (world(shape.centre + L * Vec3::Unit(k)) - m.c) / L;
+  const Vec3 probe = shape.centre + L * Vec3(0.37, -0.61, 0.23);
+  const Vec3 expected = m.A * (probe - shape.centre) + m.c;
+  if (!m.A.allFinite() || !(std::abs(m.A.determinant()) > 0.0) ||
+      !((world(probe) - expected).norm() <= 1e-9 * std::max(1.0, expected.norm())))
+    return std::nullopt;
+  return m;
+}
+
+// The interval of s in [0, 1] where a + s (b − a) lies inside the box, or nullopt (the slab method).
+std::optional<std::pair<double, double>> inside_box(const SurfaceBounds& box, const Vec3& a, const Vec3& b) {
+  double lo = 0.0, hi = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = b[k] - a[k];
+    if (d == 0.0) {
+      if (a[k] < box[k][0] || a[k] > box[k][1]) return std::nullopt;
+      continue;
+    }
+    double s0 = (box[k][0] - a[k]) / d, s1 = (box[k][1] - a[k]) / d;
+    if (s0 > s1) std::swap(s0, s1);
+    lo = std::max(lo, s0), hi = std::min(hi, s1);
+  }
+  if (!(lo <= hi)) return std::nullopt;
+  return std::pair{lo, hi};
+}
+
 // Levenberg–Marquardt on the pixel's residual over (q, φ) from a seed: the place whose image is
 // nearest `target`, and that distance [pixels].
 struct Fit {
@@ -191,38 +260,43 @@ BodyPlace body_place(const Readout& readout) {
   // φ is undefined at a pole (any will do there) and listed as such far out on H², where the
   // embedding's own angle still places the body to the pixel.
   const PaperCoordinates& c = readout.coordinates;
-  return {c.r, c.phi.value_or(std::atan2(c.X.y(), c.X.x())), readout.speed.value_or(0.0), readout.heading};
+  return {c.r, c.phi.value_or(std::atan2(c.X.y(), c.X.x())), readout.speed.value_or(0.0), readout.heading,
+          c.X};
 }
 
 double arrow_pixels_per_speed(const ViewOptions& view, const Surface& surface) {
   return 0.25 * std::min(view.width, view.height) / body_scale_length(view.kind, surface);
 }
 
-std::optional<std::string> drag_unsupported_reason(const Surface& surface) {
-  if (chart_free(surface) && !offers(surface, Offer::profile_chart))
-    return "has no chart to drag the body over yet: on a surface given by a formula, set its start as "
-           "initial.X";
-  return std::nullopt;
+bool drags_by_point(const Surface& surface) {
+  return chart_free(surface) && !offers(surface, Offer::profile_chart);
+}
+
+std::optional<std::string> drag_unsupported_reason(const Surface& /*surface*/) {
+  return std::nullopt;  // every surface: a chart's search, or a ray cast against F
 }
 
 std::optional<DragHandles> drag_handles(const Snapshot& snapshot, const ViewOptions& view,
                                         const BodyPlace& body) {
-  const Chart chart(snapshot.surface);
+  const DragPlace place = drag_place(snapshot.surface, body);
+  const PlaceFrame& at = place.frame;
   const Projection projection(snapshot, view);
-  const PlaceFrame at = chart.at(body.q, body.phi);
   const auto image = projection.of(at.X);
   if (!image) return std::nullopt;
   // In 3-D, a body behind a nearer part of the surface (the sphere's far side, the torus's tube):
   // the pixel belongs to that part.
   if (view_info(view.kind).three_d) {
-    const auto seen = place_at_pixel(snapshot, view, image->pixel, body);
-    const double length = chart.range().length;
-    if (!seen || (chart.at(seen->first, seen->second).X - at.X).norm() > 1e-4 * std::max(length, at.X.norm()))
-      return std::nullopt;
+    std::optional<Vec3> seen;
+    if (drags_by_point(snapshot.surface)) {
+      seen = point_at_pixel(snapshot, view, image->pixel, body);
+    } else if (const auto q = place_at_pixel(snapshot, view, image->pixel, body)) {
+      seen = Chart(snapshot.surface).at(q->first, q->second).X;
+    }
+    if (!seen || (*seen - at.X).norm() > 1e-4 * std::max(place.length, at.X.norm())) return std::nullopt;
   }
   DragHandles handles{image->pixel, std::nullopt};
   if (!body.heading) return handles;
-  const auto J = projection.jacobian(at.X, at.E1, at.E2, chart.range().length);
+  const auto J = projection.jacobian(at.X, at.E1, at.E2, place.length);
   if (!J) return handles;
   const glm::dvec2 d = *J * glm::dvec2(std::cos(*body.heading), std::sin(*body.heading));
   const double n = glm::length(d);
@@ -297,13 +371,63 @@ std::optional<std::pair<double, double>> place_at_pixel(const Snapshot& snapshot
   return chart.canonical(best->q, best->phi);
 }
 
+std::optional<Vec3> point_at_pixel(const Snapshot& snapshot, const ViewOptions& view, glm::dvec2 pixel,
+                                   const BodyPlace& near) {
+  if (!(pixel.x >= 0 && pixel.y >= 0 && pixel.x <= view.width && pixel.y <= view.height)) return std::nullopt;
+  const auto shape = surface_shape_of(snapshot.surface);
+  const ViewModel& model = view_model(view.kind);
+  const std::optional<AffineMap> map = affine_world(model, snapshot.surface, *shape);
+  if (!map) return std::nullopt;
+  const auto [wa, wb] = pixel_ray(model, view, pixel);
+  const Mat3 back = map->A.inverse();
+  const Vec3 a = back * (Vec3(wa.x, wa.y, wa.z) - map->c) + shape->centre;
+  const Vec3 b = back * (Vec3(wb.x, wb.y, wb.z) - map->c) + shape->centre;
+  // Where the frame may paint the surface: the drawn box, and the patch round a body beyond it.
+  SurfaceBounds patch{};
+  const double half = 4.0 * shape->feature;
+  for (int k = 0; k < 3; ++k) patch[k] = {near.X[k] - half, near.X[k] + half};
+  const Projection projection(snapshot, view);
+  std::optional<std::pair<double, Vec3>> best;  // the ray's parameter and the point
+  for (const SurfaceBounds& box : {shape->box, patch}) {
+    const auto span = inside_box(box, a, b);
+    if (!span) continue;
+    constexpr int kSamples = 1024;
+    const auto at = [&](double s) { return Vec3(a + s * (b - a)); };
+    double s0 = span->first, f0 = shape->value(at(s0));
+    for (int i = 1; i <= kSamples && !(best && s0 >= best->first); ++i) {
+      const double s1 = span->first + (span->second - span->first) * i / kSamples, f1 = shape->value(at(s1));
+      if (std::isfinite(f0) && std::isfinite(f1) && (f0 < 0.0) != (f1 < 0.0)) {
+        double lo = s0, hi = s1, flo = f0;
+        for (int k = 0; k < 80 && hi - lo > 1e-16 * std::max(1.0, hi); ++k) {
+          const double mid = 0.5 * (lo + hi), fm = shape->value(at(mid));
+          if ((fm < 0.0) == (flo < 0.0))
+            lo = mid, flo = fm;
+          else
+            hi = mid;
+        }
+        const SurfaceFoot foot =
+            project_onto_surface(*shape->implicit, at(0.5 * (lo + hi)), shape->length, 1e-3 * shape->feature);
+        const auto image = foot.X ? projection.of(*foot.X) : std::nullopt;
+        if (image && glm::length(image->pixel - pixel) <= 0.05 &&
+            model.paints_surface_at(snapshot, *foot.X)) {
+          best = std::pair{lo, *foot.X};
+          break;
+        }
+      }
+      s0 = s1, f0 = f1;
+    }
+  }
+  if (!best) return std::nullopt;
+  return best->second;
+}
+
 std::optional<std::pair<double, double>> velocity_at_pixel(const Snapshot& snapshot, const ViewOptions& view,
                                                            glm::dvec2 tip, const BodyPlace& body) {
-  const Chart chart(snapshot.surface);
+  const DragPlace place = drag_place(snapshot.surface, body);
+  const PlaceFrame& at = place.frame;
   const Projection projection(snapshot, view);
-  const PlaceFrame at = chart.at(body.q, body.phi);
   const auto image = projection.of(at.X);
-  const auto J = projection.jacobian(at.X, at.E1, at.E2, chart.range().length);
+  const auto J = projection.jacobian(at.X, at.E1, at.E2, place.length);
   if (!image || !J) return std::nullopt;
   const glm::dvec2 d = tip - image->pixel;
   const double scale = std::max(glm::length((*J)[0]), glm::length((*J)[1]));
@@ -324,8 +448,36 @@ InitialFields place_fields(const Surface& surface, double q, double phi) {
   return {{chart_free(surface) ? "u" : "r", q}, {"phi", phi}};
 }
 
+InitialFields place_fields(const Surface& surface, const BodyPlace& body) {
+  if (drags_by_point(surface)) return {{"X.0", body.X.x()}, {"X.1", body.X.y()}, {"X.2", body.X.z()}};
+  return place_fields(surface, body.q, body.phi);
+}
+
 StartMotion start_motion(const Readout& start) {
   return {start.spin, start.heading ? start.speed : std::nullopt, start.heading};
+}
+
+InitialFields point_drop_fields(const Vec3& X, const StartMotion& start) {
+  InitialFields fields{{"X.0", X.x()}, {"X.1", X.y()}, {"X.2", X.z()}};
+  if (start.speed && start.heading) {
+    fields.emplace_back("speed", *start.speed);
+    fields.emplace_back("heading", *start.heading);
+  }
+  fields.emplace_back("spin", start.spin);
+  return fields;
+}
+
+std::optional<InitialFields> body_drop_at_pixel(const Snapshot& snapshot, const ViewOptions& view,
+                                                glm::dvec2 pixel, const BodyPlace& near,
+                                                const StartMotion& start) {
+  if (drags_by_point(snapshot.surface)) {
+    const std::optional<Vec3> X = point_at_pixel(snapshot, view, pixel, near);
+    if (!X) return std::nullopt;
+    return point_drop_fields(*X, start);
+  }
+  const auto place = place_at_pixel(snapshot, view, pixel, near);
+  if (!place) return std::nullopt;
+  return body_drop_fields(snapshot.surface, place->first, place->second, start);
 }
 
 InitialFields body_drop_fields(const Surface& surface, double q, double phi, const StartMotion& start) {
@@ -340,6 +492,10 @@ InitialFields body_drop_fields(const Surface& surface, double q, double phi, con
 
 InitialFields arrow_drop_fields(const Surface& surface, const BodyPlace& body, double speed, double heading,
                                 const StartMotion& start) {
+  if (drags_by_point(surface)) {  // no pole off a chart: the place and the velocity as drawn
+    InitialFields fields = point_drop_fields(body.X, {start.spin, speed, heading});
+    return fields;
+  }
   const Chart chart(surface);
   const PlaceFrame at = chart.at(body.q, body.phi);
   double phi = body.phi;

@@ -18,10 +18,12 @@
 
 namespace spinfold::render {
 
-// Why a frame of this surface has no drag handles, or nullopt: the search runs over a chart (the
-// polar one, a surface of revolution's (u, φ)), and a surface given by a formula has none (its start
-// is initial.X, typed).
+// Why a frame of this surface has no drag handles, or nullopt. Where the surface has a chart (the
+// polar one, a surface of revolution's (u, φ)) the search runs over it; where it has none (a surface
+// given by a formula) the pixel's ray is cast against F in a view whose map from space is affine.
 std::optional<std::string> drag_unsupported_reason(const Surface& surface);
+// Whether the surface has no chart to search (the drop sets initial.X: point_at_pixel).
+bool drags_by_point(const Surface& surface);
 
 // Where the main body is and how it moves, in the scene's chart (engine/readout.h).
 struct BodyPlace {
@@ -29,6 +31,7 @@ struct BodyPlace {
   double phi = 0.0;               // [rad]
   double speed = 0.0;             // v [length/time]
   std::optional<double> heading;  // from E₁ towards E₂ [rad]; none where undefined (v > 0 at a pole)
+  Vec3 X = Vec3::Zero();          // the ambient point [length]: the place on a surface with no chart
 };
 
 // The main body's place and motion in a read-out (coordinates.r holds u where the curvature varies).
@@ -59,6 +62,12 @@ std::optional<DragHandles> drag_handles(const Snapshot& snapshot, const ViewOpti
 std::optional<std::pair<double, double>> place_at_pixel(const Snapshot& snapshot, const ViewOptions& view,
                                                         glm::dvec2 pixel, const BodyPlace& near);
 
+// On a surface with no chart (drags_by_point): the point of F = 0 the frame draws at `pixel`, the
+// nearest the camera along the pixel's ray within the drawn box or the patch round `near`, brought
+// onto F = 0 by Newton; nullopt off the surface drawn or where the view's map is not affine.
+std::optional<Vec3> point_at_pixel(const Snapshot& snapshot, const ViewOptions& view, glm::dvec2 pixel,
+                                   const BodyPlace& near);
+
 // The velocity (speed, heading) whose arrow from `body` ends at `tip`: the inverse of drag_handles'
 // arrow. nullopt where the view draws the tangent plane as a line (the sphere's limb).
 std::optional<std::pair<double, double>> velocity_at_pixel(const Snapshot& snapshot, const ViewOptions& view,
@@ -69,6 +78,9 @@ std::optional<std::pair<double, double>> velocity_at_pixel(const Snapshot& snaps
 using InitialFields = std::vector<std::pair<std::string_view, double>>;
 // The place's fields alone ("r" or "u", "phi").
 InitialFields place_fields(const Surface& surface, double q, double phi);
+// The body's place as the scene gives it: ("r" or "u", "phi"), or on a surface with no chart
+// ("X.0", "X.1", "X.2").
+InitialFields place_fields(const Surface& surface, const BodyPlace& body);
 
 // What a drop keeps of the run's start however the scene gave it (φ̇ and α̇ would give another
 // speed and spin at another place): its spin s, and, for a dropped body, its speed and heading.
@@ -79,6 +91,13 @@ struct StartMotion {
 StartMotion start_motion(const Readout& start);
 // A dropped body: the run starts at (q, φ) with the start's speed, heading and spin.
 InitialFields body_drop_fields(const Surface& surface, double q, double phi, const StartMotion& start);
+// The same on a surface with no chart: at X ("X.0", "X.1", "X.2": the scene's initial.X).
+InitialFields point_drop_fields(const Vec3& X, const StartMotion& start);
+// What a drop of the body at `pixel` sets, searching the surface's chart (place_at_pixel) or, with
+// none, its F (point_at_pixel); nullopt where the frame shows no part of the surface there.
+std::optional<InitialFields> body_drop_at_pixel(const Snapshot& snapshot, const ViewOptions& view,
+                                                glm::dvec2 pixel, const BodyPlace& near,
+                                                const StartMotion& start);
 // A dropped arrow: the run starts from the body's place now with the velocity drawn and the
 // start's spin. At a pole or an axis point, where the engine takes only heading 0 or π with a
 // speed (E₂ is undefined there), the heading is turned into φ, whose E₁ then points the velocity's way.

@@ -179,9 +179,12 @@ async function ask() {
 /** The handles' hover text: what they set and what it is now. @param {any} place @param {Handle} handle */
 function describe(place, handle) {
   const n = (/** @type {number} */ v) => Number(v.toPrecision(4));
-  const where = "r" in place ? `r = ${n(place.r)}` : `u = ${n(place.u)}`;
+  // The place as the scene gives it: a chart's (r or u, phi), or a point X on a surface with none.
+  const where = Array.isArray(place.X)
+    ? `X = (${place.X.map(n).join(", ")})`
+    : `${"r" in place ? `r = ${n(place.r)}` : `u = ${n(place.u)}`}, phi = ${n(place.phi)}`;
   return handle === "body"
-    ? `Drag to start the run here instead (now ${where}, phi = ${n(place.phi)})`
+    ? `Drag to start the run here instead (now ${where})`
     : `Drag the tip to change the velocity it starts with (now speed = ${n(place.speed)})`;
 }
 

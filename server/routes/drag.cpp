@@ -4,6 +4,8 @@
 #include "render/drag.h"
 
 #include <optional>
+#include <string>
+#include <string_view>
 
 #include "engine/number_text.h"
 #include "engine/readout.h"
@@ -53,6 +55,17 @@ DragFrame drag_frame(ServerContext& server, const Call& call, bool with_scene) {
   return d;
 }
 
+// A field of the scene's initial state into its JSON: "X.1" is component 1 of the array X.
+void put(nlohmann::ordered_json& object, std::string_view name, double value) {
+  const std::size_t dot = name.find('.');
+  if (dot == std::string_view::npos) {
+    object[std::string(name)] = value;
+    return;
+  }
+  nlohmann::ordered_json& array = object[std::string(name.substr(0, dot))];
+  array[std::stoul(std::string(name.substr(dot + 1)))] = value;
+}
+
 nlohmann::ordered_json point(const glm::dvec2& p) {
   return {{"x", p.x}, {"y", p.y}};
 }
@@ -64,8 +77,7 @@ void get_handles(ServerContext& server, const Call& call, httplib::Response& res
   out["body"] = handles ? point(handles->body) : nlohmann::ordered_json(nullptr);
   out["arrow"] = handles && handles->arrow ? point(*handles->arrow) : nlohmann::ordered_json(nullptr);
   nlohmann::ordered_json place = nlohmann::ordered_json::object();
-  for (const auto& [name, value] : render::place_fields(d.snapshot.surface, d.body.q, d.body.phi))
-    place[std::string(name)] = value;
+  for (const auto& [name, value] : render::place_fields(d.snapshot.surface, d.body)) put(place, name, value);
   place["speed"] = d.body.speed;
   place["heading"] =
       d.body.heading ? nlohmann::ordered_json(*d.body.heading) : nlohmann::ordered_json(nullptr);
@@ -94,12 +106,12 @@ void get_drop(ServerContext& server, const Call& call, httplib::Response& res) {
   render::InitialFields fields;
   const bool arrow = *call.query.text("handle") == "arrow";
   if (!arrow) {
-    const auto place = render::place_at_pixel(d.snapshot, d.view, pixel, d.body);
-    if (!place)
+    const auto dropped = render::body_drop_at_pixel(d.snapshot, d.view, pixel, d.body, start);
+    if (!dropped)
       throw bad(422, "Invalid value", "x", shortest(*x),
                 "shows no part of the surface (the pixel (" + shortest(*x) + ", " + shortest(*y) +
                     ") of this frame): drop the body on the surface");
-    fields = render::body_drop_fields(d.snapshot.surface, place->first, place->second, start);
+    fields = *dropped;
   } else {
     const auto velocity = render::velocity_at_pixel(d.snapshot, d.view, pixel, d.body);
     if (!velocity)
@@ -109,7 +121,7 @@ void get_drop(ServerContext& server, const Call& call, httplib::Response& res) {
     fields = render::arrow_drop_fields(d.snapshot.surface, d.body, velocity->first, velocity->second, start);
   }
   nlohmann::ordered_json initial = nlohmann::ordered_json::object();
-  for (const auto& [name, value] : fields) initial[std::string(name)] = value;
+  for (const auto& [name, value] : fields) put(initial, name, value);
   res.set_header("Cache-Control", "no-store");
   send_json(res, {{"initial", initial}, {"text", render::drop_text(fields, arrow)}});
 }

@@ -11,6 +11,7 @@
 #include "codec/scene_json.h"
 #include "engine/readout.h"
 #include "engine/scene_fields.h"
+#include "engine/surface_shape.h"
 #include "engine/timeline.h"
 #include "render/scene_builder.h"
 #include "render/view_parameters.h"
@@ -47,6 +48,19 @@ ViewOptions aimed(ViewKind kind, const Snapshot& s, int w = 795, int h = 515) {
   return view;
 }
 
+// A drop's fields as a merge patch of the scene's initial state ("X.1": component 1 of initial.X).
+nlohmann::json initial_patch(const InitialFields& fields) {
+  nlohmann::json patch = {{"initial", nlohmann::json::object()}};
+  for (const auto& [name, value] : fields) {
+    const std::string key(name);
+    if (const std::size_t dot = key.find('.'); dot != std::string::npos)
+      patch["initial"][key.substr(0, dot)][std::stoul(key.substr(dot + 1))] = value;
+    else
+      patch["initial"][key] = value;
+  }
+  return patch;
+}
+
 Vec3 embedded(const Surface& surface, double q, double phi) {
   return chart_free(surface) ? revolution_frame(revolution_surface(surface), q, phi).X
                              : chart_point(surface, q, phi).X;
@@ -78,7 +92,7 @@ TEST(Drag, APixelGivesBackThePlaceDrawnThereInEveryPresetAndView) {
   std::string failures;
   for (const PresetSource& preset : preset_sources()) {
     const Scene scene = *parse_scene_text(preset.json).scene;
-    if (drag_unsupported_reason(scene.surface)) continue;  // no chart to drag over (a formula's)
+    if (drags_by_point(scene.surface)) continue;  // no chart: Drag.OnASurfaceWithNoChart…
     for (const double t : {0.0, 3.0}) {
       const PresetRun r = run_to(scene, t);
       const BodyPlace near = body_place(readout(r.run));
@@ -205,7 +219,6 @@ TEST(Drag, ABodyStartedByTheArrowMovesAlongItOnTheScreen) {
   std::string failures;
   for (const PresetSource& preset : preset_sources()) {
     Scene scene = *parse_scene_text(preset.json).scene;
-    if (drag_unsupported_reason(scene.surface)) continue;  // no chart to drag over (a formula's)
     for (const ViewRow& row : view_table()) {
       if (!shows(row.info, scene.surface.kind)) continue;
       const PresetRun r = run_to(scene, 1.0);
@@ -230,10 +243,9 @@ TEST(Drag, ABodyStartedByTheArrowMovesAlongItOnTheScreen) {
       if (!velocity) continue;  // edge-on
       const auto [speed, heading] = *velocity;
       if (speed < 0.05 * scene.surface.radius) continue;
-      nlohmann::json patch = {{"initial", nlohmann::json::object()}};
       const StartMotion start = start_motion(readout(start_simulation(scene)));
-      for (const auto& [name, value] : arrow_drop_fields(scene.surface, body, speed, heading, start))
-        patch["initial"][std::string(name)] = value;
+      const nlohmann::json patch =
+          initial_patch(arrow_drop_fields(scene.surface, body, speed, heading, start));
       nlohmann::json document = scene_to_json(scene);
       merge_scene_patch(document, patch);
       const SceneParse parsed = parse_scene(document);
@@ -272,7 +284,7 @@ TEST(Drag, ADroppedBodyStartsThereWithTheStartsSpeedHeadingAndSpin) {
   int checked = 0;
   for (const PresetSource& preset : preset_sources()) {
     const Scene scene = *parse_scene_text(preset.json).scene;
-    if (drag_unsupported_reason(scene.surface)) continue;  // no chart to drag over (a formula's)
+    if (drags_by_point(scene.surface)) continue;  // no chart: Drag.OnASurfaceWithNoChart…
     const PresetRun r = run_to(scene, 0.5);
     const ViewOptions view = aimed(default_view(scene.surface.kind), r.snapshot);
     const BodyPlace body = body_place(readout(r.run));
@@ -365,12 +377,67 @@ TEST(Drag, ADropOnTheBlankBackgroundBeyondTheDrawnPieceIsRefused) {
       << "a pixel of the patch beside the body";
 }
 
-TEST(Drag, OnlyASurfaceWithoutAChartHasNoHandles) {
+TEST(Drag, EverySurfaceHasHandles) {
   for (const EnumName<SurfaceKind>& e : enum_names(std::type_identity<SurfaceKind>{})) {
     Surface surface;
     surface.kind = e.value;
-    EXPECT_EQ(drag_unsupported_reason(surface).has_value(), offers(e.value, Offer::formula)) << e.name;
+    EXPECT_FALSE(drag_unsupported_reason(surface).has_value()) << e.name;
+    EXPECT_EQ(drags_by_point(surface), offers(e.value, Offer::formula)) << e.name;
   }
+}
+
+// On a surface with no chart the pixel's ray is cast against F: the body's own pixel gives back its
+// X; a drop beside it starts the run at a point of F = 0 (to 1e-12 of the picture's length) that the
+// new start's frame draws on the pixel dropped on (within 0.05 pixel), with the start's speed,
+// heading and spin; a corner of blank background is refused. Every formula preset, twice.
+TEST(Drag, OnASurfaceWithNoChartTheRayIsCastAgainstF) {
+  int checked = 0;
+  for (const PresetSource& preset : preset_sources()) {
+    const Scene scene = *parse_scene_text(preset.json).scene;
+    if (!drags_by_point(scene.surface)) continue;
+    const std::string name(preset.name);
+    for (const double t : {0.0, 2.0}) {
+      const PresetRun r = run_to(scene, t);
+      const ViewOptions view = aimed(default_view(scene.surface.kind), r.snapshot);
+      const BodyPlace body = body_place(readout(r.run));
+      EXPECT_FALSE(point_at_pixel(r.snapshot, view, {0.0, 0.0}, body)) << name << ": the corner";
+      const auto handles = drag_handles(r.snapshot, view, body);
+      ASSERT_TRUE(handles) << name << " t=" << t;
+      const auto shape = surface_shape_of(scene.surface);
+      const auto own = point_at_pixel(r.snapshot, view, handles->body, body);
+      ASSERT_TRUE(own) << name;
+      EXPECT_LT((*own - body.X).norm(), 1e-4 * shape->length) << name;
+      const glm::dvec2 to = handles->body + glm::dvec2(-20.0, 12.0);
+      const Readout before = readout(start_simulation(scene));
+      const auto fields = body_drop_at_pixel(r.snapshot, view, to, body, start_motion(before));
+      ASSERT_TRUE(fields) << name;
+      nlohmann::json document = scene_to_json(scene);
+      merge_scene_patch(document, initial_patch(*fields));
+      const SceneParse parsed = parse_scene(document);
+      ASSERT_TRUE(parsed.scene) << name << ": " << describe_errors(parsed.errors);
+      const Vec3 X(parsed.scene->initial.X[0], parsed.scene->initial.X[1], parsed.scene->initial.X[2]);
+      const ImplicitPoint p = shape->implicit->at(X);
+      EXPECT_LT(std::abs(p.F) / p.gradient.norm(), 1e-12 * shape->length) << name;
+      const Readout after = readout(start_simulation(*parsed.scene));
+      EXPECT_LT((after.coordinates.X - X).norm(), 1e-12 * shape->length) << name;
+      EXPECT_NEAR(after.spin, before.spin, 1e-9 * std::max(1.0, std::abs(before.spin))) << name;
+      ASSERT_TRUE(before.speed && before.heading && after.speed && after.heading) << name;
+      EXPECT_NEAR(*after.speed, *before.speed, 1e-9) << name;
+      EXPECT_NEAR(*after.heading, *before.heading, 1e-9) << name;
+      const PresetRun moved = run_to(*parsed.scene, 0.0);
+      const auto drawn = drag_handles(moved.snapshot, view, body_place(after));
+      ASSERT_TRUE(drawn) << name;
+      EXPECT_LT(glm::length(drawn->body - to), 0.05) << name;
+      // The arrow is drawn and reads back the body's velocity.
+      ASSERT_TRUE(handles->arrow) << name;
+      const auto same = velocity_at_pixel(r.snapshot, view, *handles->arrow, body);
+      ASSERT_TRUE(same) << name;
+      EXPECT_NEAR(same->first, body.speed, 1e-6 * std::max(1.0, body.speed)) << name;
+      EXPECT_NEAR(std::remainder(same->second - *body.heading, 2 * kPi), 0.0, 1e-6) << name;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 8);
 }
 
 }  // namespace

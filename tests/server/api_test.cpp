@@ -273,8 +273,8 @@ TEST_F(Api, TorusSessionRunsAndIsDrawnInTheRevolutionView) {
   EXPECT_EQ(state["status"], "ok");
   EXPECT_TRUE(state.contains("u") && state.contains("K") && !state.contains("r")) << state.dump();
   EXPECT_LT(state["energy_error"].get<double>(), 0.0);  // friction: the energy fell
-  auto patched = c.Patch("/api/v1/sessions/" + id, R"({"friction": {"translational": 0.2}})",
-                         "application/merge-patch+json");
+  auto patched =
+      c.Patch("/api/v1/sessions/" + id, R"({"friction": {"translational": 0.2}})", "application/json");
   ASSERT_TRUE(patched);
   EXPECT_EQ(patched->status, 200) << patched->body;
   EXPECT_EQ(json::parse(patched->body)["change"]["kind"], "continued") << patched->body;
@@ -322,8 +322,8 @@ TEST_F(Api, AFormulaSurfaceSessionRunsAndItsRefusalsNameTheField) {
       << state.dump();
   EXPECT_LT(state["constraint_drift"].get<double>(), 1e-14);
   // A new parameter continues from the body's place, brought onto the new surface.
-  auto patched = c.Patch("/api/v1/sessions/" + id, R"({"surface": {"parameters": {"c": 1.2}}})",
-                         "application/merge-patch+json");
+  auto patched =
+      c.Patch("/api/v1/sessions/" + id, R"({"surface": {"parameters": {"c": 1.2}}})", "application/json");
   ASSERT_TRUE(patched);
   EXPECT_EQ(patched->status, 200) << patched->body;
   auto after = c.Post("/api/v1/sessions/" + id + "/advance", R"({"until": 3})", "application/json");
@@ -332,8 +332,8 @@ TEST_F(Api, AFormulaSurfaceSessionRunsAndItsRefusalsNameTheField) {
   const json moved = json::parse(after->body)["state"];
   EXPECT_EQ(moved["status"], "ok") << moved.dump();
   EXPECT_LT(moved["constraint_drift"].get<double>(), 1e-14) << moved.dump();
-  auto wrong = c.Patch("/api/v1/sessions/" + id, R"j({"surface": {"F": "x^2 + max(y, z) - 1"}})j",
-                       "application/merge-patch+json");
+  auto wrong =
+      c.Patch("/api/v1/sessions/" + id, R"j({"surface": {"F": "x^2 + max(y, z) - 1"}})j", "application/json");
   ASSERT_TRUE(wrong);
   EXPECT_EQ(wrong->status, 422);
   EXPECT_NE(wrong->body.find("surface.F"), std::string::npos) << wrong->body;
@@ -350,11 +350,30 @@ TEST_F(Api, AFormulaSurfaceSessionRunsAndItsRefusalsNameTheField) {
   EXPECT_EQ(frame->status, 200) << frame->body;
   EXPECT_EQ(frame->get_header_value("Content-Type"), "image/png");
   EXPECT_EQ(frame->body.substr(1, 3), "PNG");
-  // No drag handles: no chart to drag over (its start is initial.X).
-  auto handles = c.Get("/api/v1/sessions/" + id + "/handles");
+  // Drag handles without a chart: the place is X, and a drop beside the body sets initial.X, which
+  // a PATCH takes as it is (the page sends the drop's `initial`).
+  auto handles = c.Get("/api/v1/sessions/" + id + "/handles?width=320&height=240");
   ASSERT_TRUE(handles);
-  EXPECT_EQ(handles->status, 422) << handles->body;
-  EXPECT_NE(handles->body.find("initial.X"), std::string::npos) << handles->body;
+  ASSERT_EQ(handles->status, 200) << handles->body;
+  const json placed = json::parse(handles->body);
+  ASSERT_TRUE(placed["place"]["X"].is_array()) << handles->body;
+  EXPECT_EQ(placed["place"]["X"].size(), 3u);
+  ASSERT_TRUE(placed["body"].is_object()) << handles->body;
+  const double bx = placed["body"]["x"], by = placed["body"]["y"];
+  auto drop = c.Get("/api/v1/sessions/" + id + "/drop?width=320&height=240&handle=body&x=" +
+                    std::to_string(bx - 2.0) + "&y=" + std::to_string(by + 1.0));
+  ASSERT_TRUE(drop);
+  ASSERT_EQ(drop->status, 200) << drop->body;
+  const json dropped = json::parse(drop->body);
+  ASSERT_TRUE(dropped["initial"]["X"].is_array()) << drop->body;
+  EXPECT_NE(dropped["text"].get<std::string>().find("X.0 = "), std::string::npos) << drop->body;
+  auto moved_to =
+      c.Patch("/api/v1/sessions/" + id, json{{"initial", dropped["initial"]}}.dump(), "application/json");
+  ASSERT_TRUE(moved_to);
+  ASSERT_EQ(moved_to->status, 200) << moved_to->body;
+  const json started = json::parse(moved_to->body);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(started["state"]["X"][k].get<double>(), dropped["initial"]["X"][k].get<double>(), 1e-12) << k;
   auto other = c.Get("/api/v1/sessions/" + id + "/frame.png?view=revolution");
   ASSERT_TRUE(other);
   EXPECT_EQ(other->status, 422) << other->body;
@@ -1062,7 +1081,8 @@ TEST_F(Api, OpenApiDocumentsEveryRouteAndQueryParameterOfTheTable) {
       ++query_parameters;
       json documented;
       for (const json& q : operation["parameters"])
-        if (q["name"] == p.name && q["in"] == "query") documented = q;
+        if (q.value("name", std::string()) == p.name && q.value("in", std::string()) == "query")
+          documented = q;
       ASSERT_FALSE(documented.is_null()) << route.method << " " << route.path << " ?" << p.name;
       EXPECT_EQ(documented["description"], p.description);
       const json schema = documented["schema"];
@@ -1532,8 +1552,8 @@ TEST_F(Api, CompanionsThroughPostPatchAndTimelineReplay) {
   EXPECT_EQ(original["state"]["companions"][0]["t"], 3.25);
 
   const json before_bad = original;
-  auto bad_patch = c.Patch(session, R"({"companions": [{"geodesic": true}, {"body": {"mass": -1}}]})",
-                           "application/merge-patch+json");
+  auto bad_patch =
+      c.Patch(session, R"({"companions": [{"geodesic": true}, {"body": {"mass": -1}}]})", "application/json");
   ASSERT_EQ(bad_patch->status, 422);
   EXPECT_EQ(json::parse(bad_patch->body)["errors"][0]["field"], "companions[1].body.mass");
   EXPECT_EQ(json::parse(c.Get(session)->body), before_bad);

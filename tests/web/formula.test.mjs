@@ -1,7 +1,7 @@
 // Browser test of a surface given by a formula in real headless Chromium (playwright-core): a formula
 // preset opens in the formula view with its picture painted; the physics panel shows the formula as
 // text, its examples and a slider per parameter; a formula the language refuses is refused under the
-// field naming its position, the run unchanged; an example puts its formula, parameters and start in
+// field naming its position, the run unchanged; the body is dragged to a new start; an example puts its formula, parameters and start in
 // force; a parameter's slider restarts the run on the new surface; the console stays clean.
 // Usage: node formula.test.mjs SPINFOLD_BINARY [SCREENSHOT_DIR]
 // (with SCREENSHOT_DIR: the page at 1366×900, 1920×1080, 1280×720 and 390×844)
@@ -62,6 +62,24 @@ await runSuite(started, async (browser) => {
     await waitForSession(page, (x) => x.current?.surface?.kind === "graph", "the egg crate");
     await page.waitForFunction(() => document.querySelector("#view")?.value === "formula", null, { timeout: 10000 });
     await waitForPaint(page, before);
+  });
+
+  await test("the body's ring is on the formula surface; a drag starts the run at the point dropped on", async () => {
+    await page.waitForSelector("#handle-body:not([hidden])", { timeout: 20000 });
+    const title = await page.$eval("#handle-body", (el) => el.title);
+    assert.match(title, /now X = \(/, title);
+    const before = (await session(page)).current.initial.X;
+    const r = await (await page.$("#handle-body")).boundingBox();
+    const from = { x: r.x + r.width / 2, y: r.y + r.height / 2 };
+    await page.mouse.move(from.x, from.y);
+    await page.mouse.down();
+    await page.mouse.move(from.x - 40, from.y + 25, { steps: 6 });
+    await page.waitForFunction(() => /X\.0 = /.test(document.querySelector("#handle-tip").textContent), null, { timeout: 10000 });
+    await page.mouse.up();
+    const after = await waitForSession(page, (x) => JSON.stringify(x.current.initial.X) !== JSON.stringify(before), "a new start");
+    assert.equal(after.current.initial.X.length, 3);
+    assert.equal(after.current.surface.kind, "graph");
+    assert.equal(after.state.t, 0);
   });
 
   await test("the physics panel shows the formula, its examples and a slider per parameter", async () => {
