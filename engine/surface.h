@@ -71,12 +71,11 @@ inline constexpr SurfaceRow kSurfaceCatalog[] = {
     {SurfaceKind::graph, offer_bit(Offer::implicit_equation) | offer_bit(Offer::formula)},
 };
 
+// The rows in the enumeration's order (a row offers a profile chart exactly when it names its entry:
+// tests/engine/surface_test.cpp, as an address is not a constant under the sanitizers).
 static_assert([] {
-  for (unsigned i = 0; i < std::size(kSurfaceCatalog); ++i) {
-    const SurfaceRow& row = kSurfaceCatalog[i];
-    if (static_cast<unsigned>(row.kind) != i) return false;
-    if ((row.profile != nullptr) != ((row.offers & offer_bit(Offer::profile_chart)) != 0)) return false;
-  }
+  for (unsigned i = 0; i < std::size(kSurfaceCatalog); ++i)
+    if (static_cast<unsigned>(kSurfaceCatalog[i].kind) != i) return false;
   return true;
 }());
 

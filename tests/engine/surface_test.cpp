@@ -40,6 +40,7 @@ TEST(Surface, EveryKindOffersOneConsistentSetOfCapabilities) {
     }
     EXPECT_FALSE(offers(k, Offer::profile_chart) && offers(k, Offer::formula));
     EXPECT_EQ((surfaces_offering(Offer::polar_chart) & surface_bit(k)) != 0, polar);
+    EXPECT_EQ(kSurfaceCatalog[static_cast<unsigned>(k)].profile != nullptr, offers(k, Offer::profile_chart));
     if (offers(k, Offer::profile_chart)) {
       ++profiles;
       EXPECT_EQ(revolution_entry(k).kind, k);
