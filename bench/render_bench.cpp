@@ -16,7 +16,7 @@
 #include "engine/chart.h"
 #include "engine/formula_examples.h"
 #include "engine/simulation.h"
-#include "engine/surface_shape.h"
+#include "engine/surface_model.h"
 #include "render/gl_context.h"
 #include "render/gl_renderer.h"
 #include "render/implicit_mesh.h"
@@ -289,7 +289,7 @@ void anti_aliasing_and_cache_tables(int frames) {
       "grid, edges) |\n| --- | --- | --- | --- |\n");
   for (const FormulaExample& example : formula_examples()) {
     const Surface surface = example_surface(example);
-    const std::shared_ptr<const SurfaceShape> shape = surface_shape_of(surface);
+    const std::shared_ptr<const SurfaceModel> shape = surface_model_of(surface);
     std::size_t triangles = 0;
     std::vector<double> mesh_ms;
     for (int k = 0; k < 3; ++k) {

@@ -60,12 +60,6 @@ SurfaceFoot start_foot(const FormulaSurface& surface, const std::array<double, 3
   return project_onto_surface(surface, guess, scale, scale);
 }
 
-std::shared_ptr<const ImplicitSurface> implicit_of(const Surface& surface,
-                                                   const std::shared_ptr<const FormulaSurface>& formula) {
-  if (formula) return formula;
-  return std::make_shared<const RevolutionImplicit>(revolution_surface(surface));
-}
-
 bool projects_onto_constraints(const Scene& scene) {
   switch (scene.integrator.projection) {
     case Projection::on: return chart_free(scene.surface);
@@ -76,14 +70,12 @@ bool projects_onto_constraints(const Scene& scene) {
 }
 
 EmbeddedScene::EmbeddedScene(const Scene& scene)
-    : profile(offers(scene.surface, Offer::profile_chart)),
-      surface(profile ? revolution_surface(scene.surface) : RevolutionSurface{}),
-      formula(offers(scene.surface, Offer::formula) ? formula_surface_of(scene.surface) : nullptr),
-      implicit(implicit_of(scene.surface, formula)),
+    : surface(surface_model_of(scene.surface)),
       body(surface_body(scene)),
       rigid(scene.body.model == BodyModel::rigid),
       orbit_only(steps_orbit_only(scene)),
       project(projects_onto_constraints(scene)) {
+  if (!surface->implicit) throw std::logic_error("EmbeddedScene: the surface has its polar chart, not an F");
   if (const AbcPotential* abc = std::get_if<AbcPotential>(&scene.potential.deformation)) internal = *abc;
 }
 
@@ -124,7 +116,7 @@ Embedded embedded_full_state(const EmbeddedScene& model, const Coords& y) {
   if (!model.orbit_only) return affine_of(y);
   // §4: the internal motion is the flat one in the parallel-transported frame (E, n × E).
   const Vec3 X = y.segment<3>(embedded_orbit::X);
-  const Vec3 n = embedded_normal(*model.implicit, X);
+  const Vec3 n = embedded_normal(*model.surface->implicit, X);
   const Vec3 F1 = y.segment<3>(embedded_orbit::E).normalized(), F2 = n.cross(F1);
   const auto [L, M] = flat_internal_motion(model.body.inertia.J, model.internal, matrix_at(y, kL0),
                                            matrix_at(y, kM0), y(embedded_orbit::tau));
@@ -143,7 +135,7 @@ Coords embedded_layout(const EmbeddedScene& model, const EmbeddedScene& from, co
   const Embedded Y = embedded_full_state(from, y);
   if (!model.orbit_only) return Coords(Y);
   const Vec3 X = Y.segment<3>(embedded::X);
-  const Vec3 n = embedded_normal(*model.implicit, X);
+  const Vec3 n = embedded_normal(*model.surface->implicit, X);
   // E: the one carried so far, or the profile's E₁ there (any unit tangent would do)
   Vec3 E = from.orbit_only ? Vec3(y.segment<3>(embedded_orbit::E).normalized()) : Vec3::Zero();
   if (!from.orbit_only) {
@@ -169,9 +161,9 @@ namespace {
 // A formula surface's start (physics-anysurface.md §5, §6): the foot of initial.X, the convention's
 // frame there, V, e_A, W_A from speed, heading, L and L̇ (relative to parallel transport: M = L̇).
 Coords formula_start(const EmbeddedScene& model, const InitialState& q, const Mat2& L, const Mat2& L_dot) {
-  const SurfaceFoot foot = start_foot(*model.formula, q.X);
+  const SurfaceFoot foot = start_foot(*model.surface->formula, q.X);
   if (!foot.X) throw std::invalid_argument("initial.X: " + foot.refusal);
-  const StartFrame frame = start_frame(*model.implicit, *foot.X);
+  const StartFrame frame = start_frame(*model.surface->implicit, *foot.X);
   const double v = q.speed.value_or(0.0), heading = q.heading.value_or(0.0);
   if (model.rigid)
     return Coords(
@@ -190,10 +182,10 @@ Coords embedded_start(const EmbeddedScene& model, const InitialState& q) {
   const Mat2 L = Ua * Eigen::Vector2d(q.lambda, q.mu).asDiagonal() * Ub.transpose();
   const Mat2 L_dot = q.alpha_dot * eps * L - q.beta_dot * L * eps +
                      Ua * Eigen::Vector2d(q.lambda_dot, q.mu_dot).asDiagonal() * Ub.transpose();
-  if (!model.profile) return formula_start(model, q, L, L_dot);
-  const ProfilePoint p = revolution_entry(model.surface.kind).profile(model.surface, q.u);
+  if (!model.surface->profile) return formula_start(model, q, L, L_dot);
+  const ProfilePoint p = revolution_entry(model.surface->profile->kind).profile(*model.surface->profile, q.u);
   const ProfileMetric metric = profile_metric(p);
-  const RevolutionFrame frame = revolution_frame(model.surface, q.u, q.phi);
+  const RevolutionFrame frame = revolution_frame(*model.surface->profile, q.u, q.phi);
   const Mat2 M = L_dot + metric.C * q.phi_dot * eps * L;
   const Vec3 V = metric.f * q.u_dot * frame.E1 + p.rho * q.phi_dot * frame.E2;
   if (model.rigid) {
@@ -215,29 +207,30 @@ Coords embedded_start(const EmbeddedScene& model, const InitialState& q) {
 void project_state(const EmbeddedScene& model, Coords& y) {
   if (model.rigid) {
     EmbeddedRigid Y = rigid_of(y);
-    project_onto_constraints(*model.implicit, Y, Y.segment<3>(embedded::e1).norm());
+    project_onto_constraints(*model.surface->implicit, Y, Y.segment<3>(embedded::e1).norm());
     y.head<10>() = Y;
     return;
   }
   if (!model.orbit_only) {
     Embedded Y = affine_of(y);
-    project_onto_constraints(*model.implicit, Y);
+    project_onto_constraints(*model.surface->implicit, Y);
     y.head<18>() = Y;
     return;
   }
   // [X, V, E, τ, L₀, M₀]: the affine layout's projection of X, V and E (e₁'s place), τ and the rest kept.
   Embedded Y = Embedded::Zero();
   Y.segment<9>(embedded::X) = y.segment<9>(embedded_orbit::X);
-  project_onto_constraints(*model.implicit, Y);
+  project_onto_constraints(*model.surface->implicit, Y);
   y.segment<9>(embedded_orbit::X) = Y.segment<9>(embedded::X);
 }
 
 void carry_onto_surface(const EmbeddedScene& model, Coords& y) {
   const Vec3 X = y.segment<3>(embedded::X);
   const double scale = std::max(1.0, X.norm());
-  const SurfaceFoot foot = model.formula && model.formula->form() == FormulaSurfaceForm::graph
-                               ? start_foot(*model.formula, {X.x(), X.y(), X.z()})
-                               : project_onto_surface(*model.implicit, X, scale, scale);
+  const SurfaceFoot foot =
+      model.surface->formula && model.surface->formula->form() == FormulaSurfaceForm::graph
+          ? start_foot(*model.surface->formula, {X.x(), X.y(), X.z()})
+          : project_onto_surface(*model.surface->implicit, X, scale, scale);
   if (foot.X) y.segment<3>(embedded::X) = *foot.X;
   project_state(model, y);
 }
@@ -305,7 +298,7 @@ double embedded_spin_of(const EmbeddedScene& model, const Coords& y) {
 double embedded_p_phi(const EmbeddedScene& model, const Coords& y) {
   const Vec3 X = y.segment<3>(embedded::X), V = y.segment<3>(embedded::V);
   return model.body.mass * X.cross(V).z() +
-         embedded_spin_of(model, y) * embedded_normal(*model.implicit, X).z();
+         embedded_spin_of(model, y) * embedded_normal(*model.surface->implicit, X).z();
 }
 
 double embedded_dissipation(const EmbeddedScene& model, const Coords& y) {
@@ -325,7 +318,7 @@ EmbeddedBody embedded_body(const EmbeddedScene& model, const Coords& y) {
   b.X = y.segment<3>(embedded::X);
   b.V = y.segment<3>(embedded::V);
   if (model.rigid) {
-    const Vec3 n = embedded_normal(*model.implicit, b.X);
+    const Vec3 n = embedded_normal(*model.surface->implicit, b.X);
     b.e[0] = y.segment<3>(embedded::e1);
     b.e[1] = n.cross(b.e[0]);
     const double I = b.e[0].squaredNorm() * model.body.inertia.matrix.trace();
@@ -346,13 +339,13 @@ double profile_curvature(const Surface& surface, double u) {
 }
 
 ProfileReadout profile_readout(const EmbeddedScene& model, const Coords& y) {
-  const RevolutionEntry& entry = revolution_entry(model.surface.kind);
+  const RevolutionEntry& entry = revolution_entry(model.surface->profile->kind);
   const Vec3 X = y.segment<3>(embedded::X), V = y.segment<3>(embedded::V);
-  const double u = entry.u_of(model.surface, X);
+  const double u = entry.u_of(*model.surface->profile, X);
   const double phi = std::atan2(X.y(), X.x());
-  const ProfilePoint p = entry.profile(model.surface, u);
+  const ProfilePoint p = entry.profile(*model.surface->profile, u);
   const ProfileMetric metric = profile_metric(p);
-  const RevolutionFrame frame = revolution_frame(model.surface, u, phi);
+  const RevolutionFrame frame = revolution_frame(*model.surface->profile, u, phi);
   const bool axis = std::hypot(X.x(), X.y()) == 0.0 || p.rho == 0.0;
   const double m = model.body.mass;
 
@@ -404,8 +397,8 @@ FreeReadout free_readout(const EmbeddedScene& model, const Coords& y) {
   FreeReadout out;
   out.body = embedded_body(model, y);
   const Vec3& X = out.body.X;
-  const ImplicitPoint p = model.implicit->at(X);
-  out.normal = embedded_normal(*model.implicit, X);
+  const ImplicitPoint p = model.surface->implicit->at(X);
+  out.normal = embedded_normal(*model.surface->implicit, X);
   out.K = bordered_hessian_curvature(p);
   out.speed = out.body.V.norm();
   out.distance = std::abs(p.F) / p.gradient.norm();
@@ -414,7 +407,7 @@ FreeReadout free_readout(const EmbeddedScene& model, const Coords& y) {
     tangency = std::max(tangency, std::abs(u.dot(out.normal)));
   out.tangency = tangency;
 
-  const StartFrame frame = start_frame(*model.implicit, X);
+  const StartFrame frame = start_frame(*model.surface->implicit, X);
   const Vec3 E[2] = {frame.E1, frame.E2};
   Mat2 L, M;
   for (int A = 0; A < 2; ++A)

@@ -24,24 +24,22 @@
 #include "engine/integrator.h"
 #include "engine/paper_coordinates.h"
 #include "engine/scene.h"
+#include "engine/surface_model.h"
 
 namespace spinfold {
 
 // What the equations need of the scene, kept together because EmbeddedModel holds the surface by
-// reference: its implicit F (every surface), its profile chart where it has one, the body and its
-// forces.
+// reference: the surface's model (its implicit F, its profile chart or formula where it has one), the
+// body and its forces.
 struct EmbeddedScene {
   explicit EmbeddedScene(const Scene& scene);
-  bool profile = false;       // the surface has the profile chart (u, φ), and `surface` is it
-  RevolutionSurface surface;  // meaningful when profile
-  std::shared_ptr<const FormulaSurface> formula;  // a formula surface (else null)
-  std::shared_ptr<const ImplicitSurface> implicit;
+  std::shared_ptr<const SurfaceModel> surface;  // surface_model_of(scene.surface): implicit set
   SurfaceBody body;
   bool rigid = false;
   bool orbit_only = false;  // steps_orbit_only(scene)
   bool project = false;     // projects_onto_constraints(scene)
   AbcPotential internal;    // the internal potential of the closed form (zero: none)
-  EmbeddedModel model() const { return {*implicit, body}; }
+  EmbeddedModel model() const { return {*surface->implicit, body}; }
 };
 
 // Whether the run steps only the orbit (the header's comment says when).

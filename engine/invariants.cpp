@@ -154,7 +154,7 @@ namespace {
 InternalState embedded_internal_state(const Scene& scene, const State& state) {
   const EmbeddedScene model(scene);
   const EmbeddedBody b = embedded_body(model, state.y);
-  const Vec3 n = embedded_normal(*model.implicit, b.X);
+  const Vec3 n = embedded_normal(*model.surface->implicit, b.X);
   const Vec3 E1 = (b.e[0] - b.e[0].dot(n) * n).normalized(), E2 = n.cross(E1);
   InternalState in;
   for (int A = 0; A < 2; ++A) {

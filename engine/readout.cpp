@@ -77,7 +77,7 @@ void read_free(const Simulation& run, Readout& r) {
   r.embedded = Readout::Embedded{f.body.V, f.body.e[0], f.body.e[1], f.normal, f.distance, f.tangency};
   // The heading as a start gives it: from the convention's E₁ towards E₂ at X (undefined at rest).
   if (f.speed > 0.0) {
-    const StartFrame frame = start_frame(*run.embedded->implicit, f.body.X);
+    const StartFrame frame = start_frame(*run.surface->implicit, f.body.X);
     r.heading = std::atan2(f.body.V.dot(frame.E2), f.body.V.dot(frame.E1));
   }
 }
@@ -137,7 +137,7 @@ Readout readout(const Simulation& run) {
   const State& state = run.state;
   Readout r;
   r.t = state.t;
-  if (run.embedded && run.embedded->profile)
+  if (run.surface->profile)
     read_profile(run, r);
   else if (run.embedded)
     read_free(run, r);

@@ -265,8 +265,8 @@ RunMonitor::RunMonitor(MonitorSpec spec, const Simulation& run) : spec_(std::mov
   // the circle: level + k·period for every k, the period the angle's own unless the text gave one.
   angle_period_.fill(0.0);
   angle_period_[f_phi] = 2.0 * std::numbers::pi;
-  if (run.embedded && run.embedded->profile) {
-    const ProfileDomain d = revolution_entry(run.embedded->surface.kind).domain(run.embedded->surface);
+  if (run.surface->profile) {
+    const ProfileDomain d = revolution_entry(run.surface->profile->kind).domain(*run.surface->profile);
     if (d.periodic) angle_period_[f_r] = d.u_max - d.u_min;
   }
   for (std::size_t e = 0; e < spec_.events.size(); ++e)
@@ -304,7 +304,7 @@ RunMonitor::Values RunMonitor::evaluate(const Simulation& run, const State& s, c
     v[f_energy_error] = (v[f_energy] - run.initial_energy) / std::max(std::abs(run.initial_energy), 1e-300);
   }
   std::optional<double> phi;
-  if (body_needed && run.embedded && !run.embedded->profile) {
+  if (body_needed && run.embedded && !run.surface->profile) {
     const FreeReadout p = free_readout(*run.embedded, s.y);
     const PaperCoordinates& c = p.coordinates;
     v[f_lambda] = c.lambda;

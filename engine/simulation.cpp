@@ -40,9 +40,11 @@ EnergyParts parts_of(const Simulation& run, const State& state) {
   return energy_parts(run.scene, state.chart, state.y);
 }
 
-// The run's model and field for a scene whose curvature varies (none otherwise).
+// The run's surface model, and for a scene whose curvature varies its chart-free scene and field
+// (none otherwise).
 void use_surface(Simulation& run) {
-  if (!chart_free(run.scene.surface)) {
+  run.surface = surface_model_of(run.scene.surface);
+  if (!run.surface->offers(Offer::implicit_equation)) {
     run.embedded.reset();
     run.field.reset();
     return;

@@ -13,6 +13,7 @@
 #include "engine/run_summary.h"
 #include "engine/scene.h"
 #include "engine/state.h"
+#include "engine/surface_model.h"
 
 namespace spinfold {
 
@@ -56,8 +57,10 @@ struct Simulation {
   StepPoint grid;
   StepPoint checked;  // the last grid point whose energy and range were checked and found good
   const IntegratorInfo* info = nullptr;  // the integrator that runs (auto resolved)
-  // Where the curvature varies (engine/embedded_run.h): the scene's model and the chart-free field
-  // that the integrator steps; null on the sphere, pseudosphere and plane (their chart equations).
+  // The scene's surface resolved (engine/surface_model.h): what it offers, its F, charts and drawn piece.
+  std::shared_ptr<const SurfaceModel> surface;
+  // Where the curvature varies (engine/embedded_run.h): the chart-free scene and field that the
+  // integrator steps; null on the sphere, pseudosphere and plane (their chart equations).
   std::shared_ptr<const EmbeddedScene> embedded;
   std::shared_ptr<const VectorField> field;
   std::unique_ptr<Integrator> integrator;  // null when the exact solution runs

@@ -84,10 +84,15 @@ constexpr unsigned surface_bit(SurfaceKind kind) {
   return 1u << static_cast<unsigned>(kind);
 }
 
-// Whether `kind` offers `offer` (false for a value outside the enumeration, which the validator names).
-constexpr bool offers(SurfaceKind kind, Offer offer) {
+// What `kind` offers (offer_bit of each; none for a value outside the enumeration, which the
+// validator names).
+constexpr unsigned offers_of(SurfaceKind kind) {
   const auto i = static_cast<unsigned>(kind);
-  return i < std::size(kSurfaceCatalog) && (kSurfaceCatalog[i].offers & offer_bit(offer)) != 0;
+  return i < std::size(kSurfaceCatalog) ? kSurfaceCatalog[i].offers : 0u;
+}
+// Whether `kind` offers `offer`.
+constexpr bool offers(SurfaceKind kind, Offer offer) {
+  return (offers_of(kind) & offer_bit(offer)) != 0;
 }
 // The set of kinds (surface_bit) that offer `offer`.
 constexpr unsigned surfaces_offering(Offer offer) {

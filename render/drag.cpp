@@ -8,7 +8,7 @@
 
 #include "engine/implicit_start.h"
 #include "engine/revolution.h"
-#include "engine/surface_shape.h"
+#include "engine/surface_model.h"
 #include "render/view_table.h"
 #include "render/views/camera.h"
 #include "render/views/view_model.h"
@@ -146,7 +146,7 @@ struct DragPlace {
 };
 DragPlace drag_place(const Surface& surface, const BodyPlace& body) {
   if (drags_by_point(surface)) {
-    const auto shape = surface_shape_of(surface);
+    const auto shape = surface_model_of(surface);
     const StartFrame f = start_frame(*shape->implicit, body.X);
     return {{body.X, f.E1, f.E2, 1.0, 1.0, false}, shape->feature};
   }
@@ -170,7 +170,7 @@ struct AffineMap {
   Vec3 c;
 };
 std::optional<AffineMap> affine_world(const ViewModel& model, const Surface& surface,
-                                      const SurfaceShape& shape) {
+                                      const SurfaceModel& shape) {
   const auto world = [&](const Vec3& X) {
     const glm::dvec3 w = model.world_position(surface, X);
     return Vec3(w.x, w.y, w.z);
@@ -374,7 +374,7 @@ std::optional<std::pair<double, double>> place_at_pixel(const Snapshot& snapshot
 std::optional<Vec3> point_at_pixel(const Snapshot& snapshot, const ViewOptions& view, glm::dvec2 pixel,
                                    const BodyPlace& near) {
   if (!(pixel.x >= 0 && pixel.y >= 0 && pixel.x <= view.width && pixel.y <= view.height)) return std::nullopt;
-  const auto shape = surface_shape_of(snapshot.surface);
+  const auto& shape = snapshot.model;
   const ViewModel& model = view_model(view.kind);
   const std::optional<AffineMap> map = affine_world(model, snapshot.surface, *shape);
   if (!map) return std::nullopt;

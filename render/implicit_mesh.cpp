@@ -30,7 +30,7 @@ void initialize_openvdb() {
 // triangles. A point where an edge crosses a face is made once per edge and face (so neighbouring
 // triangles share it: no crack), on the face and on F = 0 (Newton within the face's plane).
 void cut_at_box(ImplicitMesh& mesh, const std::vector<std::array<std::uint32_t, 3>>& triangles,
-                const SurfaceBounds& box, const SurfaceShape& shape, double d) {
+                const SurfaceBounds& box, const SurfaceModel& shape, double d) {
   struct Plane {
     int axis;
     double at, sign;  // inside: sign·(X[axis] − at) ≥ 0
@@ -93,7 +93,7 @@ void cut_at_box(ImplicitMesh& mesh, const std::vector<std::array<std::uint32_t, 
 
 }  // namespace
 
-int mesh_cells(const SurfaceShape& shape) {
+int mesh_cells(const SurfaceModel& shape) {
   double longest = 0.0;
   for (const auto& side : shape.box) longest = std::max(longest, side[1] - side[0]);
   const double cells = std::ceil(kCubesPerFeature * longest / shape.feature);
@@ -102,7 +102,7 @@ int mesh_cells(const SurfaceShape& shape) {
              : kMeshCells;
 }
 
-ImplicitMesh mesh_implicit_surface(const SurfaceShape& shape, const SurfaceBounds& box, int cells,
+ImplicitMesh mesh_implicit_surface(const SurfaceModel& shape, const SurfaceBounds& box, int cells,
                                    double adaptivity) {
   initialize_openvdb();
   cells = std::clamp(cells, 2, kMaxMeshCells);

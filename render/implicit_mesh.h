@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/surface_shape.h"
+#include "engine/surface_model.h"
 
 namespace spinfold::render {
 
@@ -36,13 +36,13 @@ inline constexpr double kMeshAdaptivity = 0.0;
 // of c = 2.5, a = 1: 49 cubes, ~8k triangles, as fine as the revolution view's 48 × 72 quads).
 inline constexpr double kCubesPerFeature = 6.0;
 inline constexpr int kLeastMeshCells = 40, kMostMeshCells = 96;
-int mesh_cells(const SurfaceShape& shape);
+int mesh_cells(const SurfaceModel& shape);
 
 // The mesh of `shape`'s F = 0 within `box`, `cells` cubes along its longest side. Where F is not
 // finite (outside a logarithm's or a square root's domain) nothing is drawn; a vertex that Newton does
 // not bring onto F = 0 within one cube of where the mesher put it (a sign change across a pole, or the
 // box's face where F < 0) is left out with its triangles.
-ImplicitMesh mesh_implicit_surface(const SurfaceShape& shape, const SurfaceBounds& box,
+ImplicitMesh mesh_implicit_surface(const SurfaceModel& shape, const SurfaceBounds& box,
                                    int cells = kMeshCells, double adaptivity = kMeshAdaptivity);
 
 }  // namespace spinfold::render

@@ -10,7 +10,7 @@
 
 #include "engine/integer_cast.h"
 #include "engine/surface_geodesics.h"
-#include "engine/surface_shape.h"
+#include "engine/surface_model.h"
 #include "render/view_table.h"
 #include "render/views/camera.h"
 #include "render/views/drawing.h"
@@ -28,7 +28,7 @@ namespace {
 // the surface), so that a trail follows the surface instead of cutting through it.
 void append_path(std::vector<Vec3>& out, const Surface& surface, const Vec3& a, const Vec3& b) {
   if (chart_free(surface)) {  // chords of 1/32 of the smallest feature, pushed back onto it
-    const std::shared_ptr<const SurfaceShape> shape = surface_shape_of(surface);
+    const std::shared_ptr<const SurfaceModel> shape = surface_model_of(surface);
     const int n = clamped_integer(std::ceil(32.0 * (b - a).norm() / shape->feature), 1, 16);
     for (int i = 1; i < n; ++i)
       out.push_back(project_onto_surface(*shape->implicit, a + (b - a) * (static_cast<double>(i) / n)));
@@ -133,9 +133,9 @@ StaticGeometry built_static(const Surface& surface, ViewKind view) {
 
 // A varying surface's mesh in a view: its shape (held, so that its address is never another's) and
 // the view.
-using ShapeKey = std::pair<std::shared_ptr<const SurfaceShape>, ViewKind>;
+using ShapeKey = std::pair<std::shared_ptr<const SurfaceModel>, ViewKind>;
 ShapeKey shape_key(const Surface& s, ViewKind view) {
-  return {surface_shape_of(s), view};
+  return {surface_model_of(s), view};
 }
 
 std::size_t bytes_of(const StaticGeometry& g) {
@@ -270,7 +270,7 @@ Vec3 exponential_map(const Surface& surface, const Vec3& X, const Vec3& v, doubl
   if (chart_free(surface)) {
     // RK4's error is O((|v|κ/steps)⁴): a step per eighth of the smallest feature (a body's ellipse,
     // a quarter feature across, takes 2) keeps it under 1e-4 of the length drawn, below a pixel.
-    const std::shared_ptr<const SurfaceShape> shape = surface_shape_of(surface);
+    const std::shared_ptr<const SurfaceModel> shape = surface_model_of(surface);
     const int steps = clamped_integer(std::ceil(8.0 * length / shape->feature), 1, 16);
     return implicit_exponential_map(*shape->implicit, X, v, steps);
   }
@@ -292,7 +292,7 @@ double drawn_scale(const Surface& surface, const BodySnapshot& body, double scal
   const double half_trace = 0.5 * (g(0, 0) + g(1, 1)), half_gap = 0.5 * (g(0, 0) - g(1, 1));
   const double extent = std::sqrt(std::max(0.0, half_trace + std::hypot(half_gap, g(0, 1))));
   double radius = surface.radius;
-  if (chart_free(surface)) radius = surface_shape_of(surface)->feature;
+  if (chart_free(surface)) radius = surface_model_of(surface)->feature;
   const double limit = kMaxDrawnExtent * radius;
   return scale * extent > limit ? limit / extent : scale;
 }

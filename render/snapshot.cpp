@@ -39,6 +39,7 @@ Snapshot make_snapshot(const Simulation& run, const Trail& trail, double span) {
   const Scene& scene = run.scene;
   Snapshot s;
   s.surface = scene.surface;
+  s.model = run.surface;
   s.bodies.reserve(1 + run.companions.size());
   s.bodies.push_back(body_snapshot(run, &trail, span));
   s.bodies.front().label = main_body_label(scene);

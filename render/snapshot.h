@@ -4,12 +4,14 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/simulation.h"
 #include "engine/surface.h"
+#include "engine/surface_model.h"
 #include "engine/trail.h"
 
 namespace spinfold::render {
@@ -46,6 +48,10 @@ struct BodySnapshot {
 
 struct Snapshot {
   Surface surface;
+  // The surface resolved (the run's, engine/surface_model.h): what a frame asks of it (its F, its
+  // drawn piece) is asked of this. make_snapshot sets both; a snapshot built by hand sets it as
+  // surface_model_of(surface).
+  std::shared_ptr<const SurfaceModel> model;
   std::vector<BodySnapshot> bodies;       // the main body first, then the companions in scene order
   std::vector<std::string> hud_lines;     // readout_lines of the run, then one compact line per companion
   std::vector<std::string> action_lines;  // action_lines of the run (drawn with the actions layer)

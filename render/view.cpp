@@ -30,7 +30,7 @@ const ViewInfo& view_info(ViewKind view) {
 }
 
 bool shows(const ViewInfo& v, SurfaceKind surface) {
-  return (v.surfaces & surface_bit(surface)) != 0;
+  return (v.needs & offers_of(surface)) != 0;
 }
 
 std::optional<std::string> view_unsupported_reason(ViewKind view, SurfaceKind surface) {

@@ -31,7 +31,7 @@ struct ViewInfo {
   std::string_view name;
   ViewKind kind;
   bool three_d;                  // an orbiting camera (else orthographic, 2-D)
-  unsigned surfaces;             // the surface kinds it can show (surface_bit, engine/surface.h)
+  unsigned needs;                // what a surface must offer one of to be shown (offer_bit, engine/surface.h)
   std::string_view title;        // a short label for a menu
   std::string_view description;  // one line for a reader
 };

@@ -23,13 +23,12 @@ const ViewModel& formula_view();
 
 namespace {
 
-// The surfaces each view needs, by what they offer: S², H² and the plane's own models.
-constexpr unsigned kS = surfaces_offering(Offer::positive_curvature),
-                   kH = surfaces_offering(Offer::negative_curvature),
-                   kE = surfaces_offering(Offer::zero_curvature);
+// What a surface must offer for each view to show it: S², H² and the plane's own models.
+constexpr unsigned kS = offer_bit(Offer::positive_curvature), kH = offer_bit(Offer::negative_curvature),
+                   kE = offer_bit(Offer::zero_curvature);
 
-// name, kind, three_d, the surfaces it shows, title, description; implementation. A surface's default
-// view is the first row that shows it (render/view.h's default_view).
+// name, kind, three_d, what a surface it shows offers (one of), title, description; implementation. A
+// surface's default view is the first row that shows it (render/view.h's default_view).
 constexpr ViewRow kViews[] = {
     {{"sphere", ViewKind::sphere, true, kS, "3-D sphere", "the sphere in space, seen by an orbiting camera"},
      &sphere_view},
@@ -55,16 +54,15 @@ constexpr ViewRow kViews[] = {
       "any curvature K in one flat map, angles true: stereographic (K > 0), the plane itself (K = 0), the "
       "Poincaré disk (K < 0), in lengths and following the body, so the picture changes continuously with K"},
      &conformal_view},
-    {{"revolution", ViewKind::revolution, true, surfaces_offering(Offer::profile_chart),
-      "3-D surface of revolution",
+    {{"revolution", ViewKind::revolution, true, offer_bit(Offer::profile_chart), "3-D surface of revolution",
       "the torus, spheroid, bump or catenoid in space, with its meridians and parallels, its K = 0 "
       "circles marked, and the curvature layer colouring it by K"},
      &revolution_view},
-    {{"chart", ViewKind::chart, false, surfaces_offering(Offer::profile_chart), "chart (u, φ) with K",
+    {{"chart", ViewKind::chart, false, offer_bit(Offer::profile_chart), "chart (u, φ) with K",
       "the surface's chart unrolled: φ across, u down, the background coloured by the curvature K (warm "
       "> 0, cool < 0) with the K = 0 parallels dark; lengths and angles are not true"},
      &chart_view},
-    {{"formula", ViewKind::formula, true, surfaces_offering(Offer::formula), "3-D surface F = 0",
+    {{"formula", ViewKind::formula, true, offer_bit(Offer::formula), "3-D surface F = 0",
       "a surface given by a formula in space, its drawn box meshed and shaded by the exact normal, with "
       "the level curves of x, y and z as its grid, its K = 0 curves marked, and the curvature layer "
       "colouring it by K"},

@@ -35,7 +35,7 @@ SOURCE = (".cpp", ".h", ".js", ".mjs", ".py")
 # Rule 3's catalog: the places that may say which kind a surface is.
 CATALOG = ("engine/surface.h", "engine/surface.cpp", "engine/revolution.h", "engine/revolution.cpp",
            "engine/formula_surface.h", "engine/formula_surface.cpp", "engine/scene_fields.h")
-KIND_FILE = re.compile(r"^engine/surface_(\w+)\.cpp$")  # a kind's own file (not surface_shape.cpp)
+KIND_FILE = re.compile(r"^engine/surface_(\w+)\.cpp$")  # a kind's own file (not surface_model.cpp)
 KIND_BRANCH = re.compile(r"(?:[=!]=\s*|\bcase\s+|surface_bit\(\s*)SurfaceKind::(\w+)")
 # Rule 4: where a kind's enumerator may be written in the product (the oracle is separate code).
 NOT_PRODUCT = FREE + ("oracle/",)
@@ -145,7 +145,7 @@ def self_test(kinds):
         ("render/view_table.cpp", "constexpr unsigned kS = surface_bit(SurfaceKind::sphere);", 1),
         ("engine/surface.cpp", "    case SurfaceKind::plane: return r;", 0),
         (f"engine/surface_{kinds[3]}.cpp", f"  if (s.kind != SurfaceKind::{kinds[3]}) return;", 0),
-        ("engine/surface_shape.cpp", "  if (s.kind == SurfaceKind::graph) return;", 1),
+        ("engine/surface_model.cpp", "  if (s.kind == SurfaceKind::graph) return;", 1),
         ("tests/engine/surface_test.cpp", "  if (s.kind == SurfaceKind::plane) return;", 0),
     ]
     failed = 0

@@ -2,14 +2,14 @@
 // drawn box (render/implicit_mesh.h) lit by the exact normal ∇F/|∇F|, a grid that needs no symmetry
 // (the level curves of x, y and z, the contour lines of a map), the K = 0 curves marked, and the
 // curvature layer's colours from K(F) at the vertices. World units are (X − c)/ℓ with c the box's
-// centre and ℓ its half-size (SurfaceShape), so that every shape fits the same camera.
+// centre and ℓ its half-size (SurfaceModel), so that every shape fits the same camera.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 
 #include "engine/surface_geodesics.h"
-#include "engine/surface_shape.h"
+#include "engine/surface_model.h"
 #include "render/implicit_mesh.h"
 #include "render/views/camera.h"
 #include "render/views/drawing.h"
@@ -29,13 +29,13 @@ constexpr double kPatchHalf = 3.0;
 // How far from the box's centre a point may be drawn, in its half-size (profile_drawing.h says why).
 constexpr double kMaxDrawn = kMaxDrawnDistance;
 
-std::shared_ptr<const SurfaceShape> shape_of(const Surface& surface) {
-  return surface_shape_of(surface);
+std::shared_ptr<const SurfaceModel> shape_of(const Surface& surface) {
+  return surface_model_of(surface);
 }
 
 // The camera's least framing radius when it follows one body [length]: 2.5 features, at least a
 // third of the box's half-size.
-double framing_radius(const SurfaceShape& shape) {
+double framing_radius(const SurfaceModel& shape) {
   return std::clamp(2.5 * shape.feature, 0.35 * shape.length, shape.length);
 }
 
@@ -48,7 +48,7 @@ bool in_box(const SurfaceBounds& box, const Vec3& X) {
 }
 
 // The grid's spacing: 1, 2 or 5 times a power of ten, about a quarter of the box's half-size.
-double grid_step(const SurfaceShape& shape) {
+double grid_step(const SurfaceModel& shape) {
   const double target = shape.length / 4.0, decade = std::pow(10.0, std::floor(std::log10(target)));
   for (const double m : {1.0, 2.0, 5.0})
     if (m * decade >= 0.75 * target) return m * decade;
@@ -59,7 +59,7 @@ double grid_step(const SurfaceShape& shape) {
 // a segment between the two crossed edges' points, found along each edge by `crossing` (from the
 // values at its ends).
 template <class Value, class Crossing>
-void add_level_curves(std::vector<Vertex>& lines, const ImplicitMesh& mesh, const SurfaceShape& shape,
+void add_level_curves(std::vector<Vertex>& lines, const ImplicitMesh& mesh, const SurfaceModel& shape,
                       Value value, Crossing crossing, double step, const glm::vec4& color) {
   const double l = shape.length;
   const auto world = [&](const Vec3& X) {
@@ -94,7 +94,7 @@ Vec3 linear_crossing(const ImplicitMesh& mesh, std::uint32_t a, std::uint32_t b,
 // onto the surface (K is far from linear across a cube where it changes fast; a straight guess
 // draws the K = 0 curve as a coastline).
 constexpr int kKBisections = 10;
-Vec3 zero_curvature_crossing(const SurfaceShape& shape, const ImplicitMesh& mesh, std::uint32_t a,
+Vec3 zero_curvature_crossing(const SurfaceModel& shape, const ImplicitMesh& mesh, std::uint32_t a,
                              std::uint32_t b) {
   double lo = 0.0, hi = 1.0;
   const bool positive_at_a = mesh.K[a] > 0.0;
@@ -112,7 +112,7 @@ Vec3 zero_curvature_crossing(const SurfaceShape& shape, const ImplicitMesh& mesh
 
 // Where F changes sign along the segment from the eye to a point of the surface before it (32 samples
 // short of the last 2%), at a crossing within the box (beyond it nothing is drawn to hide it).
-bool occluded(const SurfaceShape& shape, const glm::dvec3& eye_world, const glm::dvec3& at_world) {
+bool occluded(const SurfaceModel& shape, const glm::dvec3& eye_world, const glm::dvec3& at_world) {
   const auto embedded = [&](const glm::dvec3& w) -> Vec3 {
     return Vec3(w.x, w.y, w.z) * shape.length + shape.centre;
   };
@@ -130,7 +130,7 @@ bool occluded(const SurfaceShape& shape, const glm::dvec3& eye_world, const glm:
 
 // The mesh as lit triangles and its grid: level curves of x, y and z every grid_step, and the K = 0
 // curves darker. Colours: K scaled so that the largest |K| drawn is the full colour.
-StaticGeometry geometry_of(const SurfaceShape& shape, const ImplicitMesh& mesh) {
+StaticGeometry geometry_of(const SurfaceModel& shape, const ImplicitMesh& mesh) {
   StaticGeometry g;
   const double l = shape.length;
   double full = 0.0;
@@ -194,7 +194,7 @@ class FormulaView final : public ViewModel {
     if (snapshot.bodies.empty()) return std::nullopt;
     const Vec3& X = snapshot.bodies.front().X;
     if (on_view(snapshot.surface, X) || !draws(snapshot.surface, X)) return std::nullopt;
-    const double half = patch_half(*shape_of(snapshot.surface));
+    const double half = patch_half(*snapshot.model);
     const double quantum = std::exp2(std::floor(std::log2(half / 4)));
     return PatchPlace{std::round(X.x() / quantum) * quantum, std::round(X.y() / quantum) * quantum,
                       std::round(X.z() / quantum) * quantum};
@@ -202,7 +202,7 @@ class FormulaView final : public ViewModel {
   bool paints_surface_at(const Snapshot& snapshot, const Vec3& X) const override {
     if (on_view(snapshot.surface, X)) return true;
     const std::optional<PatchPlace> at = patch_at(snapshot);
-    return at && in_box(patch_box(*shape_of(snapshot.surface), *at), X);
+    return at && in_box(patch_box(*snapshot.model, *at), X);
   }
   StaticGeometry build_patch(const Surface& surface, PatchPlace at) const override {
     const auto shape = shape_of(surface);
@@ -231,8 +231,7 @@ class FormulaView final : public ViewModel {
 
   // Orbiting the bodies from their side (aim_in_space), in the box, framing at least 2.5 features.
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
-    const Surface& surface = snapshot.surface;
-    const auto shape = shape_of(surface);
+    const auto& shape = snapshot.model;
     const Vec3 n = embedded_normal(*shape->implicit, snapshot.bodies.front().X);
     aim_in_space(*this, view, snapshot, hud,
                  {n.allFinite() ? glm::dvec3(n.x(), n.y(), n.z()) : glm::dvec3(0.0, 0.0, 1.0),
@@ -241,7 +240,7 @@ class FormulaView final : public ViewModel {
                   }});
   }
   std::string grid_caption(const Snapshot& snapshot, const ViewOptions& view) const override {
-    const auto shape = shape_of(snapshot.surface);
+    const auto& shape = snapshot.model;
     return "Grid: level curves of x, y and z every " + caption_number("%g", grid_step(*shape)) +
            "; the K = 0 curves darker." +
            (patch_at(snapshot) ? " Round body 1, beyond the box drawn whole, a patch of the surface." : "") +
@@ -252,10 +251,10 @@ class FormulaView final : public ViewModel {
   }
 
  private:
-  static double patch_half(const SurfaceShape& shape) {
+  static double patch_half(const SurfaceModel& shape) {
     return std::min(kPatchHalf * framing_radius(shape), shape.length);
   }
-  static SurfaceBounds patch_box(const SurfaceShape& shape, const PatchPlace& at) {
+  static SurfaceBounds patch_box(const SurfaceModel& shape, const PatchPlace& at) {
     const double half = patch_half(shape);
     SurfaceBounds box;
     for (int k = 0; k < 3; ++k) box[k] = {at[k] - half, at[k] + half};

@@ -96,7 +96,7 @@ TEST(EmbeddedRunFormula, TheGraphScenesStartIsWF2sState) {
   ASSERT_TRUE(errors.empty()) << errors.front().field << ": " << errors.front().reason;
   const Simulation run = start_simulation(scene);
   ASSERT_NE(run.embedded, nullptr);
-  EXPECT_FALSE(run.embedded->profile);
+  EXPECT_FALSE(run.surface->profile);
   EXPECT_TRUE(run.embedded->project);  // the formula surfaces' default
   expect_close(run.state.y, vec(examples()["WF2"]["Y0"]), 1e-14);
 }

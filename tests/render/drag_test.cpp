@@ -11,7 +11,7 @@
 #include "codec/scene_json.h"
 #include "engine/readout.h"
 #include "engine/scene_fields.h"
-#include "engine/surface_shape.h"
+#include "engine/surface_model.h"
 #include "engine/timeline.h"
 #include "render/scene_builder.h"
 #include "render/view_parameters.h"
@@ -403,7 +403,7 @@ TEST(Drag, OnASurfaceWithNoChartTheRayIsCastAgainstF) {
       EXPECT_FALSE(point_at_pixel(r.snapshot, view, {0.0, 0.0}, body)) << name << ": the corner";
       const auto handles = drag_handles(r.snapshot, view, body);
       ASSERT_TRUE(handles) << name << " t=" << t;
-      const auto shape = surface_shape_of(scene.surface);
+      const auto shape = surface_model_of(scene.surface);
       const auto own = point_at_pixel(r.snapshot, view, handles->body, body);
       ASSERT_TRUE(own) << name;
       EXPECT_LT((*own - body.X).norm(), 1e-4 * shape->length) << name;

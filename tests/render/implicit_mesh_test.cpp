@@ -53,7 +53,7 @@ double smallest_angle(const ImplicitMesh& mesh, const std::array<std::uint32_t, 
   return least;
 }
 
-void expect_on_the_surface(const SurfaceShape& shape, const ImplicitMesh& mesh) {
+void expect_on_the_surface(const SurfaceModel& shape, const ImplicitMesh& mesh) {
   ASSERT_FALSE(mesh.triangles.empty());
   for (std::size_t i = 0; i < mesh.points.size(); ++i) {
     const ImplicitPoint p = shape.implicit->at(mesh.points[i]);
@@ -82,7 +82,7 @@ TEST(ImplicitMesh, ClosedSurfacesHaveNoCrackAndTheirGenus) {
       {"x^4 + y^4 + z^4 - 1", 2},                                     // a rounded cube
   };
   for (const Case& c : cases) {
-    const auto shape = surface_shape_of(implicit(c.F));
+    const auto shape = surface_model_of(implicit(c.F));
     ASSERT_TRUE(shape->closed) << c.F;
     // At the view's resolution too (mesh_cells: 6 cubes a feature).
     for (const int cells : {kMeshCells, mesh_cells(*shape)}) {
@@ -109,7 +109,7 @@ TEST(ImplicitMesh, NothingIsDrawnWhereTheFormulaIsUndefinedNorOnTheBoxFaces) {
   Surface hemisphere;
   hemisphere.kind = SurfaceKind::graph;
   hemisphere.z = "sqrt(1 - x^2 - y^2)";
-  const auto shape = surface_shape_of(hemisphere);
+  const auto shape = surface_model_of(hemisphere);
   const ImplicitMesh mesh = mesh_implicit_surface(*shape, shape->box);
   expect_on_the_surface(*shape, mesh);
   for (const Vec3& X : mesh.points) EXPECT_LE(std::hypot(X.x(), X.y()), 1.0 + 1e-9);
@@ -118,7 +118,7 @@ TEST(ImplicitMesh, NothingIsDrawnWhereTheFormulaIsUndefinedNorOnTheBoxFaces) {
   Surface plane;
   plane.kind = SurfaceKind::graph;
   plane.z = "0.3";
-  const auto flat = surface_shape_of(plane);
+  const auto flat = surface_model_of(plane);
   const ImplicitMesh sheet = mesh_implicit_surface(*flat, flat->box);
   double reach = 0.0;
   for (const auto& t : sheet.triangles)
@@ -143,7 +143,7 @@ TEST(ImplicitMesh, NothingIsDrawnWhereTheFormulaIsUndefinedNorOnTheBoxFaces) {
 }
 
 TEST(ImplicitMesh, TheResolutionIsBoundedAndAnEmptyBoxMeshesNothing) {
-  const auto shape = surface_shape_of(implicit("x^2 + y^2 + z^2 - 1"));
+  const auto shape = surface_model_of(implicit("x^2 + y^2 + z^2 - 1"));
   const ImplicitMesh coarse = mesh_implicit_surface(*shape, shape->box, 8);
   const ImplicitMesh capped = mesh_implicit_surface(*shape, shape->box, 100000);
   EXPECT_GT(coarse.triangles.size(), 0u);

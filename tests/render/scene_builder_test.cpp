@@ -19,6 +19,7 @@ namespace {
 Snapshot body_at(SurfaceKind kind, double R, double r, double phi, double lambda, double mu) {
   Snapshot s;
   s.surface = {kind, R};
+  s.model = surface_model_of(s.surface);
   const ChartPoint p = chart_point(s.surface, r, phi);
   testing::add_body(s, p.X, p.E1, p.E2, lambda, mu);
   return s;
@@ -81,6 +82,15 @@ TEST(SceneBuilder, AFrameTooLargeForTheSurfaceIsDrawnSmallerAsAnEllipseAndTheHud
               build_scene(ordinary, view).hud_lines.back().find("drawn at") == std::string::npos);
   const Snapshot plane = body_at(SurfaceKind::plane, 1.0, 1.3, 0.4, 24.0, -5.0);
   EXPECT_EQ(drawn_scale(plane.surface, plane.bodies[0], view.scale), view.scale);
+}
+
+TEST(SceneBuilder, ASnapshotHoldsItsRunsSurfaceModel) {
+  Scene scene;
+  scene.surface.kind = SurfaceKind::torus;
+  const Simulation run = start_simulation(scene);
+  const Snapshot s = make_snapshot(run, Trail{}, -1.0);
+  EXPECT_EQ(s.model, run.surface);  // one object: the frame asks the run's model, not a second copy
+  EXPECT_EQ(s.model->surface.kind, SurfaceKind::torus);
 }
 
 TEST(SceneBuilder, UnselectedLayersCostNothing) {

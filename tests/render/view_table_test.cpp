@@ -8,7 +8,7 @@
 #include <string>
 
 #include "engine/surface_geodesics.h"
-#include "engine/surface_shape.h"
+#include "engine/surface_model.h"
 #include "render/scene_builder.h"
 #include "render/views/view_model.h"
 #include "views/view_test_support.h"
@@ -35,7 +35,8 @@ Snapshot sample_body(SurfaceKind surface) {
   if (offers(surface, Offer::formula)) {
     Snapshot s;
     s.surface.kind = surface;
-    const auto shape = surface_shape_of(s.surface);
+    s.model = surface_model_of(s.surface);
+    const auto& shape = s.model;
     const Vec3 X = project_onto_surface(*shape->implicit, Vec3(0.5, 0.3, 0.6));
     const Vec3 n = embedded_normal(*shape->implicit, X);
     const Vec3 E1 = (Vec3::UnitX() - Vec3::UnitX().dot(n) * n).normalized();

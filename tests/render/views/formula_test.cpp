@@ -14,7 +14,7 @@
 #include "engine/formula_examples.h"
 #include "engine/formula_surface.h"
 #include "engine/surface_geodesics.h"
-#include "engine/surface_shape.h"
+#include "engine/surface_model.h"
 #include "render/implicit_mesh.h"
 #include "render/view_table.h"
 #include "render/views/camera.h"
@@ -49,12 +49,12 @@ std::vector<Surface> examples() {
 }
 
 Vec3 embedded(const Surface& surface, const glm::vec3& w) {
-  const auto shape = surface_shape_of(surface);
+  const auto shape = surface_model_of(surface);
   return Vec3(w.x, w.y, w.z) * shape->length + shape->centre;
 }
 
 double off_surface(const Surface& surface, const Vec3& X) {
-  const ImplicitPoint p = surface_shape_of(surface)->implicit->at(X);
+  const ImplicitPoint p = surface_model_of(surface)->implicit->at(X);
   return std::abs(p.F) / p.gradient.norm();
 }
 
@@ -62,7 +62,8 @@ double off_surface(const Surface& surface, const Vec3& X) {
 Snapshot body_at(const Surface& surface, const Vec3& guess, double lambda = 1.0, double mu = 0.7) {
   Snapshot s;
   s.surface = surface;
-  const auto shape = surface_shape_of(surface);
+  s.model = surface_model_of(surface);
+  const auto& shape = s.model;
   const Vec3 X = project_onto_surface(*shape->implicit, guess);
   const Vec3 n = embedded_normal(*shape->implicit, X);
   Vec3 E1 = Vec3::UnitX() - Vec3::UnitX().dot(n) * n;
@@ -89,7 +90,7 @@ TEST(FormulaView, TheMeshAndTheGridLieOnTheSurface) {
     ASSERT_GT(g->surface.size(), 3000u) << what;
     ASSERT_FALSE(g->grid.empty()) << what;
     ASSERT_FALSE(g->edges.empty()) << what;
-    const double l = surface_shape_of(surface)->length;
+    const double l = surface_model_of(surface)->length;
     double worst = 0.0;
     for (const LitVertex& v : g->surface)
       worst = std::max(worst, off_surface(surface, embedded(surface, v.position)));
@@ -97,8 +98,8 @@ TEST(FormulaView, TheMeshAndTheGridLieOnTheSurface) {
     // The grid's points are on the mesh's faces: within their sagitta of the surface, a quarter of a
     // cube where the genus-2 surface's tube is thinnest (its radius ~2 cubes).
     double longest = 0.0;
-    for (const auto& side : surface_shape_of(surface)->box) longest = std::max(longest, side[1] - side[0]);
-    const double cell = longest / mesh_cells(*surface_shape_of(surface));
+    for (const auto& side : surface_model_of(surface)->box) longest = std::max(longest, side[1] - side[0]);
+    const double cell = longest / mesh_cells(*surface_model_of(surface));
     worst = 0.0;
     for (const Vertex& v : g->grid)
       worst = std::max(worst, off_surface(surface, embedded(surface, v.position)));
@@ -110,7 +111,7 @@ TEST(FormulaView, TheGridIsTheLevelCurvesOfXYZAndTheZeroCurvatureCurves) {
   // On the egg crate z = a sin x sin y, K changes sign; each grid point has x, y or z on the step's
   // lattice, or K = 0 near it (to the mesh's resolution).
   const Surface crate = graph("a*sin(x)*sin(y)", {{"a", 0.4}});
-  const auto shape = surface_shape_of(crate);
+  const auto shape = surface_model_of(crate);
   const auto g = static_geometry(crate, ViewKind::formula);
   int levels = 0, zeros = 0;
   for (const Vertex& v : g->grid) {
@@ -134,7 +135,7 @@ TEST(FormulaView, TheGridIsTheLevelCurvesOfXYZAndTheZeroCurvatureCurves) {
 
 TEST(FormulaView, TheCurvatureTintHasTheSignOfK) {
   const Surface crate = graph("a*sin(x)*sin(y)", {{"a", 0.4}});
-  const auto shape = surface_shape_of(crate);
+  const auto shape = surface_model_of(crate);
   int warm = 0, cool = 0;
   for (const LitVertex& v : static_geometry(crate, ViewKind::formula)->surface) {
     const double K = bordered_hessian_curvature(shape->implicit->at(embedded(crate, v.position)));
@@ -160,7 +161,7 @@ TEST(FormulaView, TheCameraShowsABodyAnywhereOnEverySurface) {
   std::mt19937_64 random(49);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
   for (const Surface& surface : examples()) {
-    const auto shape = surface_shape_of(surface);
+    const auto shape = surface_model_of(surface);
     for (int trial = 0; trial < 12; ++trial) {
       const Vec3 guess = shape->centre + 0.8 * shape->length * Vec3(uni(random), uni(random), uni(random));
       const Snapshot s = body_at(surface, guess);
@@ -204,7 +205,7 @@ TEST(FormulaView, BeyondTheBoxAPatchOfTheSurfaceIsDrawnUnderTheBody) {
     nearest = std::min(nearest, (X - outside.bodies[0].X).norm());
   }
   EXPECT_LT(worst, 1e-5);
-  EXPECT_LT(nearest, surface_shape_of(plane)->feature);
+  EXPECT_LT(nearest, surface_model_of(plane)->feature);
   EXPECT_TRUE(in_frame(pixel_of(scene, view, plane, outside.bodies[0].X), view));
   // The HUD says where the body is.
   const auto lines = readout_lines(outside, view);
@@ -214,7 +215,7 @@ TEST(FormulaView, BeyondTheBoxAPatchOfTheSurfaceIsDrawnUnderTheBody) {
 
 TEST(FormulaView, TheBodysEllipseLiesOnTheSurface) {
   for (const Surface& surface : examples()) {
-    const auto shape = surface_shape_of(surface);
+    const auto shape = surface_model_of(surface);
     const Snapshot s = body_at(surface, shape->centre + Vec3(0.3, 0.2, 0.4) * shape->length, 1.3, 0.6);
     for (const Vec3& P : ellipse_points(s.surface, s.bodies[0], 0.3 * shape->feature, 32))
       EXPECT_LT(off_surface(s.surface, P), 1e-12) << formula_text(surface);

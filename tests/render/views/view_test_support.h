@@ -54,6 +54,7 @@ inline Snapshot body_at(SurfaceKind kind, double R, double r, double phi, double
                         double mu = 1.0) {
   Snapshot s;
   s.surface = {kind, R};
+  s.model = surface_model_of(s.surface);
   const ChartPoint p = chart_point(s.surface, r * R, phi);
   add_body(s, p.X, p.E1, p.E2, lambda, mu);
   return s;
@@ -64,6 +65,7 @@ inline Snapshot body_at(SurfaceKind kind, double R, double r, double phi, double
 inline Snapshot body_on(SurfaceKind kind, double u, double phi, double lambda = 1.0, double mu = 1.0) {
   Snapshot s;
   s.surface.kind = kind;
+  s.model = surface_model_of(s.surface);
   const RevolutionFrame f = revolution_frame(revolution_surface(s.surface), u, phi);
   add_body(s, f.X, f.E1, f.E2, lambda, mu);
   return s;

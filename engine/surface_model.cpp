@@ -1,4 +1,4 @@
-#include "engine/surface_shape.h"
+#include "engine/surface_model.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +14,7 @@
 
 namespace spinfold {
 
-double SurfaceShape::value(const Vec3& X) const {
+double SurfaceModel::value(const Vec3& X) const {
   return formula ? formula->value(X) : implicit->at(X).F;
 }
 
@@ -39,7 +39,7 @@ struct ZeroSet {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   std::vector<Vec3> near;
 };
-ZeroSet sample_zero_set(const SurfaceShape& shape, double h) {
+ZeroSet sample_zero_set(const SurfaceModel& shape, double h) {
   const int n = kSamples + 1;
   const double step = 2.0 * h / kSamples;
   const auto point = [&](int i, int j, int k) { return Vec3(-h + i * step, -h + j * step, -h + k * step); };
@@ -74,7 +74,7 @@ ZeroSet sample_zero_set(const SurfaceShape& shape, double h) {
 }
 
 // 1/√max|K| at points of the zero set near `near` (projected onto it), within [lo, hi].
-double curvature_feature(const SurfaceShape& shape, const std::vector<Vec3>& near, double lo, double hi) {
+double curvature_feature(const SurfaceModel& shape, const std::vector<Vec3>& near, double lo, double hi) {
   double largest = 0.0;
   const std::size_t stride = std::max<std::size_t>(1, near.size() / kCurvatureProbes);
   for (std::size_t i = 0; i < near.size(); i += stride) {
@@ -87,7 +87,7 @@ double curvature_feature(const SurfaceShape& shape, const std::vector<Vec3>& nea
   return largest > 0.0 ? std::clamp(1.0 / std::sqrt(largest), lo, hi) : hi;
 }
 
-void set_box(SurfaceShape& shape, const SurfaceBounds& box) {
+void set_box(SurfaceModel& shape, const SurfaceBounds& box) {
   shape.box = box;
   shape.length = 0.0;
   for (int k = 0; k < 3; ++k) {
@@ -96,11 +96,11 @@ void set_box(SurfaceShape& shape, const SurfaceBounds& box) {
   }
 }
 
-SurfaceShape formula_shape(const Surface& surface) {
-  SurfaceShape shape;
+SurfaceModel formula_shape(const Surface& surface) {
+  SurfaceModel shape;
   const std::shared_ptr<const FormulaSurface> formula = formula_surface_of(surface);
   shape.implicit = formula;
-  shape.formula = formula.get();
+  shape.formula = formula;
   ZeroSet zero;
   double h = kFirstHalfSide;
   for (; h <= kLastHalfSide; h *= 2.0) {
@@ -156,12 +156,13 @@ SurfaceShape formula_shape(const Surface& surface) {
   return shape;
 }
 
-SurfaceShape profile_shape_of(const Surface& surface) {
+SurfaceModel profile_shape_of(const Surface& surface) {
   const RevolutionSurface s = revolution_surface(surface);
   const RevolutionEntry& entry = revolution_entry(s.kind);
   const ProfilePicture picture = entry.picture(s);
   const ProfileDomain domain = entry.domain(s);
-  SurfaceShape shape;
+  SurfaceModel shape;
+  shape.profile = s;
   shape.implicit = std::make_shared<const RevolutionImplicit>(s);
   set_box(shape, cube(Vec3::Zero(), picture.length));
   shape.feature = picture.feature;
@@ -169,10 +170,32 @@ SurfaceShape profile_shape_of(const Surface& surface) {
   return shape;
 }
 
-// What makes two surfaces one shape: the kind, every profile's parameters, the formula, its
+// S², H², the plane: K = σ/R², drawn as the ball of radius R.
+SurfaceModel constant_curvature_model(const Surface& surface) {
+  SurfaceModel model;
+  model.curvature = curvature(surface);
+  set_box(model, cube(Vec3::Zero(), surface.radius));
+  model.feature = surface.radius;
+  model.closed = offers(surface, Offer::positive_curvature);
+  return model;
+}
+
+// The model of a surface, before it is shared.
+SurfaceModel resolve(const Surface& surface) {
+  SurfaceModel model = offers(surface, Offer::formula)         ? formula_shape(surface)
+                       : offers(surface, Offer::profile_chart) ? profile_shape_of(surface)
+                                                               : constant_curvature_model(surface);
+  model.surface = surface;
+  model.offered = offers_of(surface.kind);
+  if (model.implicit) model.curvature = std::numeric_limits<double>::quiet_NaN();
+  return model;
+}
+
+// What makes two surfaces one model: the kind, R, every profile's parameters, the formula, its
 // parameters and its box.
 struct ShapeKey {
   SurfaceKind kind;
+  double radius;
   std::array<double, 7> profile;
   std::string F, z;
   SurfaceParameters parameters;
@@ -182,6 +205,7 @@ struct ShapeKey {
 ShapeKey key_of(const Surface& s) {
   ShapeKey key{
       s.kind,
+      s.radius,
       {s.tube_radius, s.center_radius, s.equatorial_radius, s.polar_radius, s.height, s.width, s.neck_radius},
       {},
       {},
@@ -194,10 +218,11 @@ ShapeKey key_of(const Surface& s) {
 
 }  // namespace
 
-std::shared_ptr<const SurfaceShape> surface_shape_of(const Surface& surface) {
-  if (!chart_free(surface)) throw std::logic_error("surface_shape_of: the curvature is constant");
+std::shared_ptr<const SurfaceModel> surface_model_of(const Surface& surface) {
+  if (static_cast<unsigned>(surface.kind) >= std::size(kSurfaceCatalog))
+    throw std::logic_error("surface_model_of: a kind outside the catalog");
   static std::mutex mutex;
-  static std::list<std::pair<ShapeKey, std::shared_ptr<const SurfaceShape>>> cache;  // most recent first
+  static std::list<std::pair<ShapeKey, std::shared_ptr<const SurfaceModel>>> cache;  // most recent first
   ShapeKey key = key_of(surface);
   {
     const std::lock_guard lock(mutex);
@@ -207,11 +232,10 @@ std::shared_ptr<const SurfaceShape> surface_shape_of(const Surface& surface) {
         return cache.front().second;
       }
   }
-  auto shape = std::make_shared<const SurfaceShape>(
-      offers(surface, Offer::formula) ? formula_shape(surface) : profile_shape_of(surface));
+  auto shape = std::make_shared<const SurfaceModel>(resolve(surface));
   const std::lock_guard lock(mutex);
   cache.emplace_front(std::move(key), shape);
-  if (cache.size() > kSurfaceShapeCacheSize) cache.pop_back();
+  if (cache.size() > kSurfaceModelCacheSize) cache.pop_back();
   return shape;
 }
 
