@@ -256,6 +256,7 @@ void anti_aliasing_and_cache_tables(int frames) {
     s.surface.kind = SurfaceKind::implicit;
     s.surface.F = "(x^2 + y^2 + z^2 + c^2 - a^2)^2 - 4*c^2*(x^2 + y^2)";
     s.surface.parameters = {{"a", 1.0}, {"c", 2.5}};
+    s.model = surface_model_of(s.surface);
   }
   std::printf(
       "| size | torus frame ms (revolution view: aim, build, draw) | formula torus frame ms (formula view: "

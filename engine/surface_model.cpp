@@ -191,50 +191,36 @@ SurfaceModel resolve(const Surface& surface) {
   return model;
 }
 
-// What makes two surfaces one model: the kind, R, every profile's parameters, the formula, its
-// parameters and its box.
-struct ShapeKey {
-  SurfaceKind kind;
-  double radius;
-  std::array<double, 7> profile;
-  std::string F, z;
-  SurfaceParameters parameters;
-  std::optional<SurfaceBounds> bounds;
-  bool operator==(const ShapeKey&) const = default;
-};
-ShapeKey key_of(const Surface& s) {
-  ShapeKey key{
-      s.kind,
-      s.radius,
-      {s.tube_radius, s.center_radius, s.equatorial_radius, s.polar_radius, s.height, s.width, s.neck_radius},
-      {},
-      {},
-      {},
-      {}};
-  if (offers(s, Offer::formula))
-    key.F = s.F, key.z = s.z, key.parameters = s.parameters, key.bounds = s.bounds;
-  return key;
-}
-
 }  // namespace
+
+// Compared in place (a frame asks for its model at every point of a body's
+// ellipse: copying the formula's text for a key was a third of a formula frame's building).
+bool same_model(const Surface& a, const Surface& b) {
+  const auto profile = [](const Surface& s) {
+    return std::tie(s.kind, s.radius, s.tube_radius, s.center_radius, s.equatorial_radius, s.polar_radius,
+                    s.height, s.width, s.neck_radius);
+  };
+  if (profile(a) != profile(b)) return false;
+  return !offers(a, Offer::formula) ||
+         (a.F == b.F && a.z == b.z && a.parameters == b.parameters && a.bounds == b.bounds);
+}
 
 std::shared_ptr<const SurfaceModel> surface_model_of(const Surface& surface) {
   if (static_cast<unsigned>(surface.kind) >= std::size(kSurfaceCatalog))
     throw std::logic_error("surface_model_of: a kind outside the catalog");
   static std::mutex mutex;
-  static std::list<std::pair<ShapeKey, std::shared_ptr<const SurfaceModel>>> cache;  // most recent first
-  ShapeKey key = key_of(surface);
+  static std::list<std::shared_ptr<const SurfaceModel>> cache;  // most recent first
   {
     const std::lock_guard lock(mutex);
     for (auto it = cache.begin(); it != cache.end(); ++it)
-      if (it->first == key) {
+      if (same_model((*it)->surface, surface)) {
         cache.splice(cache.begin(), cache, it);
-        return cache.front().second;
+        return cache.front();
       }
   }
   auto shape = std::make_shared<const SurfaceModel>(resolve(surface));
   const std::lock_guard lock(mutex);
-  cache.emplace_front(std::move(key), shape);
+  cache.push_front(shape);
   if (cache.size() > kSurfaceModelCacheSize) cache.pop_back();
   return shape;
 }

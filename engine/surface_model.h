@@ -51,5 +51,8 @@ struct SurfaceModel {
 // surface, the same model: resolved once per surface (a cache of kSurfaceModelCacheSize, thread-safe).
 inline constexpr std::size_t kSurfaceModelCacheSize = 64;
 std::shared_ptr<const SurfaceModel> surface_model_of(const Surface& surface);
+// Whether two surfaces have one model (the cache's identity): the kind, R, every profile's
+// parameters, and a formula's text, parameters and box.
+bool same_model(const Surface& a, const Surface& b);
 
 }  // namespace spinfold

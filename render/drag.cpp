@@ -374,7 +374,7 @@ std::optional<std::pair<double, double>> place_at_pixel(const Snapshot& snapshot
 std::optional<Vec3> point_at_pixel(const Snapshot& snapshot, const ViewOptions& view, glm::dvec2 pixel,
                                    const BodyPlace& near) {
   if (!(pixel.x >= 0 && pixel.y >= 0 && pixel.x <= view.width && pixel.y <= view.height)) return std::nullopt;
-  const auto& shape = snapshot.model;
+  const SurfaceModel* shape = &surface_model(snapshot);
   const ViewModel& model = view_model(view.kind);
   const std::optional<AffineMap> map = affine_world(model, snapshot.surface, *shape);
   if (!map) return std::nullopt;

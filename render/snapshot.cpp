@@ -1,6 +1,7 @@
 #include "render/snapshot.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
@@ -33,6 +34,12 @@ std::array<float, 3> companion_color(const Scene& scene, std::size_t i) {
   if (const auto& c = scene.companions.at(i).color)
     return {static_cast<float>((*c)[0]), static_cast<float>((*c)[1]), static_cast<float>((*c)[2])};
   return kCompanionPalette[i % kCompanionPalette.size()];
+}
+
+const SurfaceModel& surface_model(const Snapshot& snapshot) {
+  if (!snapshot.model || !same_model(snapshot.model->surface, snapshot.surface))
+    throw std::logic_error("Snapshot: its model is not its surface's");
+  return *snapshot.model;
 }
 
 Snapshot make_snapshot(const Simulation& run, const Trail& trail, double span) {

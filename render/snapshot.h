@@ -57,6 +57,10 @@ struct Snapshot {
   std::vector<std::string> action_lines;  // action_lines of the run (drawn with the actions layer)
 };
 
+// The snapshot's surface model, checked to be its surface's (std::logic_error for a snapshot built
+// without one or whose surface was changed after it): what a frame asks of the surface.
+const SurfaceModel& surface_model(const Snapshot& snapshot);
+
 // The snapshot of a run's current state and of its companions'. Each body's trail holds its
 // recorded positions within the last `span` [time] (all of them for span < 0) followed by its
 // current position; an empty `trail` (no samples) gives bodies without trails.

@@ -194,7 +194,7 @@ class FormulaView final : public ViewModel {
     if (snapshot.bodies.empty()) return std::nullopt;
     const Vec3& X = snapshot.bodies.front().X;
     if (on_view(snapshot.surface, X) || !draws(snapshot.surface, X)) return std::nullopt;
-    const double half = patch_half(*snapshot.model);
+    const double half = patch_half(surface_model(snapshot));
     const double quantum = std::exp2(std::floor(std::log2(half / 4)));
     return PatchPlace{std::round(X.x() / quantum) * quantum, std::round(X.y() / quantum) * quantum,
                       std::round(X.z() / quantum) * quantum};
@@ -202,7 +202,7 @@ class FormulaView final : public ViewModel {
   bool paints_surface_at(const Snapshot& snapshot, const Vec3& X) const override {
     if (on_view(snapshot.surface, X)) return true;
     const std::optional<PatchPlace> at = patch_at(snapshot);
-    return at && in_box(patch_box(*snapshot.model, *at), X);
+    return at && in_box(patch_box(surface_model(snapshot), *at), X);
   }
   StaticGeometry build_patch(const Surface& surface, PatchPlace at) const override {
     const auto shape = shape_of(surface);
@@ -231,7 +231,7 @@ class FormulaView final : public ViewModel {
 
   // Orbiting the bodies from their side (aim_in_space), in the box, framing at least 2.5 features.
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {
-    const auto& shape = snapshot.model;
+    const SurfaceModel* shape = &surface_model(snapshot);
     const Vec3 n = embedded_normal(*shape->implicit, snapshot.bodies.front().X);
     aim_in_space(*this, view, snapshot, hud,
                  {n.allFinite() ? glm::dvec3(n.x(), n.y(), n.z()) : glm::dvec3(0.0, 0.0, 1.0),
@@ -240,7 +240,7 @@ class FormulaView final : public ViewModel {
                   }});
   }
   std::string grid_caption(const Snapshot& snapshot, const ViewOptions& view) const override {
-    const auto& shape = snapshot.model;
+    const SurfaceModel* shape = &surface_model(snapshot);
     return "Grid: level curves of x, y and z every " + caption_number("%g", grid_step(*shape)) +
            "; the K = 0 curves darker." +
            (patch_at(snapshot) ? " Round body 1, beyond the box drawn whole, a patch of the surface." : "") +

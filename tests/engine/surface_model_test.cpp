@@ -109,6 +109,12 @@ TEST(SurfaceModel, OneSurfaceIsResolvedOnceAndAnotherIsAnother) {
   b.parameters["r"] = 2.0;
   EXPECT_NE(surface_model_of(a), surface_model_of(b));
   EXPECT_GT(surface_model_of(b)->length, 1.5 * surface_model_of(a)->length);
+  Surface boxed = a;
+  boxed.bounds = SurfaceBounds{{{-1.0, 1.0}, {-1.0, 1.0}, {0.0, 1.0}}};
+  EXPECT_NE(surface_model_of(boxed), surface_model_of(a));  // the box is part of what is drawn
+  Surface same = a;
+  same.F = std::string(a.F.begin(), a.F.end());  // equal text, another string: the same model
+  EXPECT_EQ(surface_model_of(same), surface_model_of(a));
   // F read through the formula's program equals F from the jet.
   const Vec3 X(0.3, -0.2, 0.7);
   EXPECT_DOUBLE_EQ(surface_model_of(b)->value(X), surface_model_of(b)->implicit->at(X).F);

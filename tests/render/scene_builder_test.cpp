@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <tuple>
 
 #include "engine/chart.h"
@@ -90,7 +91,12 @@ TEST(SceneBuilder, ASnapshotHoldsItsRunsSurfaceModel) {
   const Simulation run = start_simulation(scene);
   const Snapshot s = make_snapshot(run, Trail{}, -1.0);
   EXPECT_EQ(s.model, run.surface);  // one object: the frame asks the run's model, not a second copy
-  EXPECT_EQ(s.model->surface.kind, SurfaceKind::torus);
+  EXPECT_EQ(&surface_model(s), run.surface.get());
+  Snapshot changed = s;  // its surface changed and not its model: refused, not drawn wrongly
+  changed.surface.tube_radius = 0.5;
+  EXPECT_THROW((void)surface_model(changed), std::logic_error);
+  changed.model = nullptr;
+  EXPECT_THROW((void)surface_model(changed), std::logic_error);
 }
 
 TEST(SceneBuilder, UnselectedLayersCostNothing) {
