@@ -165,6 +165,7 @@ std::string inertia_text(const Body& body) {
 }  // namespace
 
 std::vector<std::string> readout_lines(const Scene& scene, const Readout& readout) {
+  static_assert(kSurfaceReadoutLine == 3, "the surface's line is the fourth below");
   return {
       format("t = %.3f", readout.t),
       // With friction the energy falls by design (dE/dt = −2R): the line names what it shows.

@@ -62,6 +62,9 @@ Readout readout(const Simulation& run);
 // The read-out as the HUD's lines of text: time, energy error, integrator (and whether it stopped),
 // the surface and body of `scene` (the run's), spin and det L.
 std::vector<std::string> readout_lines(const Scene& scene, const Readout& readout);
+// Which of readout_lines names the surface (and K at the body where it varies): what a view adds
+// about the surface there goes on it.
+inline constexpr std::size_t kSurfaceReadoutLine = 3;
 
 // The action variables and frequencies as HUD lines ("J_r = …", "nu_r = …"; "-" where undefined),
 // or one line saying why the scene has none.

@@ -440,11 +440,7 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
   // The lines: trails (by their colour), then the bodies' outlines and arrows.
   std::vector<Vertex> trails, others;
   for (std::size_t i = 0; i + 1 < scene.lines.size(); i += 2) {
-    const bool trail =
-        std::any_of(snapshot.bodies.begin(), snapshot.bodies.end(), [&](const BodySnapshot& b) {
-          const glm::vec4 c(b.trail_color[0], b.trail_color[1], b.trail_color[2], 1.0f);
-          return same_color(scene.lines[i].color, c);
-        });
+    const bool trail = i >= scene.trails_begin && i < scene.trails_end;
     (trail ? trails : others).insert((trail ? trails : others).end(), {scene.lines[i], scene.lines[i + 1]});
   }
   add_segments(page, camera, view, trails, line_width, "trail");
@@ -464,10 +460,11 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
 
   // The legend: the PNG's entries (or, in a frame too narrow for the PNG's, the same ones).
   std::vector<LegendEntry> legend = scene.legend;
-  if (legend.empty() && snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)))
-    for (const BodySnapshot& b : snapshot.bodies)
-      legend.push_back({b.label, glm::vec4(b.color[0], b.color[1], b.color[2], 1.0f),
-                        glm::vec4(b.trail_color[0], b.trail_color[1], b.trail_color[2], 1.0f), b.geodesic});
+  if (legend.empty()) {
+    ViewOptions wide = view;
+    wide.width = std::max(wide.width, kLegendMinWidth);
+    legend = legend_entries(snapshot, wide);
+  }
   const double line = kCaptionSize * kLineSpacing, swatch = 22.0;
   double legend_width = 0.0;
   for (const LegendEntry& e : legend)
@@ -483,16 +480,23 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
                      .clip_to_picture = false,
                      .role = "legend"};
     if (legend[i].dashed) trail.dash = {3.0, 2.0};
+    if (legend[i].right_half) {  // a two-colour key: half each, in the label's order
+      trail.points[1].x = legend_x + 0.5 * swatch;
+      page.paths.push_back(trail);
+      trail.points = {{legend_x + 0.5 * swatch, mid}, {legend_x + swatch, mid}};
+      trail.color = glm::dvec4(*legend[i].right_half);
+    }
     page.paths.push_back(trail);
     std::vector<glm::dvec2> dot;
     for (int k = 0; k < 16; ++k)
       dot.push_back({legend_x + 0.5 * swatch + 4.0 * std::cos(2 * kPi * k / 16),
                      mid + 2.6 * std::sin(2 * kPi * k / 16)});
-    page.paths.push_back({.points = dot,
-                          .color = glm::dvec4(legend[i].color),
-                          .filled = true,
-                          .clip_to_picture = false,
-                          .role = "legend"});
+    if (legend[i].dot)
+      page.paths.push_back({.points = dot,
+                            .color = glm::dvec4(legend[i].color),
+                            .filled = true,
+                            .clip_to_picture = false,
+                            .role = "legend"});
     page.texts.push_back({.at = {legend_x + swatch + 6.0, base},
                           .text = legend[i].label,
                           .size = kCaptionSize,

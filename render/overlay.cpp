@@ -80,7 +80,8 @@ ImU32 color_u32(const glm::vec4& c) {
 }
 
 // The legend's box at the top-right corner: per body a swatch (a stretch of its trail, dashed for
-// the geodesic companion, with a dot of its fill) and its label.
+// the geodesic companion, with a dot of its fill) and its label; the bending layer's two colours as
+// one stretch of trail, half each.
 void draw_legend(const std::vector<LegendEntry>& legend, const HudLayout& layout) {
   const float kSwatch = static_cast<float>(layout.swatch), s = static_cast<float>(layout.scale);
   begin_box("legend", layout.legend);
@@ -93,9 +94,13 @@ void draw_legend(const std::vector<LegendEntry>& legend, const HudLayout& layout
       for (float x = 0.0f; x < kSwatch; x += 8.0f * s)
         draw->AddLine(ImVec2(at.x + x, y), ImVec2(at.x + std::min(x + 5.0f * s, kSwatch), y), trail,
                       2.5f * s);
-    else
+    else if (entry.right_half) {
+      draw->AddLine(ImVec2(at.x, y), ImVec2(at.x + 0.5f * kSwatch, y), trail, 2.5f * s);
+      draw->AddLine(ImVec2(at.x + 0.5f * kSwatch, y), ImVec2(at.x + kSwatch, y), color_u32(*entry.right_half),
+                    2.5f * s);
+    } else
       draw->AddLine(ImVec2(at.x, y), ImVec2(at.x + kSwatch, y), trail, 2.5f * s);
-    draw->AddCircleFilled(ImVec2(at.x + 0.5f * kSwatch, y), 5.0f * s, color_u32(entry.color));
+    if (entry.dot) draw->AddCircleFilled(ImVec2(at.x + 0.5f * kSwatch, y), 5.0f * s, color_u32(entry.color));
     ImGui::Dummy(ImVec2(kSwatch, ImGui::GetTextLineHeight()));
     ImGui::SameLine();
     ImGui::TextUnformatted(entry.label.c_str());

@@ -9,6 +9,8 @@
 #include <tuple>
 
 #include "engine/integer_cast.h"
+#include "engine/path_bending.h"
+#include "engine/readout.h"
 #include "engine/surface_geodesics.h"
 #include "engine/surface_model.h"
 #include "render/view_table.h"
@@ -307,10 +309,56 @@ std::vector<Vec3> ellipse_points(const Surface& surface, const BodySnapshot& bod
   return points;
 }
 
+glm::vec4 bending_color(double kappa_length) {
+  const double size = std::abs(kappa_length);
+  if (!(size >= kStraightBending)) return kStraightColor;
+  const double w = std::min(1.0, 0.4 + 0.6 * (size - kStraightBending) / (kFullBending - kStraightBending));
+  return glm::mix(kStraightColor, kappa_length > 0.0 ? kBendsLeftColor : kBendsRightColor,
+                  static_cast<float>(w));
+}
+
+std::vector<double> main_trail_bending(const Snapshot& snapshot, const ViewOptions& view) {
+  if (!(view.layers & kBending) || !(view.layers & kTrail) || snapshot.bodies.empty()) return {};
+  const BodySnapshot& body = snapshot.bodies.front();
+  if (body.geodesic || body.trail.size() < 3) return {};
+  const SurfaceModel& surface = surface_model(snapshot);
+  std::vector<double> kappa = geodesic_curvatures(surface, body.trail);
+  for (double& k : kappa) k *= surface.feature;
+  return kappa;
+}
+
+std::vector<LegendEntry> legend_entries(const Snapshot& snapshot, const ViewOptions& view) {
+  std::vector<LegendEntry> legend;
+  if (view.width < kLegendMinWidth) return legend;
+  const std::vector<double> bending = main_trail_bending(snapshot, view);
+  if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)))
+    for (const BodySnapshot& body : snapshot.bodies)
+      legend.push_back(
+          {body.label, rgba(body.color),
+           &body == &snapshot.bodies.front() && !bending.empty() ? kStraightColor : rgba(body.trail_color),
+           body.geodesic, true, std::nullopt});
+  // The key whenever the trail is coloured, not as each colour first shows, and in one row: a
+  // legend that grows moves its box, and the camera with it.
+  if (!bending.empty())
+    legend.push_back(
+        {"path bends left / right", kBendsLeftColor, kBendsLeftColor, false, false, kBendsRightColor});
+  return legend;
+}
+
 std::vector<std::string> readout_lines(const Snapshot& snapshot, const ViewOptions& view) {
   std::vector<std::string> lines = snapshot.hud_lines;
   if (view.layers & kActions)
     lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
+  // The bending layer in words at the body where the curvature varies (the lesson: the bending
+  // follows K's sign), on the line that gives K there: which way the path turns now.
+  if (const std::vector<double> bending = main_trail_bending(snapshot, view);
+      !bending.empty() && surface_model(snapshot).offers(Offer::implicit_equation) &&
+      lines.size() > kSurfaceReadoutLine) {
+    const double k = bending.back();
+    lines[kSurfaceReadoutLine] += k >= kStraightBending    ? ": the path bends left"
+                                  : k <= -kStraightBending ? ": the path bends right"
+                                                           : ": the path runs straight";
+  }
   if (!snapshot.bodies.empty() && !on_view(snapshot.surface, view.kind, snapshot.bodies.front().X))
     lines.push_back(
         std::string(view_model(view.kind).off_view_note(snapshot.surface, snapshot.bodies.front().X)));
@@ -352,25 +400,42 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   if (offers(surface, Offer::negative_curvature)) scene.surface_color = {0.83f, 0.86f, 0.78f, 1.0f};
   model.add_background(scene, surface, view);
 
-  // Trails first, then the bodies over them: every body's, main body first.
+  // Trails first, then the bodies over them: every body's, main body first; the main body's
+  // coloured by its bending where that layer is on (each point's colour, the chords between two
+  // points shading from one to the other).
   const std::optional<Window2d> clip = model.clip(view);
-  if (view.layers & kTrail)
-    for (const BodySnapshot& body : snapshot.bodies) {
+  scene.trails_begin = scene.lines.size();
+  if (view.layers & kTrail) {
+    const std::vector<double> bending = main_trail_bending(snapshot, view);
+    for (std::size_t b = 0; b < snapshot.bodies.size(); ++b) {
+      const BodySnapshot& body = snapshot.bodies[b];
       if (body.trail.size() < 2) continue;
+      const bool coloured = b == 0 && bending.size() == body.trail.size();
       std::vector<Vec3> path{body.trail.front()};
-      for (std::size_t i = 1; i < body.trail.size(); ++i)
+      std::vector<glm::vec4> colors;
+      if (coloured) colors.push_back(bending_color(bending.front()));
+      for (std::size_t i = 1; i < body.trail.size(); ++i) {
+        const std::size_t from = path.size();
         append_path(path, surface, body.trail[i - 1], body.trail[i]);
+        if (!coloured) continue;
+        const glm::vec4 a = bending_color(bending[i - 1]), c = bending_color(bending[i]);
+        const std::size_t n = path.size() - from + 1;
+        for (std::size_t k = 1; k < n; ++k) colors.push_back(glm::mix(a, c, static_cast<float>(k) / n));
+        colors.back() = c;
+      }
       if (body.geodesic)
         add_dashed_polyline(scene.lines, surface, model, path, rgba(body.trail_color),
                             clip ? &*clip : nullptr);
+      else if (coloured)
+        add_polyline(scene.lines, surface, model, path, colors, clip ? &*clip : nullptr);
       else
         add_polyline(scene.lines, surface, model, path, rgba(body.trail_color), false,
                      clip ? &*clip : nullptr);
     }
+  }
+  scene.trails_end = scene.lines.size();
   model.add_bodies(scene, snapshot, view);
-  if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)) && view.width >= kLegendMinWidth)
-    for (const BodySnapshot& body : snapshot.bodies)
-      scene.legend.push_back({body.label, rgba(body.color), rgba(body.trail_color), body.geodesic});
+  scene.legend = legend_entries(snapshot, view);
   if (view.layers & kHud) scene.hud_lines = readout_lines(snapshot, view);
   std::vector<std::string> labels;
   for (const LegendEntry& entry : scene.legend) labels.push_back(entry.label);

@@ -85,7 +85,32 @@ struct LegendEntry {
   glm::vec4 color;        // the body's fill, opaque
   glm::vec4 trail_color;  // its trail's
   bool dashed = false;    // the geodesic companion's trail
+  bool dot = true;        // the fill's dot on the swatch (none: a colour of a trail, not a body)
+  // A two-colour key in one row ("path bends left / right"): the swatch's right half in this colour,
+  // in the label's order.
+  std::optional<glm::vec4> right_half;
 };
+
+// The bending layer (kBending): the main body's trail coloured by its geodesic curvature κ_g
+// (engine/path_bending.h), orange where it turns left, bluish green where it turns right (Okabe–Ito's
+// colours, told apart in every common colour blindness, and apart from the companions' blue and the
+// curvature layer's), grey where |κ_g| ℓ < kStraightBending; from 40 % of
+// the colour at that floor to all of it at |κ_g| ℓ = kFullBending, ℓ the surface's feature length (a
+// torus's tube, R), so that one bend reads the same from frame to frame (the torus preset's κ_g ℓ
+// runs from −0.67 to +0.29: both bands in full colour). The geodesic companion keeps its dashes.
+inline constexpr glm::vec4 kBendsLeftColor{0.835f, 0.369f, 0.0f, 1.0f};
+inline constexpr glm::vec4 kBendsRightColor{0.0f, 0.62f, 0.451f, 1.0f};
+inline constexpr glm::vec4 kStraightColor{0.55f, 0.55f, 0.58f, 1.0f};
+inline constexpr double kStraightBending = 0.02, kFullBending = 0.25;
+glm::vec4 bending_color(double kappa_length);
+// κ_g ℓ at each point of the main body's trail where the layer colours it; empty where it does not
+// (the layer off, no trail of three points, the geodesic companion as the main body).
+std::vector<double> main_trail_bending(const Snapshot& snapshot, const ViewOptions& view);
+// The in-frame legend: each body where there is more than one to tell apart, then the bending
+// layer's "path bends left" and "path bends right" for the colours the main trail shows (the main
+// body's own swatch then grey, as its trail is where it runs straight); none in a
+// frame narrower than kLegendMinWidth. build_scene draws it and the camera keeps clear of its box.
+std::vector<LegendEntry> legend_entries(const Snapshot& snapshot, const ViewOptions& view);
 
 // A rectangle of the frame [pixels, x right, y down from the top-left corner]; empty when w = 0.
 struct PixelBox {
@@ -121,6 +146,7 @@ struct FrameScene {
   bool tint_by_curvature = false;  // the curvature layer: the surface coloured by its vertices' tint
   std::vector<Vertex> fills;       // translucent triangles (the ellipse)
   std::vector<Vertex> lines;       // line segments (trail, outline, arrows)
+  std::size_t trails_begin = 0, trails_end = 0;  // the trails' vertices in `lines`
   // Bodies behind the surface drawn faintly through it (the sphere view: a companion on the far
   // side, which no camera can show face-on with the main body): no depth test, drawn first.
   std::vector<Vertex> ghost_fills, ghost_lines;

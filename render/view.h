@@ -42,15 +42,16 @@ const ViewInfo& view_info(ViewKind view);
 
 // Layers, each on or off per frame; an unselected layer costs nothing.
 enum Layer : unsigned {
-  kSurface = 1u << 0,    // shaded surface
-  kGrid = 1u << 1,       // geodesic grid
-  kBody = 1u << 2,       // the deformed-frame ellipse
-  kFrame = 1u << 3,      // the frame arrows e₁, e₂
-  kTrail = 1u << 4,      // the path on the surface
-  kHud = 1u << 5,        // text overlay (Dear ImGui)
-  kActions = 1u << 6,    // the action variables and frequencies, added to the text overlay
-  kCurvature = 1u << 7,  // the Gaussian curvature K as the surface's colour (warm > 0, cool < 0)
-  kDefaultLayers = 63u,  // every layer but the action variables and the curvature
+  kSurface = 1u << 0,     // shaded surface
+  kGrid = 1u << 1,        // geodesic grid
+  kBody = 1u << 2,        // the deformed-frame ellipse
+  kFrame = 1u << 3,       // the frame arrows e₁, e₂
+  kTrail = 1u << 4,       // the path on the surface
+  kHud = 1u << 5,         // text overlay (Dear ImGui)
+  kActions = 1u << 6,     // the action variables and frequencies, added to the text overlay
+  kCurvature = 1u << 7,   // the Gaussian curvature K as the surface's colour (warm > 0, cool < 0)
+  kBending = 1u << 8,     // the main body's trail coloured by which way it bends (render/scene_builder.h)
+  kDefaultLayers = 319u,  // every layer but the action variables and the curvature
 };
 
 // The length that the display scale (ViewOptions::scale, "body size") is given in: R, so that a

@@ -126,6 +126,9 @@ inline constexpr LayerInfo kLayerTable[] = {
     {"curvature", kCurvature, false,
      "the Gaussian curvature K as the surface's colour: warm where K > 0, cool where K < 0, white where K = "
      "0"},
+    {"bending", kBending, true,
+     "the main body's trail coloured by which way it bends: orange where it turns left, green where it turns "
+     "right (seen from outside the surface), grey where it runs straight; deeper the more it bends"},
 };
 
 constexpr unsigned default_layers() {

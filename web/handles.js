@@ -10,7 +10,7 @@ import { request } from "./api.js";
 import { $ } from "./dom.js";
 import { viewQuery } from "./frame.js";
 import { say } from "./readout.js";
-import { applyChange } from "./session.js";
+import { applyChange, tracked } from "./session.js";
 import { mount, store } from "./state.js";
 
 /** @typedef {import("./state.js").AppState} AppState */
@@ -163,7 +163,8 @@ async function ask() {
   }
   asked = query;
   try {
-    const answer = await request("GET", `/sessions/${s.id}/handles?${pictureQuery(s)}`);
+    const path = `/sessions/${s.id}/handles?${pictureQuery(s)}`;
+    const answer = await tracked(path, request("GET", path));
     if (asked !== query) return; // a newer question was asked meanwhile
     placed = { body: answer.body, arrow: answer.arrow, text: "" };
     // For tests and tools: the picture the rings were placed on (its query).
@@ -204,7 +205,8 @@ async function preview() {
   previewWanted = null;
   previewing = true;
   try {
-    const answer = await request("GET", dropPath(store.get(), p));
+    const path = dropPath(store.get(), p);
+    const answer = await tracked(path, request("GET", path));
     $("handle-tip").textContent = answer.text;
   } catch {
     $("handle-tip").textContent = which === "body" ? "off the surface" : "turn the view first";
@@ -219,7 +221,8 @@ async function preview() {
 async function drop(p) {
   const s = store.get();
   try {
-    const answer = await request("GET", dropPath(s, p));
+    const path = dropPath(s, p);
+    const answer = await tracked(path, request("GET", path));
     if (store.get().id !== s.id || store.get().playing) return;
     await applyChange({ initial: answer.initial });
   } catch (e) {

@@ -31,8 +31,12 @@ export const presetLabel = (name) => name.replaceAll("_", " ");
 // moment before the new one is made, and under load the old one's DELETE overtook it (a 404).
 /** @type {Map<string, Set<Promise<unknown>>>} */
 const unanswered = new Map();
-/** @template T @param {string} path @param {Promise<T>} promise @returns {Promise<T>} */
-function tracked(path, promise) {
+/**
+ * A call on a session that its DELETE waits for (the handles' questions too: asked a moment before
+ * a preset's switch, their 404 was a console error under load).
+ * @template T @param {string} path @param {Promise<T>} promise @returns {Promise<T>}
+ */
+export function tracked(path, promise) {
   const id = /^\/sessions\/([^/?]+)/.exec(path)?.[1];
   if (!id) return promise;
   const calls = unanswered.get(id) ?? new Set();

@@ -77,8 +77,7 @@ std::vector<Sight> sights(const ViewModel& model, const Snapshot& snapshot, cons
 
 HudLayout hud_boxes(const Snapshot& snapshot, const ViewOptions& view) {
   std::vector<std::string> labels;
-  if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)) && view.width >= kLegendMinWidth)
-    for (const BodySnapshot& body : snapshot.bodies) labels.push_back(body.label);
+  for (const LegendEntry& entry : legend_entries(snapshot, view)) labels.push_back(entry.label);
   const std::vector<std::string> lines =
       view.layers & kHud ? readout_lines(snapshot, view) : std::vector<std::string>{};
   return hud_layout(lines, labels, view.width, view.height);

@@ -55,6 +55,22 @@ void add_polyline(std::vector<Vertex>& lines, const Surface& surface, const View
   }
 }
 
+void add_polyline(std::vector<Vertex>& lines, const Surface& surface, const ViewModel& view,
+                  const std::vector<Vec3>& points, const std::vector<glm::vec4>& colors,
+                  const Window2d* clip) {
+  for (std::size_t i = 0; i + 1 < points.size() && i + 1 < colors.size(); ++i) {
+    const Vec3& a = points[i];
+    const Vec3& b = points[i + 1];
+    if (!view.draws(surface, a) || !view.draws(surface, b)) continue;
+    const glm::dvec3 wa = lifted(view, surface, view.world_position(surface, a)),
+                     wb = lifted(view, surface, view.world_position(surface, b));
+    if (clip && !(clip->near(glm::dvec2(wa)) && clip->near(glm::dvec2(wb)))) continue;
+    if (view.torn(wa, wb)) continue;
+    lines.push_back({to_float(wa), colors[i]});
+    lines.push_back({to_float(wb), colors[i + 1]});
+  }
+}
+
 void add_dashed_polyline(std::vector<Vertex>& lines, const Surface& surface, const ViewModel& view,
                          const std::vector<Vec3>& points, const glm::vec4& color, const Window2d* clip) {
   double phase = 0.0;  // distance into the current dash + gap period

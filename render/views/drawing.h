@@ -47,6 +47,11 @@ void add_polyline(std::vector<Vertex>& lines, const Surface& surface, const View
                   const std::vector<Vec3>& points, const glm::vec4& color, bool closed,
                   const Window2d* clip = nullptr);
 
+// The same (open) with a colour per point, each segment shading from its first point's to its last's.
+void add_polyline(std::vector<Vertex>& lines, const Surface& surface, const ViewModel& view,
+                  const std::vector<Vec3>& points, const std::vector<glm::vec4>& colors,
+                  const Window2d* clip = nullptr);
+
 // The same polyline dashed: kDash on, kGap off, measured along the drawn (world) path, so that the
 // dashes keep their length however densely the path is sampled.
 void add_dashed_polyline(std::vector<Vertex>& lines, const Surface& surface, const ViewModel& view,

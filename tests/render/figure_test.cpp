@@ -78,9 +78,10 @@ TEST(Figure, SphereFigureHasOutlineGridTrailsBodiesLegendAndCaption) {
   // The main body's trail is one solid path; the geodesic companion's is dashed into many.
   EXPECT_GE(paths_of(f.page, "trail"), 3u);
   const std::vector<std::string> legend = texts_of(f.page, "legend");
-  ASSERT_EQ(legend.size(), 2u);
+  ASSERT_EQ(legend.size(), 3u);  // the two bodies, and the bending layer's key to the main trail
   EXPECT_EQ(legend[0], "body 1");
   EXPECT_EQ(legend[1], f.snapshot.bodies[1].label);
+  EXPECT_EQ(legend[2], "path bends left / right");
   const std::vector<std::string> caption = texts_of(f.page, "caption");
   EXPECT_EQ(caption.front(), "Test scene");
   EXPECT_EQ(caption[1], "A scene for the tests.");
@@ -166,7 +167,7 @@ TEST(Figure, WithoutTheHudLayerThereIsNoCaption) {
   bare.layers &= ~static_cast<unsigned>(kHud);
   const FigurePage page = figure_page(f.snapshot, bare, {"Test scene", "", "version=test", "{}"});
   EXPECT_TRUE(texts_of(page, "caption").empty());
-  EXPECT_EQ(texts_of(page, "legend").size(), 2u);
+  EXPECT_EQ(texts_of(page, "legend").size(), 3u);
   EXPECT_LT(page.height, f.page.height);
   EXPECT_EQ(page.title, "Test scene");
 }

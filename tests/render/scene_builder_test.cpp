@@ -9,7 +9,11 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "codec/presets.h"
+#include "codec/scene_json.h"
 #include "engine/chart.h"
+#include "engine/path_bending.h"
+#include "engine/readout.h"
 #include "render/views/camera.h"
 #include "tests/render/views/view_test_support.h"
 
@@ -97,6 +101,76 @@ TEST(SceneBuilder, ASnapshotHoldsItsRunsSurfaceModel) {
   EXPECT_THROW((void)surface_model(changed), std::logic_error);
   changed.model = nullptr;
   EXPECT_THROW((void)surface_model(changed), std::logic_error);
+}
+
+// The torus's claim drawn (issue 50): the main trail orange where it bends left and blue where it
+// bends right, which is where K s > 0 and K s < 0 (κ_g = K s/(m v)); the legend says which is which
+// and the HUD says it at the body in words; with the layer off the trail is its own colour.
+TEST(SceneBuilder, TheBendingLayerColoursTheTorusTrailWhereKsSaysItBends) {
+  const Scene scene = *parse_scene_text(find_preset("spin_vs_geodesic_torus")->json).scene;
+  Simulation run = start_simulation(scene);
+  const double spin = readout(run).spin;
+  Trail trail;
+  trail.spacing = 0.02;
+  ASSERT_TRUE(advance_sampling_trail(run, trail, 12.0));
+  const Snapshot s = make_snapshot(run, trail, -1.0);
+  ViewOptions view;
+  view.kind = ViewKind::revolution;
+  ASSERT_TRUE(view.layers & kBending);  // on by default: the lesson is the default picture
+  const std::vector<double> bending = main_trail_bending(s, view);
+  ASSERT_EQ(bending.size(), s.bodies[0].trail.size());
+  const auto nearer_left = [](const glm::vec4& c) {
+    return glm::distance(c, kBendsLeftColor) < glm::distance(c, kBendsRightColor);
+  };
+  int left = 0, right = 0;
+  for (std::size_t i = 1; i + 1 < bending.size(); ++i) {
+    const double Ks = curvature_at(*s.model, s.bodies[0].trail[i]) * spin;
+    if (std::abs(Ks) < 0.1) continue;  // near the K = 0 circles: grey, either way
+    const glm::vec4 c = bending_color(bending[i]);
+    EXPECT_EQ(nearer_left(c), Ks > 0.0) << "K s = " << Ks << " at point " << i;
+    EXPECT_NE(c, kStraightColor);
+    (Ks > 0.0 ? left : right)++;
+  }
+  EXPECT_GT(left, 50);
+  EXPECT_GT(right, 50);
+
+  aim_camera_at_body(view, s);
+  const FrameScene frame = build_scene(s, view);
+  int drawn_left = 0, drawn_right = 0;
+  for (std::size_t i = frame.trails_begin; i < frame.trails_end; ++i) {
+    const glm::vec4& c = frame.lines[i].color;
+    if (glm::distance(c, kBendsLeftColor) < 0.25f) ++drawn_left;
+    if (glm::distance(c, kBendsRightColor) < 0.25f) ++drawn_right;
+  }
+  EXPECT_GT(drawn_left, 20);
+  EXPECT_GT(drawn_right, 20);
+  // One row keys both colours, left half orange, right half green.
+  const auto key = std::find_if(frame.legend.begin(), frame.legend.end(),
+                                [](const LegendEntry& e) { return e.label == "path bends left / right"; });
+  ASSERT_NE(key, frame.legend.end());
+  EXPECT_EQ(key->trail_color, kBendsLeftColor);
+  ASSERT_TRUE(key->right_half);
+  EXPECT_EQ(*key->right_half, kBendsRightColor);
+  // The surface's line gives K at the body and, now, which way the path turns there.
+  ASSERT_GT(frame.hud_lines.size(), kSurfaceReadoutLine);
+  const std::string& surface_line = frame.hud_lines[kSurfaceReadoutLine];
+  EXPECT_EQ(surface_line.rfind("torus  K = ", 0), 0u) << surface_line;
+  EXPECT_TRUE(surface_line.ends_with(": the path bends left") ||
+              surface_line.ends_with(": the path bends right") ||
+              surface_line.ends_with(": the path runs straight"))
+      << surface_line;
+
+  view.layers &= ~kBending;
+  const FrameScene plain = build_scene(s, view);
+  const glm::vec4 own(kMainTrailColor[0], kMainTrailColor[1], kMainTrailColor[2], 1.0f);
+  ASSERT_EQ(s.bodies.size(), 2u);
+  const auto& g = s.bodies[1].trail_color;
+  const glm::vec4 geodesic(g[0], g[1], g[2], 1.0f);
+  for (std::size_t i = plain.trails_begin; i < plain.trails_end; ++i) {
+    const glm::vec4& c = plain.lines[i].color;  // the main trail's own colour, or the companion's
+    EXPECT_TRUE(c == own || c == geodesic) << c.r << " " << c.g << " " << c.b;
+  }
+  for (const LegendEntry& e : plain.legend) EXPECT_EQ(e.label.find("bends"), std::string::npos);
 }
 
 TEST(SceneBuilder, UnselectedLayersCostNothing) {
