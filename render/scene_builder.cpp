@@ -317,10 +317,14 @@ glm::vec4 bending_color(double kappa_length) {
                   static_cast<float>(w));
 }
 
+bool main_trail_bends(const Snapshot& snapshot, const ViewOptions& view) {
+  return (view.layers & kBending) && (view.layers & kTrail) && !snapshot.bodies.empty() &&
+         !snapshot.bodies.front().geodesic && snapshot.bodies.front().trail.size() >= 3;
+}
+
 std::vector<double> main_trail_bending(const Snapshot& snapshot, const ViewOptions& view) {
-  if (!(view.layers & kBending) || !(view.layers & kTrail) || snapshot.bodies.empty()) return {};
+  if (!main_trail_bends(snapshot, view)) return {};
   const BodySnapshot& body = snapshot.bodies.front();
-  if (body.geodesic || body.trail.size() < 3) return {};
   const SurfaceModel& surface = surface_model(snapshot);
   std::vector<double> kappa = geodesic_curvatures(surface, body.trail);
   for (double& k : kappa) k *= surface.feature;
@@ -330,16 +334,16 @@ std::vector<double> main_trail_bending(const Snapshot& snapshot, const ViewOptio
 std::vector<LegendEntry> legend_entries(const Snapshot& snapshot, const ViewOptions& view) {
   std::vector<LegendEntry> legend;
   if (view.width < kLegendMinWidth) return legend;
-  const std::vector<double> bending = main_trail_bending(snapshot, view);
+  const bool bending = main_trail_bends(snapshot, view);
   if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)))
     for (const BodySnapshot& body : snapshot.bodies)
       legend.push_back(
           {body.label, rgba(body.color),
-           &body == &snapshot.bodies.front() && !bending.empty() ? kStraightColor : rgba(body.trail_color),
+           &body == &snapshot.bodies.front() && bending ? kStraightColor : rgba(body.trail_color),
            body.geodesic, true, std::nullopt});
   // The key whenever the trail is coloured, not as each colour first shows, and in one row: a
   // legend that grows moves its box, and the camera with it.
-  if (!bending.empty())
+  if (bending)
     legend.push_back(
         {"path bends left / right", kBendsLeftColor, kBendsLeftColor, false, false, kBendsRightColor});
   return legend;
@@ -351,10 +355,12 @@ std::vector<std::string> readout_lines(const Snapshot& snapshot, const ViewOptio
     lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
   // The bending layer in words at the body where the curvature varies (the lesson: the bending
   // follows K's sign), on the line that gives K there: which way the path turns now.
-  if (const std::vector<double> bending = main_trail_bending(snapshot, view);
-      !bending.empty() && surface_model(snapshot).offers(Offer::implicit_equation) &&
+  // (κ_g of the trail's last three points alone: the HUD is asked at every aim.)
+  if (main_trail_bends(snapshot, view) && surface_model(snapshot).offers(Offer::implicit_equation) &&
       lines.size() > kSurfaceReadoutLine) {
-    const double k = bending.back();
+    const std::vector<Vec3>& trail = snapshot.bodies.front().trail;
+    const SurfaceModel& surface = surface_model(snapshot);
+    const double k = geodesic_curvatures(surface, {trail.end() - 3, trail.end()})[1] * surface.feature;
     lines[kSurfaceReadoutLine] += k >= kStraightBending    ? ": the path bends left"
                                   : k <= -kStraightBending ? ": the path bends right"
                                                            : ": the path runs straight";

@@ -103,8 +103,10 @@ inline constexpr glm::vec4 kBendsRightColor{0.0f, 0.62f, 0.451f, 1.0f};
 inline constexpr glm::vec4 kStraightColor{0.55f, 0.55f, 0.58f, 1.0f};
 inline constexpr double kStraightBending = 0.02, kFullBending = 0.25;
 glm::vec4 bending_color(double kappa_length);
-// κ_g ℓ at each point of the main body's trail where the layer colours it; empty where it does not
-// (the layer off, no trail of three points, the geodesic companion as the main body).
+// Whether the layer colours the main body's trail (not: the layer off, no trail of three points, the
+// geodesic companion as the main body).
+bool main_trail_bends(const Snapshot& snapshot, const ViewOptions& view);
+// κ_g ℓ at each point of the main body's trail where the layer colours it; empty where it does not.
 std::vector<double> main_trail_bending(const Snapshot& snapshot, const ViewOptions& view);
 // The in-frame legend: each body where there is more than one to tell apart, then the bending
 // layer's "path bends left" and "path bends right" for the colours the main trail shows (the main
