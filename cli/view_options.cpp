@@ -15,8 +15,12 @@ namespace {
 std::string help_of(const render::ViewParameter& p) {
   std::string help(p.help);
   const render::ParameterType type = render::parameter_type(p);
-  if (type == render::ParameterType::enumeration)
-    return "one of " + render::joined_view_names(" | ") + ": " + help;
+  if (type == render::ParameterType::enumeration) {
+    std::string names;
+    for (const std::string_view n : render::choices(p))
+      names += (names.empty() ? "" : " | ") + std::string(n);
+    return "one of " + names + ": " + help;
+  }
   if (type == render::ParameterType::list) {
     std::string names;
     for (const std::string_view n : render::layer_names()) {
@@ -53,7 +57,7 @@ void add_view_options(CLI::App& command, ViewArgs& args) {
     switch (render::parameter_type(p)) {
       case render::ParameterType::integer: option->type_name("INT"); break;
       case render::ParameterType::number: option->type_name("FLOAT"); break;
-      case render::ParameterType::enumeration: option->type_name("VIEW"); break;
+      case render::ParameterType::enumeration: option->type_name(p.name == "view" ? "VIEW" : "CHOICE"); break;
       case render::ParameterType::list: option->type_name("LIST"); break;
     }
     args.options[name] = option;

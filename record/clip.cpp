@@ -60,7 +60,7 @@ double frame_time(const Clip& c, long long k) {
 namespace {
 
 // `follower`: the clip's frames in order, each 1/fps of the file after the last (a camera aimed at
-// the bodies glides over the aim's jumps); null for a frame alone (a GIF's palette sample).
+// the bodies stays put or glides: f.camera); null for a frame alone (a GIF's palette sample).
 render::Image draw(const ClipFrames& f, const TimelineReplay& replay, const RenderFrame& render,
                    render::CameraFollower* follower = nullptr, double seconds = 0.0) {
   static const Trail kNoTrail;  // trails are copied only when drawn
@@ -71,6 +71,7 @@ render::Image draw(const ClipFrames& f, const TimelineReplay& replay, const Rend
   camera.yaw = f.yaw;
   camera.pitch = f.pitch;
   camera.distance = f.distance;
+  camera.motion = f.motion;
   if (follower)
     follower->place(view, camera, snapshot, seconds);
   else

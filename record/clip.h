@@ -21,6 +21,7 @@
 #include "render/renderer.h"
 #include "render/snapshot.h"
 #include "render/view.h"
+#include "render/view_parameters.h"
 
 namespace spinfold::record {
 
@@ -58,8 +59,9 @@ struct ClipFrames {
   Trail trail{};                                     // the trail's spacing and cap (empty of points)
   render::ViewOptions view{};                        // kind, size, layers, scale [length]
   std::optional<double> yaw{}, pitch{}, distance{};  // absent: aimed at the body in every frame
-  std::optional<double> trail_span{};                // [time] the trail's span; absent: the whole run
-  std::uint64_t max_attempts = kNoStepLimit;         // step attempts per frame
+  render::CameraMotion motion = render::CameraMotion::steady;  // aimed: how it moves (camera_follow.h)
+  std::optional<double> trail_span{};         // [time] the trail's span; absent: the whole run
+  std::uint64_t max_attempts = kNoStepLimit;  // step attempts per frame
 };
 
 // Draws a snapshot in a view: the caller's renderer (its own, or the server's render pool).

@@ -38,25 +38,34 @@ double follow_step(double gap, double seconds) {
   return std::min({glide, kFollowMaxRate * dt, gap});
 }
 
-bool CameraFollower::place(ViewOptions& view, const ViewRequest& request, const Snapshot& snapshot,
-                           double seconds) {
+CameraPlaced CameraFollower::place(ViewOptions& view, const ViewRequest& request, const Snapshot& snapshot,
+                                   double seconds) {
   place_camera(view, request, snapshot);
   const ViewModel& model = view_model(view.kind);
   const bool aimed = !request.yaw && !request.pitch && !request.distance;
   const bool follows = aimed && view_info(view.kind).three_d && last_ && last_->kind == view.kind &&
                        last_->width == view.width && last_->height == view.height &&
                        last_->layers == view.layers && last_->scale == view.scale;
-  if (!follows) {
+  const auto arrive = [&] {
     last_ = view;
-    return true;
+    recentring_ = false;
+    given_ = !aimed;
+    return CameraPlaced::aimed;
+  };
+  if (!follows) return arrive();
+  const bool steady = request.motion == CameraMotion::steady;
+  if (given_) recentring_ = true;  // the viewer's own camera let go: back to the aim, all the way
+  given_ = false;
+  // Steady: the last camera stays while it shows the body (a still frame, no time passing, too).
+  if (steady && !recentring_ && shows_main_body(*last_, snapshot) &&
+      model.on_lit_side(eye_of(model.camera(*last_)))) {
+    view = *last_;
+    return CameraPlaced::held;
   }
   const glm::dvec3 home = model.orbit_home();
   const double gap = camera_gap(*last_, view, home);
   const double step = follow_step(gap, seconds);
-  if (step >= gap) {
-    last_ = view;
-    return true;
-  }
+  if (step >= gap) return arrive();
   // The camera a share s of the way from the last frame's to the aimed one.
   const glm::dvec3 from = target_of(*last_, home), to = target_of(view, home);
   const auto on_way = [&](double s) {
@@ -76,13 +85,11 @@ bool CameraFollower::place(ViewOptions& view, const ViewRequest& request, const 
     for (int k = 2; k * base <= most && !shows_main_body(next, snapshot); ++k) next = on_way(s = k * base);
     if (!shows_main_body(next, snapshot)) s = 1.0;  // no glide shows it: cut to the aimed camera
   }
-  if (s >= 1.0 || !model.on_lit_side(eye_of(model.camera(next)))) {
-    last_ = view;
-    return true;
-  }
+  if (s >= 1.0 || !model.on_lit_side(eye_of(model.camera(next)))) return arrive();
   view = next;
   last_ = view;
-  return false;
+  recentring_ = steady;
+  return CameraPlaced::on_way;
 }
 
 }  // namespace spinfold::render

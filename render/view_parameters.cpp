@@ -38,6 +38,12 @@ std::span<const ViewParameter> view_parameters() {
   return kViewParameters;
 }
 
+std::optional<CameraMotion> parse_camera_motion(std::string_view name) {
+  for (std::size_t i = 0; i < std::size(kCameraMotionNames); ++i)
+    if (kCameraMotionNames[i] == name) return static_cast<CameraMotion>(i);
+  return std::nullopt;
+}
+
 const ViewParameter& view_parameter(std::string_view name) {
   for (const ViewParameter& p : kViewParameters)
     if (p.name == name) return p;
@@ -50,13 +56,16 @@ ParameterType parameter_type(const ViewParameter& p) {
                  [](double ViewRequest::*) { return ParameterType::number; },
                  [](std::optional<double> ViewRequest::*) { return ParameterType::number; },
                  [](std::optional<ViewKind> ViewRequest::*) { return ParameterType::enumeration; },
-                 [](unsigned ViewRequest::*) { return ParameterType::list; }},
+                 [](unsigned ViewRequest::*) { return ParameterType::list; },
+                 [](CameraMotion ViewRequest::*) { return ParameterType::enumeration; }},
       p.member);
 }
 
 std::vector<std::string_view> choices(const ViewParameter& p) {
   switch (parameter_type(p)) {
     case ParameterType::enumeration: {
+      if (std::holds_alternative<CameraMotion ViewRequest::*>(p.member))
+        return {std::begin(kCameraMotionNames), std::end(kCameraMotionNames)};
       std::vector<std::string_view> names;
       for (const ViewInfo& v : views()) names.push_back(v.name);
       return names;
@@ -100,6 +109,9 @@ std::optional<std::variant<double, std::string>> default_value(const ViewParamet
           },
           [&](unsigned ViewRequest::*m) -> std::optional<std::variant<double, std::string>> {
             return layer_list(defaults.*m);
+          },
+          [&](CameraMotion ViewRequest::*m) -> std::optional<std::variant<double, std::string>> {
+            return std::string(kCameraMotionNames[static_cast<int>(defaults.*m)]);
           }},
       p.member);
 }
@@ -145,6 +157,12 @@ std::optional<std::string> set_parameter(ViewRequest& request, const ViewParamet
   }
   if (!std::holds_alternative<std::string>(value)) return expectation(p);
   const std::string& text = std::get<std::string>(value);
+  if (type == ParameterType::enumeration && std::holds_alternative<CameraMotion ViewRequest::*>(p.member)) {
+    const std::optional<CameraMotion> motion = parse_camera_motion(text);
+    if (!motion) return expectation(p);
+    request.*std::get<CameraMotion ViewRequest::*>(p.member) = *motion;
+    return std::nullopt;
+  }
   if (type == ParameterType::enumeration) {
     const std::optional<ViewKind> kind = parse_view(text);
     if (!kind) return expectation(p);
@@ -172,7 +190,10 @@ std::optional<GivenValue> parameter_value(const ViewRequest& request, const View
             if (!(request.*m)) return std::nullopt;
             return std::string(view_name(*(request.*m)));
           },
-          [&](unsigned ViewRequest::*m) -> std::optional<GivenValue> { return layer_list(request.*m); }},
+          [&](unsigned ViewRequest::*m) -> std::optional<GivenValue> { return layer_list(request.*m); },
+          [&](CameraMotion ViewRequest::*m) -> std::optional<GivenValue> {
+            return std::string(kCameraMotionNames[static_cast<int>(request.*m)]);
+          }},
       p.member);
 }
 

@@ -26,6 +26,14 @@
 
 namespace spinfold::render {
 
+// How a sequence's 3-D camera (the live view, a recording: render/camera_follow.h) moves while the
+// run plays. steady, the lesson's camera: it stays put while the main body is in the frame, clear of
+// the boxes and in sight, and only then glides to the aim, all the way (the scene does not move
+// under the student). follow: it glides toward the aim at every frame, keeping the body centred.
+enum class CameraMotion { steady, follow };
+inline constexpr std::string_view kCameraMotionNames[] = {"steady", "follow"};
+std::optional<CameraMotion> parse_camera_motion(std::string_view name);
+
 // What the view parameters ask for, before the surface is known.
 struct ViewRequest {
   int width = 640;                   // [pixels]
@@ -39,6 +47,7 @@ struct ViewRequest {
   std::optional<double> pitch{};     // [rad] camera elevation (3-D views); absent: aimed at the body
   std::optional<double> distance{};  // [surface radii] (3-D views); absent: aimed at the body
   std::optional<double> trail{};     // [time] the trail's span before now; absent: the whole run
+  CameraMotion motion = CameraMotion::steady;  // a sequence's camera while the run plays
 };
 
 // The kinds of value a parameter holds (from the member's type).
@@ -49,9 +58,9 @@ enum class ParameterType {
   list,         // comma-separated items, each one of choices() (empty items are ignored)
 };
 
-using ViewMember =
-    std::variant<int ViewRequest::*, double ViewRequest::*, std::optional<double> ViewRequest::*,
-                 std::optional<ViewKind> ViewRequest::*, unsigned ViewRequest::*>;
+using ViewMember = std::variant<int ViewRequest::*, double ViewRequest::*,
+                                std::optional<double> ViewRequest::*, std::optional<ViewKind> ViewRequest::*,
+                                unsigned ViewRequest::*, CameraMotion ViewRequest::*>;
 
 struct ViewParameter {
   std::string_view name;  // the query parameter, the recording body's key, the CLI's --NAME
@@ -105,6 +114,12 @@ inline constexpr ViewParameter kViewParameters[] = {
     {"trail", &ViewRequest::trail, "time", kNonNegative,
      "the trail's span: the path over this much simulated time before now; default: the whole run "
      "(sampled every 0.01, the spacing doubling past 8192 samples)"},
+    {"motion",
+     &ViewRequest::motion,
+     "",
+     {},
+     "how the live view's and a recording's 3-D camera moves while the run plays: steady stays put while "
+     "the main body is in the frame and in sight, then glides to it; follow keeps the body centred"},
 };
 
 struct LayerInfo {
@@ -145,7 +160,8 @@ std::span<const ViewParameter> view_parameters();
 // The row named `name`; std::logic_error when there is none (a programming error).
 const ViewParameter& view_parameter(std::string_view name);
 ParameterType parameter_type(const ViewParameter& p);
-// enumeration: the view names (the view table's order); list: the layer names; else empty.
+// enumeration: the view names (the view table's order) or the camera's motions; list: the layer
+// names; else empty.
 std::vector<std::string_view> choices(const ViewParameter& p);
 // The allowed values of a number, a side at most `max_image_side`.
 Range allowed_range(const ViewParameter& p, int max_image_side = kMaxImageSide);

@@ -33,6 +33,7 @@ export function viewQuery(state) {
       pitch: toApi(controls, "pitch", view.pitch).toFixed(4),
     });
   if (view.distance !== null) q.distance = view.distance.toFixed(3);
+  if (view.motion !== "steady") q.motion = view.motion; // the server's default otherwise
   return q;
 }
 
@@ -234,6 +235,11 @@ export const freshCamera = () => ({ yaw: null, pitch: null, distance: null, scal
 /** Undoes orbiting and zooming: Reset view (V), Reset (R) and a preset's opening do it. */
 export function resetView() {
   store.update((s) => withView(s, freshCamera()));
+}
+
+/** Follow the body (C): the 3-D camera keeps it centred while playing, or stays put (steady). */
+export function toggleFollow() {
+  store.update((s) => withView(s, { motion: s.view.motion === "follow" ? "steady" : "follow" }));
 }
 
 /** Closer by `factor` in the 3-D views; a larger body in the 2-D ones. @param {number} factor */

@@ -6,7 +6,7 @@
 // left alone; Space on another button presses it.
 import { toggleGeodesic } from "./comparisons.js";
 import { $, el } from "./dom.js";
-import { camera, is3d, orbit, resetView, zoom } from "./frame.js";
+import { camera, is3d, orbit, resetView, toggleFollow, zoom } from "./frame.js";
 import { toggleFullscreen } from "./presentation.js";
 import { say } from "./readout.js";
 import { nudgeScrub } from "./scrub.js";
@@ -22,6 +22,7 @@ export const shortcuts = [
   { keys: ["→"], does: "Step: advance 10 steps (on the focused picture the arrows orbit instead)" },
   { keys: ["R"], does: "Reset: back to t = 0, the view aimed afresh" },
   { keys: ["V"], does: "Reset the view: aim the camera at the bodies again, undo the zoom" },
+  { keys: ["C"], does: "Follow the body with the camera, or let it stay put (3-D views)" },
   { keys: ["+", "−"], does: "Zoom in, zoom out" },
   { keys: ["Shift + arrows"], does: "Orbit the camera (3-D views; plain arrows on the focused picture)" },
   { keys: ["G"], does: "Add or remove the geodesic companion" },
@@ -80,6 +81,7 @@ function onKey(e) {
     run(reset);
   } else if (key === "v" || key === "V") resetView();
   else if (key === "f" || key === "F") toggleFullscreen();
+  else if (key === "c" || key === "C") toggleFollow();
   else if (key === "?") showShortcuts();
   else if (key === "g" || key === "G") toggleGeodesic();
   else if (key === "," || key === ".") handled = nudgeScrub(key === "," ? -1 : 1);

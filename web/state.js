@@ -11,7 +11,7 @@
  * server). yaw and pitch in radians, distance in surface radii, scale in surface radii (lengths in
  * the conformal view).
  * @typedef {{kind: string|null, layers: string[], yaw: number|null, pitch: number|null,
- *   distance: number|null, scale: number, hudChosen: boolean}} ViewState
+ *   distance: number|null, scale: number, motion: string, hudChosen: boolean}} ViewState
  */
 
 /**
@@ -110,6 +110,7 @@ export function initialState() {
       pitch: null,
       distance: null,
       scale: 0.25,
+      motion: "steady", // the 3-D camera while playing: "steady" (stays put) or "follow" (keeps the body centred)
       hudChosen: false,
     },
     size: { width: 640, height: 480 },

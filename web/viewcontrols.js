@@ -3,6 +3,7 @@
 // order), the layers of GET /api/v1/view-parameters, rendered from the store.
 import { request } from "./api.js";
 import { $, el, clear } from "./dom.js";
+import { is3d, toggleFollow } from "./frame.js";
 import { mount, store, withView } from "./state.js";
 import { fromContract } from "./viewparams.js";
 
@@ -64,7 +65,11 @@ export function setupViewControls() {
     keepViewOffered(s);
     renderViewMenu(s, b);
     renderLayers(s, b);
+    // Follow body: a 3-D camera's choice (a 2-D view is framed afresh with every picture).
+    $("follow").setAttribute("aria-pressed", String(s.view.motion === "follow"));
+    /** @type {HTMLButtonElement} */ ($("follow")).disabled = !is3d(s);
   });
+  $("follow").addEventListener("click", toggleFollow);
   $("view").addEventListener("change", () =>
     store.update((s) => withView(s, { kind: $("view").value, yaw: null, pitch: null, distance: null })),
   );

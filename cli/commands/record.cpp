@@ -62,6 +62,7 @@ int record_window(const RecordOptions& opt) {
                             .yaw = request.yaw,
                             .pitch = request.pitch,
                             .distance = request.distance,
+                            .motion = request.motion,
                             .trail_span = request.trail};
   if (const auto why = record::size_unsupported_reason(*format, frames.view.width, frames.view.height))
     throw BadInput{"--width/--height: " + *why};

@@ -570,14 +570,16 @@ def render(scene: Any, t: float = 0.0, *, view: str | None = None, width: int = 
            layers: str | Sequence[str] | None = None,
            camera: tuple[float, float, float] | None = None, scale: float = 0.25,
            trail: float | None = None, yaw: float | None = None, pitch: float | None = None,
-           distance: float | None = None) -> Frame:
+           distance: float | None = None, motion: str | None = None) -> Frame:
     """The picture ``spinfold render`` draws of the scene at time `t` (the same pixels).
 
     `view`: sphere, hyperboloid, disk, plane, klein, halfplane, tractricoid, conformal, …
     (None: the surface's own); `layers`: a comma-separated string or a list (None: the layers on
     by default, as everywhere: the view-parameter table's); `camera`: (yaw, pitch, distance) for the
     3-D views, or `yaw`, `pitch`, `distance` one by one (None: aimed at the body; a part given
-    replaces that part of the aimed camera, as the CLI's ``--camera`` and ``--yaw``).
+    replaces that part of the aimed camera, as the CLI's ``--camera`` and ``--yaw``); `motion`:
+    how a sequence's camera moves (steady, follow), read as every door reads it; one frame is aimed
+    either way.
 
     Each value is checked by the view-parameter table (render/view_parameters.h) and refused in the
     CLI's and the API's words: ValueError naming the parameter (``pitch: must be a number from
@@ -610,6 +612,8 @@ def render(scene: Any, t: float = 0.0, *, view: str | None = None, width: int = 
     for name, value in (("yaw", yaw), ("pitch", pitch), ("distance", distance), ("trail", trail)):
         if value is not None:
             given.append((name, _view_number(name, value)))
+    if motion is not None:
+        given.append(("motion", _view_text("motion", motion)))
     raw = _core.render(_scene_text(scene), t, given, "python: spinfold.render")
     pixels = np.frombuffer(raw["rgba"], dtype=np.uint8).reshape(raw["height"], raw["width"], 4).copy()
     return Frame(pixels, [tuple(t) for t in raw["texts"]], raw["status"])

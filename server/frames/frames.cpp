@@ -144,7 +144,8 @@ render::ViewRequest view_request(const FrameRequest& f) {
           .yaw = f.yaw,
           .pitch = f.pitch,
           .distance = f.distance,
-          .trail = f.trail};
+          .trail = f.trail,
+          .motion = f.motion};
 }
 
 void apply_view_query(const Query& q, FrameRequest& f, SurfaceKind surface) {
@@ -172,6 +173,7 @@ void apply_view_query(const Query& q, FrameRequest& f, SurfaceKind surface) {
   f.pitch = r.pitch;
   f.distance = r.distance;
   f.trail = r.trail;
+  f.motion = r.motion;
 }
 
 FrameRequest frame_request(const Query& q, SurfaceKind surface, bool jpeg, long long max_pixels) {
@@ -234,7 +236,8 @@ bool etag_matches(const std::string& if_none_match, const std::string& etag) {
 namespace {
 
 // Places a followed frame's camera (FrameRequest::follow) in the order frames are asked for.
-bool place_followed(const FrameRequest& f, render::ViewOptions& view, const render::Snapshot& snapshot) {
+render::CameraPlaced place_followed(const FrameRequest& f, render::ViewOptions& view,
+                                    const render::Snapshot& snapshot) {
   const std::lock_guard lock(f.follow->mutex);
   const auto now = std::chrono::steady_clock::now();
   const double seconds =
@@ -268,16 +271,19 @@ FrameBytes session_frame(FrameCache& cache, RenderPool& renderer, const std::str
                          : render::encode_png(image.rgba.data(), image.width, image.height, job.texts));
     };
     std::optional<render::ViewOptions> placed;
+    bool own_camera = false;
     if (f.follow) {
       placed = job.view;
-      job.info.on_way = !place_followed(f, *placed, *job.snapshot);
+      const render::CameraPlaced where = place_followed(f, *placed, *job.snapshot);
+      job.info.on_way = where == render::CameraPlaced::on_way;
+      own_camera = where != render::CameraPlaced::aimed;
       if (render::view_info(placed->kind).three_d)
         job.info.camera = std::array<double, 3>{placed->yaw, placed->pitch, placed->distance};
     }
     etag = job.etag;
     if (info) *info = job.info;
     try {
-      if (job.info.on_way) {  // this stream's alone: rendered, not cached
+      if (own_camera) {  // this stream's alone (on its way, or held): rendered, not cached
         etag.insert(etag.size() - 1, "-following");
         return encode(renderer.render(id, std::move(*job.snapshot), *placed).get());
       }

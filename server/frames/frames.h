@@ -42,9 +42,10 @@ struct FrameRequest {
   double scale = 0.25;                         // [surface radii per unit of e_A]
   std::optional<double> yaw, pitch, distance;  // absent: the camera is aimed at the body
   std::optional<double> trail;                 // [time] span of the trail; absent: the whole run
-  std::optional<int> jpeg_quality;             // 1..100: a JPEG; absent: a PNG
-  // A live stream's: the camera glides over the aim's jumps. A frame on its way is made for this
-  // stream alone (never cached); once there, it is the aimed frame, cached and shared as any.
+  render::CameraMotion motion = render::CameraMotion::steady;  // with `follow`: how it moves
+  std::optional<int> jpeg_quality;                             // 1..100: a JPEG; absent: a PNG
+  // A live stream's: the camera stays put (steady) or glides over the aim's jumps. A frame on its
+  // way or held is made for this stream alone (never cached); the aimed frame is cached and shared.
   std::shared_ptr<FollowedCamera> follow;
   // frame.png and frame.jpg's `at` [time]: the run at this earlier time (0 ≤ at ≤ the session's t),
   // replayed from t = 0 through the timeline in at most `max_attempts` step attempts (the session's

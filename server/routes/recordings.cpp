@@ -110,6 +110,7 @@ RecordingJob recording_job(ServerContext& server, const Call& call, Session& s) 
   job.frames.yaw = picture.yaw;
   job.frames.pitch = picture.pitch;
   job.frames.distance = picture.distance;
+  job.frames.motion = picture.motion;
   if (!errors.empty()) throw ApiError{422, "Invalid value", errors, ""};
 
   // The copy: the parameters at t = 0 and the timeline, under the session's lock only to read them.

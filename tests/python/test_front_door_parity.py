@@ -67,6 +67,7 @@ BAD = [
     ("view", "view", 1, "1", "must be sphere", TypeError),
     ("view", "layers", "body,glitter", "body,glitter", "'glitter' is not one of surface, grid", ValueError),
     ("view", "layers", [1], NA, "must be a comma-separated list of surface", TypeError),
+    ("view", "motion", "orbit", "orbit", "must be steady or follow", ValueError),
     # run limits
     ("run", "max_steps", -1, "-1", MAX_STEPS, ValueError),
     ("run", "max_steps", 0, "0", MAX_STEPS, ValueError),

@@ -71,9 +71,11 @@ TEST(CameraFollow, TheGapIsTheLargestOfTurnPullAndTheTargetsMove) {
 TEST(CameraFollow, AJumpIsGlidedOverToTheAimedCameraToTheBit) {
   const Snapshot near = testing::body_at(SurfaceKind::sphere, 1.0, 0.3, 0.0);
   const Snapshot far = testing::body_at(SurfaceKind::sphere, 1.0, 0.9, 0.3);
+  ViewRequest follow;  // today's follower (the steady camera: below)
+  follow.motion = CameraMotion::follow;
   CameraFollower follower;
   ViewOptions view = view_of(ViewKind::sphere, near), first = view;
-  EXPECT_TRUE(follower.place(first, {}, near, 0.04));  // the first frame is aimed
+  EXPECT_EQ(follower.place(first, follow, near, 0.04), CameraPlaced::aimed);  // the first frame is aimed
   ViewOptions aimed = view;
   place_camera(aimed, {}, far);
   const double jump = camera_gap(first, aimed, glm::dvec3(0.0));
@@ -82,7 +84,7 @@ TEST(CameraFollow, AJumpIsGlidedOverToTheAimedCameraToTheBit) {
   int frames = 0;
   for (bool there = false; !there && frames < 100; ++frames) {
     ViewOptions v = view;
-    there = follower.place(v, {}, far, 0.04);
+    there = follower.place(v, follow, far, 0.04) == CameraPlaced::aimed;
     EXPECT_LE(camera_gap(last, v, glm::dvec3(0.0)), kFollowCatchUpRate * 0.04 + 1e-12);
     if (there) {
       EXPECT_EQ(v.yaw, aimed.yaw);
@@ -96,44 +98,87 @@ TEST(CameraFollow, AJumpIsGlidedOverToTheAimedCameraToTheBit) {
   EXPECT_LE(frames, 25);  // within a second at 25 frames/s
   // A body gone where no glide would find it (to the sphere's far side): a cut to the aimed camera.
   ViewOptions gone = view;
-  EXPECT_TRUE(follower.place(gone, {}, testing::body_at(SurfaceKind::sphere, 1.0, 2.6, 2.5), 0.04));
+  EXPECT_EQ(follower.place(gone, follow, testing::body_at(SurfaceKind::sphere, 1.0, 2.6, 2.5), 0.04),
+            CameraPlaced::aimed);
   EXPECT_GT(camera_gap(last, gone, glm::dvec3(0.0)), 2.0);
   // No time passes: the camera stays where it was.
   ViewOptions again = view;
   CameraFollower paused;
-  paused.place(again, {}, near, 0.04);
+  paused.place(again, follow, near, 0.04);
   again = view;
-  EXPECT_FALSE(paused.place(again, {}, far, 0.0));
+  EXPECT_EQ(paused.place(again, follow, far, 0.0), CameraPlaced::on_way);
   EXPECT_EQ(again.yaw, first.yaw);
   // The user's camera and a 2-D view are not followed.
   ViewRequest given;
   given.yaw = 1.0;
   ViewOptions user = view;
-  EXPECT_TRUE(follower.place(user, given, near, 0.04));
+  EXPECT_EQ(follower.place(user, given, near, 0.04), CameraPlaced::aimed);
   EXPECT_EQ(user.yaw, 1.0);
   CameraFollower flat;
   ViewOptions disk = view_of(ViewKind::disk, near), disk_aimed = disk;
   place_camera(disk_aimed, {}, far);
-  EXPECT_TRUE(flat.place(disk, {}, near, 0.04));
+  EXPECT_EQ(flat.place(disk, {}, near, 0.04), CameraPlaced::aimed);
   disk = view_of(ViewKind::disk, near);
-  EXPECT_TRUE(flat.place(disk, {}, far, 0.04));
+  EXPECT_EQ(flat.place(disk, {}, far, 0.04), CameraPlaced::aimed);
   EXPECT_EQ(disk.zoom, disk_aimed.zoom);
   EXPECT_EQ(disk.target, disk_aimed.target);
 }
 
+// The steady camera (the default): a body that moves but stays in sight leaves the camera where it
+// was, to the bit; one that would leave it starts a glide to the aim that goes all the way there
+// (not held half-way), where the camera is held again.
+TEST(CameraFollow, TheSteadyCameraStaysPutWhileTheBodyIsInSightThenRecentres) {
+  const Snapshot near = testing::body_at(SurfaceKind::sphere, 1.0, 0.3, 0.0);
+  const Snapshot nearby = testing::body_at(SurfaceKind::sphere, 1.0, 0.4, 0.1);
+  CameraFollower steady;
+  const ViewOptions view = view_of(ViewKind::sphere, near);
+  ViewOptions first = view;
+  ASSERT_EQ(steady.place(first, {}, near, 0.04), CameraPlaced::aimed);
+  ViewOptions held = view;
+  ASSERT_TRUE(shows_main_body(first, nearby));
+  EXPECT_EQ(steady.place(held, {}, nearby, 0.04), CameraPlaced::held);
+  EXPECT_EQ(held.yaw, first.yaw);
+  EXPECT_EQ(held.pitch, first.pitch);
+  EXPECT_EQ(held.distance, first.distance);
+  EXPECT_EQ(held.target, first.target);
+  // The body a little way on along the meridian, where the held camera first loses it.
+  double r = 0.4;
+  while (r < 2.5 && shows_main_body(first, testing::body_at(SurfaceKind::sphere, 1.0, r, 0.1))) r += 0.05;
+  const Snapshot gone = testing::body_at(SurfaceKind::sphere, 1.0, r + 0.1, 0.1);
+  ASSERT_FALSE(shows_main_body(first, gone)) << r;
+  ViewOptions aimed = view;
+  place_camera(aimed, {}, gone);
+  ViewOptions last = first;
+  int frames = 0;
+  CameraPlaced where = CameraPlaced::on_way;
+  for (; where == CameraPlaced::on_way && frames < 100; ++frames) {
+    ViewOptions v = view;
+    where = steady.place(v, {}, gone, 0.04);
+    EXPECT_LE(camera_gap(last, v, glm::dvec3(0.0)), kFollowCatchUpRate * 0.04 + 1e-12);
+    last = v;
+  }
+  EXPECT_EQ(where, CameraPlaced::aimed);  // all the way, though the body showed on the way
+  EXPECT_GE(frames, 4);
+  EXPECT_EQ(last.yaw, aimed.yaw);
+  EXPECT_EQ(last.pitch, aimed.pitch);
+  ViewOptions again = view;
+  EXPECT_EQ(steady.place(again, {}, gone, 0.04), CameraPlaced::held);
+  EXPECT_EQ(again.yaw, aimed.yaw);
+}
+
 // Playback as the live view and a recording show it: every preset in every 3-D view it offers, 10 s
-// at 25 frames/s, the trail growing. Aimed afresh each frame the camera turns by up to 190° between
-// frames (the search's candidates trade places). Followed, it keeps the main body in the frame, clear
-// of the boxes and in sight as the aim does, and moves by at most the catch-up rate's step but for a
-// few cuts where every glide would lose the body.
-TEST(CameraFollow, EveryPresetsPlaybackTurnsSmoothlyAndKeepsTheMainBody) {
-#ifdef SPINFOLD_SLOW_AIMING
-  GTEST_SKIP() << "aiming runs ~200x slower in the sanitizer builds: the release build runs this";
-#endif
+// at 25 frames/s, the trail growing, the camera placed by one follower moving as `motion` says.
+struct Playback {
+  int frames = 0, lost_aimed = 0, moving = 0;  // moving: frames whose camera is not the last one's
+  double raw_most = 0.0;                       // the aimed camera's largest move between frames
+  std::string lost, cuts;                      // "preset view t=…" lines
+};
+
+Playback play_every_preset(CameraMotion motion) {
   const double dt = 0.04;
-  double raw_most = 0.0;
-  int frames = 0, lost_aimed = 0;
-  std::string lost, cuts;
+  Playback p;
+  ViewRequest request;
+  request.motion = motion;
   for (const PresetSource& preset : preset_sources()) {
     const Scene scene = *parse_scene_text(preset.json).scene;
     for (const ViewRow& row : view_table()) {
@@ -145,34 +190,65 @@ TEST(CameraFollow, EveryPresetsPlaybackTurnsSmoothlyAndKeepsTheMainBody) {
       const glm::dvec3 home = row.model().orbit_home();
       for (int k = 0; k <= 250; ++k) {
         advance_sampling_trail(run, trail, k * dt);
-        ASSERT_EQ(run.state.status, Status::ok) << preset.name;
+        EXPECT_EQ(run.state.status, Status::ok) << preset.name;
         const Snapshot s = make_snapshot(run, trail, -1.0);
         ViewOptions raw = view_of(row.info.kind, s), followed = raw;
         place_camera(raw, {}, s);
-        follower.place(followed, {}, s, dt);
+        follower.place(followed, request, s, dt);
         const std::string where =
             std::string(preset.name) + " " + std::string(row.info.name) + " t=" + std::to_string(k * dt);
         if (k > 0) {
-          raw_most = std::max(raw_most, camera_gap(last_raw, raw, home));
-          if (camera_gap(last, followed, home) > kFollowCatchUpRate * dt + 1e-9) cuts += where + "\n";
+          p.raw_most = std::max(p.raw_most, camera_gap(last_raw, raw, home));
+          const double moved = camera_gap(last, followed, home);
+          p.moving += moved > 0.0;
+          if (moved > kFollowCatchUpRate * dt + 1e-9) p.cuts += where + "\n";
         }
-        ++frames;
-        lost_aimed += !main_body_trouble(s, raw).empty();
+        ++p.frames;
+        p.lost_aimed += !main_body_trouble(s, raw).empty();
         if (const std::string why = main_body_trouble(s, followed); !why.empty())
-          lost += where + ": " + why + "\n";
+          p.lost += where + ": " + why + "\n";
         last_raw = raw, last = followed;
       }
     }
   }
-  EXPECT_GT(frames, 6000);
-  EXPECT_GT(raw_most, kPi / 2);  // what the follower is for
-  EXPECT_EQ(lost_aimed, 0);
-  EXPECT_EQ(lost, "");
+  return p;
+}
+
+// Followed ("motion": "follow"): aimed afresh each frame the camera turns by up to 190° between
+// frames (the search's candidates trade places); the follower keeps the main body in the frame,
+// clear of the boxes and in sight as the aim does, and moves by at most the catch-up rate's step but
+// for a few cuts where every glide would lose the body.
+TEST(CameraFollow, EveryPresetsPlaybackTurnsSmoothlyAndKeepsTheMainBody) {
+#ifdef SPINFOLD_SLOW_AIMING
+  GTEST_SKIP() << "aiming runs ~200x slower in the sanitizer builds: the release build runs this";
+#endif
+  const Playback p = play_every_preset(CameraMotion::follow);
+  EXPECT_GT(p.frames, 6000);
+  EXPECT_GT(p.raw_most, kPi / 2);  // what the follower is for
+  EXPECT_EQ(p.lost_aimed, 0);
+  EXPECT_EQ(p.lost, "");
   // Measured: 8 cuts in 7781 frames (on the torus, where the glide's path passes behind the tube; on
   // the tractricoid, the sphere of opposite spins and between the two bumps, the body at the frame's
   // edge or the HUD's; 7 before the bending layer's key and words took room in the boxes).
-  EXPECT_LE(std::ranges::count(cuts, '\n'), 8) << cuts;
-  std::printf("frames %d, cuts:\n%s", frames, cuts.c_str());
+  EXPECT_LE(std::ranges::count(p.cuts, '\n'), 8) << p.cuts;
+  std::printf("follow: frames %d, moving %d, cuts:\n%s", p.frames, p.moving, p.cuts.c_str());
+}
+
+// Steady (the default, the lesson's camera): the same playback keeps the main body in the frame,
+// clear of the boxes and in sight, while the camera stays put in most frames: it moves only to
+// recentre a body about to leave.
+TEST(CameraFollow, EveryPresetsPlaybackHoldsTheSteadyCameraAndKeepsTheMainBody) {
+#ifdef SPINFOLD_SLOW_AIMING
+  GTEST_SKIP() << "aiming runs ~200x slower in the sanitizer builds: the release build runs this";
+#endif
+  const Playback p = play_every_preset(CameraMotion::steady);
+  const Playback followed = play_every_preset(CameraMotion::follow);
+  EXPECT_EQ(p.frames, followed.frames);
+  EXPECT_EQ(p.lost, "");
+  std::printf("steady: frames %d, moving %d (follow: %d), cuts:\n%s", p.frames, p.moving, followed.moving,
+              p.cuts.c_str());
+  EXPECT_LE(p.moving, p.frames / 4);
+  EXPECT_LE(std::ranges::count(p.cuts, '\n'), 8) << p.cuts;
 }
 
 }  // namespace

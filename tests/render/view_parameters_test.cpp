@@ -25,7 +25,7 @@ TEST(ViewParameters, NamesAreUniqueAndEachHasHelp) {
     EXPECT_FALSE(p.help.empty()) << p.name;
   }
   EXPECT_EQ(names, (std::set<std::string_view>{"width", "height", "view", "layers", "scale", "yaw", "pitch",
-                                               "distance", "trail"}));
+                                               "distance", "trail", "motion"}));
 }
 
 // The request's defaults are the renderer's: a frame asked for with no parameter is ViewOptions{}.
@@ -44,8 +44,9 @@ TEST(ViewParameters, DefaultsAreTheRenderersAndWithinTheirRanges) {
   EXPECT_EQ(std::get<double>(*default_value(view_parameter("width"))), 640.0);
   EXPECT_EQ(std::get<std::string>(*default_value(view_parameter("layers"))),
             "surface,grid,body,frame,trail,hud,bending");
-  EXPECT_FALSE(default_value(view_parameter("yaw")));   // aimed at the body
-  EXPECT_FALSE(default_value(view_parameter("view")));  // the surface's own
+  EXPECT_FALSE(default_value(view_parameter("yaw")));                                    // aimed at the body
+  EXPECT_FALSE(default_value(view_parameter("view")));                                   // the surface's own
+  EXPECT_EQ(std::get<std::string>(*default_value(view_parameter("motion"))), "steady");  // the lesson's
 }
 
 TEST(ViewParameters, TypesComeFromTheMembers) {
@@ -54,6 +55,8 @@ TEST(ViewParameters, TypesComeFromTheMembers) {
   EXPECT_EQ(parameter_type(view_parameter("trail")), ParameterType::number);
   EXPECT_EQ(parameter_type(view_parameter("view")), ParameterType::enumeration);
   EXPECT_EQ(parameter_type(view_parameter("layers")), ParameterType::list);
+  EXPECT_EQ(parameter_type(view_parameter("motion")), ParameterType::enumeration);
+  EXPECT_EQ(choices(view_parameter("motion")), (std::vector<std::string_view>{"steady", "follow"}));
   EXPECT_THROW(view_parameter("colour"), std::logic_error);
 }
 
@@ -65,6 +68,9 @@ TEST(ViewParameters, SetParameterSetsTheMemberFromANumberOrText) {
   EXPECT_FALSE(set_parameter(r, view_parameter("layers"), std::string("body,actions")));
   EXPECT_FALSE(set_parameter(r, view_parameter("pitch"), std::string("-0.5")));
   EXPECT_FALSE(set_parameter(r, view_parameter("trail"), 0.0));
+  EXPECT_FALSE(set_parameter(r, view_parameter("motion"), std::string("follow")));
+  EXPECT_EQ(r.motion, CameraMotion::follow);
+  EXPECT_EQ(std::get<std::string>(*parameter_value(r, view_parameter("motion"))), "follow");
   EXPECT_EQ(r.width, 320);
   EXPECT_EQ(r.height, 200);
   EXPECT_EQ(r.view, ViewKind::disk);
@@ -89,6 +95,7 @@ TEST(ViewParameters, RefusalsSayWhatIsAllowed) {
   EXPECT_EQ(why("pitch", 2.0), "must be a number from -1.55 to 1.55 [rad]");
   EXPECT_EQ(why("distance", std::string("1e400")), "must be a number from 1.2 to 100 [radii]");
   EXPECT_EQ(why("trail", -1.0), "must be a number >= 0 [time]");
+  EXPECT_EQ(why("motion", std::string("orbit")), "must be steady or follow");
   EXPECT_EQ(why("view", std::string("cube")),
             "must be sphere, disk, hyperboloid, klein, halfplane, tractricoid, plane, conformal, revolution, "
             "chart or formula");

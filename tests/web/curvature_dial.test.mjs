@@ -157,6 +157,9 @@ await runSuite(started, async (browser) => {
     await page.waitForFunction(() => /Restarted at t = 0/.test(document.querySelector("#status").textContent));
     const s = await session(page);
     assert.deepEqual(s.current.surface, { kind: "sphere", radius: 1 });
+    // The number field is refilled once the drag's last send has waited out its interval (up to
+    // 120 ms after the restart's answer under load: CI read −1 once).
+    await page.waitForFunction(() => Number(document.querySelector("#phys-curvature").value) === 1, null, { timeout: 5000 });
     assert.equal(Number(await page.inputValue("#phys-curvature")), 1);
     assert.equal(await page.$eval("#phys-radius", (el) => el.disabled), false);
     await page.click("#pause");

@@ -560,6 +560,32 @@ await runSuite(started, async (browser) => {
     }
   });
 
+  await test("the 3-D camera stays put by default; Follow body (its button or C) asks the server to follow, and back", async () => {
+    await openPreset("spinning_rigid_sphere");
+    await page.waitForFunction(() => document.querySelector("#frame").dataset.kind === "still", null, { timeout: 30000 });
+    assert.equal(await page.getAttribute("#follow", "aria-pressed"), "false");
+    assert.equal(await page.$eval("#follow", (b) => b.disabled), false);
+    const asked = [];
+    const seen = (r) => { if (/\/live\?/.test(r.url())) asked.push(new URL(r.url()).searchParams.get("motion")); };
+    page.on("request", seen);
+    try {
+      await page.focus("#play");
+      await page.keyboard.press("c");
+      assert.equal(await page.getAttribute("#follow", "aria-pressed"), "true");
+      for (let i = 0; i < 100 && !asked.includes("follow"); i++) await page.waitForTimeout(100);
+      assert.ok(asked.includes("follow"), `the live view's requests: ${asked}`);
+      asked.length = 0;
+      await page.click("#follow");
+      assert.equal(await page.getAttribute("#follow", "aria-pressed"), "false");
+      for (let i = 0; i < 100 && !asked.includes(null); i++) await page.waitForTimeout(100);
+      assert.ok(asked.includes(null), `steady is the server's default, sent as no parameter: ${asked}`);
+    } finally {
+      page.off("request", seen);
+    }
+    // The shortcut list says what C does.
+    assert.ok((await page.$eval("#shortcuts", (d) => d.textContent)).includes("Follow the body"));
+  });
+
   await test("a turn the server refuses for a while (429) still reaches the picture", async () => {
     // The page retried a refused steer 30 times 100 ms apart and then dropped it: the picture never
     // turned. Now it backs off to once a second and keeps the newest wish until it is in.
