@@ -462,7 +462,8 @@ FigurePage figure_page(const Snapshot& snapshot, const ViewOptions& view_in, con
   std::vector<LegendEntry> legend = scene.legend;
   if (legend.empty()) {
     ViewOptions wide = view;
-    wide.width = std::max(wide.width, kLegendMinWidth);
+    wide.width = std::max(wide.width, kFullOverlayWidth);
+    wide.height = std::max(wide.height, kFullOverlayHeight);
     legend = legend_entries(snapshot, wide);
   }
   const double line = kCaptionSize * kLineSpacing, swatch = 22.0;

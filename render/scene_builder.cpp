@@ -333,7 +333,7 @@ std::vector<double> main_trail_bending(const Snapshot& snapshot, const ViewOptio
 
 std::vector<LegendEntry> legend_entries(const Snapshot& snapshot, const ViewOptions& view) {
   std::vector<LegendEntry> legend;
-  if (view.width < kLegendMinWidth) return legend;
+  if (compact_overlay(view)) return legend;
   const bool bending = main_trail_bends(snapshot, view);
   if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)))
     for (const BodySnapshot& body : snapshot.bodies)
@@ -349,22 +349,24 @@ std::vector<LegendEntry> legend_entries(const Snapshot& snapshot, const ViewOpti
   return legend;
 }
 
-std::vector<std::string> readout_lines(const Snapshot& snapshot, const ViewOptions& view) {
-  std::vector<std::string> lines = snapshot.hud_lines;
-  if (view.layers & kActions)
-    lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
-  // The bending layer in words at the body where the curvature varies (the lesson: the bending
-  // follows K's sign), on the line that gives K there: which way the path turns now.
-  // (κ_g of the trail's last three points alone: the HUD is asked at every aim.)
-  if (main_trail_bends(snapshot, view) && surface_model(snapshot).offers(Offer::implicit_equation) &&
-      lines.size() > kSurfaceReadoutLine) {
-    const std::vector<Vec3>& trail = snapshot.bodies.front().trail;
-    const SurfaceModel& surface = surface_model(snapshot);
-    const double k = geodesic_curvatures(surface, {trail.end() - 3, trail.end()})[1] * surface.feature;
-    lines[kSurfaceReadoutLine] += k >= kStraightBending    ? ": the path bends left"
-                                  : k <= -kStraightBending ? ": the path bends right"
-                                                           : ": the path runs straight";
-  }
+namespace {
+
+// Glyphs, not bytes: a UTF-8 continuation byte starts none.
+std::size_t glyph_count(const std::string& text) {
+  return static_cast<std::size_t>(
+      std::count_if(text.begin(), text.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+}
+// The byte offset of glyph `n` (the text's size when it has fewer).
+std::size_t glyph_offset(const std::string& text, std::size_t n) {
+  for (std::size_t i = 0; i < text.size(); ++i)
+    if ((text[i] & 0xC0) != 0x80 && n-- == 0) return i;
+  return text.size();
+}
+
+// What the picture itself needs said: the main body off what the view draws, a 2-D close-up, a
+// body drawn smaller than its scale.
+std::vector<std::string> picture_notes(const Snapshot& snapshot, const ViewOptions& view) {
+  std::vector<std::string> lines;
   if (!snapshot.bodies.empty() && !on_view(snapshot.surface, view.kind, snapshot.bodies.front().X))
     lines.push_back(
         std::string(view_model(view.kind).off_view_note(snapshot.surface, snapshot.bodies.front().X)));
@@ -387,6 +389,60 @@ std::vector<std::string> readout_lines(const Snapshot& snapshot, const ViewOptio
     }
   }
   return lines;
+}
+
+}  // namespace
+
+std::vector<std::string> readout_lines(const Snapshot& snapshot, const ViewOptions& view) {
+  std::vector<std::string> lines = snapshot.hud_lines;
+  if (view.layers & kActions)
+    lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
+  // The bending layer in words at the body where the curvature varies (the lesson: the bending
+  // follows K's sign), on the line that gives K there: which way the path turns now.
+  // (κ_g of the trail's last three points alone: the HUD is asked at every aim.)
+  if (main_trail_bends(snapshot, view) && surface_model(snapshot).offers(Offer::implicit_equation) &&
+      lines.size() > kSurfaceReadoutLine) {
+    const std::vector<Vec3>& trail = snapshot.bodies.front().trail;
+    const SurfaceModel& surface = surface_model(snapshot);
+    const double k = geodesic_curvatures(surface, {trail.end() - 3, trail.end()})[1] * surface.feature;
+    lines[kSurfaceReadoutLine] += k >= kStraightBending    ? ": the path bends left"
+                                  : k <= -kStraightBending ? ": the path bends right"
+                                                           : ": the path runs straight";
+  }
+  const std::vector<std::string> notes = picture_notes(snapshot, view);
+  lines.insert(lines.end(), notes.begin(), notes.end());
+  return lines;
+}
+
+std::vector<std::string> hud_lines(const Snapshot& snapshot, const ViewOptions& view) {
+  const bool compact = compact_overlay(view);
+  std::vector<std::string> lines;
+  if (!compact) {
+    lines = readout_lines(snapshot, view);
+  } else {
+    if (!snapshot.hud_lines.empty()) lines.push_back(snapshot.hud_lines.front());
+    // The action variables are asked for (a layer off by default): they stay.
+    if (view.layers & kActions)
+      lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
+    const std::vector<std::string> notes = picture_notes(snapshot, view);
+    lines.insert(lines.end(), notes.begin(), notes.end());
+  }
+  // No line runs past the frame (a compact HUD: past half of it): longer ones wrap at a space, the
+  // rest indented. The box's sizes are hud_layout's.
+  const HudLayout size = hud_layout({}, {}, view.width, view.height);
+  const double room = (compact ? 0.5 : 1.0) * view.width - 12.0 * size.scale - 2.0 * size.padding;
+  const std::size_t most = static_cast<std::size_t>(std::max(16.0, std::floor(room / size.advance)));
+  std::vector<std::string> wrapped;
+  for (std::string line : lines) {
+    while (glyph_count(line) > most) {
+      const std::size_t cut = line.rfind(' ', glyph_offset(line, most));
+      if (cut == std::string::npos || cut <= 2) break;  // one long word: left as it is
+      wrapped.push_back(line.substr(0, cut));
+      line = "  " + line.substr(cut + 1);
+    }
+    wrapped.push_back(line);
+  }
+  return wrapped;
 }
 
 FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
@@ -442,7 +498,7 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   scene.trails_end = scene.lines.size();
   model.add_bodies(scene, snapshot, view);
   scene.legend = legend_entries(snapshot, view);
-  if (view.layers & kHud) scene.hud_lines = readout_lines(snapshot, view);
+  if (view.layers & kHud) scene.hud_lines = render::hud_lines(snapshot, view);
   std::vector<std::string> labels;
   for (const LegendEntry& entry : scene.legend) labels.push_back(entry.label);
   scene.hud = hud_layout(scene.hud_lines, labels, view.width, view.height);

@@ -177,9 +177,16 @@ function defaultHud(shownWidth, shownHeight) {
 // The frame and the bars below it fit the window at load: the frame is never taller than the room
 // between its top and the window's bottom less the playback bar and, on a screen at least 700 px
 // tall (a laptop, a projector), the View row too (at least 240 px).
+// While the run plays the bars are taken as they were when it last was not: a toolbar that wraps
+// because its badge says more ("playing at 1×") must not change the picture's size under the
+// student (it went from 520 to 485 px high at Play).
+/** @type {number | null} */
+let barsWhenStill = null;
 function fitFrameToWindow() {
   const top = $("frame-box").getBoundingClientRect().top + window.scrollY;
-  const bars = $("toolbar").offsetHeight + (window.innerHeight >= 700 ? $("viewbar").offsetHeight : 0);
+  const measured = $("toolbar").offsetHeight + (window.innerHeight >= 700 ? $("viewbar").offsetHeight : 0);
+  if (!store.get().playing || barsWhenStill === null) barsWhenStill = measured;
+  const bars = barsWhenStill ?? measured;
   const room = Math.max(240, window.innerHeight - top - bars - 20);
   document.documentElement.style.setProperty("--frame-room", `${Math.round(room)}px`);
 }

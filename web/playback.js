@@ -25,17 +25,15 @@ export function renderPlayback(s, b) {
   $("pause").setAttribute("aria-pressed", String(!s.playing));
   const stopped = Boolean(s.sample) && status !== "ok";
   const state = stopped ? "stopped" : s.playing ? "playing" : "paused";
-  // A picture asked smaller for smooth motion (pace.js) says its size.
+  // A picture asked smaller for smooth motion (pace.js) says its size, on the picture: in the badge
+  // the longer text wrapped the toolbar and changed the picture's size while playing.
   const paced =
-    s.playing && s.pace < 1 ? ` · picture ${Object.values(pacedSize(s.size, s.pace)).join("×")} for speed` : "";
-  $("state-badge").textContent = stopped
-    ? `stopped: ${status}`
-    : s.playing
-      ? `playing at ${s.rate}×${paced}`
-      : "paused";
+    s.playing && s.pace < 1 ? ` picture ${Object.values(pacedSize(s.size, s.pace)).join("×")} for speed` : "";
+  $("state-badge").textContent = stopped ? `stopped: ${status}` : s.playing ? `playing at ${s.rate}×` : "paused";
+  $("state-badge").title = $("state-badge").textContent ?? "";
   $("state-badge").dataset.pace = String(s.playing ? s.pace : 1);
   $("state-badge").dataset.state = state;
-  $("play-state").textContent = stopped ? "■ stopped" : s.playing ? "▶" : "❚❚ paused";
+  $("play-state").textContent = stopped ? "■ stopped" : s.playing ? `▶${paced}` : "❚❚ paused";
   $("play-state").dataset.state = state;
   if (s.rate !== Number($("speed").value) && document.activeElement !== $("speed")) {
     $("speed").value = s.rate;

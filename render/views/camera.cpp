@@ -79,7 +79,7 @@ HudLayout hud_boxes(const Snapshot& snapshot, const ViewOptions& view) {
   std::vector<std::string> labels;
   for (const LegendEntry& entry : legend_entries(snapshot, view)) labels.push_back(entry.label);
   const std::vector<std::string> lines =
-      view.layers & kHud ? readout_lines(snapshot, view) : std::vector<std::string>{};
+      view.layers & kHud ? hud_lines(snapshot, view) : std::vector<std::string>{};
   return hud_layout(lines, labels, view.width, view.height);
 }
 

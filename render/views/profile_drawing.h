@@ -27,7 +27,7 @@ ProfileShape profile_shape(const Surface& surface);
 // within the drawing range).
 bool on_drawn_piece(const Surface& surface, const Vec3& X);
 inline constexpr std::string_view kOffDrawnPieceNote =
-    "body 1 is beyond the surface drawn whole (bump: 4w, catenoid: |z| = 2c)";
+    "body 1 is beyond the surface drawn whole: a patch is drawn round it";
 inline constexpr std::string_view kBeyondDrawingNote =
     "body 1 is too far out to draw (over 10^4 picture sizes away)";
 std::string_view off_drawn_piece_note(const Surface& surface, const Vec3& X);

@@ -13,6 +13,7 @@
 #include "codec/presets.h"
 #include "codec/scene_json.h"
 #include "media.h"
+#include "render/camera_follow.h"
 #include "render/scene_builder.h"
 #include "render/view_parameters.h"
 #include "render/view_table.h"
@@ -203,10 +204,19 @@ TEST_F(RecordingFixture, DecodedVideoFrameIsCloseToTheRenderedFrame) {
   Simulation run = start_simulation(f.scene);
   Trail trail;
   sample_trail_if_due(trail, run);
-  advance_sampling_trail(run, trail, frame_time(clip, 3));
-  render::ViewOptions view = f.view;
-  render::Snapshot snapshot = render::make_snapshot(run, trail, -1.0);
-  render::aim_camera_at_body(view, snapshot);
+  // The clip's camera is a sequence's (steady by default, render/camera_follow.h): placed frame by
+  // frame, 1/fps apart, as the recording places it.
+  render::CameraFollower camera;
+  render::ViewRequest request;
+  request.motion = f.motion;
+  render::ViewOptions view;
+  render::Snapshot snapshot;
+  for (long long k = 0; k <= 3; ++k) {
+    advance_sampling_trail(run, trail, frame_time(clip, k));
+    view = f.view;
+    snapshot = render::make_snapshot(run, trail, -1.0);
+    camera.place(view, request, snapshot, 1.0 / clip.fps);
+  }
   const render::Image expected = renderer().render_image(snapshot, view);
   for (const Format format : {Format::mp4, Format::webm}) {
     const fs::path path = temp_file(std::string("clip.") + std::string(file_extension(format)));

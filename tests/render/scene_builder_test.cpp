@@ -229,8 +229,31 @@ TEST(SceneBuilder, EachBodyIsDrawnAndALegendListsThemOnlyWhenThereAreSeveral) {
   view.layers = kGrid;  // nothing of the bodies drawn: nothing to tell apart
   EXPECT_TRUE(build_scene(s, view).legend.empty());
   view.layers = kBody | kTrail;
-  view.width = kLegendMinWidth - 1;  // a thumbnail: the legend would cover the picture
+  view.width = kFullOverlayWidth;
+  EXPECT_FALSE(build_scene(s, view).legend.empty());
+  view.width = kFullOverlayWidth - 1;  // a phone's picture: the legend would cover it
   EXPECT_TRUE(build_scene(s, view).legend.empty());
+  view.width = 640, view.height = kFullOverlayHeight - 1;
+  EXPECT_TRUE(build_scene(s, view).legend.empty());
+}
+
+// A compact overlay (a phone's picture, a thumbnail): the HUD says the time and the notes about the
+// picture, not the whole read-out, which at 320×240 covered its top half.
+TEST(SceneBuilder, ASmallFrameHasACompactHud) {
+  const Snapshot s = testing::preset_snapshot("spin_vs_geodesic_sphere", 2.0, true);
+  ViewOptions view;
+  view.layers = kDefaultLayers;
+  const FrameScene full = build_scene(s, view);
+  ASSERT_GT(full.hud_lines.size(), 3u);
+  EXPECT_EQ(full.hud_lines, readout_lines(s, view));
+  view.width = 320, view.height = 240;
+  const FrameScene small = build_scene(s, view);
+  ASSERT_EQ(small.hud_lines.size(), 1u);
+  EXPECT_EQ(small.hud_lines[0], full.hud_lines[0]);
+  EXPECT_EQ(small.hud_lines[0].rfind("t = ", 0), 0u);
+  EXPECT_LT(small.hud.hud.h, full.hud.hud.h / 3);
+  // A figure's caption says all of it, however small the picture.
+  EXPECT_EQ(readout_lines(s, view), full.hud_lines);
 }
 
 // The total length of the segments of `color` [world units].

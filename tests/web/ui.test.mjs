@@ -665,9 +665,15 @@ await runSuite(started, async (browser) => {
         const frame = document.querySelector("#frame");
         return scale < 1 === s.playing && frame.width === Math.max(16, Math.round(s.size.width * scale));
       });
+    // The picture's box keeps its size whatever the badge says (its text wrapped the toolbar: the
+    // picture jumped from 520 to 485 px high while playing).
+    const box = () => page.$eval("#frame-box", (el) => { const r = el.getBoundingClientRect(); return `${r.width}x${r.height}`; });
+    const pausedBox = await box();
     await page.click("#play");
     await page.evaluate(async () => (await import("/state.js")).store.update({ pace: 0.5 }));
-    await page.waitForFunction(() => /picture \d+×\d+ for speed/.test(document.querySelector("#state-badge").textContent), null, { timeout: 10000 });
+    await page.waitForFunction(() => /picture \d+×\d+ for speed/.test(document.querySelector("#play-state").textContent), null, { timeout: 10000 });
+    assert.equal(await box(), pausedBox, "the picture's box while a paced picture plays");
+    assert.match(await page.textContent("#state-badge"), /^playing at [\d.]+×$/);
     for (let i = 0; i < 200 && !(await canvasMatchesPace()); i++) await page.waitForTimeout(50);
     assert.ok(await canvasMatchesPace(), "playing: the frames at the paced size");
     await page.click("#pause");

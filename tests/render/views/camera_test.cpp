@@ -149,7 +149,8 @@ bool in_one_cap(const Snapshot& s) {
 
 // Framing is a property: every preset, in every view that shows its surface, at several times and
 // at the pictures of a 1366- and a 1920-wide page, aimed as the server aims it, shows each body's
-// centre in the frame, clear of the HUD and the legend, and not behind the surface. Two kinds of
+// centre in the frame, clear of the HUD and the legend, and not behind the surface; and at the
+// small pictures of a phone (390×290) and a thumbnail (320×240), whose overlay is compact. Two kinds of
 // companion are outside what one camera can do: one beyond the drawn piece of an unbounded surface,
 // or any when the main body is beyond it (the revolution view then follows the main body alone:
 // RevolutionView::aim), left out; and one on the sphere where the bodies are spread too far for
@@ -163,7 +164,7 @@ TEST(Camera, EveryPresetInEveryViewItOffersShowsItsBodiesClearOfTheBoxes) {
       const Snapshot s = testing::preset_snapshot(preset.name, t, t > 0.0);
       for (const ViewRow& row : view_table()) {
         if (!shows(row.info, s.surface.kind)) continue;
-        for (const auto& [w, h] : {std::pair{795, 515}, {1280, 757}}) {
+        for (const auto& [w, h] : {std::pair{795, 515}, {1280, 757}, {320, 240}, {390, 290}}) {
           const ViewOptions view = testing::aimed_view(row.info.kind, w, h, s);
           const FrameScene scene = build_scene(s, view);
           const ViewModel& model = row.model();
@@ -210,8 +211,8 @@ TEST(Camera, EveryPresetInEveryViewItOffersShowsItsBodiesClearOfTheBoxes) {
   EXPECT_GT(cases, 1000);
   EXPECT_TRUE(failures.empty()) << failures.size() << " of " << cases << ":\n" << all;
   // The companions drawn through the sphere: spin_vs_geodesic_sphere and spin_fan_sphere at t = 5
-  // (159° apart), at both sizes; counted so that a change in them is seen.
-  EXPECT_EQ(apart, 8);
+  // (159° apart), at all four sizes; counted so that a change in them is seen.
+  EXPECT_EQ(apart, 16);
 }
 
 // The teacher's dial: the default scene playing while K is dragged from 1 to −1 (a step every 1.5
