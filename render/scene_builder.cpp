@@ -232,6 +232,25 @@ LineWidths line_widths(int width, int height) {
   return {static_cast<float>(std::max(1.0, lines)), static_cast<float>(std::max(1.0, lines * 2.0 / 3.0))};
 }
 
+namespace {
+
+// The HUD's and legend's distance from the frame's edges [pixels at scale 1].
+constexpr double kHudMargin = 6.0;
+
+// Glyphs, not bytes: a UTF-8 continuation byte starts none.
+std::size_t glyph_count(const std::string& text) {
+  return static_cast<std::size_t>(
+      std::count_if(text.begin(), text.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+}
+// The byte offset of glyph `n` (the text's size when it has fewer).
+std::size_t glyph_offset(const std::string& text, std::size_t n) {
+  for (std::size_t i = 0; i < text.size(); ++i)
+    if ((text[i] & 0xC0) != 0x80 && n-- == 0) return i;
+  return text.size();
+}
+
+}  // namespace
+
 HudLayout hud_layout(const std::vector<std::string>& lines, const std::vector<std::string>& legend_labels,
                      int width, int height) {
   HudLayout h;
@@ -246,12 +265,8 @@ HudLayout hud_layout(const std::vector<std::string>& lines, const std::vector<st
   h.line = h.font_size + 2.0 * h.scale;
   h.padding = 5.0 * h.scale;
   h.swatch = 30.0 * h.scale;
-  const double margin = 6.0 * h.scale;
-  // Glyphs, not bytes: a UTF-8 continuation byte starts none.
-  const auto glyphs = [](const std::string& text) {
-    return static_cast<double>(
-        std::count_if(text.begin(), text.end(), [](char c) { return (c & 0xC0) != 0x80; }));
-  };
+  const double margin = kHudMargin * h.scale;
+  const auto glyphs = [](const std::string& text) { return static_cast<double>(glyph_count(text)); };
   const auto box_height = [&](std::size_t n) { return n * h.line - 2.0 * h.scale + 2.0 * h.padding; };
   if (!lines.empty()) {
     double longest = 0.0;
@@ -351,18 +366,6 @@ std::vector<LegendEntry> legend_entries(const Snapshot& snapshot, const ViewOpti
 
 namespace {
 
-// Glyphs, not bytes: a UTF-8 continuation byte starts none.
-std::size_t glyph_count(const std::string& text) {
-  return static_cast<std::size_t>(
-      std::count_if(text.begin(), text.end(), [](char c) { return (c & 0xC0) != 0x80; }));
-}
-// The byte offset of glyph `n` (the text's size when it has fewer).
-std::size_t glyph_offset(const std::string& text, std::size_t n) {
-  for (std::size_t i = 0; i < text.size(); ++i)
-    if ((text[i] & 0xC0) != 0x80 && n-- == 0) return i;
-  return text.size();
-}
-
 // What the picture itself needs said: the main body off what the view draws, a 2-D close-up, a
 // body drawn smaller than its scale.
 std::vector<std::string> picture_notes(const Snapshot& snapshot, const ViewOptions& view) {
@@ -430,7 +433,7 @@ std::vector<std::string> hud_lines(const Snapshot& snapshot, const ViewOptions& 
   // No line runs past the frame (a compact HUD: past half of it): longer ones wrap at a space, the
   // rest indented. The box's sizes are hud_layout's.
   const HudLayout size = hud_layout({}, {}, view.width, view.height);
-  const double room = (compact ? 0.5 : 1.0) * view.width - 12.0 * size.scale - 2.0 * size.padding;
+  const double room = (compact ? 0.5 : 1.0) * view.width - 2.0 * kHudMargin * size.scale - 2.0 * size.padding;
   const std::size_t most = static_cast<std::size_t>(std::max(16.0, std::floor(room / size.advance)));
   std::vector<std::string> wrapped;
   for (std::string line : lines) {
