@@ -54,10 +54,22 @@ export const latest = (edit) => !edit.line || latestOf.get(edit.line) === edit.n
  */
 export function refused(edit, message) {
   if (!edit.line || !latest(edit)) return false;
-  edit.line.textContent = message;
-  if (message) shown.set(edit.line, edit.n);
-  else shown.delete(edit.line);
+  const line = shownLine(edit.line);
+  line.textContent = message;
+  if (message) shown.set(line, edit.n);
+  else shown.delete(line);
   return true;
+}
+
+/**
+ * The line a message for this control goes to: itself, or, where the form was rebuilt while the
+ * edit was answered (a surface switch rebuilds the physics rows), the new line of the same id, so
+ * that a refusal is not written into a line no longer on the page.
+ * @param {HTMLElement} line
+ */
+function shownLine(line) {
+  if (line.isConnected !== false || !line.id) return line;
+  return globalThis.document?.getElementById(line.id) ?? line;
 }
 
 /**

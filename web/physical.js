@@ -9,7 +9,7 @@ import { $, el, clear } from "./dom.js";
 import { begin, refused, typedValue } from "./edits.js";
 import { formulaField } from "./formula.js";
 import { formulaRow, updateFormulaRow } from "./formularow.js";
-import { applyChange } from "./session.js";
+import { applyChange, earlierAnswered } from "./session.js";
 import { store, withView } from "./state.js";
 import { curvatureForm, curvatureVaries, shownRadius, surfaceKinds, surfaceSwitch, surfaceTitle } from "./surface.js";
 import { showConformal } from "./viewcontrols.js";
@@ -474,9 +474,13 @@ function surfaceKindRow(s) {
     text: "The curved surface the body lives on; switching restarts the run.",
   });
   select.title = help.textContent;
-  const error = el("span", { class: "error" });
+  const error = el("span", { class: "error", id: "phys-surface-error", role: "alert" });
   select.addEventListener("change", async () => {
     const edit = begin(error);
+    // The patch names the fields of the scene it replaces, so it is made from the scene the
+    // server has: a switch made while the last one's answer was on its way named the sphere's
+    // fields on the torus, and the torus's stayed (refused, the select back, under load in CI).
+    await earlierAnswered(edit);
     const { current, surface } = store.get();
     try {
       // Fields of the other kinds go (initial.r on a torus); from the curvature form, that form

@@ -828,6 +828,33 @@ await runSuite(started, async (browser) => {
     }
   });
 
+  await test("a surface switch made while the last one's answer is on its way lands, and a refusal is said", async () => {
+    // CI under load: the torus's answer came after the server had it and the next switch was made
+    // from the sphere's fields, so the torus's stayed, the switch was refused (422) and the refusal
+    // was written into a row the answer had rebuilt: the teacher's pick lost without a word.
+    await openPreset("spinning_rigid_sphere");
+    const state = async () => (await (await fetch(await page.$eval("#export-state", (a) => a.href))).json());
+    let hold = true;
+    const late = async (route) => {
+      if (route.request().method() !== "PATCH" || !hold) return route.continue();
+      const answer = await route.fetch();
+      await new Promise((r) => setTimeout(r, 1500));
+      await route.fulfill({ response: answer });
+    };
+    await page.route("**/api/v1/sessions/*", late);
+    try {
+      await page.selectOption("#phys-surface", "torus");
+      for (let i = 0; i < 300 && (await state()).current.surface.kind !== "torus"; i++) await page.waitForTimeout(50);
+      hold = false;
+      await page.selectOption("#phys-surface", "pseudosphere");
+      await page.waitForFunction(() => document.querySelector("#phys-surface").value === "pseudosphere" && Number(document.querySelector("#readout").dataset.t) === 0 && /hyperbolic plane/.test(document.querySelector("#explanation").textContent), null, { timeout: 30000 });
+      assert.equal((await state()).current.surface.kind, "pseudosphere");
+      assert.equal(await page.textContent("#phys-surface-error"), "");
+    } finally {
+      await page.unroute("**/api/v1/sessions/*", late);
+    }
+  });
+
   await test("a pseudosphere is offered its six pictures, from the server's table, and each is drawn", async () => {
     await page.click('.preset[data-name="spinning_rigid_pseudosphere"]');
     await page.waitForFunction(() => document.querySelector(".preset.active")?.dataset.name === "spinning_rigid_pseudosphere");

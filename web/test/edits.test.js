@@ -91,3 +91,21 @@ test("a decimal comma is the decimal mark; two marks, hexadecimal and words are 
   assert.deepEqual(typedValue("5,"), { value: 5 }, "as Number('5.') is");
   for (const text of ["0x10", "Infinity", "1 000", "1e5.5", "+-1"]) assert.ok("error" in typedValue(text), text);
 });
+
+test("a refusal for a rebuilt control goes to the new line of the same id, not the detached one", () => {
+  const detached = /** @type {HTMLElement} */ (
+    /** @type {unknown} */ ({ textContent: "", id: "phys-spin-error", isConnected: false })
+  );
+  const rebuilt = { textContent: "", id: "phys-spin-error", isConnected: true };
+  const saved = globalThis.document;
+  globalThis.document = /** @type {any} */ ({
+    getElementById: (/** @type {string} */ id) => (id === rebuilt.id ? rebuilt : null),
+  });
+  try {
+    assert.equal(refused(begin(detached), "initial.spin: too large"), true);
+    assert.equal(rebuilt.textContent, "initial.spin: too large");
+    assert.equal(detached.textContent, "");
+  } finally {
+    globalThis.document = saved;
+  }
+});
