@@ -56,8 +56,12 @@ CameraPlaced CameraFollower::place(ViewOptions& view, const ViewRequest& request
   const bool steady = request.motion == CameraMotion::steady;
   if (given_) recentring_ = true;  // the viewer's own camera let go: back to the aim, all the way
   given_ = false;
-  // Steady: the last camera stays while it shows the body (a still frame, no time passing, too).
-  if (steady && !recentring_ && shows_main_body(*last_, snapshot) &&
+  // Steady: the last camera stays while it shows the body (a still frame, no time passing, too), in
+  // sight or drawn through the surface: always on a surface seen only from above (the torus: the
+  // scene does not turn under the class each time the body passes under the tube or behind it), and
+  // elsewhere (a closed surface seen from any side) only where the aim cannot show it in sight either.
+  const bool through = model.lowest_pitch(snapshot.surface) > -kPi / 2 || !shows_main_body(view, snapshot);
+  if (steady && !recentring_ && shows_main_body(*last_, snapshot, through) &&
       model.on_lit_side(eye_of(model.camera(*last_)))) {
     view = *last_;
     return CameraPlaced::held;
@@ -81,9 +85,11 @@ CameraPlaced CameraFollower::place(ViewOptions& view, const ViewRequest& request
                most = std::min(1.0, kFollowCatchUpRate * std::clamp(seconds, 0.0, kFollowMaxSeconds) / gap);
   double s = base;
   ViewOptions next = on_way(s);
-  if (base > 0.0 && !shows_main_body(next, snapshot) && shows_main_body(view, snapshot)) {
-    for (int k = 2; k * base <= most && !shows_main_body(next, snapshot); ++k) next = on_way(s = k * base);
-    if (!shows_main_body(next, snapshot)) s = 1.0;  // no glide shows it: cut to the aimed camera
+  // (On its way a camera that shows the body through the surface shows it: the view draws it there.)
+  const auto shows = [&](const ViewOptions& v) { return shows_main_body(v, snapshot, true); };
+  if (base > 0.0 && !shows(next) && shows(view)) {
+    for (int k = 2; k * base <= most && !shows(next); ++k) next = on_way(s = k * base);
+    if (!shows(next)) s = 1.0;  // no glide shows it: cut to the aimed camera
   }
   if (s >= 1.0 || !model.on_lit_side(eye_of(model.camera(next)))) return arrive();
   view = next;

@@ -45,8 +45,11 @@ class CameraFollower {
   // view aimed at the bodies (the request gives no part of the camera) whose last frame had the same
   // view, size, layers and scale:
   // - steady (request.motion, the default): the last frame's camera is held while it shows the main
-  //   body (shows_main_body) from the lit side; once it does not, or the viewer's own camera is let
-  //   go, the camera glides to the aim as follow does, all the way, and is held there;
+  //   body (shows_main_body) from the lit side, in sight, or drawn through the surface (a view that
+  //   shows through) where the view has a floor (ViewModel::lowest_pitch) or the aimed camera does
+  //   not show it in sight either; once it does not, or the
+  //   viewer's own camera is let go, the camera glides to the aim as follow does, all the way, and is held
+  //   there;
   // - follow: moved from the last frame's camera toward the aimed one by follow_step (yaw, pitch,
   //   ln distance and target each by the same share of their gap).
   // Where a glide's camera would lose the main body and the aimed one does not, the glide goes on to

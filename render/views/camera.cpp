@@ -4,6 +4,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
+#include <utility>
 
 #include "render/view_table.h"
 #include "render/views/drawing.h"
@@ -279,13 +280,49 @@ void aim_2d_window(const ViewModel& model, ViewOptions& view, const Snapshot& sn
     }
 }
 
-bool shows_main_body(const ViewOptions& view, const Snapshot& snapshot) {
+bool shows_main_body(const ViewOptions& view, const Snapshot& snapshot, bool behind_too) {
   if (snapshot.bodies.empty()) return true;
   const ViewModel& model = view_model(view.kind);
   const Vec3& X = snapshot.bodies.front().X;
   if (!model.draws(snapshot.surface, X)) return true;
   const std::vector<Sight> main{{model.world_position(snapshot.surface, X), 1.0}};
-  return badness(model, snapshot.surface, view, main, hud_boxes(snapshot, view)) == 0.0;
+  if (!behind_too || !model.shows_through())
+    return badness(model, snapshot.surface, view, main, hud_boxes(snapshot, view)) == 0.0;
+  // In the frame and clear of the boxes, in sight or not: a model that sees nothing hidden.
+  struct NothingHidden final : ViewModel {
+    const ViewModel& of;
+    explicit NothingHidden(const ViewModel& m) : of(m) {}
+    glm::dvec3 world_position(const Surface& s, const Vec3& P) const override {
+      return of.world_position(s, P);
+    }
+    glm::mat4 camera(const ViewOptions& v) const override { return of.camera(v); }
+    bool on_lit_side(const glm::dvec3& eye) const override { return of.on_lit_side(eye); }
+  };
+  return badness(NothingHidden(model), snapshot.surface, view, main, hud_boxes(snapshot, view)) == 0.0;
+}
+
+void add_ghosts(FrameScene& scene, const ViewModel& model, const Snapshot& snapshot,
+                const ViewOptions& view) {
+  const glm::dvec3 eye = eye_of(scene.view_projection);
+  const Surface& surface = snapshot.surface;
+  for (const BodySnapshot& body : snapshot.bodies) {
+    if (!model.draws(surface, body.X) || !model.hidden(surface, model.world_position(surface, body.X), eye))
+      continue;
+    FrameScene ghost;
+    const double scale = model.body_drawing_scale(surface, body, view.scale);
+    if (view.layers & kBody) add_body(ghost, surface, model, scale, body);
+    if (view.layers & kFrame) add_frame_arrows(ghost, surface, model, scale, body);
+    for (Vertex& v : ghost.fills) v.color.a *= kGhostAlpha;
+    for (Vertex& v : ghost.lines) v.color.a *= kGhostAlpha;
+    scene.ghost_fills.insert(scene.ghost_fills.end(), ghost.fills.begin(), ghost.fills.end());
+    scene.ghost_lines.insert(scene.ghost_lines.end(), ghost.lines.begin(), ghost.lines.end());
+  }
+  if (!model.shows_through()) return;  // the sphere: its bodies only (a trail round it is seen across)
+  for (std::size_t i = scene.trails_begin; i < scene.trails_end; ++i) {
+    Vertex v = scene.lines[i];
+    v.color.a *= kGhostAlpha;
+    scene.ghost_lines.push_back(v);
+  }
 }
 
 void aim_in_space(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud,
@@ -308,8 +345,8 @@ void aim_in_space(const ViewModel& model, ViewOptions& view, const Snapshot& sna
   if (points.empty()) return;
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   for (const Sight& p : points) lo = glm::min(lo, p.at), hi = glm::max(hi, p.at);
-  const glm::dvec3 centre = 0.5 * (lo + hi);
-  double radius = aim.radius;
+  const glm::dvec3 centre = aim.whole > 0.0 ? glm::dvec3(0.0) : 0.5 * (lo + hi);
+  double radius = std::max(aim.radius, aim.whole);
   for (const Sight& p : points) radius = std::max(radius, glm::length(p.at - centre));
   const double aspect = static_cast<double>(view.width) / view.height;
   const double half_fov = std::atan(std::tan(glm::radians(kFovY) / 2) * std::min(1.0, aspect));
@@ -332,19 +369,24 @@ void aim_in_space(const ViewModel& model, ViewOptions& view, const Snapshot& sna
   };
   const double normal_yaw =
       std::hypot(n.x, n.y) > 1e-6 ? std::atan2(n.y, n.x) : std::atan2(centre.y, centre.x);
-  const double facing_pitch = std::clamp(std::asin(std::clamp(n.z, -1.0, 1.0)), -1.2, 1.2);
+  const double lowest = std::max(-1.2, model.lowest_pitch(surface));
+  const double facing_pitch = std::clamp(std::asin(std::clamp(n.z, -1.0, 1.0)), lowest, 1.2);
   // Most frames end here: from the body's own side, a little above, everything is seen (badness
   // 0); the wide search (183 cameras, each casting a ray per sight) is for the rest.
   for (const double pitch : {std::max(facing_pitch, 0.5), facing_pitch}) consider(normal_yaw, pitch, 1.0);
   if (best < 3.0) return;  // nothing hidden or boxed: only the preferences are left to weigh
   for (const double pull : {1.0, 1.3, 1.6}) {
     consider(normal_yaw, facing_pitch, pull);
-    for (const double pitch : {1.15, 0.75, 0.35, -0.35, -0.75})
-      for (int k = 0; k < 12; ++k) consider(normal_yaw + 2 * kPi * k / 12, pitch, pull);
+    bool floor_tried = false;  // the elevations below the lowest are tried once, at the lowest
+    for (const double wanted : {1.15, 0.75, 0.35, -0.35, -0.75}) {
+      if (wanted < lowest && std::exchange(floor_tried, true)) continue;
+      for (int k = 0; k < 12; ++k) consider(normal_yaw + 2 * kPi * k / 12, std::max(wanted, lowest), pull);
+    }
   }
   // The main body still hidden or boxed: in a small frame the HUD covers the centre, where every
-  // orbit puts the body. Slide it to the free side, seen from its own side if that clears it.
-  if (best >= 1000.0) {
+  // orbit puts the body. Slide it to the free side, seen from its own side if that clears it. (Not
+  // where it is only behind the surface, drawn through it: on the underside no camera sees it.)
+  if (best >= 1000.0 && !shows_main_body(view, snapshot, true)) {
     ViewOptions facing = view;
     facing.yaw = normal_yaw, facing.pitch = std::max(facing_pitch, 0.5), facing.distance = base;
     if (slide_clear_of_boxes(model, surface, facing, points, hud) < 1000.0)

@@ -43,8 +43,14 @@ std::vector<Sight> sights(const ViewModel& model, const Snapshot& snapshot, cons
 // The HUD's and legend's boxes a frame of this snapshot will have (as build_scene lays them out).
 HudLayout hud_boxes(const Snapshot& snapshot, const ViewOptions& view);
 // Whether the camera shows the main body's centre in the frame, clear of the HUD's and legend's
-// boxes and in sight (what aiming weighs most); true where the view does not draw it.
-bool shows_main_body(const ViewOptions& view, const Snapshot& snapshot);
+// boxes and in sight (what aiming weighs most); true where the view does not draw it. With
+// `behind_too`, a centre behind the surface counts as shown where the view draws it through.
+bool shows_main_body(const ViewOptions& view, const Snapshot& snapshot, bool behind_too = false);
+// The ghosts of a view that shows through (ViewModel::shows_through): each body behind the surface
+// and every trail, at kGhostAlpha, into scene.ghost_fills and ghost_lines (drawn under the rest,
+// without the depth test: the stretches in sight are drawn over their ghosts).
+inline constexpr float kGhostAlpha = 0.45f;
+void add_ghosts(FrameScene& scene, const ViewModel& model, const Snapshot& snapshot, const ViewOptions& view);
 // How badly a camera shows the sights: the weight of those hidden (ViewModel::hidden) or behind
 // the camera, out of the frame (less a margin) or under the HUD's or legend's box (grown by the
 // margin). The sum stops once it reaches `enough` (a camera search's best so far: a camera that bad
@@ -104,11 +110,20 @@ void aim_2d_window(const ViewModel& model, ViewOptions& view, const Snapshot& sn
 // far as 1.6×. The cost of a camera is its badness (a hidden or boxed main body 1000, each trail 10 in
 // all) plus up to 4 for drawing back, up to 1.5 for looking at the main body obliquely and a little
 // for an elevation far from 0.5 rad (a surface is read best from a little above): a near camera facing
-// the body that shows most of its path wins over a far one that shows all of it edge-on.
+// the body that shows most of its path wins over a far one that shows all of it edge-on. No camera
+// is lower than the view's lowest_pitch. A closed piece (SpaceAim::whole) is framed whole.
+// The lowest elevation a camera on a surface drawn upright takes [rad] (~9°, ViewModel::lowest_pitch):
+// never from under it (a teacher's torus seen from below lost the class), so a body on the underside
+// is drawn through the surface (ViewModel::shows_through).
+inline constexpr double kLowestSpacePitch = 0.15;
 struct SpaceAim {
   glm::dvec3 normal{0.0, 0.0, 1.0};                 // the surface's unit normal at the main body
   double radius = 1.0;                              // the least framing radius [world units]
   std::function<bool(const glm::dvec3&)> on_piece;  // whether a world point is on the drawn piece
+  // A closed piece (a torus, a spheroid, an ellipsoid): the radius of the ball about the world
+  // origin (the piece's centre) that holds it [world units], which the lesson's camera frames whole,
+  // so that, steady, it rarely has to move; 0 where the piece is not closed.
+  double whole = 0.0;
 };
 void aim_in_space(const ViewModel& model, ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud,
                   const SpaceAim& aim);

@@ -25,6 +25,10 @@ namespace {
 constexpr float kFormulaDepthBias = 0.01f;
 // The patch round a main body beyond the box: a cube of this many framing radii each way, at most
 // the box's half-size, meshed as finely as the box.
+// A closed zero set's half-extent [world units]: its box has an eighth of its largest span to spare
+// each side (engine/surface_model.cpp), so the span is 0.8 of the box's largest side.
+constexpr double kClosedPieceHalf = 0.8;
+
 constexpr double kPatchHalf = 3.0;
 // How far from the box's centre a point may be drawn, in its half-size (profile_drawing.h says why).
 constexpr double kMaxDrawn = kMaxDrawnDistance;
@@ -223,6 +227,16 @@ class FormulaView final : public ViewModel {
   }
 
   glm::mat4 camera(const ViewOptions& view) const override { return orbit_camera(view, orbit_home()); }
+  // What is behind the surface is drawn through it (from above, kLowestSpacePitch, the underside is).
+  bool shows_through() const override { return true; }
+  // A closed piece (an ellipsoid) has no up: seen from any side, as the sphere.
+  double lowest_pitch(const Surface& surface) const override {
+    return surface_model_of(surface)->closed ? -kPi / 2 : kLowestSpacePitch;
+  }
+  void add_bodies(FrameScene& scene, const Snapshot& snapshot, const ViewOptions& view) const override {
+    ViewModel::add_bodies(scene, snapshot, view);
+    add_ghosts(scene, *this, snapshot, view);
+  }
   float depth_bias() const override { return kFormulaDepthBias; }
   bool hidden(const Surface& surface, const glm::dvec3& at, const glm::dvec3& eye) const override {
     return occluded(*shape_of(surface), eye, at);
@@ -235,9 +249,11 @@ class FormulaView final : public ViewModel {
     const Vec3 n = embedded_normal(*shape->implicit, snapshot.bodies.front().X);
     aim_in_space(*this, view, snapshot, hud,
                  {n.allFinite() ? glm::dvec3(n.x(), n.y(), n.z()) : glm::dvec3(0.0, 0.0, 1.0),
-                  framing_radius(*shape) / shape->length, [&](const glm::dvec3& w) {
+                  framing_radius(*shape) / shape->length,
+                  [&](const glm::dvec3& w) {
                     return in_box(shape->box, Vec3(w.x, w.y, w.z) * shape->length + shape->centre);
-                  }});
+                  },
+                  shape->closed ? kClosedPieceHalf : 0.0});
   }
   std::string grid_caption(const Snapshot& snapshot, const ViewOptions& view) const override {
     const SurfaceModel* shape = &surface_model(snapshot);

@@ -203,6 +203,13 @@ class RevolutionView final : public ViewModel {
   }
 
   glm::mat4 camera(const ViewOptions& view) const override { return orbit_camera(view, orbit_home()); }
+  // What is behind the surface is drawn through it (from above, kLowestSpacePitch, the underside is).
+  bool shows_through() const override { return true; }
+  double lowest_pitch(const Surface& /*surface*/) const override { return kLowestSpacePitch; }
+  void add_bodies(FrameScene& scene, const Snapshot& snapshot, const ViewOptions& view) const override {
+    ViewModel::add_bodies(scene, snapshot, view);
+    add_ghosts(scene, *this, snapshot, view);
+  }
   float depth_bias() const override { return kRevolutionDepthBias; }
   bool hidden(const Surface& surface, const glm::dvec3& at, const glm::dvec3& eye) const override {
     return occluded(surface, eye, at);
@@ -222,7 +229,8 @@ class RevolutionView final : public ViewModel {
     aim_in_space(*this, view, snapshot, hud,
                  {n3.allFinite() ? glm::dvec3(n3.x(), n3.y(), n3.z()) : glm::dvec3(0.0, 0.0, 1.0),
                   framing_radius(picture) / l,
-                  [&](const glm::dvec3& w) { return on_view(surface, Vec3(w.x, w.y, w.z) * l); }});
+                  [&](const glm::dvec3& w) { return on_view(surface, Vec3(w.x, w.y, w.z) * l); },
+                  surface_model(snapshot).closed ? 1.0 : 0.0});
   }
   std::string grid_caption(const Snapshot& snapshot, const ViewOptions& view) const override {
     return std::string("Grid: meridians every 30 degrees and parallels; the K = 0 parallels darker.") +

@@ -11,8 +11,6 @@ namespace spinfold::render {
 
 namespace {
 
-constexpr float kGhostAlpha = 0.45f;  // of a body behind the sphere, drawn through it
-
 // FrameScene::depth_bias: overlays lie on the sphere exactly (its mesh is circumscribed, every
 // face outside the unit sphere, so nothing drawn on the sphere pokes out past the mesh's limb) and
 // the bias keeps them in front of the faces.
@@ -99,19 +97,7 @@ class SphereView final : public ViewModel {
   // camera's face-on cap, and the far one must not vanish.
   void add_bodies(FrameScene& scene, const Snapshot& snapshot, const ViewOptions& view) const override {
     ViewModel::add_bodies(scene, snapshot, view);
-    const glm::dvec3 eye = eye_of(scene.view_projection);
-    const Surface& surface = snapshot.surface;
-    for (const BodySnapshot& body : snapshot.bodies) {
-      if (!hidden(surface, world_position(surface, body.X), eye)) continue;
-      FrameScene ghost;
-      const double scale = body_drawing_scale(surface, body, view.scale);
-      if (view.layers & kBody) add_body(ghost, surface, *this, scale, body);
-      if (view.layers & kFrame) add_frame_arrows(ghost, surface, *this, scale, body);
-      for (Vertex& v : ghost.fills) v.color.a *= kGhostAlpha;
-      for (Vertex& v : ghost.lines) v.color.a *= kGhostAlpha;
-      scene.ghost_fills.insert(scene.ghost_fills.end(), ghost.fills.begin(), ghost.fills.end());
-      scene.ghost_lines.insert(scene.ghost_lines.end(), ghost.lines.begin(), ghost.lines.end());
-    }
+    add_ghosts(scene, *this, snapshot, view);
   }
 
   void aim(ViewOptions& view, const Snapshot& snapshot, const HudLayout& hud) const override {

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <glm/glm.hpp>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -95,6 +96,14 @@ class ViewModel {
   virtual bool hidden(const Surface& /*surface*/, const glm::dvec3& /*at*/, const glm::dvec3& /*eye*/) const {
     return false;
   }
+  // The lowest elevation its aimed camera takes on this surface [rad]: a surface drawn upright (a
+  // torus, a bump, a graph) is never seen from under it (kLowestSpacePitch, render/views/camera.h);
+  // one that has no up (the sphere, a closed formula surface) is seen from any side.
+  virtual double lowest_pitch(const Surface& /*surface*/) const { return -std::numbers::pi / 2; }
+  // Whether what is behind the surface (a body, a trail's stretch) is drawn faintly through it
+  // (FrameScene::ghost_fills, ghost_lines): a surface in space seen from above, whose camera never
+  // looks from under it (kLowestSpacePitch), shows a body on its underside so.
+  virtual bool shows_through() const { return false; }
   // Whether a camera at `eye` [world units] sees the surface from the side it is drawn to be seen
   // from (the hyperboloid from inside its bowl: from under the sheet a frame is its dark underside
   // and no body). Aiming never picks a camera on the other side.

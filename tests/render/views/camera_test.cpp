@@ -149,7 +149,8 @@ bool in_one_cap(const Snapshot& s) {
 
 // Framing is a property: every preset, in every view that shows its surface, at several times and
 // at the pictures of a 1366- and a 1920-wide page, aimed as the server aims it, shows each body's
-// centre in the frame, clear of the HUD and the legend, and not behind the surface; and at the
+// centre in the frame, clear of the HUD and the legend, and not behind the surface (or, where the view
+// draws through it, ghosted there: a torus's underside seen from above); and at the
 // small pictures of a phone (390×290) and a thumbnail (320×240), whose overlay is compact. Two kinds of
 // companion are outside what one camera can do: one beyond the drawn piece of an unbounded surface,
 // or any when the main body is beyond it (the revolution view then follows the main body alone:
@@ -157,7 +158,7 @@ bool in_one_cap(const Snapshot& s) {
 // any camera to have them all within the 60° of its direction that the sphere view shows face-on
 // (SphereView::hidden): drawn faintly through the sphere instead, which is checked and counted.
 TEST(Camera, EveryPresetInEveryViewItOffersShowsItsBodiesClearOfTheBoxes) {
-  int cases = 0, apart = 0;
+  int cases = 0, apart = 0, through = 0;
   std::vector<std::string> failures;
   for (const PresetSource& preset : preset_sources())
     for (const double t : {0.0, 1.0, 2.5, 5.0, 10.0}) {
@@ -186,13 +187,15 @@ TEST(Camera, EveryPresetInEveryViewItOffersShowsItsBodiesClearOfTheBoxes) {
             else if (model.hidden(s.surface, world, eye))
               why = "behind the surface";
             // Where no camera has every body face-on, a companion behind the sphere is drawn faintly
-            // through it (SphereView::add_bodies): its ghost must be there, near its centre.
-            if (why == "behind the surface" && b > 0 && view.kind == ViewKind::sphere && !in_one_cap(s)) {
+            // through it (add_ghosts); so is any body behind a surface seen only from above
+            // (ViewModel::shows_through, kLowestSpacePitch): its ghost must be there, near its centre.
+            const bool spread = b > 0 && view.kind == ViewKind::sphere && !in_one_cap(s);
+            if (why == "behind the surface" && (spread || model.shows_through())) {
               const bool ghost = std::ranges::any_of(scene.ghost_fills, [&](const Vertex& v) {
                 return glm::distance(glm::dvec3(v.position), world) < 0.5;
               });
               if (ghost) {
-                ++apart;
+                ++(spread ? apart : through);
                 continue;
               }
               why += " (and not drawn through it)";
@@ -213,6 +216,9 @@ TEST(Camera, EveryPresetInEveryViewItOffersShowsItsBodiesClearOfTheBoxes) {
   // The companions drawn through the sphere: spin_vs_geodesic_sphere and spin_fan_sphere at t = 5
   // (159° apart), at all four sizes; counted so that a change in them is seen.
   EXPECT_EQ(apart, 16);
+  // The main bodies on a torus's underside, which no camera from above sees: spin_vs_geodesic_torus
+  // at t = 2.5 and 5 (u = 1.74 and 2.4, below the tube's equator), at all four sizes.
+  EXPECT_EQ(through, 8);
 }
 
 // The teacher's dial: the default scene playing while K is dragged from 1 to −1 (a step every 1.5
