@@ -24,5 +24,5 @@ render revolution_torus spin_vs_geodesic_torus revolution 12 surface,grid,body,f
 render revolution_spheroid opposite_spins_spheroid revolution 20
 render revolution_bump trapped_spin_bump revolution 20 surface,grid,body,frame,trail,curvature
 render chart_torus spin_vs_geodesic_torus chart 16
-render revolution_catenoid spin_vs_geodesic_catenoid revolution 3 surface,grid,body,frame,trail,curvature
+render revolution_catenoid spin_vs_geodesic_catenoid revolution 12 surface,grid,body,frame,trail,curvature
 echo "view_pictures: wrote $(ls "$out" | wc -l) pictures to $out"

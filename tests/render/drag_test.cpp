@@ -366,7 +366,7 @@ TEST(Drag, ADropOnTheBlankBackgroundBeyondTheDrawnPieceIsRefused) {
     EXPECT_TRUE(place_at_pixel(r.snapshot, view, handles->body, near)) << name << ": the body's own pixel";
   }
   // The catenoid's body beyond the piece (t = 8): its patch picks.
-  const Scene catenoid = *parse_scene_text(find_preset("spin_vs_geodesic_catenoid")->json).scene;
+  const Scene catenoid = testing::escaping_catenoid();
   const PresetRun far = run_to(catenoid, 8.0);
   ASSERT_FALSE(view_model(ViewKind::revolution).on_view(far.snapshot.surface, far.snapshot.bodies[0].X));
   const ViewOptions view = aimed(ViewKind::revolution, far.snapshot);

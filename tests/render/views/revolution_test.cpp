@@ -180,11 +180,11 @@ TEST(RevolutionView, InASmallFrameTheHudNeverCoversTheMainBody) {
     }
 }
 
-// Beyond the drawn piece of the catenoid (|z| > 2c from t ≈ 4.5 on in its preset) the body was drawn
+// Beyond the drawn piece of the catenoid (|z| > 2c from t ≈ 4.5 on, spinning slowly) the body was drawn
 // in the void; the frame now adds a patch of the surface round it: on the surface, under the body,
 // never over the piece, and the same patch for nearby times (it moves in steps, not every frame).
 TEST(RevolutionView, BeyondTheDrawnPieceAPatchOfTheSurfaceIsDrawnRoundTheBody) {
-  const Scene scene = *parse_scene_text(find_preset("spin_vs_geodesic_catenoid")->json).scene;
+  const Scene scene = testing::escaping_catenoid();
   ViewOptions view;
   view.kind = ViewKind::revolution;
   const auto frame_at = [&](double t) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <glm/glm.hpp>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "codec/presets.h"
@@ -16,6 +17,18 @@
 #include "render/snapshot.h"
 
 namespace spinfold::render::testing {
+
+// A body that leaves a surface's drawn piece: the catenoid preset's start spinning slowly (s = 0.5,
+// alone), which curls off the neck and winds beyond |z| = 2c from t ≈ 4.5 on (the preset's own main
+// body, spinning fast, stays at the neck).
+inline Scene escaping_catenoid() {
+  std::string text(find_preset("spin_vs_geodesic_catenoid")->json);
+  const std::string spin = "\"spin\": 4.0";
+  text.replace(text.find(spin), spin.size(), "\"spin\": 0.5");  // through the text: spin sets the rates
+  Scene scene = *parse_scene_text(text).scene;
+  scene.companions.clear();
+  return scene;
+}
 
 // The preset's run at t with, when asked, every body's trail sampled at t·k/64.
 inline Snapshot preset_snapshot(std::string_view name, double t, bool with_trail) {
