@@ -98,6 +98,9 @@ json property_of(const Field& field) {
     const Range& r = field.range;
     if (r.has_min()) n[r.min_open ? "exclusiveMinimum" : "minimum"] = bound(r.min);
     if (r.has_max()) n[r.max_open ? "exclusiveMaximum" : "maximum"] = bound(r.max);
+    // The span a person usually sets (the page's slider; beyond it a typed value is questioned).
+    if (field.usual.has_min() && field.usual.has_max())
+      n["x-usual"] = json::array({field.usual.min, field.usual.max});
     return n;
   } else if constexpr (std::is_same_v<T, std::string>) {
     if (field.text_rule == TextRule::integrator_name)

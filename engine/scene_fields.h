@@ -183,6 +183,10 @@ struct Field {
   // The surface kinds (bits of SurfaceKind) the field belongs to: a scene on another kind may not
   // give it (the reader names the kinds it belongs to) and the writer leaves it out.
   unsigned surfaces = ~0u;
+  // Numbers a person sets by hand (the page's sliders): the values a lesson or a study usually takes,
+  // the slider's span; a typed value beyond it is questioned before it is sent (never refused: that
+  // is `range`'s job). Unbounded (kAnyNumber) where every value is as usual as another (an angle).
+  Range usual{};
 
   // The default: the struct's own in-class default.
   T fallback() const { return S{}.*member; }
@@ -198,6 +202,13 @@ constexpr bool belongs_to(const F& field, SurfaceKind kind) {
 template <typename F>
 constexpr F only_on(unsigned surfaces, F field) {
   field.surfaces = surfaces;
+  return field;
+}
+
+// `field` with the span of values it usually takes (Field::usual), [lo, hi].
+template <typename F>
+constexpr F usually(double lo, double hi, F field) {
+  field.usual = Range{.min = lo, .max = hi};
   return field;
 }
 
@@ -230,40 +241,56 @@ inline constexpr std::tuple kSurfaceFields{
         "kind", &Surface::kind,
         "the surface: sphere, pseudosphere or plane (constant curvature), or torus, spheroid, bump or "
         "catenoid (curvature that varies)"),
-    only_on(surfaces_offering(Offer::polar_chart),
+    only_on(
+        surfaces_offering(Offer::polar_chart),
+        usually(
+            0.25, 5.0,
             number_field(
                 "radius", &Surface::radius, "Surface radius R", "length", kPositive,
                 "the size of the surface: curvature K = +1/R² on the sphere, −1/R² on the pseudosphere; a "
-                "larger radius is a flatter surface (on the plane only a length scale)")),
-    only_on(surfaces_offering(Offer::polar_chart),
-            optional_number_field(
-                "curvature", &Surface::curvature_given, "Curvature K", "1/length²", kAnyNumber,
-                "K instead of kind and radius: K > 0 a sphere of radius 1/√K, 0 the flat plane, K < 0 "
-                "the pseudosphere of radius 1/√−K; changed mid-run it continues through 0",
-                {"kind", "radius"})),
+                "larger radius is a flatter surface (on the plane only a length scale)"))),
+    only_on(
+        surfaces_offering(Offer::polar_chart),
+        usually(-2.0, 2.0,
+                optional_number_field(
+                    "curvature", &Surface::curvature_given, "Curvature K", "1/length²", kAnyNumber,
+                    "K instead of kind and radius: K > 0 a sphere of radius 1/√K, 0 the flat plane, K < 0 "
+                    "the pseudosphere of radius 1/√−K; changed mid-run it continues through 0",
+                    {"kind", "radius"}))),
     only_on(surface_bit(SurfaceKind::torus),
-            number_field("tube_radius", &Surface::tube_radius, "Tube radius a", "length", kPositive,
-                         "the torus's tube: the profile circle of radius a about the centre circle (a < c)")),
+            usually(0.1, 5.0,
+                    number_field(
+                        "tube_radius", &Surface::tube_radius, "Tube radius a", "length", kPositive,
+                        "the torus's tube: the profile circle of radius a about the centre circle (a < c)"))),
     only_on(
         surface_bit(SurfaceKind::torus),
-        number_field("center_radius", &Surface::center_radius, "Centre radius c", "length", kPositive,
-                     "the torus's centre circle, c > a: K = cos u/(a(c + a cos u)), from (c+a)⁻¹/a outside "
-                     "to −(c−a)⁻¹/a inside")),
+        usually(0.1, 5.0,
+                number_field(
+                    "center_radius", &Surface::center_radius, "Centre radius c", "length", kPositive,
+                    "the torus's centre circle, c > a: K = cos u/(a(c + a cos u)), from (c+a)⁻¹/a outside "
+                    "to −(c−a)⁻¹/a inside"))),
     only_on(surface_bit(SurfaceKind::spheroid),
-            number_field("equatorial_radius", &Surface::equatorial_radius, "Equatorial radius a", "length",
-                         kPositive, "the spheroid's equator: oblate when a > b, prolate when a < b")),
+            usually(0.1, 5.0,
+                    number_field("equatorial_radius", &Surface::equatorial_radius, "Equatorial radius a",
+                                 "length", kPositive,
+                                 "the spheroid's equator: oblate when a > b, prolate when a < b"))),
     only_on(surface_bit(SurfaceKind::spheroid),
-            number_field("polar_radius", &Surface::polar_radius, "Polar radius b", "length", kPositive,
-                         "the spheroid's half axis along z; a = b is the sphere")),
+            usually(0.1, 5.0,
+                    number_field("polar_radius", &Surface::polar_radius, "Polar radius b", "length",
+                                 kPositive, "the spheroid's half axis along z; a = b is the sphere"))),
     only_on(surface_bit(SurfaceKind::bump),
-            number_field("height", &Surface::height, "Bump height h", "length", kAnyNumber,
-                         "z = h exp(−ρ²/(2w²)): a hill (h > 0) or a dip (h < 0); 0 is the plane")),
+            usually(-5.0, 5.0,
+                    number_field("height", &Surface::height, "Bump height h", "length", kAnyNumber,
+                                 "z = h exp(−ρ²/(2w²)): a hill (h > 0) or a dip (h < 0); 0 is the plane"))),
     only_on(surface_bit(SurfaceKind::bump),
-            number_field("width", &Surface::width, "Bump width w", "length", kPositive,
-                         "the bump's width: K > 0 inside ρ = w, < 0 outside")),
-    only_on(surface_bit(SurfaceKind::catenoid),
-            number_field("neck_radius", &Surface::neck_radius, "Neck radius c", "length", kPositive,
-                         "the catenoid ρ = c cosh(z/c): its narrowest circle; K = −1/(c² cosh⁴(z/c))")),
+            usually(0.1, 5.0,
+                    number_field("width", &Surface::width, "Bump width w", "length", kPositive,
+                                 "the bump's width: K > 0 inside ρ = w, < 0 outside"))),
+    only_on(
+        surface_bit(SurfaceKind::catenoid),
+        usually(0.1, 5.0,
+                number_field("neck_radius", &Surface::neck_radius, "Neck radius c", "length", kPositive,
+                             "the catenoid ρ = c cosh(z/c): its narrowest circle; K = −1/(c² cosh⁴(z/c))"))),
     only_on(
         surface_bit(SurfaceKind::implicit),
         value_field("F", &Surface::F,
@@ -302,11 +329,12 @@ inline constexpr std::tuple kBodyFields{
 // g's unit depends on the surface: the paper's normalisations (physics.md §5, §9.7) divide g by the
 // pure number sin²(r/R) on S² but by the area R² sinh²(r/R) on H² and r² on the plane.
 inline constexpr std::tuple kRadialPotentialFields{
-    number_field("gamma", &RadialPotential::gamma, "Push from the pole g",
-                 "energy (sphere); energy·length² (pseudosphere, plane)", kNonNegative,
-                 "keeps the body away from the pole, 0: none. V_r = g/sin²(r/R) on the sphere, "
-                 "g/(R² sinh²(r/R)) on the pseudosphere, g/r² on the plane",
-                 "a negative g lets the body fall into a pole, which is not supported"),
+    usually(0.0, 1.0,
+            number_field("gamma", &RadialPotential::gamma, "Push from the pole g",
+                         "energy (sphere); energy·length² (pseudosphere, plane)", kNonNegative,
+                         "keeps the body away from the pole, 0: none. V_r = g/sin²(r/R) on the sphere, "
+                         "g/(R² sinh²(r/R)) on the pseudosphere, g/r² on the plane",
+                         "a negative g lets the body fall into a pole, which is not supported")),
 };
 
 inline constexpr std::tuple kAbcPotentialFields{
@@ -314,9 +342,11 @@ inline constexpr std::tuple kAbcPotentialFields{
                  "A/x²: a barrier at x = 0, where λ = μ (the body a scaled rotation)"),
     number_field("B", &AbcPotential::B, "Barrier B", "energy", kNonNegative,
                  "B/y²: a barrier at y = 0, where λ = −μ"),
-    number_field("C", &AbcPotential::C, "Shape spring C", "energy", kAnyNumber,
-                 "pulls the ellipse back towards its reference size, so the body breathes: C(x² + y²) = "
-                 "C(λ² + μ²)"),
+    usually(
+        0.0, 5.0,
+        number_field("C", &AbcPotential::C, "Shape spring C", "energy", kAnyNumber,
+                     "pulls the ellipse back towards its reference size, so the body breathes: C(x² + y²) = "
+                     "C(λ² + μ²)")),
 };
 
 inline constexpr std::tuple kPolarPotentialFields{
@@ -328,8 +358,9 @@ inline constexpr std::tuple kPolarPotentialFields{
 };
 
 inline constexpr std::tuple kGravityPotentialFields{
-    number_field("g", &GravityPotential::g, "Gravity g", "length/time²", kAnyNumber,
-                 "V = m g z: a uniform pull along −z (g > 0), z the embedded height"),
+    usually(-2.0, 2.0,
+            number_field("g", &GravityPotential::g, "Gravity g", "length/time²", kAnyNumber,
+                         "V = m g z: a uniform pull along −z (g > 0), z the embedded height")),
 };
 
 inline constexpr std::tuple kSpringPotentialFields{
@@ -350,8 +381,9 @@ inline constexpr std::tuple kPotentialsFields{
 };
 
 inline constexpr std::tuple kFrictionFields{
-    number_field("translational", &Friction::translational, "Translational friction γ_t", "mass/time",
-                 kNonNegative, "viscous drag on the velocity: −γ_t V"),
+    usually(0.0, 1.0,
+            number_field("translational", &Friction::translational, "Translational friction γ_t", "mass/time",
+                         kNonNegative, "viscous drag on the velocity: −γ_t V")),
     number_field("internal", &Friction::internal, "Internal friction γ_i", "mass·length²/time", kNonNegative,
                  "viscous drag on the frame's rates relative to parallel transport: −γ_i De_A/Dt"),
 };
@@ -378,11 +410,14 @@ inline constexpr std::tuple kInitialStateFields{
     number_field("alpha", &InitialState::alpha, "Rotation α", "rad", kAnyNumber,
                  "left rotation angle of L = U(α) diag(λ, μ) U(β)ᵀ"),
     number_field("beta", &InitialState::beta, "Rotation β", "rad", kAnyNumber, "right rotation angle"),
-    number_field("lambda", &InitialState::lambda, "Stretch λ", "1", kPositive,
-                 "the ellipse's first axis relative to the reference body (L = U(α) diag(λ, μ) U(β)ᵀ); "
-                 "a rigid body's size"),
-    number_field("mu", &InitialState::mu, "Stretch μ", "1", kPositive,
-                 "the ellipse's second axis relative to the reference body (= λ for a rigid body)"),
+    usually(
+        0.2, 3.0,
+        number_field("lambda", &InitialState::lambda, "Stretch λ", "1", kPositive,
+                     "the ellipse's first axis relative to the reference body (L = U(α) diag(λ, μ) U(β)ᵀ); "
+                     "a rigid body's size")),
+    usually(0.2, 3.0,
+            number_field("mu", &InitialState::mu, "Stretch μ", "1", kPositive,
+                         "the ellipse's second axis relative to the reference body (= λ for a rigid body)")),
     only_on(surfaces_offering(Offer::polar_chart),
             number_field("r_dot", &InitialState::r_dot, "Rate ṙ", "length/time", kAnyNumber, "rate of r")),
     only_on(
@@ -397,16 +432,19 @@ inline constexpr std::tuple kInitialStateFields{
                  "rate of lambda (0 for a rigid body)"),
     number_field("mu_dot", &InitialState::mu_dot, "Rate μ̇", "1/time", kAnyNumber,
                  "rate of mu (0 for a rigid body)"),
-    optional_number_field("spin", &InitialState::spin, "Spin s", "mass·length²/time", kAnyNumber,
-                          "how fast the body turns about itself, measured against parallel transport (0: a "
-                          "geodesic without potentials): s = J[(λ² + μ²)(α̇ + C(r) φ̇) − 2λμ β̇], instead of "
-                          "alpha_dot",
-                          {"alpha_dot"}),
-    optional_number_field(
-        "speed", &InitialState::speed, "Speed v", "length/time", kNonNegative,
-        "how fast the body moves along the surface at the start: v = √(ṙ² + S² φ̇²) (√(f²u̇² + "
-        "ρ²φ̇²) where the curvature varies), with heading instead of r_dot (u_dot) and phi_dot",
-        {"r_dot", "u_dot", "phi_dot"}, "heading"),
+    usually(-10.0, 10.0,
+            optional_number_field(
+                "spin", &InitialState::spin, "Spin s", "mass·length²/time", kAnyNumber,
+                "how fast the body turns about itself, measured against parallel transport (0: a "
+                "geodesic without potentials): s = J[(λ² + μ²)(α̇ + C(r) φ̇) − 2λμ β̇], instead of "
+                "alpha_dot",
+                {"alpha_dot"})),
+    usually(0.0, 3.0,
+            optional_number_field(
+                "speed", &InitialState::speed, "Speed v", "length/time", kNonNegative,
+                "how fast the body moves along the surface at the start: v = √(ṙ² + S² φ̇²) (√(f²u̇² + "
+                "ρ²φ̇²) where the curvature varies), with heading instead of r_dot (u_dot) and phi_dot",
+                {"r_dot", "u_dot", "phi_dot"}, "heading")),
     optional_number_field(
         "heading", &InitialState::heading, "Heading", "rad", kAnyNumber,
         "the start velocity's direction: 0 straight away from the pole (along increasing u where "

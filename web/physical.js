@@ -19,6 +19,7 @@ import { showConformal } from "./viewcontrols.js";
  * @typedef {{key: string, field?: string, label: string, unit: string, help: string, note?: string,
  *   min: number, max: number, step: number, value: number | undefined, placeholder?: string,
  *   restarts?: boolean, live?: boolean, disabled?: boolean, view?: boolean, before?: () => void,
+ *   usual?: [number, number],
  *   patch: ((v: number) => any) | null}} Row
  */
 
@@ -44,12 +45,26 @@ function schemaField(schema, path) {
 // How a schema unit is shown: a pure number ("1") says so; an angle the UI shows in degrees.
 const displayUnit = (/** @type {string} */ unit) => ({ 1: "pure number", rad: "degrees" })[unit] ?? unit;
 
+/**
+ * A field's words and, where the field table gives one, the span it usually takes (x-usual): the
+ * slider's ends, and beyond them a typed value is questioned before it is sent.
+ * @param {any} spec
+ */
+function words(spec) {
+  /** @type {[number, number] | undefined} */
+  const usual = spec["x-usual"];
+  // (A field without one: its allowed range, within ±5.)
+  const min = usual?.[0] ?? Math.max(-5, spec.minimum ?? spec.exclusiveMinimum ?? -5);
+  const max = usual?.[1] ?? Math.min(5, spec.maximum ?? spec.exclusiveMaximum ?? 5);
+  return { label: spec.title, unit: displayUnit(spec["x-unit"]), help: spec.description, min, max, usual };
+}
+
 /** @param {AppState} s */
 function physicalRows(s) {
   /** @param {string} path */
   const described = (path) => {
     const spec = schemaField(s.schema, path);
-    return { field: path, label: spec.title, unit: displayUnit(spec["x-unit"]), help: spec.description };
+    return { field: path, ...words(spec) };
   };
   const current = s.current;
   const initial = current.initial;
@@ -65,8 +80,6 @@ function physicalRows(s) {
     {
       key: "spin",
       ...described("initial.spin"),
-      min: -3,
-      max: 3,
       step: 0.05,
       restarts: true,
       value: initial.spin ?? start.spin,
@@ -75,8 +88,6 @@ function physicalRows(s) {
     {
       key: "speed",
       ...described("initial.speed"),
-      min: 0,
-      max: 3,
       step: 0.05,
       restarts: true,
       value: initial.speed ?? start.speed,
@@ -95,8 +106,6 @@ function physicalRows(s) {
     {
       key: "lambda",
       ...described("initial.lambda"),
-      min: 0.2,
-      max: 3,
       step: 0.05,
       restarts: true,
       value: initial.lambda ?? start.lambda,
@@ -107,8 +116,6 @@ function physicalRows(s) {
     rows.push({
       key: "mu",
       ...described("initial.mu"),
-      min: 0.2,
-      max: 3,
       step: 0.05,
       restarts: true,
       value: initial.mu ?? start.mu,
@@ -126,8 +133,6 @@ function physicalRows(s) {
       {
         key: "curvature",
         ...described("surface.curvature"),
-        min: -2,
-        max: 2,
         step: 0.01,
         live: true,
         // K as given in the K form, else the server's σ/R².
@@ -138,8 +143,6 @@ function physicalRows(s) {
       {
         key: "radius",
         ...described("surface.radius"),
-        min: 0.25,
-        max: 5,
         step: 0.05,
         disabled: byK,
         // Derived from K, the row says so before the field's own description.
@@ -155,8 +158,6 @@ function physicalRows(s) {
       {
         key: "gamma",
         ...described("potential.radial.gamma"),
-        min: 0,
-        max: 1,
         step: 0.01,
         value: current.potential?.radial?.gamma ?? 0,
         patch: (v) => ({ potential: { radial: { gamma: v } } }),
@@ -166,8 +167,6 @@ function physicalRows(s) {
     rows.push({
       key: "C",
       ...described("potential.deformation.C"),
-      min: 0,
-      max: 5,
       step: 0.05,
       value: deformation?.C ?? 0,
       patch: (v) => ({ potential: { deformation: { kind: "abc", C: v } } }),
@@ -205,8 +204,6 @@ function shapeRows(s) {
   const kind = /** @type {import("./surface.js").ResolvedSurface} */ (s.surface).kind;
   const current = s.current;
   const fields = s.schema.properties.surface.properties;
-  /** @param {any} spec */
-  const words = (spec) => ({ label: spec.title, unit: displayUnit(spec["x-unit"]), help: spec.description });
   /** @type {Row[]} */
   const rows = Object.entries(fields)
     .filter(
@@ -217,8 +214,6 @@ function shapeRows(s) {
       key,
       field: `surface.${key}`,
       ...words(spec),
-      min: key === "height" ? -2 : 0.1,
-      max: 5,
       step: 0.05,
       restarts: true,
       value: current.surface?.[key] ?? /** @type {any} */ (spec).default,
@@ -252,8 +247,6 @@ function shapeRows(s) {
       key: "gravity",
       field: "potential.height.g",
       ...words(gravity),
-      min: -2,
-      max: 2,
       step: 0.01,
       restarts: true,
       value: height?.g ?? 0,
@@ -265,8 +258,6 @@ function shapeRows(s) {
     key: "friction",
     field: "friction.translational",
     ...words(drag),
-    min: 0,
-    max: 1,
     step: 0.01,
     restarts: true,
     value: current.friction?.translational ?? 0,
@@ -453,10 +444,41 @@ function physicalRow(spec) {
       return;
     }
     const v = /** @type {number} */ (t.value);
-    if (spec.live) live(v);
-    else apply(v);
+    const send = () => (spec.live ? live(v) : apply(v));
+    if (spec.usual && (v < spec.usual[0] || v > spec.usual[1])) question(v, send);
+    else send();
   });
-  row.append(label, range, number, unit, helpButton, help, error);
+  // A typed value beyond the field's usual span (x-usual) is questioned, not sent: the field keeps
+  // what was typed, the line beside it says why, and a button sends it (1e9 was taken without a word).
+  const confirm = el("span", { class: "confirm", hidden: true });
+  const question = (/** @type {number} */ v, /** @type {() => void} */ send) => {
+    const edit = begin(error);
+    const [lo, hi] = /** @type {[number, number]} */ (spec.usual);
+    refused(edit, `${spec.label}: ${v} is far from the usual ${lo} to ${hi}${spec.unit ? ` (${spec.unit})` : ""}.`);
+    const use = el("button", { type: "button", class: "confirm-use", text: `Use ${v}` });
+    const keep = el("button", { type: "button", class: "confirm-keep", text: "Keep the value in force" });
+    const close = () => {
+      clear(confirm);
+      confirm.hidden = true;
+      refused(begin(error), "");
+    };
+    use.addEventListener("click", () => {
+      close();
+      send();
+    });
+    keep.addEventListener("click", () => {
+      close();
+      show(spec.value);
+      number.focus();
+    });
+    clear(confirm);
+    confirm.append(use, keep);
+    confirm.hidden = false;
+  };
+  number.addEventListener("input", () => {
+    if (!confirm.hidden) (clear(confirm), (confirm.hidden = true));
+  });
+  row.append(label, range, number, unit, helpButton, help, error, confirm);
   return row;
 }
 

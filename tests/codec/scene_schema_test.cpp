@@ -5,7 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
 
+#include "codec/presets.h"
 #include "codec/scene_json.h"
 
 namespace spinfold {
@@ -77,6 +82,76 @@ TEST(SceneSchema, InertiaIsANumberOrAMatrix) {
   EXPECT_EQ(inertia["default"], Body{}.inertia);
   EXPECT_EQ(schema["properties"]["companions"]["items"]["properties"]["body"]["properties"]["inertia"],
             inertia);
+}
+
+// A number's usual span (x-usual) at its path, in the branch of a oneOf whose kind it names.
+struct Usual {
+  std::string path;
+  std::string kind;  // "" outside a oneOf branch; else the branch's kind, at `path`'s parent
+  double lo, hi;
+  json spec;
+};
+
+void collect_usual(const json& spec, const std::string& path, const std::string& kind,
+                   std::vector<Usual>& out) {
+  if (!spec.is_object()) return;
+  if (spec.contains("x-usual"))
+    out.push_back({path, kind, spec["x-usual"][0].get<double>(), spec["x-usual"][1].get<double>(), spec});
+  if (spec.contains("properties"))
+    for (const auto& [key, child] : spec["properties"].items())
+      collect_usual(child, path.empty() ? key : path + "." + key, kind, out);
+  if (spec.contains("oneOf"))
+    for (const json& branch : spec["oneOf"])
+      if (branch.contains("properties") && branch["properties"].contains("kind") &&
+          branch["properties"]["kind"].contains("const"))
+        collect_usual(branch, path, branch["properties"]["kind"]["const"].get<std::string>(), out);
+}
+
+const json* at_path(const json& doc, const std::string& path) {
+  const json* at = &doc;
+  std::size_t from = 0;
+  while (from <= path.size()) {
+    const std::size_t dot = std::min(path.find('.', from), path.size());
+    const std::string key = path.substr(from, dot - from);
+    if (!at->is_object() || !at->contains(key)) return nullptr;
+    at = &(*at)[key];
+    from = dot + 1;
+  }
+  return at;
+}
+
+// Every number a person sets by hand (the page's sliders) has the span it usually takes, inside
+// what is allowed; and every preset's values lie in it: its slider shows it, and a teacher retyping
+// a preset's value is not questioned.
+TEST(SceneSchema, UsualSpansLieInTheAllowedRangeAndHoldEveryPreset) {
+  std::vector<Usual> usual;
+  collect_usual(scene_schema(), "", "", usual);
+  EXPECT_GE(usual.size(), 17u);
+  for (const Usual& u : usual) {
+    EXPECT_LT(u.lo, u.hi) << u.path;
+    const auto bound = [&](const char* key, double fallback) { return u.spec.value(key, fallback); };
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    EXPECT_GE(u.lo, bound("minimum", -inf)) << u.path;
+    EXPECT_GT(u.lo, bound("exclusiveMinimum", -inf)) << u.path;
+    EXPECT_LE(u.hi, bound("maximum", inf)) << u.path;
+    EXPECT_LT(u.hi, bound("exclusiveMaximum", inf)) << u.path;
+  }
+  int checked = 0;
+  for (const PresetSource& preset : preset_sources()) {
+    const json scene = scene_to_json(*parse_scene_text(preset.json).scene);
+    for (const Usual& u : usual) {
+      const json* v = at_path(scene, u.path);
+      if (!v || !v->is_number()) continue;
+      if (!u.kind.empty()) {
+        const json* kind = at_path(scene, u.path.substr(0, u.path.rfind('.')) + ".kind");
+        if (!kind || *kind != u.kind) continue;
+      }
+      ++checked;
+      EXPECT_GE(v->get<double>(), u.lo) << preset.name << " " << u.path;
+      EXPECT_LE(v->get<double>(), u.hi) << preset.name << " " << u.path;
+    }
+  }
+  EXPECT_GT(checked, 100);
 }
 
 }  // namespace

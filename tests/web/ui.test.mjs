@@ -190,6 +190,41 @@ await runSuite(started, async (browser) => {
     for (let i = 0; i < 100 && (await current()).body.mass !== before.body.mass; i++) await page.waitForTimeout(100);
   });
 
+  await test("a typed value far from the usual span is questioned, not sent; Use sends it, Keep puts the value in force back", async () => {
+    const current = async () => (await (await fetch(await page.$eval("#export-state", (a) => a.href))).json()).current;
+    const before = (await current()).initial.spin;
+    // The slider's ends are the field table's usual span (the schema's x-usual).
+    const schema = await (await fetch(new URL("/api/v1/schema", page.url()))).json();
+    const usual = schema.properties.initial.properties.spin["x-usual"];
+    assert.deepEqual([Number(await page.getAttribute("#phys-spin-range", "min")), Number(await page.getAttribute("#phys-spin-range", "max"))], usual);
+    await page.click("#phys-spin", { clickCount: 3 });
+    await page.keyboard.type("1e9");
+    await page.keyboard.press("Tab");
+    await page.waitForFunction(() => /far from the usual/.test(document.querySelector("#phys-spin-error").textContent));
+    assert.match(await page.textContent("#phys-spin-error"), /Spin s: 1000000000 is far from the usual -10 to 10/);
+    await page.waitForTimeout(500);
+    assert.equal((await current()).initial.spin, before, "nothing sent while it is questioned");
+    assert.equal(await page.inputValue("#phys-spin"), "1e9", "what was typed stays");
+    // Keep: the value in force back, the question gone.
+    await page.click('.phys[data-key="spin"] .confirm-keep');
+    assert.equal(await page.isVisible('.phys[data-key="spin"] .confirm'), false);
+    assert.equal(await page.textContent("#phys-spin-error"), "");
+    assert.equal(Number(await page.inputValue("#phys-spin")), Number(Number(before).toPrecision(6)));
+    // Use: sent as typed (a usual value is sent at once, as before).
+    await page.click("#phys-spin", { clickCount: 3 });
+    await page.keyboard.type("12");
+    await page.keyboard.press("Tab");
+    await page.waitForSelector('.phys[data-key="spin"] .confirm-use');
+    await page.click('.phys[data-key="spin"] .confirm-use');
+    let spin;
+    for (let i = 0; i < 100 && (spin = (await current()).initial.spin) !== 12; i++) await page.waitForTimeout(100);
+    assert.equal(spin, 12, "Use sent it");
+    await page.fill("#phys-spin", String(before));
+    await page.dispatchEvent("#phys-spin", "change");
+    for (let i = 0; i < 100 && (spin = (await current()).initial.spin) !== before; i++) await page.waitForTimeout(100);
+    assert.equal(spin, before, "the value before the test back");
+  });
+
   await test("switching the deformation kind replaces its fields on the server and in the form", async () => {
     // The parameters in force (a change after t = 0 is a timeline entry; the scene is t = 0's).
     const scene = async () => (await (await fetch(await page.$eval("#export-state", (a) => a.href))).json()).current;
