@@ -346,6 +346,8 @@ function physicalRow(spec) {
     helpButton.setAttribute("aria-expanded", String(open));
   });
   const error = el("span", { class: "error", id: `${id}-error`, role: "alert" });
+  // The buttons of a question about a typed value (below): while shown, the field keeps the text.
+  const confirm = el("span", { class: "confirm", hidden: true });
   const helpText = () => (spec.note ? `${spec.note} ` : "") + spec.help;
   help.textContent = helpText();
   for (const input of [range, number]) {
@@ -386,7 +388,11 @@ function physicalRow(spec) {
     } catch (e) {
       // The row was rebuilt by nothing (the change was refused): its message stays beside it, and
       // the value in force comes back, unless the row was edited again meanwhile (edits.js).
-      if (refused(edit, /** @type {Error} */ (e).message)) show(spec.value);
+      // A refusal that names another field (a curvature of 1e9 put the start past the south pole:
+      // "initial.r: …") says first which change of this control it refuses.
+      const message = /** @type {Error} */ (e).message;
+      const own = spec.field && message.startsWith(`${spec.field}:`);
+      if (refused(edit, own ? message : `${spec.label} = ${v} not applied: ${message}`)) show(spec.value);
     }
   };
   // A live row (the curvature dial) sends while it is dragged, at most one change in flight and
@@ -421,7 +427,7 @@ function physicalRow(spec) {
   // The same row with the parameters now in force (its closures read spec).
   updates.set(spec.key, (nextSpec) => {
     spec = nextSpec;
-    if (document.activeElement !== number && !sending) show(spec.value);
+    if (document.activeElement !== number && !sending && confirm.hidden) show(spec.value);
     help.textContent = helpText();
     unit.textContent = spec.unit;
     for (const input of [range, number]) input.title = helpText();
@@ -450,7 +456,6 @@ function physicalRow(spec) {
   });
   // A typed value beyond the field's usual span (x-usual) is questioned, not sent: the field keeps
   // what was typed, the line beside it says why, and a button sends it (1e9 was taken without a word).
-  const confirm = el("span", { class: "confirm", hidden: true });
   const question = (/** @type {number} */ v, /** @type {() => void} */ send) => {
     const edit = begin(error);
     const [lo, hi] = /** @type {[number, number]} */ (spec.usual);

@@ -223,6 +223,16 @@ await runSuite(started, async (browser) => {
     await page.dispatchEvent("#phys-spin", "change");
     for (let i = 0; i < 100 && (spin = (await current()).initial.spin) !== before; i++) await page.waitForTimeout(100);
     assert.equal(spin, before, "the value before the test back");
+    // A refusal that names another field says which change of this control it refuses: a radius
+    // of 0.1 would put the start (r = 1) past the south pole.
+    const radius = await page.inputValue("#phys-radius");
+    await page.click("#phys-radius", { clickCount: 3 });
+    await page.keyboard.type("0.1");
+    await page.keyboard.press("Tab");
+    await page.click('.phys[data-key="radius"] .confirm-use');
+    await page.waitForFunction(() => /not applied/.test(document.querySelector("#phys-radius-error").textContent));
+    assert.match(await page.textContent("#phys-radius-error"), /^Surface radius R = 0\.1 not applied: initial\.r: /);
+    assert.equal(await page.inputValue("#phys-radius"), radius, "the value in force back");
   });
 
   await test("switching the deformation kind replaces its fields on the server and in the form", async () => {
