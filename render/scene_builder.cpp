@@ -430,14 +430,24 @@ std::vector<std::string> hud_lines(const Snapshot& snapshot, const ViewOptions& 
     const std::vector<std::string> notes = picture_notes(snapshot, view);
     lines.insert(lines.end(), notes.begin(), notes.end());
   }
-  // No line runs past the frame (a compact HUD: past half of it): longer ones wrap at a space, the
-  // rest indented. The box's sizes are hud_layout's.
-  const HudLayout size = hud_layout({}, {}, view.width, view.height);
-  const double room = (compact ? 0.5 : 1.0) * view.width - 2.0 * kHudMargin * size.scale - 2.0 * size.padding;
-  const std::size_t most = static_cast<std::size_t>(std::max(16.0, std::floor(room / size.advance)));
+  // No line runs past the frame (a compact HUD: past half of it), nor, beside the legend, into it (the
+  // bump's companions ran under it): longer ones wrap at a space, the rest indented. The boxes' sizes
+  // are hud_layout's.
+  std::vector<std::string> labels;
+  for (const LegendEntry& entry : legend_entries(snapshot, view)) labels.push_back(entry.label);
+  const HudLayout size = hud_layout({}, labels, view.width, view.height);
+  const double margin = kHudMargin * size.scale;
+  const auto most_at = [&](std::size_t row) {  // glyphs on the HUD's line `row` (from 0)
+    const double top = margin + size.padding + row * size.line;
+    const bool beside = size.legend.w > 0.0 && top < size.legend.y + size.legend.h + margin;
+    const double right = beside ? size.legend.x - margin : (compact ? 0.5 : 1.0) * view.width - margin;
+    const double room = right - margin - 2.0 * size.padding;
+    return static_cast<std::size_t>(std::max(16.0, std::floor(room / size.advance)));
+  };
   std::vector<std::string> wrapped;
   for (std::string line : lines) {
-    while (glyph_count(line) > most) {
+    for (std::size_t most = most_at(wrapped.size()); glyph_count(line) > most;
+         most = most_at(wrapped.size())) {
       const std::size_t cut = line.rfind(' ', glyph_offset(line, most));
       if (cut == std::string::npos || cut <= 2) break;  // one long word: left as it is
       wrapped.push_back(line.substr(0, cut));

@@ -5,6 +5,7 @@
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
+#include "engine/orbit_bound.h"
 #include "engine/readout.h"
 
 namespace spinfold::render {
@@ -52,6 +53,7 @@ Snapshot make_snapshot(const Simulation& run, const Trail& trail, double span) {
   s.bodies.front().label = main_body_label(scene);
   const Readout main = readout(run);
   s.hud_lines = readout_lines(scene, main);
+  s.hud_lines.back() += orbit_bound_note(orbit_bound(run));  // the spin's line: held by it, or not
   s.action_lines = action_lines(main);
   for (std::size_t i = 0; i < run.companions.size() && i < scene.companions.size(); ++i) {
     const Trail* own = i < trail.companions.size() ? &trail.companions[i] : nullptr;
@@ -59,7 +61,10 @@ Snapshot make_snapshot(const Simulation& run, const Trail& trail, double span) {
     b.color = b.trail_color = companion_color(scene, i);
     b.label = companion_label(scene, i);
     b.geodesic = scene.companions[i].geodesic;
-    s.hud_lines.push_back(companion_readout_line(b.label, readout(run.companions[i])));
+    OrbitBound bound = orbit_bound(run.companions[i]);
+    bound.critical_spin.reset();  // said once, on the main body's line: a companion's says the verdict
+    s.hud_lines.push_back(companion_readout_line(b.label, readout(run.companions[i])) +
+                          orbit_bound_note(bound));
     s.bodies.push_back(std::move(b));
   }
   return s;

@@ -256,6 +256,45 @@ TEST(SceneBuilder, ASmallFrameHasACompactHud) {
   EXPECT_EQ(readout_lines(s, view), full.hud_lines);
 }
 
+// No HUD text runs into the legend (the bump's companions' lines ran under it, 640 px wide) nor
+// past the frame: over every preset at the full overlay's sizes, each line beside the legend's box
+// ends left of it, and every line within the frame.
+TEST(SceneBuilder, NoHudLineRunsIntoTheLegendOrPastTheFrame) {
+  const auto glyphs = [](const std::string& text) {
+    return static_cast<double>(
+        std::count_if(text.begin(), text.end(), [](char c) { return (c & 0xC0) != 0x80; }));
+  };
+  int beside = 0;
+  std::vector<std::pair<std::string, Snapshot>> cases;
+  for (const PresetSource& preset : preset_sources())
+    cases.emplace_back(preset.name, testing::preset_snapshot(preset.name, 20.0, true));
+  // A companion with a long label: a wide legend beside the HUD's longest lines.
+  Scene wide = *parse_scene_text(find_preset("trapped_spin_bump")->json).scene;
+  wide.companions.at(0).label = "s = 2.5, a little below the critical spin of this bump";
+  Simulation run;
+  cases.emplace_back("long label", snapshot_at(wide, 20.0, true, std::nullopt, run));
+  for (const auto& [name, s] : cases) {
+    for (const auto& [w, h] : {std::pair{640, 480}, {800, 520}, {1280, 720}}) {
+      ViewOptions view;
+      view.kind = default_view(s.surface.kind);
+      view.width = w, view.height = h;
+      aim_camera_at_body(view, s);
+      const FrameScene scene = build_scene(s, view);
+      const HudLayout& l = scene.hud;
+      for (std::size_t k = 0; k < scene.hud_lines.size(); ++k) {
+        const double top = l.hud.y + l.padding + k * l.line,
+                     right = l.hud.x + l.padding + glyphs(scene.hud_lines[k]) * l.advance;
+        EXPECT_LE(right, w) << name << " " << w << ": " << scene.hud_lines[k];
+        if (l.legend.w > 0.0 && top < l.legend.y + l.legend.h) {
+          ++beside;
+          EXPECT_LE(right, l.legend.x) << name << " " << w << ": " << scene.hud_lines[k];
+        }
+      }
+    }
+  }
+  EXPECT_GT(beside, 50);
+}
+
 // The total length of the segments of `color` [world units].
 double drawn_length(const FrameScene& scene, const glm::vec4& color) {
   double length = 0.0;
