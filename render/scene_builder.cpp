@@ -361,6 +361,9 @@ std::vector<LegendEntry> legend_entries(const Snapshot& snapshot, const ViewOpti
   if (bending)
     legend.push_back(
         {"path bends left / right", kBendsLeftColor, kBendsLeftColor, false, false, kBendsRightColor});
+  if ((view.layers & kDrift) &&
+      std::ranges::any_of(snapshot.bodies, [](const BodySnapshot& b) { return b.drift.has_value(); }))
+    legend.push_back({"drift of the loops' centre", kDriftColor, kDriftColor, false, false, std::nullopt});
   return legend;
 }
 

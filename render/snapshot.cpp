@@ -5,6 +5,7 @@
 
 #include "engine/chart.h"
 #include "engine/dynamics.h"
+#include "engine/guiding_centre.h"
 #include "engine/orbit_bound.h"
 #include "engine/readout.h"
 
@@ -51,6 +52,7 @@ Snapshot make_snapshot(const Simulation& run, const Trail& trail, double span) {
   s.bodies.reserve(1 + run.companions.size());
   s.bodies.push_back(body_snapshot(run, &trail, span));
   s.bodies.front().label = main_body_label(scene);
+  if (const auto d = guiding_drift(run)) s.bodies.front().drift = d->direction;
   const Readout main = readout(run);
   s.hud_lines = readout_lines(scene, main);
   s.hud_lines.back() += orbit_bound_note(orbit_bound(run));  // the spin's line: held by it, or not
@@ -61,6 +63,7 @@ Snapshot make_snapshot(const Simulation& run, const Trail& trail, double span) {
     b.color = b.trail_color = companion_color(scene, i);
     b.label = companion_label(scene, i);
     b.geodesic = scene.companions[i].geodesic;
+    if (const auto d = guiding_drift(run.companions[i])) b.drift = d->direction;
     OrbitBound bound = orbit_bound(run.companions[i]);
     bound.critical_spin.reset();  // said once, on the main body's line: a companion's says the verdict
     s.hud_lines.push_back(companion_readout_line(b.label, readout(run.companions[i])) +

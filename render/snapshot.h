@@ -44,6 +44,8 @@ struct BodySnapshot {
   std::array<float, 3> trail_color = kMainTrailColor;  // its trail's [sRGB in 0–1]
   std::string label;      // legend text: main_body_label ("body 1") or companion_label
   bool geodesic = false;  // the point-particle companion: its trail is drawn dashed
+  // Where its guiding centre drifts (engine/guiding_centre.h): the drift's unit direction at X.
+  std::optional<Vec3> drift;
 };
 
 struct Snapshot {

@@ -51,7 +51,8 @@ enum Layer : unsigned {
   kActions = 1u << 6,     // the action variables and frequencies, added to the text overlay
   kCurvature = 1u << 7,   // the Gaussian curvature K as the surface's colour (warm > 0, cool < 0)
   kBending = 1u << 8,     // the main body's trail coloured by which way it bends (render/scene_builder.h)
-  kDefaultLayers = 319u,  // every layer but the action variables and the curvature
+  kDrift = 1u << 9,       // an arrow of a fast spinner's guiding-centre drift (engine/guiding_centre.h)
+  kDefaultLayers = 831u,  // every layer but the action variables and the curvature
 };
 
 // The length that the display scale (ViewOptions::scale, "body size") is given in: R, so that a

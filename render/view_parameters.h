@@ -144,6 +144,9 @@ inline constexpr LayerInfo kLayerTable[] = {
     {"bending", kBending, true,
      "the main body's trail coloured by which way it bends: orange where it turns left, green where it turns "
      "right (seen from outside the surface), grey where it runs straight; deeper the more it bends"},
+    {"drift", kDrift, true,
+     "where a fast spinner gyrates on a surface of revolution, an arrow at each body along the parallel its "
+     "guiding centre drifts along (the grad-B drift of B = K s), reversed with the spin"},
 };
 
 constexpr unsigned default_layers() {

@@ -105,7 +105,7 @@ export function initialState() {
     modified: false,
     view: {
       kind: null,
-      layers: ["surface", "grid", "body", "frame", "trail", "hud", "bending"],
+      layers: ["surface", "grid", "body", "frame", "trail", "hud", "bending", "drift"],
       yaw: null,
       pitch: null,
       distance: null,

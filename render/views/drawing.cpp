@@ -151,6 +151,28 @@ void add_frame_arrows(FrameScene& scene, const Surface& surface, const ViewModel
   }
 }
 
+// The drift arrow: from the body's centre along its drift, 2.2× the body's drawn size, on the
+// surface (the exponential map), its head in the tangent plane.
+void add_drift_arrow(FrameScene& scene, const Surface& surface, const ViewModel& view, double scale,
+                     const BodySnapshot& body) {
+  if (!body.drift) return;
+  std::vector<Vec3> shaft;
+  for (int i = 0; i <= 16; ++i) {
+    const double f = scale * 2.2 * i / 16;
+    shaft.push_back(exponential_map(surface, body.X, *body.drift * f, f));
+  }
+  add_polyline(scene.lines, surface, view, shaft, kDriftColor, false);
+  const glm::dvec3 tip = lifted(view, surface, view.world_position(surface, shaft.back()));
+  const glm::dvec3 before = lifted(view, surface, view.world_position(surface, shaft[12]));
+  const glm::dvec3 back = before - tip;
+  if (glm::length(back) > 0.0) {
+    const glm::dvec3 side =
+        0.5 * glm::length(back) * glm::normalize(glm::cross(view.normal(surface, tip), back));
+    add_segment(scene.lines, tip, before + side, kDriftColor);
+    add_segment(scene.lines, tip, before - side, kDriftColor);
+  }
+}
+
 void add_quad(StaticGeometry& g, const LitVertex& a, const LitVertex& b, const LitVertex& c,
               const LitVertex& d) {
   g.surface.insert(g.surface.end(), {a, b, c, a, c, d});
@@ -179,6 +201,10 @@ void ViewModel::add_bodies(FrameScene& scene, const Snapshot& snapshot, const Vi
     for (auto body = snapshot.bodies.rbegin(); body != snapshot.bodies.rend(); ++body)
       if (draws(surface, body->X))
         add_frame_arrows(scene, surface, *this, body_drawing_scale(surface, *body, view.scale), *body);
+  if (view.layers & kDrift)
+    for (auto body = snapshot.bodies.rbegin(); body != snapshot.bodies.rend(); ++body)
+      if (draws(surface, body->X))
+        add_drift_arrow(scene, surface, *this, body_drawing_scale(surface, *body, view.scale), *body);
 }
 
 double ViewModel::body_drawing_scale(const Surface& surface, const BodySnapshot& body, double scale) const {

@@ -21,6 +21,8 @@ inline const glm::vec4 kGridColor{0.45f, 0.52f, 0.62f, 1.0f};
 inline const glm::vec4 kSeamColor{0.80f, 0.35f, 0.55f, 1.0f};
 inline constexpr float kFillAlpha = 0.55f;
 inline const glm::vec4 kArrowColors[2] = {{0.85f, 0.10f, 0.10f, 1.0f}, {0.10f, 0.60f, 0.15f, 1.0f}};
+// The drift layer's arrow (kDrift): a dark violet, apart from the frame's red and green.
+inline const glm::vec4 kDriftColor = {0.42f, 0.18f, 0.62f, 1.0f};
 
 // A number in a caption or label, printf-formatted ("%g" → "0.5").
 std::string caption_number(const char* pattern, double value);
@@ -68,6 +70,9 @@ void add_body(FrameScene& scene, const Surface& surface, const ViewModel& view, 
 // A body's frame arrows e₁ (red) and e₂ (green): geodesic shafts, barbs in the tangent plane.
 void add_frame_arrows(FrameScene& scene, const Surface& surface, const ViewModel& view, double scale,
                       const BodySnapshot& body);
+// The drift layer's arrow at a body whose guiding centre drifts (BodySnapshot::drift), kDriftColor.
+void add_drift_arrow(FrameScene& scene, const Surface& surface, const ViewModel& view, double scale,
+                     const BodySnapshot& body);
 
 // Two triangles a b c, a c d.
 void add_quad(StaticGeometry& g, const LitVertex& a, const LitVertex& b, const LitVertex& c,

@@ -43,7 +43,7 @@ TEST(ViewParameters, DefaultsAreTheRenderersAndWithinTheirRanges) {
   }
   EXPECT_EQ(std::get<double>(*default_value(view_parameter("width"))), 640.0);
   EXPECT_EQ(std::get<std::string>(*default_value(view_parameter("layers"))),
-            "surface,grid,body,frame,trail,hud,bending");
+            "surface,grid,body,frame,trail,hud,bending,drift");
   EXPECT_FALSE(default_value(view_parameter("yaw")));                                    // aimed at the body
   EXPECT_FALSE(default_value(view_parameter("view")));                                   // the surface's own
   EXPECT_EQ(std::get<std::string>(*default_value(view_parameter("motion"))), "steady");  // the lesson's
@@ -100,8 +100,9 @@ TEST(ViewParameters, RefusalsSayWhatIsAllowed) {
             "must be sphere, disk, hyperboloid, klein, halfplane, tractricoid, plane, conformal, revolution, "
             "chart or formula");
   // Every layer is listed, `actions` included.
-  EXPECT_EQ(why("layers", std::string("surface,sparkles")),
-            "'sparkles' is not one of surface, grid, body, frame, trail, hud, actions, curvature, bending");
+  EXPECT_EQ(
+      why("layers", std::string("surface,sparkles")),
+      "'sparkles' is not one of surface, grid, body, frame, trail, hud, actions, curvature, bending, drift");
   EXPECT_EQ(r.width, 640);
   EXPECT_EQ(r.scale, 0.25);
   EXPECT_FALSE(r.view);
@@ -119,7 +120,7 @@ TEST(ViewParameters, LayerTableDefinesTheNamesAndTheDefaultMask) {
     EXPECT_EQ(parse_layers(kLayerTable[i].name), kLayerTable[i].bit);
     all |= kLayerTable[i].bit;
   }
-  EXPECT_EQ(parse_layers("surface,grid,body,frame,trail,hud,actions,curvature,bending"), all);
+  EXPECT_EQ(parse_layers("surface,grid,body,frame,trail,hud,actions,curvature,bending,drift"), all);
   EXPECT_EQ(parse_layers(default_layer_list()), kDefaultLayers);
   EXPECT_EQ(parse_layers(""), 0u);
   std::string unknown;

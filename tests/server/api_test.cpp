@@ -1209,8 +1209,8 @@ TEST_F(Api, QueryValuesOutOfRangeOrOfTheWrongTypeNameTheValue) {
        "revolution, chart or formula (got cube)"},
       {frame + "view=klein", "view: the sphere is shown in these views: sphere, disk, conformal (got klein)"},
       {frame + "layers=body,glitter",
-       "layers: 'glitter' is not one of surface, grid, body, frame, trail, hud, actions, curvature, bending "
-       "(got "
+       "layers: 'glitter' is not one of surface, grid, body, frame, trail, hud, actions, curvature, bending, "
+       "drift (got "
        "body,glitter)"},
       {"/api/v1/sessions/" + id + "/events?rate=1000",
        "rate: must be a number from 0.5 to 60 [Hz] (got 1000)"},

@@ -175,8 +175,8 @@ TEST_F(ViewParameterTable, TheRouteAnswersTheTables) {
     EXPECT_EQ(doc["layers"][i]["name"], std::string(render::kLayerTable[i].name));
     EXPECT_EQ(doc["layers"][i]["default"], render::kLayerTable[i].on_by_default);
   }
-  EXPECT_EQ(doc["layers"].back()["name"], "bending");
-  EXPECT_EQ(doc["layers"].back()["default"], true);  // the path's bending is in the default picture
+  EXPECT_EQ(doc["layers"].back()["name"], "drift");
+  EXPECT_EQ(doc["layers"].back()["default"], true);  // the guiding centre's drift is in the default picture
   ASSERT_EQ(doc["formats"].size(), std::size(record::kFormats));
   for (std::size_t i = 0; i < std::size(record::kFormats); ++i) {
     EXPECT_EQ(doc["formats"][i]["name"], std::string(record::kFormats[i].name));
