@@ -15,7 +15,9 @@ namespace spinfold {
 namespace {
 
 constexpr double kScanFeatures = 40.0;  // how far the turning points are searched, in features
-constexpr int kStepsPerFeature = 256;
+// The scan's step, in features: V_eff varies on the feature's scale, and each frame's HUD asks
+// (bisection and a golden section then take the found points to the last bits).
+constexpr int kStepsPerFeature = 64;
 
 }  // namespace
 
@@ -81,27 +83,31 @@ OrbitBound orbit_bound(const Simulation& run) {
   b.u_low = low.value_or(-std::numeric_limits<double>::infinity());
   b.u_high = high.value_or(std::numeric_limits<double>::infinity());
   // A start on an axis point: p_φ = s C_axis, V_eff = s² (C_axis − C)²/(2 m ρ²) and E = m v²/2.
-  const Scene& start = scene;  // the scene's start, where the run began (its critical spin)
-  const bool axis_start = (domain.axis_at_min && start.initial.u == domain.u_min) ||
-                          (domain.axis_at_max && start.initial.u == domain.u_max);
+  const double u_start = scene.initial.u;  // where the run began: its critical spin
+  const bool axis_start =
+      (domain.axis_at_min && u_start == domain.u_min) || (domain.axis_at_max && u_start == domain.u_max);
   if (axis_start) {
-    const double C_axis = point(start.initial.u).second;
-    const double dir = start.initial.u == domain.u_min ? 1.0 : -1.0;
-    const auto ratio = [&](double k) {  // |C_axis − C|/ρ at u = u_axis + dir k h
-      const auto [rho, C] = point(start.initial.u + dir * k * h);
+    const double C_axis = point(u_start).second, dir = u_start == domain.u_min ? 1.0 : -1.0;
+    const auto ratio = [&](double k) {  // |C_axis − C|/ρ at u = u_start + dir k h
+      const auto [rho, C] = point(u_start + dir * k * h);
       return rho > 0.0 ? std::abs(C_axis - C) / rho : 0.0;
     };
     int best = 1;
+    double most = ratio(1.0);
     for (int k = 2; k <= kScanFeatures * kStepsPerFeature; ++k)
-      if (ratio(k) > ratio(best)) best = k;
+      if (const double r_k = ratio(k); r_k > most) best = k, most = r_k;
     // The grid's best refined by golden section within its neighbours (the grid alone erred 7e-6).
-    double a = best - 1.0, c = best + 1.0;
     constexpr double g = 0.6180339887498949;
+    double a = best - 1.0, c = best + 1.0;
+    double x1 = c - g * (c - a), x2 = a + g * (c - a), f1 = ratio(x1), f2 = ratio(x2);
     for (int i = 0; i < 80; ++i) {
-      const double x1 = c - g * (c - a), x2 = a + g * (c - a);
-      (ratio(x1) > ratio(x2) ? c : a) = ratio(x1) > ratio(x2) ? x2 : x1;
+      if (f1 > f2) {
+        c = x2, x2 = x1, f2 = f1, x1 = c - g * (c - a), f1 = ratio(x1);
+      } else {
+        a = x1, x1 = x2, f1 = f2, x2 = a + g * (c - a), f2 = ratio(x2);
+      }
     }
-    const double most = ratio(0.5 * (a + c));
+    most = std::max(most, ratio(0.5 * (a + c)));
     // (The start's speed: E_orb is a constant of the run, m v²/2.)
     if (most > 0.0) b.critical_spin = m * std::sqrt(2.0 * E / m) / most;
   }

@@ -28,7 +28,7 @@ struct OrbitBound {
 };
 
 // Of the run's body now (a companion's run too). The turning points are searched from u within
-// 40 features (ProfilePicture::feature) each way, at 1/256 of one, then bisected: beyond that
+// 40 features (ProfilePicture::feature) each way, at 1/64 of one, then bisected: beyond that
 // V_eff falls as 1/ρ² on every unbounded profile we have (the curvature has died away).
 OrbitBound orbit_bound(const Simulation& run);
 

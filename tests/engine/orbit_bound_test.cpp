@@ -103,7 +103,7 @@ TEST(OrbitBound, OverRandomStartsTheVerdictIsWhatTheRunDoes) {
     const Readout start = readout(run);
     for (const double dir : {-1.0, 1.0}) {
       const double end = dir > 0 ? b.u_high : b.u_low;
-      if (!std::isinf(end) || (bump && dir < 0)) continue;
+      if (!std::isinf(end)) continue;  // a turning point (or the bump's axis) that way
       for (double k = 0; k <= 40 * 256; ++k)
         margin = std::min(margin, (E - v_eff(scene, start, u + dir * k * feature / 256)) / E);
     }
