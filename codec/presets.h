@@ -16,6 +16,14 @@ struct PresetSource {
 };
 
 std::span<const PresetSource> preset_sources();
+// The lesson sequence (assets/lessons/sequence.txt): every preset once, in teaching order, each in
+// its chapter (one surface or one idea). The gallery's order and each preset's "next".
+struct LessonPlace {
+  std::string_view chapter;  // its title, in plain words
+  std::string_view preset;   // a PresetSource::name
+};
+std::span<const LessonPlace> lesson_sequence();
+
 // nullptr if there is no preset of that name.
 const PresetSource* find_preset(std::string_view name);
 

@@ -23,9 +23,11 @@ export function renderComparisons(s, b) {
 /**
  * Adds or removes the geodesic companion; its legend needs the hud, which is switched on where the
  * frame has room for it (on a phone the overlay would cover much of the picture: the dashed trail
- * tells the companion apart there).
+ * tells the companion apart there). `bySimpleMode`: simple mode adds it itself, which leaves the
+ * preset unmarked (the teacher changed nothing).
+ * @param {{bySimpleMode?: boolean}} [options]
  */
-export async function toggleGeodesic() {
+export async function toggleGeodesic({ bySimpleMode = false } = {}) {
   const s = store.get();
   const companions = s.current.companions ?? [];
   const next = hasGeodesic(s)
@@ -33,7 +35,7 @@ export async function toggleGeodesic() {
     : [...companions, { geodesic: true, label: "geodesic (s = 0)" }];
   const edit = begin();
   try {
-    await applyChange({ companions: next.length ? next : null }, edit);
+    await applyChange({ companions: next.length ? next : null }, edit, { marks: !bySimpleMode });
     store.update((now) =>
       now.view.layers.includes("hud") || !roomForHud()
         ? {}

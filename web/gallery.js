@@ -1,7 +1,6 @@
 // @ts-check
-// The preset gallery and the scene's explanation: the presets in teaching order (the default
-// first, then spin against geodesic, then deformation, then the rest in the server's order), with
-// thumbnails the server renders.
+// The preset gallery and the scene's explanation: the presets in the server's lesson sequence
+// (assets/lessons/sequence.txt), a label at each chapter, with thumbnails the server renders.
 import { api, request } from "./api.js";
 import { $, el } from "./dom.js";
 import { freshCamera } from "./frame.js";
@@ -11,26 +10,6 @@ import { store, withView } from "./state.js";
 import { surfaceTitle } from "./surface.js";
 
 /** @typedef {import("./state.js").AppState} AppState */
-
-const teachingOrder = [
-  "spinning_rigid_sphere",
-  "geodesic_rigid_sphere",
-  "spin_vs_geodesic_sphere",
-  "spin_vs_geodesic_pseudosphere",
-  "spin_fan_sphere",
-  "opposite_spins_sphere",
-  "spinning_rigid_pseudosphere",
-  "geodesic_rigid_pseudosphere",
-  "spinning_rigid_plane",
-  "breathing_ellipse_sphere",
-  "deforming_spin_pseudosphere",
-  "deforming_spin_vs_geodesic_pseudosphere",
-];
-/** @param {string} name */
-const rank = (name) => {
-  const i = teachingOrder.indexOf(name);
-  return i < 0 ? teachingOrder.length : i;
-};
 
 /** The gallery's short-lived session, while a thumbnail is being made. @type {string | null} */
 let thumbnailSession = null;
@@ -62,11 +41,27 @@ export function renderExplanation(s, b) {
     : `Your own scene on the ${surfaceTitle(s.schema, s.surface.kind)}.`;
 }
 
+/**
+ * Opens a preset by name (a card, the lesson card's "Next"). It opens in its surface's own view,
+ * aimed afresh: nothing of the last scene's view stays (the disk view of an H² preset carried over
+ * to a sphere, a zoom put the body under the HUD).
+ * @param {string} name
+ */
+export function openPreset(name) {
+  const preset = store.get().presets.find((p) => p.name === name);
+  if (!preset) return;
+  openScene(preset.scene, { preset: preset.name })
+    .then(() => store.update((s) => withView(s, { ...freshCamera(), kind: null })))
+    .catch((e) => say(e.message));
+}
+
 /** The cards, then their thumbnails, one short-lived session at a time, kept for the tab. */
 export async function buildGallery() {
   const gallery = $("gallery");
-  const presets = [...store.get().presets].sort((a, b) => rank(a.name) - rank(b.name));
-  for (const preset of presets) {
+  const presets = store.get().presets;
+  presets.forEach((preset, i) => {
+    if (i === 0 || preset.chapter !== presets[i - 1].chapter)
+      gallery.append(el("h2", { class: "chapter", text: preset.chapter ?? "" }));
     const button = el(
       "button",
       { type: "button", class: "preset", "data-name": preset.name, title: preset.description },
@@ -75,15 +70,9 @@ export async function buildGallery() {
       el("span", { class: "mark" }),
       el("small", { text: preset.description }),
     );
-    // A preset opens in its surface's own view, aimed afresh: nothing of the last scene's view stays
-    // (the disk view of an H² preset carried over to a sphere, a zoom put the body under the HUD).
-    button.addEventListener("click", () =>
-      openScene(preset.scene, { preset: preset.name })
-        .then(() => store.update((s) => withView(s, { ...freshCamera(), kind: null })))
-        .catch((e) => say(e.message)),
-    );
+    button.addEventListener("click", () => openPreset(preset.name));
     gallery.append(button);
-  }
+  });
   const s = store.get();
   renderGalleryMarks(s, { ...s, presets: [] });
   for (const preset of presets) {

@@ -1,11 +1,12 @@
 // @ts-check
 // The keyboard and the pointer on the picture: Space play/pause, → step, R reset, F full screen,
 // G geodesic companion, arrows orbit (on the focused picture; Shift+arrows anywhere), + and − zoom,
-// V resets the view (R too), comma and period look back while paused, ? lists them all, dragging
-// orbits (3-D views). Typing in a field is
+// V resets the view (R too), [ and ] change the view, N and P the lesson, comma and period look
+// back while paused, ? lists them all, dragging orbits (3-D views). Typing in a field is
 // left alone; Space on another button presses it.
 import { toggleGeodesic } from "./comparisons.js";
 import { $, el } from "./dom.js";
+import { openPreset } from "./gallery.js";
 import { camera, is3d, orbit, resetView, toggleFollow, zoom } from "./frame.js";
 import { toggleFullscreen } from "./presentation.js";
 import { say } from "./readout.js";
@@ -26,6 +27,8 @@ export const shortcuts = [
   { keys: ["+", "−"], does: "Zoom in, zoom out" },
   { keys: ["Shift + arrows"], does: "Orbit the camera (3-D views; plain arrows on the focused picture)" },
   { keys: ["G"], does: "Add or remove the geodesic companion" },
+  { keys: ["[", "]"], does: "The previous or the next view of this surface" },
+  { keys: ["N", "P"], does: "The next or the previous lesson (the gallery's order)" },
   { keys: [",", "."], does: "Look back: an earlier or a later moment of the paused run" },
   {
     keys: ["Tab", "arrows"],
@@ -84,11 +87,33 @@ function onKey(e) {
   else if (key === "c" || key === "C") toggleFollow();
   else if (key === "?") showShortcuts();
   else if (key === "g" || key === "G") toggleGeodesic();
+  else if (key === "[" || key === "]") cycleView(key === "]" ? 1 : -1);
+  else if (key === "n" || key === "N" || key === "p" || key === "P") nextLesson(key === "n" || key === "N" ? 1 : -1);
   else if (key === "," || key === ".") handled = nudgeScrub(key === "," ? -1 : 1);
   else if (key === "+" || key === "=") zoom(1.15);
   else if (key === "-" || key === "_" || key === "−") zoom(1 / 1.15);
   else handled = false;
   if (handled) e.preventDefault();
+}
+
+/** The view `d` places on in the View menu's offered views, going round. @param {number} d */
+function cycleView(d) {
+  const select = /** @type {HTMLSelectElement} */ ($("view"));
+  const offered = [...select.options].filter((o) => !o.disabled);
+  if (offered.length < 2) return say("This surface has one view.");
+  const i = offered.findIndex((o) => o.value === select.value);
+  select.value = offered[(i + d + offered.length) % offered.length].value;
+  select.dispatchEvent(new Event("change"));
+  say(`View: ${select.selectedOptions[0].textContent}.`);
+}
+
+/** The preset `d` places on in the lesson sequence (your own scene: the first). @param {number} d */
+function nextLesson(d) {
+  const { presets, preset } = store.get();
+  const i = presets.findIndex((p) => p.name === preset);
+  const to = i < 0 ? presets[0] : presets[i + d];
+  if (to) openPreset(to.name);
+  else say(d > 0 ? "This is the last lesson." : "This is the first lesson.");
 }
 
 /** Opens the list of shortcuts (a modal dialog: Esc or its button closes it, focus comes back). */

@@ -5,6 +5,8 @@
 // mode is kept for the browser (localStorage), like the theme.
 import { hasGeodesic, toggleGeodesic } from "./comparisons.js";
 import { $ } from "./dom.js";
+import { openPreset } from "./gallery.js";
+import { presetLabel } from "./session.js";
 import { mount, store } from "./state.js";
 
 /** @typedef {import("./state.js").AppState} AppState */
@@ -20,11 +22,21 @@ function renderLesson(s, b) {
     const text = lookFor(s);
     $("look-for").hidden = !text;
     $("look-for-text").textContent = text;
+    // The lesson sequence's next preset (the scenes route's `next`), one click on.
+    const preset = s.presets.find((p) => p.name === s.preset);
+    const next = preset?.next ? s.presets.find((p) => p.name === preset.next) : null;
+    const button = $("next-lesson");
+    button.hidden = !next;
+    if (next) {
+      button.textContent = `Next: ${presetLabel(next.name)} ▸`;
+      button.dataset.next = next.name;
+      button.title = next.chapter === preset.chapter ? next.description : `${next.chapter}: ${next.description}`;
+    }
   }
   // A scene opened in simple mode gets the geodesic companion (once: it can be removed again).
   if (document.body.classList.contains("simple") && s.id && s.id !== b.id && s.phase === "live" && !hasGeodesic(s))
     setTimeout(() => {
-      if (store.get().id === s.id && !hasGeodesic(store.get())) toggleGeodesic();
+      if (store.get().id === s.id && !hasGeodesic(store.get())) toggleGeodesic({ bySimpleMode: true });
     }, 0);
 }
 
@@ -52,7 +64,8 @@ export function setupLesson() {
     const next = !document.body.classList.contains("simple");
     setSimple(next);
     const s = store.get();
-    if (next && s.id && s.phase === "live" && !hasGeodesic(s)) toggleGeodesic();
+    if (next && s.id && s.phase === "live" && !hasGeodesic(s)) toggleGeodesic({ bySimpleMode: true });
   };
+  $("next-lesson").onclick = () => openPreset($("next-lesson").dataset.next ?? "");
   mount(renderLesson);
 }

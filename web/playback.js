@@ -35,6 +35,7 @@ export function renderPlayback(s, b) {
   $("state-badge").dataset.state = state;
   $("play-state").textContent = stopped ? "■ stopped" : s.playing ? `▶${paced}` : "❚❚ paused";
   $("play-state").dataset.state = state;
+  $("frame-play").textContent = s.playing ? "❚❚ Pause" : "▶ Play";
   if (s.rate !== Number($("speed").value) && document.activeElement !== $("speed")) {
     $("speed").value = s.rate;
     $("speed-out").textContent = s.rate;
@@ -51,6 +52,7 @@ export function setupPlayback() {
     play();
   };
   $("pause").onclick = reported(pause);
+  $("frame-play").onclick = () => (store.get().playing ? reported(pause)() : $("play").click());
   $("step").onclick = reported(step);
   $("reset").onclick = () => {
     resetView();

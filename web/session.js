@@ -282,8 +282,10 @@ export async function earlierAnswered(edit) {
  * caller to show with refused(edit, …).
  * @param {any} patch
  * @param {import("./edits.js").Edit} [edit]
+ * @param {{marks?: boolean}} [options] marks: false for a change the page makes itself (simple
+ *   mode's geodesic companion), which does not mark the preset "modified"
  */
-export async function applyChange(patch, edit = begin()) {
+export async function applyChange(patch, edit = begin(), { marks = true } = {}) {
   const answer = call("PATCH", `/sessions/${store.get().id}`, patch);
   changing.set(edit.n, answer);
   /** @type {any} */
@@ -298,7 +300,7 @@ export async function applyChange(patch, edit = begin()) {
   const restarted = res.change.kind === "restarted";
   store.update((s) => ({
     ...adopted(s, res, { answer: true }),
-    modified: s.modified || res.change.kind !== "unchanged",
+    modified: s.modified || (marks && res.change.kind !== "unchanged"),
     ...(restarted ? { start: res.state } : {}),
   }));
   receive(res.state, { restart: restarted, from: "answer" });
@@ -426,6 +428,6 @@ export async function firstSession() {
     return;
   }
   const { presets } = store.get();
-  const first = presets.find((p) => p.name === "spinning_rigid_sphere") || presets[0];
+  const first = presets.find((p) => p.default) || presets[0]; // the server's default scene
   await openScene(first.scene, { preset: first.name });
 }

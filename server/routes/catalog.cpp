@@ -51,10 +51,16 @@ void get_health(ServerContext& server, const Call&, httplib::Response& res) {
 }
 
 void get_scenes(ServerContext&, const Call&, httplib::Response& res) {
+  // In the lesson sequence (codec/presets.h), each with its chapter and the preset after it.
   ordered_json list = ordered_json::array();
-  for (const PresetSource& p : preset_sources()) {
+  const std::span<const LessonPlace> sequence = lesson_sequence();
+  for (std::size_t i = 0; i < sequence.size(); ++i) {
+    const PresetSource& p = *find_preset(sequence[i].preset);
     const SceneParse parsed = parse_scene_text(p.json);
     list.push_back({{"name", std::string(p.name)},
+                    {"chapter", std::string(sequence[i].chapter)},
+                    {"next", i + 1 < sequence.size() ? json(std::string(sequence[i + 1].preset)) : json(nullptr)},
+                    {"default", p.name == kDefaultPreset},
                     {"description", parsed.scene ? parsed.scene->description : ""},
                     {"look_for", std::string(p.look_for)},
                     {"scene", json::parse(p.json)}});
@@ -184,8 +190,11 @@ std::vector<Route> catalog_routes(const Limits&) {
        .path = "/api/v1/scenes",
        .operation_id = "list_scenes",
        .handler = get_scenes,
-       .summary = "The preset scenes",
-       .responses = {{200, "name, description, look_for (what to look for, in plain words), scene"}}},
+       .summary = "The preset scenes, in the lesson sequence",
+       .responses = {{200,
+                      "name, chapter (its part of the lesson sequence), next (the preset after it, or null), "
+                      "default (the scene a new page opens), "
+                      "description, look_for (what to look for, in plain words), scene"}}},
       {.method = "GET",
        .path = "/api/v1/integrators",
        .operation_id = "list_integrators",

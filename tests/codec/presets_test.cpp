@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
 #include <numbers>
 
 #include "codec/scene_json.h"
@@ -43,6 +46,27 @@ TEST(Presets, EachHasACardSayingWhatToLookFor) {
     for (const std::string_view jargon : {"\\", "$", "physics.md", "W5", "nu_", "sqrt("})
       EXPECT_EQ(p.look_for.find(jargon), std::string_view::npos) << jargon;
   }
+}
+
+// The lesson sequence lists every preset once, in chapters of one surface or one idea: the chapters
+// never come back (a preset of an earlier chapter listed later), and each holds at least two.
+TEST(Presets, TheLessonSequenceHasEveryPresetOnceInChaptersThatDoNotComeBack) {
+  const std::span<const LessonPlace> sequence = lesson_sequence();
+  ASSERT_EQ(sequence.size(), preset_sources().size());
+  std::set<std::string_view> listed, chapters_done;
+  std::map<std::string_view, int> per_chapter;
+  for (std::size_t i = 0; i < sequence.size(); ++i) {
+    SCOPED_TRACE(std::string(sequence[i].preset));
+    EXPECT_NE(find_preset(sequence[i].preset), nullptr);
+    EXPECT_TRUE(listed.insert(sequence[i].preset).second) << "listed twice";
+    EXPECT_FALSE(sequence[i].chapter.empty());
+    if (i > 0 && sequence[i].chapter != sequence[i - 1].chapter) chapters_done.insert(sequence[i - 1].chapter);
+    EXPECT_FALSE(chapters_done.contains(sequence[i].chapter)) << "a chapter comes back";
+    ++per_chapter[sequence[i].chapter];
+  }
+  for (const auto& [chapter, count] : per_chapter) EXPECT_GE(count, 2) << chapter;
+  // The default scene is in the sequence's first chapter (a first lesson, not a research case).
+  EXPECT_EQ(std::ranges::find(sequence, kDefaultPreset, &LessonPlace::preset)->chapter, sequence.front().chapter);
 }
 
 TEST(Presets, GeodesicBodyStaysOnAGreatCircleAndTheSpinningOneDoesNot) {

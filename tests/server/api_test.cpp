@@ -81,7 +81,19 @@ TEST_F(Api, HealthScenesAndIntegrators) {
   EXPECT_FALSE(health->get_header_value("X-Spinfold-Version").empty());
   auto scenes = c.Get("/api/v1/scenes");
   ASSERT_TRUE(scenes);
-  EXPECT_GE(json::parse(scenes->body).size(), 8u);
+  const json list = json::parse(scenes->body);
+  EXPECT_GE(list.size(), 8u);
+  // The lesson sequence: each scene's next is the one after it, the last has none, one is the default.
+  int defaults = 0;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    EXPECT_FALSE(list[i]["chapter"].get<std::string>().empty());
+    if (i + 1 < list.size()) {
+      EXPECT_EQ(list[i]["next"], list[i + 1]["name"]);
+    }
+    defaults += list[i]["default"].get<bool>() ? 1 : 0;
+  }
+  EXPECT_TRUE(list.back()["next"].is_null());
+  EXPECT_EQ(defaults, 1);
   auto integrators = c.Get("/api/v1/integrators");
   ASSERT_TRUE(integrators);
   bool has_exact = false;

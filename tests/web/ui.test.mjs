@@ -815,11 +815,14 @@ await runSuite(started, async (browser) => {
     assert.equal(session.current.vary, undefined);
   });
 
-  await test("gallery: teaching order, the open card marked modified after an edit, a surface switch clears it", async () => {
+  await test("gallery: the lesson sequence, the open card marked modified after an edit, a surface switch clears it", async () => {
     const order = await page.$$eval(".preset", (cards) => cards.map((c) => c.dataset.name));
-    assert.equal(order[0], "spinning_rigid_sphere");
-    assert.ok(order.indexOf("spin_vs_geodesic_sphere") < order.indexOf("breathing_ellipse_sphere"));
-    assert.ok(order.indexOf("breathing_ellipse_sphere") < order.indexOf("pole_crossing_sphere"));
+    // The lesson sequence: the geodesic, then the same body spinning (the default scene), spin
+    // against geodesic before deformation, constant curvature before the surfaces where it varies.
+    assert.deepEqual(order.slice(0, 3), ["geodesic_rigid_sphere", "spinning_rigid_sphere", "spin_vs_geodesic_sphere"]);
+    assert.ok(order.indexOf("spin_vs_geodesic_pseudosphere") < order.indexOf("breathing_ellipse_sphere"));
+    assert.ok(order.indexOf("breathing_ellipse_sphere") < order.indexOf("spin_vs_geodesic_torus"));
+    assert.ok(order.indexOf("trapped_spin_bump") < order.indexOf("egg_crate_spin"));
     await page.click('.preset[data-name="spinning_rigid_sphere"]');
     await page.waitForFunction(() => document.querySelector(".preset.active .mark")?.textContent === "selected");
     await page.fill("#phys-spin", "0.5");
@@ -1075,6 +1078,81 @@ await runSuite(started, async (browser) => {
     await full.close();
   });
 
+  await test("the picture is the main thing at 1280×720, 1366×768 and 1920×1080 (≥ 60 % of the height, the HUD on); Next follows the lesson sequence", async () => {
+    const scenes = await (await fetch(base + "api/v1/scenes")).json();
+    for (const [width, height] of [[1280, 720], [1366, 768], [1920, 1080]]) {
+      const p = await browser.newPage({ bypassCSP: true, viewport: { width, height } });
+      watchConsole(p, `page at ${width}×${height}`);
+      await p.goto(base);
+      await p.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+      await p.waitForFunction(() => Number(document.querySelector("#frame").dataset.painted) > 0, null, { timeout: 20000 });
+      const box = await p.$eval("#frame", (f) => f.getBoundingClientRect().toJSON());
+      assert.ok(box.height >= 0.6 * height, `picture ${Math.round(box.height)} px high of ${height}`);
+      assert.ok(box.bottom <= height, `the picture ends at ${box.bottom}, inside the window`);
+      assert.ok(await p.isChecked('input[name="layer-hud"]'), `the HUD (t, K) is on at ${width}×${height}`);
+      // The gallery is the lesson sequence: the server's order, a heading at each chapter.
+      const cards = await p.$$eval("#gallery .preset", (els) => els.map((e) => e.dataset.name));
+      assert.deepEqual(cards, scenes.map((x) => x.name));
+      const chapters = await p.$$eval("#gallery .chapter", (els) => els.map((e) => e.textContent));
+      assert.deepEqual(chapters, [...new Set(scenes.map((x) => x.chapter))]);
+      if (width === 1366) {
+        const open = await p.evaluate(() => document.querySelector(".preset.active").dataset.name);
+        const next = scenes.find((x) => x.name === open).next;
+        assert.ok(next, `${open} has a next lesson`);
+        await p.click("#next-lesson");
+        await p.waitForFunction((n) => document.querySelector(".preset.active")?.dataset.name === n, next, { timeout: 30000 });
+      }
+      await p.close();
+    }
+  });
+
+  await test("simple mode leaves an untouched preset unmarked; N and P walk the lessons, ] the views; full screen has its own Play/Pause", async () => {
+    const scenes = await (await fetch(base + "api/v1/scenes")).json();
+    const t = await browser.newPage({ bypassCSP: true, viewport: { width: 1366, height: 900 } });
+    watchConsole(t, "lesson keys page");
+    await t.goto(base);
+    await t.waitForSelector("body[data-ready=true]", { timeout: 20000 });
+    const active = () => t.evaluate(() => document.querySelector(".preset.active")?.dataset.name);
+    const mark = () => t.evaluate(() => document.querySelector(".preset.active .mark")?.textContent);
+    const simpleWasOn = (await t.getAttribute("#simple", "aria-pressed")) === "true";
+    if (!simpleWasOn) await t.click("#simple");
+    // Simple mode adds the geodesic companion itself: the preset is still the one the gallery offers.
+    await t.waitForFunction(() => document.querySelector("#geodesic").getAttribute("aria-pressed") === "true", null, { timeout: 20000 });
+    await t.waitForTimeout(300);
+    assert.equal(await mark(), "selected");
+    const first = await active();
+    const i = scenes.findIndex((x) => x.name === first);
+    await t.focus("#frame");
+    await t.keyboard.press("n");
+    await t.waitForFunction((n) => document.querySelector(".preset.active")?.dataset.name === n, scenes[i + 1].name, { timeout: 30000 });
+    await t.waitForFunction(() => document.querySelector("#geodesic").getAttribute("aria-pressed") === "true", null, { timeout: 20000 });
+    await t.waitForTimeout(300);
+    assert.equal(await mark(), "selected", "a lesson opened in simple mode is not marked modified");
+    await t.keyboard.press("p");
+    await t.waitForFunction((n) => document.querySelector(".preset.active")?.dataset.name === n, first, { timeout: 30000 });
+    // ] goes to the next view this surface offers, and round.
+    const views = await t.$$eval("#view option:not([disabled])", (os) => os.map((o) => o.value));
+    const before = await t.$eval("#view", (v) => v.value);
+    await t.keyboard.press("]");
+    const after = await t.$eval("#view", (v) => v.value);
+    if (views.length > 1) assert.equal(after, views[(views.indexOf(before) + 1) % views.length]);
+    else assert.equal(after, before);
+    // Full screen hides the playback bar; the picture's own button plays and pauses.
+    await t.click("#fullscreen");
+    await t.waitForFunction(() => document.fullscreenElement?.id === "frame-box", null, { timeout: 10000 });
+    const play = await (await t.$("#frame-play")).boundingBox();
+    assert.ok(play && play.width >= 44 && play.height >= 44, "the full-screen Play button is shown, 44 px at least");
+    await t.click("#frame-play");
+    await t.waitForFunction(() => document.body.dataset.playing === "true");
+    assert.match(await t.textContent("#frame-play"), /Pause/);
+    await t.click("#frame-play");
+    await t.waitForFunction(() => document.body.dataset.playing === "false");
+    await t.evaluate(() => document.exitFullscreen());
+    assert.equal(await t.$eval("#frame-play", (b) => getComputedStyle(b).display), "none");
+    if (!simpleWasOn) await t.click("#simple");
+    await t.close();
+  });
+
   await test("embed mode shows the frame and the minimal controls only", async () => {
     const e = await browser.newPage({ bypassCSP: true, viewport: { width: 800, height: 600 } });
     watchConsole(e, "embed page");
@@ -1123,10 +1201,20 @@ await runSuite(started, async (browser) => {
       // A phone's picture is too small for legible overlay text; the readout below says the same.
       await phone.waitForFunction(() => !new URLSearchParams(document.querySelector("#export-png").search).get("layers").includes("hud"));
       assert.equal(await phone.$eval("#layers input[name=layer-hud]", (el) => el.checked), false);
-      for (const id of ["play", "pause", "step", "reset", "fullscreen", "geodesic"]) {
-        const b = await (await phone.$(`#${id}`)).boundingBox();
-        assert.ok(b.height >= 44 && b.width >= 44, `${id}: ${b.width}×${b.height}`);
-      }
+      // Every control shown (the advanced fields and the recording panel opened too): its target, the
+      // control itself or the label that holds it (a checkbox's, a radio's), at least 44×44.
+      await phone.$$eval("details", (all) => all.forEach((d) => (d.open = true)));
+      const small = await phone.$$eval("button, input, select, summary, a[href], [role=button]", (els) =>
+        els
+          .filter((x) => x.offsetParent !== null && !x.classList.contains("skip")) // skip: off screen until focused
+          .map((x) => {
+            const target = x.closest("label") && (x.type === "checkbox" || x.type === "radio") ? x.closest("label") : x;
+            const b = target.getBoundingClientRect();
+            return { what: x.id || x.name || x.textContent.trim().slice(0, 24), width: b.width, height: b.height };
+          })
+          .filter((b) => b.width > 0 && (b.width < 44 || b.height < 43.5)),
+      );
+      assert.deepEqual(small, [], `targets under 44 px at ${viewport.width}×${viewport.height}`);
       // The geodesic companion (simple mode turns it on) leaves the overlay off here: it would cover
       // much of the picture, and the dashed trail tells the companion apart.
       await phone.click("#geodesic");
