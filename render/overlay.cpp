@@ -13,10 +13,6 @@ namespace spinfold::render {
 
 namespace {
 
-// The scales hud_layout() gives: its projector floor 1.25, then half steps up to 4× (larger
-// frames draw the text at 4×).
-constexpr std::array<double, 8> kHudScales{1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0};
-
 // The font made for a scale: the nearest of kHudScales.
 int font_for(double scale) {
   const auto nearest = std::min_element(kHudScales.begin(), kHudScales.end(), [&](double a, double b) {

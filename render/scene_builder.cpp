@@ -251,14 +251,23 @@ std::size_t glyph_offset(const std::string& text, std::size_t n) {
 
 }  // namespace
 
-HudLayout hud_layout(const std::vector<std::string>& lines, const std::vector<std::string>& legend_labels,
-                     int width, int height) {
-  HudLayout h;
-  const double side = std::min(0.75 * width, static_cast<double>(height)) / 540.0;
-  h.scale = std::max(1.0, std::round(2.0 * side) / 2.0);
+double hud_text_scale(int width, int height, int shown_width) {
+  const double shown = shown_width > 0 ? shown_width : width;
+  const double factor = width / shown;  // drawn pixels per shown pixel
+  const double side = std::min(0.75 * shown, height / factor) / 540.0;
+  double scale = std::max(1.0, std::round(2.0 * side) / 2.0);
   // The projector floor: a frame a page shows large (500 px high in 4:3 terms, the picture of a
   // 1366-wide page) gets at least 16 px text, legible from the back of a room.
-  if (side * 540.0 >= kHudProjectorSide) h.scale = std::max(h.scale, 1.25);
+  if (side * 540.0 >= kHudProjectorSide) scale = std::max(scale, 1.25);
+  return scale * factor;
+}
+
+HudLayout hud_layout(const std::vector<std::string>& lines, const std::vector<std::string>& legend_labels,
+                     int width, int height, int shown_width) {
+  HudLayout h;
+  const double wanted = hud_text_scale(width, height, shown_width);
+  for (const double s : kHudScales)  // the nearest (the full picture's own scale where unpaced)
+    if (std::abs(s - wanted) < std::abs(h.scale - wanted)) h.scale = s;
   h.font_size = 13.0 * h.scale;
   // ImGui snaps the default font's advance to whole pixels (ImFontConfig::PixelSnapH).
   h.advance = std::floor(7.0 * h.scale + 0.5);
@@ -438,7 +447,7 @@ std::vector<std::string> hud_lines(const Snapshot& snapshot, const ViewOptions& 
   // are hud_layout's.
   std::vector<std::string> labels;
   for (const LegendEntry& entry : legend_entries(snapshot, view)) labels.push_back(entry.label);
-  const HudLayout size = hud_layout({}, labels, view.width, view.height);
+  const HudLayout size = hud_layout({}, labels, view.width, view.height, view.shown_width);
   const double margin = kHudMargin * size.scale;
   const auto most_at = [&](std::size_t row) {  // glyphs on the HUD's line `row` (from 0)
     const double top = margin + size.padding + row * size.line;
@@ -517,7 +526,7 @@ FrameScene build_scene(const Snapshot& snapshot, const ViewOptions& view) {
   if (view.layers & kHud) scene.hud_lines = render::hud_lines(snapshot, view);
   std::vector<std::string> labels;
   for (const LegendEntry& entry : scene.legend) labels.push_back(entry.label);
-  scene.hud = hud_layout(scene.hud_lines, labels, view.width, view.height);
+  scene.hud = hud_layout(scene.hud_lines, labels, view.width, view.height, view.shown_width);
   return scene;
 }
 

@@ -82,8 +82,20 @@ inline constexpr double kPlaneGridSpacing = 0.5, kPlaneHalfHeight = 3.0;
 // Camera.EveryPresetInEveryViewItOffersShowsItsBodiesClearOfTheBoxes (all at those two sizes);
 // compact, in none.
 inline constexpr int kFullOverlayWidth = 480, kFullOverlayHeight = 300;
-constexpr bool compact_overlay(const ViewOptions& view) {
-  return view.width < kFullOverlayWidth || view.height < kFullOverlayHeight;
+
+// The overlay's text scales (of the built-in 13 px font, one font made per scale): the projector
+// floor 1.25, then half steps up to 4× (larger frames draw the text at 4×).
+inline constexpr std::array<double, 8> kHudScales{1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0};
+// The text scale a frame drawn width×height and shown shown_width pixels wide (0: as drawn) wants,
+// in the drawn picture's pixels: hud_layout's rule for the shown size, times width/shown_width (a
+// paced picture drawn at half its shown size wants half the scale). Below 1 no font is that small.
+double hud_text_scale(int width, int height, int shown_width = 0);
+
+// Compact: a small frame, or one shown so much larger than drawn that its text could not be the
+// full picture's size on the screen (the page's paced picture at 0.5 of a 1366-wide page's).
+inline bool compact_overlay(const ViewOptions& view) {
+  return view.width < kFullOverlayWidth || view.height < kFullOverlayHeight ||
+         hud_text_scale(view.width, view.height, view.shown_width) < 1.0;
 }
 
 // One line of the in-frame legend: a body's swatch (its trail, dashed for the geodesic companion,
@@ -147,8 +159,10 @@ struct HudLayout {
   double swatch = 30;     // the legend's swatch width [pixels]
   PixelBox hud, legend;   // empty when not drawn
 };
+// shown_width: the width the frame is shown at (0: as drawn); the scale is the nearest of kHudScales
+// to hud_text_scale's (1 below it: a compact overlay's).
 HudLayout hud_layout(const std::vector<std::string>& lines, const std::vector<std::string>& legend_labels,
-                     int width, int height);
+                     int width, int height, int shown_width = 0);
 
 struct FrameScene {
   std::shared_ptr<const StaticGeometry> statics;  // null when neither surface nor grid is drawn

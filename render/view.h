@@ -68,6 +68,9 @@ struct ViewOptions {
   ViewKind kind = ViewKind::sphere;
   int width = 640;   // [pixels]
   int height = 480;  // [pixels]
+  // The width the picture is shown at [pixels]; 0: as drawn. A paced live picture is drawn smaller
+  // and scaled up by the page: its overlay is sized for the shown size (hud_text_scale).
+  int shown_width = 0;
   unsigned layers = kDefaultLayers;
   double yaw = 0.7;       // camera azimuth [rad] (3-D views)
   double pitch = 0.45;    // camera elevation [rad] (3-D views)

@@ -243,6 +243,7 @@ ViewOptions view_options(const ViewRequest& request, const Surface& surface) {
   view.width = request.width;
   view.height = request.height;
   view.layers = request.layers;
+  if (request.shown_width) view.shown_width = static_cast<int>(std::lround(*request.shown_width));
   view.scale = request.scale * body_scale_length(view.kind, surface);
   return view;
 }

@@ -48,6 +48,7 @@ struct ViewRequest {
   std::optional<double> distance{};  // [surface radii] (3-D views); absent: aimed at the body
   std::optional<double> trail{};     // [time] the trail's span before now; absent: the whole run
   CameraMotion motion = CameraMotion::steady;  // a sequence's camera while the run plays
+  std::optional<double> shown_width{};         // [pixels] the width shown at; absent: as drawn
 };
 
 // The kinds of value a parameter holds (from the member's type).
@@ -120,6 +121,13 @@ inline constexpr ViewParameter kViewParameters[] = {
      {},
      "how the live view's and a recording's 3-D camera moves while the run plays: steady stays put while "
      "the main body is in the frame and in sight, then glides to it; follow keeps the body centred"},
+    {"shown_width",
+     &ViewRequest::shown_width,
+     "pixels",
+     {.min = 16.0, .max = 4.0 * kMaxImageSide},
+     "the width the picture is shown at (a live picture drawn smaller for speed and scaled up): the text "
+     "overlay is sized for it, the same on the screen as at full size, or the compact overlay where text "
+     "that small cannot be drawn; default: the image width"},
 };
 
 struct LayerInfo {

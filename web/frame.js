@@ -48,11 +48,17 @@ export function frameUrl(state, width = state.size.width, height = state.size.he
 }
 
 /**
- * The live stream's query: the frame's, at the paced size while playing (pace.js).
+ * The live stream's query: the frame's, at the paced size while playing (pace.js), saying the size
+ * it is shown at so that the server sizes its text for that (the same on the screen as unpaced).
  * @param {AppState} state
  */
 function liveQuery(state) {
-  return { ...viewQuery(state), ...pacedSize(state.size, state.playing ? state.pace : 1) };
+  const pace = state.playing ? state.pace : 1;
+  return {
+    ...viewQuery(state),
+    ...pacedSize(state.size, pace),
+    ...(pace < 1 ? { shown_width: state.size.width } : {}),
+  };
 }
 
 /** @type {LiveView} */

@@ -81,7 +81,7 @@ HudLayout hud_boxes(const Snapshot& snapshot, const ViewOptions& view) {
   for (const LegendEntry& entry : legend_entries(snapshot, view)) labels.push_back(entry.label);
   const std::vector<std::string> lines =
       view.layers & kHud ? hud_lines(snapshot, view) : std::vector<std::string>{};
-  return hud_layout(lines, labels, view.width, view.height);
+  return hud_layout(lines, labels, view.width, view.height, view.shown_width);
 }
 
 double badness(const ViewModel& model, const Surface& surface, const ViewOptions& view,

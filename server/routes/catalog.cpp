@@ -57,13 +57,14 @@ void get_scenes(ServerContext&, const Call&, httplib::Response& res) {
   for (std::size_t i = 0; i < sequence.size(); ++i) {
     const PresetSource& p = *find_preset(sequence[i].preset);
     const SceneParse parsed = parse_scene_text(p.json);
-    list.push_back({{"name", std::string(p.name)},
-                    {"chapter", std::string(sequence[i].chapter)},
-                    {"next", i + 1 < sequence.size() ? json(std::string(sequence[i + 1].preset)) : json(nullptr)},
-                    {"default", p.name == kDefaultPreset},
-                    {"description", parsed.scene ? parsed.scene->description : ""},
-                    {"look_for", std::string(p.look_for)},
-                    {"scene", json::parse(p.json)}});
+    list.push_back(
+        {{"name", std::string(p.name)},
+         {"chapter", std::string(sequence[i].chapter)},
+         {"next", i + 1 < sequence.size() ? json(std::string(sequence[i + 1].preset)) : json(nullptr)},
+         {"default", p.name == kDefaultPreset},
+         {"description", parsed.scene ? parsed.scene->description : ""},
+         {"look_for", std::string(p.look_for)},
+         {"scene", json::parse(p.json)}});
   }
   send_json(res, list);
 }

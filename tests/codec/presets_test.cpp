@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <set>
 #include <numbers>
+#include <set>
 
 #include "codec/scene_json.h"
 #include "engine/actions.h"
@@ -60,13 +60,15 @@ TEST(Presets, TheLessonSequenceHasEveryPresetOnceInChaptersThatDoNotComeBack) {
     EXPECT_NE(find_preset(sequence[i].preset), nullptr);
     EXPECT_TRUE(listed.insert(sequence[i].preset).second) << "listed twice";
     EXPECT_FALSE(sequence[i].chapter.empty());
-    if (i > 0 && sequence[i].chapter != sequence[i - 1].chapter) chapters_done.insert(sequence[i - 1].chapter);
+    if (i > 0 && sequence[i].chapter != sequence[i - 1].chapter)
+      chapters_done.insert(sequence[i - 1].chapter);
     EXPECT_FALSE(chapters_done.contains(sequence[i].chapter)) << "a chapter comes back";
     ++per_chapter[sequence[i].chapter];
   }
   for (const auto& [chapter, count] : per_chapter) EXPECT_GE(count, 2) << chapter;
   // The default scene is in the sequence's first chapter (a first lesson, not a research case).
-  EXPECT_EQ(std::ranges::find(sequence, kDefaultPreset, &LessonPlace::preset)->chapter, sequence.front().chapter);
+  EXPECT_EQ(std::ranges::find(sequence, kDefaultPreset, &LessonPlace::preset)->chapter,
+            sequence.front().chapter);
 }
 
 TEST(Presets, GeodesicBodyStaysOnAGreatCircleAndTheSpinningOneDoesNot) {

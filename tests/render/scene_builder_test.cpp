@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 #include <tuple>
@@ -293,6 +294,61 @@ TEST(SceneBuilder, NoHudLineRunsIntoTheLegendOrPastTheFrame) {
     }
   }
   EXPECT_GT(beside, 50);
+}
+
+// A paced live picture (drawn at a fraction of its shown size, the page scales it up) has the full
+// picture's overlay on the screen: its text the same size there, or the compact overlay where no
+// font is that small; never the text scaled up with the picture (the HUD over the top half).
+// Every preset, the pictures of 1280-, 1366- and 1920-wide pages, every pace the page uses.
+TEST(SceneBuilder, APacedPictureShowsItsOverlayAsTheFullPictureDoes) {
+  int same = 0, compact = 0;
+  double worst = 0.0;  // the paced HUD's share of the picture beyond the full one's
+  for (const PresetSource& preset : preset_sources()) {
+    const Snapshot s = testing::preset_snapshot(preset.name, 10.0, true);
+    for (const auto& [w, h] : {std::pair{756, 475}, {799, 520}, {1280, 727}}) {
+      ViewOptions full;
+      full.kind = default_view(s.surface.kind);
+      full.width = w, full.height = h;
+      aim_camera_at_body(full, s);
+      const FrameScene unpaced = build_scene(s, full);
+      for (const double pace : {0.8, 0.64, 0.5}) {
+        SCOPED_TRACE(std::string(preset.name) + " " + std::to_string(w) + " pace " + std::to_string(pace));
+        ViewOptions view = full;
+        view.width = static_cast<int>(std::lround(w * pace)),
+        view.height = static_cast<int>(std::lround(h * pace));
+        view.shown_width = w;
+        const FrameScene paced = build_scene(s, view);
+        const double up = static_cast<double>(w) / view.width;  // shown pixels per drawn pixel
+        if (!compact_overlay(view)) {
+          ++same;
+          // The text's size on the screen is the full picture's, to the font's steps (kHudScales).
+          EXPECT_NEAR(paced.hud.font_size * up, unpaced.hud.font_size, 0.15 * unpaced.hud.font_size);
+          EXPECT_EQ(paced.hud_lines.size(), unpaced.hud_lines.size());
+        } else {
+          ++compact;
+          EXPECT_LE(paced.hud_lines.size(), unpaced.hud_lines.size());
+          EXPECT_EQ(paced.hud.legend.w, 0.0);
+        }
+        // Either way the boxes cover no more of the picture than the full one's (up to a glyph's
+        // rounding), and no line runs past the frame.
+        const auto share = [](const PixelBox& b, int width, int height) {
+          return b.w * b.h / (width * height);
+        };
+        const double paced_share = share(paced.hud.hud, view.width, view.height),
+                     full_share = share(unpaced.hud.hud, w, h);
+        worst = std::max(worst, paced_share - full_share);
+        EXPECT_LE(paced_share, full_share + 0.04);  // sized for the drawn size: up to +0.32
+        EXPECT_LE(paced.hud.hud.x + paced.hud.hud.w, view.width);
+      }
+    }
+  }
+  // Both cases are met: 1920's picture keeps its text at every pace down to 0.64, 1280's goes compact.
+  EXPECT_GT(same, 20);
+  EXPECT_GT(compact, 20);
+  std::printf(
+      "paced pictures: %d with the full overlay, %d compact; the HUD's share at most %.3f above the full "
+      "one's\n",
+      same, compact, worst);
 }
 
 // The total length of the segments of `color` [world units].
