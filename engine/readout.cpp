@@ -181,6 +181,13 @@ std::vector<std::string> readout_lines(const Scene& scene, const Readout& readou
   };
 }
 
+std::vector<std::string> plain_readout_lines(const Scene& scene, const Readout& readout) {
+  const std::vector<std::string> full = readout_lines(scene, readout);
+  static_assert(kPlainSurfaceLine == 1, "the surface's line is the second below");
+  return {full.front() + (readout.status == Status::ok ? "" : "  (stopped)"), full[kSurfaceReadoutLine],
+          format("spin = %.4f", readout.spin)};
+}
+
 std::vector<std::string> action_lines(const Readout& readout) {
   if (!readout.actions) return {"no action variables: " + readout.actions_unsupported};
   const ActionVariables& a = *readout.actions;

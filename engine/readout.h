@@ -66,6 +66,12 @@ std::vector<std::string> readout_lines(const Scene& scene, const Readout& readou
 // about the surface there goes on it.
 inline constexpr std::size_t kSurfaceReadoutLine = 3;
 
+// The read-out in plain words for a class: the time, the surface line of readout_lines (K at the
+// body where it varies) and the spin; nothing a class has not met (energy error, integrator,
+// inertia, det L).
+std::vector<std::string> plain_readout_lines(const Scene& scene, const Readout& readout);
+inline constexpr std::size_t kPlainSurfaceLine = 1;
+
 // The action variables and frequencies as HUD lines ("J_r = …", "nu_r = …"; "-" where undefined),
 // or one line saying why the scene has none.
 std::vector<std::string> action_lines(const Readout& readout);

@@ -362,7 +362,10 @@ std::vector<LegendEntry> legend_entries(const Snapshot& snapshot, const ViewOpti
   if (snapshot.bodies.size() > 1 && (view.layers & (kBody | kTrail)))
     for (const BodySnapshot& body : snapshot.bodies)
       legend.push_back(
-          {body.label, rgba(body.color),
+          {&body == &snapshot.bodies.front() && (view.layers & kPlain) && !snapshot.plain_main_label.empty()
+               ? snapshot.plain_main_label
+               : body.label,
+           rgba(body.color),
            &body == &snapshot.bodies.front() && bending ? kStraightColor : rgba(body.trail_color),
            body.geodesic, true, std::nullopt});
   // The key whenever the trail is coloured, not as each colour first shows, and in one row: a
@@ -409,20 +412,22 @@ std::vector<std::string> picture_notes(const Snapshot& snapshot, const ViewOptio
 }  // namespace
 
 std::vector<std::string> readout_lines(const Snapshot& snapshot, const ViewOptions& view) {
-  std::vector<std::string> lines = snapshot.hud_lines;
+  const bool plain = (view.layers & kPlain) != 0;
+  std::vector<std::string> lines = plain ? snapshot.plain_lines : snapshot.hud_lines;
+  const std::size_t surface_line = plain ? kPlainSurfaceLine : kSurfaceReadoutLine;
   if (view.layers & kActions)
     lines.insert(lines.end(), snapshot.action_lines.begin(), snapshot.action_lines.end());
   // The bending layer in words at the body where the curvature varies (the lesson: the bending
   // follows K's sign), on the line that gives K there: which way the path turns now.
   // (κ_g of the trail's last three points alone: the HUD is asked at every aim.)
   if (main_trail_bends(snapshot, view) && surface_model(snapshot).offers(Offer::implicit_equation) &&
-      lines.size() > kSurfaceReadoutLine) {
+      lines.size() > surface_line) {
     const std::vector<Vec3>& trail = snapshot.bodies.front().trail;
     const SurfaceModel& surface = surface_model(snapshot);
     const double k = geodesic_curvatures(surface, {trail.end() - 3, trail.end()})[1] * surface.feature;
-    lines[kSurfaceReadoutLine] += k >= kStraightBending    ? ": the path bends left"
-                                  : k <= -kStraightBending ? ": the path bends right"
-                                                           : ": the path runs straight";
+    lines[surface_line] += k >= kStraightBending    ? ": the path bends left"
+                           : k <= -kStraightBending ? ": the path bends right"
+                                                    : ": the path runs straight";
   }
   const std::vector<std::string> notes = picture_notes(snapshot, view);
   lines.insert(lines.end(), notes.begin(), notes.end());

@@ -55,7 +55,11 @@ Snapshot make_snapshot(const Simulation& run, const Trail& trail, double span) {
   if (const auto d = guiding_drift(run)) s.bodies.front().drift = d->direction;
   const Readout main = readout(run);
   s.hud_lines = readout_lines(scene, main);
-  s.hud_lines.back() += orbit_bound_note(orbit_bound(run));  // the spin's line: held by it, or not
+  const std::string held = orbit_bound_note(orbit_bound(run));
+  s.hud_lines.back() += held;  // the spin's line: held by it, or not
+  s.plain_lines = plain_readout_lines(scene, main);
+  s.plain_lines.back() += held;
+  s.plain_main_label = scene.main_label.empty() ? "the body" : scene.main_label;
   s.action_lines = action_lines(main);
   for (std::size_t i = 0; i < run.companions.size() && i < scene.companions.size(); ++i) {
     const Trail* own = i < trail.companions.size() ? &trail.companions[i] : nullptr;
@@ -66,8 +70,9 @@ Snapshot make_snapshot(const Simulation& run, const Trail& trail, double span) {
     if (const auto d = guiding_drift(run.companions[i])) b.drift = d->direction;
     OrbitBound bound = orbit_bound(run.companions[i]);
     bound.critical_spin.reset();  // said once, on the main body's line: a companion's says the verdict
-    s.hud_lines.push_back(companion_readout_line(b.label, readout(run.companions[i])) +
-                          orbit_bound_note(bound));
+    const Readout companion = readout(run.companions[i]);
+    s.hud_lines.push_back(companion_readout_line(b.label, companion) + orbit_bound_note(bound));
+    if (companion.status != Status::ok) s.plain_lines.push_back(b.label + ": stopped");
     s.bodies.push_back(std::move(b));
   }
   return s;

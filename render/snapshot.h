@@ -54,8 +54,12 @@ struct Snapshot {
   // drawn piece) is asked of this. make_snapshot sets both; a snapshot built by hand sets it as
   // surface_model_of(surface).
   std::shared_ptr<const SurfaceModel> model;
-  std::vector<BodySnapshot> bodies;       // the main body first, then the companions in scene order
-  std::vector<std::string> hud_lines;     // readout_lines of the run, then one compact line per companion
+  std::vector<BodySnapshot> bodies;    // the main body first, then the companions in scene order
+  std::vector<std::string> hud_lines;  // readout_lines of the run, then one compact line per companion
+  // plain_readout_lines of the run, then a line for each companion that stopped (the plain layer's);
+  // the main body's legend label in plain words ("the body" unless the scene names it).
+  std::vector<std::string> plain_lines;
+  std::string plain_main_label;
   std::vector<std::string> action_lines;  // action_lines of the run (drawn with the actions layer)
 };
 

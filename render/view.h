@@ -52,7 +52,8 @@ enum Layer : unsigned {
   kCurvature = 1u << 7,   // the Gaussian curvature K as the surface's colour (warm > 0, cool < 0)
   kBending = 1u << 8,     // the main body's trail coloured by which way it bends (render/scene_builder.h)
   kDrift = 1u << 9,       // an arrow of a fast spinner's guiding-centre drift (engine/guiding_centre.h)
-  kDefaultLayers = 831u,  // every layer but the action variables and the curvature
+  kPlain = 1u << 10,      // the text overlay in plain words for a class (Snapshot::plain_lines)
+  kDefaultLayers = 831u,  // every layer but the action variables, the curvature and plain words
 };
 
 // The length that the display scale (ViewOptions::scale, "body size") is given in: R, so that a

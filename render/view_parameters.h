@@ -155,6 +155,9 @@ inline constexpr LayerInfo kLayerTable[] = {
     {"drift", kDrift, true,
      "where a fast spinner gyrates on a surface of revolution, an arrow at each body along the parallel its "
      "guiding centre drifts along (the grad-B drift of B = K s), reversed with the spin"},
+    {"plain", kPlain, false,
+     "the text overlay in plain words for a class: the time, the surface (and its curvature at the body) "
+     "and the spin, without the energy error, integrator, inertia and det L"},
 };
 
 constexpr unsigned default_layers() {

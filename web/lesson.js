@@ -7,7 +7,7 @@ import { hasGeodesic, toggleGeodesic } from "./comparisons.js";
 import { $ } from "./dom.js";
 import { openPreset } from "./gallery.js";
 import { presetLabel } from "./session.js";
-import { mount, store } from "./state.js";
+import { mount, store, withView } from "./state.js";
 
 /** @typedef {import("./state.js").AppState} AppState */
 
@@ -43,6 +43,12 @@ function renderLesson(s, b) {
 /** @param {boolean} on */
 function setSimple(on) {
   document.body.classList.toggle("simple", on);
+  // The overlay in plain words (the server's `plain` layer) while simple mode is on.
+  store.update((s) => {
+    const has = s.view.layers.includes("plain");
+    if (has === on) return {};
+    return withView(s, { layers: on ? [...s.view.layers, "plain"] : s.view.layers.filter((l) => l !== "plain") });
+  });
   $("simple").setAttribute("aria-pressed", String(on));
   $("simple").textContent = on ? "Full controls" : "Simple mode";
   try {

@@ -91,6 +91,12 @@ std::vector<Vertex> conformal_grid(const ViewOptions& view, double K) {
     }
   lo -= kPlaneGridSpacing, hi += kPlaneGridSpacing;
   std::vector<Vertex> lines;
+  // Lines closer than two pixels on average would fill the frame (far out on a large H², the
+  // window spans thousands of spacings): none are drawn. Drawing them took 11 s at 96×72 (the
+  // unbounded-input hunt's frame timed out), up to 2000 lines of 16384 pieces each. The ideal
+  // boundary below is drawn either way.
+  const double across = (hi.x - lo.x + hi.y - lo.y) / kPlaneGridSpacing;
+  const bool drawn = across <= 0.5 * (view.width + view.height);
   // A grid line's image as runs of points (a run ends where the line leaves the drawn part), each
   // drawn with as few chords as stay within the tolerance of its points: straight lines (K = 0, or
   // nearly) as one segment like the plane view's, with no joints to show.
@@ -145,9 +151,9 @@ std::vector<Vertex> conformal_grid(const ViewOptions& view, double K) {
     flush();
   };
   const auto first = [](double x) { return std::ceil(x / kPlaneGridSpacing); };
-  for (double k = first(lo.x), n = 0; k * kPlaneGridSpacing <= hi.x && n < 2000; ++k, ++n)
+  for (double k = first(lo.x), n = 0; drawn && k * kPlaneGridSpacing <= hi.x && n < 2000; ++k, ++n)
     add_line({k * kPlaneGridSpacing, 0.0}, {0.0, 1.0}, lo.y, hi.y);
-  for (double k = first(lo.y), n = 0; k * kPlaneGridSpacing <= hi.y && n < 2000; ++k, ++n)
+  for (double k = first(lo.y), n = 0; drawn && k * kPlaneGridSpacing <= hi.y && n < 2000; ++k, ++n)
     add_line({0.0, k * kPlaneGridSpacing}, {1.0, 0.0}, lo.x, hi.x);
   if (K < 0.0) {  // the ideal boundary, where the frame crosses it
     const auto [nearest, farthest] = window_distances(win);

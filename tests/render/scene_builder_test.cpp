@@ -15,6 +15,7 @@
 #include "engine/chart.h"
 #include "engine/path_bending.h"
 #include "engine/readout.h"
+#include "engine/scene_fields.h"
 #include "render/views/camera.h"
 #include "tests/render/views/view_test_support.h"
 
@@ -349,6 +350,36 @@ TEST(SceneBuilder, APacedPictureShowsItsOverlayAsTheFullPictureDoes) {
       "paced pictures: %d with the full overlay, %d compact; the HUD's share at most %.3f above the full "
       "one's\n",
       same, compact, worst);
+}
+
+// The plain layer (simple mode) says the time, the surface and the spin in words a class has met, on
+// every preset; the main body is "the body" in the legend. The full overlay keeps every line.
+TEST(SceneBuilder, ThePlainLayerSaysTheTimeTheSurfaceAndTheSpinOnly) {
+  int with_companions = 0;
+  for (const PresetSource& preset : preset_sources()) {
+    SCOPED_TRACE(std::string(preset.name));
+    const Snapshot s = testing::preset_snapshot(preset.name, 5.0, true);
+    ViewOptions view;
+    view.kind = default_view(s.surface.kind);
+    view.width = 1280, view.height = 720;
+    const std::vector<std::string> full = hud_lines(s, view);
+    view.layers |= kPlain;
+    const std::vector<std::string> plain = hud_lines(s, view);
+    std::string text;
+    for (const std::string& line : plain) text += line + "\n";
+    for (const char* jargon : {"energy", "integrator", "det L", "J =", "rigid", "affine"})
+      EXPECT_EQ(text.find(jargon), std::string::npos) << jargon << " in\n" << text;
+    EXPECT_EQ(plain.front().rfind("t = ", 0), 0u) << text;
+    EXPECT_NE(text.find("spin = "), std::string::npos) << text;
+    EXPECT_NE(text.find(std::string(enum_name(s.surface.kind))), std::string::npos) << text;
+    EXPECT_LT(plain.size(), full.size());
+    const std::vector<LegendEntry> legend = legend_entries(s, view);
+    if (s.bodies.size() > 1) {  // the bodies' rows (a lone body has none)
+      ++with_companions;
+      EXPECT_NE(legend.at(0).label, "body 1");  // "the body", or the name the scene gives it
+    }
+  }
+  EXPECT_GE(with_companions, 5);
 }
 
 // The total length of the segments of `color` [world units].

@@ -25,7 +25,7 @@ TEST(ViewParameters, NamesAreUniqueAndEachHasHelp) {
     EXPECT_FALSE(p.help.empty()) << p.name;
   }
   EXPECT_EQ(names, (std::set<std::string_view>{"width", "height", "view", "layers", "scale", "yaw", "pitch",
-                                               "distance", "trail", "motion"}));
+                                               "distance", "trail", "motion", "shown_width"}));
 }
 
 // The request's defaults are the renderer's: a frame asked for with no parameter is ViewOptions{}.

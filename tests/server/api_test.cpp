@@ -1128,7 +1128,7 @@ TEST_F(Api, OpenApiDocumentsEveryRouteAndQueryParameterOfTheTable) {
   };
   EXPECT_EQ(query_names("/api/v1/sessions/{id}/frame.png", "get"),
             (std::set<std::string>{"width", "height", "view", "layers", "scale", "yaw", "pitch", "distance",
-                                   "trail", "motion", "at"}));
+                                   "trail", "motion", "shown_width", "at"}));
   // The figures draw the state now: the raster frames' `at` (the scrubber's) is not theirs.
   std::set<std::string> figure_names = query_names("/api/v1/sessions/{id}/frame.png", "get");
   figure_names.erase("at");

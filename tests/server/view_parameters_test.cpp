@@ -258,9 +258,9 @@ TEST(ViewOptions, TheCliOptionsAreTheTable) {
 // names the field and the value, and gives the table's reason (its server-side range at the limit).
 TEST_F(ViewParameterTable, EveryReaderRefusesABadValueInTheTablesWords) {
   const std::vector<std::pair<std::string, json>> bad = {
-      {"width", 5000}, {"height", 0},      {"view", "cube"}, {"layers", "surface,sparkles"},
-      {"scale", 0},    {"yaw", 200},       {"pitch", 2},     {"distance", 0.5},
-      {"trail", -1},   {"motion", "orbit"}};
+      {"width", 5000}, {"height", 0},       {"view", "cube"},  {"layers", "surface,sparkles"},
+      {"scale", 0},    {"yaw", 200},        {"pitch", 2},      {"distance", 0.5},
+      {"trail", -1},   {"motion", "orbit"}, {"shown_width", 8}};
   std::set<std::string> covered;
   for (const auto& [name, value] : bad) {
     SCOPED_TRACE(name);

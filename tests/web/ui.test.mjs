@@ -1120,6 +1120,8 @@ await runSuite(started, async (browser) => {
     await t.waitForFunction(() => document.querySelector("#geodesic").getAttribute("aria-pressed") === "true", null, { timeout: 20000 });
     await t.waitForTimeout(300);
     assert.equal(await mark(), "selected");
+    // The overlay says it in plain words (the plain layer): no energy error, integrator or det L.
+    await t.waitForFunction(() => new URLSearchParams(document.querySelector("#export-png").search).get("layers").includes("plain"));
     const first = await active();
     const i = scenes.findIndex((x) => x.name === first);
     await t.focus("#frame");
@@ -1149,7 +1151,10 @@ await runSuite(started, async (browser) => {
     await t.waitForFunction(() => document.body.dataset.playing === "false");
     await t.evaluate(() => document.exitFullscreen());
     assert.equal(await t.$eval("#frame-play", (b) => getComputedStyle(b).display), "none");
-    if (!simpleWasOn) await t.click("#simple");
+    if (!simpleWasOn) {
+      await t.click("#simple");
+      await t.waitForFunction(() => !new URLSearchParams(document.querySelector("#export-png").search).get("layers").includes("plain"));
+    }
     await t.close();
   });
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "render/view_table.h"
+#include "render/views/drawing.h"
 #include "render/views/view_model.h"
 #include "view_test_support.h"
 
@@ -62,6 +63,26 @@ TEST(ConformalViewModel, OnH2TheDiskIsABackdropWhereTheFrameReachesPastItsBounda
   EXPECT_NE(centred.clear_color, centred.surface_color);
   view.target = std::array<double, 3>{40.0, 0.0, 0.0};  // far beyond the rim: nothing of the disk
   EXPECT_TRUE(build_scene(s, view).backdrop.empty());
+}
+
+// Near the rim of a large H² the frame spans thousands of grid spacings (the unbounded-input hunt:
+// R = 1e4, a body far out, 96×72): lines closer than pixels are not drawn, the rim still is. Drawing
+// them took 11 s (2000 lines of 16384 pieces each), and a frame route timed out.
+TEST(ConformalViewModel, AGridFinerThanThePixelsIsNotDrawnButTheRimIs) {
+  const double R = 1e4;
+  const Snapshot s = testing::body_at(SurfaceKind::pseudosphere, R, 10.0 * R, 0.0);
+  ViewOptions view;
+  view.kind = ViewKind::conformal;
+  view.layers = kGrid;
+  view.width = 96, view.height = 72;
+  view.target = std::array<double, 3>{2.0 * R - 1.0, 0.0, 0.0};  // the window across the rim |w| = 2R
+  const FrameScene rim = build_scene(s, view);
+  EXPECT_FALSE(rim.grid_lines.empty());                                   // the ideal boundary
+  for (const Vertex& v : rim.grid_lines) EXPECT_EQ(v.color, kSeamColor);  // and no grid line
+  // Near the centre the grid is drawn as always.
+  view.target = std::array<double, 3>{0.0, 0.0, 0.0};
+  const FrameScene centre = build_scene(testing::body_at(SurfaceKind::pseudosphere, 1.0, 0.5, 0.0), view);
+  EXPECT_GT(centre.grid_lines.size(), 20u);
 }
 
 }  // namespace
