@@ -121,10 +121,7 @@ inline constexpr ViewParameter kViewParameters[] = {
      {},
      "how the live view's and a recording's 3-D camera moves while the run plays: steady stays put while "
      "the main body is in the frame and in sight, then glides to it; follow keeps the body centred"},
-    {"shown_width",
-     &ViewRequest::shown_width,
-     "pixels",
-     {.min = 16.0, .max = 4.0 * kMaxImageSide},
+    {"shown", &ViewRequest::shown_width, "pixels", kImageSide,
      "the width the picture is shown at (a live picture drawn smaller for speed and scaled up): the text "
      "overlay is sized for it, the same on the screen as at full size, or the compact overlay where text "
      "that small cannot be drawn; default: the image width"},

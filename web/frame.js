@@ -57,7 +57,7 @@ function liveQuery(state) {
   return {
     ...viewQuery(state),
     ...pacedSize(state.size, pace),
-    ...(pace < 1 ? { shown_width: state.size.width } : {}),
+    ...(pace < 1 ? { shown: state.size.width } : {}),
   };
 }
 

@@ -570,7 +570,8 @@ def render(scene: Any, t: float = 0.0, *, view: str | None = None, width: int = 
            layers: str | Sequence[str] | None = None,
            camera: tuple[float, float, float] | None = None, scale: float = 0.25,
            trail: float | None = None, yaw: float | None = None, pitch: float | None = None,
-           distance: float | None = None, motion: str | None = None) -> Frame:
+           distance: float | None = None, motion: str | None = None,
+           shown: float | None = None) -> Frame:
     """The picture ``spinfold render`` draws of the scene at time `t` (the same pixels).
 
     `view`: sphere, hyperboloid, disk, plane, klein, halfplane, tractricoid, conformal, …
@@ -579,7 +580,8 @@ def render(scene: Any, t: float = 0.0, *, view: str | None = None, width: int = 
     3-D views, or `yaw`, `pitch`, `distance` one by one (None: aimed at the body; a part given
     replaces that part of the aimed camera, as the CLI's ``--camera`` and ``--yaw``); `motion`:
     how a sequence's camera moves (steady, follow), read as every door reads it; one frame is aimed
-    either way.
+    either way; `shown`: the width the picture will be shown at, which sizes its text overlay
+    (None: as drawn).
 
     Each value is checked by the view-parameter table (render/view_parameters.h) and refused in the
     CLI's and the API's words: ValueError naming the parameter (``pitch: must be a number from
@@ -609,7 +611,8 @@ def render(scene: Any, t: float = 0.0, *, view: str | None = None, width: int = 
             raise ValueError(f"camera: {shape} (got {camera!r})")
         for name, value in builtins.zip(("yaw", "pitch", "distance"), parts):
             given.append((name, _view_number(name, value, "camera")))
-    for name, value in (("yaw", yaw), ("pitch", pitch), ("distance", distance), ("trail", trail)):
+    for name, value in (("yaw", yaw), ("pitch", pitch), ("distance", distance), ("trail", trail),
+                        ("shown", shown)):
         if value is not None:
             given.append((name, _view_number(name, value)))
     if motion is not None:

@@ -226,7 +226,7 @@ INSTANTIATE_TEST_SUITE_P(
         // The table's words, every layer listed (actions included), the ranges the API has.
         BadArgs{"render --scene spinning_rigid_sphere --layers body,glitter --out /tmp/x.png",
                 "--layers: 'glitter' is not one of surface, grid, body, frame, trail, hud, actions, "
-                "curvature, bending, drift (got "
+                "curvature, bending, drift, plain (got "
                 "'body,glitter')"},
         BadArgs{"render --scene spinning_rigid_sphere --pitch 2 --out /tmp/x.png",
                 "--pitch: must be a number from -1.55 to 1.55 [rad] (got '2')"},

@@ -39,7 +39,7 @@ SCALE = "must be a number in (0, 10]"
 DISTANCE = "must be a number from 1.2 to 100 [radii]"
 YAW = "must be a number from -100 to 100 [rad]"
 TRAIL = "must be a number >= 0 [time]"
-SHOWN = "must be a number from 16 to 16384 [pixels]"
+SHOWN = "must be a number from 16 to 4096 [pixels]"
 MAX_STEPS = "must be a whole number from 1 to 9007199254740992"
 T_END = "must be a number >= 0 [time]"
 EVERY = "must be a number > 0 [time]"
@@ -69,7 +69,7 @@ BAD = [
     ("view", "layers", "body,glitter", "body,glitter", "'glitter' is not one of surface, grid", ValueError),
     ("view", "layers", [1], NA, "must be a comma-separated list of surface", TypeError),
     ("view", "motion", "orbit", "orbit", "must be steady or follow", ValueError),
-    ("view", "shown_width", 8.0, "8", SHOWN, ValueError),
+    ("view", "shown", 8.0, "8", SHOWN, ValueError),
     # run limits
     ("run", "max_steps", -1, "-1", MAX_STEPS, ValueError),
     ("run", "max_steps", 0, "0", MAX_STEPS, ValueError),

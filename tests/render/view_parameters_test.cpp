@@ -25,7 +25,7 @@ TEST(ViewParameters, NamesAreUniqueAndEachHasHelp) {
     EXPECT_FALSE(p.help.empty()) << p.name;
   }
   EXPECT_EQ(names, (std::set<std::string_view>{"width", "height", "view", "layers", "scale", "yaw", "pitch",
-                                               "distance", "trail", "motion", "shown_width"}));
+                                               "distance", "trail", "motion", "shown"}));
 }
 
 // The request's defaults are the renderer's: a frame asked for with no parameter is ViewOptions{}.
@@ -102,7 +102,8 @@ TEST(ViewParameters, RefusalsSayWhatIsAllowed) {
   // Every layer is listed, `actions` included.
   EXPECT_EQ(
       why("layers", std::string("surface,sparkles")),
-      "'sparkles' is not one of surface, grid, body, frame, trail, hud, actions, curvature, bending, drift");
+      "'sparkles' is not one of surface, grid, body, frame, trail, hud, actions, curvature, bending, drift, "
+      "plain");
   EXPECT_EQ(r.width, 640);
   EXPECT_EQ(r.scale, 0.25);
   EXPECT_FALSE(r.view);
@@ -120,7 +121,7 @@ TEST(ViewParameters, LayerTableDefinesTheNamesAndTheDefaultMask) {
     EXPECT_EQ(parse_layers(kLayerTable[i].name), kLayerTable[i].bit);
     all |= kLayerTable[i].bit;
   }
-  EXPECT_EQ(parse_layers("surface,grid,body,frame,trail,hud,actions,curvature,bending,drift"), all);
+  EXPECT_EQ(parse_layers("surface,grid,body,frame,trail,hud,actions,curvature,bending,drift,plain"), all);
   EXPECT_EQ(parse_layers(default_layer_list()), kDefaultLayers);
   EXPECT_EQ(parse_layers(""), 0u);
   std::string unknown;

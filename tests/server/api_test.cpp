@@ -1128,7 +1128,7 @@ TEST_F(Api, OpenApiDocumentsEveryRouteAndQueryParameterOfTheTable) {
   };
   EXPECT_EQ(query_names("/api/v1/sessions/{id}/frame.png", "get"),
             (std::set<std::string>{"width", "height", "view", "layers", "scale", "yaw", "pitch", "distance",
-                                   "trail", "motion", "shown_width", "at"}));
+                                   "trail", "motion", "shown", "at"}));
   // The figures draw the state now: the raster frames' `at` (the scrubber's) is not theirs.
   std::set<std::string> figure_names = query_names("/api/v1/sessions/{id}/frame.png", "get");
   figure_names.erase("at");
@@ -1222,7 +1222,7 @@ TEST_F(Api, QueryValuesOutOfRangeOrOfTheWrongTypeNameTheValue) {
       {frame + "view=klein", "view: the sphere is shown in these views: sphere, disk, conformal (got klein)"},
       {frame + "layers=body,glitter",
        "layers: 'glitter' is not one of surface, grid, body, frame, trail, hud, actions, curvature, bending, "
-       "drift (got "
+       "drift, plain (got "
        "body,glitter)"},
       {"/api/v1/sessions/" + id + "/events?rate=1000",
        "rate: must be a number from 0.5 to 60 [Hz] (got 1000)"},

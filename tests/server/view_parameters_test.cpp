@@ -175,8 +175,8 @@ TEST_F(ViewParameterTable, TheRouteAnswersTheTables) {
     EXPECT_EQ(doc["layers"][i]["name"], std::string(render::kLayerTable[i].name));
     EXPECT_EQ(doc["layers"][i]["default"], render::kLayerTable[i].on_by_default);
   }
-  EXPECT_EQ(doc["layers"].back()["name"], "drift");
-  EXPECT_EQ(doc["layers"].back()["default"], true);  // the guiding centre's drift is in the default picture
+  EXPECT_EQ(doc["layers"].back()["name"], "plain");
+  EXPECT_EQ(doc["layers"].back()["default"], false);  // plain words are simple mode's, asked for
   ASSERT_EQ(doc["formats"].size(), std::size(record::kFormats));
   for (std::size_t i = 0; i < std::size(record::kFormats); ++i) {
     EXPECT_EQ(doc["formats"][i]["name"], std::string(record::kFormats[i].name));
@@ -258,9 +258,9 @@ TEST(ViewOptions, TheCliOptionsAreTheTable) {
 // names the field and the value, and gives the table's reason (its server-side range at the limit).
 TEST_F(ViewParameterTable, EveryReaderRefusesABadValueInTheTablesWords) {
   const std::vector<std::pair<std::string, json>> bad = {
-      {"width", 5000}, {"height", 0},       {"view", "cube"},  {"layers", "surface,sparkles"},
-      {"scale", 0},    {"yaw", 200},        {"pitch", 2},      {"distance", 0.5},
-      {"trail", -1},   {"motion", "orbit"}, {"shown_width", 8}};
+      {"width", 5000}, {"height", 0},       {"view", "cube"}, {"layers", "surface,sparkles"},
+      {"scale", 0},    {"yaw", 200},        {"pitch", 2},     {"distance", 0.5},
+      {"trail", -1},   {"motion", "orbit"}, {"shown", 8}};
   std::set<std::string> covered;
   for (const auto& [name, value] : bad) {
     SCOPED_TRACE(name);
