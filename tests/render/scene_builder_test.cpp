@@ -277,11 +277,7 @@ TEST(SceneBuilder, NoHudLineRunsIntoTheLegendOrPastTheFrame) {
   cases.emplace_back("long label", snapshot_at(wide, 20.0, true, std::nullopt, run));
   for (const auto& [name, s] : cases) {
     for (const auto& [w, h] : {std::pair{640, 480}, {800, 520}, {1280, 720}}) {
-      ViewOptions view;
-      view.kind = default_view(s.surface.kind);
-      view.width = w, view.height = h;
-      aim_camera_at_body(view, s);
-      const FrameScene scene = build_scene(s, view);
+      const FrameScene scene = build_scene(s, testing::aimed_view(default_view(s.surface.kind), w, h, s));
       const HudLayout& l = scene.hud;
       for (std::size_t k = 0; k < scene.hud_lines.size(); ++k) {
         const double top = l.hud.y + l.padding + k * l.line,
@@ -307,10 +303,7 @@ TEST(SceneBuilder, APacedPictureShowsItsOverlayAsTheFullPictureDoes) {
   for (const PresetSource& preset : preset_sources()) {
     const Snapshot s = testing::preset_snapshot(preset.name, 10.0, true);
     for (const auto& [w, h] : {std::pair{756, 475}, {799, 520}, {1280, 727}}) {
-      ViewOptions full;
-      full.kind = default_view(s.surface.kind);
-      full.width = w, full.height = h;
-      aim_camera_at_body(full, s);
+      const ViewOptions full = testing::aimed_view(default_view(s.surface.kind), w, h, s);
       const FrameScene unpaced = build_scene(s, full);
       for (const double pace : {0.8, 0.64, 0.5}) {
         SCOPED_TRACE(std::string(preset.name) + " " + std::to_string(w) + " pace " + std::to_string(pace));
