@@ -233,13 +233,16 @@ export class LiveView {
     if (this.steering || !this.connected) return;
     this.steering = true;
     const { session, viewer } = this;
+    // The steer belongs to this stream: when the page closes it, a steer still on its way is
+    // cancelled too (else it reaches a viewer the server has just forgotten: a 404 in the console).
+    const { signal } = /** @type {AbortController} */ (this.abort);
     let retries = 0;
     try {
-      while (this.pendingSteer && this.session === session && this.viewer === viewer) {
+      while (this.pendingSteer && !signal.aborted && this.session === session && this.viewer === viewer) {
         const q = new URLSearchParams(this.pendingSteer);
         this.pendingSteer = null;
         q.set("viewer", /** @type {string} */ (viewer));
-        const res = await fetch(`/api/v1/sessions/${session}/live?${q}`, { method: "PATCH", body: "" });
+        const res = await fetch(`/api/v1/sessions/${session}/live?${q}`, { method: "PATCH", body: "", signal });
         if (res.status === 429 || res.status === 404) {
           // Over the rate limit, or the stream is (re)connecting: the newest wish, a little later,
           // backing off to once a second. Never dropped (a dropped steer is a turn or a size the
@@ -249,6 +252,8 @@ export class LiveView {
           await new Promise((r) => setTimeout(r, Math.min(1000, 100 * 2 ** Math.min(retries++, 4))));
         }
       }
+    } catch (e) {
+      if (!signal.aborted) throw e; // aborted with its stream: the next opens with the parameters in force
     } finally {
       this.steering = false;
     }
