@@ -110,11 +110,24 @@ Horizon choose_horizon(const Scene& scene_in, std::optional<double> asked, doubl
   const Scene scene = main_body_only(scene_in);
   Horizon h;
   h.t_end = asked ? *asked : default_t_end(scene);
+  // Over the horizon measured, and never less than kChaosProbe: over a short T (25 on the chaotic
+  // example) MEGNO has not yet risen past its threshold, yet an error grows e^{λT}-fold there.
   ChaosMonitor probe(scene, kDefaultChaosInterval);
-  probe.advance_to(std::min(h.t_end, kChaosProbe), max_attempts);
+  probe.advance_to(std::max(h.t_end, kChaosProbe), max_attempts);
   h.chaos = probe.indicators();
   h.chaotic = h.chaos.intervals > 0 && h.chaos.megno_mean > kChaoticMegno && h.chaos.lyapunov > 0.0;
-  if (!h.chaotic) return h;
+  if (!h.chaotic) {
+    h.note = h.chaos.intervals == 0
+                 ? "whether the motion is chaotic is not known (" +
+                       (h.chaos.stopped.empty() ? std::string("the indicators' runs stopped at once")
+                                                : h.chaos.stopped) +
+                       ")"
+                 : "the motion is not chaotic (MEGNO mean " + sci(h.chaos.megno_mean, 3) +
+                       ", Lyapunov exponent " + sci(h.chaos.lyapunov, 3) + " over t = " + sci(h.chaos.t, 3) +
+                       (h.chaos.stopped.empty() ? std::string() : ", where " + h.chaos.stopped) +
+                       "): an error grows like a power of t, so T measures the integrators";
+    return h;
+  }
   h.predictable = std::log(target / kRoundingFloor) / h.chaos.lyapunov;
   const std::string exponent = "the motion is chaotic (Lyapunov exponent " + sci(h.chaos.lyapunov, 3) +
                                ", MEGNO mean " + sci(h.chaos.megno_mean, 3) +

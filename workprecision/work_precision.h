@@ -78,8 +78,9 @@ double default_t_end(const Scene& scene);
 // The horizon the sweep measures errors over, and why (issue 35): on a chaotic scene an error grows
 // like e^{λt}, so past the predictable horizon ln(target / kRoundingFloor)/λ every method's error at T
 // is the chaos's, not the integrator's, and a recommendation from it would name noise. The scene is
-// chaotic when, over min(T, kChaosProbe), its MEGNO mean exceeds kChaoticMegno (2 for quasi-periodic
-// motion, 2k for growth like t^k, λt/2 for chaos; engine/chaos_indicators.h).
+// chaotic when, over max(T, kChaosProbe), its MEGNO mean exceeds kChaoticMegno (2 for quasi-periodic
+// motion, 2k for growth like t^k, λt/2 for chaos; engine/chaos_indicators.h). The note says the
+// verdict in every case; where T is beyond the horizon (`beyond`) nothing is worth measuring.
 inline constexpr double kChaosProbe = 200.0;  // [time]
 inline constexpr double kChaoticMegno = 8.0;  // [1]
 // The error the tightest double runs make over the first unit of time (dop853 at 1e-15 against the
@@ -92,7 +93,7 @@ struct Horizon {
   ChaosIndicators chaos;   // over the probe
   bool chaotic = false;
   double predictable = kNotReached;  // ln(target / kRoundingFloor)/λ where chaotic [time]
-  std::string note;                  // one sentence for the summary ("" where the motion is not chaotic)
+  std::string note;                  // the verdict, one sentence for the summary
 };
 // `asked`: --t-end, or nullopt for default_t_end. The probe spends at most `max_attempts` steps.
 Horizon choose_horizon(const Scene& scene, std::optional<double> asked, double target_error,

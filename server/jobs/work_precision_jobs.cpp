@@ -112,7 +112,10 @@ void WorkPrecisionJobs::run(Queue::Entry& entry) {
     const double t_end = std::min(horizon.t_end, job.t_end);
     result->t_end = t_end;
     result->horizon_note = horizon.note;
-    const wp::Reference reference = wp::make_reference(job.scene, t_end);
+    // Beyond a chaotic horizon nothing is measured (every error would be the chaos's).
+    const wp::Reference reference =
+        horizon.beyond ? wp::Reference{"none", "not computed: T lies beyond the predictable horizon", {}}
+                       : wp::make_reference(job.scene, t_end);
     result->reference_kind = reference.kind;
     result->reference_description = reference.description;
     queue_.locked([&](auto&) { entry.state.reference_ready = true; });
@@ -128,7 +131,7 @@ void WorkPrecisionJobs::run(Queue::Entry& entry) {
       });
       return queue_.progress(entry, static_cast<double>(done), static_cast<double>(methods));
     };
-    if (!entry.cancel) result->curves = wp::sweep(job.scene, reference, options);
+    if (!entry.cancel && !horizon.beyond) result->curves = wp::sweep(job.scene, reference, options);
     if (!entry.cancel) {
       result->recommendation =
           wp::recommendation(result->curves, job.target_error, horizon, wp::auto_picks(job.scene));

@@ -199,6 +199,8 @@ TEST(WorkPrecision, AutoIsRecommendedWhereItIsCheapest) {
   EXPECT_NE(r.out.find("over T = 2: auto (picks exact) at the scene's tol 1e-10, "), std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("the cheapest stepping setting, dop853 at tol "), std::string::npos) << r.out;
+  // The verdict on chaos is said in every case (it was silent where the motion is regular).
+  EXPECT_NE(r.out.find("- Chaos: the motion is not chaotic (MEGNO mean "), std::string::npos) << r.out;
 }
 
 // The researcher's chaotic scene (issue 35): every method's error at the default T was the chaos's
@@ -251,6 +253,18 @@ TEST(WorkPrecision, AChaoticSceneIsMeasuredOverItsPredictableHorizon) {
   const double horizon = std::stod(beyond.out.substr(give + 14));
   EXPECT_GT(horizon, 12.0);  // ln(1e-10 / 1e-13) / λ with λ ≈ 0.4-0.5 from the probe over 60
   EXPECT_LT(horizon, 20.0);
+  // Decided, it measures nothing it cannot recommend (it spent 54 s on --t-end 100 to say so).
+  EXPECT_EQ(beyond.err.find("computing the reference"), std::string::npos) << beyond.err;
+  EXPECT_NE(beyond.out.find("- Nothing measured: T lies beyond the predictable horizon"), std::string::npos);
+
+  // A T shorter than the chaos takes to show in MEGNO (issue 51: at --t-end 25 it saw no chaos and
+  // named the reference's own disagreement "the most accurate"): the probe looks over at least 200.
+  const auto short_t = run_spinfold("work-precision " + scene + " --t-end 25 --integrators dop853 --out " +
+                                    (dir.path / "c").string());
+  ASSERT_EQ(short_t.exit_code, 0) << short_t.err;
+  EXPECT_NE(short_t.out.find("**Recommendation.** No recommendation over T = 25: the motion is chaotic"),
+            std::string::npos)
+      << short_t.out;
 }
 
 TEST(WorkPrecision, UnknownPresetExits2AndWritesNothing) {
