@@ -158,11 +158,13 @@ void ChaosMonitor::seed_shadow() {
 
 void ChaosMonitor::advance_to(double t, std::uint64_t max_attempts,
                               std::optional<std::chrono::steady_clock::time_point> deadline) {
-  // Each run in slices of step attempts, the clock looked at between them.
+  advance_to(t, max_attempts, [&] { return !deadline || std::chrono::steady_clock::now() <= *deadline; });
+}
+
+void ChaosMonitor::advance_to(double t, std::uint64_t max_attempts, const std::function<bool()>& go_on) {
+  // Each run in slices of step attempts, `go_on` asked between them.
   const auto reach = [&](Simulation& run, double t_next) {
-    const Advanced got = advance_in_slices(
-        run, t_next, max_attempts, [&] { return !deadline || std::chrono::steady_clock::now() <= *deadline; },
-        1024);
+    const Advanced got = advance_in_slices(run, t_next, max_attempts, go_on, 1024);
     if (got == Advanced::stopped_by_caller) {
       stopped_reason_ = "the time budget ran out";
       out_of_time_ = true;

@@ -17,6 +17,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -65,6 +66,9 @@ class ChaosMonitor {
   // server's job: the indicators stop where they ran out, saying which).
   void advance_to(double t, std::uint64_t max_attempts = kNoStepLimit,
                   std::optional<std::chrono::steady_clock::time_point> deadline = std::nullopt);
+  // The same, asking `go_on` between slices of step attempts (false: stop, as at a deadline; a
+  // front door's Ctrl-C may throw from it).
+  void advance_to(double t, std::uint64_t max_attempts, const std::function<bool()>& go_on);
   ChaosIndicators indicators() const;
 
  private:

@@ -166,7 +166,9 @@ EventSpec parse_event(std::string_view text) {
   const std::string t(text);
   if (parts.size() < 3 || parts[0].empty())
     throw MonitorRefusal(
-        "event '" + t + "': write FIELD:DIRECTION:LEVEL[:period=P][:stop=N][:name=NAME], e.g. r:up:1.2",
+        "event '" + t +
+            "': write FIELD:DIRECTION:LEVEL[:period=P][:stop=N][:record[=N]][:name=NAME], e.g. "
+            "r:up:1.2",
         true);
   EventSpec e;
   e.field = parts[0];
@@ -185,7 +187,7 @@ EventSpec parse_event(std::string_view text) {
     const std::size_t eq = parts[i].find('=');
     const std::string key = parts[i].substr(0, eq),
                       value = eq == std::string::npos ? "" : parts[i].substr(eq + 1);
-    const bool known = key == "period" || key == "stop" || key == "name";
+    const bool known = key == "period" || key == "stop" || key == "name" || key == "record";
     if (known && std::find(given.begin(), given.end(), key) != given.end())
       throw MonitorRefusal("event '" + t + "': " + key + "= is given twice (give it once)", true);
     given.push_back(key);
@@ -201,11 +203,20 @@ EventSpec parse_event(std::string_view text) {
     } else if (key == "stop") {
       e.stop = static_cast<std::uint64_t>(event_number(
           t, "stop", value, NumberRule{.whole = true, .range = {.min = 1.0, .max = kMaxWholeNumber}}));
+    } else if (key == "record") {
+      e.record =
+          eq == std::string::npos
+              ? kMaxRecordedCrossings
+              : static_cast<std::uint64_t>(event_number(
+                    t, "record", value,
+                    NumberRule{.whole = true,
+                               .range = {.min = 1.0, .max = static_cast<double>(kMaxRecordedCrossings)}}));
     } else if (key == "name" && !value.empty()) {
       e.name = value;
     } else {
-      throw MonitorRefusal(
-          "event '" + t + "': unknown part '" + parts[i] + "' (period=P, stop=N or name=NAME)", true);
+      throw MonitorRefusal("event '" + t + "': unknown part '" + parts[i] +
+                               "' (period=P, stop=N, record, record=N or name=NAME)",
+                           true);
     }
   }
   if (e.name.empty()) e.name = e.field + "_" + parts[1] + "_" + level_text(e.level);
@@ -286,6 +297,7 @@ RunMonitor::RunMonitor(MonitorSpec spec, const Simulation& run) : spec_(std::mov
     tracks_.push_back({v, v, t_start_, t_start_, 0.0, v});
   }
   events_.resize(spec_.events.size());
+  recorded_ = std::make_shared<std::vector<std::vector<State>>>(spec_.events.size());
 }
 
 // The watched fields at `s`; phi continues `near` (its turns are counted, not wrapped).
@@ -457,6 +469,19 @@ std::optional<State> RunMonitor::step(const Simulation& run, const State& b_in) 
                             : tau_first >= 0.0 && c.n == 1.0
                                 ? tau_first
                                 : locate(k, last_values_[k], gb, c.level(c.n - 1.0));
+    // Each occurrence's state where the event records them (a root find each, up to its bound).
+    if (spec_.events[e].record > 0) {
+      std::vector<State>& kept = (*recorded_)[e];
+      while (!kept.empty() && kept.back().t > last_.t) kept.pop_back();  // rewound past them
+      const double room = static_cast<double>(spec_.events[e].record) - static_cast<double>(o.count);
+      for (double j = 0.0; j < std::min(c.n, room); j += 1.0) {
+        const bool is_last = j == c.n - 1.0;
+        const double tau = j == 0.0 && tau_first >= 0.0 ? tau_first
+                           : is_last                    ? tau_last
+                                                        : locate(k, last_values_[k], gb, c.level(j));
+        kept.push_back(is_last && last_is_stop ? b : state_after(run, last_, tau));
+      }
+    }
     o.count += static_cast<std::uint64_t>(c.n);
     o.t_last = last_.t + tau_last;
   }
@@ -501,6 +526,14 @@ std::optional<State> RunMonitor::step(const Simulation& run, const State& b_in) 
   last_values_ = vb;
   if (stopped_) return b;
   return std::nullopt;
+}
+
+std::vector<State> RunMonitor::recorded(std::size_t e) const {
+  const std::vector<State>& kept = (*recorded_)[e];
+  std::vector<State> out;
+  for (const State& s : kept)
+    if (s.t <= last_.t) out.push_back(s);
+  return out;
 }
 
 std::vector<double> RunMonitor::values() const {

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -60,7 +61,12 @@ struct EventSpec {
   double level = 0.0;
   double period = 0.0;     // 0: the level only
   std::uint64_t stop = 0;  // stop the run at this occurrence (scipy's `terminal`); 0: never
+  // Keep the state of each of the first `record` occurrences (a Poincaré section; 0: none), at most
+  // kMaxRecordedCrossings: `record` alone in the text asks for that many.
+  std::uint64_t record = 0;
 };
+
+inline constexpr std::uint64_t kMaxRecordedCrossings = 100'000;  // ~40 MB of states per event
 
 inline constexpr double kMinRelativePeriod = 1e-12;
 inline constexpr double kMaxEventCount = 9007199254740992.0;  // 2⁵³
@@ -81,8 +87,8 @@ struct MonitorRefusal : std::invalid_argument {
 
 // "r" (every reduction of r) or "r.max" (one); MonitorRefusal naming the text and the reason.
 SummarySpec parse_summary(std::string_view text);
-// "FIELD:DIRECTION:LEVEL[:period=P][:stop=N][:name=NAME]", DIRECTION up, down or any, e.g.
-// "r:up:1.2", "phi:any:0:period=6.283185307179586", "r:up:1.2:stop=3".
+// "FIELD:DIRECTION:LEVEL[:period=P][:stop=N][:record[=N]][:name=NAME]", DIRECTION up, down or any,
+// e.g. "r:up:1.2", "phi:any:0:period=6.283185307179586", "r:up:1.2:stop=3", "phi:up:0:record".
 EventSpec parse_event(std::string_view text);
 // Each text parsed (parse_summary, parse_event).
 MonitorSpec parse_monitor(const std::vector<std::string>& summaries, const std::vector<std::string>& events);
@@ -107,6 +113,10 @@ class RunMonitor {
 
   // The columns' values (monitor_columns order); NaN where there is none (no occurrence).
   std::vector<double> values() const;
+  // Event e's recorded occurrences (EventSpec::record), in time order: each the run's state at the
+  // crossing, located as t_first is. Only those up to the monitor's last state: a run rewound to its
+  // last good state (engine/simulation.h) drops what it recorded after it.
+  std::vector<State> recorded(std::size_t e) const;
   const State& last() const { return last_; }
   bool stopped() const { return stopped_; }
   const MonitorSpec& spec() const { return spec_; }
@@ -148,6 +158,9 @@ class RunMonitor {
   std::vector<int> event_index_;                   // spec_.events[i]'s field in fields_
   std::vector<Track> tracks_;                      // per watched field
   std::vector<Occurrences> events_;                // per event
+  // Per event, the recorded states: shared by the copies the run keeps to rewind to (copying them
+  // every check would cost the whole record), read up to last_.t.
+  std::shared_ptr<std::vector<std::vector<State>>> recorded_;
   State before_, last_;  // the last two points of the sequence (before_ valid when has_before_)
   Values before_values_{}, last_values_{};
   bool has_before_ = false, stopped_ = false;

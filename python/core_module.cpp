@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -23,6 +24,7 @@
 #include "codec/sample_json.h"
 #include "codec/sample_table.h"
 #include "codec/scene_json.h"
+#include "engine/chaos_indicators.h"
 #include "engine/integrator.h"
 #include "engine/number_rule.h"
 #include "engine/readout.h"
@@ -221,6 +223,7 @@ struct RunColumns {
   std::vector<BodyColumns> companions;
   bool budget_left = true;                              // false: max_steps ran out before t_end
   std::vector<std::pair<std::string, double>> summary;  // the summaries' and events' values (run_summary.h)
+  std::vector<BodyColumns> crossings;  // each recording event's crossings (EventSpec::record), label its name
 
   void append(const Simulation& run, double events_since) {
     main.append(run, events_since);
@@ -254,7 +257,8 @@ class Interrupts {
 // of step attempts with `interrupts` looked at between them (the numbers do not depend on where a
 // run was stopped).
 RunColumns run_columns(const Scene& scene, double t_end, double every, std::optional<std::uint64_t> max_steps,
-                       const MonitorSpec& monitor = {}, Interrupts* interrupts = nullptr) {
+                       const MonitorSpec& monitor = {}, Interrupts* interrupts = nullptr,
+                       std::optional<double> chaos_interval = std::nullopt) {
   RunColumns out;
   out.main.reserve(static_cast<std::size_t>(std::ceil(t_end / every)) + 2);
   Simulation run = start_simulation(scene);
@@ -283,7 +287,41 @@ RunColumns run_columns(const Scene& scene, double t_end, double every, std::opti
   const std::vector<std::string> names = monitor_columns(monitor);
   const std::vector<double> values = monitor_values(run);
   for (std::size_t i = 0; i < names.size(); ++i) out.summary.emplace_back(names[i], values[i]);
+  if (run.monitor) {  // the crossings recorded, each read as a sample is (the main body's columns)
+    const State end = run.state;
+    for (std::size_t e = 0; e < monitor.events.size(); ++e) {
+      if (monitor.events[e].record == 0) continue;
+      BodyColumns& c = out.crossings.emplace_back();
+      c.label = monitor.events[e].name;
+      for (const State& at : run.monitor->recorded(e)) {
+        run.state = at;
+        c.append(run, std::numeric_limits<double>::infinity());
+      }
+    }
+    run.state = end;
+  }
+  if (chaos_interval) {  // `spinfold simulate --chaos`: its own two runs, to where this one ended
+    // Within what is left of max_steps, Ctrl-C looked at between slices of step attempts.
+    ChaosMonitor indicators(scene, *chaos_interval, run.start_time);
+    indicators.advance_to(run.state.t, attempts, [&] {
+      if (interrupts) interrupts->check();
+      return true;
+    });
+    const ChaosIndicators got = indicators.indicators();
+    if (got.out_of_steps) out.budget_left = false;
+    const std::array<double, 5> c = chaos_values(got);
+    for (std::size_t i = 0; i < c.size(); ++i)
+      out.summary.emplace_back(std::string(kChaosColumns[i]), std::isfinite(c[i]) ? c[i] : NAN);
+  }
   return out;
+}
+
+// chaos_interval (Python's chaos=True): the CLI's --chaos-interval rule, ValueError naming it.
+std::optional<double> chaos_of(std::optional<double> interval, double t_end) {
+  if (!interval) return std::nullopt;
+  if (const auto why = chaos_interval_refusal(*interval, t_end))
+    throw py::value_error("chaos_interval: " + *why);
+  return interval;
 }
 
 // The summaries and events as Python names them (ValueError "summaries: …" / "events: …"), checked
@@ -348,6 +386,9 @@ py::dict run_dict(RunColumns&& run, const Scene& scene, const std::string& comma
   py::list companions;
   for (BodyColumns& c : run.companions) companions.append(body_dict(std::move(c)));
   d["companions"] = companions;
+  py::list crossings;
+  for (BodyColumns& c : run.crossings) crossings.append(body_dict(std::move(c)));
+  d["crossings"] = crossings;
   d["budget_left"] = run.budget_left;
   py::dict summary;
   for (const auto& [name, value] : run.summary) summary[py::str(name)] = value;
@@ -358,16 +399,18 @@ py::dict run_dict(RunColumns&& run, const Scene& scene, const std::string& comma
 
 py::dict simulate(const std::string& scene_text, double t_end, double every,
                   std::optional<double> max_steps_given, const std::string& command,
-                  const std::vector<std::string>& summaries, const std::vector<std::string>& events) {
+                  const std::vector<std::string>& summaries, const std::vector<std::string>& events,
+                  std::optional<double> chaos_interval) {
   check_times(t_end, every);
   const std::optional<std::uint64_t> max_steps = max_steps_of(max_steps_given);
   const Scene scene = scene_of(scene_text);
   const MonitorSpec monitor = monitor_spec(summaries, events, {&scene});
+  const std::optional<double> chaos = chaos_of(chaos_interval, t_end);
   RunColumns columns;
   {
     py::gil_scoped_release release;
     Interrupts interrupts;
-    columns = run_columns(scene, t_end, every, max_steps, monitor, &interrupts);
+    columns = run_columns(scene, t_end, every, max_steps, monitor, &interrupts, chaos);
   }
   return run_dict(std::move(columns), scene, command);
 }
@@ -389,9 +432,11 @@ double engine_seconds(const std::string& scene_text, double t_end, double every,
 // Many runs on `threads` C++ threads (0: one per core), the GIL released; results in input order.
 py::list run_many(const std::vector<std::string>& scene_texts, double t_end, double every,
                   std::optional<double> threads_given, const std::string& command,
-                  const std::vector<std::string>& summaries, const std::vector<std::string>& events) {
+                  const std::vector<std::string>& summaries, const std::vector<std::string>& events,
+                  std::optional<double> chaos_interval) {
   check_times(t_end, every);
   if (threads_given) check_limit("threads", *threads_given);
+  const std::optional<double> chaos = chaos_of(chaos_interval, t_end);
   const unsigned threads = threads_given ? static_cast<unsigned>(*threads_given) : 0u;
   std::vector<Scene> scenes;
   for (std::size_t i = 0; i < scene_texts.size(); ++i) {
@@ -411,7 +456,7 @@ py::list run_many(const std::vector<std::string>& scene_texts, double t_end, dou
     std::atomic<std::size_t> next{0};
     const auto work = [&] {
       for (std::size_t i; (i = next++) < scenes.size();)
-        results[i] = run_columns(scenes[i], t_end, every, std::nullopt, monitor);
+        results[i] = run_columns(scenes[i], t_end, every, std::nullopt, monitor, nullptr, chaos);
     };
     std::vector<std::thread> pool;
     for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work);
@@ -617,10 +662,10 @@ PYBIND11_MODULE(_core, m) {
   m.def("merge_patch", &merge_patch);
   m.def("simulate", &simulate, py::arg("scene"), py::arg("t_end"), py::arg("every"), py::arg("max_steps"),
         py::arg("command"), py::arg("summaries") = std::vector<std::string>{},
-        py::arg("events") = std::vector<std::string>{});
+        py::arg("events") = std::vector<std::string>{}, py::arg("chaos_interval") = std::nullopt);
   m.def("run_many", &run_many, py::arg("scenes"), py::arg("t_end"), py::arg("every"), py::arg("threads"),
         py::arg("command"), py::arg("summaries") = std::vector<std::string>{},
-        py::arg("events") = std::vector<std::string>{});
+        py::arg("events") = std::vector<std::string>{}, py::arg("chaos_interval") = std::nullopt);
   m.def("render", &render_still, py::arg("scene"), py::arg("t"), py::arg("given"), py::arg("command"));
   // The one rule of each value the front doors share, for the Python layer's checks (the reason in
   // the table's words, or None): a view parameter (render/view_parameters.h), a run limit

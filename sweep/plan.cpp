@@ -106,6 +106,11 @@ Plan make_plan(Definition def) {
                                         : (error.event ? "events: " : "summaries: ")) +
                      std::string(error.what()));
   }
+  for (const EventSpec& e : plan.monitor.events)
+    if (e.record > 0)
+      throw SweepError(std::string(door == Door::cli ? "--event: '" : "events: '") + e.name +
+                       "': a sweep's row has no room for every crossing; record them with `spinfold simulate "
+                       "--crossings` or Python's simulate");
   std::set<std::string> seen;
   for (const Axis& a : def.axes)
     for (const FieldPath* f : a.fields)

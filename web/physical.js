@@ -503,11 +503,16 @@ function surfaceKindRow(s) {
   select.title = help.textContent;
   const error = el("span", { class: "error", id: "phys-surface-error", role: "alert" });
   select.addEventListener("change", async () => {
+    // The pick, read now: the last switch's answer, awaited below, redraws the form and puts its
+    // kind back in the select (read after it, the torus's answer turned a pick of the
+    // pseudosphere into a second torus: lost without a word, under load in CI).
+    const kind = select.value;
     const edit = begin(error);
     // The patch names the fields of the scene it replaces, so it is made from the scene the
     // server has: a switch made while the last one's answer was on its way named the sphere's
     // fields on the torus, and the torus's stayed (refused, the select back, under load in CI).
     await earlierAnswered(edit);
+    select.value = kind;
     const { current, surface } = store.get();
     try {
       // Fields of the other kinds go (initial.r on a torus); from the curvature form, that form
@@ -518,9 +523,9 @@ function surfaceKindRow(s) {
         speed: current.initial.speed ?? start.speed,
         heading: current.initial.heading ?? start.heading,
       };
-      const patch = surfaceSwitch(store.get().schema, current, select.value, physical);
-      if (curvatureForm(current.surface) && !curvatureVaries(store.get().schema, select.value))
-        patch.surface = { kind: select.value, radius: surface?.radius ?? 1, curvature: null };
+      const patch = surfaceSwitch(store.get().schema, current, kind, physical);
+      if (curvatureForm(current.surface) && !curvatureVaries(store.get().schema, kind))
+        patch.surface = { kind, radius: surface?.radius ?? 1, curvature: null };
       await applyChange(patch, edit);
     } catch (e) {
       if (refused(edit, /** @type {Error} */ (e).message)) select.value = store.get().surface?.kind;

@@ -20,6 +20,7 @@
 #include "codec/sample_json.h"
 #include "codec/sample_table.h"
 #include "engine/chaos_indicators.h"
+#include "engine/readout.h"
 #include "engine/sampling.h"
 #include "engine/simulation.h"
 #include "engine/sliced_advance.h"
@@ -33,9 +34,10 @@ struct SimulateOptions {
   double t_end = 10.0;
   double every = 0.5;
   // simulate's output (codec/sample_table.h) and its budgets
-  std::string format;                         // jsonl | csv | npz; "": by --out's extension, else jsonl
-  std::string fields;                         // table columns; "": all (CSV), the whole sample (JSON Lines)
-  std::string out;                            // "" or "-": stdout
+  std::string format;     // jsonl | csv | npz; "": by --out's extension, else jsonl
+  std::string fields;     // table columns; "": all (CSV), the whole sample (JSON Lines)
+  std::string out;        // "" or "-": stdout
+  std::string crossings;  // the recorded events' crossings (EventSpec::record): .csv, .npz, else JSON Lines
   std::optional<std::string> max_steps_text;  // read by run_limit_value (engine/run_limits.h)
   std::optional<std::uint64_t> max_steps;
   std::optional<double> max_seconds;
@@ -52,6 +54,57 @@ void draw_run_progress(const Simulation& run, double t_end, double seconds) {
   std::fprintf(stderr, "\rt = %.6g / %.6g (%.0f%%)  %llu steps  %.1f s ", run.state.t, t_end,
                t_end > 0 ? 100.0 * run.state.t / t_end : 100.0, static_cast<unsigned long long>(run.steps),
                seconds);
+}
+
+// Each recorded event's crossings (EventSpec::record), one row each: the event's name, the
+// occurrence (1, 2, …) and the main body's sample there in the samples' columns (a Poincaré section).
+void write_crossings(const std::string& path, bool npz, bool csv, std::optional<OutputFile>& out,
+                     Simulation& run, SampleTable table, const nlohmann::ordered_json& provenance) {
+  table.companion_labels.clear();  // the main body's crossings: its columns only
+  std::vector<NpzColumn> columns{{"event", {}}, {"occurrence", {}}};
+  for (const std::string& name : table.header()) columns.push_back({name, {}});
+  if (csv) {
+    out->write("event,occurrence," + table.csv_header());
+    out->write("# spinfold simulate " + version_line() + " crossings\n# provenance: " + provenance.dump() +
+               "\n");
+  } else if (!npz) {
+    out->write(nlohmann::ordered_json{{"provenance", provenance}}.dump() + "\n");
+  }
+  const State end = run.state;
+  const MonitorSpec& spec = run.monitor->spec();
+  for (std::size_t e = 0; e < spec.events.size(); ++e) {
+    if (spec.events[e].record == 0) continue;
+    std::uint64_t k = 0;
+    for (const State& at : run.monitor->recorded(e)) {
+      run.state = at;  // read as a sample is: the same read-out
+      const nlohmann::ordered_json sample = sample_to_json(readout(run), {});
+      ++k;
+      if (npz) {
+        columns[0].cells.emplace_back(spec.events[e].name);
+        columns[1].cells.emplace_back(k);
+        const std::vector<nlohmann::ordered_json> cells = table.row(sample);
+        for (std::size_t i = 0; i < cells.size(); ++i) columns[i + 2].cells.push_back(cells[i]);
+      } else if (csv) {
+        out->write(spec.events[e].name + "," + std::to_string(k) + "," + table.csv_row(sample));
+      } else {
+        nlohmann::ordered_json row{{"event", spec.events[e].name}, {"occurrence", k}};
+        const nlohmann::ordered_json cells = table.json_row(sample);
+        for (const auto& [key, value] : cells.items()) row[key] = value;
+        out->write(row.dump() + "\n");
+      }
+    }
+  }
+  run.state = end;
+  if (!npz) {
+    out->close();  // WriteError as the samples' file: exit 1 naming it
+    return;
+  }
+  columns.push_back({"provenance", {provenance.dump()}});
+  try {
+    write_npz(path, columns);
+  } catch (const std::runtime_error& e) {
+    throw BadInput{std::string("--crossings: ") + e.what()};
+  }
 }
 
 // Why a run ended before t_end without trouble of its own: a budget the user set.
@@ -85,6 +138,14 @@ int simulate(SimulateOptions opt) {
   } catch (const MonitorRefusal& e) {
     throw BadInput{std::string(e.event ? "--event: " : "--summary: ") + e.what()};
   }
+  const auto recording = std::find_if(monitor.events.begin(), monitor.events.end(),
+                                      [](const EventSpec& e) { return e.record > 0; });
+  if (recording != monitor.events.end() && opt.crossings.empty())
+    throw BadInput{"--event: '" + recording->name +
+                   "' records its crossings: give --crossings FILE (.csv, .jsonl or .npz) for their table"};
+  if (recording == monitor.events.end() && !opt.crossings.empty())
+    throw BadInput{
+        "--crossings: no --event records its crossings (add :record to one, e.g. phi:up:0:record)"};
   if (opt.chaos)
     if (const auto why = chaos_interval_refusal(opt.chaos_interval, opt.t_end))
       throw BadInput{"--chaos-interval: " + *why};
@@ -105,6 +166,16 @@ int simulate(SimulateOptions opt) {
     }
   }
   const auto write = [&](const std::string& line) { out->write(line); };
+  // The crossings' table: opened now, so that a path that cannot be written stops before the run.
+  const bool crossings_npz = opt.crossings.ends_with(".npz"), crossings_csv = opt.crossings.ends_with(".csv");
+  std::optional<OutputFile> crossings_out;
+  if (!opt.crossings.empty() && !crossings_npz) {
+    try {
+      crossings_out.emplace(opt.crossings);
+    } catch (const WriteError& e) {
+      throw BadInput{std::string("--crossings: ") + e.what()};
+    }
+  }
 
   const nlohmann::ordered_json provenance = provenance_json(scene, opt.scene.command);
   // npz: the table's columns, filled as the samples come and written at the end (numpy.load reads
@@ -221,6 +292,8 @@ int simulate(SimulateOptions opt) {
                 : nlohmann::ordered_json{{"summary", summary}}.dump() + "\n");
     }
   }
+  if (!opt.crossings.empty())
+    write_crossings(opt.crossings, crossings_npz, crossings_csv, crossings_out, run, table, provenance);
   if (npz) {
     columns.push_back({"provenance", {provenance.dump()}});
     try {
@@ -256,6 +329,9 @@ Command register_simulate(CLI::App& app) {
   simulate_cmd->add_option("--fields", sim.fields,
                            "Comma-separated columns (see `spinfold simulate --list-fields`; default: all)");
   simulate_cmd->add_option("--out", sim.out, "File to write (default: stdout)");
+  simulate_cmd->add_option("--crossings", sim.crossings,
+                           "File for the crossings of the events that record them (:record): one row each, "
+                           "with the --fields columns (.csv, .npz, else JSON Lines)");
   add_monitor_options(*simulate_cmd, sim.summaries, sim.events, sim.chaos, sim.chaos_interval);
   simulate_cmd->add_option("--max-steps", sim.max_steps_text, "Stop after this many step attempts (exit 3)");
   simulate_cmd->add_option("--max-seconds", sim.max_seconds, "Stop after this much wall time (exit 3)");

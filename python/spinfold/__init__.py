@@ -115,8 +115,8 @@ def _with_overrides(text: str, overrides: Mapping[str, Any], options: Sequence[s
     pairs = []
     for key, value in overrides.items():
         if key in ("chaos", "chaos_interval"):
-            raise TypeError(f"{key}: simulate has no chaos indicators yet; spinfold.sweep(..., chaos=True) and "
-                            f"`spinfold simulate --chaos` have them")
+            raise TypeError(f"{key}: not an option here (a run's option: spinfold.simulate, run_many and sweep "
+                            f"have it), not a scene field")
         if "__" not in key and key not in ("integrator", "dt", "tolerance"):
             meant = difflib.get_close_matches(key, list(options), n=1, cutoff=0.75)
             if meant:
@@ -221,6 +221,9 @@ class Result(Mapping[str, np.ndarray]):
         """The final status in one sentence."""
         self.companions: list[Result] = [Result(c) for c in raw.get("companions", [])]
         """One Result per companion body, in scene order."""
+        self.crossings: dict[str, Result] = {c["label"]: Result(c) for c in raw.get("crossings", [])}
+        """Each recording event's crossings (``events="phi:up:0:record"``) by its name: one row per
+        occurrence, the main body's sample there (a Poincaré section)."""
         self.provenance: dict[str, Any] = json.loads(raw["provenance"]) if "provenance" in raw else {}
         """Version, commit, scene hash, integrator and command (README, "Tables and provenance")."""
         self.complete: bool = raw.get("budget_left", True)
@@ -287,7 +290,17 @@ def _monitor_texts(summaries: str | Sequence[str], events: str | Sequence[str]) 
     return [x for x in summaries if x], _texts(events, "events")
 
 
-_SIMULATE_OPTIONS = ("t_end", "every", "max_steps", "summaries", "events")
+_SIMULATE_OPTIONS = ("t_end", "every", "max_steps", "summaries", "events", "chaos", "chaos_interval")
+
+
+def _chaos_interval(chaos: Any, chaos_interval: Any) -> float | None:
+    """`chaos` (True or False) and its interval as the core takes them: the interval, or None."""
+    if not _flag("chaos", chaos):
+        return None
+    interval = _real(chaos_interval)
+    if interval is None:
+        raise TypeError(f"chaos_interval: must be a number (got {chaos_interval!r})")
+    return interval
 
 
 def _flag(name: str, value: Any) -> bool:
@@ -298,8 +311,8 @@ def _flag(name: str, value: Any) -> bool:
 
 
 def simulate(scene: Any, t_end: float = 10.0, every: float = 0.5, *, max_steps: int | None = None,
-             summaries: str | Sequence[str] = (), events: str | Sequence[str] = (),
-             **overrides: Any) -> Result:
+             summaries: str | Sequence[str] = (), events: str | Sequence[str] = (), chaos: bool = False,
+             chaos_interval: float = 1.0, **overrides: Any) -> Result:
     """Runs a scene and samples it at t = 0, every, 2·every, … and t_end.
 
     `scene`: a preset name, a path, JSON text or a dict. Keyword overrides: ``integrator``, ``dt``,
@@ -308,21 +321,27 @@ def simulate(scene: Any, t_end: float = 10.0, every: float = 0.5, *, max_steps: 
     `max_steps` bounds the step attempts (``result.complete`` is False when they ran out).
     `summaries` and `events`: the CLI's ``--summary`` and ``--event``; their values are
     ``result.summary`` (``{"r.max": …, "r_up_1.2.count": …}``, NaN where there is none).
+    `chaos`: the CLI's ``--chaos``, the maximal Lyapunov exponent and MEGNO in ``result.summary``
+    (``chaos.lyapunov``, ``chaos.megno``, ``chaos.megno_mean``, ``chaos.lyapunov_time``, ``chaos.t``),
+    a shadow run restarted every `chaos_interval` (docs/numerics.md, "Chaos and predictability").
     """
     t_end, every = _run_limit("t_end", t_end), _run_limit("every", every)
     steps = None if max_steps is None else _run_limit("max_steps", max_steps)
+    interval = _chaos_interval(chaos, chaos_interval)
     text = _with_overrides(_scene_text(scene), overrides, _SIMULATE_OPTIONS)
     watched, crossings = _monitor_texts(summaries, events)
-    return Result(_core.simulate(text, t_end, every, steps, "python: spinfold.simulate", watched, crossings))
+    return Result(_core.simulate(text, t_end, every, steps, "python: spinfold.simulate", watched, crossings,
+                                 interval))
 
 
 def run_many(scenes: Iterable[Any], t_end: float = 10.0, every: float = 0.5, *,
              threads: int | None = None, summaries: str | Sequence[str] = (),
-             events: str | Sequence[str] = ()) -> list[Result]:
+             events: str | Sequence[str] = (), chaos: bool = False, chaos_interval: float = 1.0) -> list[Result]:
     """Runs many scenes on C++ threads (`threads`; None: one per core) with the GIL released.
 
-    Each run is what ``simulate`` gives for that scene (its `summaries` and `events` in
-    ``result.summary``). A refused scene raises ValueError naming its index before anything runs.
+    Each run is what ``simulate`` gives for that scene (its `summaries`, `events` and `chaos`
+    indicators in ``result.summary``). A refused scene raises ValueError naming its index before
+    anything runs.
     """
     if isinstance(scenes, (str, bytes, Mapping)) or not isinstance(scenes, Iterable):
         raise TypeError(f"scenes: must be an iterable of scenes (got {type(scenes).__name__})")
@@ -330,7 +349,8 @@ def run_many(scenes: Iterable[Any], t_end: float = 10.0, every: float = 0.5, *,
     count = None if threads is None else _run_limit("threads", threads)
     texts = [_scene_text(s, f"scenes[{i}]") for i, s in enumerate(scenes)]
     watched, crossings = _monitor_texts(summaries, events)
-    raw = _core.run_many(texts, t_end, every, count, "python: spinfold.run_many", watched, crossings)
+    interval = _chaos_interval(chaos, chaos_interval)
+    raw = _core.run_many(texts, t_end, every, count, "python: spinfold.run_many", watched, crossings, interval)
     return [Result(r) for r in raw]
 
 

@@ -258,6 +258,69 @@ TEST(SimulateOutput, AnEventPeriodBelowTheFieldsPrecisionStopsTheRunWithItsStatu
 // exit 1, never a short file and exit 0 (every writer checks its writes, its flush and its close).
 // The zip formats (png-zip, npz) are not asked to: libzip writes a file beside the path and renames
 // it over it, which in /dev would replace the device (their checks: tests/record, tests/codec).
+// Every crossing with its state (issue 51 item 3): --crossings FILE holds one row per recorded
+// occurrence, the event's name, the occurrence and the sample's --fields there, in JSON Lines, CSV and
+// npz; the summary's count, t_first and t_last agree; the same rows at another --every.
+TEST(SimulateOutput, RecordedCrossingsAreATableOfTheirOwn) {
+  TempDir dir;
+  const std::string run =
+      "simulate spin_vs_geodesic_torus --t-end 60 --fields t,u,phi,heading --event u:up:0:record "
+      "--crossings ";
+  const Result jsonl = spinfold(run + (dir.path / "c.jsonl").string());
+  ASSERT_EQ(jsonl.exit_code, 0) << jsonl.err;
+  const json summary = json::parse(lines_of(jsonl.out).back())["summary"];
+  const std::vector<std::string> rows = lines_of(slurp(dir.path / "c.jsonl"));
+  ASSERT_TRUE(json::parse(rows[0]).contains("provenance"));
+  const auto count = summary["u_up_0.count"].get<std::uint64_t>();
+  ASSERT_GE(count, 2u);
+  ASSERT_EQ(rows.size(), count + 1) << "one row per crossing after the provenance";
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const json row = json::parse(rows[k]);
+    EXPECT_EQ(row["event"], "u_up_0");
+    EXPECT_EQ(row["occurrence"], k);
+    EXPECT_LT(std::abs(row["u"].get<double>()), 1e-9) << rows[k];
+  }
+  EXPECT_EQ(json::parse(rows[1])["t"], summary["u_up_0.t_first"]);
+  EXPECT_EQ(json::parse(rows.back())["t"], summary["u_up_0.t_last"]);
+  // Sampled elsewhere: the same rows; as CSV and npz: the same numbers.
+  const Result finer = spinfold(
+      "simulate spin_vs_geodesic_torus --t-end 60 --every 0.07 --fields t,u,phi,heading "
+      "--event u:up:0:record --crossings " +
+      (dir.path / "f.jsonl").string());
+  ASSERT_EQ(finer.exit_code, 0) << finer.err;
+  const std::vector<std::string> again = lines_of(slurp(dir.path / "f.jsonl"));
+  EXPECT_EQ(std::vector<std::string>(again.begin() + 1, again.end()),
+            std::vector<std::string>(rows.begin() + 1, rows.end()))
+      << "the same rows after the provenance (whose command differs)";
+  ASSERT_EQ(spinfold(run + (dir.path / "c.csv").string()).exit_code, 0);
+  const std::vector<std::string> csv = lines_of(slurp(dir.path / "c.csv"));
+  EXPECT_EQ(csv[0], "event,occurrence,t,u,phi,heading");
+  std::size_t data = 0;
+  for (const std::string& line : csv)
+    if (!line.empty() && line[0] != '#' && line != csv[0]) {
+      const json row = json::parse(rows[++data]);
+      const std::vector<std::string> cells = cells_of(line);
+      EXPECT_EQ(cells[0], "u_up_0");
+      EXPECT_EQ(std::stod(cells[2]), row["t"].get<double>()) << line;
+    }
+  EXPECT_EQ(data, count);
+  ASSERT_EQ(spinfold(run + (dir.path / "c.npz").string()).exit_code, 0);
+  EXPECT_GT(fs::file_size(dir.path / "c.npz"), 100u);
+  // Asked for, it has a file; a file with nothing recording is refused; a sweep has no room for it.
+  const Result no_file = spinfold("simulate spinning_rigid_sphere --t-end 1 --event phi:up:0:record");
+  EXPECT_EQ(no_file.exit_code, 2);
+  EXPECT_NE(no_file.err.find("give --crossings FILE"), std::string::npos) << no_file.err;
+  const Result no_event = spinfold("simulate spinning_rigid_sphere --t-end 1 --event phi:up:0 --crossings " +
+                                   (dir.path / "x.csv").string());
+  EXPECT_EQ(no_event.exit_code, 2);
+  EXPECT_NE(no_event.err.find("--crossings: no --event records"), std::string::npos) << no_event.err;
+  const Result sweep =
+      spinfold("sweep spinning_rigid_sphere --set initial.spin=0,1 --t-end 1 --event phi:up:0:record");
+  EXPECT_EQ(sweep.exit_code, 2);
+  EXPECT_NE(sweep.err.find("record them with `spinfold simulate --crossings`"), std::string::npos)
+      << sweep.err;
+}
+
 TEST(SimulateOutput, AFullDeviceIsAnErrorNamingTheFile) {
   for (const std::string args : {
            "simulate spinning_rigid_sphere --t-end 1 --format csv --out /dev/full",

@@ -222,6 +222,61 @@ TEST(RunSummary, EventsAreLocatedToTheirLevel) {
   EXPECT_EQ(all[2], times.back());
 }
 
+// Every crossing with its state (issue 51 item 3: a Poincaré section took 35 re-runs with stop=k).
+// `record` keeps each occurrence's state: as many as counted, each on its level, the first and last at
+// t_first and t_last, each the state of a stop=k run at that crossing (the same root find), the same
+// whatever the sampling, and bounded by record=N.
+TEST(RunSummary, EveryCrossingIsRecordedWithItsState) {
+  const Scene scene = w5_with("dop853", 0.01, 1e-12);
+  const double T = 30.0;
+  const EventSpec spec = parse_event("r:up:1.3:record");
+  EXPECT_EQ(spec.record, kMaxRecordedCrossings);
+  Simulation run;
+  const std::vector<double> v = summarised(scene, {.summaries = {}, .events = {spec}}, T, 0.5, &run);
+  const std::vector<State> kept = run.monitor->recorded(0);
+  ASSERT_GE(v[0], 2.0);
+  ASSERT_EQ(static_cast<double>(kept.size()), v[0]);
+  EXPECT_EQ(kept.front().t, v[1]);
+  EXPECT_EQ(kept.back().t, v[2]);
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    const GlobalBody g = global_body(scene, kept[k]);
+    EXPECT_LT(std::abs(g.r - 1.3), 1e-10) << k;
+    EXPECT_GT(g.r_dot, 0.0) << k;
+    if (k > 0) {
+      EXPECT_GT(kept[k].t, kept[k - 1].t);
+    }
+    Simulation stopped;  // the k-th by stop=k: the same crossing
+    summarised(scene, {.summaries = {}, .events = {parse_event("r:up:1.3:stop=" + std::to_string(k + 1))}}, T,
+               0.5, &stopped);
+    EXPECT_NEAR(stopped.state.t, kept[k].t, 1e-12) << k;
+  }
+  Simulation finer;
+  summarised(scene, {.summaries = {}, .events = {spec}}, T, 0.07, &finer);
+  const std::vector<State> again = finer.monitor->recorded(0);
+  ASSERT_EQ(again.size(), kept.size());
+  for (std::size_t k = 0; k < kept.size(); ++k) EXPECT_TRUE(test::same_bits(again[k], kept[k])) << k;
+  // Bounded: the first N only, the count still all of them.
+  Simulation capped;
+  const std::vector<double> c =
+      summarised(scene, {.summaries = {}, .events = {parse_event("r:up:1.3:record=1")}}, T, 0.5, &capped);
+  EXPECT_EQ(c[0], v[0]);
+  ASSERT_EQ(capped.monitor->recorded(0).size(), 1u);
+  EXPECT_TRUE(test::same_bits(capped.monitor->recorded(0)[0], kept[0]));
+  // With a period every level's crossing is kept: φ through each multiple of 2π, in order.
+  Simulation turns;
+  const std::vector<double> p =
+      summarised(scene, {.summaries = {}, .events = {parse_event("phi:any:0:record")}}, 40.0, 0.5, &turns);
+  const std::vector<State> each = turns.monitor->recorded(0);
+  ASSERT_EQ(static_cast<double>(each.size()), p[0]);
+  for (const State& at : each) {
+    const double phi = global_body(scene, at).phi;
+    EXPECT_LT(std::abs(std::remainder(phi, 2.0 * std::numbers::pi)), 1e-9) << at.t;
+  }
+  EXPECT_THROW(parse_event("r:up:1.3:record=0"), MonitorRefusal);
+  EXPECT_THROW(parse_event("r:up:1.3:record=100001"), MonitorRefusal);
+  EXPECT_THROW(parse_event("r:up:1.3:record=1.5"), MonitorRefusal);
+}
+
 // The closed form and a stepper locate the same crossings: two formulations, to their accuracy.
 TEST(RunSummary, ClosedFormAndStepperAgree) {
   const MonitorSpec spec{

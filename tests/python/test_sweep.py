@@ -2,6 +2,7 @@
 examples give the same rows to the bit, and bad input is refused the same way."""
 
 import csv
+import json
 import math
 import pathlib
 import re
@@ -251,6 +252,36 @@ def test_ctrl_c_stops_a_sweep_after_the_runs_in_progress():
     assert "KeyboardInterrupt" in err
 
 
+def test_simulate_and_run_many_give_the_clis_chaos_indicators(binary):
+    # simulate(chaos=True) is `spinfold simulate --chaos` to the bit (issue 51 item 6: it had none).
+    out = subprocess.run([binary, "simulate", "spin_vs_geodesic_torus", "--t-end", "40", "--every", "10",
+                          "--fields", "t", "--chaos"], check=True, capture_output=True, text=True).stdout
+    cli = json.loads(out.strip().splitlines()[-1])["summary"]
+    one = spinfold.simulate("spin_vs_geodesic_torus", t_end=40, every=10, chaos=True).summary
+    many = spinfold.run_many(["spin_vs_geodesic_torus", "spinning_rigid_sphere"], t_end=40, every=10, chaos=True)
+    for name in ("chaos.lyapunov", "chaos.megno", "chaos.megno_mean", "chaos.lyapunov_time", "chaos.t"):
+        assert one[name] == cli[name] and many[0].summary[name] == cli[name], name
+    assert one["chaos.t"] == 40 and 1.0 < one["chaos.megno_mean"] < 3.0
+    assert "chaos.megno" in many[1].summary
+    assert "chaos.megno" not in spinfold.simulate("spin_vs_geodesic_torus", t_end=1).summary
+
+
+def test_every_crossing_is_a_result_of_its_own(binary, tmp_path):
+    # simulate(events="...:record") gives each crossing's sample, as `--crossings` writes it.
+    result = spinfold.simulate("spin_vs_geodesic_torus", t_end=60, events=["u:up:0:record", "u:down:1"])
+    section = result.crossings["u_up_0"]
+    assert list(result.crossings) == ["u_up_0"]
+    assert len(section["t"]) == result.summary["u_up_0.count"] >= 2
+    assert section["t"][0] == result.summary["u_up_0.t_first"] and section["t"][-1] == result.summary["u_up_0.t_last"]
+    assert np.all(np.abs(section["u"]) < 1e-9) and np.all(np.diff(section["t"]) > 0)
+    out = tmp_path / "c.csv"
+    subprocess.run([binary, "simulate", "spin_vs_geodesic_torus", "--t-end", "60", "--fields", "t,phi,speed",
+                    "--event", "u:up:0:record", "--crossings", str(out)], check=True, capture_output=True)
+    table = np.genfromtxt(out, delimiter=",", names=True, comments="#", dtype=None, encoding="utf-8")
+    assert np.array_equal(table["t"], section["t"]) and np.array_equal(table["phi"], section["phi"])
+    assert np.array_equal(table["occurrence"], np.arange(1, len(section["t"]) + 1))
+
+
 def test_options_are_strict_and_told_apart_from_scene_fields():
     # A yes-or-no option takes True or False only: "yes" was accepted as true (issue 51, item 6).
     for bad in ("yes", 1, None):
@@ -261,7 +292,16 @@ def test_options_are_strict_and_told_apart_from_scene_fields():
     # A misspelt option is named as one, not as an unknown scene field.
     with pytest.raises(TypeError, match=r"summary: not an option \(did you mean summaries=\?\)"):
         spinfold.simulate("spinning_rigid_sphere", t_end=0.5, summary="r")
-    with pytest.raises(TypeError, match=r"chaos: simulate has no chaos indicators yet"):
-        spinfold.simulate("spinning_rigid_sphere", t_end=0.5, chaos=True)
+    for bad in ("yes", 1):
+        with pytest.raises(TypeError, match=r"chaos: must be True or False"):
+            spinfold.simulate("spinning_rigid_sphere", t_end=0.5, chaos=bad)
+        with pytest.raises(TypeError, match=r"chaos: must be True or False"):
+            spinfold.run_many(["spinning_rigid_sphere"], t_end=0.5, chaos=bad)
+    with pytest.raises(TypeError, match=r"chaos_interval: must be a number"):
+        spinfold.simulate("spinning_rigid_sphere", t_end=0.5, chaos=True, chaos_interval="1")
+    with pytest.raises(ValueError, match=r"chaos_interval: must be a number > 0 \[time\] \(got -1\)"):
+        spinfold.simulate("spinning_rigid_sphere", t_end=0.5, chaos=True, chaos_interval=-1)
+    with pytest.raises(ValueError, match=r"chaos_interval: must be at most the run's length"):
+        spinfold.run_many(["spinning_rigid_sphere"], t_end=0.5, chaos=True, chaos_interval=2)
     # Scene fields and the flags still pass.
     assert spinfold.simulate("spinning_rigid_sphere", t_end=0.5, initial__spin=0.5, tolerance=1e-9) is not None
