@@ -54,8 +54,23 @@ void append(std::vector<std::uint8_t>& out, const T& value) {
 }  // namespace
 
 std::vector<std::uint8_t> npy_bytes(const std::vector<nlohmann::ordered_json>& cells) {
-  bool numeric = true;
-  for (const auto& c : cells) numeric = numeric && (c.is_number() || c.is_null());
+  bool numeric = true, whole = !cells.empty(), negative = false;
+  for (const auto& c : cells) {
+    numeric = numeric && (c.is_number() || c.is_null());
+    whole = whole && c.is_number_integer();
+    negative = negative || (c.is_number_integer() && !c.is_number_unsigned() && c.get<std::int64_t>() < 0);
+  }
+  // Whole numbers (counts, steps, occurrences) as Python's sweep gives them: uint64, or int64 with a
+  // negative one; a column with a null in it is float64 with NaN there.
+  if (whole) {
+    std::vector<std::uint8_t> out = npy_header(negative ? "<i8" : "<u8", cells.size());
+    for (const auto& c : cells)
+      if (negative)
+        append(out, c.get<std::int64_t>());
+      else
+        append(out, c.get<std::uint64_t>());
+    return out;
+  }
   if (numeric) {
     std::vector<std::uint8_t> out = npy_header("<f8", cells.size());
     for (const auto& c : cells) append(out, c.is_null() ? std::nan("") : c.get<double>());

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <optional>
+#include <string_view>
 
 #include "engine/implicit_start.h"
 #include "engine/revolution.h"
@@ -528,6 +530,26 @@ std::string drop_text(const InitialFields& fields, bool arrow) {
     if (!text.empty()) text += ", ";
     text.append(name).append(" = ").append(v);
   }
+  return text;
+}
+
+std::string drop_plain_text(const InitialFields& fields, bool arrow) {
+  const auto value = [&](std::string_view name) -> std::optional<double> {
+    for (const auto& [n, v] : fields)
+      if (n == name) return v;
+    return std::nullopt;
+  };
+  char text[96];
+  if (!arrow) {
+    const std::optional<double> r = value("r");
+    if (!r) return "start here";
+    std::snprintf(text, sizeof text, "start here, %.3g from the pole", *r);
+    return text;
+  }
+  const std::optional<double> speed = value("speed"), heading = value("heading");
+  if (!speed || !heading) return "start with this velocity";
+  std::snprintf(text, sizeof text, "start at speed %.3g, %.0f° from outwards", *speed,
+                *heading * 180.0 / kPi);
   return text;
 }
 

@@ -108,5 +108,9 @@ InitialFields arrow_drop_fields(const Surface& surface, const BodyPlace& body, d
 // place for a body ("r = 1.234, phi = 0.5"), the velocity for an arrow ("speed = 0.75, heading =
 // 90.0°": degrees, as the physics panel shows the heading).
 std::string drop_text(const InitialFields& fields, bool arrow);
+// The same in plain words for a class (the `plain` layer, simple mode), no coordinate names: "start
+// here, 1.23 from the pole" (only where the place is a distance r from the pole; elsewhere "start
+// here"), "start at speed 0.75, 90° from outwards" (the heading measured from the way out).
+std::string drop_plain_text(const InitialFields& fields, bool arrow);
 
 }  // namespace spinfold::render

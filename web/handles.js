@@ -207,7 +207,8 @@ async function preview() {
   try {
     const path = dropPath(store.get(), p);
     const answer = await tracked(path, request("GET", path));
-    $("handle-tip").textContent = answer.text;
+    // Simple mode's words (the plain layer): no coordinate names for a class.
+    $("handle-tip").textContent = store.get().view.layers.includes("plain") ? answer.plain : answer.text;
   } catch {
     $("handle-tip").textContent = which === "body" ? "off the surface" : "turn the view first";
   } finally {

@@ -422,8 +422,10 @@ def sweep(base: Any, vary: Mapping[str, Any], t_end: float = 10.0, every: float 
             raise ValueError(f"vary['{path}']: not a list of numbers or names ({error})") from None
         axes.append((str(path), None, text))
     summaries, events = _monitor_texts(summaries, events)
+    checked = _chaos_interval(chaos, chaos_interval)  # None without chaos: the core ignores the interval then
+    interval = 1.0 if checked is None else checked
     names, rows = _core.sweep(_scene_text(base, "base"), axes, bool(zip), float(t_end), float(every), fields,
-                              summaries, events, bool(chaos), float(chaos_interval), max_steps, threads or 0,
+                              summaries, events, bool(chaos), interval, max_steps, threads or 0,
                               "python: spinfold.sweep")
     out: dict[str, np.ndarray] = {}
     for j, name in enumerate(names):

@@ -123,7 +123,9 @@ void get_drop(ServerContext& server, const Call& call, httplib::Response& res) {
   nlohmann::ordered_json initial = nlohmann::ordered_json::object();
   for (const auto& [name, value] : fields) put(initial, name, value);
   res.set_header("Cache-Control", "no-store");
-  send_json(res, {{"initial", initial}, {"text", render::drop_text(fields, arrow)}});
+  send_json(res, {{"initial", initial},
+                  {"text", render::drop_text(fields, arrow)},
+                  {"plain", render::drop_plain_text(fields, arrow)}});
 }
 
 }  // namespace
@@ -163,10 +165,12 @@ std::vector<Route> drag_routes(const Limits& limits) {
                         .values = {"body", "arrow"},
                         .default_value = std::string("body"),
                         .description = "what was dragged: the body (its start) or its velocity arrow"});
-  drop.responses = {{200,
-                     "{\"initial\": {the fields a drop sets}, \"text\": what it changes (\"r = 1.2, phi = "
-                     "0.5\", \"speed = 0.75, heading = 90°\")}"},
-                    {422, "an invalid parameter, a pixel off the surface, or a body seen edge-on"}};
+  drop.responses = {
+      {200,
+       "{\"initial\": {the fields a drop sets}, \"text\": what it changes (\"r = 1.2, phi = "
+       "0.5\", \"speed = 0.75, heading = 90°\"), \"plain\": the same for a class, no coordinate "
+       "names (\"start here, 1.2 from the pole\")}"},
+      {422, "an invalid parameter, a pixel off the surface, or a body seen edge-on"}};
   return {handles, drop};
 }
 

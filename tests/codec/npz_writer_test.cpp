@@ -37,6 +37,26 @@ TEST(NpzWriter, NumbersAreFloat64WithNullAsNaNAfterAHeaderPaddedTo64Bytes) {
   EXPECT_EQ(v[2], -0.1);  // the same double, bit for bit
 }
 
+// Whole numbers (a count, steps) are uint64, or int64 with a negative one, as Python's sweep gives
+// them: one dtype per column across Python and the .npz (issue 51: float64 in the .npz); a null among
+// them makes the column float64, as a missing value does in Python.
+TEST(NpzWriter, WholeNumbersAreUint64OrInt64) {
+  const std::vector<std::uint8_t> counts =
+      npy_bytes({ordered_json(3u), ordered_json(0u), ordered_json(9007199254740993u)});
+  EXPECT_EQ(header_of(counts).rfind("{'descr': '<u8'", 0), 0u) << header_of(counts);
+  std::uint64_t u[3];
+  std::memcpy(u, counts.data() + 10 + header_of(counts).size(), sizeof u);
+  EXPECT_EQ(u[2], 9007199254740993u);  // past 2⁵³: exact, as no float64 is
+  const std::vector<std::uint8_t> signs = npy_bytes({ordered_json(-2), ordered_json(5u)});
+  EXPECT_EQ(header_of(signs).rfind("{'descr': '<i8'", 0), 0u) << header_of(signs);
+  std::int64_t i[2];
+  std::memcpy(i, signs.data() + 10 + header_of(signs).size(), sizeof i);
+  EXPECT_EQ(i[0], -2);
+  EXPECT_EQ(i[1], 5);
+  EXPECT_EQ(header_of(npy_bytes({ordered_json(1u), nullptr})).rfind("{'descr': '<f8'", 0), 0u);
+  EXPECT_EQ(header_of(npy_bytes({ordered_json(1u), ordered_json(1.5)})).rfind("{'descr': '<f8'", 0), 0u);
+}
+
 TEST(NpzWriter, TextIsFixedWidthUtf32) {
   const std::vector<std::uint8_t> npy = npy_bytes({"ok", "s = \u03BB", nullptr});
   const std::string header = header_of(npy);

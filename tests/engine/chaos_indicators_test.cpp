@@ -156,7 +156,14 @@ Scene integrable_scene(unsigned seed) {
 }
 
 TEST(ChaosIndicators, EveryIntegrableSceneHasMegnoTwoAtTheDefaultTolerance) {
-  for (unsigned seed = 0; seed < 24; ++seed) {
+  // Seeds 0–11 draw each surface with each body once (24 before: the same spread, twice the time);
+  // under the sanitizers, which look for memory errors rather than numbers, three (170 s → 20 s).
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  constexpr unsigned kSeeds = 3;
+#else
+  constexpr unsigned kSeeds = 12;
+#endif
+  for (unsigned seed = 0; seed < kSeeds; ++seed) {
     const Scene s = integrable_scene(seed);
     ASSERT_EQ(s.integrator.name, "auto");
     ASSERT_EQ(s.integrator.tolerance, 1e-10);
@@ -169,7 +176,8 @@ TEST(ChaosIndicators, EveryIntegrableSceneHasMegnoTwoAtTheDefaultTolerance) {
     // 1.83–2.06 and λ ≤ 0.0096 over these scenes (before: 4.7 at T = 200 on the torus).
     EXPECT_NEAR(c.megno_mean, 2.0, 0.2) << what;
     EXPECT_LT(c.lyapunov, 2.0 * std::log(800.0) / 800.0) << what;
-    // The tolerance hardly enters: at 1e-13 within 4 % (measured ≤ 2.7 %).
+    // The tolerance hardly enters: at 1e-13 within 4 % (measured ≤ 1.4 %; the closed form has none).
+    if (resolve_integrator(s) == "exact") continue;
     Scene tight = s;
     tight.integrator.tolerance = 1e-13;
     const ChaosIndicators t = indicators(tight, 800.0);

@@ -299,6 +299,8 @@ def test_options_are_strict_and_told_apart_from_scene_fields():
             spinfold.run_many(["spinning_rigid_sphere"], t_end=0.5, chaos=bad)
     with pytest.raises(TypeError, match=r"chaos_interval: must be a number"):
         spinfold.simulate("spinning_rigid_sphere", t_end=0.5, chaos=True, chaos_interval="1")
+    with pytest.raises(TypeError, match=r"chaos_interval: must be a number"):
+        spinfold.sweep("spinning_rigid_sphere", {"initial.spin": "0:1:2"}, t_end=0.5, chaos=True, chaos_interval="1")
     with pytest.raises(ValueError, match=r"chaos_interval: must be a number > 0 \[time\] \(got -1\)"):
         spinfold.simulate("spinning_rigid_sphere", t_end=0.5, chaos=True, chaos_interval=-1)
     with pytest.raises(ValueError, match=r"chaos_interval: must be at most the run's length"):

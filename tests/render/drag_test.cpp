@@ -325,6 +325,15 @@ TEST(Drag, TheLabelSaysWhatTheDropChanges) {
       {"r", 1.2345678}, {"phi", -0.5}, {"speed", 0.75}, {"heading", kPi / 2}, {"spin", 1.0}};
   EXPECT_EQ(drop_text(fields, false), "r = 1.235, phi = -0.5");
   EXPECT_EQ(drop_text(fields, true), "speed = 0.75, heading = 90.0°");
+  // Plain words for a class: no coordinate names (issue 50 item 6: simple mode showed u and phi).
+  EXPECT_EQ(drop_plain_text(fields, false), "start here, 1.23 from the pole");
+  EXPECT_EQ(drop_plain_text(fields, true), "start at speed 0.75, 90° from outwards");
+  EXPECT_EQ(drop_plain_text({{"u", 0.3}, {"phi", 1.0}}, false), "start here");
+  EXPECT_EQ(drop_plain_text({{"X", 0.3}}, false), "start here");
+  for (const auto& [name, value] : fields) {
+    EXPECT_EQ(drop_plain_text(fields, false).find(std::string(name) + " ="), std::string::npos) << name;
+    EXPECT_EQ(drop_plain_text(fields, true).find(std::string(name) + " ="), std::string::npos) << name;
+  }
 }
 
 // At a pole, where the engine takes a speed only with heading 0 or π, the arrow's direction turns

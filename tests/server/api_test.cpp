@@ -379,6 +379,7 @@ TEST_F(Api, AFormulaSurfaceSessionRunsAndItsRefusalsNameTheField) {
   const json dropped = json::parse(drop->body);
   ASSERT_TRUE(dropped["initial"]["X"].is_array()) << drop->body;
   EXPECT_NE(dropped["text"].get<std::string>().find("X.0 = "), std::string::npos) << drop->body;
+  EXPECT_EQ(dropped["plain"], "start here") << drop->body;  // simple mode's words, no coordinates
   auto moved_to =
       c.Patch("/api/v1/sessions/" + id, json{{"initial", dropped["initial"]}}.dump(), "application/json");
   ASSERT_TRUE(moved_to);

@@ -759,6 +759,15 @@ await runSuite(started, async (browser) => {
     await page.waitForFunction(() => /^circle radius = 0\.5493 \(predicted 0\.5493\)$/.test(document.querySelector("#circle-line").textContent), null, { timeout: 20000 });
     await page.click("#pause");
     await page.waitForFunction(() => document.body.dataset.playing === "false");
+    // The drag label in plain words too (it said "r = …, phi = …"): what a class reads beside the pointer.
+    await page.waitForSelector("#handle-body:not([hidden])", { timeout: 10000 });
+    const ring = await (await page.$("#handle-body")).boundingBox();
+    await page.mouse.move(ring.x + ring.width / 2, ring.y + ring.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(ring.x + ring.width / 2 - 20, ring.y + ring.height / 2 + 10, { steps: 4 });
+    await page.waitForFunction(() => /^start here, [0-9.e-]+ from the pole$/.test(document.querySelector("#handle-tip").textContent), null, { timeout: 10000 });
+    await page.mouse.up();
+    await page.waitForFunction(() => /Restarted at t = 0/.test(document.querySelector("#status").textContent), null, { timeout: 10000 });
     await page.click("#simple");
     assert.ok((await visibleRows()).length > 3);
     assert.ok(await page.isVisible("#advanced"));
