@@ -128,7 +128,7 @@ int plot(const PlotOptions& opt, int argc, char** argv) {
   sample_run(
       run, opt.t_end, every, [&](double t) { return advance_to(run, t); }, emit);
 
-  const std::string command = command_line(argc, argv);
+  const std::string command = provenance_command(argc, argv);
   plot.title = scene.name.empty() ? "Spinfold scene" : scene.name;
   plot.description = scene.description;
   if (!opt.no_footer) plot.provenance = provenance_header(scene) + "; command=" + command;

@@ -2,8 +2,8 @@
 // over varied fields; `render` draws one frame; `record` a time window as a GIF, WebM, MP4 or zip
 // of PNGs; `work-precision` measures run time against error on a scene; `plot` draws quantities of
 // a run as an SVG or PDF figure; `serve` the HTTP API; `scenes` lists the presets; `integrators`
-// prints the catalog. Each subcommand is one file, cli/commands/<name>.cpp, and one row of the
-// table below. Bad input: a message on stderr and exit code 2.
+// prints the catalog; `rerun` runs again the command an output records. Each subcommand is one file,
+// cli/commands/<name>.cpp, and one row of the table below. Bad input: a message on stderr and exit code 2.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <iostream>
@@ -31,7 +31,7 @@ constexpr Registrar kCommands[] = {
     cli::register_render,   cli::register_record,      cli::register_work_precision,
     cli::register_plot,     cli::register_serve,
 #endif
-    cli::register_scenes,   cli::register_integrators,
+    cli::register_scenes,   cli::register_integrators, cli::register_rerun,
 };
 
 // What the full build has beyond the compute-only one: named when asked for on a cluster node's build.
@@ -39,7 +39,7 @@ constexpr std::string_view kFullBuildOnly[] = {"render", "record", "work-precisi
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int spinfold::cli::run_command_line(int argc, char** argv) {
   CLI::App app{"Spinfold: affinely-rigid bodies moving on curved surfaces"};
 #ifdef SPINFOLD_COMPUTE_ONLY
   app.set_version_flag("--version", "spinfold " + version_line());
@@ -88,4 +88,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return spinfold::cli::run_command_line(argc, argv);
 }

@@ -174,7 +174,7 @@ int run_sweep_command(const SweepOptions& opt, int argc, char** argv) {
       for (const std::string& n : sweep::field_names()) std::printf("%s\n", n.c_str());
       return 0;
     }
-    const std::string command = spinfold::command_line(argc, argv);
+    const std::string command = provenance_command(argc, argv);
     if (!opt.merge.empty()) {
       sweep::merge_shards(opt.merge, opt.out, command);
       return 0;

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "cli/commands/command.h"
 #include "codec/output_file.h"
 #include "codec/presets.h"
 #include "codec/provenance.h"
@@ -21,12 +22,6 @@ namespace {
 
 namespace wp = work_precision;
 namespace fs = std::filesystem;
-
-constexpr int kExitBadInput = 2;
-
-struct BadInput {
-  std::string message;
-};
 
 std::string valid_integrator_names() {
   std::string names;
@@ -122,7 +117,7 @@ int work_precision(const WorkPrecisionOptions& opt, int argc, char** argv) {
                                      " characteristic periods of " + period_text.str() + ")"
                                : " (" + std::to_string(static_cast<int>(wp::kDefaultPeriods)) +
                                      " time units: the motion has no characteristic period)");
-  const std::string command = spinfold::command_line(argc, argv);
+  const std::string command = provenance_command(argc, argv);
   const std::string provenance = provenance_json(scene, command).dump();
   const std::string header = "# spinfold work-precision " + version_line() + "\n# command: " + command +
                              "\n# provenance: " + provenance + "\n# scene: " + label + "; " + horizon +

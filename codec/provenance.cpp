@@ -1,6 +1,8 @@
 #include "codec/provenance.h"
 
 #include <cstdio>
+#include <stdexcept>
+#include <utility>
 
 #include "codec/scene_json.h"
 #include "engine/embedded_run.h"
@@ -37,7 +39,10 @@ nlohmann::ordered_json provenance_json(const Scene& scene, std::string_view comm
                      {"tolerance", scene.integrator.tolerance}};
   // where the curvature varies: whether the orbit alone was stepped (engine/embedded_run.h)
   if (chart_free(scene.surface)) j["integrator"]["steps"] = steps_orbit_only(scene) ? "orbit" : "all";
-  if (!command.empty()) j["command"] = std::string(command);
+  if (!command.empty()) {
+    j["command"] = std::string(command);
+    j["scene"] = scene_to_json(scene);
+  }
   return j;
 }
 
@@ -69,6 +74,34 @@ std::string command_line(int argc, const char* const* argv) {
     line += (i ? " " : "") + a;
   }
   return line;
+}
+
+std::vector<std::string> command_words(std::string_view line) {
+  std::vector<std::string> words;
+  std::string word;
+  bool in_word = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (c == ' ' || c == '\t') {
+      if (in_word) words.push_back(std::exchange(word, {}));
+      in_word = false;
+    } else if (c == '\'') {
+      const std::size_t close = line.find('\'', i + 1);
+      if (close == std::string_view::npos)
+        throw std::invalid_argument("a quote opened at position " + std::to_string(i) + " is not closed");
+      word.append(line.substr(i + 1, close - i - 1));
+      in_word = true;
+      i = close;
+    } else if (c == '\\' && i + 1 < line.size()) {
+      word += line[++i];
+      in_word = true;
+    } else {
+      word += c;
+      in_word = true;
+    }
+  }
+  if (in_word) words.push_back(word);
+  return words;
 }
 
 }  // namespace spinfold

@@ -32,8 +32,10 @@ std::string fnv1a64_hex(std::string_view text);
 std::string scene_hash(const Scene& scene);
 
 // {"software": "spinfold", "version", "commit", "scene_hash", "integrator": {"name", "runs", "dt",
-// "tolerance"}, "command"}: `runs` is what auto resolved to; `command` the command line or the
-// request ("POST /api/v1/sessions"), omitted when empty.
+// "tolerance"}, "command", "scene"}: `runs` is what auto resolved to; `command` the command line or
+// the request ("POST /api/v1/sessions"), omitted when empty; where there is a command, `scene` is
+// the scene itself as run (scene_to_json, canonical), so the output re-runs without its scene file
+// (`spinfold rerun`, codec/provenance_reader.h).
 nlohmann::ordered_json provenance_json(const Scene& scene, std::string_view command);
 
 // The same as `key=value; …` on one line (an HTTP header; no command).
@@ -44,7 +46,13 @@ std::string provenance_header(const Scene& scene);
 std::vector<std::pair<std::string, std::string>> picture_texts(const Scene& scene, std::string_view command,
                                                                double t, std::string_view view);
 
-// argv as one shell-readable line (arguments with spaces or quotes in single quotes).
+// argv as one shell-readable line (arguments with spaces or quotes in single quotes; a line break
+// in an argument becomes a space).
 std::string command_line(int argc, const char* const* argv);
+
+// The arguments of such a line, as a POSIX shell splits it (words apart at blanks; '…' quotes,
+// backslash escapes outside quotes): command_words(command_line(argc, argv)) is argv. A quote left
+// open is std::invalid_argument.
+std::vector<std::string> command_words(std::string_view line);
 
 }  // namespace spinfold

@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
+#include <utility>
 
 #include "codec/presets.h"
 #include "codec/scene_json.h"
@@ -15,7 +17,28 @@ std::string preset_name_list() {
   return names;
 }
 
+namespace {
+const std::string* recorded_scene = nullptr;  // RecordedScene's text while one lives
+}  // namespace
+
+RecordedScene::RecordedScene(std::string text) {
+  if (recorded_scene) throw std::logic_error("RecordedScene: one is already in force");
+  recorded_scene = new std::string(std::move(text));
+}
+
+RecordedScene::~RecordedScene() {
+  delete recorded_scene;
+  recorded_scene = nullptr;
+}
+
 SceneSource find_scene(std::string_view name, std::string_view option) {
+  if (recorded_scene) {
+    const bool preset = find_preset(name.empty() ? kDefaultPreset : name) != nullptr &&
+                        name.find('/') == std::string_view::npos && !name.ends_with(".json");
+    return {*recorded_scene,
+            name.empty() ? std::string(kDefaultPreset) : std::filesystem::path(name).filename().string(),
+            !preset};
+  }
   if (name.empty())
     return {std::string(find_preset(kDefaultPreset)->json), std::string(kDefaultPreset), false};
   const std::string path(name);

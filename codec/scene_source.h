@@ -34,6 +34,18 @@ SceneSource find_scene(std::string_view name, std::string_view option);
 // Neither: the default preset, or with `required` a SceneSourceError.
 SceneSource scene_source(std::string_view positional, std::string_view named, bool required = false);
 
+// A re-run's scene (`spinfold rerun`, cli/commands/rerun.cpp): while one lives, find_scene and
+// scene_source give its text, the scene an output recorded, in place of the file or preset the
+// recorded command names (the name still gives the label). One at a time, on one thread: the
+// command line's; std::logic_error for a second.
+class RecordedScene {
+ public:
+  explicit RecordedScene(std::string text);
+  ~RecordedScene();
+  RecordedScene(const RecordedScene&) = delete;
+  RecordedScene& operator=(const RecordedScene&) = delete;
+};
+
 // The command line's integrator options (--integrator, --dt, --tolerance), set over the scene's.
 struct IntegratorOverrides {
   std::optional<std::string> name;

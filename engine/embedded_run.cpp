@@ -62,11 +62,11 @@ SurfaceFoot start_foot(const FormulaSurface& surface, const std::array<double, 3
 
 bool projects_onto_constraints(const Scene& scene) {
   switch (scene.integrator.projection) {
-    case Projection::on: return chart_free(scene.surface);
+    case Projection::on:
+    case Projection::automatic: return chart_free(scene.surface);
     case Projection::off: return false;
-    case Projection::automatic: break;
   }
-  return offers(scene.surface, Offer::formula);
+  return false;
 }
 
 EmbeddedScene::EmbeddedScene(const Scene& scene)

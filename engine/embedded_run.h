@@ -46,8 +46,8 @@ struct EmbeddedScene {
 bool steps_orbit_only(const Scene& scene);
 
 // Whether the run brings its state back onto the constraints after each accepted step
-// (engine/constraint_projection.h): integrator.projection, whose auto is on for formula surfaces
-// (physics-anysurface.md §8) and off on the surfaces of revolution (their outputs stay as they were).
+// (engine/constraint_projection.h): integrator.projection, whose auto is on wherever the run is
+// chart-free (physics-anysurface.md §8; docs/performance.md measures what it buys).
 bool projects_onto_constraints(const Scene& scene);
 
 // The state `y` carried onto the model's surface from off it (after a change of the formula): X to

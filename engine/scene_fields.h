@@ -463,7 +463,7 @@ inline constexpr std::tuple kIntegratorSettingsFields{
             value_field("stepping", &IntegratorSettings::stepping,
                         "auto: only the orbit where the internal motion has a closed form; full: every "
                         "number")),
-    only_on(surfaces_offering(Offer::formula),
+    only_on(surfaces_offering(Offer::implicit_equation),
             value_field("projection", &IntegratorSettings::projection,
                         "auto (on), on: bring the state back onto F = 0 after each step; off: let it drift "
                         "with the integrator's error")),

@@ -55,7 +55,8 @@ ojson base_provenance(const Plan& plan) {
   const SceneParse parsed = parse_scene(plan.base);
   if (!parsed.scene) return nullptr;
   const json p = provenance_json(*parsed.scene, "");  // sorted keys, as a merge reads them back
-  return ojson(json{{"scene_hash", p["scene_hash"]}, {"integrator", p["integrator"]}});
+  // the base scene as given (before --set), so a shard re-runs without its file (spinfold rerun)
+  return ojson(json{{"scene_hash", p["scene_hash"]}, {"integrator", p["integrator"]}, {"scene", plan.base}});
 }
 
 }  // namespace

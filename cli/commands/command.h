@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "codec/provenance.h"
 #include "engine/number_text.h"
 #include "engine/run_limits.h"
 #include "engine/state.h"
@@ -72,6 +73,21 @@ inline void add_monitor_options(CLI::App& cmd, std::vector<std::string>& summari
       ->needs(chaos_flag);
 }
 
+// The command line for an output's provenance: codec/provenance.h's command_line, or while
+// `spinfold rerun` runs a recorded command (cli/commands/rerun.cpp) the line it recorded, so the
+// re-run's bytes are the output's.
+inline std::optional<std::string>& recorded_command() {  // set by rerun while it runs one
+  static std::optional<std::string> command;
+  return command;
+}
+inline std::string provenance_command(int argc, const char* const* argv) {
+  return recorded_command() ? *recorded_command() : command_line(argc, argv);
+}
+
+// The whole command line parsed and run (cli/main.cpp): what main returns; rerun runs its recorded
+// command through it.
+int run_command_line(int argc, char** argv);
+
 // A registered subcommand: run(argc, argv) when it is the one parsed (argv for the provenance).
 struct Command {
   CLI::App* app = nullptr;
@@ -82,6 +98,7 @@ Command register_simulate(CLI::App& app);
 Command register_sweep(CLI::App& app);
 Command register_scenes(CLI::App& app);
 Command register_integrators(CLI::App& app);
+Command register_rerun(CLI::App& app);
 #ifndef SPINFOLD_COMPUTE_ONLY
 Command register_render(CLI::App& app);
 Command register_record(CLI::App& app);

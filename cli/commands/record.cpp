@@ -122,7 +122,7 @@ Command register_record(CLI::App& app) {
                        "No progress bar (there is none when stderr is not a terminal)");
   return {record_cmd, [options](int argc, char** argv) {
             apply_gl_choice(options->gl);
-            options->render.scene.command = command_line(argc, argv);
+            options->render.scene.command = provenance_command(argc, argv);
             return record_window(*options);
           }};
 }

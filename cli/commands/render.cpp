@@ -89,7 +89,7 @@ Command register_render(CLI::App& app) {
   add_gl_option(render_cmd, options->gl);
   return {render_cmd, [options](int argc, char** argv) {
             apply_gl_choice(options->gl);
-            options->scene.command = command_line(argc, argv);
+            options->scene.command = provenance_command(argc, argv);
             return render_frame(*options, options->format);
           }};
 }

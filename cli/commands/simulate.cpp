@@ -343,7 +343,7 @@ Command register_simulate(CLI::App& app) {
               for (const std::string& name : sample_column_names()) std::printf("%s\n", name.c_str());
               return 0;
             }
-            options->scene.command = command_line(argc, argv);
+            options->scene.command = provenance_command(argc, argv);
             return simulate(*options);
           }};
 }

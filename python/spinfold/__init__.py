@@ -558,6 +558,12 @@ def _decode_png(data: bytes) -> Frame:
         elif kind == b"tEXt":
             key, _, text = body.partition(b"\0")
             texts.append((key.decode("latin-1"), text.decode("latin-1")))
+        elif kind == b"iTXt":  # UTF-8 text (a non-ASCII provenance): flag, method, language, keyword
+            key, _, rest = body.partition(b"\0")
+            compressed, rest = rest[0], rest[2:]
+            _, _, rest = rest.partition(b"\0")
+            _, _, text = rest.partition(b"\0")
+            texts.append((key.decode("latin-1"), (zlib.decompress(text) if compressed else text).decode("utf-8")))
         elif kind == b"IEND":
             break
     raw = np.frombuffer(zlib.decompress(idat), dtype=np.uint8).reshape(height, 1 + width * channels)

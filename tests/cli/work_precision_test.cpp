@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "codec/presets.h"
+#include "codec/provenance.h"
+#include "codec/provenance_reader.h"
 #include "tests/cli/run_spinfold.h"
 
 namespace {
@@ -152,28 +154,23 @@ TEST(WorkPrecision, UserSceneGivesCsvPlotsAndARecommendation) {
   EXPECT_NE(read(out / "work_precision.gp").find("set output 'work_precision.svg'"), std::string::npos);
   // Every file says where it came from (issue 35): the provenance JSON, with the scene's hash and the
   // command, in the PNG's Source chunk, the SVG's <metadata>, the script's and the summary's comments.
-  const auto provenance_in = [](const std::string& text, const std::string& before) {
-    const std::size_t at = text.find(before);
-    if (at == std::string::npos) return nlohmann::json();
-    return nlohmann::json::parse(
-        text.substr(at + before.size(),
-                    text.find('}', text.find("\"command\"", at)) + 1 - at - before.size()),
-        nullptr, false);
-  };
-  for (const auto& [file, before] : {std::pair{"work_precision.png", std::string("tEXtSource\0", 11)},
-                                     {"work_precision.svg", "<metadata>"},
-                                     {"work_precision.gp", "# provenance: "},
-                                     {"summary.md", "# provenance: "}}) {
-    const std::string text = read(out / file);
-    std::string unescaped = text;  // the SVG's metadata is XML-escaped
-    for (std::size_t at; (at = unescaped.find("&quot;")) != std::string::npos;)
-      unescaped.replace(at, 6, "\"");
-    const nlohmann::json p = provenance_in(unescaped, before);
-    ASSERT_TRUE(p.is_object()) << file;
-    EXPECT_EQ(p["software"], "spinfold") << file;
-    EXPECT_EQ(p["scene_hash"].get<std::string>().size(), 16u) << file;
-    EXPECT_NE(p["command"].get<std::string>().find("work-precision"), std::string::npos) << file;
+  // Read back as spinfold rerun reads them (codec/provenance_reader.h); the script's comment line.
+  for (const std::string file :
+       {"work_precision.png", "work_precision.svg", "summary.md", "work_precision.csv"}) {
+    const spinfold::RecordedRun run = spinfold::recorded_run((out / file).string());
+    EXPECT_NE(run.command.find("work-precision"), std::string::npos) << file;
+    EXPECT_EQ(run.version, std::string(spinfold::build_version())) << file;
+    EXPECT_TRUE(run.scene.is_object() && run.scene.contains("surface")) << file;
   }
+  const std::string script = read(out / "work_precision.gp");
+  const std::size_t line = script.find("# provenance: ");
+  ASSERT_NE(line, std::string::npos);
+  const nlohmann::json p =
+      nlohmann::json::parse(script.substr(line + 14, script.find('\n', line) - line - 14), nullptr, false);
+  ASSERT_TRUE(p.is_object());
+  EXPECT_EQ(p["software"], "spinfold");
+  EXPECT_EQ(p["scene_hash"].get<std::string>().size(), 16u);
+  EXPECT_NE(p["command"].get<std::string>().find("work-precision"), std::string::npos);
   EXPECT_TRUE(read(out / "work_precision.gp").starts_with("# spinfold work-precision "));
 
   const std::string summary = read(out / "summary.md");

@@ -3,9 +3,13 @@
 #include "codec/npz_writer.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 namespace spinfold {
@@ -79,6 +83,36 @@ TEST(NpzWriter, AnUnwritablePathIsNamed) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent-dir/x.npz"), std::string::npos) << e.what();
   }
+}
+
+// No clock in the bytes: each entry's DOS time and date (local header bytes 10–13, central
+// directory bytes 12–15) are 00:00 and 1980-01-01, so the same table is the same file at any hour.
+TEST(NpzWriter, EntriesCarryNoClock) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("spinfold_npz_clock_" + std::to_string(getpid()) + ".npz"))
+          .string();
+  write_npz(path, {{"t", {0.0, 1.0}}, {"status", {"ok", "ok"}}});
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  std::filesystem::remove(path);
+  const auto u16 = [&](std::size_t at) {
+    return static_cast<unsigned>(static_cast<unsigned char>(bytes[at])) |
+           static_cast<unsigned>(static_cast<unsigned char>(bytes[at + 1])) << 8;
+  };
+  int local = 0, central = 0;
+  for (std::size_t at = 0; at + 16 < bytes.size(); ++at) {
+    if (bytes.compare(at, 4, "PK\x03\x04") == 0) {
+      ++local;
+      EXPECT_EQ(u16(at + 10), 0u);
+      EXPECT_EQ(u16(at + 12), (1u << 5) | 1u);
+    } else if (bytes.compare(at, 4, "PK\x01\x02") == 0) {
+      ++central;
+      EXPECT_EQ(u16(at + 12), 0u);
+      EXPECT_EQ(u16(at + 14), (1u << 5) | 1u);
+    }
+  }
+  EXPECT_EQ(local, 2);
+  EXPECT_EQ(central, 2);
 }
 
 }  // namespace

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
 #include <regex>
+#include <stdexcept>
 
 #include "codec/scene_json.h"
 #include "engine/simulation.h"
@@ -56,7 +58,7 @@ TEST(Provenance, JsonHasTheDocumentedFieldsInOrder) {
   std::vector<std::string> keys;
   for (const auto& [key, value] : p.items()) keys.push_back(key);
   EXPECT_EQ(keys, (std::vector<std::string>{"software", "version", "commit", "scene_hash", "integrator",
-                                            "command"}));
+                                            "command", "scene"}));
   EXPECT_EQ(p["software"], "spinfold");
   EXPECT_EQ(p["version"], std::string(build_version()));
   EXPECT_EQ(p["commit"], std::string(build_commit()));
@@ -66,7 +68,13 @@ TEST(Provenance, JsonHasTheDocumentedFieldsInOrder) {
   EXPECT_EQ(p["integrator"]["dt"], 0.005);
   EXPECT_EQ(p["integrator"]["tolerance"], 1e-9);
   EXPECT_EQ(p["command"], "spinfold simulate x.json");
+  // the scene itself where a command made the output (spinfold rerun runs it again), as it reads back
+  EXPECT_EQ(nlohmann::json(p["scene"]), scene_to_json(s));
+  const SceneParse back = parse_scene(nlohmann::json(p["scene"]));
+  ASSERT_TRUE(back.scene) << describe_errors(back.errors);
+  EXPECT_EQ(scene_hash(*back.scene), scene_hash(s));
   EXPECT_FALSE(provenance_json(s, "").contains("command"));
+  EXPECT_FALSE(provenance_json(s, "").contains("scene"));
 }
 
 // `auto` is recorded as asked and as resolved, so a reader sees which method ran.
@@ -132,6 +140,25 @@ TEST(Provenance, CommandLineQuotesWhatTheShellWouldSplit) {
   const char* const argv[] = {"spinfold", "simulate", "my scene.json", "", "it's", "a$b", "x\ny", "--dt=0.1"};
   EXPECT_EQ(command_line(8, argv), "spinfold simulate 'my scene.json' '' 'it'\\''s' 'a$b' 'x y' --dt=0.1");
   EXPECT_EQ(command_line(0, argv), "");
+}
+
+// command_words reads command_line's line back into argv, over random arguments of every character
+// the quoting handles (blanks, quotes, backslashes, shell metacharacters, empty ones).
+TEST(Provenance, CommandWordsReadTheCommandLineBack) {
+  std::mt19937 rng(7);
+  const std::string alphabet = "ab=-_./ '\"$`;&|<>()*?#\t";
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::vector<std::string> words(1 + rng() % 6);
+    for (std::string& w : words)
+      for (int k = static_cast<int>(rng() % 7); k > 0; --k) w += alphabet[rng() % alphabet.size()];
+    std::vector<const char*> argv;
+    for (const std::string& w : words) argv.push_back(w.c_str());
+    const std::string line = command_line(static_cast<int>(argv.size()), argv.data());
+    EXPECT_EQ(command_words(line), words) << line;
+  }
+  EXPECT_EQ(command_words("spinfold  simulate\\ x 'a b'c"),
+            (std::vector<std::string>{"spinfold", "simulate x", "a bc"}));
+  EXPECT_THROW(command_words("spinfold 'open"), std::invalid_argument);
 }
 
 }  // namespace

@@ -157,7 +157,7 @@ TEST(EmbeddedRunFormula, TheImplicitScenesStartIsWF3sStateFromAGuessOffTheSurfac
 
 // The torus a = 1, c = 2.5 as a formula and as the built-in kind, from the same point: at φ = 0 and
 // u ∈ (−π, 0) the convention's E₁ (the x-axis's tangential part) is the profile's X_u/f, so the two
-// scenes start in the same state and, with projection off, run the same equations.
+// scenes start in the same state and run the same equations, with projection and without.
 TEST(EmbeddedRunFormula, TheFormulaTorusRunsAsTheBuiltInTorus) {
   for (const BodyModel model : {BodyModel::affine, BodyModel::rigid}) {
     Scene torus;
@@ -171,6 +171,7 @@ TEST(EmbeddedRunFormula, TheFormulaTorusRunsAsTheBuiltInTorus) {
     torus.initial.heading = 0.9;
     torus.initial.spin = 0.35;
     torus.integrator.tolerance = 1e-13;
+    torus.integrator.projection = Projection::off;
     Scene formula = torus;
     formula.surface.kind = SurfaceKind::implicit;
     formula.surface.F = "(x^2 + y^2 + z^2 + c^2 - a^2)^2 - 4*c^2*(x^2 + y^2)";  // the built-in's F
@@ -186,17 +187,19 @@ TEST(EmbeddedRunFormula, TheFormulaTorusRunsAsTheBuiltInTorus) {
     ASSERT_TRUE(advance_to(b, 20.0));
     expect_close(b.state.y, a.state.y, 1e-12);
     EXPECT_NEAR(readout(b).curvature.value(), readout(a).curvature.value(), 1e-11);
-    // With projection (the formula surfaces' default) the two agree to the integrator's error, and
-    // so does the same torus written another way, F = (ρ − c)² + z² − a².
-    formula.integrator.projection = Projection::automatic;
-    Simulation c = start_simulation(formula);
+    // With projection (the default on both) the two agree again, and so does the same torus written
+    // another way, F = (ρ − c)² + z² − a²; each agrees with the unprojected run to its error.
+    torus.integrator.projection = formula.integrator.projection = Projection::automatic;
+    Simulation projected = start_simulation(torus), c = start_simulation(formula);
+    ASSERT_TRUE(advance_to(projected, 20.0));
     ASSERT_TRUE(advance_to(c, 20.0));
+    expect_close(c.state.y, projected.state.y, 1e-12);
     expect_close(c.state.y, a.state.y, 1e-9);
     formula.surface.F = "(sqrt(x^2 + y^2) - c)^2 + z^2 - a^2";
     Simulation d = start_simulation(formula);
     expect_close(d.state.y, start_simulation(torus).state.y, 1e-15);
     ASSERT_TRUE(advance_to(d, 20.0));
-    expect_close(d.state.y, a.state.y, 1e-9);
+    expect_close(d.state.y, projected.state.y, 1e-12);
   }
 }
 
