@@ -1,5 +1,6 @@
 #include "engine/simulation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <tuple>
 
@@ -660,8 +661,14 @@ bool advance_body(Simulation& run, double t_end, std::uint64_t& attempts) {
 
 bool advance_within(Simulation& run, double t_end, std::uint64_t& attempts) {
   if (!advance_body(run, t_end, attempts)) return false;
-  for (Simulation& companion : run.companions)
-    if (!advance_body(companion, t_end, attempts)) return false;
+  // A run that stopped (an event's stop, a failure) ends there: its companions are taken to its
+  // last time, not to the time asked, so their last record does not depend on the sampling.
+  const bool stopped = run.state.status != Status::ok;
+  const double companions_end = stopped ? std::min(t_end, run.state.t) : t_end;
+  for (Simulation& companion : run.companions) {
+    if (stopped && companion.state.t >= companions_end) continue;
+    if (!advance_body(companion, companions_end, attempts)) return false;
+  }
   return true;
 }
 

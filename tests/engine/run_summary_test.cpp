@@ -222,6 +222,35 @@ TEST(RunSummary, EventsAreLocatedToTheirLevel) {
   EXPECT_EQ(all[2], times.back());
 }
 
+// A run that stops on an event ends there, its companions too: their last state is at the stop's
+// time, bit-identical however the run was sampled (issue 51 item 9: it was the next sample's time).
+TEST(RunSummary, ACompanionEndsWhereAStoppedRunEnds) {
+  Scene scene = w5_with("dop853", 0.01, 1e-12);
+  Companion slower;
+  slower.body = scene.body;
+  slower.initial = scene.initial;
+  slower.integrator = scene.integrator;
+  slower.initial.r_dot *= 0.9;
+  slower.initial.phi_dot *= 0.9;
+  scene.companions.push_back(slower);
+  const MonitorSpec spec{.summaries = {}, .events = {parse_event("r:up:1.3:stop=1")}};
+  std::vector<Simulation> runs;
+  for (const double every : {0.07, 0.5, 3.3, 40.0}) {
+    Simulation run;
+    summarised(scene, spec, 30.0, every, &run);
+    ASSERT_EQ(run.state.status, Status::event_stop) << every;
+    ASSERT_EQ(run.companions.size(), 1u);
+    EXPECT_EQ(run.companions[0].state.t, run.state.t) << every;
+    if (!runs.empty()) {
+      EXPECT_TRUE(test::same_bits(run.companions[0].state, runs.front().companions[0].state)) << every;
+    }
+    runs.push_back(std::move(run));
+  }
+  // asked past the stop again, nothing moves
+  ASSERT_TRUE(advance_to(runs.front(), 35.0) || runs.front().state.status == Status::event_stop);
+  EXPECT_EQ(runs.front().companions[0].state.t, runs.front().state.t);
+}
+
 // Every crossing with its state (issue 51 item 3: a Poincaré section took 35 re-runs with stop=k).
 // `record` keeps each occurrence's state: as many as counted, each on its level, the first and last at
 // t_first and t_last, each the state of a stop=k run at that crossing (the same root find), the same
