@@ -58,7 +58,7 @@ TEST(ProvenanceReader, ReadsAPdfsSubjectLiteralOrUtf16Hex) {
   for (const char c : kRecord.dump()) {
     if (c == '(' || c == ')' || c == '\\') literal += '\\';
     if (static_cast<unsigned char>(c) >= 0x80) {
-      char octal[5];
+      char octal[8];
       std::snprintf(octal, sizeof octal, "\\%03o", static_cast<unsigned char>(c));
       literal += octal;
     } else {
@@ -77,7 +77,7 @@ TEST(ProvenanceReader, ReadsAPdfsSubjectLiteralOrUtf16Hex) {
     std::uint32_t cp = extra ? c & (0x3F >> extra) : c;
     for (int k = 1; k <= extra; ++k) cp = cp << 6 | (static_cast<unsigned char>(text[i + k]) & 0x3F);
     i += 1 + extra;
-    char unit[9];
+    char unit[16];
     if (cp >= 0x10000)
       std::snprintf(unit, sizeof unit, "%04X%04X", 0xD800 + ((cp - 0x10000) >> 10),
                     0xDC00 + ((cp - 0x10000) & 0x3FF));
