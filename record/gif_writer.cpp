@@ -1,9 +1,12 @@
 // GIF (giflib 5.2): one palette for the whole recording, chosen by median cut (GifQuantizeBuffer)
 // over sample frames spread across the clip, then refined at full precision by a few rounds of
 // k-means over the samples' colours (the median cut works on 5 bits a channel, which bands and
-// tints the shaded surface), and every pixel mapped to its nearest palette colour
-// without dithering, so a flat colour stays one index in every frame (no crawling dither noise).
-// Each frame after the first stores only the rectangle that changed (disposal: leave in place).
+// tints the shaded surface). A colour at a palette entry is that entry (a flat colour stays one
+// index in every frame); a colour between entries is an ordered (8x8 Bayer) mix of its two nearest,
+// in the proportion that keeps the local mean, so a gradient does not band. The dither is fixed to
+// the pixel's place, so a still pixel keeps its index from frame to frame (no crawling noise).
+// Each frame after the first stores only the rectangle that changed, and in it every pixel that did
+// not change as the transparent index (long runs LZW packs small; disposal: leave in place).
 // Loops forever (the NETSCAPE2.0 application extension). Byte-identical for identical frames.
 #include <gif_lib.h>
 
@@ -24,7 +27,18 @@ namespace spinfold::record {
 namespace {
 
 constexpr int kPaletteSamples = 8;
-constexpr int kColors = 256;
+constexpr int kColors = 256;               // the colour table's size
+constexpr int kTransparent = kColors - 1;  // its last entry: "as in the previous frame"
+constexpr int kShades = kColors - 1;       // the entries that are colours
+// A colour within this squared RGB distance of its nearest entry is that entry, undithered: a
+// flat colour the k-means moved its entry a level or two away from stays flat.
+constexpr int kSnap = 12;
+
+// The 8x8 Bayer matrix: thresholds (b + 0.5) / 64 laid out so that any mix is spread evenly.
+constexpr std::array<std::uint8_t, 64> kBayer = {
+    0,  32, 8,  40, 2,  34, 10, 42, 48, 16, 56, 24, 50, 18, 58, 26, 12, 44, 4,  36, 14, 46,
+    6,  38, 60, 28, 52, 20, 62, 30, 54, 22, 3,  35, 11, 43, 1,  33, 9,  41, 51, 19, 59, 27,
+    49, 17, 57, 25, 15, 47, 7,  39, 13, 45, 5,  37, 63, 31, 55, 23, 61, 29, 53, 21};
 
 class GifWriter final : public ClipWriter {
  public:
@@ -58,16 +72,18 @@ class GifWriter final : public ClipWriter {
     if (frames_ == 0) start(rgba);
     std::vector<GifByteType> index(pixels_);
     std::uint32_t last_color = 0xffffffffu;
-    GifByteType last_index = 0;
-    for (std::size_t i = 0; i < pixels_; ++i) {
-      const std::uint32_t color = static_cast<std::uint32_t>(rgba[4 * i]) << 16 |
-                                  static_cast<std::uint32_t>(rgba[4 * i + 1]) << 8 | rgba[4 * i + 2];
-      if (color != last_color) {
-        last_color = color;
-        last_index = nearest(color);
+    Mix mix{};
+    for (int y = 0; y < spec_.height; ++y)
+      for (int x = 0; x < spec_.width; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * spec_.width + x;
+        const std::uint32_t color = static_cast<std::uint32_t>(rgba[4 * i]) << 16 |
+                                    static_cast<std::uint32_t>(rgba[4 * i + 1]) << 8 | rgba[4 * i + 2];
+        if (color != last_color) {
+          last_color = color;
+          mix = mix_of(color);
+        }
+        index[i] = kBayer[(y & 7) * 8 + (x & 7)] < mix.share ? mix.second : mix.first;
       }
-      index[i] = last_index;
-    }
     // The rectangle that differs from the previous frame (all of the first).
     int left = 0, top = 0, right = spec_.width - 1, bottom = spec_.height - 1;
     if (frames_ > 0) {
@@ -89,14 +105,19 @@ class GifWriter final : public ClipWriter {
     gcb.DisposalMode = DISPOSE_DO_NOT;
     gcb.UserInputFlag = false;
     gcb.DelayTime = static_cast<int>(start_cs(frames_ + 1) - start_cs(frames_));
-    gcb.TransparentColor = NO_TRANSPARENT_COLOR;
+    gcb.TransparentColor = frames_ > 0 ? kTransparent : NO_TRANSPARENT_COLOR;
     GifByteType extension[4];
     const std::size_t length = EGifGCBToExtension(&gcb, extension);
     check(EGifPutExtension(gif_, GRAPHICS_EXT_FUNC_CODE, static_cast<int>(length), extension));
     const int width = right - left + 1, height = bottom - top + 1;
     check(EGifPutImageDesc(gif_, left, top, width, height, false, nullptr));
-    for (int y = top; y <= bottom; ++y)
-      check(EGifPutLine(gif_, index.data() + static_cast<std::size_t>(y) * spec_.width + left, width));
+    std::vector<GifByteType> line(static_cast<std::size_t>(width));
+    for (int y = top; y <= bottom; ++y) {
+      const std::size_t row = static_cast<std::size_t>(y) * spec_.width + left;
+      for (int x = 0; x < width; ++x)
+        line[x] = frames_ > 0 && index[row + x] == previous_[row + x] ? kTransparent : index[row + x];
+      check(EGifPutLine(gif_, line.data(), width));
+    }
     previous_ = std::move(index);
     ++frames_;
   }
@@ -138,14 +159,14 @@ class GifWriter final : public ClipWriter {
     if (red_.empty()) add_palette_sample(first);
     std::vector<GifColorType> colors(kColors, GifColorType{0, 0, 0});
     std::vector<GifByteType> discarded(red_.size());
-    int count = kColors;
+    int count = kShades;
     if (GifQuantizeBuffer(static_cast<unsigned>(red_.size()), 1, &count, red_.data(), green_.data(),
                           blue_.data(), discarded.data(), colors.data()) != GIF_OK)
       throw RecordError("giflib: the palette could not be chosen");
-    palette_.assign(colors.begin(), colors.end());
+    palette_.assign(colors.begin(), colors.begin() + kShades);
     refine_palette();
     red_ = {}, green_ = {}, blue_ = {};
-    for (int i = 0; i < kColors; ++i) colors[i] = palette_[i];
+    for (int i = 0; i < kShades; ++i) colors[i] = palette_[i];
     ColorMapObject* map = GifMakeMapObject(kColors, colors.data());
     if (!map) throw RecordError("giflib: out of memory");
     EGifSetGifVersion(gif_, true);
@@ -173,8 +194,7 @@ class GifWriter final : public ClipWriter {
     std::sort(colors.begin(), colors.end());
     constexpr int kRounds = 6;
     for (int round = 0; round < kRounds; ++round) {
-      cache_.clear();
-      std::vector<std::array<std::uint64_t, 4>> sums(kColors, {0, 0, 0, 0});
+      std::vector<std::array<std::uint64_t, 4>> sums(kShades, {0, 0, 0, 0});
       for (const auto& [color, count] : colors) {
         auto& sum = sums[nearest(color)];
         sum[0] += static_cast<std::uint64_t>(color >> 16) * count;
@@ -182,7 +202,7 @@ class GifWriter final : public ClipWriter {
         sum[2] += static_cast<std::uint64_t>(color & 0xff) * count;
         sum[3] += count;
       }
-      for (int i = 0; i < kColors; ++i) {
+      for (int i = 0; i < kShades; ++i) {
         if (sums[i][3] == 0) continue;
         const auto mean = [&](int c) {
           return static_cast<GifByteType>((sums[i][c] + sums[i][3] / 2) / sums[i][3]);
@@ -190,22 +210,72 @@ class GifWriter final : public ClipWriter {
         palette_[i] = GifColorType{mean(0), mean(1), mean(2)};
       }
     }
-    cache_.clear();
   }
 
-  // The palette index nearest to a colour (squared RGB distance; ties to the lower index), cached.
-  GifByteType nearest(std::uint32_t color) {
-    if (const auto it = cache_.find(color); it != cache_.end()) return it->second;
-    const int r = static_cast<int>(color >> 16), g = static_cast<int>(color >> 8 & 0xff),
-              b = static_cast<int>(color & 0xff);
+  static int distance2(std::uint32_t color, const GifColorType& entry) {
+    const int dr = static_cast<int>(color >> 16) - entry.Red;
+    const int dg = static_cast<int>(color >> 8 & 0xff) - entry.Green;
+    const int db = static_cast<int>(color & 0xff) - entry.Blue;
+    return dr * dr + dg * dg + db * db;
+  }
+
+  // The palette index nearest to a colour (squared RGB distance; ties to the lower index).
+  GifByteType nearest(std::uint32_t color) const {
     int best = 0, best_distance = 1 << 30;
-    for (int i = 0; i < kColors; ++i) {
-      const int dr = r - palette_[i].Red, dg = g - palette_[i].Green, db = b - palette_[i].Blue;
-      const int distance = dr * dr + dg * dg + db * db;
-      if (distance < best_distance) best = i, best_distance = distance;
-    }
-    cache_.emplace(color, static_cast<GifByteType>(best));
+    for (int i = 0; i < kShades; ++i)
+      if (const int d = distance2(color, palette_[i]); d < best_distance) best = i, best_distance = d;
     return static_cast<GifByteType>(best);
+  }
+
+  // How a colour is drawn: its nearest entry, or a mix of two entries near it, the second on the
+  // pixels whose Bayer threshold is below its share (64ths). The pair and share are the ones whose
+  // mean is nearest the colour, counting the mix's own noise (the variance t(1-t)|a-b|^2, weighted
+  // by kNoise) against it, among the kNear entries nearest the colour: two entries across a cell
+  // of the palette, not only its two nearest, so a colour is reached from any side. Cached.
+  struct Mix {
+    GifByteType first = 0, second = 0;
+    int share = 0;  // of 64 pixels, how many take the second
+  };
+  Mix mix_of(std::uint32_t color) {
+    if (const auto it = cache_.find(color); it != cache_.end()) return it->second;
+    constexpr int kNear = 8;
+    constexpr double kNoise = 0.1;
+    std::array<std::pair<int, int>, kNear> near;  // (squared distance, entry), nearest first
+    near.fill({1 << 30, 0});
+    for (int i = 0; i < kShades; ++i) {
+      const int d = distance2(color, palette_[i]);
+      if (d >= near.back().first) continue;
+      int j = kNear - 1;
+      for (; j > 0 && near[j - 1].first > d; --j) near[j] = near[j - 1];
+      near[j] = {d, i};
+    }
+    Mix mix{static_cast<GifByteType>(near[0].second), static_cast<GifByteType>(near[0].second), 0};
+    if (near[0].first > kSnap) {
+      const double x[3] = {static_cast<double>(color >> 16), static_cast<double>(color >> 8 & 0xff),
+                           static_cast<double>(color & 0xff)};
+      double best = near[0].first;
+      for (int i = 0; i < kNear; ++i)
+        for (int j = i + 1; j < kNear; ++j) {
+          if (near[j].first >= (1 << 30)) continue;
+          const GifColorType &a = palette_[near[i].second], &b = palette_[near[j].second];
+          const double e[3] = {static_cast<double>(b.Red - a.Red), static_cast<double>(b.Green - a.Green),
+                               static_cast<double>(b.Blue - a.Blue)};
+          const double p[3] = {x[0] - a.Red, x[1] - a.Green, x[2] - a.Blue};
+          const double length2 = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+          if (length2 == 0) continue;
+          const double along = (p[0] * e[0] + p[1] * e[1] + p[2] * e[2]) / length2;
+          const int share = static_cast<int>(std::lround(64.0 * std::clamp(along, 0.0, 1.0)));
+          const double t = share / 64.0;
+          double miss = 0;
+          for (int c = 0; c < 3; ++c) miss += (p[c] - t * e[c]) * (p[c] - t * e[c]);
+          const double cost = miss + kNoise * t * (1 - t) * length2;
+          if (cost < best)
+            best = cost, mix = Mix{static_cast<GifByteType>(near[i].second),
+                                   static_cast<GifByteType>(near[j].second), share};
+        }
+    }
+    cache_.emplace(color, mix);
+    return mix;
   }
 
   ClipWriterSpec spec_;
@@ -218,7 +288,7 @@ class GifWriter final : public ClipWriter {
   std::uint64_t written_ = 0;
   std::vector<GifByteType> red_, green_, blue_;  // palette samples, one plane each
   std::vector<GifColorType> palette_;
-  std::unordered_map<std::uint32_t, GifByteType> cache_;
+  std::unordered_map<std::uint32_t, Mix> cache_;
   std::vector<GifByteType> previous_;
 };
 

@@ -39,11 +39,14 @@ HudOverlay::HudOverlay() {
   io.IniFilename = nullptr;  // headless: no settings file
   io.LogFilename = nullptr;
   ImGui::StyleColorsLight();
-  // The built-in font at each scale hud_layout() may ask for (1, 1.25, 1.5, …, 4): a font of its
+  // The built-in font at each scale hud_layout() may ask for (0.625, 0.75, 1, 1.25, …, 4): a font of its
   // own per size keeps the glyphs as sharp as the pixel font allows (scaling one would blur it).
   for (const double scale : kHudScales) {
     ImFontConfig config;
     config.SizePixels = static_cast<float>(13.0 * scale);
+    // Advances snapped to whole pixels, as hud_layout() counts them (AddFontDefault snaps only
+    // when given no config: without this the 0.75 font's 5.25 px advance outran the box).
+    config.PixelSnapH = true;
     io.Fonts->AddFontDefault(&config);
   }
   ImGui_ImplOpenGL3_Init("#version 330 core");

@@ -83,19 +83,24 @@ inline constexpr double kPlaneGridSpacing = 0.5, kPlaneHalfHeight = 3.0;
 // compact, in none.
 inline constexpr int kFullOverlayWidth = 480, kFullOverlayHeight = 300;
 
-// The overlay's text scales (of the built-in 13 px font, one font made per scale): the projector
-// floor 1.25, then half steps up to 4× (larger frames draw the text at 4×).
-inline constexpr std::array<double, 8> kHudScales{1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0};
+// The overlay's text scales (of the built-in 13 px font, one font made per scale): 0.625 and 0.75
+// for a paced picture (drawn at 0.5-0.8 of its shown size: the page scales it up, the text to the
+// full picture's size), 1, the projector floor 1.25, then half steps up to 4× (larger frames draw
+// the text at 4×).
+inline constexpr std::array<double, 10> kHudScales{0.625, 0.75, 1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0};
 // The text scale a frame drawn width×height and shown shown_width pixels wide (0: as drawn) wants,
 // in the drawn picture's pixels: hud_layout's rule for the shown size, times width/shown_width (a
 // paced picture drawn at half its shown size wants half the scale). Below 1 no font is that small.
 double hud_text_scale(int width, int height, int shown_width = 0);
 
-// Compact: a small frame, or one shown so much larger than drawn that its text could not be the
-// full picture's size on the screen (the page's paced picture at 0.5 of a 1366-wide page's).
+// Compact: a frame small as shown (a paced picture by the size it is shown at), or one shown so
+// much larger than drawn that no font is small enough for its text to be the full picture's size
+// on the screen.
 inline bool compact_overlay(const ViewOptions& view) {
-  return view.width < kFullOverlayWidth || view.height < kFullOverlayHeight ||
-         hud_text_scale(view.width, view.height, view.shown_width) < 1.0;
+  const double shown = view.shown_width > 0 ? view.shown_width : view.width;
+  const double enlarged = shown / view.width;
+  return shown < kFullOverlayWidth || view.height * enlarged < kFullOverlayHeight ||
+         hud_text_scale(view.width, view.height, view.shown_width) < kHudScales.front() - 0.0625;
 }
 
 // One line of the in-frame legend: a body's swatch (its trail, dashed for the geodesic companion,

@@ -306,6 +306,19 @@ export function renderPhysical(s, b) {
   for (const row of rows) form.append(physicalRow(row));
 }
 
+/**
+ * A scene field's title from the field table ("Distance r" for initial.r), or the path itself where
+ * the schema has none (a companion's field, a path the page does not know).
+ * @param {string} path
+ */
+function titleOf(path) {
+  try {
+    return schemaField(store.get().schema, path)?.title ?? path;
+  } catch {
+    return path;
+  }
+}
+
 /** @param {Row} spec */
 function physicalRow(spec) {
   const id = `phys-${spec.key}`;
@@ -390,9 +403,12 @@ function physicalRow(spec) {
       // the value in force comes back, unless the row was edited again meanwhile (edits.js).
       // A refusal that names another field (a curvature of 1e9 put the start past the south pole:
       // "initial.r: …") says first which change of this control it refuses.
-      const message = /** @type {Error} */ (e).message;
-      const own = spec.field && message.startsWith(`${spec.field}:`);
-      if (refused(edit, own ? message : `${spec.label} = ${v} not applied: ${message}`)) show(spec.value);
+      // In the field table's words, not its paths: the control's own label, the other field's title.
+      const error = /** @type {any} */ (e).problem?.errors?.[0];
+      const message = error?.reason ? `${titleOf(error.field)}: ${error.reason}` : /** @type {Error} */ (e).message;
+      const own = spec.field && error?.field === spec.field;
+      const plain = own ? `${spec.label}: ${error.reason}` : `${spec.label} = ${v} not applied: ${message}`;
+      if (refused(edit, plain)) show(spec.value);
     }
   };
   // A live row (the curvature dial) sends while it is dragged, at most one change in flight and

@@ -43,17 +43,28 @@ GifInfo read_gif(const std::string& path) {
     GraphicsControlBlock gcb{};
     info.delays.push_back(DGifSavedExtensionToGCB(gif, i, &gcb) == GIF_OK ? gcb.DelayTime : -1);
   }
-  if (gif->ImageCount > 0 && gif->SColorMap) {
-    const SavedImage& first = gif->SavedImages[0];
-    info.first_rgba.assign(static_cast<std::size_t>(info.width) * info.height * 4, 0);
-    for (int y = 0; y < first.ImageDesc.Height; ++y)
-      for (int x = 0; x < first.ImageDesc.Width; ++x) {
-        const GifColorType c = gif->SColorMap->Colors[first.RasterBits[y * first.ImageDesc.Width + x]];
-        std::uint8_t* p =
-            &info.first_rgba[4 * ((y + first.ImageDesc.Top) * static_cast<std::size_t>(info.width) + x +
-                                  first.ImageDesc.Left)];
-        p[0] = c.Red, p[1] = c.Green, p[2] = c.Blue, p[3] = 255;
-      }
+  if (gif->SColorMap) {
+    std::vector<std::uint8_t> screen(static_cast<std::size_t>(info.width) * info.height * 4, 0);
+    for (int i = 0; i < gif->ImageCount; ++i) {
+      const SavedImage& image = gif->SavedImages[i];
+      GraphicsControlBlock gcb{};
+      gcb.TransparentColor = NO_TRANSPARENT_COLOR;
+      DGifSavedExtensionToGCB(gif, i, &gcb);
+      long stored = 0;
+      for (int y = 0; y < image.ImageDesc.Height; ++y)
+        for (int x = 0; x < image.ImageDesc.Width; ++x) {
+          const int index = image.RasterBits[y * image.ImageDesc.Width + x];
+          if (index == gcb.TransparentColor) continue;
+          ++stored;
+          const GifColorType c = gif->SColorMap->Colors[index];
+          std::uint8_t* p = &screen[4 * ((y + image.ImageDesc.Top) * static_cast<std::size_t>(info.width) +
+                                         x + image.ImageDesc.Left)];
+          p[0] = c.Red, p[1] = c.Green, p[2] = c.Blue, p[3] = 255;
+        }
+      info.shown.push_back(screen);
+      info.stored.push_back(stored);
+    }
+    if (!info.shown.empty()) info.first_rgba = info.shown.front();
   }
   DGifCloseFile(gif, &error);
   return info;

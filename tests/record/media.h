@@ -16,6 +16,10 @@ struct GifInfo {
   bool loops_forever = false;            // NETSCAPE2.0 with loop count 0
   int colors = 0;                        // global colour table size
   std::vector<std::uint8_t> first_rgba;  // the first image, composed on the screen (RGBA)
+  // Every image composed on the screen as a viewer shows it (each over the last: disposal "leave
+  // in place", its transparent pixels showing the one before), RGBA.
+  std::vector<std::vector<std::uint8_t>> shown;
+  std::vector<long> stored;  // per image: the pixels it stores that are not transparent
 };
 GifInfo read_gif(const std::string& path);
 

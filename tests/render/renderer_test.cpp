@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <numbers>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -412,6 +413,74 @@ TEST(Renderer, TheHudBoxIsDrawnWhereTheLayoutSays) {
       }
     EXPECT_GT(dark, 20 * scene.hud.scale * scene.hud.scale) << w << "x" << h;
   }
+}
+
+// A paced picture (drawn at a fraction of its shown size and scaled up by the page) keeps its HUD
+// and legend, in fonts smaller than 1 in drawn pixels; at every scale such a picture asks for, the
+// glyphs stay in their boxes: outside them (a strip right of the HUD, the legend's margin to the
+// frame's edge) the frame is what it is with no overlay at all.
+TEST(Renderer, PacedPicturesKeepTheirOverlayAndItsTextInItsBoxes) {
+  std::set<double> scales;
+  for (const char* preset : {"spin_vs_geodesic_sphere", "spin_vs_geodesic_torus"})
+    for (const int shown : {700, 800, 900, 1066, 1280, 1600})
+      for (const double pace : {1.0, 0.8, 0.64, 0.5}) {
+        const Snapshot s = preset_snapshot(preset, 6.0, true);
+        ViewOptions view = s.surface.kind == SurfaceKind::sphere ? looking_at(s, 0.0) : ViewOptions{};
+        view.kind = default_view(s.surface.kind);
+        view.width = static_cast<int>(std::lround(shown * pace));
+        view.height = static_cast<int>(std::lround(0.75 * view.width));
+        view.shown_width = shown;
+        view.layers = kSurface | kBody | kTrail | kHud;
+        const std::string at =
+            std::string(preset) + " " + std::to_string(shown) + " at " + std::to_string(pace);
+        const FrameScene scene = build_scene(s, view);
+        ASSERT_FALSE(compact_overlay(view)) << at;
+        ASSERT_FALSE(scene.legend.empty()) << at;
+        scales.insert(scene.hud.scale);
+        const std::vector<std::uint8_t> drawn = renderer().render_image(s, view).rgba;
+        ViewOptions bare = view;
+        bare.layers &= ~kHud;
+        const std::vector<std::uint8_t> plain = renderer().render_image(s, bare).rgba;
+        const auto same = [&](double x0, double x1, double y0, double y1) {
+          int differ = 0;
+          for (int y = static_cast<int>(y0); y < static_cast<int>(y1); ++y)
+            for (int x = static_cast<int>(x0); x < static_cast<int>(x1); ++x) {
+              const std::size_t i = 4 * (static_cast<std::size_t>(y) * view.width + x);
+              differ += std::memcmp(&drawn[i], &plain[i], 3) != 0;
+            }
+          return differ;
+        };
+        const PixelBox &hud = scene.hud.hud, &legend = scene.hud.legend;
+        EXPECT_EQ(same(hud.x + hud.w + 1, std::min(hud.x + hud.w + 8, legend.x - 1), hud.y, hud.y + hud.h), 0)
+            << at << ": text right of the HUD's box";
+        // No line is cut at the box's edge (ImGui clips to the box): the glyphs end a padding short.
+        for (const bool of_hud : {true, false}) {
+          const PixelBox& box = of_hud ? hud : legend;
+          const PixelBox& other = of_hud ? legend : hud;  // (the legend overlaps the HUD's corner)
+          int rightmost = -1;
+          // Inside the box's border.
+          for (int y = static_cast<int>(box.y) + 2; y < static_cast<int>(box.y + box.h) - 2; ++y)
+            for (int x = static_cast<int>(box.x) + 2; x < static_cast<int>(box.x + box.w) - 1; ++x) {
+              if (x >= other.x - 1 && x <= other.x + other.w + 1 && y >= other.y - 1 &&
+                  y <= other.y + other.h + 1)
+                continue;
+              const Rgb c = pixel(drawn.data(), view, {static_cast<double>(x), static_cast<double>(y)});
+              if (c.r + c.g + c.b < 350) rightmost = std::max(rightmost, x);
+            }
+          EXPECT_GE(rightmost, 0) << at;
+          EXPECT_LE(rightmost, box.x + box.w - scene.hud.padding)
+              << at << " (scale " << scene.hud.scale << "): a line cut at the box " << box.x << "+" << box.w;
+        }
+        EXPECT_EQ(same(legend.x + legend.w + 1, view.width, legend.y, legend.y + legend.h), 0)
+            << at << ": text right of the legend's box";
+        EXPECT_EQ(same(hud.x, hud.x + hud.w, hud.y + hud.h + 1, hud.y + hud.h + 4), 0)
+            << at << ": below the HUD";
+      }
+  // Every font below 1 was tried (the paces of those four shown sizes reach each).
+  for (const double scale : kHudScales)
+    if (scale < 1.0) {
+      EXPECT_EQ(scales.count(scale), 1u) << scale << " (" << scales.size() << " scales tried)";
+    }
 }
 
 TEST(Renderer, SameSnapshotViewAndSizeGiveTheSameBytes) {

@@ -35,7 +35,9 @@ export const launchBrowser = () =>
 // The outcome of a file's tests: any failure makes the process exit 1.
 export const results = { failed: false };
 
+// WEB_TEST_ONLY=text runs only the tests whose names contain it (while working on one).
 export async function test(name, body) {
+  if (process.env.WEB_TEST_ONLY && !name.includes(process.env.WEB_TEST_ONLY)) return;
   try {
     await body();
     console.log(`ok   ${name}`);

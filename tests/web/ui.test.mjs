@@ -230,7 +230,8 @@ await runSuite(started, async (browser) => {
     await page.keyboard.press("Tab");
     await page.click('.phys[data-key="radius"] .confirm-use');
     await page.waitForFunction(() => /not applied/.test(document.querySelector("#phys-radius-error").textContent));
-    assert.match(await page.textContent("#phys-radius-error"), /^Surface radius R = 0\.1 not applied: initial\.r: /);
+    // In the field table's words: the other field by its title, not its path.
+    assert.match(await page.textContent("#phys-radius-error"), /^Surface radius R = 0\.1 not applied: Distance r: must be/);
     assert.equal(await page.inputValue("#phys-radius"), radius, "the value in force back");
   });
 
@@ -1176,6 +1177,13 @@ await runSuite(started, async (browser) => {
     for (const shown of ["#frame", "#play", "#pause", "#reset"]) assert.equal(await e.isVisible(shown), true, shown);
     const box = await (await e.$("#frame")).boundingBox();
     assert.ok(box.y + box.height <= 600 && box.x + box.width <= 800);
+    // The frame spans the page (it once stopped at the stage's 1280 px, 86 px short at 1366).
+    for (const viewport of [{ width: 800, height: 600 }, { width: 1366, height: 900 }, { width: 1920, height: 1080 }]) {
+      await e.setViewportSize(viewport);
+      await e.waitForTimeout(200);
+      const b = await (await e.$("#frame")).boundingBox();
+      assert.ok(b.x <= 6 && b.x + b.width >= viewport.width - 6 && b.y + b.height <= viewport.height, `${viewport.width}: ${JSON.stringify(b)}`);
+    }
     await e.close();
   });
 
