@@ -48,17 +48,18 @@ export function frameUrl(state, width = state.size.width, height = state.size.he
 }
 
 /**
- * The live stream's query: the frame's, at the paced size while playing (pace.js), saying the size
- * it is shown at so that the server sizes its text for that (the same on the screen as unpaced).
+ * The live stream's query: the frame's, at the paced size while playing (pace.js), saying the width
+ * it is shown at in CSS pixels wherever that is not the width drawn (a paced picture, a screen of
+ * two device pixels to one), so that the server sizes its text for what the eye sees: the same on
+ * the screen as unpaced, and a phone's picture (374 px shown, 748 drawn) the compact overlay
+ * instead of a legend 6.5 px high.
  * @param {AppState} state
  */
 function liveQuery(state) {
   const pace = state.playing ? state.pace : 1;
-  return {
-    ...viewQuery(state),
-    ...pacedSize(state.size, pace),
-    ...(pace < 1 ? { shown: state.size.width } : {}),
-  };
+  const size = pacedSize(state.size, pace);
+  // Always said: a steer merges into the stream's parameters, so one left out would stay as it was.
+  return { ...viewQuery(state), ...size, shown: state.size.shown ?? state.size.width };
 }
 
 /** @type {LiveView} */
@@ -155,8 +156,10 @@ function measureFrame() {
   width = Math.max(16, Math.round(width * shrink));
   height = Math.max(16, Math.round(height * shrink));
   defaultHud(box.width, box.height);
+  const shown = Math.round(box.width);
   const { size } = store.get();
-  if (width !== size.width || height !== size.height) store.update({ size: { width, height } });
+  if (width !== size.width || height !== size.height || shown !== size.shown)
+    store.update({ size: { width, height, shown } });
 }
 
 // A frame shown smaller than this (CSS pixels; a phone, upright or on its side) has no room for

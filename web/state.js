@@ -28,7 +28,7 @@
  *   playing: boolean, rate: number,
  *   preset: string|null, modified: boolean,
  *   view: ViewState,
- *   size: {width: number, height: number}, pace: number,
+ *   size: {width: number, height: number, shown?: number}, pace: number,
  *   schema: any, presets: any[], views: any[],
  *   viewParameters: import("./viewparams.js").ViewControls|null,
  * }} AppState

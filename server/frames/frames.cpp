@@ -145,7 +145,8 @@ render::ViewRequest view_request(const FrameRequest& f) {
           .pitch = f.pitch,
           .distance = f.distance,
           .trail = f.trail,
-          .motion = f.motion};
+          .motion = f.motion,
+          .shown_width = f.view.shown_width > 0 ? std::optional<double>(f.view.shown_width) : std::nullopt};
 }
 
 void apply_view_query(const Query& q, FrameRequest& f, SurfaceKind surface) {
@@ -174,6 +175,7 @@ void apply_view_query(const Query& q, FrameRequest& f, SurfaceKind surface) {
   f.distance = r.distance;
   f.trail = r.trail;
   f.motion = r.motion;
+  f.view.shown_width = r.shown_width ? static_cast<int>(std::lround(*r.shown_width)) : 0;
 }
 
 FrameRequest frame_request(const Query& q, SurfaceKind surface, bool jpeg, long long max_pixels) {
@@ -212,6 +214,8 @@ std::string frame_etag(const std::string& id, const std::string& state, const Fr
                 camera(f.trail).c_str(), f.jpeg_quality ? "jpeg" : "png", f.jpeg_quality.value_or(0));
   std::string tag = text;
   if (f.at) tag.insert(tag.size() - 1, "-at" + camera(f.at));
+  // The overlay is sized for the width shown: another shown width is another picture.
+  if (f.view.shown_width > 0) tag.insert(tag.size() - 1, "-shown" + std::to_string(f.view.shown_width));
   return tag;
 }
 

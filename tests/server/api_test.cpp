@@ -238,6 +238,29 @@ TEST_F(Api, TheActionsLayerAddsToTheOverlay) {
   remove(id);
 }
 
+// A frame's overlay is sized for the width it is shown at (`shown`: the page's paced picture, a
+// phone's of three device pixels to one): smaller text when shown larger, the compact overlay
+// (no legend) when shown small; as drawn when `shown` is the width. The live stream and the frames
+// once dropped the parameter, so the page's paced and phone pictures kept the drawn size's text.
+TEST_F(Api, TheOverlayFollowsTheWidthShown) {
+  auto c = client();
+  const std::string id = create(R"({"preset": "spin_vs_geodesic_sphere"})");
+  const std::string frame = "/api/v1/sessions/" + id + "/frame.png?width=533&height=400";
+  auto drawn = c.Get(frame);
+  auto same = c.Get(frame + "&shown=533");
+  auto paced = c.Get(frame + "&shown=1066");
+  auto phone = c.Get(frame + "&shown=266");
+  ASSERT_TRUE(drawn && same && paced && phone);
+  for (const auto* r : {&drawn, &same, &paced, &phone}) EXPECT_EQ((*r)->status, 200) << (*r)->body;
+  EXPECT_EQ(drawn->body, same->body);
+  EXPECT_NE(drawn->body, paced->body);
+  EXPECT_NE(drawn->body, phone->body);
+  EXPECT_NE(paced->body, phone->body);
+  EXPECT_NE(drawn->get_header_value("ETag"), paced->get_header_value("ETag"));
+  EXPECT_NE(paced->get_header_value("ETag"), phone->get_header_value("ETag"));
+  remove(id);
+}
+
 // The session names its surface resolved (server/context.cpp): the kind and radius a given K
 // implies, the plane below the engine's flat threshold, and K in the kind-and-radius form; the UI
 // reads these instead of re-deriving them with a copied constant.

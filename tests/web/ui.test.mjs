@@ -1216,10 +1216,20 @@ await runSuite(started, async (browser) => {
     for (const viewport of [{ width: 390, height: 844 }, { width: 844, height: 390 }]) {
       const phone = await browser.newPage({ bypassCSP: true, viewport, deviceScaleFactor: 3, isMobile: true, hasTouch: true });
       watchConsole(phone, `phone ${viewport.width}`);
+      const liveAsked = [];
+      phone.on("request", (r) => { if (/\/live\?/.test(r.url())) liveAsked.push(new URL(r.url()).searchParams); });
       await phone.goto(base);
       await phone.waitForSelector("body[data-ready=true]", { timeout: 20000 });
       await phone.waitForTimeout(300);
       for (const selector of ["#frame", "#play", "#pause", "#reset"]) assert.equal(await inView(phone, selector, viewport), true);
+      // The picture is drawn at three device pixels to one and says the width it is shown at in CSS
+      // pixels, so the server sizes its overlay for what the eye sees (a phone's: compact, no legend
+      // 13 device pixels high).
+      const frameBox = await (await phone.$("#frame")).boundingBox();
+      const asked = liveAsked.at(-1);
+      assert.ok(asked, "the live picture was asked for");
+      assert.equal(Number(asked.get("shown")), Math.round(frameBox.width), String(asked));
+      assert.ok(Number(asked.get("width")) > 2 * Number(asked.get("shown")), String(asked));
       // A phone's picture is too small for legible overlay text; the readout below says the same.
       await phone.waitForFunction(() => !new URLSearchParams(document.querySelector("#export-png").search).get("layers").includes("hud"));
       assert.equal(await phone.$eval("#layers input[name=layer-hud]", (el) => el.checked), false);
